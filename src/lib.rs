@@ -1,0 +1,7 @@
+//! robofmu: robot models as FMI 2.0 components.
+//!
+//! Layering: the robot libraries (`pss3`, `dexterity`, `dual_arm`, `control`) know
+//! nothing of FMI; the generic FMI layer (`fmi2`) knows nothing of robots; each FMU
+//! crate under `fmus/` is a thin binding between them.
+
+pub mod plot;
