@@ -1,0 +1,18 @@
+//! The 3-PSS spherical parallel robot: three horizontal prismatic actuators, three
+//! S-S legs and a platform that rotates about a fixed spherical joint at P.
+//!
+//! Conventions (see ../shared/spec/3pss.md): base frame {A} with Z up; orientation
+//! R = Rz(thz) Ry(thy) Rx(thx) of the platform frame {B} in {A}; Euler angles are
+//! stored as `Vector3` (thx, thy, thz) in rad; angular velocities `omega` are in {A}.
+//! Everything is SI.
+
+mod error;
+mod ik;
+mod jacobian;
+mod params;
+pub mod rotation;
+
+pub use error::{KinematicsError, ParamError};
+pub use ik::{Assembly, assemble, inverse_kinematics};
+pub use jacobian::{Jacobian, jacobian};
+pub use params::{Geometry, Params};
