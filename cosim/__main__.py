@@ -1,0 +1,41 @@
+"""Command line: ``python -m cosim SCENARIO [--out DIR] [--quiet]``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+from .errors import CosimError
+from .master import Master, text_progress
+from .scenario import ScenarioError, load_scenario
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m cosim", description=__doc__)
+    parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
+    parser.add_argument("--out", type=Path, default=Path("results"),
+                        help="directory for the result CSV (default: results)")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    args = parser.parse_args(argv)
+    try:
+        scenario = load_scenario(args.scenario)
+        progress = None if args.quiet else text_progress()
+        started = time.perf_counter()
+        result = Master(scenario, progress=progress).run()
+        wall = time.perf_counter() - started
+    except (ScenarioError, CosimError) as e:
+        print(f"cosim: {e}", file=sys.stderr)
+        return 1
+    out = args.out / f"{scenario.name}.csv"
+    result.write_csv(out)
+    for line in result.discards:
+        print(f"cosim: {line}", file=sys.stderr)
+    print(f"{scenario.name}: {scenario.steps} steps of {scenario.step_size} s in {wall:.3f} s "
+          f"wall time -> {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

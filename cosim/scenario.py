@@ -1,0 +1,182 @@
+"""Scenario files: loading and validation.
+
+Schema (TOML shown; JSON has the same structure)::
+
+    name = "tracking-quintic"          # used for output file names
+    start_time = 0.0                   # s (optional, default 0)
+    stop_time = 2.0                    # s, > start_time
+    step_size = 0.001                  # s, communication step, > 0
+    order = ["planner", "pid", "plant"]  # Gauss-Seidel order; every FMU once
+    max_step_halvings = 0              # Discard retries with h/2, h/4, ... (optional)
+
+    [fmus]                             # alias -> FMU path (relative to this file)
+    planner = "../dist/Planner.fmu"
+
+    [parameters.planner]               # start values set before initialisation
+    "tf" = 2.0
+
+    [[connections]]                    # output -> input, both "alias.variable"
+    from = "planner.q[1]"
+    to = "pid.setpoint[1]"
+
+    record = ["plant.theta[1]"]        # extra signals to record (optional)
+
+A malformed scenario raises ScenarioError naming the offending field.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+
+class ScenarioError(ValueError):
+    """A scenario file that cannot be run; the message names the field."""
+
+
+@dataclass(frozen=True)
+class Signal:
+    """A variable of one FMU instance, written "alias.variable"."""
+
+    alias: str
+    variable: str
+
+    def __str__(self) -> str:
+        return f"{self.alias}.{self.variable}"
+
+
+@dataclass(frozen=True)
+class Connection:
+    source: Signal
+    target: Signal
+
+
+@dataclass
+class Scenario:
+    name: str
+    fmus: dict[str, Path]
+    order: list[str]
+    start_time: float
+    stop_time: float
+    step_size: float
+    parameters: dict[str, dict[str, float | int | bool]] = field(default_factory=dict)
+    connections: list[Connection] = field(default_factory=list)
+    record: list[Signal] = field(default_factory=list)
+    max_step_halvings: int = 0
+
+    @property
+    def steps(self) -> int:
+        """Number of communication steps from start to stop time."""
+        return round((self.stop_time - self.start_time) / self.step_size)
+
+
+def _require(data: dict, key: str, kind, where: str = ""):
+    if key not in data:
+        raise ScenarioError(f"missing field '{where}{key}'")
+    value = data[key]
+    if kind is float and isinstance(value, int) and not isinstance(value, bool):
+        value = float(value)
+    if not isinstance(value, kind) or (kind is float and not math.isfinite(value)):
+        name = kind.__name__ if isinstance(kind, type) else "/".join(k.__name__ for k in kind)
+        raise ScenarioError(f"field '{where}{key}' must be a finite {name}, got {value!r}")
+    return value
+
+
+def _signal(text, where: str, aliases) -> Signal:
+    if not isinstance(text, str) or "." not in text:
+        raise ScenarioError(f"field '{where}' must be \"alias.variable\", got {text!r}")
+    alias, variable = text.split(".", 1)
+    if alias not in aliases:
+        raise ScenarioError(f"field '{where}' names unknown FMU '{alias}' (known: {sorted(aliases)})")
+    if not variable:
+        raise ScenarioError(f"field '{where}' has an empty variable name")
+    return Signal(alias, variable)
+
+
+def parse_scenario(data: dict, base_dir: Path) -> Scenario:
+    """Validates a scenario given as a parsed TOML/JSON document."""
+    if not isinstance(data, dict):
+        raise ScenarioError("a scenario must be a table/object at the top level")
+    known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
+             "parameters", "connections", "record", "max_step_halvings"}
+    unknown = sorted(set(data) - known)
+    if unknown:
+        raise ScenarioError(f"unknown field '{unknown[0]}'")
+    name = _require(data, "name", str)
+    fmus_raw = _require(data, "fmus", dict)
+    if not fmus_raw:
+        raise ScenarioError("field 'fmus' must name at least one FMU")
+    fmus = {alias: base_dir / _require(fmus_raw, alias, str, "fmus.") for alias in fmus_raw}
+    order = _require(data, "order", list)
+    if sorted(order) != sorted(fmus):
+        raise ScenarioError(f"field 'order' must list every FMU of 'fmus' exactly once, got {order}")
+    start = _require(data, "start_time", float) if "start_time" in data else 0.0
+    stop = _require(data, "stop_time", float)
+    step = _require(data, "step_size", float)
+    if step <= 0.0:
+        raise ScenarioError(f"field 'step_size' must be positive, got {step}")
+    if stop <= start:
+        raise ScenarioError(f"field 'stop_time' ({stop}) must be after 'start_time' ({start})")
+    steps = (stop - start) / step
+    if abs(steps - round(steps)) > 1e-9 * max(1.0, steps):
+        raise ScenarioError(f"field 'step_size' ({step}) must divide stop - start ({stop - start})")
+    params_raw = data.get("parameters", {})
+    if not isinstance(params_raw, dict):
+        raise ScenarioError("field 'parameters' must be a table of FMU aliases")
+    parameters = {}
+    for alias, values in params_raw.items():
+        if alias not in fmus:
+            raise ScenarioError(f"field 'parameters.{alias}' names unknown FMU '{alias}'")
+        if not isinstance(values, dict):
+            raise ScenarioError(f"field 'parameters.{alias}' must be a table of name = value")
+        for var, value in values.items():
+            if not isinstance(value, (int, float, bool)) or (
+                    isinstance(value, float) and not math.isfinite(value)):
+                raise ScenarioError(f"field 'parameters.{alias}.{var}' must be a finite number "
+                                    f"or boolean, got {value!r}")
+        parameters[alias] = dict(values)
+    connections = []
+    raw_connections = data.get("connections", [])
+    if not isinstance(raw_connections, list):
+        raise ScenarioError("field 'connections' must be a list of {from, to}")
+    targets = set()
+    for k, c in enumerate(raw_connections):
+        where = f"connections[{k}]"
+        if not isinstance(c, dict) or set(c) != {"from", "to"}:
+            raise ScenarioError(f"field '{where}' must have exactly the keys 'from' and 'to'")
+        conn = Connection(_signal(c["from"], f"{where}.from", fmus), _signal(c["to"], f"{where}.to", fmus))
+        if conn.target in targets:
+            raise ScenarioError(f"field '{where}.to': input {conn.target} is connected twice")
+        targets.add(conn.target)
+        connections.append(conn)
+    record_raw = data.get("record", [])
+    if not isinstance(record_raw, list):
+        raise ScenarioError("field 'record' must be a list of \"alias.variable\"")
+    record = [_signal(s, f"record[{k}]", fmus) for k, s in enumerate(record_raw)]
+    halvings = data.get("max_step_halvings", 0)
+    if not isinstance(halvings, int) or isinstance(halvings, bool) or not 0 <= halvings <= 20:
+        raise ScenarioError(f"field 'max_step_halvings' must be an integer in 0..20, got {halvings!r}")
+    return Scenario(name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
+                    step_size=step, parameters=parameters, connections=connections,
+                    record=record, max_step_halvings=halvings)
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    """Reads and validates a .toml or .json scenario file."""
+    path = Path(path)
+    try:
+        if path.suffix == ".toml":
+            data = tomllib.loads(path.read_text())
+        elif path.suffix == ".json":
+            data = json.loads(path.read_text())
+        else:
+            raise ScenarioError(f"{path}: scenario files are .toml or .json")
+    except (tomllib.TOMLDecodeError, json.JSONDecodeError) as e:
+        raise ScenarioError(f"{path}: not valid {path.suffix[1:].upper()}: {e}") from e
+    try:
+        return parse_scenario(data, path.parent)
+    except ScenarioError as e:
+        raise ScenarioError(f"{path}: {e}") from e

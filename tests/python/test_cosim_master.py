@@ -1,0 +1,165 @@
+"""The co-simulation master's stepping logic, with pure-Python stand-in FMUs whose
+results have closed forms (no FMPy or FMU needed)."""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+
+from cosim.errors import CosimError, StepDiscarded  # noqa: E402
+from cosim.master import Master  # noqa: E402
+from cosim.scenario import ScenarioError, load_scenario, parse_scenario  # noqa: E402
+
+
+class Ramp:
+    """Output y = t at the FMU's current time."""
+
+    def __init__(self, alias):
+        self.alias, self.t, self.steps = alias, 0.0, []
+
+    def set_value(self, name, value):
+        raise AssertionError(f"Ramp has no input {name}")
+
+    def get_value(self, name):
+        assert name == "y"
+        return self.t
+
+    def do_step(self, t, h):
+        assert t == pytest.approx(self.t, abs=1e-15), "steps must be contiguous"
+        self.steps.append(h)
+        self.t = t + h
+
+    def get_state(self):
+        return {"t": self.t}
+
+    def set_state(self, s):
+        self.t = s["t"]
+
+    def free_state(self, s):
+        pass
+
+    enter_initialization = exit_initialization = close = lambda self: None
+
+
+class Integrator(Ramp):
+    """x' = u with u held over the step (x += u h); discards steps longer than h_max."""
+
+    def __init__(self, alias, h_max=1.0):
+        super().__init__(alias)
+        self.x, self.u, self.h_max = 0.0, 0.0, h_max
+
+    def set_value(self, name, value):
+        assert name == "u"
+        self.u = value
+
+    def get_value(self, name):
+        return {"x": self.x, "u": self.u}[name]
+
+    def do_step(self, t, h):
+        if h > self.h_max + 1e-15:
+            raise StepDiscarded(self.alias, t, f"step {h} longer than {self.h_max}")
+        super().do_step(t, h)
+        self.x += self.u * h
+
+    def get_state(self):
+        return {"t": self.t, "x": self.x, "u": self.u}
+
+    def set_state(self, s):
+        self.t, self.x, self.u = s["t"], s["x"], s["u"]
+
+
+def scenario(**over):
+    data = {"name": "chain", "stop_time": 1.0, "step_size": 0.1, "order": ["ramp", "int"],
+            "fmus": {"ramp": "r.fmu", "int": "i.fmu"},
+            "connections": [{"from": "ramp.y", "to": "int.u"}], "record": ["int.x"]}
+    data.update(over)
+    return parse_scenario(data, Path("."))
+
+
+def run(s, h_max=1.0):
+    made = {}
+
+    def open_fmu(alias, _path, _s):
+        made[alias] = Ramp(alias) if alias == "ramp" else Integrator(alias, h_max)
+        return made[alias]
+
+    return Master(s, open_fmu=open_fmu).run(), made
+
+
+def test_gauss_seidel_order_feeds_the_advanced_output():
+    # Closed form: the integrator steps after the ramp, so over step k it holds
+    # u = t_{k+1} = (k+1) h; x_N = h^2 N (N+1) / 2 = 0.55 for h = 0.1, N = 10.
+    result, _ = run(scenario())
+    assert result.columns["int.x"][-1] == pytest.approx(0.55, abs=1e-14)
+    # Jacobi order would give h^2 N (N-1) / 2 = 0.45: the reversed order must.
+    reversed_result, _ = run(scenario(order=["int", "ramp"]))
+    assert reversed_result.columns["int.x"][-1] == pytest.approx(0.45, abs=1e-14)
+
+
+def test_time_is_an_integer_step_count():
+    # 0.1 added ten times is 0.9999999999999999; t_k = k h must be exact at the end.
+    result, _ = run(scenario())
+    assert len(result.time) == 11 and result.time[0] == 0.0 and result.time[-1] == 1.0
+    assert result.names == ["ramp.y", "int.x"]
+
+
+def test_discarded_steps_are_retried_with_halved_steps_after_rollback():
+    # h = 0.1 with h_max = 0.03 needs two halvings (h/4 = 0.025); every FMU then takes
+    # M = 40 substeps and x = (h/4)^2 M (M+1) / 2 = 0.5125 (same closed form as above).
+    s = scenario(max_step_halvings=2)
+    result, made = run(s, h_max=0.03)
+    assert result.columns["int.x"][-1] == pytest.approx(0.5125, abs=1e-14)
+    assert made["ramp"].t == pytest.approx(1.0, abs=1e-14)
+    assert len(result.time) == 11
+    assert "int discarded the step at t = 0" in result.discards[0]
+
+
+def test_discard_without_halvings_left_is_a_clear_error():
+    with pytest.raises(CosimError, match=r"int discarded the step at t = 0 s: step 0.05 longer"):
+        run(scenario(max_step_halvings=1), h_max=0.03)
+
+
+def test_result_csv_is_in_cross_check_format(tmp_path):
+    result, _ = run(scenario())
+    result.write_csv(tmp_path / "out.csv")
+    lines = (tmp_path / "out.csv").read_text().splitlines()
+    assert lines[0] == '"time","ramp.y","int.x"'
+    assert lines[-1].split(",")[0] == "1.0"
+
+
+@pytest.mark.parametrize("change, field", [
+    ({"step_size": 0.3}, "step_size"),
+    ({"step_size": -0.1}, "step_size"),
+    ({"stop_time": "2"}, "stop_time"),
+    ({"order": ["ramp"]}, "order"),
+    ({"connections": [{"from": "ramp.y", "to": "pid.u"}]}, "connections[0].to"),
+    ({"connections": [{"from": "ramp", "to": "int.u"}]}, "connections[0].from"),
+    ({"connections": [{"from": "ramp.y", "to": "int.u"}] * 2}, "connections[1].to"),
+    ({"parameters": {"int": {"k": float("nan")}}}, "parameters.int.k"),
+    ({"record": ["nothing.x"]}, "record[0]"),
+    ({"max_step_halvings": -1}, "max_step_halvings"),
+    ({"stepsize": 0.1}, "stepsize"),
+])
+def test_malformed_scenarios_name_the_field(change, field):
+    with pytest.raises(ScenarioError, match=re.escape(f"'{field}")):
+        scenario(**change)
+
+
+def test_scenario_files_load_from_toml_and_json(tmp_path):
+    data = {"name": "x", "stop_time": 1.0, "step_size": 0.5, "order": ["a"], "fmus": {"a": "a.fmu"}}
+    (tmp_path / "s.json").write_text(json.dumps(data))
+    (tmp_path / "s.toml").write_text(
+        'name = "x"\nstop_time = 1.0\nstep_size = 0.5\norder = ["a"]\n[fmus]\na = "a.fmu"\n')
+    for name in ("s.json", "s.toml"):
+        s = load_scenario(tmp_path / name)
+        assert s.steps == 2 and s.fmus["a"] == tmp_path / "a.fmu"
+    (tmp_path / "bad.toml").write_text("name = ")
+    with pytest.raises(ScenarioError, match="not valid TOML"):
+        load_scenario(tmp_path / "bad.toml")
+
