@@ -163,3 +163,33 @@ def test_scenario_files_load_from_toml_and_json(tmp_path):
     with pytest.raises(ScenarioError, match="not valid TOML"):
         load_scenario(tmp_path / "bad.toml")
 
+
+
+def test_ssp_structure_passes_the_ssp_schema(tmp_path):
+    # Truth: FMPy's reader validates SystemStructure.ssd against the SSP 1.0 XSD.
+    from types import SimpleNamespace as Var
+    pytest.importorskip("fmpy")
+    from fmpy.ssp.ssd import read_ssd
+    from cosim.ssp import system_structure
+    s = scenario(parameters={"int": {"gain": 2.0, "n": 3}})
+    variables = {"ramp": {"y": Var(type="Real", causality="output")},
+                 "int": {"u": Var(type="Real", causality="input"),
+                         "x": Var(type="Real", causality="output"),
+                         "gain": Var(type="Real", causality="parameter"),
+                         "n": Var(type="Integer", causality="parameter")}}
+    tree = system_structure(s, variables)
+    ssp = tmp_path / "chain.ssp"
+    import xml.etree.ElementTree as ET
+    import zipfile
+    with zipfile.ZipFile(ssp, "w") as z:
+        z.writestr("SystemStructure.ssd", ET.tostring(tree.getroot(), encoding="unicode"))
+    ssd = read_ssd(str(ssp), validate=True)
+    names = [(c.startElement, c.startConnector, c.endElement, c.endConnector)
+             for c in ssd.system.connections]
+    assert names == [("ramp", "y", "int", "u")]
+    params = ssd.system.parameterBindings[0].parameterValues[0].parameters
+    assert [(p.name, p.type, p.value) for p in params] == [("int.gain", "Real", "2.0"),
+                                                            ("int.n", "Integer", "3")]
+    variables["int"]["u"] = Var(type="Real", causality="parameter")
+    with pytest.raises(ScenarioError, match="int.u is a parameter, not an input"):
+        system_structure(s, variables)
