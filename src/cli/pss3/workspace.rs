@@ -83,13 +83,15 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     );
     print_summary(summarize(&orientations.reachable).as_ref());
 
-    let envelope = tilt_envelope(&stroke.points, ROLL_BAND_DEG.to_radians());
-    print_envelope(&envelope);
+    let slices = orientations.max_tilt_per_roll();
+    print_slices(&slices);
+    let bands = tilt_envelope(&stroke.points, ROLL_BAND_DEG.to_radians());
     write_outputs(
         &args.out,
         &stroke.points,
         &orientations.reachable,
-        &envelope,
+        &bands,
+        &slices,
     )?;
     println!("wrote CSV files and plots to {}", args.out.display());
     Ok(())
@@ -127,11 +129,16 @@ fn print_summary(summary: Option<&Summary>) {
     );
 }
 
-fn print_envelope(envelope: &[EnvelopeBin]) {
-    println!("largest tilt per {ROLL_BAND_DEG} deg band of roll (stroke box):");
-    for bin in envelope {
+/// The largest tilt at whole-degree roll values of the orientation grid.
+fn print_slices(slices: &[EnvelopeBin]) {
+    println!("largest reachable tilt at fixed roll (orientation grid, whole degrees):");
+    let whole = |b: &&EnvelopeBin| {
+        let d = b.roll.to_degrees();
+        (d - d.round()).abs() < 1e-6
+    };
+    for bin in slices.iter().filter(whole) {
         println!(
-            "  roll {:7.2} deg: tilt up to {:5.2} deg ({} points)",
+            "  roll {:6.1} deg: tilt up to {:5.2} deg ({} grid orientations)",
             bin.roll.to_degrees(),
             bin.max_tilt.to_degrees(),
             bin.count
@@ -149,7 +156,8 @@ fn write_outputs(
     dir: &Path,
     stroke: &[WorkspacePoint],
     orientations: &[WorkspacePoint],
-    envelope: &[EnvelopeBin],
+    bands: &[EnvelopeBin],
+    slices: &[EnvelopeBin],
 ) -> Result<(), CliError> {
     write_csv(
         &dir.join("stroke_box.csv"),
@@ -162,9 +170,20 @@ fn write_outputs(
         orientations.iter().map(point_row),
     )?;
     write_csv(
-        &dir.join("tilt_roll_envelope.csv"),
+        &dir.join("tilt_roll_bands_stroke_box.csv"),
         &["thz_roll_band_centre_rad", "max_tilt_rad", "points"],
-        envelope
+        bands
+            .iter()
+            .map(|b| vec![b.roll, b.max_tilt, b.count as f64]),
+    )?;
+    write_csv(
+        &dir.join("tilt_at_roll_orientation_grid.csv"),
+        &[
+            "thz_roll_rad",
+            "max_tilt_rad",
+            "reachable_grid_orientations",
+        ],
+        slices
             .iter()
             .map(|b| vec![b.roll, b.max_tilt, b.count as f64]),
     )?;
@@ -172,18 +191,18 @@ fn write_outputs(
     scatter_chart(
         &dir.join("tilt_vs_roll.png"),
         &Axes {
-            title: "3-PSS reachable tilt versus roll (stroke box, FK)",
+            title: "3-PSS reachable tilt versus roll",
             x_label: "roll thz, deg",
             y_label: "tilt of the platform normal from Z, deg",
         },
         &[
             Series {
-                label: "reachable poses",
+                label: "reachable poses (stroke box, FK)",
                 points: stroke.iter().map(degrees).collect(),
             },
             Series {
-                label: "largest tilt per roll band",
-                points: envelope
+                label: "largest tilt at fixed roll (orientation grid, IK)",
+                points: slices
                     .iter()
                     .map(|b| (b.roll.to_degrees(), b.max_tilt.to_degrees()))
                     .collect(),

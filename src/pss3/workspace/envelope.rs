@@ -2,12 +2,12 @@
 
 use super::WorkspacePoint;
 
-/// One band of roll angles with the largest tilt reached inside it.
+/// One band (or one value) of roll angles with the largest tilt reached there.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EnvelopeBin {
-    /// Centre of the band, rad.
+    /// Centre of the band (or the roll value), rad.
     pub roll: f64,
-    /// Largest tilt of the points in the band, rad.
+    /// Largest tilt of the points, rad.
     pub max_tilt: f64,
     /// Number of points in the band.
     pub count: usize,

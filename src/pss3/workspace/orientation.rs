@@ -1,14 +1,15 @@
 //! Inverse-kinematics scan over a regular grid of Euler angles: which orientations the
 //! strokes reach, and the Jacobian measures there.
 
-use super::WorkspacePoint;
+use super::{EnvelopeBin, WorkspacePoint};
 use crate::pss3::ik::inverse_kinematics;
 use crate::pss3::params::Geometry;
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
 /// A regular grid of Euler angles: `steps` values each of thx and thy in
-/// [-tilt_limit, tilt_limit] and `roll_steps` values of thz in [roll_min, roll_max], rad.
+/// [-tilt_limit, tilt_limit] and `roll_steps` values of thz in [roll_min, roll_max], rad
+/// (a single value is the lower end).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OrientationGrid {
     pub tilt_limit: f64,
@@ -44,8 +45,11 @@ impl OrientationGrid {
     }
 }
 
+/// `n` evenly spaced values from `lo` to `hi` (just `lo` when n = 1).
 fn spread(lo: f64, hi: f64, n: usize) -> Vec<f64> {
-    let n = n.max(2);
+    if n == 1 {
+        return vec![lo];
+    }
     (0..n)
         .map(|k| lo + (hi - lo) * k as f64 / (n - 1) as f64)
         .collect()
@@ -81,5 +85,20 @@ pub fn scan_orientations(geometry: &Geometry, grid: &OrientationGrid) -> Orienta
         grid: *grid,
         reachable,
         tried: rolls.len() * tilts.len() * tilts.len(),
+    }
+}
+
+impl OrientationScan {
+    /// The largest reachable tilt at each grid roll value (the slice thz = const of the
+    /// workspace); rolls with no reachable orientation are left out.
+    pub fn max_tilt_per_roll(&self) -> Vec<EnvelopeBin> {
+        self.reachable
+            .chunk_by(|a, b| a.euler.z == b.euler.z)
+            .map(|slice| EnvelopeBin {
+                roll: slice[0].euler.z,
+                max_tilt: slice.iter().map(|p| p.tilt).fold(0.0, f64::max),
+                count: slice.len(),
+            })
+            .collect()
     }
 }
