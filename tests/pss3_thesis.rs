@@ -194,6 +194,11 @@ fn orientation_grid_agrees_with_the_stroke_box_scan() {
     let g = Geometry::default();
     let fk = summarize(&scan_stroke_box(&g, 31, &FkOptions::default()).points).unwrap();
     let scan = scan_orientations(&g, &OrientationGrid::default());
+    assert!(
+        scan.singular.is_empty(),
+        "singular at {:?}",
+        scan.singular.first()
+    );
     let ik = summarize(&scan.reachable).unwrap();
     let spacing = 0.5f64.to_radians() + 1e-9;
     for (name, a, b) in [

@@ -102,3 +102,50 @@ pub fn linear_actuator_path(
     }
     Ok(samples)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn times_end_at_the_duration() {
+        // Truth: counting by hand, 0, 0.3, 0.6, 0.9 and the end 1.0 (shorter last step);
+        // 2 s at 0.04 s is 50 steps (51 samples) despite 2 / 0.04 = 50.000000000000004.
+        let t = Timing {
+            duration: 1.0,
+            dt: 0.3,
+        }
+        .times()
+        .unwrap();
+        assert_eq!(t.len(), 5);
+        assert!((t[3] - 0.9).abs() < 1e-15 && t[4] == 1.0);
+        let t = Timing {
+            duration: 2.0,
+            dt: 0.04,
+        };
+        assert_eq!(t.times().unwrap().len(), 51);
+    }
+
+    #[test]
+    fn bad_timing_and_unreachable_ends_are_errors() {
+        let g = Geometry::default();
+        let bad = |duration, dt| Timing { duration, dt }.times().unwrap_err();
+        assert!(matches!(bad(0.0, 0.1), PathError::BadTiming(_)));
+        assert!(matches!(bad(1.0, f64::NAN), PathError::BadTiming(_)));
+        assert!(matches!(bad(1.0, 2.0), PathError::BadTiming(_)));
+        // The end displacement 0.2 m lies beyond the 152 mm stroke: the last sample fails.
+        let timing = Timing {
+            duration: 1.0,
+            dt: 0.5,
+        };
+        let (l0, lf) = (Vector3::repeat(0.002), Vector3::new(0.002, 0.002, 0.2));
+        let e = linear_actuator_path(&g, &l0, &lf, &timing, &FkOptions::default()).unwrap_err();
+        assert!(matches!(
+            e,
+            PathError::Kinematics {
+                source: KinematicsError::OutsideStroke { leg: 3, .. },
+                ..
+            }
+        ));
+    }
+}

@@ -76,9 +76,10 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     let started = Instant::now();
     let orientations = scan_orientations(&geometry, &grid);
     println!(
-        "orientation grid: {} orientations, {} within the strokes ({:.2} s, IK)",
+        "orientation grid: {} orientations, {} within the strokes, {} of them singular ({:.2} s, IK)",
         orientations.tried,
-        orientations.reachable.len(),
+        orientations.reachable.len() + orientations.singular.len(),
+        orientations.singular.len(),
         started.elapsed().as_secs_f64()
     );
     print_summary(summarize(&orientations.reachable).as_ref());

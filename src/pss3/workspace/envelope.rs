@@ -38,3 +38,35 @@ pub fn tilt_envelope(points: &[WorkspacePoint], width: f64) -> Vec<EnvelopeBin> 
     }
     bins.into_iter().filter(|b| b.count > 0).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    fn point(roll: f64, tilt: f64) -> WorkspacePoint {
+        WorkspacePoint {
+            l: Vector3::zeros(),
+            euler: Vector3::new(0.0, 0.0, roll),
+            tilt,
+            det_j: 1.0,
+            cond_j: 1.0,
+            min_leg_projection: 1.0,
+        }
+    }
+
+    #[test]
+    fn bands_keep_the_largest_tilt() {
+        // Truth: by hand, bands [1, 2) and [2, 3) of width 1 with an empty band [3, 4).
+        let points = [
+            point(1.0, 0.1),
+            point(1.5, 0.3),
+            point(2.2, 0.2),
+            point(4.5, 0.4),
+        ];
+        let bins = tilt_envelope(&points, 1.0);
+        let summary: Vec<_> = bins.iter().map(|b| (b.roll, b.max_tilt, b.count)).collect();
+        assert_eq!(summary, vec![(1.5, 0.3, 2), (2.5, 0.2, 1), (4.5, 0.4, 1)]);
+        assert!(tilt_envelope(&points, 0.0).is_empty());
+    }
+}

@@ -61,3 +61,22 @@ pub fn tilt(euler: &Vector3<f64>) -> f64 {
     let (sy, cy) = euler.y.sin_cos();
     (sy * cx).hypot(sx).atan2(cy * cx)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pss3::rotation::rotation;
+
+    #[test]
+    fn tilt_is_the_angle_of_the_platform_normal_from_z() {
+        // Truth: acos of the z component of R ez, straight from the rotation matrix.
+        for euler in [
+            Vector3::new(0.1, -0.2, 2.3),
+            Vector3::new(-0.3, 0.05, -1.0),
+            Vector3::new(0.0, 0.0, 2.1),
+        ] {
+            let normal = rotation(&euler) * Vector3::z();
+            assert!((tilt(&euler) - normal.z.clamp(-1.0, 1.0).acos()).abs() < 1e-7);
+        }
+    }
+}

@@ -60,8 +60,11 @@ fn spread(lo: f64, hi: f64, n: usize) -> Vec<f64> {
 pub struct OrientationScan {
     /// The scanned grid.
     pub grid: OrientationGrid,
-    /// Grid orientations within the strokes (and not singular), ordered by (thz, thx, thy).
+    /// Grid orientations within the strokes with a regular Jacobian, ordered by
+    /// (thz, thx, thy).
     pub reachable: Vec<WorkspacePoint>,
+    /// Grid orientations within the strokes where the Jacobian is singular.
+    pub singular: Vec<Vector3<f64>>,
     /// Number of grid orientations tried.
     pub tried: usize,
 }
@@ -69,23 +72,32 @@ pub struct OrientationScan {
 /// Inverse kinematics at every orientation of `grid`, in parallel over thz.
 pub fn scan_orientations(geometry: &Geometry, grid: &OrientationGrid) -> OrientationScan {
     let (tilts, rolls) = (grid.tilt_values(), grid.roll_values());
-    let reachable = rolls
+    let within_strokes: Vec<(Vector3<f64>, Option<WorkspacePoint>)> = rolls
         .par_iter()
         .flat_map_iter(|&thz| {
             let tilts = &tilts;
             tilts.iter().flat_map(move |&thx| {
                 tilts.iter().filter_map(move |&thy| {
-                    let assembly = inverse_kinematics(geometry, &Vector3::new(thx, thy, thz));
-                    WorkspacePoint::measure(geometry, &assembly.ok()?).ok()
+                    let euler = Vector3::new(thx, thy, thz);
+                    let assembly = inverse_kinematics(geometry, &euler).ok()?;
+                    Some((euler, WorkspacePoint::measure(geometry, &assembly).ok()))
                 })
             })
         })
         .collect();
-    OrientationScan {
+    let mut scan = OrientationScan {
         grid: *grid,
-        reachable,
+        reachable: Vec::with_capacity(within_strokes.len()),
+        singular: Vec::new(),
         tried: rolls.len() * tilts.len() * tilts.len(),
+    };
+    for (euler, point) in within_strokes {
+        match point {
+            Some(p) => scan.reachable.push(p),
+            None => scan.singular.push(euler),
+        }
     }
+    scan
 }
 
 impl OrientationScan {
