@@ -85,7 +85,6 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     print_summary(summarize(&orientations.reachable).as_ref());
 
     let slices = orientations.max_tilt_per_roll();
-    print_slices(&slices);
     let bands = tilt_envelope(&stroke.points, ROLL_BAND_DEG.to_radians());
     write_outputs(
         &args.out,
@@ -94,6 +93,7 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
         &bands,
         &slices,
     )?;
+    print_slices(&slices);
     println!("wrote CSV files and plots to {}", args.out.display());
     Ok(())
 }
