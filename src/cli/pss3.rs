@@ -7,6 +7,7 @@ mod csv;
 mod path;
 mod pose;
 mod workspace;
+mod workspace_output;
 
 use super::CliError;
 use clap::Subcommand;
