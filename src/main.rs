@@ -14,11 +14,17 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
-enum Command {}
+enum Command {
+    /// Kinematics of the 3-PSS spherical parallel robot.
+    #[command(subcommand)]
+    Pss3(cli::pss3::Pss3Command),
+}
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result: Result<(), cli::CliError> = match cli.command {};
+    let result: Result<(), cli::CliError> = match cli.command {
+        Command::Pss3(command) => cli::pss3::run(command),
+    };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

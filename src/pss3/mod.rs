@@ -7,12 +7,19 @@
 //! Everything is SI.
 
 mod error;
+mod fk;
 mod ik;
 mod jacobian;
+mod motion;
 mod params;
+mod path;
 pub mod rotation;
+pub mod workspace;
 
 pub use error::{KinematicsError, ParamError};
+pub use fk::{FkOptions, ForwardSolution, START_ROLL_DEG, forward_kinematics, start_pose};
 pub use ik::{Assembly, assemble, inverse_kinematics};
 pub use jacobian::{Jacobian, jacobian};
+pub use motion::{ActuatorState, Motion, forward_motion, inverse_motion, velocity_product};
 pub use params::{Geometry, Params};
+pub use path::{PathError, PathSample, Timing, linear_actuator_path};

@@ -1,0 +1,17 @@
+//! Parsing helpers shared by the `pss3` subcommands.
+
+use crate::cli::CliError;
+use nalgebra::Vector3;
+
+/// Three comma-separated numbers as a vector, or an error naming the option.
+pub fn triple(values: &[f64], option: &str) -> Result<Vector3<f64>, CliError> {
+    match values {
+        [x, y, z] => Ok(Vector3::new(*x, *y, *z)),
+        _ => Err(format!("--{option} takes three comma-separated numbers").into()),
+    }
+}
+
+/// Three angles in degrees (thx, thy, thz) as radians.
+pub fn angles_deg(values: &[f64], option: &str) -> Result<Vector3<f64>, CliError> {
+    Ok(triple(values, option)?.map(f64::to_radians))
+}
