@@ -208,6 +208,7 @@ pub fn heat_map(path: &Path, axes: &Axes, grid: &Grid, value_label: &str) -> Res
     bar.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
+        .y_label_style(("sans-serif", 14))
         .draw()
         .map_err(err)?;
     let steps = 100;
