@@ -5,4 +5,5 @@
 //! crate under `fmus/` is a thin binding between them.
 
 pub mod control;
+pub mod fmi2;
 pub mod plot;
