@@ -6,4 +6,5 @@
 
 pub mod control;
 pub mod fmi2;
+pub mod fmus;
 pub mod plot;

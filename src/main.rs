@@ -14,11 +14,16 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
-enum Command {}
+enum Command {
+    /// FMU tooling: modelDescription files and packaging.
+    Fmi(cli::fmi::FmiArgs),
+}
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result: Result<(), cli::CliError> = match cli.command {};
+    let result: Result<(), cli::CliError> = match cli.command {
+        Command::Fmi(args) => cli::fmi::run(args),
+    };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -3,3 +3,5 @@
 
 /// Any failure of a subcommand, reported on stderr with a non-zero exit code.
 pub type CliError = Box<dyn std::error::Error>;
+
+pub mod fmi;

@@ -242,7 +242,9 @@ fn scalar_variable<M>(v: &Variable<M>, table: &[Variable<M>]) -> ScalarVariable 
             start: start.map(number),
             derivative: derivative_of.as_deref().and_then(index_of),
         }),
-        Kind::Integer { start, min, max, .. } => TypeElement::Integer(IntegerAttributes {
+        Kind::Integer {
+            start, min, max, ..
+        } => TypeElement::Integer(IntegerAttributes {
             min: *min,
             max: *max,
             start: *start,
@@ -275,7 +277,10 @@ fn used_units<M>(table: &[Variable<M>]) -> Result<Vec<&'static UnitDefinition>, 
             if let Some(d) = display_unit
                 && !def.display_units.iter().any(|du| du.name == *d)
             {
-                return Err(format!("\"{}\": {d} is not a display unit of {name}", v.name));
+                return Err(format!(
+                    "\"{}\": {d} is not a display unit of {name}",
+                    v.name
+                ));
             }
             if !used.iter().any(|u| u.name == def.name) {
                 used.push(def);
@@ -316,7 +321,10 @@ pub fn model_description<M: Model>() -> Result<String, String> {
             let calculated = matches!(v.initial, Some(Initial::Calculated | Initial::Approx));
             (v.causality == Causality::Output && calculated)
                 || v.causality == Causality::CalculatedParameter
-                || (calculated && derivatives.iter().any(|d| d.value_reference == v.value_reference))
+                || (calculated
+                    && derivatives
+                        .iter()
+                        .any(|d| d.value_reference == v.value_reference))
         })
         .map(index_of)
         .collect();

@@ -136,11 +136,16 @@ impl<M: Model> Instance<M> {
                 matches!(mode, Instantiated | InitializationMode)
             }
             (Causality::Parameter, Variability::Tunable) => {
-                matches!(mode, Instantiated | InitializationMode | EventMode | StepComplete)
+                matches!(
+                    mode,
+                    Instantiated | InitializationMode | EventMode | StepComplete
+                )
             }
             (Causality::Input, variability) => {
-                matches!(mode, Instantiated | InitializationMode | EventMode | StepComplete)
-                    || (mode == ContinuousTimeMode && variability == Variability::Continuous)
+                matches!(
+                    mode,
+                    Instantiated | InitializationMode | EventMode | StepComplete
+                ) || (mode == ContinuousTimeMode && variability == Variability::Continuous)
             }
             _ => match v.initial {
                 Some(Initial::Exact) => matches!(mode, Instantiated | InitializationMode),
@@ -209,7 +214,9 @@ impl<M: Model> Instance<M> {
                 max.unwrap_or(f64::INFINITY)
             ));
         }
-        let set = set.as_ref().ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
+        let set = set
+            .as_ref()
+            .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
         set(&mut self.model, value).map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
     }
 
@@ -222,7 +229,9 @@ impl<M: Model> Instance<M> {
         if min.is_some_and(|m| value < m) || max.is_some_and(|m| value > m) {
             return Err(format!("\"{}\" = {value} is outside its range", v.name));
         }
-        let set = set.as_ref().ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
+        let set = set
+            .as_ref()
+            .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
         set(&mut self.model, value).map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
     }
 
@@ -232,7 +241,9 @@ impl<M: Model> Instance<M> {
             return Err(wrong_type(v, "Boolean"));
         };
         self.check_settable(v)?;
-        let set = set.as_ref().ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
+        let set = set
+            .as_ref()
+            .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
         set(&mut self.model, value).map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
     }
 }

@@ -7,11 +7,13 @@
 
 pub mod api;
 pub mod description;
+pub mod documentation;
 mod export;
 pub mod instance;
 pub mod logging;
 pub mod mode;
 pub mod model;
+pub mod package;
 pub mod serialize;
 pub mod types;
 pub mod units;

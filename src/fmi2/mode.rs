@@ -113,9 +113,7 @@ impl Call {
             ]),
             Call::SetDiscrete => mask(&[Instantiated, InitializationMode, EventMode, StepComplete]),
             Call::EnterEventMode => only_me(mask(&[EventMode, ContinuousTimeMode])),
-            Call::NewDiscreteStates | Call::EnterContinuousTimeMode => {
-                only_me(mask(&[EventMode]))
-            }
+            Call::NewDiscreteStates | Call::EnterContinuousTimeMode => only_me(mask(&[EventMode])),
             Call::CompletedIntegratorStep | Call::SetContinuousStates => {
                 only_me(mask(&[ContinuousTimeMode]))
             }
@@ -171,7 +169,12 @@ mod tests {
 
     #[test]
     fn only_free_instance_is_possible_after_fatal() {
-        for call in [Call::Reset, Call::GetValues, Call::FmuState, Call::SetDebugLogging] {
+        for call in [
+            Call::Reset,
+            Call::GetValues,
+            Call::FmuState,
+            Call::SetDebugLogging,
+        ] {
             for interface in [Interface::ModelExchange, Interface::CoSimulation] {
                 assert!(!call.is_legal(Fatal, interface), "{call:?}");
             }

@@ -40,7 +40,10 @@ pub enum StepOutcome {
     /// The step was rejected (the layer restores the state as it was before the step).
     /// `terminate` says the model cannot continue at all (fmi2Terminated = true)
     /// rather than asking for a smaller step.
-    Discarded { reason: String, terminate: bool },
+    Discarded {
+        reason: String,
+        terminate: bool,
+    },
 }
 
 /// A model that can be exported as an FMU by `export_fmi2!`.

@@ -34,13 +34,15 @@ pub fn serialize<M: Model>(s: &Snapshot<M>) -> Vec<u8> {
     payload.push(s.terminated_by_model as u8);
     for v in M::variables() {
         match &v.kind {
-            Kind::Real { get, set: Some(_), .. } => {
-                payload.extend_from_slice(&get(&s.model).to_le_bytes())
-            }
-            Kind::Integer { get, set: Some(_), .. } => {
-                payload.extend_from_slice(&get(&s.model).to_le_bytes())
-            }
-            Kind::Boolean { get, set: Some(_), .. } => payload.push(get(&s.model) as u8),
+            Kind::Real {
+                get, set: Some(_), ..
+            } => payload.extend_from_slice(&get(&s.model).to_le_bytes()),
+            Kind::Integer {
+                get, set: Some(_), ..
+            } => payload.extend_from_slice(&get(&s.model).to_le_bytes()),
+            Kind::Boolean {
+                get, set: Some(_), ..
+            } => payload.push(get(&s.model) as u8),
             _ => {}
         }
     }

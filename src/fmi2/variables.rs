@@ -396,12 +396,16 @@ pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
         if v.variability == V::Continuous && v.variable_type() != VariableType::Real {
             return Err(format!("\"{name}\": only Real variables can be continuous"));
         }
-        let needs_start = v.causality == C::Input
-            || matches!(v.initial, Some(Initial::Exact | Initial::Approx));
+        let needs_start =
+            v.causality == C::Input || matches!(v.initial, Some(Initial::Exact | Initial::Approx));
         if needs_start != v.has_start() {
             return Err(format!(
                 "\"{name}\": a start value is {} for this causality and initial",
-                if needs_start { "required" } else { "not allowed" }
+                if needs_start {
+                    "required"
+                } else {
+                    "not allowed"
+                }
             ));
         }
         let settable = v.variability != V::Constant

@@ -54,7 +54,11 @@ pub unsafe fn do_step<M: Model>(
 }
 
 pub unsafe fn cancel_step<M: Model>(c: Fmi2Component) -> Fmi2Status {
-    unsafe { with_instance::<M>(c, "fmi2CancelStep", Call::CancelStep, |_| Ok(Fmi2Status::Ok)) }
+    unsafe {
+        with_instance::<M>(c, "fmi2CancelStep", Call::CancelStep, |_| {
+            Ok(Fmi2Status::Ok)
+        })
+    }
 }
 
 pub unsafe fn set_real_input_derivatives<M: Model>(
@@ -65,15 +69,23 @@ pub unsafe fn set_real_input_derivatives<M: Model>(
     value: *const Fmi2Real,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2SetRealInputDerivatives", Call::SetRealInputDerivatives, |_| {
-            input_slice(vr, nvr, "vr[]")?;
-            input_slice(order, nvr, "order[]")?;
-            input_slice(value, nvr, "value[]")?;
-            if nvr == 0 {
-                return Ok(Fmi2Status::Ok);
-            }
-            Err("input derivatives are not supported (canInterpolateInputs=\"false\")".to_string())
-        })
+        with_instance::<M>(
+            c,
+            "fmi2SetRealInputDerivatives",
+            Call::SetRealInputDerivatives,
+            |_| {
+                input_slice(vr, nvr, "vr[]")?;
+                input_slice(order, nvr, "order[]")?;
+                input_slice(value, nvr, "value[]")?;
+                if nvr == 0 {
+                    return Ok(Fmi2Status::Ok);
+                }
+                Err(
+                    "input derivatives are not supported (canInterpolateInputs=\"false\")"
+                        .to_string(),
+                )
+            },
+        )
     }
 }
 
@@ -85,17 +97,25 @@ pub unsafe fn get_real_output_derivatives<M: Model>(
     value: *mut Fmi2Real,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2GetRealOutputDerivatives", Call::GetRealOutputDerivatives, |_| {
-            input_slice(vr, nvr, "vr[]")?;
-            input_slice(order, nvr, "order[]")?;
-            if nvr > 0 && value.is_null() {
-                return Err("value[] is a null pointer".to_string());
-            }
-            if nvr == 0 {
-                return Ok(Fmi2Status::Ok);
-            }
-            Err("output derivatives are not provided (maxOutputDerivativeOrder=\"0\")".to_string())
-        })
+        with_instance::<M>(
+            c,
+            "fmi2GetRealOutputDerivatives",
+            Call::GetRealOutputDerivatives,
+            |_| {
+                input_slice(vr, nvr, "vr[]")?;
+                input_slice(order, nvr, "order[]")?;
+                if nvr > 0 && value.is_null() {
+                    return Err("value[] is a null pointer".to_string());
+                }
+                if nvr == 0 {
+                    return Ok(Fmi2Status::Ok);
+                }
+                Err(
+                    "output derivatives are not provided (maxOutputDerivativeOrder=\"0\")"
+                        .to_string(),
+                )
+            },
+        )
     }
 }
 
@@ -165,7 +185,11 @@ pub unsafe fn get_boolean_status<M: Model>(
             if kind != FMI2_TERMINATED {
                 return Err(no_such_status(kind, "fmi2GetBooleanStatus"));
             }
-            *out = if inst.terminated_by_model { FMI2_TRUE } else { FMI2_FALSE };
+            *out = if inst.terminated_by_model {
+                FMI2_TRUE
+            } else {
+                FMI2_FALSE
+            };
             Ok(Fmi2Status::Ok)
         })
     }

@@ -180,27 +180,37 @@ pub unsafe fn setup_experiment<M: Model>(
 
 pub unsafe fn enter_initialization_mode<M: Model>(c: Fmi2Component) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2EnterInitializationMode", Call::EnterInitializationMode, |inst| {
-            inst.mode = Mode::InitializationMode;
-            Ok(Fmi2Status::Ok)
-        })
+        with_instance::<M>(
+            c,
+            "fmi2EnterInitializationMode",
+            Call::EnterInitializationMode,
+            |inst| {
+                inst.mode = Mode::InitializationMode;
+                Ok(Fmi2Status::Ok)
+            },
+        )
     }
 }
 
 pub unsafe fn exit_initialization_mode<M: Model>(c: Fmi2Component) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2ExitInitializationMode", Call::ExitInitializationMode, |inst| {
-            inst.model
-                .exit_initialization(&inst.log)
-                .map_err(|e| format!("invalid parameters: {e}"))?;
-            inst.mode = match inst.interface {
-                Interface::ModelExchange => Mode::EventMode,
-                Interface::CoSimulation => Mode::StepComplete,
-            };
-            inst.log
-                .debug("logEvents", &format!("initialized at t = {} s", inst.time));
-            Ok(Fmi2Status::Ok)
-        })
+        with_instance::<M>(
+            c,
+            "fmi2ExitInitializationMode",
+            Call::ExitInitializationMode,
+            |inst| {
+                inst.model
+                    .exit_initialization(&inst.log)
+                    .map_err(|e| format!("invalid parameters: {e}"))?;
+                inst.mode = match inst.interface {
+                    Interface::ModelExchange => Mode::EventMode,
+                    Interface::CoSimulation => Mode::StepComplete,
+                };
+                inst.log
+                    .debug("logEvents", &format!("initialized at t = {} s", inst.time));
+                Ok(Fmi2Status::Ok)
+            },
+        )
     }
 }
 

@@ -17,34 +17,39 @@ pub unsafe fn get_directional_derivative<M: Model>(
     dv_unknown: *mut Fmi2Real,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2GetDirectionalDerivative", Call::GetDirectionalDerivative, |inst| {
-            if !M::info().provides_directional_derivative {
-                return Err(format!(
-                    "{} does not provide directional derivatives \
+        with_instance::<M>(
+            c,
+            "fmi2GetDirectionalDerivative",
+            Call::GetDirectionalDerivative,
+            |inst| {
+                if !M::info().provides_directional_derivative {
+                    return Err(format!(
+                        "{} does not provide directional derivatives \
                      (providesDirectionalDerivative=\"false\")",
-                    M::info().model_name
-                ));
-            }
-            let unknowns = input_slice(unknown_refs, n_unknown, "vUnknown_ref[]")?;
-            let knowns = input_slice(known_refs, n_known, "vKnown_ref[]")?;
-            let seeds = input_slice(dv_known, n_known, "dvKnown[]")?;
-            let out = output_slice(dv_unknown, n_unknown, "dvUnknown[]")?;
-            for &vr in unknowns.iter().chain(knowns) {
-                if find(M::variables(), vr).is_none() {
-                    return Err(format!("unknown value reference {vr}"));
+                        M::info().model_name
+                    ));
                 }
-            }
-            if let Some(bad) = seeds.iter().find(|s| !s.is_finite()) {
-                return Err(format!("dvKnown contains {bad}"));
-            }
-            for (o, &u) in out.iter_mut().zip(unknowns) {
-                let mut sum = 0.0;
-                for (&k, &seed) in knowns.iter().zip(seeds) {
-                    sum += inst.model.partial_derivative(u, k)? * seed;
+                let unknowns = input_slice(unknown_refs, n_unknown, "vUnknown_ref[]")?;
+                let knowns = input_slice(known_refs, n_known, "vKnown_ref[]")?;
+                let seeds = input_slice(dv_known, n_known, "dvKnown[]")?;
+                let out = output_slice(dv_unknown, n_unknown, "dvUnknown[]")?;
+                for &vr in unknowns.iter().chain(knowns) {
+                    if find(M::variables(), vr).is_none() {
+                        return Err(format!("unknown value reference {vr}"));
+                    }
                 }
-                *o = sum;
-            }
-            Ok(Fmi2Status::Ok)
-        })
+                if let Some(bad) = seeds.iter().find(|s| !s.is_finite()) {
+                    return Err(format!("dvKnown contains {bad}"));
+                }
+                for (o, &u) in out.iter_mut().zip(unknowns) {
+                    let mut sum = 0.0;
+                    for (&k, &seed) in knowns.iter().zip(seeds) {
+                        sum += inst.model.partial_derivative(u, k)? * seed;
+                    }
+                    *o = sum;
+                }
+                Ok(Fmi2Status::Ok)
+            },
+        )
     }
 }

@@ -35,32 +35,46 @@ pub unsafe fn new_discrete_states<M: Model>(
     event_info: *mut Fmi2EventInfo,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2NewDiscreteStates", Call::NewDiscreteStates, |inst| {
-            let info = output_ref(event_info, "fmi2EventInfo")?;
-            let next = inst.model.next_time_event(inst.time);
-            *info = Fmi2EventInfo {
-                new_discrete_states_needed: FMI2_FALSE,
-                terminate_simulation: FMI2_FALSE,
-                nominals_of_continuous_states_changed: FMI2_FALSE,
-                values_of_continuous_states_changed: FMI2_FALSE,
-                next_event_time_defined: if next.is_some() { FMI2_TRUE } else { FMI2_FALSE },
-                next_event_time: next.unwrap_or(0.0),
-            };
-            if let Some(t) = next {
-                inst.log
-                    .debug("logEvents", &format!("next time event at t = {t} s"));
-            }
-            Ok(Fmi2Status::Ok)
-        })
+        with_instance::<M>(
+            c,
+            "fmi2NewDiscreteStates",
+            Call::NewDiscreteStates,
+            |inst| {
+                let info = output_ref(event_info, "fmi2EventInfo")?;
+                let next = inst.model.next_time_event(inst.time);
+                *info = Fmi2EventInfo {
+                    new_discrete_states_needed: FMI2_FALSE,
+                    terminate_simulation: FMI2_FALSE,
+                    nominals_of_continuous_states_changed: FMI2_FALSE,
+                    values_of_continuous_states_changed: FMI2_FALSE,
+                    next_event_time_defined: if next.is_some() {
+                        FMI2_TRUE
+                    } else {
+                        FMI2_FALSE
+                    },
+                    next_event_time: next.unwrap_or(0.0),
+                };
+                if let Some(t) = next {
+                    inst.log
+                        .debug("logEvents", &format!("next time event at t = {t} s"));
+                }
+                Ok(Fmi2Status::Ok)
+            },
+        )
     }
 }
 
 pub unsafe fn enter_continuous_time_mode<M: Model>(c: Fmi2Component) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2EnterContinuousTimeMode", Call::EnterContinuousTimeMode, |inst| {
-            inst.mode = Mode::ContinuousTimeMode;
-            Ok(Fmi2Status::Ok)
-        })
+        with_instance::<M>(
+            c,
+            "fmi2EnterContinuousTimeMode",
+            Call::EnterContinuousTimeMode,
+            |inst| {
+                inst.mode = Mode::ContinuousTimeMode;
+                Ok(Fmi2Status::Ok)
+            },
+        )
     }
 }
 
@@ -71,14 +85,19 @@ pub unsafe fn completed_integrator_step<M: Model>(
     terminate_simulation: *mut Fmi2Boolean,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2CompletedIntegratorStep", Call::CompletedIntegratorStep, |_: &mut Instance<M>| {
-            let enter = output_ref(enter_event_mode, "enterEventMode")?;
-            let stop = output_ref(terminate_simulation, "terminateSimulation")?;
-            // The models have no step events.
-            *enter = FMI2_FALSE;
-            *stop = FMI2_FALSE;
-            Ok(Fmi2Status::Ok)
-        })
+        with_instance::<M>(
+            c,
+            "fmi2CompletedIntegratorStep",
+            Call::CompletedIntegratorStep,
+            |_: &mut Instance<M>| {
+                let enter = output_ref(enter_event_mode, "enterEventMode")?;
+                let stop = output_ref(terminate_simulation, "terminateSimulation")?;
+                // The models have no step events.
+                *enter = FMI2_FALSE;
+                *stop = FMI2_FALSE;
+                Ok(Fmi2Status::Ok)
+            },
+        )
     }
 }
 
@@ -97,15 +116,20 @@ pub unsafe fn set_continuous_states<M: Model>(
     nx: usize,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2SetContinuousStates", Call::SetContinuousStates, |inst| {
-            check_len(nx, states::<M>(), "x[]")?;
-            let x = input_slice(x, nx, "x[]")?;
-            if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
-                return Err(format!("x[] contains {bad}"));
-            }
-            inst.model.set_continuous_states(x);
-            Ok(Fmi2Status::Ok)
-        })
+        with_instance::<M>(
+            c,
+            "fmi2SetContinuousStates",
+            Call::SetContinuousStates,
+            |inst| {
+                check_len(nx, states::<M>(), "x[]")?;
+                let x = input_slice(x, nx, "x[]")?;
+                if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
+                    return Err(format!("x[] contains {bad}"));
+                }
+                inst.model.set_continuous_states(x);
+                Ok(Fmi2Status::Ok)
+            },
+        )
     }
 }
 

@@ -96,14 +96,19 @@ pub unsafe fn get_string<M: Model>(
     value: *mut Fmi2String,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2GetString", Call::GetValues, |_: &mut Instance<M>| {
-            let vrs = input_slice(vr, nvr, "vr[]")?;
-            output_slice(value, nvr, "value[]")?;
-            match vrs.first() {
-                Some(&r) => Err(no_string_variable::<M>(r)),
-                None => Ok(Fmi2Status::Ok),
-            }
-        })
+        with_instance::<M>(
+            c,
+            "fmi2GetString",
+            Call::GetValues,
+            |_: &mut Instance<M>| {
+                let vrs = input_slice(vr, nvr, "vr[]")?;
+                output_slice(value, nvr, "value[]")?;
+                match vrs.first() {
+                    Some(&r) => Err(no_string_variable::<M>(r)),
+                    None => Ok(Fmi2Status::Ok),
+                }
+            },
+        )
     }
 }
 
@@ -168,13 +173,18 @@ pub unsafe fn set_string<M: Model>(
     value: *const Fmi2String,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2SetString", Call::SetDiscrete, |_: &mut Instance<M>| {
-            let vrs = input_slice(vr, nvr, "vr[]")?;
-            input_slice(value, nvr, "value[]")?;
-            match vrs.first() {
-                Some(&r) => Err(no_string_variable::<M>(r)),
-                None => Ok(Fmi2Status::Ok),
-            }
-        })
+        with_instance::<M>(
+            c,
+            "fmi2SetString",
+            Call::SetDiscrete,
+            |_: &mut Instance<M>| {
+                let vrs = input_slice(vr, nvr, "vr[]")?;
+                input_slice(value, nvr, "value[]")?;
+                match vrs.first() {
+                    Some(&r) => Err(no_string_variable::<M>(r)),
+                    None => Ok(Fmi2Status::Ok),
+                }
+            },
+        )
     }
 }
