@@ -467,7 +467,7 @@ fn directional_derivatives_match_finite_differences() {
             };
             assert_eq!(status, Fmi2Status::Ok);
             let eps = 1e-6;
-            let mut value_at = |delta: f64| {
+            let value_at = |delta: f64| {
                 let status = match state_index {
                     Some(i) => {
                         let mut xp = x;

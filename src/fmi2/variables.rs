@@ -372,19 +372,19 @@ pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
     }
     for v in table {
         let name = &v.name;
-        let legal = match (v.causality, v.variability, v.initial) {
-            (C::Parameter, V::Fixed | V::Tunable, Some(Initial::Exact)) => true,
-            (
-                C::CalculatedParameter,
-                V::Fixed | V::Tunable,
-                Some(Initial::Calculated | Initial::Approx),
-            ) => true,
-            (C::Input, V::Discrete | V::Continuous, None) => true,
-            (C::Output | C::Local, V::Constant, Some(Initial::Exact)) => true,
-            (C::Output | C::Local, V::Discrete | V::Continuous, Some(_)) => true,
-            (C::Independent, V::Continuous, None) => true,
-            _ => false,
-        };
+        let legal = matches!(
+            (v.causality, v.variability, v.initial),
+            (C::Parameter, V::Fixed | V::Tunable, Some(Initial::Exact))
+                | (
+                    C::CalculatedParameter,
+                    V::Fixed | V::Tunable,
+                    Some(Initial::Calculated | Initial::Approx)
+                )
+                | (C::Input, V::Discrete | V::Continuous, None)
+                | (C::Output | C::Local, V::Constant, Some(Initial::Exact))
+                | (C::Output | C::Local, V::Discrete | V::Continuous, Some(_))
+                | (C::Independent, V::Continuous, None)
+        );
         if !legal {
             return Err(format!(
                 "\"{name}\": illegal combination causality={}, variability={}, initial={:?}",

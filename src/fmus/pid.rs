@@ -226,11 +226,11 @@ fn variables() -> Vec<Variable<Pid>> {
         );
     }
     for (group, name, description, defaults, field) in INPUTS {
-        for c in 0..CHANNELS {
+        for (c, default) in defaults.into_iter().enumerate() {
             table.push(
                 real(group, c, name, description, field)
                     .input()
-                    .start_real(defaults[c]),
+                    .start_real(default),
             );
         }
     }
