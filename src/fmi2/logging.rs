@@ -43,7 +43,7 @@ pub const LAYER_CATEGORIES: [LogCategory; 6] = [
     },
     LogCategory {
         name: "logCalls",
-        description: "Every FMI function call with its arguments",
+        description: "The name of every FMI function called",
     },
 ];
 
