@@ -4,5 +4,8 @@
 //! nothing of FMI; the generic FMI layer (`fmi2`) knows nothing of robots; each FMU
 //! crate under `fmus/` is a thin binding between them.
 
+pub mod control;
+pub mod fmi2;
+pub mod fmus;
 pub mod plot;
 pub mod pss3;

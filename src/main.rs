@@ -18,12 +18,15 @@ enum Command {
     /// Kinematics of the 3-PSS spherical parallel robot.
     #[command(subcommand)]
     Pss3(cli::pss3::Pss3Command),
+    /// FMU tooling: modelDescription files and packaging.
+    Fmi(cli::fmi::FmiArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: Result<(), cli::CliError> = match cli.command {
         Command::Pss3(command) => cli::pss3::run(command),
+        Command::Fmi(args) => cli::fmi::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -5,3 +5,5 @@ pub mod pss3;
 
 /// Any failure of a subcommand, reported on stderr with a non-zero exit code.
 pub type CliError = Box<dyn std::error::Error>;
+
+pub mod fmi;

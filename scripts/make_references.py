@@ -1,0 +1,165 @@
+"""Writes the reference results under tests/references/<Model>/<case>/ from closed
+forms evaluated with numpy, independently of the Rust code and without running any FMU:
+
+* Planner: the boundary-condition system of the spec (4x4 cubic, 6x6 quintic) in
+  absolute time, solved with numpy.linalg.solve, evaluated with numpy.polyval; at
+  rest (q0 / qf, zero rates) outside [t0, tf].
+* PID: the response to constant inputs from a zero state, by Laplace inversion:
+  u(t) = Kp e + Ki e t + Kd e / Tf exp(-t/Tf) + ff (filtered error path) or
+  Kd r (1 - exp(-t/Tf)) for the rate path, clamped to the limits (with conditional
+  integration the integral stops exactly when the raw output reaches the limit, and
+  the clamped output is the clamped straight line).
+
+Each case directory holds <Model>_ref.csv (cross-check format: quoted names, time
+first), <Model>_ref.opt (StartTime, StopTime, StepSize, RelTol) and case.json (start
+values, per-signal absolute tolerances for each interface, event times).
+
+Run: .venv/bin/python scripts/make_references.py
+"""
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent / "tests" / "references"
+
+
+def write_case(model, case, options, columns, start_values, tolerances, event_times=()):
+    directory = ROOT / model / case
+    directory.mkdir(parents=True, exist_ok=True)
+    names = list(columns)
+    data = np.column_stack([columns[n] for n in names])
+    with open(directory / f"{model}_ref.csv", "w") as f:
+        f.write(",".join(f'"{n}"' for n in names) + "\n")
+        for row in data:
+            f.write(",".join(repr(float(v)) for v in row) + "\n")
+    with open(directory / f"{model}_ref.opt", "w") as f:
+        for key in ["StartTime", "StopTime", "StepSize", "RelTol"]:
+            f.write(f"{key}, {options[key]!r}\n")
+    case_info = {
+        "start_values": start_values,
+        "tolerances": tolerances,
+        "event_times": list(event_times),
+    }
+    with open(directory / "case.json", "w") as f:
+        json.dump(case_info, f, indent=2, sort_keys=True)
+        f.write("\n")
+
+
+def grid(options):
+    n = int(round((options["StopTime"] - options["StartTime"]) / options["StepSize"]))
+    return options["StartTime"] + options["StepSize"] * np.arange(n + 1)
+
+
+def polynomial(order, t0, tf, b):
+    """Coefficients (highest power first) from the boundary-condition system."""
+    def row(t, derivative, n):
+        out = np.zeros(n)
+        for k in range(derivative, n):
+            out[k] = np.prod(np.arange(k - derivative + 1, k + 1)) * t ** (k - derivative)
+        return out
+
+    n = order + 1
+    rows = [row(t0, 0, n), row(t0, 1, n), row(tf, 0, n), row(tf, 1, n)]
+    rhs = [b["q0"], b["qdot0"], b["qf"], b["qdotf"]]
+    if order == 5:
+        rows += [row(t0, 2, n), row(tf, 2, n)]
+        rhs += [b["qddot0"], b["qddotf"]]
+    c = np.linalg.solve(np.array(rows), np.array(rhs))
+    return c[::-1]
+
+
+def planner_case(case, order, t0, tf, boundaries, stop):
+    options = {"StartTime": 0.0, "StopTime": stop, "StepSize": 0.01, "RelTol": 1e-6}
+    t = grid(options)
+    columns = {"time": t}
+    start_values = {"order": order, "t0": t0, "tf": tf}
+    for axis, b in enumerate(boundaries, start=1):
+        for key, value in b.items():
+            start_values[f"{key}[{axis}]"] = value
+        p = polynomial(order, t0, tf, b)
+        dp, ddp = np.polyder(p), np.polyder(p, 2)
+        inside = (t >= t0) & (t <= tf)
+        held = np.where(t < t0, b["q0"], np.polyval(p, tf))
+        columns[f"q[{axis}]"] = np.where(inside, np.polyval(p, t), held)
+        columns[f"qdot[{axis}]"] = np.where(inside, np.polyval(dp, t), 0.0)
+        columns[f"qddot[{axis}]"] = np.where(inside, np.polyval(ddp, t), 0.0)
+    # Pure evaluation of a polynomial in double precision: 1e-9 covers round-off of
+    # the two formulations (shifted closed form vs. absolute-time solve).
+    tol = {name: 1e-9 for name in columns if name != "time"}
+    write_case("Planner", case, options, columns, start_values,
+               {"CoSimulation": tol, "ModelExchange": tol}, event_times=(t0, tf))
+
+
+def pid_channel(t, kp, ki, kd, tf, e, ff=0.0, rate_error=None, limits=None):
+    if rate_error is None:
+        d = kd * e / tf * np.exp(-t / tf) if kd != 0.0 else 0.0 * t
+    else:
+        d = kd * rate_error * (1.0 - np.exp(-t / tf))
+    u = kp * e + ki * e * t + d + ff
+    if limits is not None:
+        u = np.clip(u, *limits)
+    return u
+
+
+def pid_cases():
+    options = {"StartTime": 0.0, "StopTime": 2.0, "StepSize": 0.01, "RelTol": 1e-8}
+    t = grid(options)
+    start_values = {
+        # channel 1: the defaults (Kp 1, Ki 0.5, Kd 0.1, Tf 0.05, setpoint 1)
+        # channel 2: measurement, feedforward, other gains
+        "Kp[2]": 2.0, "Ki[2]": 1.0, "Kd[2]": 0.05, "Tf[2]": 0.02,
+        "setpoint[2]": 0.5, "measurement[2]": 0.2, "feedforward[2]": 0.3,
+        # channel 3: derivative from the rate inputs
+        "useRateInputs[3]": True, "Kp[3]": 0.5, "Ki[3]": 0.0, "Kd[3]": 0.4, "Tf[3]": 0.1,
+        "setpoint[3]": -0.25, "setpointRate[3]": 0.0, "measuredRate[3]": -0.5,
+    }
+    columns = {
+        "time": t,
+        "u[1]": pid_channel(t, 1.0, 0.5, 0.1, 0.05, 1.0),
+        "u[2]": pid_channel(t, 2.0, 1.0, 0.05, 0.02, 0.3, ff=0.3),
+        "u[3]": pid_channel(t, 0.5, 0.0, 0.4, 0.1, -0.25, rate_error=0.5),
+    }
+    # Co-Simulation: exact discretisation of constant inputs, only round-off.
+    # Model Exchange: FMPy's CVode at RelTol 1e-8; the fastest mode (Tf = 0.02 s,
+    # amplitude 2.5) leaves errors of order 1e-7; 1e-5 bounds them with margin.
+    names = ["u[1]", "u[2]", "u[3]"]
+    tolerances = {"CoSimulation": {n: 1e-9 for n in names},
+                  "ModelExchange": {n: 1e-5 for n in names}}
+    write_case("PID", "step_responses", options, columns, start_values, tolerances)
+
+    limited = {
+        "Kp[1]": 1.0, "Ki[1]": 2.0, "Kd[1]": 0.0, "limitOutput[1]": True,
+        "uMin[1]": -3.0, "uMax[1]": 3.0, "setpoint[1]": 1.0,
+        "Kp[2]": 1.0, "Ki[2]": 2.0, "Kd[2]": 0.0, "limitOutput[2]": True,
+        "uMin[2]": -2.0, "uMax[2]": 2.0, "setpoint[2]": -1.0,
+        "setpoint[3]": 0.0,
+    }
+    columns = {
+        "time": t,
+        "u[1]": pid_channel(t, 1.0, 2.0, 0.0, 1.0, 1.0, limits=(-3.0, 3.0)),
+        "u[2]": pid_channel(t, 1.0, 2.0, 0.0, 1.0, -1.0, limits=(-2.0, 2.0)),
+        "u[3]": 0.0 * t,
+    }
+    tolerances = {"CoSimulation": {n: 1e-9 for n in names},
+                  "ModelExchange": {n: 1e-5 for n in names}}
+    write_case("PID", "saturation", options, columns, limited, tolerances)
+
+
+def main():
+    planner_case("quintic_t0_0.5", 5, 0.5, 2.0, [
+        {"q0": 0.1, "qf": 0.9, "qdot0": 0.2, "qdotf": -0.1, "qddot0": 0.5, "qddotf": -0.3},
+        {"q0": -0.4, "qf": 0.0, "qdot0": 0.0, "qdotf": 0.0, "qddot0": 0.0, "qddotf": 0.0},
+        {"q0": 2.13, "qf": 2.69, "qdot0": 0.322, "qdotf": 0.214, "qddot0": -0.0138, "qddotf": -0.088},
+    ], stop=2.5)
+    planner_case("cubic_with_rates", 3, 0.25, 1.75, [
+        {"q0": 0.0, "qf": 1.0, "qdot0": 0.5, "qdotf": 0.0, "qddot0": 0.0, "qddotf": 0.0},
+        {"q0": 1.0, "qf": -1.0, "qdot0": 0.0, "qdotf": -0.5, "qddot0": 0.0, "qddotf": 0.0},
+        {"q0": 0.3, "qf": 0.3, "qdot0": 1.0, "qdotf": 1.0, "qddot0": 0.0, "qddotf": 0.0},
+    ], stop=2.0)
+    pid_cases()
+
+
+if __name__ == "__main__":
+    main()

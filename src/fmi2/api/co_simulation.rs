@@ -1,0 +1,209 @@
+//! Functions of FMI 2.0 Co-Simulation.
+
+use super::{check_finite, input_slice, output_ref, with_instance};
+use crate::fmi2::mode::{Call, Mode};
+use crate::fmi2::model::{Model, StepOutcome};
+use crate::fmi2::types::*;
+use std::ffi::c_int;
+
+/// Largest accepted difference between the master's communication point and the
+/// instance time, relative to max(1, |t|): absorbs round-off of t += h in the master.
+const TIME_MATCH: f64 = 1e-9;
+
+pub unsafe fn do_step<M: Model>(
+    c: Fmi2Component,
+    current_communication_point: Fmi2Real,
+    communication_step_size: Fmi2Real,
+    _no_set_fmu_state_prior_to_current_point: Fmi2Boolean,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2DoStep", Call::DoStep, |inst| {
+            let t = check_finite(current_communication_point, "currentCommunicationPoint")?;
+            let h = check_finite(communication_step_size, "communicationStepSize")?;
+            if h <= 0.0 {
+                return Err(format!("communicationStepSize = {h} is not positive"));
+            }
+            if (t - inst.time).abs() > TIME_MATCH * t.abs().max(1.0) {
+                return Err(format!(
+                    "currentCommunicationPoint {t} differs from the FMU time {}",
+                    inst.time
+                ));
+            }
+            let before = inst.model.clone();
+            inst.set_time(t);
+            match inst.model.do_step(t, h, &inst.log) {
+                StepOutcome::Completed => {
+                    inst.set_time(t + h);
+                    inst.last_successful_time = t + h;
+                    Ok(Fmi2Status::Ok)
+                }
+                StepOutcome::Discarded { reason, terminate } => {
+                    inst.model = before;
+                    inst.set_time(t);
+                    inst.terminated_by_model = terminate;
+                    inst.mode = Mode::StepFailed;
+                    inst.log.status(
+                        Fmi2Status::Discard,
+                        &format!("fmi2DoStep: step from t = {t} s by {h} s rejected: {reason}"),
+                    );
+                    Ok(Fmi2Status::Discard)
+                }
+            }
+        })
+    }
+}
+
+pub unsafe fn cancel_step<M: Model>(c: Fmi2Component) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2CancelStep", Call::CancelStep, |_| {
+            Ok(Fmi2Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn set_real_input_derivatives<M: Model>(
+    c: Fmi2Component,
+    vr: *const Fmi2ValueReference,
+    nvr: usize,
+    order: *const Fmi2Integer,
+    value: *const Fmi2Real,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(
+            c,
+            "fmi2SetRealInputDerivatives",
+            Call::SetRealInputDerivatives,
+            |_| {
+                input_slice(vr, nvr, "vr[]")?;
+                input_slice(order, nvr, "order[]")?;
+                input_slice(value, nvr, "value[]")?;
+                if nvr == 0 {
+                    return Ok(Fmi2Status::Ok);
+                }
+                Err(
+                    "input derivatives are not supported (canInterpolateInputs=\"false\")"
+                        .to_string(),
+                )
+            },
+        )
+    }
+}
+
+pub unsafe fn get_real_output_derivatives<M: Model>(
+    c: Fmi2Component,
+    vr: *const Fmi2ValueReference,
+    nvr: usize,
+    order: *const Fmi2Integer,
+    value: *mut Fmi2Real,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(
+            c,
+            "fmi2GetRealOutputDerivatives",
+            Call::GetRealOutputDerivatives,
+            |_| {
+                input_slice(vr, nvr, "vr[]")?;
+                input_slice(order, nvr, "order[]")?;
+                if nvr > 0 && value.is_null() {
+                    return Err("value[] is a null pointer".to_string());
+                }
+                if nvr == 0 {
+                    return Ok(Fmi2Status::Ok);
+                }
+                Err(
+                    "output derivatives are not provided (maxOutputDerivativeOrder=\"0\")"
+                        .to_string(),
+                )
+            },
+        )
+    }
+}
+
+fn no_such_status(kind: c_int, function: &str) -> String {
+    match kind {
+        FMI2_DO_STEP_STATUS | FMI2_PENDING_STATUS => format!(
+            "{function}: status kind {kind} concerns asynchronous steps, which this FMU never runs"
+        ),
+        FMI2_LAST_SUCCESSFUL_TIME | FMI2_TERMINATED => {
+            format!("{function}: status kind {kind} is not of this type")
+        }
+        other => format!("{function}: {other} is not an fmi2StatusKind"),
+    }
+}
+
+pub unsafe fn get_status<M: Model>(
+    c: Fmi2Component,
+    kind: c_int,
+    value: *mut Fmi2Status,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2GetStatus", Call::GetStatus, |_| {
+            output_ref(value, "value")?;
+            Err(no_such_status(kind, "fmi2GetStatus"))
+        })
+    }
+}
+
+pub unsafe fn get_real_status<M: Model>(
+    c: Fmi2Component,
+    kind: c_int,
+    value: *mut Fmi2Real,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2GetRealStatus", Call::GetStatus, |inst| {
+            let out = output_ref(value, "value")?;
+            if kind != FMI2_LAST_SUCCESSFUL_TIME {
+                return Err(no_such_status(kind, "fmi2GetRealStatus"));
+            }
+            *out = inst.last_successful_time;
+            Ok(Fmi2Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn get_integer_status<M: Model>(
+    c: Fmi2Component,
+    kind: c_int,
+    value: *mut Fmi2Integer,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2GetIntegerStatus", Call::GetStatus, |_| {
+            output_ref(value, "value")?;
+            Err(no_such_status(kind, "fmi2GetIntegerStatus"))
+        })
+    }
+}
+
+pub unsafe fn get_boolean_status<M: Model>(
+    c: Fmi2Component,
+    kind: c_int,
+    value: *mut Fmi2Boolean,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2GetBooleanStatus", Call::GetStatus, |inst| {
+            let out = output_ref(value, "value")?;
+            if kind != FMI2_TERMINATED {
+                return Err(no_such_status(kind, "fmi2GetBooleanStatus"));
+            }
+            *out = if inst.terminated_by_model {
+                FMI2_TRUE
+            } else {
+                FMI2_FALSE
+            };
+            Ok(Fmi2Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn get_string_status<M: Model>(
+    c: Fmi2Component,
+    kind: c_int,
+    value: *mut Fmi2String,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2GetStringStatus", Call::GetStatus, |_| {
+            output_ref(value, "value")?;
+            Err(no_such_status(kind, "fmi2GetStringStatus"))
+        })
+    }
+}

@@ -1,0 +1,55 @@
+//! fmi2GetDirectionalDerivative.
+
+use super::{input_slice, output_slice, with_instance};
+use crate::fmi2::mode::Call;
+use crate::fmi2::model::Model;
+use crate::fmi2::types::*;
+use crate::fmi2::variables::find;
+
+#[allow(clippy::too_many_arguments)]
+pub unsafe fn get_directional_derivative<M: Model>(
+    c: Fmi2Component,
+    unknown_refs: *const Fmi2ValueReference,
+    n_unknown: usize,
+    known_refs: *const Fmi2ValueReference,
+    n_known: usize,
+    dv_known: *const Fmi2Real,
+    dv_unknown: *mut Fmi2Real,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(
+            c,
+            "fmi2GetDirectionalDerivative",
+            Call::GetDirectionalDerivative,
+            |inst| {
+                if !M::info().provides_directional_derivative {
+                    return Err(format!(
+                        "{} does not provide directional derivatives \
+                     (providesDirectionalDerivative=\"false\")",
+                        M::info().model_name
+                    ));
+                }
+                let unknowns = input_slice(unknown_refs, n_unknown, "vUnknown_ref[]")?;
+                let knowns = input_slice(known_refs, n_known, "vKnown_ref[]")?;
+                let seeds = input_slice(dv_known, n_known, "dvKnown[]")?;
+                let out = output_slice(dv_unknown, n_unknown, "dvUnknown[]")?;
+                for &vr in unknowns.iter().chain(knowns) {
+                    if find(M::variables(), vr).is_none() {
+                        return Err(format!("unknown value reference {vr}"));
+                    }
+                }
+                if let Some(bad) = seeds.iter().find(|s| !s.is_finite()) {
+                    return Err(format!("dvKnown contains {bad}"));
+                }
+                for (o, &u) in out.iter_mut().zip(unknowns) {
+                    let mut sum = 0.0;
+                    for (&k, &seed) in knowns.iter().zip(seeds) {
+                        sum += inst.model.partial_derivative(u, k)? * seed;
+                    }
+                    *o = sum;
+                }
+                Ok(Fmi2Status::Ok)
+            },
+        )
+    }
+}

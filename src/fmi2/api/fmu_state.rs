@@ -1,0 +1,114 @@
+//! FMU state: get, set, free, serialize, deserialize.
+
+use super::{input_slice, output_ref, output_slice, with_instance};
+use crate::fmi2::instance::Snapshot;
+use crate::fmi2::mode::Call;
+use crate::fmi2::model::Model;
+use crate::fmi2::serialize::{deserialize, serialize};
+use crate::fmi2::types::*;
+
+/// The snapshot behind an FMU state pointer.
+unsafe fn snapshot<'a, M: Model>(state: Fmi2FmuState) -> Result<&'a Snapshot<M>, String> {
+    if state.is_null() {
+        return Err("FMUstate is a null pointer".to_string());
+    }
+    // SAFETY: non-null FMU states were created by get_fmu_state/de_serialize for M.
+    Ok(unsafe { &*(state as *const Snapshot<M>) })
+}
+
+/// Stores `s` in `*slot`, reusing the state already there (the standard lets the
+/// host pass a previously obtained state to be overwritten).
+unsafe fn store<M: Model>(slot: &mut Fmi2FmuState, s: Snapshot<M>) {
+    if slot.is_null() {
+        *slot = Box::into_raw(Box::new(s)) as Fmi2FmuState;
+    } else {
+        // SAFETY: a non-null state was created by this module for M.
+        unsafe { *(*slot as *mut Snapshot<M>) = s };
+    }
+}
+
+pub unsafe fn get_fmu_state<M: Model>(c: Fmi2Component, state: *mut Fmi2FmuState) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2GetFMUstate", Call::FmuState, |inst| {
+            let slot = output_ref(state, "FMUstate")?;
+            store(slot, inst.snapshot());
+            Ok(Fmi2Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn set_fmu_state<M: Model>(c: Fmi2Component, state: Fmi2FmuState) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2SetFMUstate", Call::FmuState, |inst| {
+            let s = snapshot::<M>(state)?;
+            inst.restore(s);
+            Ok(Fmi2Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn free_fmu_state<M: Model>(c: Fmi2Component, state: *mut Fmi2FmuState) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2FreeFMUstate", Call::FmuState, |_| {
+            let slot = output_ref(state, "FMUstate")?;
+            if !slot.is_null() {
+                // SAFETY: created by this module for M, freed once, then nulled.
+                drop(Box::from_raw(*slot as *mut Snapshot<M>));
+                *slot = std::ptr::null_mut();
+            }
+            Ok(Fmi2Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn serialized_fmu_state_size<M: Model>(
+    c: Fmi2Component,
+    state: Fmi2FmuState,
+    size: *mut usize,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2SerializedFMUstateSize", Call::FmuState, |_| {
+            let s = snapshot::<M>(state)?;
+            *output_ref(size, "size")? = serialize(s).len();
+            Ok(Fmi2Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn serialize_fmu_state<M: Model>(
+    c: Fmi2Component,
+    state: Fmi2FmuState,
+    bytes: *mut Fmi2Byte,
+    size: usize,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2SerializeFMUstate", Call::FmuState, |_| {
+            let data = serialize(snapshot::<M>(state)?);
+            if size != data.len() {
+                return Err(format!(
+                    "size {size} differs from fmi2SerializedFMUstateSize = {}",
+                    data.len()
+                ));
+            }
+            let out = output_slice(bytes as *mut u8, size, "serializedState[]")?;
+            out.copy_from_slice(&data);
+            Ok(Fmi2Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn de_serialize_fmu_state<M: Model>(
+    c: Fmi2Component,
+    bytes: *const Fmi2Byte,
+    size: usize,
+    state: *mut Fmi2FmuState,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, "fmi2DeSerializeFMUstate", Call::FmuState, |_| {
+            let data = input_slice(bytes as *const u8, size, "serializedState[]")?;
+            let slot = output_ref(state, "FMUstate")?;
+            store(slot, deserialize::<M>(data)?);
+            Ok(Fmi2Status::Ok)
+        })
+    }
+}

@@ -1,0 +1,106 @@
+//! The contract between a model and the FMI layer. A model implements `Model` in safe
+//! Rust; the layer does all pointer handling, argument checking, state-machine
+//! enforcement, logging and unwind catching.
+
+use super::logging::{LogCategory, Logger};
+use super::variables::Variable;
+
+/// DefaultExperiment of modelDescription.xml.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DefaultExperiment {
+    pub start_time: f64,
+    pub stop_time: f64,
+    pub tolerance: f64,
+    pub step_size: f64,
+}
+
+/// Static facts about a model.
+#[derive(Debug, Clone, Copy)]
+pub struct ModelInfo {
+    /// modelName (also the FMU's file name).
+    pub model_name: &'static str,
+    /// modelIdentifier: a C identifier naming the binary.
+    pub model_identifier: &'static str,
+    /// The token fmi2Instantiate checks.
+    pub guid: &'static str,
+    pub description: &'static str,
+    pub default_experiment: DefaultExperiment,
+    pub number_of_continuous_states: usize,
+    pub number_of_event_indicators: usize,
+    /// Whether `Model::partial_derivative` is implemented.
+    pub provides_directional_derivative: bool,
+    /// Model-specific log categories (the layer's own come first).
+    pub log_categories: &'static [LogCategory],
+}
+
+/// Result of a co-simulation step.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StepOutcome {
+    Completed,
+    /// The step was rejected (the layer restores the state as it was before the step).
+    /// `terminate` says the model cannot continue at all (fmi2Terminated = true)
+    /// rather than asking for a smaller step.
+    Discarded {
+        reason: String,
+        terminate: bool,
+    },
+}
+
+/// A model that can be exported as an FMU by `export_fmi2!`.
+///
+/// Slices passed to the continuous-state methods have exactly
+/// `info().number_of_continuous_states` (or `number_of_event_indicators`) elements,
+/// and every value reference passed in belongs to the variable table.
+pub trait Model: Clone + Send + Sized + 'static {
+    fn info() -> &'static ModelInfo;
+
+    /// The variable table, sorted by value reference.
+    fn variables() -> &'static [Variable<Self>];
+
+    /// A model with every field defined; the layer then applies all start values of
+    /// the table through its writers, so defaults live in the table only.
+    fn new() -> Self;
+
+    /// The layer's simulation time changed (setup, fmi2SetTime, a completed step).
+    fn set_time(&mut self, time: f64);
+
+    /// End of initialization: check the parameters together (a message says which
+    /// one is wrong and why) and prepare for simulation.
+    fn exit_initialization(&mut self, log: &Logger) -> Result<(), String>;
+
+    /// Co-simulation step from `time` to `time + step` with the inputs held.
+    fn do_step(&mut self, time: f64, step: f64, log: &Logger) -> StepOutcome;
+
+    fn continuous_states(&self, _x: &mut [f64]) {}
+
+    fn set_continuous_states(&mut self, _x: &[f64]) {}
+
+    fn derivatives(&self, _dx: &mut [f64]) {}
+
+    fn nominals_of_continuous_states(&self, nominals: &mut [f64]) {
+        nominals.fill(1.0);
+    }
+
+    fn event_indicators(&self, _z: &mut [f64]) {}
+
+    /// Next time event strictly after `time`, if any (Model Exchange).
+    fn next_time_event(&self, _time: f64) -> Option<f64> {
+        None
+    }
+
+    /// Partial derivative d(unknown)/d(known) at the current point, for
+    /// fmi2GetDirectionalDerivative. Only called when the model declares
+    /// `provides_directional_derivative`.
+    fn partial_derivative(&self, _unknown: u32, _known: u32) -> Result<f64, String> {
+        Err("this model provides no partial derivatives".to_string())
+    }
+
+    /// Internal state that is neither a settable variable nor a continuous state,
+    /// appended to serialized FMU states.
+    fn write_extra_state(&self, _out: &mut Vec<u8>) {}
+
+    /// Reads back what `write_extra_state` wrote.
+    fn read_extra_state(&mut self, _bytes: &[u8]) -> Result<(), String> {
+        Ok(())
+    }
+}

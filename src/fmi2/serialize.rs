@@ -1,0 +1,195 @@
+//! Byte format of serialized FMU states (fmi2SerializeFMUstate).
+//!
+//! Layout, little endian:
+//!   magic "RBFMUST\0" (8) | format version u32 | guid length u32 | guid bytes |
+//!   payload length u64 | payload | FNV-1a 64 checksum of everything before it (8)
+//! Payload: time f64 | last successful time f64 | terminated u8 |
+//!   every writable variable in table order (Real f64, Integer i32, Boolean u8) |
+//!   number of continuous states u32 | states f64... | extra length u64 | extra bytes.
+//!
+//! Deserialization rebuilds the model from start values and writes every value back
+//! through the variable writers, so a state that passes the checks is also a valid
+//! model state. Foreign (other magic, version or model), truncated, padded or
+//! corrupted bytes are rejected with a message.
+
+use super::instance::{Snapshot, model_with_start_values};
+use super::model::Model;
+use super::variables::Kind;
+
+const MAGIC: &[u8; 8] = b"RBFMUST\0";
+/// Version of the layout above; bump it when the layout changes.
+pub const FORMAT_VERSION: u32 = 1;
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// Serialized bytes of a snapshot.
+pub fn serialize<M: Model>(s: &Snapshot<M>) -> Vec<u8> {
+    let mut payload = Vec::new();
+    payload.extend_from_slice(&s.time.to_le_bytes());
+    payload.extend_from_slice(&s.last_successful_time.to_le_bytes());
+    payload.push(s.terminated_by_model as u8);
+    for v in M::variables() {
+        match &v.kind {
+            Kind::Real {
+                get, set: Some(_), ..
+            } => payload.extend_from_slice(&get(&s.model).to_le_bytes()),
+            Kind::Integer {
+                get, set: Some(_), ..
+            } => payload.extend_from_slice(&get(&s.model).to_le_bytes()),
+            Kind::Boolean {
+                get, set: Some(_), ..
+            } => payload.push(get(&s.model) as u8),
+            _ => {}
+        }
+    }
+    let n = M::info().number_of_continuous_states;
+    let mut x = vec![0.0; n];
+    s.model.continuous_states(&mut x);
+    payload.extend_from_slice(&(n as u32).to_le_bytes());
+    for xi in &x {
+        payload.extend_from_slice(&xi.to_le_bytes());
+    }
+    let mut extra = Vec::new();
+    s.model.write_extra_state(&mut extra);
+    payload.extend_from_slice(&(extra.len() as u64).to_le_bytes());
+    payload.extend_from_slice(&extra);
+
+    let guid = M::info().guid.as_bytes();
+    let mut out = Vec::with_capacity(payload.len() + guid.len() + 40);
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    out.extend_from_slice(&(guid.len() as u32).to_le_bytes());
+    out.extend_from_slice(guid);
+    out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+    out.extend_from_slice(&payload);
+    let checksum = fnv1a(&out);
+    out.extend_from_slice(&checksum.to_le_bytes());
+    out
+}
+
+/// Reads fixed-size pieces and fails cleanly at the end of the input.
+struct Reader<'a> {
+    bytes: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Reader<'a> {
+    fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], String> {
+        let end = self.at.checked_add(n).filter(|&e| e <= self.bytes.len());
+        let end = end.ok_or_else(|| format!("truncated FMU state: {what} is missing"))?;
+        let piece = &self.bytes[self.at..end];
+        self.at = end;
+        Ok(piece)
+    }
+    fn array<const N: usize>(&mut self, what: &str) -> Result<[u8; N], String> {
+        let mut a = [0u8; N];
+        a.copy_from_slice(self.take(N, what)?);
+        Ok(a)
+    }
+    fn f64(&mut self, what: &str) -> Result<f64, String> {
+        Ok(f64::from_le_bytes(self.array(what)?))
+    }
+    fn u32(&mut self, what: &str) -> Result<u32, String> {
+        Ok(u32::from_le_bytes(self.array(what)?))
+    }
+    fn u64(&mut self, what: &str) -> Result<u64, String> {
+        Ok(u64::from_le_bytes(self.array(what)?))
+    }
+    fn flag(&mut self, what: &str) -> Result<bool, String> {
+        match self.array::<1>(what)?[0] {
+            0 => Ok(false),
+            1 => Ok(true),
+            b => Err(format!("corrupt FMU state: {what} has the byte {b}")),
+        }
+    }
+}
+
+/// Parses bytes written by `serialize` for the same model.
+pub fn deserialize<M: Model>(bytes: &[u8]) -> Result<Snapshot<M>, String> {
+    let mut r = Reader { bytes, at: 0 };
+    if r.take(8, "the header")? != MAGIC {
+        return Err("these bytes are not a serialized robofmu FMU state".to_string());
+    }
+    let version = r.u32("the format version")?;
+    if version != FORMAT_VERSION {
+        return Err(format!(
+            "FMU state format version {version}, this binary reads version {FORMAT_VERSION}"
+        ));
+    }
+    let guid_len = r.u32("the model id length")? as usize;
+    let guid = r.take(guid_len, "the model id")?;
+    if guid != M::info().guid.as_bytes() {
+        return Err(format!(
+            "the FMU state belongs to model {}, not to {} ({})",
+            String::from_utf8_lossy(guid),
+            M::info().model_name,
+            M::info().guid
+        ));
+    }
+    let payload_len = r.u64("the payload length")?;
+    let payload_len = usize::try_from(payload_len).map_err(|_| "payload too large")?;
+    let payload = r.take(payload_len, "part of the payload")?;
+    let body_end = r.at;
+    let checksum = r.u64("the checksum")?;
+    if r.at != bytes.len() {
+        return Err(format!(
+            "{} unexpected bytes after the FMU state",
+            bytes.len() - r.at
+        ));
+    }
+    if checksum != fnv1a(&bytes[..body_end]) {
+        return Err("corrupt FMU state: checksum mismatch".to_string());
+    }
+    read_payload(payload)
+}
+
+fn read_payload<M: Model>(payload: &[u8]) -> Result<Snapshot<M>, String> {
+    let mut r = Reader {
+        bytes: payload,
+        at: 0,
+    };
+    let time = r.f64("time")?;
+    let last_successful_time = r.f64("last successful time")?;
+    let terminated_by_model = r.flag("terminated flag")?;
+    let mut model = model_with_start_values::<M>()?;
+    for v in M::variables() {
+        let name = v.name.as_str();
+        let result = match &v.kind {
+            Kind::Real { set: Some(set), .. } => set(&mut model, r.f64(name)?),
+            Kind::Integer { set: Some(set), .. } => {
+                set(&mut model, i32::from_le_bytes(r.array(name)?))
+            }
+            Kind::Boolean { set: Some(set), .. } => set(&mut model, r.flag(name)?),
+            _ => Ok(()),
+        };
+        result.map_err(|e| format!("FMU state value of \"{name}\" rejected: {e}"))?;
+    }
+    let n = r.u32("number of states")? as usize;
+    if n != M::info().number_of_continuous_states {
+        return Err(format!(
+            "FMU state has {n} continuous states, the model {}",
+            M::info().number_of_continuous_states
+        ));
+    }
+    let x = (0..n)
+        .map(|_| r.f64("a continuous state"))
+        .collect::<Result<Vec<_>, _>>()?;
+    model.set_continuous_states(&x);
+    let extra_len = usize::try_from(r.u64("extra length")?).map_err(|_| "extra too large")?;
+    let extra = r.take(extra_len, "model-specific state")?;
+    model.read_extra_state(extra)?;
+    if r.at != payload.len() {
+        return Err("corrupt FMU state: payload longer than the model's state".to_string());
+    }
+    model.set_time(time);
+    Ok(Snapshot {
+        model,
+        time,
+        last_successful_time,
+        terminated_by_model,
+    })
+}

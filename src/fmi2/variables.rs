@@ -1,0 +1,455 @@
+//! The variable table of a model: for every variable its metadata (what
+//! modelDescription.xml says about it) and its accessors (how the layer reads and writes
+//! it). It is the single source of truth for both.
+
+pub type Getter<M, T> = Box<dyn Fn(&M) -> T + Send + Sync>;
+pub type Setter<M, T> = Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Causality {
+    Parameter,
+    CalculatedParameter,
+    Input,
+    Output,
+    Local,
+    Independent,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variability {
+    Constant,
+    Fixed,
+    Tunable,
+    Discrete,
+    Continuous,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Initial {
+    Exact,
+    Approx,
+    Calculated,
+}
+
+impl Causality {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Causality::Parameter => "parameter",
+            Causality::CalculatedParameter => "calculatedParameter",
+            Causality::Input => "input",
+            Causality::Output => "output",
+            Causality::Local => "local",
+            Causality::Independent => "independent",
+        }
+    }
+}
+
+impl Variability {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Variability::Constant => "constant",
+            Variability::Fixed => "fixed",
+            Variability::Tunable => "tunable",
+            Variability::Discrete => "discrete",
+            Variability::Continuous => "continuous",
+        }
+    }
+}
+
+impl Initial {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Initial::Exact => "exact",
+            Initial::Approx => "approx",
+            Initial::Calculated => "calculated",
+        }
+    }
+}
+
+/// Type-specific part of a variable.
+pub enum Kind<M> {
+    Real {
+        get: Getter<M, f64>,
+        set: Option<Setter<M, f64>>,
+        start: Option<f64>,
+        min: Option<f64>,
+        max: Option<f64>,
+        unit: Option<&'static str>,
+        display_unit: Option<&'static str>,
+        /// Name of the state this variable is the time derivative of.
+        derivative_of: Option<String>,
+    },
+    Integer {
+        get: Getter<M, i32>,
+        set: Option<Setter<M, i32>>,
+        start: Option<i32>,
+        min: Option<i32>,
+        max: Option<i32>,
+    },
+    Boolean {
+        get: Getter<M, bool>,
+        set: Option<Setter<M, bool>>,
+        start: Option<bool>,
+    },
+}
+
+/// Which of the FMI types a variable has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VariableType {
+    Real,
+    Integer,
+    Boolean,
+}
+
+impl VariableType {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            VariableType::Real => "Real",
+            VariableType::Integer => "Integer",
+            VariableType::Boolean => "Boolean",
+        }
+    }
+}
+
+/// One scalar variable.
+pub struct Variable<M> {
+    pub value_reference: u32,
+    pub name: String,
+    pub description: String,
+    pub causality: Causality,
+    pub variability: Variability,
+    pub initial: Option<Initial>,
+    pub kind: Kind<M>,
+}
+
+impl<M> Variable<M> {
+    fn with_kind(vr: u32, name: impl Into<String>, description: &str, kind: Kind<M>) -> Self {
+        let variability = match kind {
+            Kind::Real { .. } => Variability::Continuous,
+            _ => Variability::Discrete,
+        };
+        Variable {
+            value_reference: vr,
+            name: name.into(),
+            description: description.to_string(),
+            causality: Causality::Local,
+            variability,
+            initial: None,
+            kind,
+        }
+    }
+
+    /// A Real variable read by `get` (a local until a role is given).
+    pub fn real(
+        vr: u32,
+        name: impl Into<String>,
+        description: &str,
+        get: impl Fn(&M) -> f64 + Send + Sync + 'static,
+    ) -> Self {
+        let kind = Kind::Real {
+            get: Box::new(get),
+            set: None,
+            start: None,
+            min: None,
+            max: None,
+            unit: None,
+            display_unit: None,
+            derivative_of: None,
+        };
+        Self::with_kind(vr, name, description, kind)
+    }
+
+    /// An Integer variable read by `get`.
+    pub fn integer(
+        vr: u32,
+        name: impl Into<String>,
+        description: &str,
+        get: impl Fn(&M) -> i32 + Send + Sync + 'static,
+    ) -> Self {
+        let kind = Kind::Integer {
+            get: Box::new(get),
+            set: None,
+            start: None,
+            min: None,
+            max: None,
+        };
+        Self::with_kind(vr, name, description, kind)
+    }
+
+    /// A Boolean variable read by `get`.
+    pub fn boolean(
+        vr: u32,
+        name: impl Into<String>,
+        description: &str,
+        get: impl Fn(&M) -> bool + Send + Sync + 'static,
+    ) -> Self {
+        let kind = Kind::Boolean {
+            get: Box::new(get),
+            set: None,
+            start: None,
+        };
+        Self::with_kind(vr, name, description, kind)
+    }
+
+    /// Role: parameter (initial exact), fixed after initialization or tunable.
+    pub fn parameter(mut self, variability: Variability) -> Self {
+        self.causality = Causality::Parameter;
+        self.variability = variability;
+        self.initial = Some(Initial::Exact);
+        self
+    }
+
+    /// Role: input (no initial attribute; a start value is required).
+    pub fn input(mut self) -> Self {
+        self.causality = Causality::Input;
+        self
+    }
+
+    /// Role: output computed by the model (initial calculated, no start value).
+    pub fn output(mut self) -> Self {
+        self.causality = Causality::Output;
+        self.initial = Some(Initial::Calculated);
+        self
+    }
+
+    /// Role: continuous state (local, initial exact with a start value).
+    pub fn state(mut self) -> Self {
+        self.causality = Causality::Local;
+        self.initial = Some(Initial::Exact);
+        self
+    }
+
+    /// Role: time derivative of the state named `state` (local, calculated).
+    pub fn derivative_of(mut self, state: &str) -> Self {
+        self.causality = Causality::Local;
+        self.initial = Some(Initial::Calculated);
+        if let Kind::Real { derivative_of, .. } = &mut self.kind {
+            *derivative_of = Some(state.to_string());
+        }
+        self
+    }
+
+    /// Start value of a Real variable.
+    pub fn start_real(mut self, value: f64) -> Self {
+        if let Kind::Real { start, .. } = &mut self.kind {
+            *start = Some(value);
+        }
+        self
+    }
+
+    /// Start value of an Integer variable.
+    pub fn start_integer(mut self, value: i32) -> Self {
+        if let Kind::Integer { start, .. } = &mut self.kind {
+            *start = Some(value);
+        }
+        self
+    }
+
+    /// Start value of a Boolean variable.
+    pub fn start_boolean(mut self, value: bool) -> Self {
+        if let Kind::Boolean { start, .. } = &mut self.kind {
+            *start = Some(value);
+        }
+        self
+    }
+
+    /// Unit (and optionally display unit) of a Real variable.
+    pub fn unit(mut self, name: &'static str, display: Option<&'static str>) -> Self {
+        if let Kind::Real {
+            unit, display_unit, ..
+        } = &mut self.kind
+        {
+            *unit = Some(name);
+            *display_unit = display;
+        }
+        self
+    }
+
+    /// Bounds of a Real variable, enforced on every set.
+    pub fn real_range(mut self, lower: Option<f64>, upper: Option<f64>) -> Self {
+        if let Kind::Real { min, max, .. } = &mut self.kind {
+            *min = lower;
+            *max = upper;
+        }
+        self
+    }
+
+    /// Bounds of an Integer variable, enforced on every set.
+    pub fn integer_range(mut self, lower: i32, upper: i32) -> Self {
+        if let Kind::Integer { min, max, .. } = &mut self.kind {
+            *min = Some(lower);
+            *max = Some(upper);
+        }
+        self
+    }
+
+    /// Writer of a Real variable.
+    pub fn set_real(
+        mut self,
+        f: impl Fn(&mut M, f64) -> Result<(), String> + Send + Sync + 'static,
+    ) -> Self {
+        if let Kind::Real { set, .. } = &mut self.kind {
+            *set = Some(Box::new(f));
+        }
+        self
+    }
+
+    /// Writer of an Integer variable.
+    pub fn set_integer(
+        mut self,
+        f: impl Fn(&mut M, i32) -> Result<(), String> + Send + Sync + 'static,
+    ) -> Self {
+        if let Kind::Integer { set, .. } = &mut self.kind {
+            *set = Some(Box::new(f));
+        }
+        self
+    }
+
+    /// Writer of a Boolean variable.
+    pub fn set_boolean(
+        mut self,
+        f: impl Fn(&mut M, bool) -> Result<(), String> + Send + Sync + 'static,
+    ) -> Self {
+        if let Kind::Boolean { set, .. } = &mut self.kind {
+            *set = Some(Box::new(f));
+        }
+        self
+    }
+
+    pub fn variable_type(&self) -> VariableType {
+        match self.kind {
+            Kind::Real { .. } => VariableType::Real,
+            Kind::Integer { .. } => VariableType::Integer,
+            Kind::Boolean { .. } => VariableType::Boolean,
+        }
+    }
+
+    pub fn has_setter(&self) -> bool {
+        match &self.kind {
+            Kind::Real { set, .. } => set.is_some(),
+            Kind::Integer { set, .. } => set.is_some(),
+            Kind::Boolean { set, .. } => set.is_some(),
+        }
+    }
+
+    pub fn has_start(&self) -> bool {
+        match &self.kind {
+            Kind::Real { start, .. } => start.is_some(),
+            Kind::Integer { start, .. } => start.is_some(),
+            Kind::Boolean { start, .. } => start.is_some(),
+        }
+    }
+}
+
+/// Position of the variable with value reference `vr` in a table sorted by value
+/// reference (checked by `check_table`).
+pub fn find<M>(table: &[Variable<M>], vr: u32) -> Option<&Variable<M>> {
+    table
+        .binary_search_by_key(&vr, |v| v.value_reference)
+        .ok()
+        .map(|i| &table[i])
+}
+
+/// Checks a table against the rules of the standard that importers enforce: unique
+/// names, value references strictly increasing, legal (causality, variability,
+/// initial) combinations, start values exactly where required, a writer for every
+/// variable that may be set, derivatives that name an existing Real state.
+pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
+    use Causality as C;
+    use Variability as V;
+    for pair in table.windows(2) {
+        if pair[0].value_reference >= pair[1].value_reference {
+            return Err(format!(
+                "value references not strictly increasing at \"{}\"",
+                pair[1].name
+            ));
+        }
+    }
+    let mut names: Vec<&str> = table.iter().map(|v| v.name.as_str()).collect();
+    names.sort_unstable();
+    if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
+        return Err(format!("duplicate variable name \"{}\"", w[0]));
+    }
+    for v in table {
+        let name = &v.name;
+        let legal = matches!(
+            (v.causality, v.variability, v.initial),
+            (C::Parameter, V::Fixed | V::Tunable, Some(Initial::Exact))
+                | (
+                    C::CalculatedParameter,
+                    V::Fixed | V::Tunable,
+                    Some(Initial::Calculated | Initial::Approx)
+                )
+                | (C::Input, V::Discrete | V::Continuous, None)
+                | (C::Output | C::Local, V::Constant, Some(Initial::Exact))
+                | (C::Output | C::Local, V::Discrete | V::Continuous, Some(_))
+                | (C::Independent, V::Continuous, None)
+        );
+        if !legal {
+            return Err(format!(
+                "\"{name}\": illegal combination causality={}, variability={}, initial={:?}",
+                v.causality.as_str(),
+                v.variability.as_str(),
+                v.initial.map(Initial::as_str)
+            ));
+        }
+        if v.variability == V::Continuous && v.variable_type() != VariableType::Real {
+            return Err(format!("\"{name}\": only Real variables can be continuous"));
+        }
+        let needs_start =
+            v.causality == C::Input || matches!(v.initial, Some(Initial::Exact | Initial::Approx));
+        if needs_start != v.has_start() {
+            return Err(format!(
+                "\"{name}\": a start value is {} for this causality and initial",
+                if needs_start {
+                    "required"
+                } else {
+                    "not allowed"
+                }
+            ));
+        }
+        let settable = v.variability != V::Constant
+            && (v.causality == C::Input
+                || matches!(v.initial, Some(Initial::Exact | Initial::Approx)));
+        if settable != v.has_setter() {
+            return Err(format!(
+                "\"{name}\": a writer is {} (it {} be set through fmi2Set*)",
+                if settable { "missing" } else { "not allowed" },
+                if settable { "may" } else { "may not" }
+            ));
+        }
+        if let Kind::Real {
+            derivative_of: Some(state),
+            ..
+        } = &v.kind
+        {
+            let found = table.iter().any(|s| {
+                &s.name == state
+                    && s.variable_type() == VariableType::Real
+                    && s.variability == V::Continuous
+            });
+            if !found {
+                return Err(format!(
+                    "\"{name}\": derivative of \"{state}\", which is not a continuous Real"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Value references of the derivative variables, in table order (= state order).
+pub fn derivative_variables<M>(table: &[Variable<M>]) -> Vec<&Variable<M>> {
+    table
+        .iter()
+        .filter(|v| {
+            matches!(
+                v.kind,
+                Kind::Real {
+                    derivative_of: Some(_),
+                    ..
+                }
+            )
+        })
+        .collect()
+}

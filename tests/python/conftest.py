@@ -1,0 +1,18 @@
+"""Shared paths of the FMU tests: the FMUs come from dist/ (scripts/build-fmus.sh)."""
+
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+DIST = ROOT / "dist"
+REFERENCES = ROOT / "tests" / "references"
+MODELS = ["Planner", "PID"]
+INTERFACES = ["CoSimulation", "ModelExchange"]
+
+
+def fmu_path(model):
+    path = DIST / f"{model}.fmu"
+    if not path.exists():
+        pytest.fail(f"{path} is missing: run scripts/build-fmus.sh first")
+    return str(path)
