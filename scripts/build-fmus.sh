@@ -3,5 +3,5 @@
 # (modelDescription.xml, binaries/linux64/<modelIdentifier>.so, documentation/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release -p robofmu-planner-fmu -p robofmu-pid-fmu -p robofmu --bin robofmu
+cargo build --release --workspace
 target/release/robofmu fmi package --libraries target/release --out dist
