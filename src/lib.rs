@@ -5,3 +5,4 @@
 //! crate under `fmus/` is a thin binding between them.
 
 pub mod plot;
+pub mod dual_arm;
