@@ -53,13 +53,13 @@ impl Lock {
     }
 
     /// The initial guess of the redundant final joints used in the paper (rad); the
-    /// paper gives one value for lock 2, whose second redundant joint we start at the
-    /// mirror image pi - 0.3 of the first.
+    /// paper gives one value for lock 2 (its count has one redundant joint, ours two);
+    /// the second, theta_L1, starts at 1.7 rad, where the left arm reaches path B's end.
     pub fn paper_guess(self) -> Vec<f64> {
         match self {
             Lock::Unlocked => vec![0.2, 0.4, 1.5, -0.09],
             Lock::One => vec![0.5, 0.02],
-            Lock::Two => vec![0.3, std::f64::consts::PI - 0.3],
+            Lock::Two => vec![0.3, 1.7],
             Lock::Three => vec![],
         }
     }

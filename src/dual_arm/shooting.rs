@@ -79,7 +79,12 @@ impl PmpSolution {
     }
 }
 
-/// The flow in reversed time `s = tf - t`: `y = (q, lambda, cost)`.
+/// The flow in reversed time `s = tf - t`: `y = (q, lambda, cost, s)`.
+///
+/// Time is carried as a state so that the system is autonomous: ode_solvers 0.6.2's
+/// Dop853 evaluates its twelfth stage at the step start instead of its end (node
+/// `c_12 = 0` instead of 1, srenevey/ode-solvers pull request 42), which corrupts
+/// non-autonomous systems but cannot affect autonomous ones.
 struct ReversedFlow<'a> {
     chain: &'a Chain,
     path: &'a dyn Path,
@@ -88,9 +93,10 @@ struct ReversedFlow<'a> {
 }
 
 impl System<f64, DVector<f64>> for ReversedFlow<'_> {
-    fn system(&self, s: f64, y: &DVector<f64>, dy: &mut DVector<f64>) {
+    fn system(&self, _s: f64, y: &DVector<f64>, dy: &mut DVector<f64>) {
         let n = self.chain.free_count();
-        let t = self.end - s;
+        // The elapsed reversed time is the state's last component (autonomous form).
+        let t = self.end - y[2 * n + 1];
         let q = y.rows(0, n).into_owned();
         let lambda = y.rows(n, n).into_owned();
         match rates(self.chain, self.path, t, &q, &lambda) {
@@ -98,6 +104,7 @@ impl System<f64, DVector<f64>> for ReversedFlow<'_> {
                 dy.rows_mut(0, n).copy_from(&(-&velocity));
                 dy.rows_mut(n, n).copy_from(&(-costate_rate));
                 dy[2 * n] = velocity.norm_squared();
+                dy[2 * n + 1] = 1.0;
             }
             None => {
                 self.singular_at.set(Some(t));
@@ -141,7 +148,7 @@ impl<'a> Shooting<'a> {
         let q_final = self
             .chain
             .complete(guess, self.path.position(tf), None, tf)?;
-        let mut y = DVector::zeros(2 * n + 1);
+        let mut y = DVector::zeros(2 * n + 2);
         y.rows_mut(0, n).copy_from(&q_final);
         let singular_at = Cell::new(None);
         let flow = ReversedFlow {
