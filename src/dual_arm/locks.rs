@@ -42,6 +42,17 @@ impl Lock {
         }
     }
 
+    /// The joints solved by inverse kinematics in each arm when not the last two free
+    /// ones: under lock 2 the first and third, so that the redundant joint is the fold
+    /// between the first two links and the inverse kinematics stays far from its
+    /// singularities along path B (with theta_1 redundant it meets them).
+    fn solved_joints(self) -> Option<[(usize, usize); 2]> {
+        match self {
+            Lock::Two => Some([(0, 2), (ARM_JOINTS, ARM_JOINTS + 2)]),
+            _ => None,
+        }
+    }
+
     /// Short name as on the command line: none, 1, 2, 3.
     pub fn name(self) -> &'static str {
         match self {
@@ -52,14 +63,14 @@ impl Lock {
         }
     }
 
-    /// The initial guess of the redundant final joints used in the paper (rad); the
-    /// paper gives one value for lock 2 (its count has one redundant joint, ours two);
-    /// the second, theta_L1, starts at 1.7 rad, where the left arm reaches path B's end.
+    /// The initial guess of the redundant final joints (rad): the paper's values, except
+    /// under lock 2, where the paper guesses one joint (0.3 rad for theta_R1) and we have
+    /// two redundant joints, theta_R2 and theta_L2: we start them at 0.3 and -0.3.
     pub fn paper_guess(self) -> Vec<f64> {
         match self {
             Lock::Unlocked => vec![0.2, 0.4, 1.5, -0.09],
             Lock::One => vec![0.5, 0.02],
-            Lock::Two => vec![0.3, 1.7],
+            Lock::Two => vec![0.3, -0.3],
             Lock::Three => vec![],
         }
     }
@@ -85,7 +96,37 @@ impl Chain {
         lock: Lock,
         elbows: [Elbow; 2],
     ) -> Result<Self, DualArmError> {
-        Self::new(lengths, &lock.fixed_joints(), elbows)
+        let chain = Self::new(lengths, &lock.fixed_joints(), elbows)?;
+        match lock.solved_joints() {
+            Some(solved) => chain.with_solved_joints(solved),
+            None => Ok(chain),
+        }
+    }
+
+    /// The same chain with other joints `(a, b)` (a < b, robot indices) of the right and
+    /// left arm solved by inverse kinematics; all other free joints become redundant.
+    pub fn with_solved_joints(self, solved: [(usize, usize); 2]) -> Result<Self, DualArmError> {
+        for (&(a, b), side) in solved.iter().zip(Side::BOTH) {
+            let valid = a < b
+                && [a, b]
+                    .iter()
+                    .all(|j| self.free.contains(j) && Side::of_joint(*j) == side);
+            if !valid {
+                return Err(DualArmError::InvalidInput(format!(
+                    "joints {a} and {b} are not two free joints of the {} arm",
+                    side.name()
+                )));
+            }
+        }
+        let is_solved = |j: usize| solved.iter().any(|&(a, b)| j == a || j == b);
+        let redundant = (0..self.free.len())
+            .filter(|&i| !is_solved(self.free[i]))
+            .collect();
+        Ok(Self {
+            solved,
+            redundant,
+            ..self
+        })
     }
 
     /// The chain left by fixing `theta_j = value` for each `(j, value)`. The last two free

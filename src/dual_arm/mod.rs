@@ -13,10 +13,10 @@
 //!
 //! Everything is SI: metres, radians, seconds.
 
-//TMP pub mod direct;
+pub mod direct;
 mod error;
 pub mod kinematics;
-//TMP mod linalg;
+mod linalg;
 pub mod locks;
 //TMP pub mod output;
 pub mod paths;

@@ -1,6 +1,6 @@
 //! A sampled joint path with its accumulated cost, and the checks run on it.
 
-use super::kinematics::{self, JOINTS, LinkLengths, Side};
+use super::kinematics::{self, JOINTS, LinkLengths, Side, nearest_angle};
 use super::paths::Path;
 
 /// Joint angles of both arms sampled in time, with the cost accumulated from t0.
@@ -37,8 +37,8 @@ impl Trajectory {
         }
     }
 
-    /// Largest joint difference to another trajectory sampled at the same times, rad;
-    /// `None` when the sample times differ.
+    /// Largest joint difference (modulo 2 pi) to another trajectory sampled at the same
+    /// times, rad; `None` when the sample times differ.
     pub fn max_joint_difference(&self, other: &Trajectory) -> Option<f64> {
         let same_times = self.times.len() == other.times.len()
             && self
@@ -50,7 +50,7 @@ impl Trajectory {
             self.joints
                 .iter()
                 .zip(&other.joints)
-                .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
+                .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| nearest_angle(x - y, 0.0).abs()))
                 .fold(0.0, f64::max)
         })
     }
