@@ -4,5 +4,5 @@
 //! nothing of FMI; the generic FMI layer (`fmi2`) knows nothing of robots; each FMU
 //! crate under `fmus/` is a thin binding between them.
 
-pub mod plot;
 pub mod dual_arm;
+pub mod plot;

@@ -14,11 +14,17 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
-enum Command {}
+enum Command {
+    /// Optimal joint paths of the dual-arm cam-lock robot.
+    #[command(name = "dual-arm")]
+    DualArm(cli::dual_arm::DualArmArgs),
+}
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result: Result<(), cli::CliError> = match cli.command {};
+    let result: Result<(), cli::CliError> = match cli.command {
+        Command::DualArm(args) => cli::dual_arm::run(args),
+    };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

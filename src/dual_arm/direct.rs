@@ -6,8 +6,8 @@
 //! damping and a block-tridiagonal solve. `Phi` tends to PI as `O(dt^2)`.
 
 use super::DualArmError;
-use super::linalg::solve_block_tridiagonal;
 use super::kinematics::JOINTS;
+use super::linalg::solve_block_tridiagonal;
 use super::locks::Chain;
 use super::paths::Path;
 use super::pmp::Projection;
@@ -261,10 +261,7 @@ fn minimise(
                 continue;
             };
             let trial_s: Vec<DVector<f64>> = s.iter().zip(&step).map(|(s, d)| s + d).collect();
-            let trial = grid
-                .complete(&trial_s, &q)
-                .ok()
-                .map(|q| (cost(&q, dt), q));
+            let trial = grid.complete(&trial_s, &q).ok().map(|q| (cost(&q, dt), q));
             match trial {
                 Some((trial_phi, trial_q)) if trial_phi <= phi * (1.0 + 1e-14) => {
                     last_step = step.iter().map(|d| d.amax()).fold(0.0, f64::max);

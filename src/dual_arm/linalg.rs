@@ -59,13 +59,16 @@ mod tests {
         for k in 0..blocks {
             dense.view_mut((m * k, m * k), (m, m)).copy_from(&diag[k]);
             if k + 1 < blocks {
-                dense.view_mut((m * k, m * k + m), (m, m)).copy_from(&upper[k]);
+                dense
+                    .view_mut((m * k, m * k + m), (m, m))
+                    .copy_from(&upper[k]);
                 dense
                     .view_mut((m * k + m, m * k), (m, m))
                     .copy_from(&upper[k].transpose());
             }
         }
-        let stacked = DVector::from_iterator(m * blocks, rhs.iter().flat_map(|v| v.iter().copied()));
+        let stacked =
+            DVector::from_iterator(m * blocks, rhs.iter().flat_map(|v| v.iter().copied()));
         let expected = dense.lu().solve(&stacked).unwrap();
         let got = solve_block_tridiagonal(&diag, &upper, &rhs).unwrap();
         for k in 0..blocks {

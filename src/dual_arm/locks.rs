@@ -310,12 +310,15 @@ impl Chain {
             q[i] = *v;
         }
         let mut theta = self.joints(&q);
-        for (side, (&(a, b), elbow)) in Side::BOTH.iter().zip(self.solved.iter().zip(self.elbows))
-        {
+        for (side, (&(a, b), elbow)) in Side::BOTH.iter().zip(self.solved.iter().zip(self.elbows)) {
             let o = side.offset();
             let mut arm = self.arm(&theta, *side);
-            solve_two_joints(self.lengths.of(*side), &mut arm, (a - o, b - o), r, elbow)
-                .ok_or(DualArmError::Unreachable { t, arm: side.name() })?;
+            solve_two_joints(self.lengths.of(*side), &mut arm, (a - o, b - o), r, elbow).ok_or(
+                DualArmError::Unreachable {
+                    t,
+                    arm: side.name(),
+                },
+            )?;
             theta[a] = arm[a - o];
             theta[b] = arm[b - o];
         }
@@ -447,7 +450,10 @@ mod tests {
             assert!((fd - t.column(i)).norm() < 1e-8, "tangent {i}");
             let fd2 = (c.tangent(&qu).unwrap() - c.tangent(&qd).unwrap()) / (2.0 * h);
             for j in 0..2 {
-                assert!((fd2.column(j) - &curv[i][j]).norm() < 1e-6, "curvature {i} {j}");
+                assert!(
+                    (fd2.column(j) - &curv[i][j]).norm() < 1e-6,
+                    "curvature {i} {j}"
+                );
             }
         }
     }

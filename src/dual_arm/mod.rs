@@ -18,7 +18,7 @@ mod error;
 pub mod kinematics;
 mod linalg;
 pub mod locks;
-//TMP pub mod output;
+pub mod output;
 pub mod paths;
 pub mod pmp;
 pub mod shooting;

@@ -60,11 +60,14 @@ pub fn rates(
     let weight = &velocity * 2.0 - lambda;
     let mut costate_rate = DVector::zeros(q.len());
     for (k, dak) in chain.jacobian_derivatives(q).iter().enumerate() {
-        let column = &p.null_projector * (dak.transpose() * &mc)
-            - &p.pseudo_inverse * (dak * &velocity);
+        let column =
+            &p.null_projector * (dak.transpose() * &mc) - &p.pseudo_inverse * (dak * &velocity);
         costate_rate[k] = column.dot(&weight);
     }
-    let finite = velocity.iter().chain(costate_rate.iter()).all(|v| v.is_finite());
+    let finite = velocity
+        .iter()
+        .chain(costate_rate.iter())
+        .all(|v| v.is_finite());
     finite.then_some((velocity, costate_rate))
 }
 
@@ -106,15 +109,22 @@ mod tests {
             up[k] += h;
             down[k] -= h;
             let fd = -(hamiltonian(&up) - hamiltonian(&down)) / (2.0 * h);
-            assert!((fd - rate[k]).abs() < 1e-8, "joint {k}: {fd} vs {}", rate[k]);
+            assert!(
+                (fd - rate[k]).abs() < 1e-8,
+                "joint {k}: {fd} vs {}",
+                rate[k]
+            );
         }
     }
 
     #[test]
     fn optimal_velocity_tracks_the_path_and_is_minimal_without_costate() {
-        let chain =
-            Chain::for_lock(LinkLengths::default(), Lock::One, [Elbow::Negative, Elbow::Positive])
-                .unwrap();
+        let chain = Chain::for_lock(
+            LinkLengths::default(),
+            Lock::One,
+            [Elbow::Negative, Elbow::Positive],
+        )
+        .unwrap();
         let q = DVector::from_vec(vec![0.5, -1.2, 0.9, 0.02, 1.1, -0.7]);
         let lambda = DVector::from_vec(vec![0.3, -0.2, 0.5, 0.1, -0.4, 0.25]);
         let (f, _) = rates(&chain, &PaperPath::B, 0.4, &q, &lambda).unwrap();

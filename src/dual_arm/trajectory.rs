@@ -50,7 +50,11 @@ impl Trajectory {
             self.joints
                 .iter()
                 .zip(&other.joints)
-                .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| nearest_angle(x - y, 0.0).abs()))
+                .flat_map(|(a, b)| {
+                    a.iter()
+                        .zip(b)
+                        .map(|(x, y)| nearest_angle(x - y, 0.0).abs())
+                })
                 .fold(0.0, f64::max)
         })
     }
