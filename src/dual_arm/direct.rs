@@ -6,7 +6,6 @@
 //! damping and a block-tridiagonal solve. `Phi` tends to PI as `O(dt^2)`.
 
 use super::DualArmError;
-use super::kinematics::JOINTS;
 use super::linalg::solve_block_tridiagonal;
 use super::locks::Chain;
 use super::paths::Path;
@@ -180,36 +179,6 @@ pub fn solve_direct(
 ) -> Result<DirectSolution, DualArmError> {
     let times = grid_times(path, &options)?;
     let q = initial_path(chain, path, &times, guess)?;
-    minimise(chain, path, times, q, options)
-}
-
-/// Minimises the discrete cost from a given joint path, one row of all eight joints per
-/// grid node (`options.intervals + 1` rows); the redundant joints are taken from it.
-pub fn solve_direct_from_path(
-    chain: &Chain,
-    path: &dyn Path,
-    joints: &[[f64; JOINTS]],
-    options: DirectOptions,
-) -> Result<DirectSolution, DualArmError> {
-    let times = grid_times(path, &options)?;
-    if joints.len() != times.len() {
-        return Err(DualArmError::InvalidInput(format!(
-            "{} path rows given for {} grid nodes",
-            joints.len(),
-            times.len()
-        )));
-    }
-    let q = joints
-        .iter()
-        .zip(&times)
-        .map(|(theta, &t)| {
-            let q = DVector::from_iterator(
-                chain.free_count(),
-                chain.free_joints().iter().map(|&j| theta[j]),
-            );
-            chain.complete(&chain.redundant_values(&q), path.position(t), Some(&q), t)
-        })
-        .collect::<Result<Vec<_>, _>>()?;
     minimise(chain, path, times, q, options)
 }
 

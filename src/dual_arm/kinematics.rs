@@ -261,13 +261,19 @@ mod tests {
 
     #[test]
     fn two_joint_solution_reaches_the_target_on_both_branches() {
+        // Target: the tip of a configuration that differs only in joints a and b, so it
+        // is reachable by construction (one branch recovers that configuration).
         for (a, b, locked) in [(2, 3, None), (1, 2, Some(0.0)), (0, 2, None)] {
+            let mut start = THETA;
+            if let Some(v) = locked {
+                start[3] = v;
+            }
+            let mut truth = start;
+            truth[a] += 0.3;
+            truth[b] -= 0.5;
+            let target = tip(&L, &truth);
             for elbow in [Elbow::Positive, Elbow::Negative] {
-                let mut theta = THETA;
-                if let Some(v) = locked {
-                    theta[3] = v;
-                }
-                let target = Vector2::new(0.5, 0.6);
+                let mut theta = start;
                 solve_two_joints(&L, &mut theta, (a, b), target, elbow).unwrap();
                 assert!((tip(&L, &theta) - target).norm() < 1e-13, "joints {a}, {b}");
             }

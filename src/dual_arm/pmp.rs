@@ -103,7 +103,7 @@ mod tests {
         };
         let (f, rate) = rates(&chain, &PaperPath::A, 0.3, &q, &lambda).unwrap();
         assert!((f - velocity(&chain, &q, &lambda)).norm() < 1e-15);
-        let h = 1e-6;
+        let h = 1e-5;
         for k in 0..q.len() {
             let (mut up, mut down) = (q.clone(), q.clone());
             up[k] += h;

@@ -136,8 +136,9 @@ impl<'a> Shooting<'a> {
         }
     }
 
-    /// Integrates backwards from tf; returns the samples `(t, y)` in increasing time,
-    /// at every step (`intervals = None`) or on a uniform grid.
+    /// Integrates backwards from tf; returns the states at t0 (`intervals = None`) or on
+    /// a uniform grid, in increasing time. Each grid interval is its own integration so
+    /// that every sample is an integrator end point (no dense-output interpolation).
     fn integrate(
         &self,
         guess: &[f64],
@@ -150,32 +151,42 @@ impl<'a> Shooting<'a> {
             .complete(guess, self.path.position(tf), None, tf)?;
         let mut y = DVector::zeros(2 * n + 2);
         y.rows_mut(0, n).copy_from(&q_final);
+        let span = tf - t0;
+        let pieces = intervals.unwrap_or(1).max(1);
+        let mut samples = vec![(tf, y.clone())];
+        for k in 0..pieces {
+            let (from, to) = (
+                span * k as f64 / pieces as f64,
+                span * (k + 1) as f64 / pieces as f64,
+            );
+            y = self.integrate_piece(y, from, to)?;
+            samples.push((tf - to, y.clone()));
+        }
+        samples.reverse();
+        Ok(samples)
+    }
+
+    /// Integrates the reversed flow from `y` at reversed time `from` to `to`.
+    fn integrate_piece(
+        &self,
+        y: DVector<f64>,
+        from: f64,
+        to: f64,
+    ) -> Result<DVector<f64>, DualArmError> {
         let singular_at = Cell::new(None);
         let flow = ReversedFlow {
             chain: self.chain,
             path: self.path,
-            end: tf,
+            end: self.path.end(),
             singular_at: &singular_at,
         };
-        let span = tf - t0;
-        let dx = intervals.map_or(span, |k| span / k as f64);
         let tol = self.options.integration_tolerance;
-        let mut solver = Dop853::new(flow, 0.0, span, dx, y, tol, tol);
-        solver.set_output(match intervals {
-            Some(_) => OutputType::Dense,
-            None => OutputType::Sparse,
-        });
+        let mut solver = Dop853::new(flow, from, to, to - from, y, tol, tol);
+        solver.set_output(OutputType::Sparse);
         let outcome = solver.integrate();
-        let (s, ys) = solver.results().get();
-        let samples: Vec<(f64, DVector<f64>)> = s
-            .iter()
-            .zip(ys)
-            .rev()
-            .map(|(s, y)| (tf - s, y.clone()))
-            .collect();
-        let complete = samples.iter().all(|(_, y)| y.iter().all(|v| v.is_finite()));
-        match (outcome, complete) {
-            (Ok(_), true) if !samples.is_empty() => Ok(samples),
+        let last = solver.results().get().1.last().cloned();
+        match (outcome, last) {
+            (Ok(_), Some(y)) if y.iter().all(|v| v.is_finite()) => Ok(y),
             (outcome, _) => Err(match (singular_at.get(), outcome) {
                 (Some(t), _) => DualArmError::Singular { t },
                 (None, Err(e)) => DualArmError::Integration(e.to_string()),
