@@ -79,8 +79,11 @@ pub fn run(args: DualArmArgs) -> Result<(), CliError> {
     }
 }
 
+/// The chain, path and initial guess of a run.
+type Problem = (Chain, Box<dyn Path>, Vec<f64>);
+
 /// The chain, path and guess of the problem, with a header printed.
-fn setup(p: &ProblemArgs) -> Result<(Chain, Box<dyn Path>, Vec<f64>), CliError> {
+fn setup(p: &ProblemArgs) -> Result<Problem, CliError> {
     let path: Box<dyn Path> = match p.path.as_str() {
         "A" | "a" => Box::new(PaperPath::A),
         "B" | "b" => Box::new(PaperPath::B),

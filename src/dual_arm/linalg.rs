@@ -71,8 +71,8 @@ mod tests {
             DVector::from_iterator(m * blocks, rhs.iter().flat_map(|v| v.iter().copied()));
         let expected = dense.lu().solve(&stacked).unwrap();
         let got = solve_block_tridiagonal(&diag, &upper, &rhs).unwrap();
-        for k in 0..blocks {
-            assert!((got[k].clone() - expected.rows(m * k, m)).norm() < 1e-13);
+        for (k, x) in got.iter().enumerate() {
+            assert!((x - expected.rows(m * k, m)).norm() < 1e-13);
         }
         let negative = vec![DMatrix::from_element(1, 1, -1.0)];
         let one = vec![DVector::from_element(1, 1.0)];

@@ -449,11 +449,8 @@ mod tests {
             let fd = (&qu - &qd) / (2.0 * h);
             assert!((fd - t.column(i)).norm() < 1e-8, "tangent {i}");
             let fd2 = (c.tangent(&qu).unwrap() - c.tangent(&qd).unwrap()) / (2.0 * h);
-            for j in 0..2 {
-                assert!(
-                    (fd2.column(j) - &curv[i][j]).norm() < 1e-6,
-                    "curvature {i} {j}"
-                );
+            for (j, c_ij) in curv[i].iter().enumerate() {
+                assert!((fd2.column(j) - c_ij).norm() < 1e-6, "curvature {i} {j}");
             }
         }
     }
