@@ -5,6 +5,7 @@
 //! crate under `fmus/` is a thin binding between them.
 
 pub mod control;
+pub mod dual_arm;
 pub mod fmi2;
 pub mod fmus;
 pub mod plot;

@@ -20,6 +20,9 @@ enum Command {
     Pss3(cli::pss3::Pss3Command),
     /// FMU tooling: modelDescription files and packaging.
     Fmi(cli::fmi::FmiArgs),
+    /// Optimal joint paths of the dual-arm cam-lock robot.
+    #[command(name = "dual-arm")]
+    DualArm(cli::dual_arm::DualArmArgs),
 }
 
 fn main() -> ExitCode {
@@ -27,6 +30,7 @@ fn main() -> ExitCode {
     let result: Result<(), cli::CliError> = match cli.command {
         Command::Pss3(command) => cli::pss3::run(command),
         Command::Fmi(args) => cli::fmi::run(args),
+        Command::DualArm(args) => cli::dual_arm::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
