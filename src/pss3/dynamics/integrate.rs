@@ -96,6 +96,11 @@ struct Flow<'a> {
 
 impl System<f64, StateVector> for Flow<'_> {
     fn system(&self, _t: f64, y: &StateVector, dy: &mut StateVector) {
+        if y.iter().any(|v| !v.is_finite()) {
+            // A later stage of a step already spoiled by a model error: keep that error.
+            dy.fill(f64::NAN);
+            return;
+        }
         match self
             .plant
             .derivative(&PlantState::from_vector(y), &self.inputs)
