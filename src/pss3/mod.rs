@@ -6,6 +6,7 @@
 //! stored as `Vector3` (thx, thy, thz) in rad; angular velocities `omega` are in {A}.
 //! Everything is SI.
 
+pub mod dynamics;
 mod error;
 mod fk;
 mod ik;
