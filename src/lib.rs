@@ -4,4 +4,5 @@
 //! nothing of FMI; the generic FMI layer (`fmi2`) knows nothing of robots; each FMU
 //! crate under `fmus/` is a thin binding between them.
 
+pub mod dexterity;
 pub mod plot;
