@@ -20,10 +20,12 @@ pub struct Dyad {
 pub fn solve(r: Vector2<f64>, l1: f64, l2: f64, delta: f64) -> Option<Dyad> {
     let rr = r.norm_squared();
     let p = (rr + l1 * l1 - l2 * l2) / (2.0 * l1);
+    // Rounding may put a boundary pose (stretched or folded leg) just below Gamma = 0.
     let gamma = rr - p * p;
-    if gamma < 0.0 || rr == 0.0 {
+    if gamma < -1e-12 * rr || rr == 0.0 {
         return None;
     }
+    let gamma = gamma.max(0.0);
     let root = delta * gamma.sqrt();
     let sin = (p * r.y + r.x * root) / rr;
     let cos = (p * r.x - r.y * root) / rr;

@@ -5,6 +5,9 @@ use super::manipulator::check_mode;
 use super::{DexterityError, Joints, Manipulator, Pose};
 use nalgebra::{Matrix3, Vector2};
 
+/// Relative rounding tolerated at the workspace boundary.
+const ROUNDING: f64 = 1e-12;
+
 /// Geometry of the 1-RRR arm (m).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Serial1Rrr {
@@ -90,9 +93,11 @@ impl Manipulator for Serial1Rrr {
         let wrist = Vector2::new(pose.x - self.l3 * cp, pose.y - self.l3 * sp);
         let d =
             (wrist.norm_squared() - self.l1.powi(2) - self.l2.powi(2)) / (2.0 * self.l1 * self.l2);
-        if !(-1.0..=1.0).contains(&d) {
+        // Rounding may put a boundary pose (stretched or folded arm) just past |d| = 1.
+        if d.abs() > 1.0 + ROUNDING {
             return Err(DexterityError::Unreachable);
         }
+        let d = d.clamp(-1.0, 1.0);
         let sign = if mode == 0 { 1.0 } else { -1.0 };
         let theta2 = sign * d.acos();
         let theta1 = wrist.y.atan2(wrist.x)
