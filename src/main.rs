@@ -14,11 +14,16 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
-enum Command {}
+enum Command {
+    /// Dexterity of planar 1-RRR, 2-RRR and 3-RRR manipulators.
+    Dexterity(cli::dexterity::DexterityArgs),
+}
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result: Result<(), cli::CliError> = match cli.command {};
+    let result: Result<(), cli::CliError> = match cli.command {
+        Command::Dexterity(args) => cli::dexterity::run(args),
+    };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

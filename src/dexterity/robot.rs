@@ -1,5 +1,6 @@
 //! The three manipulators of the comparison behind one type.
 
+use super::layout::Reading;
 use super::parallel_2rrr::Parallel2Rrr;
 use super::parallel_3rrr::Parallel3Rrr;
 use super::serial_1rrr::Serial1Rrr;
@@ -57,10 +58,16 @@ pub enum Robot {
 impl Robot {
     /// The manipulator of kind `kind` with the paper's dimensions (default reading).
     pub fn paper(kind: RobotKind) -> Self {
+        Self::with_reading(kind, Reading::default())
+    }
+
+    /// The paper's manipulator of kind `kind` in a reading of the parallel layouts
+    /// (the serial arm has a single layout).
+    pub fn with_reading(kind: RobotKind, reading: Reading) -> Self {
         match kind {
             RobotKind::Serial1Rrr => Self::Serial1Rrr(Serial1Rrr::default()),
-            RobotKind::Parallel2Rrr => Self::Parallel2Rrr(Parallel2Rrr::default()),
-            RobotKind::Parallel3Rrr => Self::Parallel3Rrr(Parallel3Rrr::default()),
+            RobotKind::Parallel2Rrr => Self::Parallel2Rrr(Parallel2Rrr::paper(reading)),
+            RobotKind::Parallel3Rrr => Self::Parallel3Rrr(Parallel3Rrr::paper(reading)),
         }
     }
 
