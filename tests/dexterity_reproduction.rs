@@ -22,7 +22,7 @@ fn serial_max_lci_at_10_deg_is_within_one_percent_of_the_paper() {
         phi10(),
         &XyGrid::paper(161),
         ModeChoice::Best,
-        |_| true,
+        |_: usize| true,
     )
     .unwrap();
     assert!((found.value / 0.2595 - 1.0).abs() < 0.01, "{}", found.value);
@@ -48,7 +48,7 @@ fn three_rrr_paper_figure_is_the_lci_at_grid_point_12_minus_12_cm_in_mode_ppm() 
         phi10(),
         &XyGrid::paper(401),
         ModeChoice::Only(4),
-        |_| true,
+        |_: usize| true,
     )
     .unwrap();
     assert!(fine.value > coarse.value + 0.005, "{}", fine.value);

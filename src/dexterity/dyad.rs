@@ -7,8 +7,8 @@ use nalgebra::Vector2;
 /// Inverse kinematics of one dyad in one branch.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Dyad {
-    /// Angle of the proximal link to the x axis (rad).
-    pub angle: f64,
+    /// Unit vector along the proximal link, `(cos theta, sin theta)`.
+    pub proximal: Vector2<f64>,
     /// Unit vector along the distal link, from the elbow to the platform vertex.
     pub distal: Vector2<f64>,
     /// `delta sqrt(Gamma)` (m): its sign is the branch; zero at a leg singularity.
@@ -31,10 +31,17 @@ pub fn solve(r: Vector2<f64>, l1: f64, l2: f64, delta: f64) -> Option<Dyad> {
     let cos = (p * r.x - r.y * root) / rr;
     let elbow = Vector2::new(l1 * cos, l1 * sin);
     Some(Dyad {
-        angle: sin.atan2(cos),
+        proximal: Vector2::new(cos, sin),
         distal: (r - elbow) / l2,
         root,
     })
+}
+
+impl Dyad {
+    /// Angle `theta` of the proximal link to the x axis (rad).
+    pub fn angle(&self) -> f64 {
+        self.proximal.y.atan2(self.proximal.x)
+    }
 }
 
 /// Branch sign `delta_i` of leg `leg` in working mode `mode` (bit `leg` set: `-1`).
@@ -52,7 +59,7 @@ mod tests {
         let r = Vector2::new(0.1, 0.2);
         for delta in [1.0, -1.0] {
             let d = solve(r, 0.15, 0.12, delta).unwrap();
-            let elbow = 0.15 * Vector2::new(d.angle.cos(), d.angle.sin());
+            let elbow = 0.15 * Vector2::new(d.angle().cos(), d.angle().sin());
             assert!(((r - elbow).norm() - 0.12).abs() < 1e-12);
             assert!((d.distal.norm() - 1.0).abs() < 1e-12);
         }
@@ -69,7 +76,7 @@ mod tests {
         // From cos/sin above: r . E (cos, sin) = -delta sqrt(Gamma), E = rotation by 90 deg.
         let r = Vector2::new(-0.05, 0.22);
         let d = solve(r, 0.15, 0.15, -1.0).unwrap();
-        let (s, c) = d.angle.sin_cos();
+        let (s, c) = d.angle().sin_cos();
         assert!((r.x * -s + r.y * c + d.root).abs() < 1e-12);
     }
 }

@@ -57,11 +57,17 @@ pub trait Manipulator: Sync {
         }
     }
 
+    /// Largest LCI over the working modes that reach `pose`, and that mode; `None` if
+    /// no mode reaches it.
+    fn best_lci_mode(&self, pose: Pose) -> Option<(f64, usize)> {
+        (0..self.working_modes())
+            .filter_map(|mode| Some((self.lci(pose, mode).ok()?, mode)))
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+    }
+
     /// Largest LCI over the working modes that reach `pose`; `None` if none reaches it.
     fn best_lci(&self, pose: Pose) -> Option<f64> {
-        (0..self.working_modes())
-            .filter_map(|mode| self.lci(pose, mode).ok())
-            .reduce(f64::max)
+        self.best_lci_mode(pose).map(|(lci, _)| lci)
     }
 
     /// Whether any working mode reaches `pose`.

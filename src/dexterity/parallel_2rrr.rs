@@ -87,20 +87,18 @@ impl Manipulator for Parallel2Rrr {
 
     fn inverse_kinematics(&self, pose: Pose, mode: usize) -> Result<Joints, DexterityError> {
         let [leg1, leg2] = self.legs(pose, mode)?;
-        let distal_angle = leg1.distal.y.atan2(leg1.distal.x);
-        let elbow = (distal_angle - leg1.angle)
-            .sin()
-            .atan2((distal_angle - leg1.angle).cos());
-        Ok(Joints::new(leg1.angle, elbow, leg2.angle))
+        // Elbow angle: from the proximal to the distal direction of leg 1.
+        let (p, d) = (leg1.proximal, leg1.distal);
+        let elbow = p.perp(&d).atan2(p.dot(&d));
+        Ok(Joints::new(leg1.angle(), elbow, leg2.angle()))
     }
 
     fn jacobian(&self, pose: Pose, mode: usize) -> Result<Matrix3<f64>, DexterityError> {
         let [leg1, leg2] = self.legs(pose, mode)?;
         let (l1, l2) = (self.proximal, self.distal);
-        let e1 = Vector2::new(leg1.angle.cos(), leg1.angle.sin());
         // Velocity of B1 per unit theta1dot and per unit theta2dot.
         let b1_per_theta2 = l2 * perp(leg1.distal);
-        let b1_per_theta1 = l1 * perp(e1) + b1_per_theta2;
+        let b1_per_theta1 = l1 * perp(leg1.proximal) + b1_per_theta2;
         let rot = rotation(pose.phi);
         let (arm1, arm2) = (perp(rot * self.platform[0]), perp(rot * self.platform[1]));
         let n2 = leg2.distal;
@@ -108,11 +106,10 @@ impl Manipulator for Parallel2Rrr {
         if k.abs() < 1e-12 * self.distal {
             return Err(DexterityError::Singular);
         }
-        let e3 = Vector2::new(leg2.angle.cos(), leg2.angle.sin());
         let phi_row = [
             -n2.dot(&b1_per_theta1) / k,
             -n2.dot(&b1_per_theta2) / k,
-            l1 * n2.dot(&perp(e3)) / k,
+            l1 * n2.dot(&perp(leg2.proximal)) / k,
         ];
         let mut j = Matrix3::zeros();
         for c in 0..3 {

@@ -7,6 +7,7 @@
 //! i.e. `J_q qdot + l1 J_theta Thetadot = 0` and `J = -l1 J_q^-1 J_theta`.
 
 use super::dyad;
+use super::indices;
 use super::layout::{Reading, perp, rotation, triangle, two_point_matrix};
 use super::manipulator::check_mode;
 use super::{DexterityError, Joints, Manipulator, Pose};
@@ -59,6 +60,29 @@ impl Parallel3Rrr {
         Ok(r2 * self.jacobian(pose, mode)?)
     }
 
+    /// `J = -l1 J_q^-1 J_theta` for the dyads `legs` of one working mode.
+    fn jacobian_of_legs(
+        &self,
+        pose: Pose,
+        legs: &[dyad::Dyad; 3],
+    ) -> Result<Matrix3<f64>, DexterityError> {
+        let rot = rotation(pose.phi);
+        let mut jq = Matrix3::zeros();
+        for (i, leg) in legs.iter().enumerate() {
+            let n = leg.distal * self.distal;
+            jq[(i, 0)] = n.x;
+            jq[(i, 1)] = n.y;
+            jq[(i, 2)] = n.dot(&perp(rot * self.platform[i]));
+        }
+        let scale = jq.abs().max();
+        let jq_inv = jq
+            .try_inverse()
+            .filter(|inv| inv.abs().max() * scale < 1e12)
+            .ok_or(DexterityError::Singular)?;
+        let jtheta = Matrix3::from_diagonal(&Joints::from_fn(|i, _| legs[i].root));
+        Ok(-self.proximal * jq_inv * jtheta)
+    }
+
     /// The three dyads of a working mode (bit i of `mode`: branch of leg i).
     fn legs(&self, pose: Pose, mode: usize) -> Result<[dyad::Dyad; 3], DexterityError> {
         check_mode(mode, 8)?;
@@ -79,26 +103,37 @@ impl Manipulator for Parallel3Rrr {
 
     fn inverse_kinematics(&self, pose: Pose, mode: usize) -> Result<Joints, DexterityError> {
         let legs = self.legs(pose, mode)?;
-        Ok(Joints::from_fn(|i, _| legs[i].angle))
+        Ok(Joints::from_fn(|i, _| legs[i].angle()))
     }
 
     fn jacobian(&self, pose: Pose, mode: usize) -> Result<Matrix3<f64>, DexterityError> {
-        let legs = self.legs(pose, mode)?;
-        let rot = rotation(pose.phi);
-        let mut jq = Matrix3::zeros();
-        for (i, leg) in legs.iter().enumerate() {
-            let n = leg.distal * self.distal;
-            jq[(i, 0)] = n.x;
-            jq[(i, 1)] = n.y;
-            jq[(i, 2)] = n.dot(&perp(rot * self.platform[i]));
+        self.jacobian_of_legs(pose, &self.legs(pose, mode)?)
+    }
+
+    /// Solves each leg's two branches once and combines them into the eight modes.
+    fn best_lci_mode(&self, pose: Pose) -> Option<(f64, usize)> {
+        let mut branches = [[None; 2]; 3];
+        for (leg, pair) in branches.iter_mut().enumerate() {
+            let r = self.vertex(pose, leg) - self.base[leg];
+            for (b, slot) in pair.iter_mut().enumerate() {
+                *slot = dyad::solve(r, self.proximal, self.distal, dyad::branch(b, 0));
+            }
         }
-        let scale = jq.abs().max();
-        let jq_inv = jq
-            .try_inverse()
-            .filter(|inv| inv.abs().max() * scale < 1e12)
-            .ok_or(DexterityError::Singular)?;
-        let jtheta = Matrix3::from_diagonal(&Joints::from_fn(|i, _| legs[i].root));
-        Ok(-self.proximal * jq_inv * jtheta)
+        let r2 = two_point_matrix(pose.phi, self.platform[0], self.platform[2]);
+        (0..8)
+            .filter_map(|mode| {
+                let legs = [0, 1, 2].map(|leg| branches[leg][mode >> leg & 1]);
+                let legs = [legs[0]?, legs[1]?, legs[2]?];
+                let lci = match self.jacobian_of_legs(pose, &legs) {
+                    Ok(j) => {
+                        let jh = r2 * j;
+                        indices::lci_from_gram(&(jh.transpose() * jh))
+                    }
+                    Err(_) => 0.0,
+                };
+                Some((lci, mode))
+            })
+            .max_by(|a, b| a.0.total_cmp(&b.0))
     }
 
     fn homogeneous_gram(&self, pose: Pose, mode: usize) -> Result<Matrix3<f64>, DexterityError> {

@@ -105,6 +105,10 @@ impl Manipulator for Robot {
         self.inner().homogeneous_gram(pose, mode)
     }
 
+    fn best_lci_mode(&self, pose: Pose) -> Option<(f64, usize)> {
+        self.inner().best_lci_mode(pose)
+    }
+
     fn reach(&self) -> f64 {
         self.inner().reach()
     }

@@ -1,6 +1,6 @@
 //! Largest LCI over a grid of positions, and its dependence on the orientation `phi`.
 
-use super::workspace::{ModeChoice, XyGrid};
+use super::workspace::{ModeChoice, XyGrid, common_map};
 use super::{Manipulator, Pose, Robot};
 use rayon::prelude::*;
 
@@ -23,34 +23,28 @@ pub enum Region {
     Common,
 }
 
-/// Largest LCI at orientation `phi` over the grid points where `inside` holds, in the
-/// working modes of `choice`; `None` if no such point is reachable.
+/// Largest LCI at orientation `phi` over the grid points whose index satisfies
+/// `inside`, in the working modes of `choice`; `None` if no such point is reachable.
 pub fn max_lci(
     robot: &impl Manipulator,
     phi: f64,
     grid: &XyGrid,
     choice: ModeChoice,
-    inside: impl Fn(Pose) -> bool + Sync,
+    inside: impl Fn(usize) -> bool + Sync,
 ) -> Option<MaxLci> {
-    let modes: Vec<usize> = match choice {
-        ModeChoice::Best => (0..robot.working_modes()).collect(),
-        ModeChoice::Only(mode) => vec![mode],
-    };
     (0..grid.len())
         .into_par_iter()
         .filter_map(|i| {
-            let (x, y) = grid.position(i);
-            let pose = Pose::new(x, y, phi);
-            if !inside(pose) {
+            if !inside(i) {
                 return None;
             }
-            modes
-                .iter()
-                .filter_map(|&mode| {
-                    let value = robot.lci(pose, mode).ok()?;
-                    Some(MaxLci { value, pose, mode })
-                })
-                .max_by(|a, b| a.value.total_cmp(&b.value))
+            let (x, y) = grid.position(i);
+            let pose = Pose::new(x, y, phi);
+            let (value, mode) = match choice {
+                ModeChoice::Best => robot.best_lci_mode(pose)?,
+                ModeChoice::Only(mode) => (robot.lci(pose, mode).ok()?, mode),
+            };
+            Some(MaxLci { value, pose, mode })
         })
         .max_by(|a, b| a.value.total_cmp(&b.value))
 }
@@ -66,11 +60,19 @@ pub fn max_lci_in(
 ) -> Option<MaxLci> {
     let robot = &robots[which];
     match region {
-        Region::Paper => max_lci(robot, phi, &XyGrid::paper(points), choice, |_| true),
-        Region::Own => max_lci(robot, phi, &XyGrid::own(robot, points), choice, |_| true),
-        Region::Common => max_lci(robot, phi, &XyGrid::common(robots, points), choice, |p| {
-            robots.iter().all(|r| r.reaches(p))
-        }),
+        Region::Paper => max_lci(robot, phi, &XyGrid::paper(points), choice, |_: usize| true),
+        Region::Own => max_lci(
+            robot,
+            phi,
+            &XyGrid::own(robot, points),
+            choice,
+            |_: usize| true,
+        ),
+        Region::Common => {
+            let grid = XyGrid::common(robots, points);
+            let common = common_map(robots, phi, &grid);
+            max_lci(robot, phi, &grid, choice, |i| common[i])
+        }
     }
 }
 
@@ -84,11 +86,21 @@ pub struct SweepRow {
 /// Largest LCI (best working mode) of each manipulator at every orientation of `phis`.
 pub fn phi_sweep(robots: &[Robot], phis: &[f64], region: Region, points: usize) -> Vec<SweepRow> {
     phis.par_iter()
-        .map(|&phi| SweepRow {
-            phi,
-            max: (0..robots.len())
-                .map(|k| max_lci_in(robots, k, phi, region, points, ModeChoice::Best))
-                .collect(),
+        .map(|&phi| {
+            let max = if region == Region::Common {
+                // One common-workspace mask per orientation, shared by the manipulators.
+                let grid = XyGrid::common(robots, points);
+                let common = common_map(robots, phi, &grid);
+                robots
+                    .iter()
+                    .map(|r| max_lci(r, phi, &grid, ModeChoice::Best, |i| common[i]))
+                    .collect()
+            } else {
+                (0..robots.len())
+                    .map(|k| max_lci_in(robots, k, phi, region, points, ModeChoice::Best))
+                    .collect()
+            };
+            SweepRow { phi, max }
         })
         .collect()
 }

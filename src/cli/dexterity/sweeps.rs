@@ -211,11 +211,13 @@ pub fn readings(a: &ReadingsArgs) -> Result<(), CliError> {
             let per_mode: Vec<String> = (0..robot.working_modes())
                 .map(|m| {
                     cell(
-                        max_lci(&robot, phi, &grid, ModeChoice::Only(m), |_| true).map(|v| v.value),
+                        max_lci(&robot, phi, &grid, ModeChoice::Only(m), |_: usize| true)
+                            .map(|v| v.value),
                     )
                 })
                 .collect();
-            let best = max_lci(&robot, phi, &grid, ModeChoice::Best, |_| true).map(|v| v.value);
+            let best =
+                max_lci(&robot, phi, &grid, ModeChoice::Best, |_: usize| true).map(|v| v.value);
             println!(
                 "{kind} base-origin {:?} base-apex {:?} platform-apex {:?} frame {:?}: modes [{}] best {}",
                 reading.base_origin,
