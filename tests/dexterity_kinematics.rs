@@ -234,13 +234,16 @@ fn three_rrr_inverse_kinematics_closes_every_leg() {
     assert!(checked >= 40, "only {checked} (pose, mode) pairs reachable");
 }
 
+/// Position of a platform vertex at a pose.
+type VertexAt<'a> = dyn Fn(Pose, usize) -> Vector2<f64> + 'a;
+
 #[test]
 fn parallel_homogeneous_jacobians_give_velocities_of_b1_and_b3() {
     // v_B3 by finite differences of the vertex position along the pose rates J e_k.
     let r2 = Parallel2Rrr::default();
     let r3 = Parallel3Rrr::default();
     let pose = Pose::new(0.10, 0.10, 10f64.to_radians());
-    let cases: [(&dyn Fn(Pose, usize) -> Vector2<f64>, Matrix3<f64>, _); 2] = [
+    let cases: [(&VertexAt, Matrix3<f64>, _); 2] = [
         (
             &|p, i| r2.vertex(p, i),
             r2.jacobian(pose, 0).unwrap(),
