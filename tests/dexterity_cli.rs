@@ -96,3 +96,35 @@ fn unknown_robot_is_an_error_on_stderr() {
     assert!(out.stdout.is_empty());
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown robot"));
 }
+
+#[test]
+fn workspace_command_prints_the_serial_disc_area_and_writes_files() {
+    // With l1 = l2 = 15 cm the 1-RRR reaches a disc of radius 30 cm at every phi:
+    // pi 30^2 = 2827 cm^2; a 181 x 181 grid (0.5 cm cells) counts it within 1 %.
+    let dir = std::env::temp_dir().join(format!("robofmu-dex-ws-{}", std::process::id()));
+    let out = robofmu(&[
+        "dexterity",
+        "workspace",
+        "--phi",
+        "30",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let line = text.lines().find(|l| l.starts_with("1rrr")).unwrap();
+    let area: f64 = line.split_whitespace().nth(1).unwrap().parse().unwrap();
+    assert!(
+        (area / (std::f64::consts::PI * 900.0) - 1.0).abs() < 0.01,
+        "{area}"
+    );
+    let csv = std::fs::read_to_string(dir.join("workspace-phi30.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 181 * 181);
+    let png = std::fs::read(dir.join("workspace-phi30.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -22,7 +22,10 @@ pub fn solve(r: Vector2<f64>, l1: f64, l2: f64, delta: f64) -> Option<Dyad> {
     let p = (rr + l1 * l1 - l2 * l2) / (2.0 * l1);
     // Rounding may put a boundary pose (stretched or folded leg) just below Gamma = 0.
     let gamma = rr - p * p;
-    if gamma < -1e-12 * rr || rr == 0.0 {
+    if rr == 0.0 {
+        return folded_on_base(l1, l2);
+    }
+    if gamma < -1e-12 * rr {
         return None;
     }
     let gamma = gamma.max(0.0);
@@ -34,6 +37,16 @@ pub fn solve(r: Vector2<f64>, l1: f64, l2: f64, delta: f64) -> Option<Dyad> {
         proximal: Vector2::new(cos, sin),
         distal: (r - elbow) / l2,
         root,
+    })
+}
+
+/// The vertex on the base joint (`r = 0`): reachable only with equal links, folded,
+/// with any proximal angle (take 0); the leg is singular there (`root = 0`).
+fn folded_on_base(l1: f64, l2: f64) -> Option<Dyad> {
+    (l1 == l2).then(|| Dyad {
+        proximal: Vector2::new(1.0, 0.0),
+        distal: Vector2::new(-1.0, 0.0),
+        root: 0.0,
     })
 }
 
@@ -63,6 +76,14 @@ mod tests {
             assert!(((r - elbow).norm() - 0.12).abs() < 1e-12);
             assert!((d.distal.norm() - 1.0).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn vertex_on_the_base_joint_is_a_folded_singular_leg() {
+        // Equal links fold back onto the base joint: reachable, zero root (singular).
+        let d = solve(Vector2::zeros(), 0.15, 0.15, 1.0).unwrap();
+        assert_eq!(d.root, 0.0);
+        assert!(solve(Vector2::zeros(), 0.15, 0.10, 1.0).is_none());
     }
 
     #[test]
