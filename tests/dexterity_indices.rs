@@ -105,3 +105,33 @@ fn serial_arm_is_singular_when_stretched() {
     let pose = Pose::new(wrist + arm.l3 * phi.cos(), arm.l3 * phi.sin(), phi);
     assert!(arm.lci(pose, 0).unwrap() < 1e-6);
 }
+
+#[test]
+fn reversed_base_equals_the_forward_base_seen_from_a_half_turn() {
+    // Turning the base by 180 deg about the origin is a rigid motion of the whole
+    // manipulator when the pose turns too: (x, y, phi) -> (-x, -y, phi + pi). Rigid
+    // motions keep the singular values of the B1/B3 velocity Jacobian and the branches.
+    use robofmu::dexterity::layout::{BaseDirection, Reading};
+    let reversed = Reading {
+        base_direction: BaseDirection::MinusX,
+        ..Reading::default()
+    };
+    let pose = Pose::new(-0.12, -0.05, 3.0);
+    let turned = Pose::new(0.12, 0.05, 3.0 + std::f64::consts::PI);
+    let two = (Parallel2Rrr::paper(reversed), Parallel2Rrr::default());
+    let three = (Parallel3Rrr::paper(reversed), Parallel3Rrr::default());
+    let pairs: [(&dyn Manipulator, &dyn Manipulator); 2] = [(&two.0, &two.1), (&three.0, &three.1)];
+    let mut compared = 0;
+    for (rev, fwd) in pairs {
+        for mode in 0..rev.working_modes() {
+            match (rev.lci(pose, mode), fwd.lci(turned, mode)) {
+                (Ok(a), Ok(b)) => {
+                    assert!((a - b).abs() < 1e-9, "mode {mode}: {a} vs {b}");
+                    compared += 1;
+                }
+                (a, b) => assert_eq!(a.is_ok(), b.is_ok(), "mode {mode}"),
+            }
+        }
+    }
+    assert!(compared >= 4, "only {compared} modes reach the pose");
+}

@@ -25,11 +25,23 @@ pub enum Origin {
     Centroid,
 }
 
+/// Direction of the base edge O1 -> O2 along the x axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BaseDirection {
+    /// O2 on the positive x side of O1 (same order as B1 -> B2 at phi = 0).
+    #[default]
+    PlusX,
+    /// O2 on the negative x side of O1: the base turned by 180 deg about its origin.
+    MinusX,
+}
+
 /// One reading of the setup of a parallel manipulator.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Reading {
     /// Origin of the base frame: O1, or the centroid of the base joints.
     pub base_origin: Origin,
+    /// Direction of O1 -> O2 along the x axis.
+    pub base_direction: BaseDirection,
     /// Side of O1O2 on which O3 lies (3-RRR only; the 2-RRR has two base joints).
     pub base_apex: ApexSide,
     /// Side of B1B2 on which B3 lies (the platform's vertex order).
@@ -56,6 +68,16 @@ pub fn triangle(side: f64, apex: ApexSide, origin: Origin) -> [Vector2<f64>; 3] 
         Origin::Centroid => (vertices[0] + vertices[1] + vertices[2]) / 3.0,
     };
     vertices.map(|v| v - shift)
+}
+
+/// Base joints of a reading: the triangle of side `side` with its first edge along +x,
+/// turned by 180 deg about the frame origin for `BaseDirection::MinusX`.
+pub fn base_triangle(side: f64, reading: &Reading) -> [Vector2<f64>; 3] {
+    let joints = triangle(side, reading.base_apex, reading.base_origin);
+    match reading.base_direction {
+        BaseDirection::PlusX => joints,
+        BaseDirection::MinusX => joints.map(|v| -v),
+    }
 }
 
 /// Homogenising matrix `[I, E R s'_a; I, E R s'_b]` (4x3): velocities of the two

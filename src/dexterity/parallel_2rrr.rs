@@ -10,7 +10,7 @@
 //! and `v = v_B1 - phidot E R s'1` for the frame origin.
 
 use super::dyad;
-use super::layout::{Origin, Reading, perp, rotation, triangle, two_point_matrix};
+use super::layout::{BaseDirection, Origin, Reading, perp, rotation, triangle, two_point_matrix};
 use super::manipulator::check_mode;
 use super::{DexterityError, Joints, Manipulator, Pose};
 use nalgebra::{Matrix3, Matrix4x3, Vector2};
@@ -39,13 +39,18 @@ impl Parallel2Rrr {
     /// The paper's dimensions (`|O1O2| = 30 cm`, platform side 15 cm, links 15 cm) in
     /// the given reading of its layout.
     pub fn paper(reading: Reading) -> Self {
-        let spacing = 0.30;
+        let sign = match reading.base_direction {
+            BaseDirection::PlusX => 1.0,
+            BaseDirection::MinusX => -1.0,
+        };
+        let o2 = Vector2::new(sign * 0.30, 0.0);
+        // The centroid reading puts the origin at the midpoint of O1O2.
         let shift = match reading.base_origin {
             Origin::FirstVertex => Vector2::zeros(),
-            Origin::Centroid => Vector2::new(spacing / 2.0, 0.0),
+            Origin::Centroid => o2 / 2.0,
         };
         Self {
-            base: [-shift, Vector2::new(spacing, 0.0) - shift],
+            base: [-shift, o2 - shift],
             platform: triangle(0.15, reading.platform_apex, reading.frame),
             proximal: 0.15,
             distal: 0.15,

@@ -8,7 +8,7 @@
 
 use super::dyad;
 use super::indices;
-use super::layout::{Reading, perp, rotation, triangle, two_point_matrix};
+use super::layout::{Reading, base_triangle, perp, rotation, triangle, two_point_matrix};
 use super::manipulator::check_mode;
 use super::{DexterityError, Joints, Manipulator, Pose};
 use nalgebra::{Matrix3, Matrix4x3, Vector2};
@@ -38,7 +38,7 @@ impl Parallel3Rrr {
     /// given reading of its layout.
     pub fn paper(reading: Reading) -> Self {
         Self {
-            base: triangle(0.30, reading.base_apex, reading.base_origin),
+            base: base_triangle(0.30, &reading),
             platform: triangle(0.15, reading.platform_apex, reading.frame),
             proximal: 0.15,
             distal: 0.15,

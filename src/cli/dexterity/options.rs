@@ -1,7 +1,7 @@
 //! Options shared by the `dexterity` subcommands.
 
 use clap::{Args, ValueEnum};
-use robofmu::dexterity::layout::{ApexSide, Origin, Reading};
+use robofmu::dexterity::layout::{ApexSide, BaseDirection, Origin, Reading};
 use robofmu::dexterity::sweep::Region;
 use robofmu::dexterity::workspace::ModeChoice;
 use robofmu::dexterity::{Robot, RobotKind};
@@ -38,6 +38,22 @@ impl From<FrameOrigin> for Origin {
     }
 }
 
+/// Direction of the base edge O1 -> O2.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Direction {
+    PlusX,
+    MinusX,
+}
+
+impl From<Direction> for BaseDirection {
+    fn from(d: Direction) -> Self {
+        match d {
+            Direction::PlusX => BaseDirection::PlusX,
+            Direction::MinusX => BaseDirection::MinusX,
+        }
+    }
+}
+
 /// Reading of the paper's layout of the parallel manipulators (defaults: the
 /// straightforward reading).
 #[derive(Args, Clone, Copy)]
@@ -45,6 +61,9 @@ pub struct ReadingArgs {
     /// Base frame origin: at O1 or at the centroid of the base joints.
     #[arg(long, value_enum, default_value = "first")]
     pub base_origin: FrameOrigin,
+    /// Direction of O1 -> O2 along the x axis.
+    #[arg(long, value_enum, default_value = "plus-x")]
+    pub base_direction: Direction,
     /// Side of O1O2 on which O3 lies (3-RRR).
     #[arg(long, value_enum, default_value = "left")]
     pub base_apex: Side,
@@ -60,6 +79,7 @@ impl ReadingArgs {
     pub fn reading(&self) -> Reading {
         Reading {
             base_origin: self.base_origin.into(),
+            base_direction: self.base_direction.into(),
             base_apex: self.base_apex.into(),
             platform_apex: self.platform_apex.into(),
             frame: self.frame.into(),

@@ -5,7 +5,7 @@ use super::options::ReadingArgs;
 use super::output::{cell, file_in, write_csv};
 use crate::cli::CliError;
 use clap::Args;
-use robofmu::dexterity::layout::{ApexSide, Origin, Reading};
+use robofmu::dexterity::layout::{ApexSide, BaseDirection, Origin, Reading};
 use robofmu::dexterity::sweep::{Region, SweepRow, max_lci, phi_sweep as sweep};
 use robofmu::dexterity::workspace::{ModeChoice, XyGrid};
 use robofmu::dexterity::{Manipulator, Robot, RobotKind};
@@ -180,16 +180,19 @@ fn all_readings(kind: RobotKind) -> Vec<Reading> {
         _ => &sides[..1],
     };
     let mut readings = Vec::new();
-    for &base_origin in &origins {
-        for &base_apex in base_apexes {
-            for &platform_apex in &sides {
-                for &frame in &origins {
-                    readings.push(Reading {
-                        base_origin,
-                        base_apex,
-                        platform_apex,
-                        frame,
-                    });
+    for base_direction in [BaseDirection::PlusX, BaseDirection::MinusX] {
+        for &base_origin in &origins {
+            for &base_apex in base_apexes {
+                for &platform_apex in &sides {
+                    for &frame in &origins {
+                        readings.push(Reading {
+                            base_origin,
+                            base_direction,
+                            base_apex,
+                            platform_apex,
+                            frame,
+                        });
+                    }
                 }
             }
         }
@@ -219,7 +222,8 @@ pub fn readings(a: &ReadingsArgs) -> Result<(), CliError> {
             let best =
                 max_lci(&robot, phi, &grid, ModeChoice::Best, |_: usize| true).map(|v| v.value);
             println!(
-                "{kind} base-origin {:?} base-apex {:?} platform-apex {:?} frame {:?}: modes [{}] best {}",
+                "{kind} base {:?} {:?} base-apex {:?} platform-apex {:?} frame {:?}: modes [{}] best {}",
+                reading.base_direction,
                 reading.base_origin,
                 reading.base_apex,
                 reading.platform_apex,
