@@ -279,6 +279,9 @@ fn unreachable_poses_and_missing_modes_are_typed_errors() {
         );
         assert_eq!(robot.lci(far, 0), Err(DexterityError::Unreachable));
         assert_eq!(robot.best_lci(far), None);
+        let nan = Pose::new(f64::NAN, 0.1, 0.0);
+        assert_eq!(robot.lci(nan, 0), Err(DexterityError::NonFinitePose));
+        assert_eq!(robot.best_lci(nan), None);
         let modes = robot.working_modes();
         assert_eq!(
             robot.jacobian(Pose::new(0.1, 0.1, 0.2), modes),

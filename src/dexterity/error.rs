@@ -9,6 +9,8 @@ pub enum DexterityError {
     Unreachable,
     /// The pose is a singular configuration: the Jacobian does not exist there.
     Singular,
+    /// A pose coordinate is NaN or infinite.
+    NonFinitePose,
     /// A working-mode index beyond the manipulator's number of modes.
     NoSuchMode { mode: usize, modes: usize },
     /// A geometric parameter is not a positive finite length.
@@ -20,6 +22,7 @@ impl fmt::Display for DexterityError {
         match self {
             Self::Unreachable => write!(f, "pose is outside the reachable workspace"),
             Self::Singular => write!(f, "pose is a singular configuration"),
+            Self::NonFinitePose => write!(f, "pose has a NaN or infinite coordinate"),
             Self::NoSuchMode { mode, modes } => {
                 write!(f, "working mode {mode} does not exist (modes 0..{modes})")
             }

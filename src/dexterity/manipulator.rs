@@ -86,11 +86,13 @@ pub trait Manipulator: Sync {
     }
 }
 
-/// Checks that a working-mode index exists.
-pub(crate) fn check_mode(mode: usize, modes: usize) -> Result<(), DexterityError> {
-    if mode < modes {
-        Ok(())
-    } else {
+/// Checks that a working-mode index exists and that the pose is finite.
+pub(crate) fn check_request(pose: Pose, mode: usize, modes: usize) -> Result<(), DexterityError> {
+    if mode >= modes {
         Err(DexterityError::NoSuchMode { mode, modes })
+    } else if !(pose.x.is_finite() && pose.y.is_finite() && pose.phi.is_finite()) {
+        Err(DexterityError::NonFinitePose)
+    } else {
+        Ok(())
     }
 }

@@ -11,7 +11,7 @@
 
 use super::dyad;
 use super::layout::{BaseDirection, Origin, Reading, perp, rotation, triangle, two_point_matrix};
-use super::manipulator::check_mode;
+use super::manipulator::check_request;
 use super::{DexterityError, Joints, Manipulator, Pose};
 use nalgebra::{Matrix3, Matrix4x3, Vector2};
 
@@ -74,7 +74,7 @@ impl Parallel2Rrr {
 
     /// The two dyads of a working mode: leg 1 (bit 0) and leg 2 (bit 1).
     fn legs(&self, pose: Pose, mode: usize) -> Result<[dyad::Dyad; 2], DexterityError> {
-        check_mode(mode, 4)?;
+        check_request(pose, mode, 4)?;
         let solve = |leg: usize| {
             let r = self.vertex(pose, leg) - self.base[leg];
             dyad::solve(r, self.proximal, self.distal, dyad::branch(mode, leg))

@@ -9,7 +9,7 @@
 use super::dyad;
 use super::indices;
 use super::layout::{Reading, base_triangle, perp, rotation, triangle, two_point_matrix};
-use super::manipulator::check_mode;
+use super::manipulator::check_request;
 use super::{DexterityError, Joints, Manipulator, Pose};
 use nalgebra::{Matrix3, Matrix4x3, Vector2};
 
@@ -85,7 +85,7 @@ impl Parallel3Rrr {
 
     /// The three dyads of a working mode (bit i of `mode`: branch of leg i).
     fn legs(&self, pose: Pose, mode: usize) -> Result<[dyad::Dyad; 3], DexterityError> {
-        check_mode(mode, 8)?;
+        check_request(pose, mode, 8)?;
         let solve = |leg: usize| {
             let r = self.vertex(pose, leg) - self.base[leg];
             dyad::solve(r, self.proximal, self.distal, dyad::branch(mode, leg))
@@ -112,6 +112,7 @@ impl Manipulator for Parallel3Rrr {
 
     /// Solves each leg's two branches once and combines them into the eight modes.
     fn best_lci_mode(&self, pose: Pose) -> Option<(f64, usize)> {
+        check_request(pose, 0, 8).ok()?;
         let mut branches = [[None; 2]; 3];
         for (leg, pair) in branches.iter_mut().enumerate() {
             let r = self.vertex(pose, leg) - self.base[leg];

@@ -1,7 +1,7 @@
 //! The serial 1-RRR arm: links `l1`, `l2` and a third member `l3` (one side of the
 //! platform triangle) whose tip is the end-effector point O'; base joint at the origin.
 
-use super::manipulator::check_mode;
+use super::manipulator::check_request;
 use super::{DexterityError, Joints, Manipulator, Pose};
 use nalgebra::{Matrix3, Vector2};
 
@@ -88,7 +88,7 @@ impl Manipulator for Serial1Rrr {
     }
 
     fn inverse_kinematics(&self, pose: Pose, mode: usize) -> Result<Joints, DexterityError> {
-        check_mode(mode, 2)?;
+        check_request(pose, mode, 2)?;
         let (sp, cp) = pose.phi.sin_cos();
         let wrist = Vector2::new(pose.x - self.l3 * cp, pose.y - self.l3 * sp);
         let d =
