@@ -98,6 +98,24 @@ fn unknown_robot_is_an_error_on_stderr() {
 }
 
 #[test]
+fn missing_working_mode_is_an_error_on_stderr() {
+    // The 2-RRR has four working modes (0 to 3).
+    let out = robofmu(&[
+        "dexterity",
+        "max-lci",
+        "--robot",
+        "2rrr",
+        "--phi",
+        "10",
+        "--mode",
+        "4",
+    ]);
+    assert!(!out.status.success());
+    assert!(out.stdout.is_empty());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("working modes 0 to 3"));
+}
+
+#[test]
 fn workspace_command_prints_the_serial_disc_area_and_writes_files() {
     // With l1 = l2 = 15 cm the 1-RRR reaches a disc of radius 30 cm at every phi:
     // pi 30^2 = 2827 cm^2; a 181 x 181 grid (0.5 cm cells) counts it within 1 %.

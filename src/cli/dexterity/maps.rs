@@ -1,7 +1,7 @@
 //! Subcommands that write maps over x, y at one orientation: LCI, load index and the
 //! reachable and common workspaces (CSV and PNG).
 
-use super::options::{ReadingArgs, index_of, parse_mode};
+use super::options::{ReadingArgs, check_mode, index_of, parse_mode};
 use super::output::{cell, cm, file_in, write_csv};
 use super::sweeps::peak_phi;
 use crate::cli::CliError;
@@ -141,6 +141,7 @@ pub struct LoadMapArgs {
 pub fn load_maps(a: &LoadMapArgs) -> Result<(), CliError> {
     let robots = a.reading.robots();
     let which = index_of(a.robot);
+    check_mode(&robots[which], a.mode)?;
     let phi_deg = match a.phi {
         Some(p) => p,
         None => peak_phi(&robots, which, 81).ok_or("no reachable pose in the sweep")?,

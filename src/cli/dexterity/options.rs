@@ -4,7 +4,7 @@ use clap::{Args, ValueEnum};
 use robofmu::dexterity::layout::{ApexSide, BaseDirection, Origin, Reading};
 use robofmu::dexterity::sweep::Region;
 use robofmu::dexterity::workspace::ModeChoice;
-use robofmu::dexterity::{Robot, RobotKind};
+use robofmu::dexterity::{Manipulator, Robot, RobotKind};
 
 /// Side of a triangle's first edge on which its third vertex lies.
 #[derive(Clone, Copy, ValueEnum)]
@@ -124,6 +124,18 @@ pub fn parse_mode(s: &str) -> Result<ModeChoice, String> {
     s.parse()
         .map(ModeChoice::Only)
         .map_err(|_| format!("'{s}' is neither 'best' nor a mode index"))
+}
+
+/// Rejects a working-mode index the manipulator does not have.
+pub fn check_mode(robot: &Robot, choice: ModeChoice) -> Result<(), String> {
+    match choice {
+        ModeChoice::Only(mode) if mode >= robot.working_modes() => Err(format!(
+            "{} has working modes 0 to {}, not {mode}",
+            robot.kind(),
+            robot.working_modes() - 1
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// Index of `kind` in `RobotKind::ALL` (and in `ReadingArgs::robots`).

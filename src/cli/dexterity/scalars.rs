@@ -1,6 +1,6 @@
 //! Subcommands that print numbers: the largest LCI at one orientation and the GCI.
 
-use super::options::{ReadingArgs, Workspace, index_of, parse_mode};
+use super::options::{ReadingArgs, Workspace, check_mode, index_of, parse_mode};
 use crate::cli::CliError;
 use clap::Args;
 use robofmu::dexterity::RobotKind;
@@ -32,6 +32,7 @@ pub struct MaxLciArgs {
 /// Prints the largest LCI (4 decimals) and nothing else.
 pub fn max_lci(a: &MaxLciArgs) -> Result<(), CliError> {
     let robots = a.reading.robots();
+    check_mode(&robots[index_of(a.robot)], a.mode)?;
     let found = max_lci_in(
         &robots,
         index_of(a.robot),
