@@ -3,6 +3,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use robofmu::dexterity::sweep::{Region, phi_sweep};
+use robofmu::dexterity::workspace::ModeChoice;
 use robofmu::dexterity::{Manipulator, Pose, Robot, RobotKind};
 use std::hint::black_box;
 
@@ -20,10 +21,11 @@ fn sweep(c: &mut Criterion) {
     let robots: Vec<Robot> = RobotKind::ALL.iter().map(|&k| Robot::paper(k)).collect();
     // 18 orientations every 10 deg from 10 to 180 deg, 81 x 81 grid per workspace.
     let phis: Vec<f64> = (1..=18).map(|i| (10.0 * i as f64).to_radians()).collect();
+    let best = [ModeChoice::Best; 3];
     let mut group = c.benchmark_group("phi_sweep");
     group.sample_size(10);
     group.bench_function("own_18x81x81", |b| {
-        b.iter(|| phi_sweep(&robots, black_box(&phis), Region::Own, 81))
+        b.iter(|| phi_sweep(&robots, &best, black_box(&phis), Region::Own, 81))
     });
     group.finish();
 }

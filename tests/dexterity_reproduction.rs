@@ -126,3 +126,20 @@ fn gci_converges_under_grid_refinement() {
         assert!(values.iter().all(|v| (0.0..1.0).contains(v)));
     }
 }
+
+#[test]
+fn serial_arm_own_workspace_maximum_is_flat_in_the_phi_sweep() {
+    // Rotation invariance about the base makes the 1-RRR's largest LCI over its whole
+    // workspace independent of phi; the converged value is 0.2610 (641-point grid).
+    use robofmu::dexterity::sweep::{Region, phi_sweep};
+    let robots: Vec<Robot> = RobotKind::ALL.iter().map(|&k| Robot::paper(k)).collect();
+    let phis: Vec<f64> = [10.0f64, 75.0, 140.0, 180.0]
+        .iter()
+        .map(|d| d.to_radians())
+        .collect();
+    let rows = phi_sweep(&robots, &[ModeChoice::Best; 3], &phis, Region::Own, 161);
+    for row in &rows {
+        let serial = row.max[0].unwrap().value;
+        assert!((serial - 0.2610).abs() < 3e-4, "phi {}: {serial}", row.phi);
+    }
+}

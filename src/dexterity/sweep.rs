@@ -83,8 +83,15 @@ pub struct SweepRow {
     pub max: Vec<Option<MaxLci>>,
 }
 
-/// Largest LCI (best working mode) of each manipulator at every orientation of `phis`.
-pub fn phi_sweep(robots: &[Robot], phis: &[f64], region: Region, points: usize) -> Vec<SweepRow> {
+/// Largest LCI of each manipulator at every orientation of `phis`, in the working
+/// modes `choices[k]` of manipulator `k`.
+pub fn phi_sweep(
+    robots: &[Robot],
+    choices: &[ModeChoice],
+    phis: &[f64],
+    region: Region,
+    points: usize,
+) -> Vec<SweepRow> {
     phis.par_iter()
         .map(|&phi| {
             let max = if region == Region::Common {
@@ -93,11 +100,12 @@ pub fn phi_sweep(robots: &[Robot], phis: &[f64], region: Region, points: usize) 
                 let common = common_map(robots, phi, &grid);
                 robots
                     .iter()
-                    .map(|r| max_lci(r, phi, &grid, ModeChoice::Best, |i| common[i]))
+                    .zip(choices)
+                    .map(|(r, &choice)| max_lci(r, phi, &grid, choice, |i| common[i]))
                     .collect()
             } else {
                 (0..robots.len())
-                    .map(|k| max_lci_in(robots, k, phi, region, points, ModeChoice::Best))
+                    .map(|k| max_lci_in(robots, k, phi, region, points, choices[k]))
                     .collect()
             };
             SweepRow { phi, max }

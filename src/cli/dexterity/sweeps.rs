@@ -1,7 +1,7 @@
 //! Subcommands over orientations and readings: the largest LCI versus phi, and the
 //! largest LCI at one orientation for every reading of the parallel layouts.
 
-use super::options::ReadingArgs;
+use super::options::{ReadingArgs, check_mode, parse_mode};
 use super::output::{cell, file_in, write_csv};
 use crate::cli::CliError;
 use clap::Args;
@@ -27,11 +27,34 @@ pub struct SweepArgs {
     /// Grid points per axis over each searched square.
     #[arg(long, default_value_t = 161)]
     grid: usize,
+    /// Working mode of the 2-RRR: `best` or a fixed mode index (0 to 3).
+    #[arg(long, default_value = "best", value_parser = parse_mode)]
+    mode_2rrr: ModeChoice,
+    /// Working mode of the 3-RRR: `best` or a fixed mode index (0 to 7).
+    #[arg(long, default_value = "best", value_parser = parse_mode)]
+    mode_3rrr: ModeChoice,
     /// Output directory for the CSV and PNG files.
     #[arg(long, default_value = "dexterity-out")]
     out: PathBuf,
     #[command(flatten)]
     reading: ReadingArgs,
+}
+
+/// Text for a working-mode choice.
+fn mode_label(choice: ModeChoice) -> String {
+    match choice {
+        ModeChoice::Best => "best".into(),
+        ModeChoice::Only(mode) => format!("mode {mode}"),
+    }
+}
+
+/// The parallel manipulators' working modes of a sweep.
+fn modes_label(a: &SweepArgs) -> String {
+    format!(
+        "2rrr {}, 3rrr {}",
+        mode_label(a.mode_2rrr),
+        mode_label(a.mode_3rrr)
+    )
 }
 
 /// Orientations from `from` to `to` (deg, inclusive) every `step`.
@@ -50,7 +73,13 @@ fn value(row: &SweepRow, k: usize) -> Option<f64> {
 pub fn peak_phi(robots: &[Robot], which: usize, points: usize) -> Option<f64> {
     let degrees = orientations(10.0, 180.0, 1.0);
     let phis: Vec<f64> = degrees.iter().map(|d| d.to_radians()).collect();
-    let rows = sweep(&robots[which..=which], &phis, Region::Own, points);
+    let rows = sweep(
+        &robots[which..=which],
+        &[ModeChoice::Best],
+        &phis,
+        Region::Own,
+        points,
+    );
     rows.iter()
         .zip(&degrees)
         .filter_map(|(row, &d)| Some((value(row, 0)?, d)))
@@ -64,13 +93,18 @@ pub fn phi_sweep(a: &SweepArgs) -> Result<(), CliError> {
         return Err("need step > 0 and to >= from".into());
     }
     let robots = a.reading.robots();
+    let choices = [ModeChoice::Best, a.mode_2rrr, a.mode_3rrr];
+    for (robot, &choice) in robots.iter().zip(&choices) {
+        check_mode(robot, choice)?;
+    }
+    println!("# working modes: 1rrr best, {}", modes_label(a));
     let degrees = orientations(a.from, a.to, a.step);
     let phis: Vec<f64> = degrees.iter().map(|d| d.to_radians()).collect();
     let mut header = vec!["phi_deg".to_string()];
     let mut columns: Vec<Vec<SweepRow>> = Vec::new();
     for (region, name) in [(Region::Own, "own"), (Region::Common, "common")] {
         let start = Instant::now();
-        let rows = sweep(&robots, &phis, region, a.grid);
+        let rows = sweep(&robots, &choices, &phis, region, a.grid);
         println!(
             "# {name} workspace: {} orientations x {} x {} grid in {:.2} s",
             phis.len(),
@@ -145,8 +179,10 @@ fn plot_sweep(a: &SweepArgs, rows: &[SweepRow], name: &str) -> Result<(), CliErr
         })
         .collect();
     let title = format!(
-        "Largest LCI over the {name} workspace ({} x {} grid)",
-        a.grid, a.grid
+        "Largest LCI, {name} workspace ({}; {} x {} grid)",
+        modes_label(a),
+        a.grid,
+        a.grid
     );
     let axes = Axes {
         title: &title,
