@@ -94,7 +94,7 @@ fn serial_workspace_volume_converges_to_the_annulus_volume() {
     };
     let errors: Vec<f64> = [1, 2, 4]
         .map(|f| {
-            (gci(&Serial1Rrr::default(), &grid.refined(f))
+            (gci(&Serial1Rrr::default(), &grid.refined(f), ModeChoice::Best)
                 .unwrap()
                 .volume
                 - exact)
@@ -118,7 +118,11 @@ fn gci_converges_under_grid_refinement() {
     for kind in RobotKind::ALL {
         let robot = Robot::paper(kind);
         let values: Vec<f64> = [1, 2, 4]
-            .map(|f| gci(&robot, &grid.refined(f)).unwrap().value)
+            .map(|f| {
+                gci(&robot, &grid.refined(f), ModeChoice::Best)
+                    .unwrap()
+                    .value
+            })
             .to_vec();
         let (d1, d2) = ((values[1] - values[0]).abs(), (values[2] - values[1]).abs());
         assert!(d2 < 0.01 * values[2], "{kind}: {values:?}");
@@ -141,5 +145,29 @@ fn serial_arm_own_workspace_maximum_is_flat_in_the_phi_sweep() {
     for row in &rows {
         let serial = row.max[0].unwrap().value;
         assert!((serial - 0.2610).abs() < 3e-4, "phi {}: {serial}", row.phi);
+    }
+}
+
+#[test]
+fn three_rrr_gci_of_each_mode_is_below_the_best_mode_gci_on_the_same_workspace() {
+    // All eight 3-RRR modes reach the same poses (Gamma_i >= 0 does not depend on the
+    // branch), so the workspace and cell count agree and LCI_mode <= LCI_best pointwise.
+    let grid = GciGrid {
+        xy_cells: 30,
+        phi_cells: 17,
+        phi_min: 10f64.to_radians(),
+        phi_max: 180f64.to_radians(),
+    };
+    let robot = Parallel3Rrr::default();
+    let best = gci(&robot, &grid, ModeChoice::Best).unwrap();
+    for mode in 0..8 {
+        let one = gci(&robot, &grid, ModeChoice::Only(mode)).unwrap();
+        assert_eq!(one.volume, best.volume, "mode {mode}");
+        assert!(
+            one.value < best.value,
+            "mode {mode}: {} vs {}",
+            one.value,
+            best.value
+        );
     }
 }

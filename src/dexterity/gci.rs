@@ -2,10 +2,11 @@
 //!
 //! Integration method: the composite midpoint rule on a uniform box grid of cells over
 //! `[-reach, reach]^2 x [phi_min, phi_max]`, with the workspace as an indicator: a cell
-//! counts if its centre is reachable, and it contributes the LCI (best working mode) at
-//! its centre. `GCI = sum(LCI) / count`, the cell volume cancelling. The workspace
+//! counts if its centre is reachable, and it contributes the LCI (best working mode, or
+//! one fixed mode) at its centre. `GCI = sum(LCI) / count`, the cell volume cancelling. The workspace
 //! boundary cuts cells, so the error decreases like the cell size (first order).
 
+use super::workspace::ModeChoice;
 use super::{Manipulator, Pose};
 use rayon::prelude::*;
 
@@ -40,8 +41,10 @@ pub struct Gci {
     pub volume: f64,
 }
 
-/// GCI of `robot` by the midpoint rule on `grid`; `None` if no cell centre is reachable.
-pub fn gci(robot: &impl Manipulator, grid: &GciGrid) -> Option<Gci> {
+/// GCI of `robot` in the working modes of `choice` by the midpoint rule on `grid`;
+/// `None` if no cell centre is reachable. With a fixed mode the workspace is that
+/// mode's reachable set.
+pub fn gci(robot: &impl Manipulator, grid: &GciGrid, choice: ModeChoice) -> Option<Gci> {
     let half = robot.reach();
     let dx = 2.0 * half / grid.xy_cells as f64;
     let dphi = (grid.phi_max - grid.phi_min) / grid.phi_cells as f64;
@@ -54,7 +57,11 @@ pub fn gci(robot: &impl Manipulator, grid: &GciGrid) -> Option<Gci> {
             (0..n)
                 .filter_map(|ix| {
                     let x = -half + ix as f64 * dx + dx / 2.0;
-                    robot.best_lci(Pose::new(x, y, phi))
+                    let pose = Pose::new(x, y, phi);
+                    match choice {
+                        ModeChoice::Best => robot.best_lci(pose),
+                        ModeChoice::Only(mode) => robot.lci(pose, mode).ok(),
+                    }
                 })
                 .fold((0.0, 0usize), |(s, c), v| (s + v, c + 1))
         })

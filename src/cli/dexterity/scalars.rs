@@ -63,6 +63,9 @@ pub struct GciArgs {
     /// Upper end of the orientation range (deg).
     #[arg(long, default_value_t = 180.0, allow_negative_numbers = true)]
     phi_max: f64,
+    /// Working mode: `best` (largest LCI over the modes at each pose) or a mode index.
+    #[arg(long, default_value = "best", value_parser = parse_mode)]
+    mode: ModeChoice,
     #[command(flatten)]
     reading: ReadingArgs,
 }
@@ -84,7 +87,8 @@ impl GciArgs {
 /// Prints the GCI (4 decimals) and nothing else.
 pub fn gci(a: &GciArgs) -> Result<(), CliError> {
     let robot = a.reading.robots()[index_of(a.robot)];
-    let value = global_index(&robot, &a.grid()?).ok_or("empty workspace")?;
+    check_mode(&robot, a.mode)?;
+    let value = global_index(&robot, &a.grid()?, a.mode).ok_or("empty workspace")?;
     println!("{:.4}", value.value);
     Ok(())
 }
@@ -92,6 +96,7 @@ pub fn gci(a: &GciArgs) -> Result<(), CliError> {
 /// Prints the GCI on the grid divided by 8, 4, 2 and 1 per axis.
 pub fn gci_convergence(a: &GciArgs) -> Result<(), CliError> {
     let robot = a.reading.robots()[index_of(a.robot)];
+    check_mode(&robot, a.mode)?;
     let finest = a.grid()?;
     println!(
         "# GCI of {} over phi in [{}, {}] deg, midpoint rule",
@@ -105,7 +110,7 @@ pub fn gci_convergence(a: &GciArgs) -> Result<(), CliError> {
             phi_cells: (finest.phi_cells / divisor).max(1),
             ..finest
         };
-        let g = global_index(&robot, &grid).ok_or("empty workspace")?;
+        let g = global_index(&robot, &grid, a.mode).ok_or("empty workspace")?;
         let change = previous.map_or("-".to_string(), |p| format!("{:+.5}", g.value - p));
         println!(
             "{:8}  {:9}  {:.5}  {:>8}  {:.5}",
