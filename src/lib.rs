@@ -8,5 +8,6 @@ pub mod control;
 pub mod dual_arm;
 pub mod fmi2;
 pub mod fmus;
+pub mod dexterity;
 pub mod plot;
 pub mod pss3;

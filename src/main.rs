@@ -23,6 +23,8 @@ enum Command {
     /// Optimal joint paths of the dual-arm cam-lock robot.
     #[command(name = "dual-arm")]
     DualArm(cli::dual_arm::DualArmArgs),
+    /// Dexterity of planar 1-RRR, 2-RRR and 3-RRR manipulators.
+    Dexterity(cli::dexterity::DexterityArgs),
 }
 
 fn main() -> ExitCode {
@@ -31,6 +33,7 @@ fn main() -> ExitCode {
         Command::Pss3(command) => cli::pss3::run(command),
         Command::Fmi(args) => cli::fmi::run(args),
         Command::DualArm(args) => cli::dual_arm::run(args),
+        Command::Dexterity(args) => cli::dexterity::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,6 +4,7 @@
 pub mod dual_arm;
 pub mod fmi;
 pub mod pss3;
+pub mod dexterity;
 
 /// Any failure of a subcommand, reported on stderr with a non-zero exit code.
 pub type CliError = Box<dyn std::error::Error>;

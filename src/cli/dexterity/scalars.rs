@@ -1,0 +1,122 @@
+//! Subcommands that print numbers: the largest LCI at one orientation and the GCI.
+
+use super::options::{ReadingArgs, Workspace, check_mode, index_of, parse_mode};
+use crate::cli::CliError;
+use clap::Args;
+use robofmu::dexterity::RobotKind;
+use robofmu::dexterity::gci::{GciGrid, gci as global_index};
+use robofmu::dexterity::sweep::max_lci_in;
+use robofmu::dexterity::workspace::ModeChoice;
+
+#[derive(Args)]
+pub struct MaxLciArgs {
+    /// Manipulator: 1rrr, 2rrr or 3rrr.
+    #[arg(long)]
+    robot: RobotKind,
+    /// Orientation phi of the end effector (deg).
+    #[arg(long, allow_negative_numbers = true)]
+    phi: f64,
+    /// Positions searched: the paper's square, the own or the common workspace.
+    #[arg(long, value_enum, default_value = "paper")]
+    workspace: Workspace,
+    /// Grid points per axis (161 over the paper's 40 cm square: 0.25 cm steps).
+    #[arg(long, default_value_t = 161)]
+    grid: usize,
+    /// Working mode: `best` (largest over the modes) or a mode index.
+    #[arg(long, default_value = "best", value_parser = parse_mode)]
+    mode: ModeChoice,
+    #[command(flatten)]
+    reading: ReadingArgs,
+}
+
+/// Prints the largest LCI (4 decimals) and nothing else.
+pub fn max_lci(a: &MaxLciArgs) -> Result<(), CliError> {
+    let robots = a.reading.robots();
+    check_mode(&robots[index_of(a.robot)], a.mode)?;
+    let found = max_lci_in(
+        &robots,
+        index_of(a.robot),
+        a.phi.to_radians(),
+        a.workspace.into(),
+        a.grid,
+        a.mode,
+    )
+    .ok_or_else(|| format!("{} reaches no grid point at phi = {} deg", a.robot, a.phi))?;
+    println!("{:.4}", found.value);
+    Ok(())
+}
+
+#[derive(Args)]
+pub struct GciArgs {
+    /// Manipulator: 1rrr, 2rrr or 3rrr.
+    #[arg(long)]
+    robot: RobotKind,
+    /// Midpoint-rule cells along x and along y (over the reach square).
+    #[arg(long, default_value_t = 100)]
+    cells: usize,
+    /// Midpoint-rule cells along phi.
+    #[arg(long, default_value_t = 85)]
+    phi_cells: usize,
+    /// Lower end of the orientation range (deg).
+    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    phi_min: f64,
+    /// Upper end of the orientation range (deg).
+    #[arg(long, default_value_t = 180.0, allow_negative_numbers = true)]
+    phi_max: f64,
+    /// Working mode: `best` (largest LCI over the modes at each pose) or a mode index.
+    #[arg(long, default_value = "best", value_parser = parse_mode)]
+    mode: ModeChoice,
+    #[command(flatten)]
+    reading: ReadingArgs,
+}
+
+impl GciArgs {
+    fn grid(&self) -> Result<GciGrid, CliError> {
+        if self.cells == 0 || self.phi_cells == 0 || self.phi_max <= self.phi_min {
+            return Err("need positive cell counts and phi-max > phi-min".into());
+        }
+        Ok(GciGrid {
+            xy_cells: self.cells,
+            phi_cells: self.phi_cells,
+            phi_min: self.phi_min.to_radians(),
+            phi_max: self.phi_max.to_radians(),
+        })
+    }
+}
+
+/// Prints the GCI (4 decimals) and nothing else.
+pub fn gci(a: &GciArgs) -> Result<(), CliError> {
+    let robot = a.reading.robots()[index_of(a.robot)];
+    check_mode(&robot, a.mode)?;
+    let value = global_index(&robot, &a.grid()?, a.mode).ok_or("empty workspace")?;
+    println!("{:.4}", value.value);
+    Ok(())
+}
+
+/// Prints the GCI on the grid divided by 8, 4, 2 and 1 per axis.
+pub fn gci_convergence(a: &GciArgs) -> Result<(), CliError> {
+    let robot = a.reading.robots()[index_of(a.robot)];
+    check_mode(&robot, a.mode)?;
+    let finest = a.grid()?;
+    println!(
+        "# GCI of {} over phi in [{}, {}] deg, midpoint rule",
+        a.robot, a.phi_min, a.phi_max
+    );
+    println!("xy_cells  phi_cells  gci      change   volume_m2rad");
+    let mut previous: Option<f64> = None;
+    for divisor in [8, 4, 2, 1] {
+        let grid = GciGrid {
+            xy_cells: (finest.xy_cells / divisor).max(1),
+            phi_cells: (finest.phi_cells / divisor).max(1),
+            ..finest
+        };
+        let g = global_index(&robot, &grid, a.mode).ok_or("empty workspace")?;
+        let change = previous.map_or("-".to_string(), |p| format!("{:+.5}", g.value - p));
+        println!(
+            "{:8}  {:9}  {:.5}  {:>8}  {:.5}",
+            grid.xy_cells, grid.phi_cells, g.value, change, g.volume
+        );
+        previous = Some(g.value);
+    }
+    Ok(())
+}
