@@ -5,9 +5,9 @@
 //! crate under `fmus/` is a thin binding between them.
 
 pub mod control;
+pub mod dexterity;
 pub mod dual_arm;
 pub mod fmi2;
 pub mod fmus;
-pub mod dexterity;
 pub mod plot;
 pub mod pss3;

@@ -1,10 +1,10 @@
 //! Subcommands of the `robofmu` binary: argument parsing and output only; the
 //! computations live in the library.
 
+pub mod dexterity;
 pub mod dual_arm;
 pub mod fmi;
 pub mod pss3;
-pub mod dexterity;
 
 /// Any failure of a subcommand, reported on stderr with a non-zero exit code.
 pub type CliError = Box<dyn std::error::Error>;
