@@ -4,6 +4,7 @@
 //! nothing of FMI; the generic FMI layer (`fmi2`) knows nothing of robots; each FMU
 //! crate under `fmus/` is a thin binding between them.
 
+pub mod closed_loop;
 pub mod control;
 pub mod dexterity;
 pub mod dual_arm;

@@ -23,6 +23,9 @@ enum Command {
     /// Optimal joint paths of the dual-arm cam-lock robot.
     #[command(name = "dual-arm")]
     DualArm(cli::dual_arm::DualArmArgs),
+    /// The planner -> PID -> 3-PSS plant loop: Rust reference and PID gain design.
+    #[command(subcommand, name = "closed-loop")]
+    ClosedLoop(cli::closed_loop::ClosedLoopCommand),
     /// Dexterity of planar 1-RRR, 2-RRR and 3-RRR manipulators.
     Dexterity(cli::dexterity::DexterityArgs),
 }
@@ -34,6 +37,7 @@ fn main() -> ExitCode {
         Command::Fmi(args) => cli::fmi::run(args),
         Command::DualArm(args) => cli::dual_arm::run(args),
         Command::Dexterity(args) => cli::dexterity::run(args),
+        Command::ClosedLoop(command) => cli::closed_loop::run(command),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,193 @@
+//! `robofmu closed-loop`: the Rust reference of the co-simulated loop, and the PID gain
+//! design on the linearised plant.
+
+use super::CliError;
+use clap::{Args, Subcommand};
+use nalgebra::Vector3;
+use robofmu::closed_loop::{LoopSample, LoopSpec, design_gains, parse_loop_scenario, simulate};
+use robofmu::pss3::dynamics::{Plant, PlantParams};
+use robofmu::pss3::rotation::{euler_accelerations, euler_rates};
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+#[derive(Subcommand)]
+pub enum ClosedLoopCommand {
+    /// Simulate a scenario's loop as one continuous-time ODE (no FMI) and write the
+    /// reference CSV (cross-check format) with its options file.
+    Reference(ReferenceArgs),
+    /// PID gains by pole placement (triple pole at -bandwidth) on the linearised plant.
+    DesignGains(DesignArgs),
+    /// Planner boundary conditions (Euler angles, rates, accelerations) from a pose and
+    /// the angular velocity and acceleration in the base frame.
+    Boundary(BoundaryArgs),
+}
+
+#[derive(Args)]
+pub struct BoundaryArgs {
+    /// Euler angles "thx,thy,thz", degrees.
+    #[arg(long, allow_hyphen_values = true)]
+    angles: String,
+    /// Angular velocity "wx,wy,wz" in the base frame, rad/s.
+    #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
+    omega: String,
+    /// Angular acceleration "ax,ay,az" in the base frame, rad/s^2.
+    #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
+    omega_dot: String,
+}
+
+#[derive(Args)]
+pub struct ReferenceArgs {
+    /// Scenario file (TOML), as run by `python -m cosim`.
+    #[arg(long)]
+    scenario: PathBuf,
+    /// Output CSV; `<name>_ref.opt` is written beside it.
+    #[arg(long)]
+    out: PathBuf,
+    /// Relative and absolute tolerance of the Dop853 integration.
+    #[arg(long, default_value_t = 1e-11)]
+    tolerance: f64,
+}
+
+#[derive(Args)]
+pub struct DesignArgs {
+    /// Closed-loop bandwidth w, rad/s (triple pole at -w).
+    #[arg(long)]
+    bandwidth: f64,
+    /// Poses of the motion, "thx,thy,thz" in degrees (repeat the option).
+    #[arg(long = "angles", required = true, allow_hyphen_values = true)]
+    angles: Vec<String>,
+}
+
+pub fn run(command: ClosedLoopCommand) -> Result<(), CliError> {
+    match command {
+        ClosedLoopCommand::Reference(args) => reference(args),
+        ClosedLoopCommand::DesignGains(args) => design(args),
+        ClosedLoopCommand::Boundary(args) => boundary(args),
+    }
+}
+
+fn columns(spec: &LoopSpec) -> Vec<String> {
+    let [planner, pid, plant] = &spec.aliases;
+    let groups: [(&String, &str); 11] = [
+        (planner, "q"),
+        (planner, "qdot"),
+        (planner, "qddot"),
+        (plant, "theta"),
+        (plant, "thetaDot"),
+        (plant, "omega"),
+        (plant, "omegaDot"),
+        (plant, "gravityCompensation"),
+        (plant, "force"),
+        (plant, "l"),
+        (pid, "u"),
+    ];
+    groups
+        .iter()
+        .flat_map(|(alias, name)| (1..=3).map(move |i| format!("{alias}.{name}[{i}]")))
+        .collect()
+}
+
+fn row(s: &LoopSample) -> impl Iterator<Item = f64> + '_ {
+    [
+        &s.q,
+        &s.qdot,
+        &s.qddot,
+        &s.theta,
+        &s.theta_dot,
+        &s.omega,
+        &s.omega_dot,
+        &s.gravity_compensation,
+        &s.force,
+        &s.l,
+        &s.u,
+    ]
+    .into_iter()
+    .flat_map(|v| v.iter().copied())
+}
+
+fn reference(args: ReferenceArgs) -> Result<(), CliError> {
+    let text = std::fs::read_to_string(&args.scenario)
+        .map_err(|e| format!("cannot read {}: {e}", args.scenario.display()))?;
+    let spec = parse_loop_scenario(&text)?;
+    let samples = simulate(&spec, args.tolerance)?;
+    let mut csv = String::from("\"time\"");
+    for name in columns(&spec) {
+        write!(csv, ",\"{name}\"")?;
+    }
+    csv.push('\n');
+    for s in &samples {
+        write!(csv, "{}", s.time)?;
+        for v in row(s) {
+            write!(csv, ",{v}")?;
+        }
+        csv.push('\n');
+    }
+    std::fs::write(&args.out, csv)?;
+    let options = format!(
+        "StartTime, {}\nStopTime, {}\nStepSize, {}\nRelTol, {}\n",
+        spec.start_time, spec.stop_time, spec.step_size, args.tolerance
+    );
+    std::fs::write(args.out.with_extension("opt"), options)?;
+    println!(
+        "{}: {} samples of the continuous-time loop -> {}",
+        spec.name,
+        samples.len(),
+        args.out.display()
+    );
+    Ok(())
+}
+
+fn parse_vector(text: &str, option: &str) -> Result<Vector3<f64>, CliError> {
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|s| s.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("--{option} {text}: {e}"))?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(Vector3::new(*x, *y, *z)),
+        _ => Err(format!("--{option} {text}: need three finite numbers x,y,z").into()),
+    }
+}
+
+fn parse_angles(text: &str) -> Result<Vector3<f64>, CliError> {
+    Ok(parse_vector(text, "angles")?.map(f64::to_radians))
+}
+
+fn boundary(args: BoundaryArgs) -> Result<(), CliError> {
+    let angles = parse_angles(&args.angles)?;
+    let omega = parse_vector(&args.omega, "omega")?;
+    let omega_dot = parse_vector(&args.omega_dot, "omega-dot")?;
+    let rates = euler_rates(&angles, &omega)?;
+    let accelerations = euler_accelerations(&angles, &rates, &omega_dot)?;
+    println!("# Euler angles (rad), rates (rad/s) and accelerations (rad/s^2): q, qdot, qddot");
+    for (name, v) in [("q", angles), ("qdot", rates), ("qddot", accelerations)] {
+        println!("{name} = [{:.17e}, {:.17e}, {:.17e}]", v[0], v[1], v[2]);
+    }
+    Ok(())
+}
+
+fn design(args: DesignArgs) -> Result<(), CliError> {
+    let poses = args
+        .angles
+        .iter()
+        .map(|a| parse_angles(a))
+        .collect::<Result<Vec<_>, _>>()?;
+    let plant = Plant::new(PlantParams::default())?;
+    let d = design_gains(&plant, &poses, args.bandwidth)?;
+    println!(
+        "triple pole at -{} rad/s; inertia per Euler axis (largest diagonal of M_x over {} poses):",
+        args.bandwidth,
+        poses.len()
+    );
+    for (i, g) in d.gains.iter().enumerate() {
+        println!(
+            "  axis {}: m = {:.6} kg m^2  Kp = {:.6} N m/rad  Ki = {:.6} N m/(rad s)  Kd = {:.6} N m s/rad",
+            i + 1,
+            d.inertia[i],
+            g.kp,
+            g.ki,
+            g.kd
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,252 @@
+//! Reads a co-simulation scenario (the TOML file that `python -m cosim` runs) into the
+//! loop it describes. Only the planner -> PID -> plant topology of this module is
+//! accepted; any other connection or an unmodelled plant parameter is refused by name,
+//! so the reference can never silently describe a different loop than the FMUs run.
+
+use super::error::LoopError;
+use crate::control::pid::PidGains;
+use crate::control::trajectory::{Boundary, Order, Polynomial};
+use crate::pss3::dynamics::PlantParams;
+use nalgebra::Vector3;
+use std::collections::BTreeSet;
+use toml::{Table, Value};
+
+/// The closed loop of one scenario.
+#[derive(Debug, Clone)]
+pub struct LoopSpec {
+    pub name: String,
+    /// Scenario aliases of the planner, PID and plant FMUs.
+    pub aliases: [String; 3],
+    pub start_time: f64,
+    pub stop_time: f64,
+    /// Communication step of the co-simulation, s: the reference samples at it.
+    pub step_size: f64,
+    /// Planned motion of each Euler angle.
+    pub trajectories: [Polynomial; 3],
+    pub gains: [PidGains; 3],
+    pub plant: PlantParams,
+    /// Initial Euler angles, rad.
+    pub theta0: Vector3<f64>,
+    /// Initial angular velocity in the base frame, rad/s.
+    pub omega0: Vector3<f64>,
+}
+
+/// The FMU roles, recognised by the FMU file names of the scenario.
+const PLANNER: &str = "Planner";
+const PID: &str = "PID";
+const PLANT: &str = "Pss3Plant";
+
+fn bad(message: String) -> LoopError {
+    LoopError::Scenario(message)
+}
+
+fn number(table: &Table, key: &str, place: &str) -> Result<Option<f64>, LoopError> {
+    match table.get(key) {
+        None => Ok(None),
+        Some(Value::Float(v)) if v.is_finite() => Ok(Some(*v)),
+        Some(Value::Integer(v)) => Ok(Some(*v as f64)),
+        Some(other) => Err(bad(format!(
+            "'{place}{key}' must be a finite number, got {other}"
+        ))),
+    }
+}
+
+fn required(table: &Table, key: &str, place: &str) -> Result<f64, LoopError> {
+    number(table, key, place)?.ok_or_else(|| bad(format!("missing '{place}{key}'")))
+}
+
+fn boolean(table: &Table, key: &str, place: &str) -> Result<bool, LoopError> {
+    match table.get(key) {
+        None => Ok(false),
+        Some(Value::Boolean(b)) => Ok(*b),
+        Some(other) => Err(bad(format!(
+            "'{place}{key}' must be true or false, got {other}"
+        ))),
+    }
+}
+
+/// The aliases of the planner, PID and plant, from the FMU file names.
+fn roles(fmus: &Table) -> Result<[String; 3], LoopError> {
+    let find = |stem: &str| {
+        let matching: Vec<&String> = fmus
+            .iter()
+            .filter(|(_, path)| {
+                path.as_str()
+                    .and_then(|p| std::path::Path::new(p).file_stem())
+                    .is_some_and(|s| s == stem)
+            })
+            .map(|(alias, _)| alias)
+            .collect();
+        match matching.as_slice() {
+            [alias] => Ok((*alias).clone()),
+            _ => Err(bad(format!("'fmus' must name exactly one {stem}.fmu"))),
+        }
+    };
+    if fmus.len() != 3 {
+        return Err(bad(
+            "'fmus' must name exactly the planner, PID and plant FMUs".into(),
+        ));
+    }
+    Ok([find(PLANNER)?, find(PID)?, find(PLANT)?])
+}
+
+/// The connections of the loop described in the module documentation.
+fn expected_connections(planner: &str, pid: &str, plant: &str) -> BTreeSet<(String, String)> {
+    let pairs = [
+        (planner, "q", pid, "setpoint"),
+        (planner, "qdot", pid, "setpointRate"),
+        (plant, "theta", pid, "measurement"),
+        (plant, "thetaDot", pid, "measuredRate"),
+        (plant, "gravityCompensation", pid, "feedforward"),
+        (pid, "u", plant, "generalizedForceCommand"),
+    ];
+    (1..=3)
+        .flat_map(|i| pairs.map(|(a, x, b, y)| (format!("{a}.{x}[{i}]"), format!("{b}.{y}[{i}]"))))
+        .collect()
+}
+
+fn connections(doc: &Table) -> Result<BTreeSet<(String, String)>, LoopError> {
+    let list = doc.get("connections").and_then(Value::as_array);
+    let list = list.ok_or_else(|| bad("missing 'connections'".into()))?;
+    list.iter()
+        .enumerate()
+        .map(|(k, c)| {
+            let end = |key: &str| c.get(key).and_then(Value::as_str).map(str::to_string);
+            match (end("from"), end("to")) {
+                (Some(from), Some(to)) => Ok((from, to)),
+                _ => Err(bad(format!(
+                    "'connections[{k}]' needs string 'from' and 'to'"
+                ))),
+            }
+        })
+        .collect()
+}
+
+fn trajectories(p: &Table, place: &str) -> Result<[Polynomial; 3], LoopError> {
+    let degree = required(p, "order", place)?;
+    let order = Order::from_degree(degree as i32)
+        .filter(|_| degree.fract() == 0.0)
+        .ok_or_else(|| bad(format!("'{place}order' must be 3 or 5, got {degree}")))?;
+    let (t0, tf) = (required(p, "t0", place)?, required(p, "tf", place)?);
+    let mut out = Vec::with_capacity(3);
+    for i in 1..=3 {
+        let opt = |name: &str| number(p, &format!("{name}[{i}]"), place);
+        let b = Boundary {
+            q0: required(p, &format!("q0[{i}]"), place)?,
+            qf: required(p, &format!("qf[{i}]"), place)?,
+            qdot0: opt("qdot0")?.unwrap_or(0.0),
+            qdotf: opt("qdotf")?.unwrap_or(0.0),
+            qddot0: opt("qddot0")?.unwrap_or(0.0),
+            qddotf: opt("qddotf")?.unwrap_or(0.0),
+        };
+        out.push(Polynomial::new(order, t0, tf, &b)?);
+    }
+    out.try_into()
+        .map_err(|_| bad("three planner axes expected".into()))
+}
+
+fn gains(p: &Table, place: &str) -> Result<[PidGains; 3], LoopError> {
+    let mut out = Vec::with_capacity(3);
+    for i in 1..=3 {
+        let key = |name: &str| format!("{name}[{i}]");
+        let limits = if boolean(p, &key("limitOutput"), place)? {
+            Some((
+                required(p, &key("uMin"), place)?,
+                required(p, &key("uMax"), place)?,
+            ))
+        } else {
+            None
+        };
+        let g = PidGains {
+            kp: required(p, &key("Kp"), place)?,
+            ki: required(p, &key("Ki"), place)?,
+            kd: required(p, &key("Kd"), place)?,
+            tf: required(p, &key("Tf"), place)?,
+            limits,
+            use_rate_inputs: boolean(p, &key("useRateInputs"), place)?,
+        };
+        g.validate()?;
+        out.push(g);
+    }
+    Ok([out[0], out[1], out[2]])
+}
+
+fn initial(p: &Table, name: &str, place: &str) -> Result<Vector3<f64>, LoopError> {
+    let mut v = Vector3::zeros();
+    for i in 0..3 {
+        v[i] = required(p, &format!("{name}[{}]", i + 1), place)?;
+    }
+    Ok(v)
+}
+
+fn parameters<'a>(doc: &'a Table, alias: &str) -> Result<&'a Table, LoopError> {
+    doc.get("parameters")
+        .and_then(|p| p.get(alias))
+        .and_then(Value::as_table)
+        .ok_or_else(|| bad(format!("missing table 'parameters.{alias}'")))
+}
+
+/// Reads the loop of a scenario file's text.
+pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
+    let doc: Table = text
+        .parse()
+        .map_err(|e| bad(format!("not valid TOML: {e}")))?;
+    let name = doc.get("name").and_then(Value::as_str);
+    let name = name
+        .ok_or_else(|| bad("missing 'name'".into()))?
+        .to_string();
+    let fmus = doc.get("fmus").and_then(Value::as_table);
+    let [planner, pid, plant] = roles(fmus.ok_or_else(|| bad("missing 'fmus'".into()))?)?;
+    let found = connections(&doc)?;
+    let expected = expected_connections(&planner, &pid, &plant);
+    if let Some((from, to)) = found.symmetric_difference(&expected).next() {
+        let what = if found.contains(&(from.clone(), to.clone())) {
+            "unexpected"
+        } else {
+            "missing"
+        };
+        return Err(bad(format!(
+            "{what} connection {from} -> {to}: the reference models only the \
+             planner -> PID -> plant loop"
+        )));
+    }
+    let plant_params = parameters(&doc, &plant)?;
+    let modelled = [
+        "theta0[1]",
+        "theta0[2]",
+        "theta0[3]",
+        "omega0[1]",
+        "omega0[2]",
+        "omega0[3]",
+    ];
+    if let Some(key) = plant_params
+        .keys()
+        .find(|k| !modelled.contains(&k.as_str()))
+    {
+        return Err(bad(format!(
+            "plant parameter '{plant}.{key}' is not modelled by the reference (it uses the \
+             default plant)"
+        )));
+    }
+    let start_time = number(&doc, "start_time", "")?.unwrap_or(0.0);
+    let stop_time = required(&doc, "stop_time", "")?;
+    let step_size = required(&doc, "step_size", "")?;
+    if !(step_size > 0.0 && stop_time > start_time) {
+        return Err(bad("need step_size > 0 and stop_time > start_time".into()));
+    }
+    Ok(LoopSpec {
+        name,
+        aliases: [planner.clone(), pid.clone(), plant.clone()],
+        start_time,
+        stop_time,
+        step_size,
+        trajectories: trajectories(
+            parameters(&doc, &planner)?,
+            &format!("parameters.{planner}."),
+        )?,
+        gains: gains(parameters(&doc, &pid)?, &format!("parameters.{pid}."))?,
+        plant: PlantParams::default(),
+        theta0: initial(plant_params, "theta0", &format!("parameters.{plant}."))?,
+        omega0: initial(plant_params, "omega0", &format!("parameters.{plant}."))?,
+    })
+}
