@@ -1,0 +1,134 @@
+//! The closed-loop reference (planner -> PID -> plant as one ODE) against closed forms
+//! and the requirements of the scenarios.
+
+use nalgebra::Vector3;
+use robofmu::closed_loop::{LoopSpec, design_gains, parse_loop_scenario, simulate};
+use robofmu::control::trajectory::{Boundary, Order, Polynomial};
+use robofmu::pss3::dynamics::{Plant, PlantParams};
+use std::path::Path;
+
+const BANDWIDTH: f64 = 30.0;
+
+fn hold(target: Vector3<f64>, stop: f64) -> [Polynomial; 3] {
+    std::array::from_fn(|i| {
+        let b = Boundary {
+            q0: target[i],
+            qf: target[i],
+            ..Boundary::default()
+        };
+        Polynomial::new(Order::Quintic, 0.0, stop, &b).unwrap()
+    })
+}
+
+/// Regulation to `target` from `target + offset`, gains designed at `target`.
+fn regulation(target: Vector3<f64>, offset: Vector3<f64>) -> LoopSpec {
+    let plant = Plant::new(PlantParams::default()).unwrap();
+    let design = design_gains(&plant, &[target], BANDWIDTH).unwrap();
+    LoopSpec {
+        name: "regulation".into(),
+        aliases: ["planner".into(), "pid".into(), "plant".into()],
+        start_time: 0.0,
+        stop_time: 0.4,
+        step_size: 0.01,
+        trajectories: hold(target, 0.4),
+        gains: design.gains,
+        plant: PlantParams::default(),
+        theta0: target + offset,
+        omega0: Vector3::zeros(),
+    }
+}
+
+#[test]
+fn small_offsets_decay_as_the_designed_triple_pole() {
+    // Truth: at a flat pose M_x = E^T M E is diagonal (3-fold symmetry) and gravity is
+    // compensated, so each axis is m x'' = u and the PID (Kd = 3 m w, Kp = 3 m w^2,
+    // Ki = m w^3) gives x(t) = x0 (1 + w t - w^2 t^2) exp(-w t) for an offset x0 from
+    // rest. The nonlinear loop differs by terms of order x0^2.
+    let target = Vector3::new(0.0, 0.0, 138f64.to_radians());
+    for axis in 0..3 {
+        let x0 = 1e-5;
+        let offset = Vector3::from_fn(|i, _| if i == axis { x0 } else { 0.0 });
+        let samples = simulate(&regulation(target, offset), 1e-12).unwrap();
+        let mut worst: f64 = 0.0;
+        for s in &samples {
+            let wt = BANDWIDTH * s.time;
+            let expected = x0 * (1.0 + wt - wt * wt) * (-wt).exp();
+            let error = s.theta - target;
+            worst = worst.max((error[axis] - expected).abs());
+            for other in (0..3).filter(|&i| i != axis) {
+                assert!(
+                    error[other].abs() < 1e-4 * x0,
+                    "axis {other} coupled: {}",
+                    error[other]
+                );
+            }
+        }
+        assert!(
+            worst < 1e-4 * x0,
+            "axis {axis}: worst deviation {worst:e} rad"
+        );
+    }
+}
+
+fn scenario(name: &str) -> LoopSpec {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenarios")
+        .join(name);
+    parse_loop_scenario(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[test]
+fn three_rotation_motion_meets_the_tracking_requirement() {
+    // Requirement of the closed-loop issue: RMS tracking error below 0.05 deg on the
+    // three-rotation motion, with the gains of the stated design method.
+    for name in ["three_axis_cubic.toml", "three_axis_quintic.toml"] {
+        let samples = simulate(&scenario(name), 1e-10).unwrap();
+        let sum: f64 = samples.iter().map(|s| (s.q - s.theta).norm_squared()).sum();
+        let rms_deg = (sum / samples.len() as f64).sqrt().to_degrees();
+        assert!(rms_deg < 0.05, "{name}: RMS error {rms_deg} deg");
+        // The plant starts on the planned motion: the error stays far below the
+        // requirement everywhere, not just on average.
+        let worst = samples
+            .iter()
+            .map(|s| (s.q - s.theta).amax())
+            .fold(0.0, f64::max);
+        assert!(
+            worst.to_degrees() < 0.01,
+            "{name}: worst error {} deg",
+            worst.to_degrees()
+        );
+    }
+}
+
+#[test]
+fn actuator_forces_stay_within_the_cylinder_limit() {
+    // Assumed limit: a 32 mm bore pneumatic cylinder at 6 bar gives 483 N; we allow
+    // 400 N. The regulation from a 3 deg error is the most demanding scenario.
+    let samples = simulate(&scenario("regulation.toml"), 1e-10).unwrap();
+    let peak = samples.iter().map(|s| s.force.amax()).fold(0.0, f64::max);
+    assert!(peak < 400.0, "peak actuator force {peak} N");
+    let last = samples.last().unwrap();
+    assert!(
+        (last.q - last.theta).amax() < 1e-6,
+        "settled to {}",
+        (last.q - last.theta).amax()
+    );
+}
+
+#[test]
+fn scenarios_with_another_loop_are_refused_by_name() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/regulation.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let cut = text.replacen("from = \"pid.u[2]\"", "from = \"pid.u[1]\"", 1);
+    let e = parse_loop_scenario(&cut).unwrap_err().to_string();
+    assert!(
+        e.contains("pid.u[1] -> plant.generalizedForceCommand[2]"),
+        "{e}"
+    );
+    let extra = text.replacen("[parameters.plant]", "[parameters.plant]\ng = 1.62", 1);
+    let e = parse_loop_scenario(&extra).unwrap_err().to_string();
+    assert!(e.contains("plant.g"), "{e}");
+    let missing = text.replacen("\"Kp[2]\"", "\"Kq[2]\"", 1);
+    let e = parse_loop_scenario(&missing).unwrap_err().to_string();
+    assert!(e.contains("missing 'parameters.pid.Kp[2]'"), "{e}");
+}
