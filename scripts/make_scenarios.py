@@ -10,6 +10,10 @@ Every number comes from the project's own tools, so the files state nothing by h
 - path 1 of the thesis: the first and last samples of `robofmu pss3 actuator-path`
   (all actuators 2 -> 152 mm in 2 s).
 
+It then writes each scenario's reference, the loop as one continuous-time ODE in Rust
+(`robofmu closed-loop reference`, Dop853 at 1e-11, every 10 ms), to
+tests/references/ClosedLoop/<name>/<name>_ref.csv with its options file.
+
 Run after `cargo build --release`:  python3 scripts/make_scenarios.py
 """
 
@@ -25,6 +29,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 ROBOFMU = ROOT / "target" / "release" / "robofmu"
 OUT = ROOT / "scenarios"
+REFERENCES = ROOT / "tests" / "references" / "ClosedLoop"
 
 # Closed-loop bandwidth, rad/s. The tracking error of the triple-pole loop is about
 # jerk / w^3; the largest planned jerk (~1.7 rad/s^3) and the 0.05 deg requirement
@@ -122,7 +127,11 @@ def write(name: str, comment: str, order: int, start, end, poses, stop_time: flo
         for i in (1, 2, 3):
             out += ["", "[[connections]]", f'from = "{a}.{x}[{i}]"', f'to = "{b}.{y}[{i}]"']
     (OUT / f"{name}.toml").write_text("\n".join(out) + "\n")
-    print(f"wrote scenarios/{name}.toml")
+    reference = REFERENCES / name / f"{name}_ref.csv"
+    reference.parent.mkdir(parents=True, exist_ok=True)
+    robofmu("closed-loop", "reference", "--scenario", str(OUT / f"{name}.toml"),
+            "--out", str(reference), "--every", "10", "--tolerance", "1e-11")
+    print(f"wrote scenarios/{name}.toml and its reference")
 
 
 def main():

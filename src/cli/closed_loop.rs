@@ -46,6 +46,9 @@ pub struct ReferenceArgs {
     /// Relative and absolute tolerance of the Dop853 integration.
     #[arg(long, default_value_t = 1e-11)]
     tolerance: f64,
+    /// Write every N-th communication point only (the first and last always).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    every: u32,
 }
 
 #[derive(Args)]
@@ -115,16 +118,21 @@ fn reference(args: ReferenceArgs) -> Result<(), CliError> {
         write!(csv, ",\"{name}\"")?;
     }
     csv.push('\n');
-    for s in &samples {
-        write!(csv, "{}", s.time)?;
+    let every = args.every as usize;
+    let last = samples.len() - 1;
+    for (k, s) in samples.iter().enumerate() {
+        if k % every != 0 && k != last {
+            continue;
+        }
+        write!(csv, "{:e}", s.time)?;
         for v in row(s) {
-            write!(csv, ",{v}")?;
+            write!(csv, ",{v:e}")?;
         }
         csv.push('\n');
     }
     std::fs::write(&args.out, csv)?;
     let options = format!(
-        "StartTime, {}\nStopTime, {}\nStepSize, {}\nRelTol, {}\n",
+        "StartTime, {}\nStopTime, {}\nStepSize, {}\nRelTol, {:e}\n",
         spec.start_time, spec.stop_time, spec.step_size, args.tolerance
     );
     std::fs::write(args.out.with_extension("opt"), options)?;

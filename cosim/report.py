@@ -1,0 +1,139 @@
+"""Metrics and plots of closed-loop results (planner -> PID -> 3-PSS plant).
+
+Results are read by column name ("alias.variable"), so the same code serves the
+master's results and the Rust reference CSVs. Angles are converted to degrees for
+people only here.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+AXES = ("thx", "thy", "thz")
+
+
+def read_csv(path: Path) -> dict[str, np.ndarray]:
+    """A cross-check CSV as {column name: values}."""
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    names = rows[0]
+    data = np.array(rows[1:], dtype=float)
+    return {name: data[:, k] for k, name in enumerate(names)}
+
+
+def vector(result: dict, alias: str, name: str) -> np.ndarray:
+    """The three columns alias.name[1..3] as an (n, 3) array."""
+    return np.stack([result[f"{alias}.{name}[{i}]"] for i in (1, 2, 3)], axis=1)
+
+
+@dataclass
+class Metrics:
+    rms_error_deg: float
+    max_error_deg: float
+    peak_force_n: float
+    peak_planned_acceleration: float  # rad/s^2
+    peak_angular_acceleration: float  # rad/s^2, plant omega_dot
+
+    def row(self) -> list[str]:
+        return [f"{self.rms_error_deg:.5f}", f"{self.max_error_deg:.5f}",
+                f"{self.peak_force_n:.3f}",
+                f"{math.degrees(self.peak_planned_acceleration):.3f}",
+                f"{math.degrees(self.peak_angular_acceleration):.3f}"]
+
+
+HEADER = ["RMS error (deg)", "max error (deg)", "peak |f| (N)",
+          "peak planned accel (deg/s^2)", "peak |omega_dot| (deg/s^2)"]
+
+
+def metrics(result: dict) -> Metrics:
+    error = vector(result, "planner", "q") - vector(result, "plant", "theta")
+    norm = np.linalg.norm(error, axis=1)
+    return Metrics(
+        rms_error_deg=math.degrees(float(np.sqrt(np.mean(norm ** 2)))),
+        max_error_deg=math.degrees(float(np.abs(error).max())),
+        peak_force_n=float(np.abs(vector(result, "plant", "force")).max()),
+        peak_planned_acceleration=float(np.abs(vector(result, "planner", "qddot")).max()),
+        peak_angular_acceleration=float(np.abs(vector(result, "plant", "omegaDot")).max()),
+    )
+
+
+def _figure(rows: int):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(rows, 1, figsize=(8, 2.4 * rows), sharex=True, squeeze=False)
+    return plt, fig, axes[:, 0]
+
+
+def plot_tracking(result: dict, name: str, out_dir: Path,
+                  reference: dict | None = None) -> list[Path]:
+    """Orientation and reference, tracking error and actuator forces of one run."""
+    t = result["time"]
+    q = np.degrees(vector(result, "planner", "q"))
+    theta = np.degrees(vector(result, "plant", "theta"))
+    written = []
+    plt, fig, axes = _figure(3)
+    for i, ax in enumerate(axes):
+        ax.plot(t, q[:, i], "--", color="gray", label="planned")
+        ax.plot(t, theta[:, i], label="plant (co-simulation)")
+        if reference is not None:
+            ax.plot(reference["time"], np.degrees(reference[f"plant.theta[{i + 1}]"]), ".",
+                    markersize=3, label="Rust reference (ODE)")
+        ax.set_ylabel(f"{AXES[i]} (deg)")
+        ax.grid(True)
+    axes[0].legend(loc="best", fontsize=8)
+    axes[0].set_title(f"{name}: orientation and planned motion")
+    axes[-1].set_xlabel("time (s)")
+    written.append(out_dir / f"{name}_orientation.png")
+    fig.tight_layout()
+    fig.savefig(written[-1], dpi=110)
+    plt.close(fig)
+
+    plt, fig, axes = _figure(2)
+    for i in range(3):
+        axes[0].plot(t, q[:, i] - theta[:, i], label=AXES[i])
+        axes[1].plot(t, result[f"plant.force[{i + 1}]"], label=f"actuator {i + 1}")
+    axes[0].set_ylabel("tracking error (deg)")
+    axes[0].set_title(f"{name}: tracking error and actuator forces")
+    axes[1].set_ylabel("actuator force (N)")
+    axes[1].set_xlabel("time (s)")
+    for ax in axes:
+        ax.grid(True)
+        ax.legend(loc="best", fontsize=8)
+    written.append(out_dir / f"{name}_error_forces.png")
+    fig.tight_layout()
+    fig.savefig(written[-1], dpi=110)
+    plt.close(fig)
+    return written
+
+
+def plot_cubic_vs_quintic(cubic: dict, quintic: dict, motion: str, out_dir: Path) -> Path:
+    """Planned acceleration and the plant's angular acceleration of both planners."""
+    plt, fig, axes = _figure(3)
+    for i, ax in enumerate(axes):
+        for label, r, style in (("cubic", cubic, "-"), ("quintic", quintic, "-")):
+            ax.plot(r["time"], np.degrees(r[f"planner.qddot[{i + 1}]"]), style,
+                    label=f"{label}: planned {AXES[i]}''")
+            ax.plot(r["time"], np.degrees(r[f"plant.omegaDot[{i + 1}]"]), ":",
+                    label=f"{label}: plant omega_dot_{'xyz'[i]}")
+        ax.set_ylabel("deg/s^2")
+        ax.grid(True)
+    axes[0].legend(loc="best", fontsize=7, ncol=2)
+    axes[0].set_title(f"{motion}: cubic versus quintic acceleration")
+    axes[-1].set_xlabel("time (s)")
+    path = out_dir / f"{motion}_cubic_vs_quintic_acceleration.png"
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def format_table(header: list[str], rows: list[list[str]]) -> str:
+    widths = [max(len(r[k]) for r in [header, *rows]) for k in range(len(header))]
+    line = lambda r: "  ".join(c.rjust(w) if k else c.ljust(w) for k, (c, w) in enumerate(zip(r, widths)))
+    return "\n".join([line(header), line(["-" * w for w in widths]), *map(line, rows)])
