@@ -1,8 +1,18 @@
-"""Fixed-step Gauss-Seidel co-simulation of a chain of FMUs.
+"""Fixed-step co-simulation of a chain of FMUs, in the scenario's (Gauss-Seidel) order.
 
-Each communication step k advances every FMU in the scenario's order from
-t_k = start + k h to t_k + h; before an FMU steps, its inputs take the current outputs
-of their sources (already advanced when the source comes earlier in the order).
+Each communication step k advances every FMU from t_k = start + k h to t_k + h, in the
+scenario's order, with two couplings:
+
+- "sampled" (default): at t_k the outputs are propagated through the chain in order
+  (each FMU's inputs are set from its sources' outputs at t_k, so an FMU with direct
+  feedthrough, such as the PID, answers for t_k), then every FMU steps with its inputs
+  held over the step. Every FMU sees all its inputs at the same instant t_k: the
+  semantics of a sampled-data (digital) controller with zero-order hold.
+- "gauss-seidel": classic sequential stepping; before an FMU steps, its inputs take the
+  current outputs of their sources, which are already at t_k + h when the source comes
+  earlier in the order. A source that is a function of time (the planner) then leads
+  by one step: the loop tracks q(t + h) instead of q(t), an O(h) artefact.
+
 Time is an integer step count, so t_k never accumulates rounding. A step that an FMU
 discards is retried as two half steps, down to the scenario's max_step_halvings, with
 every FMU rolled back to the start of the step.
@@ -73,9 +83,14 @@ class Master:
         t = self._time(numerator, denominator)
         h = self.scenario.step_size / denominator
         saved = ({a: f.get_state() for a, f in self.fmus.items()} if halvings_left > 0 else None)
+        sampled = self.scenario.coupling == "sampled"
         try:
+            if sampled:
+                for alias in self.scenario.order:
+                    self._set_inputs(alias)
             for alias in self.scenario.order:
-                self._set_inputs(alias)
+                if not sampled:
+                    self._set_inputs(alias)
                 self.fmus[alias].do_step(t, h)
         except StepDiscarded as d:
             if saved is None:

@@ -51,14 +51,16 @@ HEADER = ["RMS error (deg)", "max error (deg)", "peak |f| (N)",
 
 
 def metrics(result: dict) -> Metrics:
+    """Tracking metrics over the run. The peak accelerations leave out the last sample:
+    path 1 ends at the stroke end at 75 mm/s, where the end stop engages at t = tf."""
     error = vector(result, "planner", "q") - vector(result, "plant", "theta")
     norm = np.linalg.norm(error, axis=1)
     return Metrics(
         rms_error_deg=math.degrees(float(np.sqrt(np.mean(norm ** 2)))),
         max_error_deg=math.degrees(float(np.abs(error).max())),
         peak_force_n=float(np.abs(vector(result, "plant", "force")).max()),
-        peak_planned_acceleration=float(np.abs(vector(result, "planner", "qddot")).max()),
-        peak_angular_acceleration=float(np.abs(vector(result, "plant", "omegaDot")).max()),
+        peak_planned_acceleration=float(np.abs(vector(result, "planner", "qddot")[:-1]).max()),
+        peak_angular_acceleration=float(np.abs(vector(result, "plant", "omegaDot")[:-1]).max()),
     )
 
 

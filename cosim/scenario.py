@@ -8,6 +8,7 @@ Schema (TOML shown; JSON has the same structure)::
     step_size = 0.001                  # s, communication step, > 0
     order = ["planner", "pid", "plant"]  # Gauss-Seidel order; every FMU once
     max_step_halvings = 0              # Discard retries with h/2, h/4, ... (optional)
+    coupling = "sampled"               # or "gauss-seidel" (optional, default "sampled")
 
     [fmus]                             # alias -> FMU path (relative to this file)
     planner = "../dist/Planner.fmu"
@@ -31,6 +32,9 @@ import math
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
+
+
+COUPLINGS = ("sampled", "gauss-seidel")
 
 
 class ScenarioError(ValueError):
@@ -66,6 +70,7 @@ class Scenario:
     connections: list[Connection] = field(default_factory=list)
     record: list[Signal] = field(default_factory=list)
     max_step_halvings: int = 0
+    coupling: str = "sampled"
 
     @property
     def steps(self) -> int:
@@ -101,7 +106,7 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if not isinstance(data, dict):
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
-             "parameters", "connections", "record", "max_step_halvings"}
+             "parameters", "connections", "record", "max_step_halvings", "coupling"}
     unknown = sorted(set(data) - known)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'")
@@ -159,9 +164,12 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     halvings = data.get("max_step_halvings", 0)
     if not isinstance(halvings, int) or isinstance(halvings, bool) or not 0 <= halvings <= 20:
         raise ScenarioError(f"field 'max_step_halvings' must be an integer in 0..20, got {halvings!r}")
+    coupling = data.get("coupling", "sampled")
+    if coupling not in COUPLINGS:
+        raise ScenarioError(f"field 'coupling' must be one of {COUPLINGS}, got {coupling!r}")
     return Scenario(name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
-                    record=record, max_step_halvings=halvings)
+                    record=record, max_step_halvings=halvings, coupling=coupling)
 
 
 def load_scenario(path: str | Path) -> Scenario:
