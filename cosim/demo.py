@@ -51,7 +51,7 @@ def main(argv=None) -> int:
         csv_path = args.out / f"{name}.csv"
         result.write_csv(csv_path)
         results[name] = read_csv(csv_path)
-        reference_path = ROOT / "tests" / "references" / "ClosedLoop" / name / f"{name}_ref.csv"
+        reference_path = ROOT / "tests" / "closed_loop_references" / name / f"{name}_ref.csv"
         reference = read_csv(reference_path) if reference_path.exists() else None
         plot_tracking(results[name], name, args.out, reference)
         rows.append([name, *metrics(results[name]).row(), f"{walls[name]:.2f}"])

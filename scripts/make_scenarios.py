@@ -12,7 +12,7 @@ Every number comes from the project's own tools, so the files state nothing by h
 
 It then writes each scenario's reference, the loop as one continuous-time ODE in Rust
 (`robofmu closed-loop reference`, Dop853 at 1e-11, every 10 ms), to
-tests/references/ClosedLoop/<name>/<name>_ref.csv with its options file.
+tests/closed_loop_references/<name>/<name>_ref.csv with its options file.
 
 Run after `cargo build --release`:  python3 scripts/make_scenarios.py
 """
@@ -29,7 +29,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 ROBOFMU = ROOT / "target" / "release" / "robofmu"
 OUT = ROOT / "scenarios"
-REFERENCES = ROOT / "tests" / "references" / "ClosedLoop"
+REFERENCES = ROOT / "tests" / "closed_loop_references"
 
 # Closed-loop bandwidth, rad/s. The tracking error of the triple-pole loop is about
 # jerk / w^3; the largest planned jerk (~1.7 rad/s^3) and the 0.05 deg requirement

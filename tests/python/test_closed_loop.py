@@ -1,6 +1,6 @@
 """The closed loop planner -> PID -> 3-PSS plant through FMPy (our master and FMPy's SSP
 runner) against the Rust reference: the same loop as one continuous-time ODE
-(tests/references/ClosedLoop, written by scripts/make_scenarios.py)."""
+(tests/closed_loop_references, written by scripts/make_scenarios.py)."""
 
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ REGULATION = {"theta": 2e-3, "thetaDot": 0.1, "u": 3.0, "force": 6.0}
 
 def reference(name: str) -> dict:
     from cosim.report import read_csv
-    return read_csv(ROOT / "tests" / "references" / "ClosedLoop" / name / f"{name}_ref.csv")
+    return read_csv(ROOT / "tests" / "closed_loop_references" / name / f"{name}_ref.csv")
 
 
 def run(name: str, **changes) -> dict:
