@@ -95,11 +95,19 @@ def run(s, h_max=1.0):
 def test_gauss_seidel_order_feeds_the_advanced_output():
     # Closed form: the integrator steps after the ramp, so over step k it holds
     # u = t_{k+1} = (k+1) h; x_N = h^2 N (N+1) / 2 = 0.55 for h = 0.1, N = 10.
-    result, _ = run(scenario())
+    result, _ = run(scenario(coupling="gauss-seidel"))
     assert result.columns["int.x"][-1] == pytest.approx(0.55, abs=1e-14)
     # Jacobi order would give h^2 N (N-1) / 2 = 0.45: the reversed order must.
-    reversed_result, _ = run(scenario(order=["int", "ramp"]))
+    reversed_result, _ = run(scenario(order=["int", "ramp"], coupling="gauss-seidel"))
     assert reversed_result.columns["int.x"][-1] == pytest.approx(0.45, abs=1e-14)
+
+
+def test_sampled_coupling_feeds_every_input_at_the_step_start():
+    # Closed form: the inputs of step k are the outputs at t_k = k h, whatever the
+    # order: u = k h and x_N = h^2 N (N-1) / 2 = 0.45.
+    for order in (["ramp", "int"], ["int", "ramp"]):
+        result, _ = run(scenario(order=order))
+        assert result.columns["int.x"][-1] == pytest.approx(0.45, abs=1e-14)
 
 
 def test_time_is_an_integer_step_count():
@@ -112,7 +120,7 @@ def test_time_is_an_integer_step_count():
 def test_discarded_steps_are_retried_with_halved_steps_after_rollback():
     # h = 0.1 with h_max = 0.03 needs two halvings (h/4 = 0.025); every FMU then takes
     # M = 40 substeps and x = (h/4)^2 M (M+1) / 2 = 0.5125 (same closed form as above).
-    s = scenario(max_step_halvings=2)
+    s = scenario(max_step_halvings=2, coupling="gauss-seidel")
     result, made = run(s, h_max=0.03)
     assert result.columns["int.x"][-1] == pytest.approx(0.5125, abs=1e-14)
     assert made["ramp"].t == pytest.approx(1.0, abs=1e-14)
@@ -144,6 +152,7 @@ def test_result_csv_is_in_cross_check_format(tmp_path):
     ({"parameters": {"int": {"k": float("nan")}}}, "parameters.int.k"),
     ({"record": ["nothing.x"]}, "record[0]"),
     ({"max_step_halvings": -1}, "max_step_halvings"),
+    ({"coupling": "jacobi"}, "coupling"),
     ({"stepsize": 0.1}, "stepsize"),
 ])
 def test_malformed_scenarios_name_the_field(change, field):
