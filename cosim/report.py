@@ -115,22 +115,30 @@ def plot_tracking(result: dict, name: str, out_dir: Path,
 
 
 def plot_cubic_vs_quintic(cubic: dict, quintic: dict, motion: str, out_dir: Path) -> Path:
-    """Planned acceleration and the plant's angular acceleration of both planners."""
-    plt, fig, axes = _figure(3)
-    for i, ax in enumerate(axes):
-        for label, r, style in (("cubic", cubic, "-"), ("quintic", quintic, "-")):
-            ax.plot(r["time"], np.degrees(r[f"planner.qddot[{i + 1}]"]), style,
-                    label=f"{label}: planned {AXES[i]}''")
-            ax.plot(r["time"], np.degrees(r[f"plant.omegaDot[{i + 1}]"]), ":",
-                    label=f"{label}: plant omega_dot_{'xyz'[i]}")
-        ax.set_ylabel("deg/s^2")
-        ax.grid(True)
-    axes[0].legend(loc="best", fontsize=7, ncol=2)
-    axes[0].set_title(f"{motion}: cubic versus quintic acceleration")
-    axes[-1].set_xlabel("time (s)")
+    """Planned Euler-angle accelerations (left) and the plant's angular acceleration in
+    the base frame (right) of both planners."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(3, 2, figsize=(11, 7), sharex=True)
+    for i in range(3):
+        for label, r, color in (("cubic", cubic, "C0"), ("quintic", quintic, "C1")):
+            axes[i, 0].plot(r["time"], np.degrees(r[f"planner.qddot[{i + 1}]"]), color=color,
+                            label=label)
+            axes[i, 1].plot(r["time"][:-1], np.degrees(r[f"plant.omegaDot[{i + 1}]"][:-1]),
+                            color=color, label=label)
+        axes[i, 0].set_ylabel(f"{AXES[i]}'' planned (deg/s^2)")
+        axes[i, 1].set_ylabel(f"omega_dot_{'xyz'[i]} plant (deg/s^2)")
+        for ax in axes[i]:
+            ax.grid(True)
+    axes[0, 0].set_title(f"{motion}: planned Euler-angle acceleration")
+    axes[0, 1].set_title("plant angular acceleration (base frame)")
+    axes[0, 0].legend(loc="best", fontsize=8)
+    for ax in axes[-1]:
+        ax.set_xlabel("time (s)")
     path = out_dir / f"{motion}_cubic_vs_quintic_acceleration.png"
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=100)
     plt.close(fig)
     return path
 
