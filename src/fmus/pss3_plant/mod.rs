@@ -80,6 +80,39 @@ pub struct Pss3Plant {
     contacts: [StopContact; 3],
 }
 
+/// Hysteresis of the contact flags, m: a contact begins `CONTACT_HYSTERESIS` beyond a
+/// stroke end and ends as far inside, so that rounding at a stop edge (the default start
+/// pose lies exactly on the lower one) cannot make the flags and events chatter. The
+/// stop force itself acts from the edge on (1 nm: 1 mN at the default stiffness).
+pub const CONTACT_HYSTERESIS: f64 = 1e-9;
+
+/// Edges (lower, upper) at which the contact flag changes from `current`.
+fn contact_edges(current: StopContact, (min, max): (f64, f64)) -> (f64, f64) {
+    let lower = if current == StopContact::Lower {
+        min + CONTACT_HYSTERESIS
+    } else {
+        min - CONTACT_HYSTERESIS
+    };
+    let upper = if current == StopContact::Upper {
+        max - CONTACT_HYSTERESIS
+    } else {
+        max + CONTACT_HYSTERESIS
+    };
+    (lower, upper)
+}
+
+/// The contact flag at displacement `l` when it was `current`.
+fn next_contact(current: StopContact, l: f64, stroke: (f64, f64)) -> StopContact {
+    let (lower, upper) = contact_edges(current, stroke);
+    if l < lower {
+        StopContact::Lower
+    } else if l > upper {
+        StopContact::Upper
+    } else {
+        StopContact::Free
+    }
+}
+
 /// The default start pose: every actuator at `START_DISPLACEMENT`, by forward
 /// kinematics of the default geometry (thx = thy = 0, thz = 122.07 deg).
 pub fn default_start_pose() -> Vector3<f64> {
@@ -173,10 +206,27 @@ impl Pss3Plant {
         ))
     }
 
-    /// Contacts of the current state (kept as they were if it cannot be evaluated).
+    /// Actuator displacements l of the current state.
+    fn displacements(&self) -> Result<Vector3<f64>, String> {
+        let state = self.current_state()?;
+        assemble(&self.plant()?.model().geometry, &state.euler)
+            .map(|a| a.l)
+            .map_err(|e| e.to_string())
+    }
+
+    /// Stroke [min, max], m.
+    fn stroke(&self) -> (f64, f64) {
+        let g = &self.params.geometry;
+        (g.stroke_min, g.stroke_max)
+    }
+
+    /// Contacts after an event or a step (kept as they were if the state cannot be
+    /// evaluated).
     fn refresh_contacts(&mut self) {
-        if let Ok(o) = self.outputs() {
-            self.contacts = o.end_stop_contacts;
+        if let Ok(l) = self.displacements() {
+            for i in 0..3 {
+                self.contacts[i] = next_contact(self.contacts[i], l[i], self.stroke());
+            }
         }
     }
 
@@ -185,8 +235,10 @@ impl Pss3Plant {
         if self.started {
             self.contacts[i].code()
         } else {
-            self.outputs()
-                .map_or(StopContact::Free, |o| o.end_stop_contacts[i])
+            self.displacements()
+                .map_or(StopContact::Free, |l| {
+                    next_contact(StopContact::Free, l[i], self.stroke())
+                })
                 .code()
         }
     }
@@ -313,14 +365,14 @@ impl Model for Pss3Plant {
         Ok(())
     }
 
-    /// Per actuator i: l_i - strokeMin and strokeMax - l_i (negative at a stop).
+    /// Per actuator i: l_i - lower edge and upper edge - l_i, the edges of
+    /// `contact_edges` (a sign change is a change of atStop[i]).
     fn event_indicators(&self, z: &mut [f64]) -> Result<(), String> {
-        let plant = self.plant()?;
-        let geometry = &plant.model().geometry;
-        let assembly = assemble(geometry, &self.state.euler).map_err(|e| e.to_string())?;
+        let l = self.displacements()?;
         for i in 0..3 {
-            z[2 * i] = assembly.l[i] - geometry.params.stroke_min;
-            z[2 * i + 1] = geometry.params.stroke_max - assembly.l[i];
+            let (lower, upper) = contact_edges(self.contacts[i], self.stroke());
+            z[2 * i] = l[i] - lower;
+            z[2 * i + 1] = upper - l[i];
         }
         Ok(())
     }
