@@ -67,47 +67,66 @@ const INPUTS: [(u32, &str, &str, InputField); 4] = [
 
 type VectorOutput = fn(&PlantOutputs) -> Vector3<f64>;
 
-/// Outputs read from `PlantOutputs`: group, name, unit, display unit, description.
-const PLANT_OUTPUTS: [(u32, &str, &str, Option<&str>, &str, VectorOutput); 6] = [
-    (
-        OMEGA_DOT,
-        "omegaDot",
-        "rad/s2",
-        Some("deg/s2"),
-        "Angular acceleration of the platform in {A}",
-        |o| o.omega_dot,
-    ),
-    (L, "l", "m", Some("mm"), "Actuator displacement", |o| {
-        o.actuator_displacements
-    }),
-    (L_DOT, "lDot", "m/s", None, "Actuator velocity", |o| {
-        o.actuator_velocities
-    }),
-    (
-        FORCE,
-        "force",
-        "N",
-        None,
-        "Total actuator force from the inputs (actuatorForce plus the mapped commands), \
-         without end-stop forces",
-        |o| o.actuator_forces,
-    ),
-    (
-        STOP_FORCE,
-        "stopForce",
-        "N",
-        None,
-        "End-stop force on the actuator along u_i",
-        |o| o.end_stop_forces,
-    ),
-    (
-        OMEGA,
-        "omega",
-        "rad/s",
-        Some("deg/s"),
-        "Angular velocity of the platform in {A} (continuous state)",
-        |o| o.omega,
-    ),
+/// A vector output read from `PlantOutputs`.
+struct PlantOutput {
+    group: u32,
+    name: &'static str,
+    unit: &'static str,
+    display: Option<&'static str>,
+    description: &'static str,
+    get: VectorOutput,
+}
+
+/// Vector outputs read from `PlantOutputs` (omega: its metadata only).
+const PLANT_OUTPUTS: [PlantOutput; 6] = [
+    PlantOutput {
+        group: OMEGA_DOT,
+        name: "omegaDot",
+        unit: "rad/s2",
+        display: Some("deg/s2"),
+        description: "Angular acceleration of the platform in {A}",
+        get: |o| o.omega_dot,
+    },
+    PlantOutput {
+        group: L,
+        name: "l",
+        unit: "m",
+        display: Some("mm"),
+        description: "Actuator displacement",
+        get: |o| o.actuator_displacements,
+    },
+    PlantOutput {
+        group: L_DOT,
+        name: "lDot",
+        unit: "m/s",
+        display: None,
+        description: "Actuator velocity",
+        get: |o| o.actuator_velocities,
+    },
+    PlantOutput {
+        group: FORCE,
+        name: "force",
+        unit: "N",
+        display: None,
+        description: "Total actuator force from the inputs (actuatorForce plus the mapped commands), without end-stop forces",
+        get: |o| o.actuator_forces,
+    },
+    PlantOutput {
+        group: STOP_FORCE,
+        name: "stopForce",
+        unit: "N",
+        display: None,
+        description: "End-stop force on the actuator along u_i",
+        get: |o| o.end_stop_forces,
+    },
+    PlantOutput {
+        group: OMEGA,
+        name: "omega",
+        unit: "rad/s",
+        display: Some("deg/s"),
+        description: "Angular velocity of the platform in {A} (continuous state)",
+        get: |o| o.omega,
+    },
 ];
 
 type ScalarOutput = fn(&PlantOutputs) -> f64;
@@ -185,16 +204,16 @@ fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
         );
     }
     // omega (a state) is read from the state itself, not through the outputs.
-    let (group, name, unit, display, description, _) = PLANT_OUTPUTS[5];
+    let omega = &PLANT_OUTPUTS[5];
     for i in 0..3 {
         table.push(
             Variable::real(
-                vr(group, i),
-                indexed(name, i),
-                description,
+                vr(omega.group, i),
+                indexed(omega.name, i),
+                omega.description,
                 move |m: &Pss3Plant| m.current_state().map_or(f64::NAN, |s| s.omega[i]),
             )
-            .unit(unit, display)
+            .unit(omega.unit, omega.display)
             .output(),
         );
     }
@@ -214,9 +233,7 @@ fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
 
 fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
     state_outputs(table);
-    for (group, name, unit, display, description, get) in &PLANT_OUTPUTS[..1] {
-        plant_vector_output(table, *group, name, unit, *display, description, *get);
-    }
+    plant_vector_output(table, &PLANT_OUTPUTS[0]);
     let names = [
         ("yaw", "Yaw as in the thesis: thx"),
         ("pitch", "Pitch as in the thesis: -thy"),
@@ -235,8 +252,8 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
             .output(),
         );
     }
-    for (group, name, unit, display, description, get) in &PLANT_OUTPUTS[1..5] {
-        plant_vector_output(table, *group, name, unit, *display, description, *get);
+    for output in &PLANT_OUTPUTS[1..5] {
+        plant_vector_output(table, output);
     }
     for i in 0..3 {
         table.push(
@@ -271,24 +288,17 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
     }
 }
 
-fn plant_vector_output(
-    table: &mut Vec<Variable<Pss3Plant>>,
-    group: u32,
-    name: &str,
-    unit: &'static str,
-    display: Option<&'static str>,
-    description: &str,
-    get: VectorOutput,
-) {
+fn plant_vector_output(table: &mut Vec<Variable<Pss3Plant>>, output: &PlantOutput) {
+    let get = output.get;
     for i in 0..3 {
         table.push(
             Variable::real(
-                vr(group, i),
-                indexed(name, i),
-                description,
+                vr(output.group, i),
+                indexed(output.name, i),
+                output.description,
                 move |m: &Pss3Plant| m.output(|o| get(o)[i]),
             )
-            .unit(unit, display)
+            .unit(output.unit, output.display)
             .output(),
         );
     }
