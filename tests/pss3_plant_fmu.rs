@@ -380,3 +380,26 @@ fn bad_arguments_and_sequences_are_errors() {
     assert_eq!(h.initialize(), Fmi2Status::Ok);
     assert_eq!(h.step(0.0, 0.01), Fmi2Status::Error, "doStep in ME");
 }
+
+#[test]
+fn dependencies_name_only_inputs_and_states() {
+    // Truth: FMI 2.0 ModelStructure, the knowns of outputs and derivatives are inputs
+    // and continuous states; a dependency on a parameter is refused by the layer.
+    use robofmu::fmi2::variables::check_table;
+    use robofmu::fmi2::{Model, Variability, Variable};
+    assert_eq!(check_table(Pss3Plant::variables()), Ok(()));
+    let table: Vec<Variable<()>> = vec![
+        Variable::real(1, "k", "a parameter", |_: &()| 1.0)
+            .parameter(Variability::Fixed)
+            .start_real(1.0)
+            .set_real(|_, _| Ok(())),
+        Variable::real(2, "y", "an output", |_: &()| 1.0)
+            .output()
+            .depends_on(["k".to_string()]),
+    ];
+    let error = check_table(&table).unwrap_err();
+    assert!(
+        error.contains("neither an input nor a continuous state"),
+        "{error}"
+    );
+}

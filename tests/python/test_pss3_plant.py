@@ -48,6 +48,15 @@ def test_model_description_declares_the_contract():
     assert derivatives == [f"der(theta[{i}])" for i in (1, 2, 3)] + [
         f"der(omega[{i}])" for i in (1, 2, 3)]
     assert md.numberOfEventIndicators == 6
+    # No direct feedthrough from the inputs to the states and the feedforward (so a
+    # controller with feedthrough closes no algebraic loop); the accelerations have it.
+    inputs = {v.name for v in md.modelVariables if v.causality == "input"}
+    outputs = {u.variable.name: {d.name for d in u.dependencies} for u in md.outputs}
+    for name in ["theta[1]", "omega[2]", "roll", "gravityCompensation[3]", "l[1]"]:
+        assert not outputs[name] & inputs, name
+    assert outputs["theta[1]"] == {"theta[1]"}
+    assert "disturbanceTorque[1]" in outputs["omegaDot[1]"]
+    assert "disturbanceTorque[1]" not in outputs["force[1]"]
 
 
 @pytest.mark.parametrize("interface", INTERFACES)

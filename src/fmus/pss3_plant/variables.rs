@@ -75,6 +75,45 @@ struct PlantOutput {
     display: Option<&'static str>,
     description: &'static str,
     get: VectorOutput,
+    depends: Depends,
+}
+
+/// What an output or state derivative depends on (ModelStructure dependencies).
+#[derive(Clone, Copy)]
+enum Depends {
+    /// The Euler angles only (a function of the pose).
+    Theta,
+    /// The continuous states (pose and angular velocity).
+    States,
+    /// The states and every input (through the accelerations).
+    StatesAndInputs,
+    /// The pose and the actuator commands (the realised actuator force).
+    ThetaAndCommands,
+}
+
+fn names(group: &str) -> impl Iterator<Item = String> + '_ {
+    (0..3).map(move |i| indexed(group, i))
+}
+
+impl Depends {
+    fn names(self) -> Vec<String> {
+        let mut knowns: Vec<String> = names("theta").collect();
+        if matches!(self, Depends::States | Depends::StatesAndInputs) {
+            knowns.extend(names("omega"));
+        }
+        let commands = ["actuatorForce", "torqueCommand", "generalizedForceCommand"];
+        match self {
+            Depends::ThetaAndCommands => knowns.extend(commands.into_iter().flat_map(names)),
+            Depends::StatesAndInputs => knowns.extend(
+                commands
+                    .into_iter()
+                    .chain(["disturbanceTorque"])
+                    .flat_map(names),
+            ),
+            _ => {}
+        }
+        knowns
+    }
 }
 
 /// Vector outputs read from `PlantOutputs` (omega: its metadata only).
@@ -86,6 +125,7 @@ const PLANT_OUTPUTS: [PlantOutput; 6] = [
         display: Some("deg/s2"),
         description: "Angular acceleration of the platform in {A}",
         get: |o| o.omega_dot,
+        depends: Depends::StatesAndInputs,
     },
     PlantOutput {
         group: L,
@@ -94,6 +134,7 @@ const PLANT_OUTPUTS: [PlantOutput; 6] = [
         display: Some("mm"),
         description: "Actuator displacement",
         get: |o| o.actuator_displacements,
+        depends: Depends::Theta,
     },
     PlantOutput {
         group: L_DOT,
@@ -102,6 +143,7 @@ const PLANT_OUTPUTS: [PlantOutput; 6] = [
         display: None,
         description: "Actuator velocity",
         get: |o| o.actuator_velocities,
+        depends: Depends::States,
     },
     PlantOutput {
         group: FORCE,
@@ -110,6 +152,7 @@ const PLANT_OUTPUTS: [PlantOutput; 6] = [
         display: None,
         description: "Total actuator force from the inputs (actuatorForce plus the mapped commands), without end-stop forces",
         get: |o| o.actuator_forces,
+        depends: Depends::ThetaAndCommands,
     },
     PlantOutput {
         group: STOP_FORCE,
@@ -118,6 +161,7 @@ const PLANT_OUTPUTS: [PlantOutput; 6] = [
         display: None,
         description: "End-stop force on the actuator along u_i",
         get: |o| o.end_stop_forces,
+        depends: Depends::States,
     },
     PlantOutput {
         group: OMEGA,
@@ -126,6 +170,7 @@ const PLANT_OUTPUTS: [PlantOutput; 6] = [
         display: Some("deg/s"),
         description: "Angular velocity of the platform in {A} (continuous state)",
         get: |o| o.omega,
+        depends: Depends::States,
     },
 ];
 
@@ -200,7 +245,8 @@ fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
                 move |m: &Pss3Plant| m.current_state().map_or(f64::NAN, |s| s.euler[i]),
             )
             .unit("rad", Some("deg"))
-            .output(),
+            .output()
+            .depends_on([indexed("theta", i)]),
         );
     }
     // omega (a state) is read from the state itself, not through the outputs.
@@ -214,7 +260,8 @@ fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
                 move |m: &Pss3Plant| m.current_state().map_or(f64::NAN, |s| s.omega[i]),
             )
             .unit(omega.unit, omega.display)
-            .output(),
+            .output()
+            .depends_on([indexed("omega", i)]),
         );
     }
     for i in 0..3 {
@@ -226,7 +273,8 @@ fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
                 move |m: &Pss3Plant| m.euler_rates().map_or(f64::NAN, |r| r[i]),
             )
             .unit("rad/s", Some("deg/s"))
-            .output(),
+            .output()
+            .depends_on(Depends::States.names()),
         );
     }
 }
@@ -249,7 +297,8 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
                 move |m: &Pss3Plant| m.current_state().map_or(f64::NAN, |s| sign * s.euler[i]),
             )
             .unit("rad", Some("deg"))
-            .output(),
+            .output()
+            .depends_on([indexed("theta", i)]),
         );
     }
     for output in &PLANT_OUTPUTS[1..5] {
@@ -263,7 +312,8 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
                 "End-stop contact: -1 lower stop, 0 free, +1 upper stop (changes at events)",
                 move |m: &Pss3Plant| m.contact(i),
             )
-            .output(),
+            .output()
+            .depends_on(Depends::Theta.names()),
         );
     }
     for (vr, name, unit, description, get) in SCALAR_OUTPUTS {
@@ -271,7 +321,12 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
         if let Some(unit) = unit {
             v = v.unit(unit, None);
         }
-        table.push(v.output());
+        let depends = if vr == KINETIC_ENERGY {
+            Depends::States
+        } else {
+            Depends::Theta
+        };
+        table.push(v.output().depends_on(depends.names()));
     }
     for i in 0..3 {
         table.push(
@@ -283,7 +338,8 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
                 move |m: &Pss3Plant| m.gravity_compensation().map_or(f64::NAN, |g| g[i]),
             )
             .unit("N.m", None)
-            .output(),
+            .output()
+            .depends_on(Depends::Theta.names()),
         );
     }
 }
@@ -299,7 +355,8 @@ fn plant_vector_output(table: &mut Vec<Variable<Pss3Plant>>, output: &PlantOutpu
                 move |m: &Pss3Plant| m.output(|o| get(o)[i]),
             )
             .unit(output.unit, output.display)
-            .output(),
+            .output()
+            .depends_on(output.depends.names()),
         );
     }
 }
@@ -315,7 +372,8 @@ fn derivatives(table: &mut Vec<Variable<Pss3Plant>>) {
                 move |m: &Pss3Plant| m.euler_rates().map_or(f64::NAN, |r| r[i]),
             )
             .unit("rad/s", Some("deg/s"))
-            .derivative_of(&state),
+            .derivative_of(&state)
+            .depends_on(Depends::States.names()),
         );
     }
     for i in 0..3 {
@@ -328,7 +386,8 @@ fn derivatives(table: &mut Vec<Variable<Pss3Plant>>) {
                 move |m: &Pss3Plant| m.output(|o| o.omega_dot[i]),
             )
             .unit("rad/s2", Some("deg/s2"))
-            .derivative_of(&state),
+            .derivative_of(&state)
+            .depends_on(Depends::StatesAndInputs.names()),
         );
     }
 }
