@@ -1,4 +1,5 @@
-"""The Pss3Plant FMU through FMPy: validation, the default experiment, Model Exchange
+"""The Pss3Plant FMU through FMPy (validation and the call-level tests are the generic
+ones of test_importers.py and test_fmi_calls.py): the contract, the default experiment, Model Exchange
 versus Co-Simulation, and the open-loop path 1 against the kinematics.
 
 The path-1 reference (tests/references/Pss3Plant/path1) was written by
@@ -11,7 +12,6 @@ import json
 import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
-from fmpy.validation import validate_fmu
 
 from conftest import INTERFACES, REFERENCES, fmu_path
 from test_importers import read_signals
@@ -19,10 +19,6 @@ from test_importers import read_signals
 MODEL = "Pss3Plant"
 PATH1 = REFERENCES / MODEL / "path1"
 THETA = ["theta[1]", "theta[2]", "theta[3]"]
-
-
-def test_validate_fmu_finds_no_problems():
-    assert validate_fmu(fmu_path(MODEL)) == []
 
 
 def test_model_description_declares_the_contract():
