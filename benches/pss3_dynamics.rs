@@ -16,6 +16,7 @@ fn plant_benchmarks(c: &mut Criterion) {
         forces: Vector3::new(25.0, -8.0, 14.0),
         disturbance_torque: Vector3::new(0.3, -0.2, 0.5),
         commanded_torque: Vector3::zeros(),
+        generalized_force: Vector3::zeros(),
     };
     c.bench_function("pss3 derivative", |b| {
         b.iter(|| plant.derivative(black_box(&state), black_box(&inputs)))

@@ -84,3 +84,42 @@ fn actuator_path_writes_si_csv() {
     assert!((rows[0][1] - 0.002).abs() < 1e-12 && (rows[0][4] - 0.15).abs() < 1e-12);
     assert_eq!(rows[25][0], 1.0);
 }
+
+#[test]
+fn plant_reference_regenerates_the_checked_in_path1_case() {
+    // Truth: the checked-in tests/references/Pss3Plant/path1 files were written by this
+    // command (kinematics + inverse dynamics); regenerating must give the same bytes.
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = std::env::temp_dir().join(format!("robofmu-path1-{}", std::process::id()));
+    let run = robofmu(&[
+        "pss3",
+        "plant-reference",
+        "--out-dir",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let checked_in = root.join("tests/references/Pss3Plant/path1");
+    for file in [
+        "Pss3Plant_ref.csv",
+        "Pss3Plant_input.csv",
+        "Pss3Plant_ref.opt",
+        "case.json",
+    ] {
+        let fresh = std::fs::read(out.join(file)).unwrap();
+        let kept = std::fs::read(checked_in.join(file)).unwrap();
+        assert!(
+            fresh == kept,
+            "{file} differs: regenerate with robofmu pss3 plant-reference"
+        );
+    }
+    // The spec's path-1 end roll: 154.36 deg at 2 s.
+    let reference = std::fs::read_to_string(out.join("Pss3Plant_ref.csv")).unwrap();
+    let last = reference.lines().last().unwrap();
+    let roll: f64 = last.split(',').nth(3).unwrap().parse().unwrap();
+    assert!((roll.to_degrees() - 154.36).abs() < 0.005, "{roll}");
+    std::fs::remove_dir_all(&out).unwrap();
+}

@@ -49,6 +49,7 @@ fn derivative_does_not_allocate() {
         forces: Vector3::new(25.0, -8.0, 14.0),
         disturbance_torque: Vector3::new(0.3, -0.2, 0.5),
         commanded_torque: Vector3::new(-1.0, 0.5, 2.0),
+        generalized_force: Vector3::zeros(),
     };
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     let mut ok = 0;

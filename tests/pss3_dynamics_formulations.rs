@@ -32,6 +32,7 @@ fn cases() -> Vec<(PlantState, PlantInputs)> {
         forces: Vector3::new(35.0, -12.0, 20.0),
         disturbance_torque: Vector3::new(0.4, -0.7, 1.2),
         commanded_torque: Vector3::zeros(),
+        generalized_force: Vector3::zeros(),
     };
     let geometry = Geometry::default();
     for euler in &poses {

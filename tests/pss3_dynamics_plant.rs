@@ -21,6 +21,7 @@ fn loads() -> PlantInputs {
         forces: Vector3::new(25.0, -8.0, 14.0),
         disturbance_torque: Vector3::new(0.3, -0.2, 0.5),
         commanded_torque: Vector3::new(-1.0, 0.5, 2.0),
+        generalized_force: Vector3::zeros(),
     }
 }
 
@@ -49,6 +50,7 @@ fn inverse_then_forward_dynamics_returns_the_acceleration() {
         forces,
         disturbance_torque: disturbance,
         commanded_torque: Vector3::zeros(),
+        generalized_force: Vector3::zeros(),
     };
     let got = plant.derivative(&state, &inputs).unwrap().omega_dot;
     println!("forces {forces:?}, error {:.1e}", (got - wanted).amax());

@@ -5,6 +5,7 @@
 mod args;
 mod csv;
 mod path;
+mod plant_reference;
 mod pose;
 mod workspace;
 mod workspace_output;
@@ -23,6 +24,9 @@ pub enum Pss3Command {
     Jacobian(pose::IkArgs),
     /// Actuators driven linearly in time: platform motion sampled into a CSV file.
     ActuatorPath(path::PathArgs),
+    /// Open-loop reference of the Pss3Plant FMU for path 1 (kinematics + inverse
+    /// dynamics): reference motion, input forces, options and case file.
+    PlantReference(plant_reference::PlantReferenceArgs),
     /// Workspace scans (stroke box by FK, orientation grid by IK): CSV files and plots.
     Workspace(workspace::WorkspaceArgs),
 }
@@ -34,6 +38,7 @@ pub fn run(command: Pss3Command) -> Result<(), CliError> {
         Pss3Command::Fk(args) => pose::run_fk(&args),
         Pss3Command::Jacobian(args) => pose::run_jacobian(&args),
         Pss3Command::ActuatorPath(args) => path::run(&args),
+        Pss3Command::PlantReference(args) => plant_reference::run(&args),
         Pss3Command::Workspace(args) => workspace::run(&args),
     }
 }

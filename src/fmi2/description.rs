@@ -209,6 +209,9 @@ struct UnknownList {
 struct Unknown {
     #[serde(rename = "@index")]
     index: usize,
+    /// Space-separated indices of the knowns, ascending; absent: all knowns.
+    #[serde(rename = "@dependencies", skip_serializing_if = "Option::is_none")]
+    dependencies: Option<String>,
 }
 
 /// Shortest decimal text that reads back to the same f64.
@@ -216,11 +219,36 @@ fn number(v: f64) -> String {
     format!("{v:?}")
 }
 
-/// A list of 1-based indices, or None when empty (an empty list element is omitted).
-fn unknown_list(indices: Vec<usize>) -> Option<UnknownList> {
-    (!indices.is_empty()).then(|| UnknownList {
-        unknowns: indices.into_iter().map(|index| Unknown { index }).collect(),
-    })
+/// A list of unknowns, or None when empty (an empty list element is omitted).
+fn unknown_list(unknowns: Vec<Unknown>) -> Option<UnknownList> {
+    (!unknowns.is_empty()).then_some(UnknownList { unknowns })
+}
+
+/// An unknown without dependencies (it depends on all knowns).
+fn plain(index: usize) -> Unknown {
+    Unknown {
+        index,
+        dependencies: None,
+    }
+}
+
+/// The unknown `v` with its declared dependencies as ascending 1-based indices.
+fn with_dependencies<M>(v: &Variable<M>, table: &[Variable<M>]) -> Unknown {
+    let index_of = |name: &str| table.iter().position(|s| s.name == name).map(|i| i + 1);
+    let dependencies = v.dependencies.as_ref().map(|names| {
+        let mut indices: Vec<usize> = names.iter().filter_map(|n| index_of(n)).collect();
+        indices.sort_unstable();
+        indices.dedup();
+        indices
+            .iter()
+            .map(usize::to_string)
+            .collect::<Vec<_>>()
+            .join(" ")
+    });
+    Unknown {
+        index: index_of(&v.name).unwrap_or(0),
+        dependencies,
+    }
 }
 
 fn scalar_variable<M>(v: &Variable<M>, table: &[Variable<M>]) -> ScalarVariable {
@@ -313,7 +341,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
     let outputs = table
         .iter()
         .filter(|v| v.causality == Causality::Output)
-        .map(index_of)
+        .map(|v| with_dependencies(v, table))
         .collect();
     let initial_unknowns = table
         .iter()
@@ -326,7 +354,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
                         .iter()
                         .any(|d| d.value_reference == v.value_reference))
         })
-        .map(index_of)
+        .map(|v| plain(index_of(v)))
         .collect();
     let units = used_units(table)?;
     let interface = |variable_step: Option<bool>| Interface {
@@ -389,7 +417,12 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         },
         model_structure: ModelStructure {
             outputs: unknown_list(outputs),
-            derivatives: unknown_list(derivatives.iter().map(|d| index_of(d)).collect()),
+            derivatives: unknown_list(
+                derivatives
+                    .iter()
+                    .map(|d| with_dependencies(d, table))
+                    .collect(),
+            ),
             initial_unknowns: unknown_list(initial_unknowns),
         },
     };

@@ -75,13 +75,23 @@ pub trait Model: Clone + Send + Sized + 'static {
 
     fn set_continuous_states(&mut self, _x: &[f64]) {}
 
-    fn derivatives(&self, _dx: &mut [f64]) {}
+    /// State derivatives; an error (the model cannot be evaluated at this point, e.g. a
+    /// function outside its domain) makes fmi2GetDerivatives return fmi2Discard.
+    fn derivatives(&self, _dx: &mut [f64]) -> Result<(), String> {
+        Ok(())
+    }
 
     fn nominals_of_continuous_states(&self, nominals: &mut [f64]) {
         nominals.fill(1.0);
     }
 
-    fn event_indicators(&self, _z: &mut [f64]) {}
+    /// Event indicators; an error makes fmi2GetEventIndicators return fmi2Discard.
+    fn event_indicators(&self, _z: &mut [f64]) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// Event mode, fmi2NewDiscreteStates: update the discrete variables (Model Exchange).
+    fn update_discrete_states(&mut self) {}
 
     /// Next time event strictly after `time`, if any (Model Exchange).
     fn next_time_event(&self, _time: f64) -> Option<f64> {

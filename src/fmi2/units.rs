@@ -101,6 +101,31 @@ pub const UNITS: &[UnitDefinition] = &[
         display_units: &[],
     },
     UnitDefinition {
+        name: "m3",
+        base: base(0, 3, 0, 0),
+        display_units: &[],
+    },
+    UnitDefinition {
+        name: "J",
+        base: base(1, 2, -2, 0),
+        display_units: &[],
+    },
+    UnitDefinition {
+        name: "N/m",
+        base: base(1, 0, -2, 0),
+        display_units: &[],
+    },
+    UnitDefinition {
+        name: "N.s/m",
+        base: base(1, 0, -1, 0),
+        display_units: &[],
+    },
+    UnitDefinition {
+        name: "N.m.s/rad",
+        base: base(1, 2, -1, -1),
+        display_units: &[],
+    },
+    UnitDefinition {
         name: "1/s",
         base: base(0, 0, -1, 0),
         display_units: &[],

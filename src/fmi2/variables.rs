@@ -120,6 +120,9 @@ pub struct Variable<M> {
     pub variability: Variability,
     pub initial: Option<Initial>,
     pub kind: Kind<M>,
+    /// Names of the inputs and continuous states an output or state derivative
+    /// depends on (ModelStructure `dependencies`); None: on all of them.
+    pub dependencies: Option<Vec<String>>,
 }
 
 impl<M> Variable<M> {
@@ -136,6 +139,7 @@ impl<M> Variable<M> {
             variability,
             initial: None,
             kind,
+            dependencies: None,
         }
     }
 
@@ -226,6 +230,13 @@ impl<M> Variable<M> {
         if let Kind::Real { derivative_of, .. } = &mut self.kind {
             *derivative_of = Some(state.to_string());
         }
+        self
+    }
+
+    /// The inputs and continuous states (by name) this output or derivative depends on;
+    /// declared so that importers see which outputs have no direct feedthrough.
+    pub fn depends_on(mut self, names: impl IntoIterator<Item = String>) -> Self {
+        self.dependencies = Some(names.into_iter().collect());
         self
     }
 
@@ -433,6 +444,44 @@ pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
                     "\"{name}\": derivative of \"{state}\", which is not a continuous Real"
                 ));
             }
+        }
+        check_dependencies(v, table)?;
+    }
+    Ok(())
+}
+
+/// Dependencies only on outputs and derivatives, and only on inputs and states.
+fn check_dependencies<M>(v: &Variable<M>, table: &[Variable<M>]) -> Result<(), String> {
+    let Some(names) = &v.dependencies else {
+        return Ok(());
+    };
+    let is_derivative = |v: &Variable<M>| {
+        matches!(
+            v.kind,
+            Kind::Real {
+                derivative_of: Some(_),
+                ..
+            }
+        )
+    };
+    if v.causality != Causality::Output && !is_derivative(v) {
+        return Err(format!(
+            "\"{}\": only outputs and derivatives declare dependencies",
+            v.name
+        ));
+    }
+    for name in names {
+        let is_state = derivative_variables(table)
+            .iter()
+            .any(|d| matches!(&d.kind, Kind::Real { derivative_of: Some(s), .. } if s == name));
+        let is_input = table
+            .iter()
+            .any(|k| &k.name == name && k.causality == Causality::Input);
+        if !(is_state || is_input) {
+            return Err(format!(
+                "\"{}\": dependency \"{name}\" is neither an input nor a continuous state",
+                v.name
+            ));
         }
     }
     Ok(())

@@ -3,6 +3,7 @@
 
 pub mod pid;
 pub mod planner;
+pub mod pss3_plant;
 
 use crate::fmi2::Model;
 use crate::fmi2::description::model_description;
@@ -32,5 +33,6 @@ pub fn all() -> Vec<FmuEntry> {
     vec![
         entry::<planner::Planner>("librobofmu_planner_fmu.so"),
         entry::<pid::Pid>("librobofmu_pid_fmu.so"),
+        entry::<pss3_plant::Pss3Plant>("librobofmu_pss3_plant_fmu.so"),
     ]
 }

@@ -434,12 +434,13 @@ impl Model for Pid {
         }
     }
 
-    fn derivatives(&self, dx: &mut [f64]) {
+    fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
         for c in 0..CHANNELS {
             let d = self.derivative(c);
             dx[c] = d.integral;
             dx[CHANNELS + c] = d.filter;
         }
+        Ok(())
     }
 
     fn partial_derivative(&self, unknown: u32, known: u32) -> Result<f64, String> {

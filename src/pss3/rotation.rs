@@ -77,6 +77,28 @@ pub fn euler_rates(
     ))
 }
 
+/// The moment tau about P in {A} whose Euler-angle generalized force E^T tau is
+/// `generalized_force` (N m): tau = E^-T Q, or an error at thy = +-90 deg.
+pub fn moment_from_generalized_force(
+    euler: &Vector3<f64>,
+    generalized_force: &Vector3<f64>,
+) -> Result<Vector3<f64>, KinematicsError> {
+    // E^-1 = [[cz/cy, sz/cy, 0], [-sz, cz, 0], [sy cz/cy, sy sz/cy, 1]] (from
+    // `euler_rates`); tau = (E^-1)^T Q.
+    let (sy, cy) = euler.y.sin_cos();
+    let (sz, cz) = euler.z.sin_cos();
+    if cy.abs() < EULER_SINGULAR_COS {
+        return Err(KinematicsError::EulerSingular);
+    }
+    let q = generalized_force;
+    let tilt = (q.x + sy * q.z) / cy;
+    Ok(Vector3::new(
+        cz * tilt - sz * q.y,
+        sz * tilt + cz * q.y,
+        q.z,
+    ))
+}
+
 /// Angular acceleration in {A}: omega_dot = E th_ddot + E_dot th_dot.
 pub fn angular_acceleration(
     euler: &Vector3<f64>,
@@ -103,6 +125,20 @@ mod tests {
 
     const TH: Vector3<f64> = Vector3::new(0.2, -0.15, 2.3);
     const RATES: Vector3<f64> = Vector3::new(0.4, -0.7, 1.1);
+
+    #[test]
+    fn generalized_force_maps_back_to_its_moment() {
+        // Truth: the definition Q = E^T tau with E from `euler_rate_matrix`.
+        let tau = Vector3::new(0.7, -1.3, 2.1);
+        let q = euler_rate_matrix(&TH).tr_mul(&tau);
+        let back = moment_from_generalized_force(&TH, &q).unwrap();
+        assert!((back - tau).amax() < 1e-14, "{back} vs {tau}");
+        let singular = Vector3::new(0.0, std::f64::consts::FRAC_PI_2, 0.0);
+        assert_eq!(
+            moment_from_generalized_force(&singular, &q),
+            Err(KinematicsError::EulerSingular)
+        );
+    }
 
     #[test]
     fn rotation_is_rz_ry_rx() {

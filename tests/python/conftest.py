@@ -7,7 +7,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 DIST = ROOT / "dist"
 REFERENCES = ROOT / "tests" / "references"
-MODELS = ["Planner", "PID"]
+MODELS = ["Planner", "PID", "Pss3Plant"]
 INTERFACES = ["CoSimulation", "ModelExchange"]
 
 

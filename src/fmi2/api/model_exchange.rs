@@ -41,6 +41,7 @@ pub unsafe fn new_discrete_states<M: Model>(
             Call::NewDiscreteStates,
             |inst| {
                 let info = output_ref(event_info, "fmi2EventInfo")?;
+                inst.model.update_discrete_states();
                 let next = inst.model.next_time_event(inst.time);
                 *info = Fmi2EventInfo {
                     new_discrete_states_needed: FMI2_FALSE,
@@ -156,13 +157,44 @@ unsafe fn fill_states<M: Model>(
     }
 }
 
+/// Like `fill_states`, for a model function that may fail: its error is logged and
+/// returned as fmi2Discard (the model cannot be evaluated here; the integrator may
+/// retry with a smaller step), leaving the instance usable.
+unsafe fn fill_fallible<M: Model>(
+    c: Fmi2Component,
+    function: &str,
+    call: Call,
+    ptr: *mut Fmi2Real,
+    n: usize,
+    expected: fn() -> usize,
+    f: fn(&M, &mut [f64]) -> Result<(), String>,
+) -> Fmi2Status {
+    unsafe {
+        with_instance::<M>(c, function, call, |inst| {
+            check_len(n, expected(), "the array")?;
+            let out = output_slice(ptr, n, "the array")?;
+            if let Err(reason) = f(&inst.model, out) {
+                inst.log.status(
+                    Fmi2Status::Discard,
+                    &format!("{function}: at t = {} s: {reason}", inst.time),
+                );
+                return Ok(Fmi2Status::Discard);
+            }
+            if let Some(bad) = out.iter().find(|v| !v.is_finite()) {
+                return Err(format!("the model computed {bad}"));
+            }
+            Ok(Fmi2Status::Ok)
+        })
+    }
+}
+
 pub unsafe fn get_derivatives<M: Model>(
     c: Fmi2Component,
     dx: *mut Fmi2Real,
     nx: usize,
 ) -> Fmi2Status {
     unsafe {
-        fill_states::<M>(
+        fill_fallible::<M>(
             c,
             "fmi2GetDerivatives",
             Call::GetDerivatives,
@@ -180,7 +212,7 @@ pub unsafe fn get_event_indicators<M: Model>(
     nz: usize,
 ) -> Fmi2Status {
     unsafe {
-        fill_states::<M>(
+        fill_fallible::<M>(
             c,
             "fmi2GetEventIndicators",
             Call::GetEventIndicators,

@@ -11,7 +11,7 @@ use super::end_stops::{EndStops, StopContact};
 use super::error::{DynamicsError, PlantParamError};
 use super::inertia::Inertia;
 use super::model::{DEFAULT_GRAVITY, Model, Terms};
-use crate::pss3::rotation::euler_rates;
+use crate::pss3::rotation::{euler_rates, moment_from_generalized_force};
 use crate::pss3::{Geometry, Params};
 use nalgebra::Vector3;
 
@@ -70,6 +70,10 @@ pub struct PlantInputs {
     /// Commanded platform moment about P in {A}, N m, realised by the actuators through
     /// the statics f = J^-T tau and added to `forces`.
     pub commanded_torque: Vector3<f64>,
+    /// Commanded generalized force in Euler-angle coordinates (the thesis controller's
+    /// F = E^T tau), N m, realised as tau = E^-T F at the current orientation and then
+    /// like `commanded_torque`.
+    pub generalized_force: Vector3<f64>,
 }
 
 /// Time derivative of the state.
@@ -194,14 +198,21 @@ impl Plant {
         check_finite(&inputs.forces, "actuator forces")?;
         check_finite(&inputs.disturbance_torque, "disturbance torque")?;
         check_finite(&inputs.commanded_torque, "commanded torque")?;
+        check_finite(&inputs.generalized_force, "commanded generalized force")?;
 
         let terms = self.model.terms(&state.euler, &state.omega)?;
         let euler_rates = euler_rates(&state.euler, &state.omega)?;
         let actuator_rates = terms.jacobian.actuator_rates(&state.omega);
-        let actuator_forces = if inputs.commanded_torque == Vector3::zeros() {
+        let commanded_torque = if inputs.generalized_force == Vector3::zeros() {
+            inputs.commanded_torque
+        } else {
+            inputs.commanded_torque
+                + moment_from_generalized_force(&state.euler, &inputs.generalized_force)?
+        };
+        let actuator_forces = if commanded_torque == Vector3::zeros() {
             inputs.forces
         } else {
-            inputs.forces + terms.jacobian.forces(&inputs.commanded_torque)?
+            inputs.forces + terms.jacobian.forces(&commanded_torque)?
         };
 
         let mut stop_forces = Vector3::zeros();
