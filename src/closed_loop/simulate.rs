@@ -12,7 +12,7 @@ use super::error::LoopError;
 use super::scenario::LoopSpec;
 use crate::control::pid::{self, PidInputs, PidState};
 use crate::pss3::dynamics::{Plant, PlantInputs, PlantState, euler_generalized_force};
-use crate::pss3::rotation::{euler_rate_matrix, euler_rates};
+use crate::pss3::rotation::euler_rates;
 use nalgebra::{SVector, Vector3};
 use ode_solvers::{Dop853, OutputType, System};
 use std::cell::RefCell;
@@ -78,15 +78,9 @@ fn evaluate(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<Evaluation
         u[axis] = pid::output(gains, &pid_state(y, axis), &inputs).u;
         pid_rates[axis] = pid::derivatives(gains, &pid_state(y, axis), &inputs);
     }
-    // u = E^T tau: the moment about P that the generalized force stands for.
-    let torque = euler_rate_matrix(&theta).transpose().lu().solve(&u);
-    let torque = torque.ok_or(LoopError::Dynamics(
-        crate::pss3::dynamics::DynamicsError::Kinematics(
-            crate::pss3::KinematicsError::EulerSingular,
-        ),
-    ))?;
+    // The plant realises u as the moment tau = E^-T u about P (f = J^-T tau).
     let inputs = PlantInputs {
-        commanded_torque: torque,
+        generalized_force: u,
         ..PlantInputs::default()
     };
     let state = PlantState {
