@@ -5,7 +5,7 @@ Schema (TOML shown; JSON has the same structure)::
     name = "tracking-quintic"          # used for output file names
     start_time = 0.0                   # s (optional, default 0)
     stop_time = 2.0                    # s, > start_time
-    step_size = 0.001                  # s, communication step, > 0
+    step_size = 0.001                  # s, communication step, > 0 (optional, default 1 ms)
     order = ["planner", "pid", "plant"]  # Gauss-Seidel order; every FMU once
     max_step_halvings = 0              # Discard retries with h/2, h/4, ... (optional)
     coupling = "sampled"               # or "gauss-seidel" (optional, default "sampled")
@@ -35,6 +35,7 @@ from pathlib import Path
 
 
 COUPLINGS = ("sampled", "gauss-seidel")
+DEFAULT_STEP = 0.001  # s
 
 
 class ScenarioError(ValueError):
@@ -120,7 +121,7 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
         raise ScenarioError(f"field 'order' must list every FMU of 'fmus' exactly once, got {order}")
     start = _require(data, "start_time", float) if "start_time" in data else 0.0
     stop = _require(data, "stop_time", float)
-    step = _require(data, "step_size", float)
+    step = _require(data, "step_size", float) if "step_size" in data else DEFAULT_STEP
     if step <= 0.0:
         raise ScenarioError(f"field 'step_size' must be positive, got {step}")
     if stop <= start:

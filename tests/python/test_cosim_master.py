@@ -168,6 +168,8 @@ def test_scenario_files_load_from_toml_and_json(tmp_path):
     for name in ("s.json", "s.toml"):
         s = load_scenario(tmp_path / name)
         assert s.steps == 2 and s.fmus["a"] == tmp_path / "a.fmu"
+    del data["step_size"]
+    assert parse_scenario(data, tmp_path).step_size == 0.001  # the documented default
     (tmp_path / "bad.toml").write_text("name = ")
     with pytest.raises(ScenarioError, match="not valid TOML"):
         load_scenario(tmp_path / "bad.toml")
