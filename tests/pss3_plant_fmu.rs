@@ -169,9 +169,10 @@ fn invalid_parameters_are_refused_naming_the_parameter() {
 
 #[test]
 fn initial_pose_from_actuators_matches_theta0_default() {
-    // Truth: the default theta0 is defined as the pose with every actuator at 2 mm
-    // (spec: thx = thy = 0, thz = 122.07 deg); forward kinematics from l0 = 2 mm must
-    // find it and the inverse kinematics (output l) must return 2 mm.
+    // Truth: the default theta0 is defined as the pose with every actuator at mid-stroke,
+    // 77 mm (thx = thy = 0 by symmetry; thz = 139.79 deg by `robofmu pss3 fk`); forward
+    // kinematics from l0 = 77 mm must find it and the inverse kinematics (output l) must
+    // return 77 mm.
     let h = H::new(CS);
     assert_eq!(h.initialize(), Fmi2Status::Ok);
     let theta = h.vector("theta");
@@ -179,8 +180,8 @@ fn initial_pose_from_actuators_matches_theta0_default() {
         theta[0].abs() < 1e-12 && theta[1].abs() < 1e-12,
         "{theta:?}"
     );
-    assert!((theta[2].to_degrees() - 122.07).abs() < 0.005, "{theta:?}");
-    assert!(close(h.vector("l"), Vector3::repeat(0.002), 1e-13));
+    assert!((theta[2].to_degrees() - 139.7893).abs() < 5e-5, "{theta:?}");
+    assert!(close(h.vector("l"), Vector3::repeat(0.077), 1e-13));
     let k = H::new(CS);
     assert_eq!(k.set_boolean("initFromActuators", true), Fmi2Status::Ok);
     assert_eq!(k.initialize(), Fmi2Status::Ok);

@@ -57,7 +57,8 @@ def test_model_description_declares_the_contract():
 
 @pytest.mark.parametrize("interface", INTERFACES)
 def test_default_experiment_holds_the_start_pose(interface):
-    # Expected: the default pose (all actuators at 2 mm, thx = thy = 0) at rest is an
+    # Expected: the default pose (all actuators at mid-stroke, 77 mm; thx = thy = 0,
+    # thz = 139.79 deg by `robofmu pss3 fk`) at rest is an
     # equilibrium: with zero tilt gravity exerts no moment about P (3-fold symmetry,
     # platform centre of mass on the axis), so theta stays at theta0 (an unstable
     # equilibrium in tilt: rounding grows to about 1e-6 rad in 2 s with CVode).
@@ -66,10 +67,10 @@ def test_default_experiment_holds_the_start_pose(interface):
     experiment = read_model_description(fmu_path(MODEL)).defaultExperiment
     assert result["time"][-1] == pytest.approx(float(experiment.stopTime))
     first, last = result[0], result[-1]
-    assert np.degrees(first["theta[3]"]) == pytest.approx(122.07, abs=0.005)
+    assert np.degrees(first["theta[3]"]) == pytest.approx(139.7893, abs=5e-5)
     for name in THETA:
         assert abs(last[name] - first[name]) < 1e-5
-    assert last["l[1]"] == pytest.approx(0.002, abs=1e-6)
+    assert last["l[1]"] == pytest.approx(0.077, abs=1e-6)
     assert np.all(result["atStop[1]"] == 0)
 
 

@@ -48,8 +48,11 @@ static INFO: ModelInfo = ModelInfo {
     }],
 };
 
-/// Displacement of every actuator in the default start pose, m (the lower stroke end).
-pub const START_DISPLACEMENT: f64 = 0.002;
+/// Displacement of every actuator in the default start pose, m: mid-stroke, 75 mm from
+/// either end stop, so that a default run (an unstable equilibrium at rest) never drifts
+/// onto a stop. At the stroke end itself, an ME integrator such as CVode drifts onto
+/// the stiff stop and then tries poses that cannot assemble (seen with fmusim).
+pub const START_DISPLACEMENT: f64 = 0.077;
 
 /// How the initial state is given.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -114,7 +117,7 @@ fn next_contact(current: StopContact, l: f64, stroke: (f64, f64)) -> StopContact
 }
 
 /// The default start pose: every actuator at `START_DISPLACEMENT`, by forward
-/// kinematics of the default geometry (thx = thy = 0, thz = 122.07 deg).
+/// kinematics of the default geometry (thx = thy = 0, thz = 139.79 deg).
 pub fn default_start_pose() -> Vector3<f64> {
     let plant = Plant::new(PlantParams::default());
     plant
@@ -128,7 +131,9 @@ pub fn default_start_pose() -> Vector3<f64> {
             )
             .ok()
         })
-        .map_or_else(start_pose, |s| s.assembly.euler)
+        // Equal displacements tilt nothing (3-fold symmetry): thx = thy = 0 exactly;
+        // forward kinematics supplies the roll.
+        .map_or_else(start_pose, |s| Vector3::new(0.0, 0.0, s.assembly.euler.z))
 }
 
 impl Pss3Plant {
