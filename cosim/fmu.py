@@ -16,6 +16,11 @@ from .errors import FmuError, StepDiscarded
 
 
 
+_GETTERS = {"Real": "getReal", "Integer": "getInteger", "Boolean": "getBoolean"}
+_SETTERS = {"Real": "setReal", "Integer": "setInteger", "Boolean": "setBoolean"}
+_CONVERT = {"Real": float, "Integer": int, "Boolean": bool}
+
+
 class FmuInstance:
     """A co-simulation instance of an FMI 2.0 FMU, addressed by variable names."""
 
@@ -26,6 +31,7 @@ class FmuInstance:
         if md.coSimulation is None:
             raise FmuError(f"{alias} ({path}) does not support co-simulation")
         self.variables = {v.name: v for v in md.modelVariables}
+        self._group_cache: dict = {}
         self.can_get_state = bool(md.coSimulation.canGetAndSetFMUstate)
         self._unzip = extract(str(path))
         self._fmu = FMU2Slave(guid=md.guid, unzipDirectory=self._unzip,
@@ -56,34 +62,51 @@ class FmuInstance:
         except Exception as e:  # instantiate raises a plain Exception on NULL
             raise FmuError(f"{self.alias}: {name} failed: {e}; {self._last_message()}") from e
 
-    def _variable(self, name: str):
-        try:
-            return self.variables[name]
-        except KeyError:
-            raise FmuError(f"{self.alias} has no variable '{name}'") from None
+    def _groups(self, names: tuple[str, ...]) -> list[tuple[str, list[int], list[int]]]:
+        """(type, positions in `names`, value references) per variable type, cached."""
+        groups = self._group_cache.get(names)
+        if groups is None:
+            by_type: dict[str, tuple[list[int], list[int]]] = {}
+            for k, name in enumerate(names):
+                v = self.variables.get(name)
+                if v is None:
+                    raise FmuError(f"{self.alias} has no variable '{name}'")
+                kind = "Integer" if v.type == "Enumeration" else v.type
+                if kind not in _GETTERS:
+                    raise FmuError(f"{self.alias}.{name}: variables of type {v.type} are "
+                                   "not supported")
+                positions, refs = by_type.setdefault(kind, ([], []))
+                positions.append(k)
+                refs.append(v.valueReference)
+            groups = [(kind, positions, refs) for kind, (positions, refs) in by_type.items()]
+            self._group_cache[names] = groups
+        return groups
 
-    def set_value(self, name: str, value) -> None:
-        v = self._variable(name)
-        vr = [v.valueReference]
-        if v.type == "Real":
-            self._call(f"fmi2SetReal({name})", lambda: self._fmu.setReal(vr, [float(value)]))
-        elif v.type in ("Integer", "Enumeration"):
-            self._call(f"fmi2SetInteger({name})", lambda: self._fmu.setInteger(vr, [int(value)]))
-        elif v.type == "Boolean":
-            self._call(f"fmi2SetBoolean({name})", lambda: self._fmu.setBoolean(vr, [bool(value)]))
-        else:
-            raise FmuError(f"{self.alias}.{name}: variables of type {v.type} are not supported")
+    def get_values(self, names: tuple[str, ...]) -> list[float]:
+        """Values of `names` (Integer and Boolean as float), one FMI call per type."""
+        out = [0.0] * len(names)
+        for kind, positions, refs in self._groups(names):
+            getter = getattr(self._fmu, _GETTERS[kind])
+            values = self._call(f"fmi2Get{kind}({', '.join(names[k] for k in positions)})",
+                                lambda: getter(refs))
+            for k, value in zip(positions, values):
+                out[k] = float(value)
+        return out
+
+    def set_values(self, names: tuple[str, ...], values) -> None:
+        """Sets `names` to `values`, one FMI call per type."""
+        for kind, positions, refs in self._groups(names):
+            setter = getattr(self._fmu, _SETTERS[kind])
+            convert = _CONVERT[kind]
+            typed = [convert(values[k]) for k in positions]
+            self._call(f"fmi2Set{kind}({', '.join(names[k] for k in positions)})",
+                       lambda: setter(refs, typed))
 
     def get_value(self, name: str) -> float:
-        v = self._variable(name)
-        vr = [v.valueReference]
-        if v.type == "Real":
-            return self._call(f"fmi2GetReal({name})", lambda: self._fmu.getReal(vr))[0]
-        if v.type in ("Integer", "Enumeration"):
-            return float(self._call(f"fmi2GetInteger({name})", lambda: self._fmu.getInteger(vr))[0])
-        if v.type == "Boolean":
-            return float(self._call(f"fmi2GetBoolean({name})", lambda: self._fmu.getBoolean(vr))[0])
-        raise FmuError(f"{self.alias}.{name}: variables of type {v.type} are not supported")
+        return self.get_values((name,))[0]
+
+    def set_value(self, name: str, value) -> None:
+        self.set_values((name,), [value])
 
     def enter_initialization(self) -> None:
         self._call("fmi2EnterInitializationMode", self._fmu.enterInitializationMode)

@@ -63,10 +63,23 @@ class Master:
         self.scenario = scenario
         self.open_fmu = open_fmu
         self.progress = progress
-        self.inputs = {alias: [c for c in scenario.connections if c.target.alias == alias]
-                       for alias in scenario.order}
+        # Per target FMU and source FMU: the source variables and the target inputs, so
+        # that each pair is one get and one set call per step.
+        self.inputs: dict[str, list[tuple[str, tuple[str, ...], tuple[str, ...]]]] = {}
+        for alias in scenario.order:
+            by_source: dict[str, tuple[list[str], list[str]]] = {}
+            for c in scenario.connections:
+                if c.target.alias == alias:
+                    sources, targets = by_source.setdefault(c.source.alias, ([], []))
+                    sources.append(c.source.variable)
+                    targets.append(c.target.variable)
+            self.inputs[alias] = [(src, tuple(a), tuple(b)) for src, (a, b) in by_source.items()]
         recorded = [c.source for c in scenario.connections] + list(scenario.record)
         self.recorded: list[Signal] = list(dict.fromkeys(recorded))
+        self.recorded_by_fmu: dict[str, tuple[str, ...]] = {}
+        for sig in self.recorded:
+            self.recorded_by_fmu[sig.alias] = self.recorded_by_fmu.get(sig.alias, ()) + (
+                sig.variable,)
         self.discards: list[str] = []
 
     def _time(self, numerator: int, denominator: int) -> float:
@@ -74,9 +87,8 @@ class Master:
         return s.start_time + numerator * s.step_size / denominator
 
     def _set_inputs(self, alias: str) -> None:
-        for c in self.inputs[alias]:
-            value = self.fmus[c.source.alias].get_value(c.source.variable)
-            self.fmus[alias].set_value(c.target.variable, value)
+        for source, variables, inputs in self.inputs[alias]:
+            self.fmus[alias].set_values(inputs, self.fmus[source].get_values(variables))
 
     def _advance(self, numerator: int, denominator: int, halvings_left: int) -> None:
         """Advances every FMU from t(numerator/denominator) by step_size/denominator."""
@@ -107,8 +119,9 @@ class Master:
 
     def _record(self, result: Result, t: float) -> None:
         result.time.append(t)
-        for sig in self.recorded:
-            result.columns[str(sig)].append(self.fmus[sig.alias].get_value(sig.variable))
+        for alias, variables in self.recorded_by_fmu.items():
+            for variable, value in zip(variables, self.fmus[alias].get_values(variables)):
+                result.columns[f"{alias}.{variable}"].append(value)
 
     def run(self) -> Result:
         s = self.scenario

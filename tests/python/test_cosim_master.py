@@ -30,6 +30,13 @@ class Ramp:
         assert name == "y"
         return self.t
 
+    def get_values(self, names):
+        return [self.get_value(n) for n in names]
+
+    def set_values(self, names, values):
+        for n, v in zip(names, values):
+            self.set_value(n, v)
+
     def do_step(self, t, h):
         assert t == pytest.approx(self.t, abs=1e-15), "steps must be contiguous"
         self.steps.append(h)
