@@ -2,6 +2,12 @@
 //! functions the exported symbols forward to): state machine, argument checks,
 //! logging, FMU state serialization, Discard, directional derivatives, unwinds.
 
+// One host for every binding test; each test crate uses part of it.
+#[allow(dead_code)]
+#[path = "support/fmu_host.rs"]
+mod fmu_host;
+
+use fmu_host::Host;
 use robofmu::fmi2::api;
 use robofmu::fmi2::types::*;
 use robofmu::fmi2::{
@@ -9,126 +15,19 @@ use robofmu::fmi2::{
 };
 use robofmu::fmus::pid::Pid;
 use robofmu::fmus::planner::Planner;
-use std::ffi::{CStr, CString, c_char, c_void};
-use std::sync::{LazyLock, Mutex};
+use std::ffi::{CString, c_char};
+use std::sync::LazyLock;
 
-/// Log lines received by the test logger: (status, category, message).
-type Lines = Mutex<Vec<(Fmi2Status, String, String)>>;
-
-extern "C" fn capture(
-    env: Fmi2ComponentEnvironment,
-    _name: Fmi2String,
-    status: Fmi2Status,
-    category: Fmi2String,
-    message: Fmi2String,
-) {
-    // SAFETY: env is the &Lines the test passed; strings come from the layer.
-    let lines = unsafe { &*(env as *const Lines) };
-    let text = |p: *const c_char| unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned();
-    lines
-        .lock()
-        .unwrap()
-        .push((status, text(category), text(message)));
+/// Instantiated with loggingOn = 0, so that only the categories a test enables log.
+fn quiet<M: Model>(kind: i32) -> Host<M> {
+    Host::with_logging(kind, false)
 }
 
-/// An FMU instance driven as a host would, with its log.
-struct Host<M: Model> {
-    c: Fmi2Component,
-    lines: Box<Lines>,
-    _functions: Box<Fmi2CallbackFunctions>,
-    _model: std::marker::PhantomData<M>,
-}
-
-fn callbacks(lines: &Lines) -> Box<Fmi2CallbackFunctions> {
-    // The non-variadic `capture` stands in for a variadic C logger: on x86-64 System V
-    // both are called identically, and the layer never passes variadic arguments.
-    let logger: Fmi2CallbackLogger = unsafe {
-        std::mem::transmute::<
-            extern "C" fn(Fmi2ComponentEnvironment, Fmi2String, Fmi2Status, Fmi2String, Fmi2String),
-            Fmi2CallbackLogger,
-        >(capture)
-    };
-    Box::new(Fmi2CallbackFunctions {
-        logger: Some(logger),
-        allocate_memory: None,
-        free_memory: None,
-        step_finished: None,
-        component_environment: lines as *const Lines as *mut c_void,
-    })
-}
-
-impl<M: Model> Host<M> {
-    fn try_new(kind: i32, guid: &str) -> (Fmi2Component, Box<Lines>, Box<Fmi2CallbackFunctions>) {
-        let lines: Box<Lines> = Box::new(Mutex::new(Vec::new()));
-        let functions = callbacks(&lines);
-        let name = CString::new("test").unwrap();
-        let guid = CString::new(guid).unwrap();
-        let c = unsafe {
-            api::instantiate::<M>(
-                name.as_ptr(),
-                kind,
-                guid.as_ptr(),
-                std::ptr::null(),
-                &*functions,
-                0,
-                0,
-            )
-        };
-        (c, lines, functions)
-    }
-
-    fn new(kind: i32) -> Self {
-        let (c, lines, functions) = Self::try_new(kind, M::info().guid);
-        assert!(
-            !c.is_null(),
-            "instantiate failed: {:?}",
-            lines.lock().unwrap()
-        );
-        Host {
-            c,
-            lines,
-            _functions: functions,
-            _model: std::marker::PhantomData,
-        }
-    }
-
-    fn initialized(kind: i32) -> Self {
-        let h = Self::new(kind);
-        unsafe {
-            assert_eq!(
-                api::setup_experiment::<M>(h.c, 0, 0.0, 0.0, 0, 0.0),
-                Fmi2Status::Ok
-            );
-            assert_eq!(api::enter_initialization_mode::<M>(h.c), Fmi2Status::Ok);
-            assert_eq!(api::exit_initialization_mode::<M>(h.c), Fmi2Status::Ok);
-        }
-        h
-    }
-
-    fn real(&self, vr: u32) -> (Fmi2Status, f64) {
-        let mut v = 0.0;
-        let s = unsafe { api::get_real::<M>(self.c, &vr, 1, &mut v) };
-        (s, v)
-    }
-
-    fn set_real(&self, vr: u32, v: f64) -> Fmi2Status {
-        unsafe { api::set_real::<M>(self.c, &vr, 1, &v) }
-    }
-
-    fn step(&self, t: f64, h: f64) -> Fmi2Status {
-        unsafe { api::do_step::<M>(self.c, t, h, 1) }
-    }
-
-    fn last_error(&self) -> String {
-        let lines = self.lines.lock().unwrap();
-        lines.last().map(|l| l.2.clone()).unwrap_or_default()
-    }
-}
-
-impl<M: Model> Drop for Host<M> {
-    fn drop(&mut self) {
-        unsafe { api::free_instance::<M>(self.c) };
-    }
+/// Instantiated quietly and initialized (every call OK).
+fn initialized<M: Model>(kind: i32) -> Host<M> {
+    let h = quiet(kind);
+    assert_eq!(h.initialize(), Fmi2Status::Ok, "{}", h.last_message());
+    h
 }
 
 const CS: i32 = FMI2_CO_SIMULATION;
@@ -143,13 +42,13 @@ const PID_FILTER1: u32 = 311;
 
 #[test]
 fn calls_out_of_sequence_return_error_and_move_to_error_mode() {
-    let h = Host::<Pid>::new(CS);
+    let h = quiet::<Pid>(CS);
     // doStep before initialization: illegal in Instantiated.
     assert_eq!(h.step(0.0, 0.1), Fmi2Status::Error);
     assert!(
-        h.last_error().contains("illegal call sequence"),
+        h.last_message().contains("illegal call sequence"),
         "{}",
-        h.last_error()
+        h.last_message()
     );
     // The instance is now in the Error mode: only get/reset/free-like calls work.
     assert_eq!(
@@ -172,10 +71,10 @@ fn calls_out_of_sequence_return_error_and_move_to_error_mode() {
 
 #[test]
 fn instantiate_rejects_wrong_guid_type_and_missing_callbacks() {
-    let (c, lines, _f) = Host::<Planner>::try_new(CS, "{not-the-guid}");
+    let (c, lines, _f) = fmu_host::instantiate::<Planner>(CS, "{not-the-guid}", false);
     assert!(c.is_null());
     assert!(lines.lock().unwrap()[0].2.contains("does not match"));
-    let (c, _, _f) = Host::<Planner>::try_new(7, Planner::info().guid);
+    let (c, _, _f) = fmu_host::instantiate::<Planner>(7, Planner::info().guid, false);
     assert!(c.is_null());
     let name = CString::new("x").unwrap();
     let c = unsafe {
@@ -194,19 +93,22 @@ fn instantiate_rejects_wrong_guid_type_and_missing_callbacks() {
 
 #[test]
 fn bad_arguments_are_rejected_with_a_reason() {
-    let h = Host::<Pid>::initialized(CS);
+    let h = initialized::<Pid>(CS);
     type Case<'a> = (Box<dyn Fn() -> Fmi2Status + 'a>, &'static str);
     let cases: Vec<Case> = vec![
         (
             Box::new(|| unsafe { api::get_real::<Pid>(h.c, std::ptr::null(), 1, &mut 0.0) }),
             "null pointer",
         ),
-        (Box::new(|| h.real(9999).0), "unknown value reference 9999"),
         (
-            Box::new(|| h.set_real(PID_SETPOINT1, f64::NAN)),
+            Box::new(|| h.real_at(9999).0),
+            "unknown value reference 9999",
+        ),
+        (
+            Box::new(|| h.set_real_at(PID_SETPOINT1, f64::NAN)),
             "cannot be set to NaN",
         ),
-        (Box::new(|| h.set_real(PID_U1, 1.0)), "cannot be set"),
+        (Box::new(|| h.set_real_at(PID_U1, 1.0)), "cannot be set"),
         (
             Box::new(|| unsafe { api::get_integer::<Pid>(h.c, &PID_U1, 1, &mut 0) }),
             "not Integer",
@@ -218,9 +120,9 @@ fn bad_arguments_are_rejected_with_a_reason() {
     for (call, reason) in cases {
         assert_eq!(call(), Fmi2Status::Error, "{reason}");
         assert!(
-            h.last_error().contains(reason),
+            h.last_message().contains(reason),
             "{} lacks {reason}",
-            h.last_error()
+            h.last_message()
         );
         assert_eq!(unsafe { api::reset::<Pid>(h.c) }, Fmi2Status::Ok);
         unsafe {
@@ -237,31 +139,31 @@ fn bad_arguments_are_rejected_with_a_reason() {
 
 #[test]
 fn invalid_parameters_fail_at_exit_initialization_with_a_message() {
-    let h = Host::<Planner>::new(CS);
+    let h = quiet::<Planner>(CS);
     // tf (vr 3) before t0 (vr 2).
-    assert_eq!(h.set_real(2, 3.0), Fmi2Status::Ok);
+    assert_eq!(h.set_real_at(2, 3.0), Fmi2Status::Ok);
     unsafe { api::enter_initialization_mode::<Planner>(h.c) };
     assert_eq!(
         unsafe { api::exit_initialization_mode::<Planner>(h.c) },
         Fmi2Status::Error
     );
     assert!(
-        h.last_error().contains("must be after the start time"),
+        h.last_message().contains("must be after the start time"),
         "{}",
-        h.last_error()
+        h.last_message()
     );
     // order 4 is refused at once (range 3..5, then the writer's own check).
-    let h = Host::<Planner>::new(CS);
+    let h = quiet::<Planner>(CS);
     assert_eq!(
         unsafe { api::set_integer::<Planner>(h.c, &1, 1, &4) },
         Fmi2Status::Error
     );
-    assert!(h.last_error().contains("3 or 5"));
+    assert!(h.last_message().contains("3 or 5"));
 }
 
 #[test]
 fn debug_logging_honours_categories_and_escapes_percent() {
-    let h = Host::<Pid>::new(CS);
+    let h = quiet::<Pid>(CS);
     let cats = [c"logEvents".as_ptr()];
     assert_eq!(
         unsafe { api::set_debug_logging::<Pid>(h.c, 1, 1, cats.as_ptr()) },
@@ -287,15 +189,15 @@ fn debug_logging_honours_categories_and_escapes_percent() {
         Fmi2Status::Error
     );
     assert!(
-        h.last_error().contains("log%%sNothing"),
+        h.last_message().contains("log%%sNothing"),
         "{}",
-        h.last_error()
+        h.last_message()
     );
 }
 
 #[test]
 fn fmu_state_round_trip_reproduces_bit_for_bit() {
-    let h = Host::<Pid>::initialized(CS);
+    let h = initialized::<Pid>(CS);
     for k in 0..5 {
         assert_eq!(h.step(k as f64 * 0.01, 0.01), Fmi2Status::Ok);
     }
@@ -305,13 +207,13 @@ fn fmu_state_round_trip_reproduces_bit_for_bit() {
         Fmi2Status::Ok
     );
     h.step(0.05, 0.01);
-    let first = h.real(PID_U1).1;
+    let first = h.real_at(PID_U1).1;
     assert_eq!(
         unsafe { api::set_fmu_state::<Pid>(h.c, state) },
         Fmi2Status::Ok
     );
     h.step(0.05, 0.01);
-    assert_eq!(h.real(PID_U1).1.to_bits(), first.to_bits());
+    assert_eq!(h.real_at(PID_U1).1.to_bits(), first.to_bits());
 
     // Serialize, deserialize into a new state, restore, step: same bits again.
     let mut size = 0;
@@ -331,7 +233,7 @@ fn fmu_state_round_trip_reproduces_bit_for_bit() {
         Fmi2Status::Ok
     );
     h.step(0.05, 0.01);
-    assert_eq!(h.real(PID_U1).1.to_bits(), first.to_bits());
+    assert_eq!(h.real_at(PID_U1).1.to_bits(), first.to_bits());
     unsafe {
         assert_eq!(api::free_fmu_state::<Pid>(h.c, &mut state), Fmi2Status::Ok);
         assert_eq!(api::free_fmu_state::<Pid>(h.c, &mut copy), Fmi2Status::Ok);
@@ -341,7 +243,7 @@ fn fmu_state_round_trip_reproduces_bit_for_bit() {
 
 #[test]
 fn foreign_truncated_and_corrupted_state_bytes_are_rejected() {
-    let planner = Host::<Planner>::initialized(CS);
+    let planner = initialized::<Planner>(CS);
     let mut state: Fmi2FmuState = std::ptr::null_mut();
     let mut size = 0;
     unsafe {
@@ -352,14 +254,14 @@ fn foreign_truncated_and_corrupted_state_bytes_are_rejected() {
     unsafe { api::serialize_fmu_state::<Planner>(planner.c, state, bytes.as_mut_ptr(), size) };
     unsafe { api::free_fmu_state::<Planner>(planner.c, &mut state) };
 
-    let pid = Host::<Pid>::initialized(CS);
+    let pid = initialized::<Pid>(CS);
     let attempt = |data: &[c_char]| {
         let mut s: Fmi2FmuState = std::ptr::null_mut();
         let status =
             unsafe { api::de_serialize_fmu_state::<Pid>(pid.c, data.as_ptr(), data.len(), &mut s) };
         assert!(s.is_null());
         unsafe { api::reset::<Pid>(pid.c) };
-        (status, pid.last_error())
+        (status, pid.last_message())
     };
     let (status, why) = attempt(&bytes);
     assert_eq!(status, Fmi2Status::Error);
@@ -375,7 +277,7 @@ fn foreign_truncated_and_corrupted_state_bytes_are_rejected() {
     assert!(why.contains("truncated"), "{why}");
 
     // Corrupt one payload byte of a genuine PID state: the checksum catches it.
-    let own = Host::<Pid>::initialized(CS);
+    let own = initialized::<Pid>(CS);
     let mut s: Fmi2FmuState = std::ptr::null_mut();
     let mut n = 0;
     unsafe {
@@ -395,12 +297,12 @@ fn foreign_truncated_and_corrupted_state_bytes_are_rejected() {
 
 #[test]
 fn discarded_step_leaves_state_unchanged_and_reports_status() {
-    let h = Host::<Pid>::initialized(CS);
+    let h = initialized::<Pid>(CS);
     h.step(0.0, 0.1);
-    let states_before = (h.real(PID_INTEGRAL1).1, h.real(PID_FILTER1).1);
+    let states_before = (h.real_at(PID_INTEGRAL1).1, h.real_at(PID_FILTER1).1);
     // Kd != 0 with Tf = 0 (both tunable) makes the next step impossible.
-    assert_eq!(h.set_real(PID_TF1, 0.0), Fmi2Status::Ok);
-    assert_eq!(h.set_real(PID_KD1, 0.2), Fmi2Status::Ok);
+    assert_eq!(h.set_real_at(PID_TF1, 0.0), Fmi2Status::Ok);
+    assert_eq!(h.set_real_at(PID_KD1, 0.2), Fmi2Status::Ok);
     assert_eq!(h.step(0.1, 0.1), Fmi2Status::Discard);
     let mut terminated = FMI2_FALSE;
     let mut last = 0.0;
@@ -418,7 +320,7 @@ fn discarded_step_leaves_state_unchanged_and_reports_status() {
     assert_eq!(last, 0.1);
     // The states are those of t = 0.1 s, untouched by the rejected step.
     assert_eq!(
-        (h.real(PID_INTEGRAL1).1, h.real(PID_FILTER1).1),
+        (h.real_at(PID_INTEGRAL1).1, h.real_at(PID_FILTER1).1),
         states_before
     );
     assert!(states_before.0 > 0.0);
@@ -430,7 +332,7 @@ fn discarded_step_leaves_state_unchanged_and_reports_status() {
 fn directional_derivatives_match_finite_differences() {
     // Expected values: central differences of the outputs/derivatives under
     // perturbations of inputs and states set through fmi2SetReal.
-    let h = Host::<Pid>::initialized(ME);
+    let h = initialized::<Pid>(ME);
     assert_eq!(
         unsafe { api::enter_continuous_time_mode::<Pid>(h.c) },
         Fmi2Status::Ok
@@ -475,15 +377,15 @@ fn directional_derivatives_match_finite_differences() {
                         unsafe { api::set_continuous_states::<Pid>(h.c, xp.as_ptr(), 6) }
                     }
                     None => {
-                        let x0 = h.real(seed_vr).1;
-                        h.set_real(seed_vr, x0 + delta)
+                        let x0 = h.real_at(seed_vr).1;
+                        h.set_real_at(seed_vr, x0 + delta)
                     }
                 };
-                assert_eq!(status, Fmi2Status::Ok, "{}", h.last_error());
-                let v = h.real(unknown).1;
+                assert_eq!(status, Fmi2Status::Ok, "{}", h.last_message());
+                let v = h.real_at(unknown).1;
                 match state_index {
                     Some(_) => unsafe { api::set_continuous_states::<Pid>(h.c, x.as_ptr(), 6) },
-                    None => h.set_real(seed_vr, h.real(seed_vr).1 - delta),
+                    None => h.set_real_at(seed_vr, h.real_at(seed_vr).1 - delta),
                 };
                 v
             };
@@ -495,21 +397,21 @@ fn directional_derivatives_match_finite_differences() {
         }
     }
     // The planner provides none: a clear error.
-    let p = Host::<Planner>::initialized(ME);
+    let p = initialized::<Planner>(ME);
     let (u, k, seed) = (100u32, 2u32, 1.0);
     let mut out = 0.0;
     let status =
         unsafe { api::get_directional_derivative::<Planner>(p.c, &u, 1, &k, 1, &seed, &mut out) };
     assert_eq!(status, Fmi2Status::Error);
-    assert!(p.last_error().contains("does not provide"));
+    assert!(p.last_message().contains("does not provide"));
 }
 
 #[test]
 fn instances_on_different_threads_do_not_interfere() {
     // Expected values: the same run on the main thread, alone.
     let run = |setpoint: f64| {
-        let h = Host::<Pid>::new(CS);
-        h.set_real(PID_SETPOINT1, setpoint);
+        let h = quiet::<Pid>(CS);
+        h.set_real_at(PID_SETPOINT1, setpoint);
         unsafe {
             api::enter_initialization_mode::<Pid>(h.c);
             api::exit_initialization_mode::<Pid>(h.c);
@@ -517,7 +419,7 @@ fn instances_on_different_threads_do_not_interfere() {
         for k in 0..1000 {
             h.step(k as f64 * 1e-3, 1e-3);
         }
-        h.real(PID_U1).1
+        h.real_at(PID_U1).1
     };
     let alone: Vec<f64> = (0..4).map(|i| run(i as f64)).collect();
     let threads: Vec<_> = (0..4)
@@ -578,9 +480,9 @@ impl Model for Panicky {
 
 #[test]
 fn a_panic_in_the_model_becomes_fatal_with_a_log_line() {
-    let h = Host::<Panicky>::initialized(CS);
+    let h = initialized::<Panicky>(CS);
     assert_eq!(h.step(0.0, 0.1), Fmi2Status::Fatal);
-    assert!(h.last_error().contains("deliberate test panic"));
+    assert!(h.last_message().contains("deliberate test panic"));
     // After fatal only fmi2FreeInstance is possible.
     assert_eq!(unsafe { api::reset::<Panicky>(h.c) }, Fmi2Status::Error);
 }

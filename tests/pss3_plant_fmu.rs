@@ -2,6 +2,8 @@
 //! library, the input mappings against the statics, parameter refusal, Discard,
 //! Model Exchange events and derivatives, directional derivatives, FMU state.
 
+// One host for every binding test; each test crate uses part of it.
+#[allow(dead_code)]
 #[path = "support/fmu_host.rs"]
 mod fmu_host;
 

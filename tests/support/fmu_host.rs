@@ -8,27 +8,71 @@ use robofmu::fmi2::types::*;
 use std::ffi::{CStr, CString, c_char, c_void};
 use std::sync::Mutex;
 
-/// Log lines received: (status, message).
-type Lines = Mutex<Vec<(Fmi2Status, String)>>;
+/// Log lines received: (status, category, message).
+pub type Lines = Mutex<Vec<(Fmi2Status, String, String)>>;
 
 extern "C" fn capture(
     env: Fmi2ComponentEnvironment,
     _name: Fmi2String,
     status: Fmi2Status,
-    _category: Fmi2String,
+    category: Fmi2String,
     message: Fmi2String,
 ) {
-    // SAFETY: env is the &Lines the host passed; the message comes from the layer.
+    // SAFETY: env is the &Lines the host passed; the strings come from the layer.
     let lines = unsafe { &*(env as *const Lines) };
-    let text = unsafe { CStr::from_ptr(message as *const c_char) }
-        .to_string_lossy()
-        .into_owned();
-    lines.lock().unwrap().push((status, text));
+    let text = |p: Fmi2String| {
+        unsafe { CStr::from_ptr(p as *const c_char) }
+            .to_string_lossy()
+            .into_owned()
+    };
+    lines
+        .lock()
+        .unwrap()
+        .push((status, text(category), text(message)));
+}
+
+/// A raw fmi2Instantiate of `M` with the capturing logger: the component (null when
+/// refused), its log and the callbacks, which must outlive the component.
+pub fn instantiate<M: Model>(
+    kind: i32,
+    guid: &str,
+    logging_on: bool,
+) -> (Fmi2Component, Box<Lines>, Box<Fmi2CallbackFunctions>) {
+    let lines: Box<Lines> = Box::new(Mutex::new(Vec::new()));
+    // The non-variadic `capture` stands in for a variadic C logger: on x86-64 System V
+    // both are called identically, and the layer never passes variadic arguments.
+    let logger: Fmi2CallbackLogger = unsafe {
+        std::mem::transmute::<
+            extern "C" fn(Fmi2ComponentEnvironment, Fmi2String, Fmi2Status, Fmi2String, Fmi2String),
+            Fmi2CallbackLogger,
+        >(capture)
+    };
+    let functions = Box::new(Fmi2CallbackFunctions {
+        logger: Some(logger),
+        allocate_memory: None,
+        free_memory: None,
+        step_finished: None,
+        component_environment: &*lines as *const Lines as *mut c_void,
+    });
+    let name = CString::new("test").unwrap();
+    let guid = CString::new(guid).unwrap();
+    let c = unsafe {
+        api::instantiate::<M>(
+            name.as_ptr(),
+            kind,
+            guid.as_ptr(),
+            std::ptr::null(),
+            &*functions,
+            0,
+            i32::from(logging_on),
+        )
+    };
+    (c, lines, functions)
 }
 
 pub struct Host<M: Model> {
     pub c: Fmi2Component,
-    lines: Box<Lines>,
+    pub lines: Box<Lines>,
     _functions: Box<Fmi2CallbackFunctions>,
     _model: std::marker::PhantomData<M>,
 }
@@ -45,42 +89,17 @@ pub fn vr<M: Model>(name: &str) -> u32 {
 impl<M: Model> Host<M> {
     /// Instantiated (kind FMI2_MODEL_EXCHANGE or FMI2_CO_SIMULATION), logging on.
     pub fn new(kind: i32) -> Self {
-        let lines: Box<Lines> = Box::new(Mutex::new(Vec::new()));
-        // The non-variadic `capture` stands in for a variadic C logger: on x86-64 System
-        // V both are called identically, and the layer never passes variadic arguments.
-        let logger: Fmi2CallbackLogger = unsafe {
-            std::mem::transmute::<
-                extern "C" fn(
-                    Fmi2ComponentEnvironment,
-                    Fmi2String,
-                    Fmi2Status,
-                    Fmi2String,
-                    Fmi2String,
-                ),
-                Fmi2CallbackLogger,
-            >(capture)
-        };
-        let functions = Box::new(Fmi2CallbackFunctions {
-            logger: Some(logger),
-            allocate_memory: None,
-            free_memory: None,
-            step_finished: None,
-            component_environment: &*lines as *const Lines as *mut c_void,
-        });
-        let name = CString::new("test").unwrap();
-        let guid = CString::new(M::info().guid).unwrap();
-        let c = unsafe {
-            api::instantiate::<M>(
-                name.as_ptr(),
-                kind,
-                guid.as_ptr(),
-                std::ptr::null(),
-                &*functions,
-                0,
-                1,
-            )
-        };
-        assert!(!c.is_null(), "instantiate failed");
+        Self::with_logging(kind, true)
+    }
+
+    /// Instantiated with loggingOn as given (errors are logged either way).
+    pub fn with_logging(kind: i32, logging_on: bool) -> Self {
+        let (c, lines, functions) = instantiate::<M>(kind, M::info().guid, logging_on);
+        assert!(
+            !c.is_null(),
+            "instantiate failed: {:?}",
+            lines.lock().unwrap()
+        );
         Host {
             c,
             lines,
@@ -121,7 +140,18 @@ impl<M: Model> Host<M> {
     }
 
     pub fn set_real(&self, name: &str, v: f64) -> Fmi2Status {
-        let vr = vr::<M>(name);
+        self.set_real_at(vr::<M>(name), v)
+    }
+
+    /// fmi2GetReal of one value reference: the status and the value.
+    pub fn real_at(&self, vr: u32) -> (Fmi2Status, f64) {
+        let mut v = 0.0;
+        let s = unsafe { api::get_real::<M>(self.c, &vr, 1, &mut v) };
+        (s, v)
+    }
+
+    /// fmi2SetReal of one value reference.
+    pub fn set_real_at(&self, vr: u32, v: f64) -> Fmi2Status {
         unsafe { api::set_real::<M>(self.c, &vr, 1, &v) }
     }
 
@@ -261,7 +291,7 @@ impl<M: Model> Host<M> {
 
     pub fn last_message(&self) -> String {
         let lines = self.lines.lock().unwrap();
-        lines.last().map(|l| l.1.clone()).unwrap_or_default()
+        lines.last().map(|l| l.2.clone()).unwrap_or_default()
     }
 
     /// Messages logged with `status`.
@@ -270,7 +300,7 @@ impl<M: Model> Host<M> {
         lines
             .iter()
             .filter(|l| l.0 == status)
-            .map(|l| l.1.clone())
+            .map(|l| l.2.clone())
             .collect()
     }
 }
