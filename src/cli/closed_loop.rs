@@ -2,8 +2,8 @@
 //! design on the linearised plant.
 
 use super::CliError;
+use super::args::{angles_deg, triple};
 use clap::{Args, Subcommand};
-use nalgebra::Vector3;
 use robofmu::closed_loop::{LoopSample, LoopSpec, design_gains, parse_loop_scenario, simulate};
 use robofmu::pss3::dynamics::{Plant, PlantParams};
 use robofmu::pss3::rotation::{euler_accelerations, euler_rates};
@@ -24,15 +24,30 @@ pub enum ClosedLoopCommand {
 
 #[derive(Args)]
 pub struct BoundaryArgs {
-    /// Euler angles "thx,thy,thz", degrees.
-    #[arg(long, allow_hyphen_values = true)]
-    angles: String,
-    /// Angular velocity "wx,wy,wz" in the base frame, rad/s.
-    #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
-    omega: String,
-    /// Angular acceleration "ax,ay,az" in the base frame, rad/s^2.
-    #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
-    omega_dot: String,
+    /// Euler angles thx,thy,thz, degrees.
+    #[arg(
+        long,
+        required = true,
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
+    angles: Vec<f64>,
+    /// Angular velocity wx,wy,wz in the base frame, rad/s.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0,0,0"
+    )]
+    omega: Vec<f64>,
+    /// Angular acceleration ax,ay,az in the base frame, rad/s^2.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        default_value = "0,0,0"
+    )]
+    omega_dot: Vec<f64>,
 }
 
 #[derive(Args)]
@@ -56,9 +71,14 @@ pub struct DesignArgs {
     /// Closed-loop bandwidth w, rad/s (triple pole at -w).
     #[arg(long)]
     bandwidth: f64,
-    /// Poses of the motion, "thx,thy,thz" in degrees (repeat the option).
-    #[arg(long = "angles", required = true, allow_hyphen_values = true)]
-    angles: Vec<String>,
+    /// Poses of the motion, thx,thy,thz in degrees (repeat the option per pose).
+    #[arg(
+        long,
+        required = true,
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
+    angles: Vec<f64>,
 }
 
 pub fn run(command: ClosedLoopCommand) -> Result<(), CliError> {
@@ -145,26 +165,10 @@ fn reference(args: ReferenceArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn parse_vector(text: &str, option: &str) -> Result<Vector3<f64>, CliError> {
-    let v: Vec<f64> = text
-        .split(',')
-        .map(|s| s.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|e| format!("--{option} {text}: {e}"))?;
-    match v.as_slice() {
-        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(Vector3::new(*x, *y, *z)),
-        _ => Err(format!("--{option} {text}: need three finite numbers x,y,z").into()),
-    }
-}
-
-fn parse_angles(text: &str) -> Result<Vector3<f64>, CliError> {
-    Ok(parse_vector(text, "angles")?.map(f64::to_radians))
-}
-
 fn boundary(args: BoundaryArgs) -> Result<(), CliError> {
-    let angles = parse_angles(&args.angles)?;
-    let omega = parse_vector(&args.omega, "omega")?;
-    let omega_dot = parse_vector(&args.omega_dot, "omega-dot")?;
+    let angles = angles_deg(&args.angles, "angles")?;
+    let omega = triple(&args.omega, "omega")?;
+    let omega_dot = triple(&args.omega_dot, "omega-dot")?;
     let rates = euler_rates(&angles, &omega)?;
     let accelerations = euler_accelerations(&angles, &rates, &omega_dot)?;
     println!("# Euler angles (rad), rates (rad/s) and accelerations (rad/s^2): q, qdot, qddot");
@@ -175,10 +179,13 @@ fn boundary(args: BoundaryArgs) -> Result<(), CliError> {
 }
 
 fn design(args: DesignArgs) -> Result<(), CliError> {
+    if args.angles.len() % 3 != 0 {
+        return Err("--angles takes thx,thy,thz (three numbers) per pose".into());
+    }
     let poses = args
         .angles
-        .iter()
-        .map(|a| parse_angles(a))
+        .chunks(3)
+        .map(|pose| angles_deg(pose, "angles"))
         .collect::<Result<Vec<_>, _>>()?;
     let plant = Plant::new(PlantParams::default())?;
     let d = design_gains(&plant, &poses, args.bandwidth)?;

@@ -1,6 +1,7 @@
 //! Subcommands of the `robofmu` binary: argument parsing and output only; the
 //! computations live in the library.
 
+pub mod args;
 pub mod closed_loop;
 pub mod dexterity;
 pub mod dual_arm;

@@ -2,7 +2,6 @@
 //! ../shared/spec/3pss.md. Angles are degrees on the command line and in the printout,
 //! lengths metres; everything inside and in CSV files is SI.
 
-mod args;
 mod csv;
 mod path;
 mod plant_reference;

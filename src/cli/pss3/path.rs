@@ -1,8 +1,8 @@
 //! `pss3 actuator-path`: actuators driven linearly in time, platform motion to CSV.
 
-use super::args::triple;
 use super::csv::write_csv;
 use crate::cli::CliError;
+use crate::cli::args::triple;
 use clap::Args;
 use robofmu::pss3::{FkOptions, Geometry, PathSample, Timing, linear_actuator_path};
 use std::path::PathBuf;

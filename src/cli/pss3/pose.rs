@@ -1,7 +1,7 @@
 //! `pss3 ik`, `pss3 fk` and `pss3 jacobian`: single poses, printed with labelled units.
 
-use super::args::{angles_deg, triple};
 use crate::cli::CliError;
+use crate::cli::args::{angles_deg, triple};
 use clap::Args;
 use robofmu::pss3::workspace::tilt;
 use robofmu::pss3::{
