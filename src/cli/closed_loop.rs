@@ -179,7 +179,7 @@ fn boundary(args: BoundaryArgs) -> Result<(), CliError> {
 }
 
 fn design(args: DesignArgs) -> Result<(), CliError> {
-    if args.angles.len() % 3 != 0 {
+    if !args.angles.len().is_multiple_of(3) {
         return Err("--angles takes thx,thy,thz (three numbers) per pose".into());
     }
     let poses = args
