@@ -11,7 +11,8 @@
 use super::error::LoopError;
 use super::scenario::LoopSpec;
 use crate::control::pid::{self, PidInputs, PidState};
-use crate::pss3::dynamics::{Plant, PlantInputs, PlantState, euler_generalized_force};
+use crate::control::trajectory::Sample;
+use crate::pss3::dynamics::{DynamicsError, Plant, PlantInputs, PlantState};
 use crate::pss3::rotation::euler_rates;
 use nalgebra::{SVector, Vector3};
 use ode_solvers::{Dop853, OutputType, System};
@@ -43,8 +44,13 @@ pub struct LoopSample {
     pub l: Vector3<f64>,
 }
 
-struct Evaluation {
-    sample: LoopSample,
+/// The controller's side of the loop at one state: everything but the plant's response.
+struct Control {
+    planned: [Sample; 3],
+    theta_dot: Vector3<f64>,
+    gravity_compensation: Vector3<f64>,
+    /// PID output, realised by the plant as tau = E^-T u about P (f = J^-T tau).
+    u: Vector3<f64>,
     pid_rates: [PidState; 3],
 }
 
@@ -55,21 +61,24 @@ fn pid_state(y: &LoopVector, axis: usize) -> PidState {
     }
 }
 
-fn evaluate(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<Evaluation, LoopError> {
-    let time = y[0];
-    let theta = y.fixed_rows::<3>(1).into_owned();
-    let omega = y.fixed_rows::<3>(4).into_owned();
-    let planned: [_; 3] = std::array::from_fn(|i| spec.trajectories[i].sample(time));
-    let theta_dot =
-        euler_rates(&theta, &omega).map_err(crate::pss3::dynamics::DynamicsError::from)?;
-    let gravity = plant.model().terms(&theta, &omega)?.gravity;
-    let gravity_compensation = euler_generalized_force(&theta, &gravity);
+fn plant_state(y: &LoopVector) -> PlantState {
+    PlantState {
+        euler: y.fixed_rows::<3>(1).into_owned(),
+        omega: y.fixed_rows::<3>(4).into_owned(),
+    }
+}
+
+fn control(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<Control, LoopError> {
+    let state = plant_state(y);
+    let planned: [_; 3] = std::array::from_fn(|i| spec.trajectories[i].sample(y[0]));
+    let theta_dot = euler_rates(&state.euler, &state.omega).map_err(DynamicsError::from)?;
+    let gravity_compensation = plant.gravity_compensation(&state.euler)?;
     let mut u = Vector3::zeros();
     let mut pid_rates = [PidState::default(); 3];
     for axis in 0..3 {
         let inputs = PidInputs {
             setpoint: planned[axis].q,
-            measurement: theta[axis],
+            measurement: state.euler[axis],
             setpoint_rate: planned[axis].qdot,
             measured_rate: theta_dot[axis],
             feedforward: gravity_compensation[axis],
@@ -78,31 +87,57 @@ fn evaluate(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<Evaluation
         u[axis] = pid::output(gains, &pid_state(y, axis), &inputs).u;
         pid_rates[axis] = pid::derivatives(gains, &pid_state(y, axis), &inputs);
     }
-    // The plant realises u as the moment tau = E^-T u about P (f = J^-T tau).
-    let inputs = PlantInputs {
-        generalized_force: u,
-        ..PlantInputs::default()
-    };
-    let state = PlantState {
-        euler: theta,
-        omega,
-    };
-    let outputs = plant.outputs(&state, &inputs)?;
-    let sample = LoopSample {
-        time,
-        q: Vector3::from_fn(|i, _| planned[i].q),
-        qdot: Vector3::from_fn(|i, _| planned[i].qdot),
-        qddot: Vector3::from_fn(|i, _| planned[i].qddot),
-        theta,
+    Ok(Control {
+        planned,
         theta_dot,
-        omega,
-        omega_dot: outputs.omega_dot,
         gravity_compensation,
         u,
+        pid_rates,
+    })
+}
+
+fn plant_inputs(c: &Control) -> PlantInputs {
+    PlantInputs {
+        generalized_force: c.u,
+        ..PlantInputs::default()
+    }
+}
+
+/// State derivative of the loop (the integrator's right-hand side).
+fn rates(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<LoopVector, LoopError> {
+    let c = control(spec, plant, y)?;
+    let d = plant.derivative(&plant_state(y), &plant_inputs(&c))?;
+    let mut dy = LoopVector::zeros();
+    dy[0] = 1.0;
+    dy.fixed_rows_mut::<3>(1).copy_from(&d.euler_rates);
+    dy.fixed_rows_mut::<3>(4).copy_from(&d.omega_dot);
+    for axis in 0..3 {
+        dy[7 + axis] = c.pid_rates[axis].integral;
+        dy[10 + axis] = c.pid_rates[axis].filter;
+    }
+    Ok(dy)
+}
+
+/// Every signal of the loop at state y (for the output samples).
+fn sample(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<LoopSample, LoopError> {
+    let c = control(spec, plant, y)?;
+    let state = plant_state(y);
+    let outputs = plant.outputs(&state, &plant_inputs(&c))?;
+    let planned = |f: fn(&Sample) -> f64| Vector3::from_fn(|i, _| f(&c.planned[i]));
+    Ok(LoopSample {
+        time: y[0],
+        q: planned(|s| s.q),
+        qdot: planned(|s| s.qdot),
+        qddot: planned(|s| s.qddot),
+        theta: state.euler,
+        theta_dot: c.theta_dot,
+        omega: state.omega,
+        omega_dot: outputs.omega_dot,
+        gravity_compensation: c.gravity_compensation,
+        u: c.u,
         force: outputs.actuator_forces,
         l: outputs.actuator_displacements,
-    };
-    Ok(Evaluation { sample, pid_rates })
+    })
 }
 
 struct Flow<'a> {
@@ -117,16 +152,8 @@ impl System<f64, LoopVector> for Flow<'_> {
             dy.fill(f64::NAN);
             return;
         }
-        match evaluate(self.spec, self.plant, y) {
-            Ok(e) => {
-                dy[0] = 1.0;
-                dy.fixed_rows_mut::<3>(1).copy_from(&e.sample.theta_dot);
-                dy.fixed_rows_mut::<3>(4).copy_from(&e.sample.omega_dot);
-                for axis in 0..3 {
-                    dy[7 + axis] = e.pid_rates[axis].integral;
-                    dy[10 + axis] = e.pid_rates[axis].filter;
-                }
-            }
+        match rates(self.spec, self.plant, y) {
+            Ok(rates) => *dy = rates,
             Err(e) => {
                 *self.error.borrow_mut() = Some(e);
                 dy.fill(f64::NAN);
@@ -196,12 +223,12 @@ pub fn simulate(spec: &LoopSpec, tolerance: f64) -> Result<Vec<LoopSample>, Loop
     y.fixed_rows_mut::<3>(4).copy_from(&initial.omega);
     let steps = ((spec.stop_time - spec.start_time) / spec.step_size).round() as usize;
     let mut samples = Vec::with_capacity(steps + 1);
-    samples.push(evaluate(spec, &plant, &y)?.sample);
+    samples.push(sample(spec, &plant, &y)?);
     for k in 1..=steps {
         let next = spec.start_time + k as f64 * spec.step_size;
         y = advance(spec, &plant, &y, next - y[0], tolerance)?;
         y[0] = next;
-        samples.push(evaluate(spec, &plant, &y)?.sample);
+        samples.push(sample(spec, &plant, &y)?);
     }
     Ok(samples)
 }

@@ -200,15 +200,9 @@ impl Pss3Plant {
     /// pose at rest against gravity.
     fn gravity_compensation(&self) -> Result<Vector3<f64>, String> {
         let state = self.current_state()?;
-        let terms = self
-            .plant()?
-            .model()
-            .terms(&state.euler, &Vector3::zeros())
-            .map_err(|e| e.to_string())?;
-        Ok(crate::pss3::dynamics::euler_generalized_force(
-            &state.euler,
-            &terms.gravity,
-        ))
+        self.plant()?
+            .gravity_compensation(&state.euler)
+            .map_err(|e| e.to_string())
     }
 
     /// Actuator displacements l of the current state.

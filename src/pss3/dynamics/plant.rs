@@ -9,6 +9,7 @@
 
 use super::end_stops::{EndStops, StopContact};
 use super::error::{DynamicsError, PlantParamError};
+use super::euler_form::euler_generalized_force;
 use super::inertia::Inertia;
 use super::model::{DEFAULT_GRAVITY, Model, Terms};
 use crate::pss3::rotation::{euler_rates, moment_from_generalized_force};
@@ -164,6 +165,16 @@ impl Plant {
         inputs: &PlantInputs,
     ) -> Result<StateDerivative, DynamicsError> {
         Ok(self.evaluate(state, inputs)?.derivative)
+    }
+
+    /// G_x = E^T g(theta): the generalized force in Euler-angle coordinates that holds
+    /// the pose `euler` at rest against gravity (a controller's gravity feedforward).
+    pub fn gravity_compensation(
+        &self,
+        euler: &Vector3<f64>,
+    ) -> Result<Vector3<f64>, DynamicsError> {
+        let terms = self.model.terms(euler, &Vector3::zeros())?;
+        Ok(euler_generalized_force(euler, &terms.gravity))
     }
 
     /// Actuator forces that give the angular acceleration `omega_dot` at `state` under
