@@ -1,7 +1,15 @@
 #!/usr/bin/env bash
-# Builds the FMU cdylibs in release mode and packages dist/<Model>.fmu
-# (modelDescription.xml, binaries/linux64/<modelIdentifier>.so, documentation/).
+# Builds every FMU crate under fmus/ in release mode and packages dist/<Model>.fmu
+# (modelDescription.xml, binaries/<platform>/<modelIdentifier>.<ext>,
+# documentation/). Each FMU crate's own binary is its packager: it finds the cdylib
+# built beside it, so adding an FMU needs no change here.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+packages=()
+for manifest in fmus/*/Cargo.toml; do
+    packages+=("$(sed -n 's/^name = "\(.*\)"$/\1/p' "$manifest" | head -n 1)")
+done
 cargo build --release --workspace
-target/release/robofmu fmi package --libraries target/release --out dist
+for package in "${packages[@]}"; do
+    "target/release/$package" package --out dist
+done

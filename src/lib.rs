@@ -1,14 +1,14 @@
-//! robofmu: robot models as FMI 2.0 components.
+//! robofmu: robot models and analyses, with no FMI and no command line.
 //!
-//! Layering: the robot libraries (`pss3`, `dexterity`, `dual_arm`, `control`) know
-//! nothing of FMI; the generic FMI layer (`fmi2`) knows nothing of robots; each FMU
-//! crate under `fmus/` is a thin binding between them.
+//! Layering, enforced by the crate graph: this library (`pss3`, `dexterity`,
+//! `dual_arm`, `closed_loop`, and `control` from robofmu-control) knows nothing of
+//! FMI; the FMI layer (crates/fmi, robofmu-fmi) knows nothing of robots; each FMU
+//! crate under fmus/ is a thin binding between them; the command line (crates/cli)
+//! sits on top and owns plotting and file output.
+
+pub use robofmu_control as control;
 
 pub mod closed_loop;
-pub mod control;
 pub mod dexterity;
 pub mod dual_arm;
-pub mod fmi2;
-pub mod fmus;
-pub mod plot;
 pub mod pss3;

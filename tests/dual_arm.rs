@@ -236,38 +236,3 @@ fn failures_are_reported_not_returned_as_answers() {
             .is_err()
     );
 }
-
-#[test]
-fn cli_prints_pi_last_and_fails_with_a_message() {
-    let run = |args: &[&str]| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_robofmu"))
-            .args(args)
-            .output()
-            .unwrap()
-    };
-    let ok = run(&[
-        "dual-arm",
-        "solve",
-        "--lock",
-        "2",
-        "--path",
-        "B",
-        "--intervals",
-        "20",
-    ]);
-    assert!(ok.status.success());
-    let stdout = String::from_utf8(ok.stdout).unwrap();
-    let last = stdout.lines().last().unwrap();
-    // The value is the lock-2 PI of the shooting test above (1.344570 rad^2/s).
-    assert!(last.starts_with("PI = 1.34457"), "{last}");
-    assert!(last.contains("iterations = ") && last.contains("residual = "));
-    let bad = run(&[
-        "dual-arm", "solve", "--lock", "1", "--path", "B", "--guess", "0.5",
-    ]);
-    assert!(!bad.status.success());
-    assert!(
-        String::from_utf8(bad.stderr)
-            .unwrap()
-            .contains("2 finite redundant joint values needed")
-    );
-}

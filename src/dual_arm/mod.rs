@@ -18,7 +18,6 @@ mod error;
 pub mod kinematics;
 mod linalg;
 pub mod locks;
-pub mod output;
 pub mod paths;
 pub mod pmp;
 pub mod shooting;

@@ -1,4 +1,459 @@
-//! The pid FMU: one cdylib with exactly one set of fmi2* symbols, all forwarding to
-//! the generic FMI 2.0 layer for `robofmu::fmus::pid::Pid`.
+//! Binding of the PID law (`robofmu_control::pid`) as the FMU "PID": three independent
+//! channels; gains, filter time constant and limits per channel and tunable; the
+//! integral and the derivative-filter state are the continuous states (Model
+//! Exchange) and are stepped exactly under a zero-order hold of the inputs
+//! (Co-Simulation). Signals carry no unit: the controller is generic.
 
-robofmu::export_fmi2!(robofmu::fmus::pid::Pid);
+use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
+use robofmu_fmi::fmi2::{
+    DefaultExperiment, LogCategory, Logger, Model, ModelInfo, StepOutcome, Variability, Variable,
+};
+use std::sync::LazyLock;
+
+pub const CHANNELS: usize = 3;
+
+static INFO: ModelInfo = ModelInfo {
+    model_name: "PID",
+    model_identifier: "PID",
+    guid: "{9b7e2f14-3c6a-4e8d-b1f0-7a5d2c9e6b33}",
+    description: "Three-channel PID controller with filtered derivative, measured-rate \
+                  option, feedforward and output limits with conditional-integration \
+                  anti-windup",
+    default_experiment: DefaultExperiment {
+        start_time: 0.0,
+        stop_time: 2.0,
+        tolerance: 1e-8,
+        step_size: 0.01,
+    },
+    number_of_continuous_states: 2 * CHANNELS,
+    number_of_event_indicators: 0,
+    provides_directional_derivative: true,
+    log_categories: &[LogCategory {
+        name: "logController",
+        description: "Gains and options of each channel at initialization",
+    }],
+};
+
+/// Parameters, inputs and states of the three channels.
+#[derive(Clone)]
+pub struct Pid {
+    gains: [PidGains; CHANNELS],
+    /// Limits as set; they apply only when `limited` is true.
+    limits: [(f64, f64); CHANNELS],
+    limited: [bool; CHANNELS],
+    inputs: [PidInputs; CHANNELS],
+    states: [PidState; CHANNELS],
+}
+
+impl Pid {
+    fn sync_limits(&mut self, c: usize) {
+        self.gains[c].limits = self.limited[c].then_some(self.limits[c]);
+    }
+
+    fn output(&self, c: usize) -> pid::PidOutput {
+        pid::output(&self.gains[c], &self.states[c], &self.inputs[c])
+    }
+
+    fn derivative(&self, c: usize) -> PidState {
+        pid::derivatives(&self.gains[c], &self.states[c], &self.inputs[c])
+    }
+}
+
+/// Value references: group g (below) times 10, plus channel 1..3.
+const KP: u32 = 0;
+const KI: u32 = 10;
+const KD: u32 = 20;
+const TF: u32 = 30;
+const LIMITED: u32 = 40;
+const U_MIN: u32 = 50;
+const U_MAX: u32 = 60;
+const USE_RATES: u32 = 70;
+const SETPOINT: u32 = 100;
+const MEASUREMENT: u32 = 110;
+const SETPOINT_RATE: u32 = 120;
+const MEASURED_RATE: u32 = 130;
+const FEEDFORWARD: u32 = 140;
+const U: u32 = 200;
+const INTEGRAL: u32 = 300;
+const FILTER: u32 = 310;
+const DER_INTEGRAL: u32 = 320;
+const DER_FILTER: u32 = 330;
+
+fn vr(group: u32, c: usize) -> u32 {
+    group + c as u32 + 1
+}
+
+/// (group, channel) of a value reference.
+fn split(vr: u32) -> (u32, usize) {
+    (vr - (vr - 1) % 10 - 1, ((vr - 1) % 10) as usize)
+}
+
+type RealField = fn(&mut Pid, usize) -> &mut f64;
+
+/// Tunable Real parameters: group, name, description, default, field.
+const REAL_PARAMETERS: [(u32, &str, &str, f64, RealField); 6] = [
+    (KP, "Kp", "Proportional gain", 1.0, |m, c| {
+        &mut m.gains[c].kp
+    }),
+    (KI, "Ki", "Integral gain (1/s)", 0.5, |m, c| {
+        &mut m.gains[c].ki
+    }),
+    (KD, "Kd", "Derivative gain (s)", 0.1, |m, c| {
+        &mut m.gains[c].kd
+    }),
+    (
+        TF,
+        "Tf",
+        "Derivative filter time constant (0 allowed only with rate inputs)",
+        0.05,
+        |m, c| &mut m.gains[c].tf,
+    ),
+    (
+        U_MIN,
+        "uMin",
+        "Lower output limit (used when limitOutput)",
+        -1.0,
+        |m, c| &mut m.limits[c].0,
+    ),
+    (
+        U_MAX,
+        "uMax",
+        "Upper output limit (used when limitOutput)",
+        1.0,
+        |m, c| &mut m.limits[c].1,
+    ),
+];
+
+/// Real inputs: group, name, description, default per channel, field.
+const INPUTS: [(u32, &str, &str, [f64; CHANNELS], RealField); 5] = [
+    (
+        SETPOINT,
+        "setpoint",
+        "Setpoint r",
+        [1.0, 0.5, -0.25],
+        |m, c| &mut m.inputs[c].setpoint,
+    ),
+    (
+        MEASUREMENT,
+        "measurement",
+        "Measurement y (e = r - y)",
+        [0.0; CHANNELS],
+        |m, c| &mut m.inputs[c].measurement,
+    ),
+    (
+        SETPOINT_RATE,
+        "setpointRate",
+        "Setpoint rate dr/dt (used when useRateInputs)",
+        [0.0; CHANNELS],
+        |m, c| &mut m.inputs[c].setpoint_rate,
+    ),
+    (
+        MEASURED_RATE,
+        "measuredRate",
+        "Measured rate dy/dt (used when useRateInputs)",
+        [0.0; CHANNELS],
+        |m, c| &mut m.inputs[c].measured_rate,
+    ),
+    (
+        FEEDFORWARD,
+        "feedforward",
+        "Added to the output before the limits",
+        [0.0; CHANNELS],
+        |m, c| &mut m.inputs[c].feedforward,
+    ),
+];
+
+fn real(group: u32, c: usize, name: &str, description: &str, field: RealField) -> Variable<Pid> {
+    Variable::real(
+        vr(group, c),
+        format!("{name}[{}]", c + 1),
+        &format!("Channel {}: {description}", c + 1),
+        move |m: &Pid| *field(&mut m.clone(), c),
+    )
+    .set_real(move |m, v| {
+        *field(m, c) = v;
+        m.sync_limits(c);
+        Ok(())
+    })
+}
+
+fn variables() -> Vec<Variable<Pid>> {
+    let mut table = Vec::new();
+    for (group, name, description, default, field) in REAL_PARAMETERS.iter().take(4) {
+        for c in 0..CHANNELS {
+            table.push(
+                real(*group, c, name, description, *field)
+                    .parameter(Variability::Tunable)
+                    .start_real(*default),
+            );
+        }
+    }
+    for c in 0..CHANNELS {
+        table.push(
+            Variable::boolean(
+                vr(LIMITED, c),
+                format!("limitOutput[{}]", c + 1),
+                &format!("Channel {}: clamp the output to [uMin, uMax]", c + 1),
+                move |m: &Pid| m.limited[c],
+            )
+            .parameter(Variability::Tunable)
+            .start_boolean(false)
+            .set_boolean(move |m, v| {
+                m.limited[c] = v;
+                m.sync_limits(c);
+                Ok(())
+            }),
+        );
+    }
+    for (group, name, description, default, field) in REAL_PARAMETERS.iter().skip(4) {
+        for c in 0..CHANNELS {
+            table.push(
+                real(*group, c, name, description, *field)
+                    .parameter(Variability::Tunable)
+                    .start_real(*default),
+            );
+        }
+    }
+    for c in 0..CHANNELS {
+        table.push(
+            Variable::boolean(vr(USE_RATES, c), format!("useRateInputs[{}]", c + 1), &format!("Channel {}: derivative from setpointRate - measuredRate instead of the filtered error", c + 1), move |m: &Pid| m.gains[c].use_rate_inputs)
+                .parameter(Variability::Fixed)
+                .start_boolean(false)
+                .set_boolean(move |m, v| {
+                    m.gains[c].use_rate_inputs = v;
+                    Ok(())
+                }),
+        );
+    }
+    for (group, name, description, defaults, field) in INPUTS {
+        for (c, default) in defaults.into_iter().enumerate() {
+            table.push(
+                real(group, c, name, description, field)
+                    .input()
+                    .start_real(default),
+            );
+        }
+    }
+    for c in 0..CHANNELS {
+        table.push(
+            Variable::real(
+                vr(U, c),
+                format!("u[{}]", c + 1),
+                &format!("Channel {}: control output", c + 1),
+                move |m: &Pid| m.output(c).u,
+            )
+            .output(),
+        );
+    }
+    for c in 0..CHANNELS {
+        table.push(
+            real(
+                INTEGRAL,
+                c,
+                "integral",
+                "integral of the error (state)",
+                |m, c| &mut m.states[c].integral,
+            )
+            .state()
+            .start_real(0.0),
+        );
+    }
+    for c in 0..CHANNELS {
+        table.push(
+            real(
+                FILTER,
+                c,
+                "filter",
+                "derivative filter state (state)",
+                |m, c| &mut m.states[c].filter,
+            )
+            .state()
+            .start_real(0.0),
+        );
+    }
+    for c in 0..CHANNELS {
+        let name = format!("integral[{}]", c + 1);
+        table.push(
+            Variable::real(
+                vr(DER_INTEGRAL, c),
+                format!("der({name})"),
+                "Time derivative of the error integral",
+                move |m: &Pid| m.derivative(c).integral,
+            )
+            .derivative_of(&name),
+        );
+    }
+    for c in 0..CHANNELS {
+        let name = format!("filter[{}]", c + 1);
+        table.push(
+            Variable::real(
+                vr(DER_FILTER, c),
+                format!("der({name})"),
+                "Time derivative of the derivative filter state",
+                move |m: &Pid| m.derivative(c).filter,
+            )
+            .derivative_of(&name),
+        );
+    }
+    table
+}
+
+static VARIABLES: LazyLock<Vec<Variable<Pid>>> = LazyLock::new(variables);
+
+/// d(output or state derivative)/d(input or state) of one channel, from the law in
+/// `control::pid` (the limits make u flat, conditional integration makes dI/dt flat).
+fn channel_partial(m: &Pid, c: usize, unknown: u32, known: u32) -> Result<f64, String> {
+    let g = &m.gains[c];
+    let out = m.output(c);
+    // Coefficients of e (via setpoint/measurement), of the rate error and of the states
+    // in the derivative term D.
+    let (d_e, d_rate, d_filter) = if g.use_rate_inputs {
+        if g.tf > 0.0 {
+            (0.0, 0.0, g.kd)
+        } else {
+            (0.0, g.kd, 0.0)
+        }
+    } else if g.kd != 0.0 {
+        (g.kd / g.tf, 0.0, -g.kd / g.tf)
+    } else {
+        (0.0, 0.0, 0.0)
+    };
+    let filter_active = g.tf > 0.0 && (g.use_rate_inputs || g.kd != 0.0);
+    let saturated = g
+        .limits
+        .is_some_and(|(lo, hi)| out.u_raw > hi || out.u_raw < lo);
+    let sign = |k: u32| match k {
+        SETPOINT | SETPOINT_RATE => 1.0,
+        _ => -1.0,
+    };
+    Ok(match unknown {
+        U if saturated => 0.0,
+        U => match known {
+            SETPOINT | MEASUREMENT => sign(known) * (g.kp + d_e),
+            SETPOINT_RATE | MEASURED_RATE => sign(known) * d_rate,
+            FEEDFORWARD => 1.0,
+            INTEGRAL => g.ki,
+            FILTER => d_filter,
+            _ => {
+                return Err(format!(
+                    "value reference group {known} is not an input or state"
+                ));
+            }
+        },
+        DER_INTEGRAL if pid::integration_stopped(g, &out) => 0.0,
+        DER_INTEGRAL => match known {
+            SETPOINT | MEASUREMENT => sign(known),
+            _ => 0.0,
+        },
+        DER_FILTER if !filter_active => 0.0,
+        DER_FILTER => match (known, g.use_rate_inputs) {
+            (SETPOINT | MEASUREMENT, false) | (SETPOINT_RATE | MEASURED_RATE, true) => {
+                sign(known) / g.tf
+            }
+            (FILTER, _) => -1.0 / g.tf,
+            _ => 0.0,
+        },
+        _ => {
+            return Err(format!(
+                "value reference group {unknown} is not an output or derivative"
+            ));
+        }
+    })
+}
+
+impl Model for Pid {
+    fn info() -> &'static ModelInfo {
+        &INFO
+    }
+
+    fn variables() -> &'static [Variable<Self>] {
+        &VARIABLES
+    }
+
+    fn new() -> Self {
+        let gains = PidGains {
+            kp: 0.0,
+            ki: 0.0,
+            kd: 0.0,
+            tf: 0.0,
+            limits: None,
+            use_rate_inputs: false,
+        };
+        Pid {
+            gains: [gains; CHANNELS],
+            limits: [(-1.0, 1.0); CHANNELS],
+            limited: [false; CHANNELS],
+            inputs: [PidInputs::default(); CHANNELS],
+            states: [PidState::default(); CHANNELS],
+        }
+    }
+
+    fn set_time(&mut self, _time: f64) {
+        // The law is time invariant.
+    }
+
+    fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
+        for c in 0..CHANNELS {
+            self.gains[c]
+                .validate()
+                .map_err(|e| format!("channel {}: {e}", c + 1))?;
+            log.debug(
+                "logController",
+                &format!("channel {}: {:?}", c + 1, self.gains[c]),
+            );
+        }
+        Ok(())
+    }
+
+    fn do_step(&mut self, _time: f64, step: f64, _log: &Logger) -> StepOutcome {
+        for c in 0..CHANNELS {
+            if let Err(e) = self.gains[c].validate() {
+                return StepOutcome::Discarded {
+                    reason: format!("channel {}: {e}", c + 1),
+                    terminate: true,
+                };
+            }
+        }
+        for c in 0..CHANNELS {
+            self.states[c] = pid::step(&self.gains[c], &self.states[c], &self.inputs[c], step);
+        }
+        StepOutcome::Completed
+    }
+
+    fn continuous_states(&self, x: &mut [f64]) {
+        for c in 0..CHANNELS {
+            x[c] = self.states[c].integral;
+            x[CHANNELS + c] = self.states[c].filter;
+        }
+    }
+
+    fn set_continuous_states(&mut self, x: &[f64]) {
+        for c in 0..CHANNELS {
+            self.states[c].integral = x[c];
+            self.states[c].filter = x[CHANNELS + c];
+        }
+    }
+
+    fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
+        for c in 0..CHANNELS {
+            let d = self.derivative(c);
+            dx[c] = d.integral;
+            dx[CHANNELS + c] = d.filter;
+        }
+        Ok(())
+    }
+
+    fn partial_derivative(&self, unknown: u32, known: u32) -> Result<f64, String> {
+        let ((ug, uc), (kg, kc)) = (split(unknown), split(known));
+        if uc >= CHANNELS || kc >= CHANNELS {
+            return Err(format!("value reference {unknown} or {known} out of range"));
+        }
+        if uc != kc {
+            return Ok(0.0);
+        }
+        channel_partial(self, uc, ug, kg)
+    }
+}
+
+// The exported fmi2* symbols of this FMU.
+robofmu_fmi::export_fmi2!(Pid);

@@ -1,4 +1,264 @@
-//! The planner FMU: one cdylib with exactly one set of fmi2* symbols, all forwarding to
-//! the generic FMI 2.0 layer for `robofmu::fmus::planner::Planner`.
+//! Binding of the trajectory planner (`robofmu_control::trajectory`) as the FMU
+//! "Planner": three axes, cubic or quintic, boundary conditions as parameters,
+//! q / qdot / qddot per axis as outputs. Axis positions are angles (rad, shown in deg);
+//! the planner itself is unit-agnostic.
 
-robofmu::export_fmi2!(robofmu::fmus::planner::Planner);
+use robofmu_control::trajectory::{Boundary, Order, Polynomial};
+use robofmu_fmi::fmi2::{
+    DefaultExperiment, LogCategory, Logger, Model, ModelInfo, StepOutcome, Variability, Variable,
+};
+use std::sync::LazyLock;
+
+pub const AXES: usize = 3;
+
+static INFO: ModelInfo = ModelInfo {
+    model_name: "Planner",
+    model_identifier: "Planner",
+    guid: "{5d0c3a52-8f0e-4d6b-9a51-3c2b7e41a901}",
+    description: "Cubic or quintic point-to-point trajectories of three axes from boundary \
+                  conditions at t0 and tf; at rest at q0 before t0 and at qf after tf",
+    default_experiment: DefaultExperiment {
+        start_time: 0.0,
+        stop_time: 2.5,
+        tolerance: 1e-6,
+        step_size: 0.01,
+    },
+    number_of_continuous_states: 0,
+    number_of_event_indicators: 0,
+    provides_directional_derivative: false,
+    log_categories: &[LogCategory {
+        name: "logTrajectory",
+        description: "Polynomial coefficients computed at initialization",
+    }],
+};
+
+/// Parameters and time of the planner; the polynomials follow from them.
+#[derive(Clone)]
+pub struct Planner {
+    degree: i32,
+    t0: f64,
+    tf: f64,
+    boundary: [Boundary; AXES],
+    time: f64,
+    /// Polynomials of the current parameters, or why there are none.
+    axes: Result<[Polynomial; AXES], String>,
+}
+
+impl Planner {
+    fn rebuild(&mut self) {
+        let order = Order::from_degree(self.degree);
+        self.axes = match order {
+            None => Err(format!("order {} is neither 3 nor 5", self.degree)),
+            Some(order) => (0..AXES)
+                .map(|a| Polynomial::new(order, self.t0, self.tf, &self.boundary[a]))
+                .collect::<Result<Vec<_>, _>>()
+                .map(|v| [v[0].clone(), v[1].clone(), v[2].clone()])
+                .map_err(|e| e.to_string()),
+        };
+    }
+
+    fn sample(&self, axis: usize) -> Option<robofmu_control::trajectory::Sample> {
+        self.axes.as_ref().ok().map(|p| p[axis].sample(self.time))
+    }
+}
+
+/// Value references: order 1, t0 2, tf 3; boundary values 10 a + k (axis a = 1..3,
+/// k = 0..5: q0, qf, qdot0, qdotf, qddot0, qddotf); outputs 100 + 10 (a - 1) + k
+/// (k = 0..2: q, qdot, qddot).
+fn boundary_vr(axis: usize, k: usize) -> u32 {
+    (10 * (axis + 1) + k) as u32
+}
+
+fn output_vr(axis: usize, k: usize) -> u32 {
+    (100 + 10 * axis + k) as u32
+}
+
+/// Name, unit, description and default per axis of the boundary values, in the order
+/// of `boundary_field`.
+const BOUNDARY_FIELDS: [(&str, &str, &str, [f64; AXES]); 6] = [
+    ("q0", "rad", "position at t0", [0.0, 0.0, 0.0]),
+    ("qf", "rad", "position at tf", [0.5, -0.3, 0.8]),
+    ("qdot0", "rad/s", "velocity at t0", [0.0; AXES]),
+    ("qdotf", "rad/s", "velocity at tf", [0.0; AXES]),
+    (
+        "qddot0",
+        "rad/s2",
+        "acceleration at t0 (quintic only)",
+        [0.0; AXES],
+    ),
+    (
+        "qddotf",
+        "rad/s2",
+        "acceleration at tf (quintic only)",
+        [0.0; AXES],
+    ),
+];
+
+fn boundary_field(b: &mut Boundary, k: usize) -> &mut f64 {
+    match k {
+        0 => &mut b.q0,
+        1 => &mut b.qf,
+        2 => &mut b.qdot0,
+        3 => &mut b.qdotf,
+        4 => &mut b.qddot0,
+        _ => &mut b.qddotf,
+    }
+}
+
+const OUTPUTS: [(&str, &str, &str); 3] = [
+    ("q", "rad", "position"),
+    ("qdot", "rad/s", "velocity"),
+    ("qddot", "rad/s2", "acceleration"),
+];
+
+fn display_unit(unit: &str) -> Option<&'static str> {
+    match unit {
+        "rad" => Some("deg"),
+        "rad/s" => Some("deg/s"),
+        "rad/s2" => Some("deg/s2"),
+        _ => None,
+    }
+}
+
+fn variables() -> Vec<Variable<Planner>> {
+    let mut table = vec![
+        Variable::integer(
+            1,
+            "order",
+            "Polynomial degree: 3 (cubic) or 5 (quintic)",
+            |m: &Planner| m.degree,
+        )
+        .parameter(Variability::Fixed)
+        .start_integer(5)
+        .integer_range(3, 5)
+        .set_integer(|m, v| {
+            if Order::from_degree(v).is_none() {
+                return Err("the order must be 3 or 5".to_string());
+            }
+            m.degree = v;
+            m.rebuild();
+            Ok(())
+        }),
+        Variable::real(2, "t0", "Start time of the motion", |m: &Planner| m.t0)
+            .parameter(Variability::Fixed)
+            .unit("s", None)
+            .start_real(0.0)
+            .set_real(|m, v| {
+                m.t0 = v;
+                m.rebuild();
+                Ok(())
+            }),
+        Variable::real(
+            3,
+            "tf",
+            "End time of the motion (after t0)",
+            |m: &Planner| m.tf,
+        )
+        .parameter(Variability::Fixed)
+        .unit("s", None)
+        .start_real(2.0)
+        .set_real(|m, v| {
+            m.tf = v;
+            m.rebuild();
+            Ok(())
+        }),
+    ];
+    for axis in 0..AXES {
+        for (k, (name, unit, what, defaults)) in BOUNDARY_FIELDS.iter().enumerate() {
+            table.push(
+                Variable::real(
+                    boundary_vr(axis, k),
+                    format!("{name}[{}]", axis + 1),
+                    &format!("Axis {}: {what}", axis + 1),
+                    move |m: &Planner| {
+                        let mut b = m.boundary[axis];
+                        *boundary_field(&mut b, k)
+                    },
+                )
+                .parameter(Variability::Fixed)
+                .unit(unit, display_unit(unit))
+                .start_real(defaults[axis])
+                .set_real(move |m, v| {
+                    *boundary_field(&mut m.boundary[axis], k) = v;
+                    m.rebuild();
+                    Ok(())
+                }),
+            );
+        }
+    }
+    for axis in 0..AXES {
+        for (k, (name, unit, what)) in OUTPUTS.iter().enumerate() {
+            table.push(
+                Variable::real(
+                    output_vr(axis, k),
+                    format!("{name}[{}]", axis + 1),
+                    &format!("Axis {}: planned {what}", axis + 1),
+                    move |m: &Planner| match m.sample(axis) {
+                        Some(s) => [s.q, s.qdot, s.qddot][k],
+                        None => f64::NAN,
+                    },
+                )
+                .output()
+                .unit(unit, display_unit(unit)),
+            );
+        }
+    }
+    table
+}
+
+static VARIABLES: LazyLock<Vec<Variable<Planner>>> = LazyLock::new(variables);
+
+impl Model for Planner {
+    fn info() -> &'static ModelInfo {
+        &INFO
+    }
+
+    fn variables() -> &'static [Variable<Self>] {
+        &VARIABLES
+    }
+
+    fn new() -> Self {
+        Planner {
+            degree: 5,
+            t0: 0.0,
+            tf: 1.0,
+            boundary: [Boundary::default(); AXES],
+            time: 0.0,
+            axes: Err("not yet initialized".to_string()),
+        }
+    }
+
+    fn set_time(&mut self, time: f64) {
+        self.time = time;
+    }
+
+    fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
+        self.rebuild();
+        let axes = self.axes.as_ref().map_err(String::clone)?;
+        for (a, p) in axes.iter().enumerate() {
+            log.debug(
+                "logTrajectory",
+                &format!(
+                    "axis {}: q(t) = sum c_k (t - {})^k, c = {:?}",
+                    a + 1,
+                    self.t0,
+                    p.shifted_coefficients()
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    fn do_step(&mut self, _time: f64, _step: f64, _log: &Logger) -> StepOutcome {
+        // Outputs are explicit functions of time: nothing to integrate.
+        StepOutcome::Completed
+    }
+
+    fn next_time_event(&self, time: f64) -> Option<f64> {
+        // The rates jump where the motion starts and ends.
+        [self.t0, self.tf].into_iter().find(|&t| t > time)
+    }
+}
+
+// The exported fmi2* symbols of this FMU.
+robofmu_fmi::export_fmi2!(Planner);

@@ -1,0 +1,246 @@
+//! Subcommands that write maps over x, y at one orientation: LCI, load index and the
+//! reachable and common workspaces (CSV and PNG).
+
+use super::options::{ReadingArgs, check_mode, index_of, parse_mode};
+use super::output::{cell, cm, file_in, write_csv};
+use super::sweeps::peak_phi;
+use crate::cli::CliError;
+use crate::plot::{Axes, Grid, heat_map};
+use clap::{Args, ValueEnum};
+use robofmu::dexterity::workspace::{
+    ModeChoice, XyGrid, common_map, lci_map, load_index_map, reachable_map,
+};
+use robofmu::dexterity::{Manipulator, Robot, RobotKind};
+use std::path::{Path, PathBuf};
+
+/// Square of positions a map covers.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum Square {
+    /// The paper's x, y in [-20, 20] cm.
+    Paper,
+    /// A square holding the manipulator's whole reachable workspace.
+    Own,
+}
+
+#[derive(Args)]
+pub struct MapArgs {
+    /// Manipulator: 1rrr, 2rrr or 3rrr.
+    #[arg(long)]
+    robot: RobotKind,
+    /// Orientation phi (deg).
+    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    phi: f64,
+    /// Square of positions mapped.
+    #[arg(long, value_enum, default_value = "paper")]
+    square: Square,
+    /// Grid points per axis.
+    #[arg(long, default_value_t = 81)]
+    grid: usize,
+    /// Output directory for the CSV and PNG files.
+    #[arg(long, default_value = "dexterity-out")]
+    out: PathBuf,
+    #[command(flatten)]
+    reading: ReadingArgs,
+}
+
+fn square_grid(robot: &Robot, square: Square, points: usize) -> XyGrid {
+    match square {
+        Square::Paper => XyGrid::paper(points),
+        Square::Own => XyGrid::own(robot, points),
+    }
+}
+
+/// Writes one CSV of x, y and one column per map, and one heat map per column.
+fn write_maps(
+    dir: &Path,
+    stem: &str,
+    grid: &XyGrid,
+    columns: &[(String, Vec<Option<f64>>)],
+    what: &str,
+) -> Result<(), CliError> {
+    let mut header = vec!["x_cm", "y_cm"];
+    header.extend(columns.iter().map(|c| c.0.as_str()));
+    let rows: Vec<Vec<String>> = (0..grid.len())
+        .map(|i| {
+            let (x, y) = grid.position(i);
+            let mut row = vec![format!("{:.4}", cm(x)), format!("{:.4}", cm(y))];
+            row.extend(columns.iter().map(|c| cell(c.1[i])));
+            row
+        })
+        .collect();
+    write_csv(&file_in(dir, &format!("{stem}.csv"))?, &header, &rows)?;
+    let axis: Vec<f64> = grid.coordinates().into_iter().map(cm).collect();
+    for (name, values) in columns {
+        if values.iter().all(Option::is_none) {
+            continue;
+        }
+        let title = format!("{what}, {stem} ({name})");
+        let axes = Axes {
+            title: &title,
+            x_label: "x (cm)",
+            y_label: "y (cm)",
+        };
+        let map = Grid {
+            xs: axis.clone(),
+            ys: axis.clone(),
+            values: values.clone(),
+        };
+        heat_map(
+            &file_in(dir, &format!("{stem}-{name}.png"))?,
+            &axes,
+            &map,
+            what,
+        )?;
+    }
+    Ok(())
+}
+
+/// LCI maps of every working mode and of the best mode.
+pub fn lci_maps(a: &MapArgs) -> Result<(), CliError> {
+    let robot = a.reading.robots()[index_of(a.robot)];
+    let grid = square_grid(&robot, a.square, a.grid);
+    let phi = a.phi.to_radians();
+    let mut columns: Vec<(String, Vec<Option<f64>>)> = (0..robot.working_modes())
+        .map(|m| {
+            (
+                format!("mode{m}"),
+                lci_map(&robot, phi, &grid, ModeChoice::Only(m)),
+            )
+        })
+        .collect();
+    columns.push(("best".into(), lci_map(&robot, phi, &grid, ModeChoice::Best)));
+    let stem = format!("lci-{}-phi{}", a.robot, a.phi);
+    write_maps(&a.out, &stem, &grid, &columns, "LCI")?;
+    println!("wrote {}/{stem}.csv and its PNG maps", a.out.display());
+    Ok(())
+}
+
+#[derive(Args)]
+pub struct LoadMapArgs {
+    /// Manipulator: 1rrr, 2rrr or 3rrr.
+    #[arg(long)]
+    robot: RobotKind,
+    /// Orientation phi (deg); default: where the largest LCI over the own workspace
+    /// peaks (1 deg sweep from 10 to 180 deg on an 81-point grid).
+    #[arg(long, allow_negative_numbers = true)]
+    phi: Option<f64>,
+    /// Working mode: `best` or a mode index.
+    #[arg(long, default_value = "best", value_parser = parse_mode)]
+    mode: ModeChoice,
+    /// Grid points per axis over the own workspace square.
+    #[arg(long, default_value_t = 121)]
+    grid: usize,
+    /// Output directory for the CSV and PNG files.
+    #[arg(long, default_value = "dexterity-out")]
+    out: PathBuf,
+    #[command(flatten)]
+    reading: ReadingArgs,
+}
+
+/// Load-index map (1/m) at the requested or the peak-LCI orientation.
+pub fn load_maps(a: &LoadMapArgs) -> Result<(), CliError> {
+    let robots = a.reading.robots();
+    let which = index_of(a.robot);
+    check_mode(&robots[which], a.mode)?;
+    let phi_deg = match a.phi {
+        Some(p) => p,
+        None => peak_phi(&robots, which, 81).ok_or("no reachable pose in the sweep")?,
+    };
+    let robot = robots[which];
+    let grid = XyGrid::own(&robot, a.grid);
+    let values = load_index_map(&robot, phi_deg.to_radians(), &grid, a.mode);
+    let stem = format!("load-{}-phi{phi_deg}", a.robot);
+    let columns = [("load_index_per_m".to_string(), values)];
+    write_maps(&a.out, &stem, &grid, &columns, "load index (1/m)")?;
+    println!(
+        "phi = {phi_deg} deg; wrote {}/{stem}.csv and .png",
+        a.out.display()
+    );
+    Ok(())
+}
+
+#[derive(Args)]
+pub struct WorkspaceArgs {
+    /// Orientation phi (deg).
+    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    phi: f64,
+    /// Grid points per axis over a square holding every workspace.
+    #[arg(long, default_value_t = 181)]
+    grid: usize,
+    /// Output directory for the CSV and PNG files.
+    #[arg(long, default_value = "dexterity-out")]
+    out: PathBuf,
+    #[command(flatten)]
+    reading: ReadingArgs,
+}
+
+/// Reachable workspaces and their intersection; prints their areas.
+pub fn workspaces(a: &WorkspaceArgs) -> Result<(), CliError> {
+    let robots = a.reading.robots();
+    let half_width = robots.iter().map(|r| r.reach()).fold(0.0, f64::max);
+    let grid = XyGrid {
+        half_width,
+        points: a.grid,
+    };
+    let phi = a.phi.to_radians();
+    let mut maps: Vec<Vec<bool>> = robots
+        .iter()
+        .map(|r| reachable_map(r, phi, &grid))
+        .collect();
+    maps.push(common_map(&robots, phi, &grid));
+    let cell_area = cm(grid.step()).powi(2);
+    println!(
+        "# workspace areas at phi = {} deg ({} x {} grid)",
+        a.phi, a.grid, a.grid
+    );
+    let names: Vec<String> = RobotKind::ALL
+        .iter()
+        .map(|k| k.to_string())
+        .chain(["common".into()])
+        .collect();
+    for (name, map) in names.iter().zip(&maps) {
+        let area = map.iter().filter(|&&b| b).count() as f64 * cell_area;
+        println!("{name:7} {area:8.1} cm^2");
+    }
+    let stem = format!("workspace-phi{}", a.phi);
+    let mut header = vec!["x_cm", "y_cm"];
+    header.extend(names.iter().map(String::as_str));
+    let rows: Vec<Vec<String>> = (0..grid.len())
+        .map(|i| {
+            let (x, y) = grid.position(i);
+            let mut row = vec![format!("{:.4}", cm(x)), format!("{:.4}", cm(y))];
+            row.extend(maps.iter().map(|m| u8::from(m[i]).to_string()));
+            row
+        })
+        .collect();
+    write_csv(&file_in(&a.out, &format!("{stem}.csv"))?, &header, &rows)?;
+    let reaching: Vec<Option<f64>> = (0..grid.len())
+        .map(|i| {
+            let n = maps[..robots.len()].iter().filter(|m| m[i]).count();
+            (n > 0).then_some(n as f64)
+        })
+        .collect();
+    let axis: Vec<f64> = grid.coordinates().into_iter().map(cm).collect();
+    let title = format!(
+        "Manipulators reaching (x, y) at phi = {} deg (3: common)",
+        a.phi
+    );
+    let axes = Axes {
+        title: &title,
+        x_label: "x (cm)",
+        y_label: "y (cm)",
+    };
+    let map = Grid {
+        xs: axis.clone(),
+        ys: axis,
+        values: reaching,
+    };
+    heat_map(
+        &file_in(&a.out, &format!("{stem}.png"))?,
+        &axes,
+        &map,
+        "count",
+    )?;
+    println!("wrote {}/{stem}.csv and .png", a.out.display());
+    Ok(())
+}

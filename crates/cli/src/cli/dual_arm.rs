@@ -1,0 +1,273 @@
+//! `robofmu dual-arm`: optimal joint paths of the dual-arm cam-lock robot.
+
+use super::CliError;
+use clap::{Args, Subcommand, ValueEnum};
+use robofmu::dual_arm::direct::{DirectOptions, DirectSolution, solve_direct};
+use robofmu::dual_arm::kinematics::{Elbow, LinkLengths, joint_name};
+use robofmu::dual_arm::locks::{Chain, Lock};
+mod output;
+use robofmu::dual_arm::paths::{PaperPath, Path, SampledPath};
+use robofmu::dual_arm::shooting::{PmpSolution, Shooting, ShootingOptions};
+use robofmu::dual_arm::trajectory::Trajectory;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Optimal joint paths of the dual-arm cam-lock robot (Pontryagin + shooting, or direct).
+#[derive(Args)]
+pub struct DualArmArgs {
+    #[command(subcommand)]
+    command: DualArmCommand,
+}
+
+#[derive(Subcommand)]
+enum DualArmCommand {
+    /// Solve one lock configuration on one path; the last line gives PI.
+    Solve(SolveArgs),
+    /// Solve with both methods and compare their PI and joint paths.
+    Compare(ProblemArgs),
+}
+
+/// The problem: lock, path, initial guess, grid.
+#[derive(Args)]
+struct ProblemArgs {
+    /// Lock configuration: none, 1, 2 or 3.
+    #[arg(long, value_parser = parse_lock)]
+    lock: Lock,
+    /// End-effector path: A, B (the paper's) or a CSV file of t, x, y (s, m).
+    #[arg(long)]
+    path: String,
+    /// Redundant joints at tf, rad, comma-separated (default: the paper's guess).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    guess: Option<Vec<f64>>,
+    /// Intervals of the output grid (and of the direct method's grid).
+    #[arg(long, default_value_t = 200)]
+    intervals: usize,
+}
+
+#[derive(Args)]
+struct SolveArgs {
+    #[command(flatten)]
+    problem: ProblemArgs,
+    /// Solution method.
+    #[arg(long, value_enum, default_value_t = Method::Pmp)]
+    method: Method,
+    /// Directory for CSV tables and PNG figures.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Method {
+    /// Pontryagin's principle, shooting with Newton.
+    Pmp,
+    /// Direct minimisation on a time grid.
+    Direct,
+}
+
+fn parse_lock(text: &str) -> Result<Lock, String> {
+    Lock::ALL
+        .into_iter()
+        .find(|l| l.name().eq_ignore_ascii_case(text))
+        .ok_or_else(|| format!("unknown lock {text:?}: use none, 1, 2 or 3"))
+}
+
+/// Runs a `dual-arm` subcommand.
+pub fn run(args: DualArmArgs) -> Result<(), CliError> {
+    match args.command {
+        DualArmCommand::Solve(a) => solve(a),
+        DualArmCommand::Compare(p) => compare(p),
+    }
+}
+
+/// The chain, path and initial guess of a run.
+type Problem = (Chain, Box<dyn Path>, Vec<f64>);
+
+/// The chain, path and guess of the problem, with a header printed.
+fn setup(p: &ProblemArgs) -> Result<Problem, CliError> {
+    let path: Box<dyn Path> = match p.path.as_str() {
+        "A" | "a" => Box::new(PaperPath::A),
+        "B" | "b" => Box::new(PaperPath::B),
+        file => {
+            let text = std::fs::read_to_string(file)
+                .map_err(|e| format!("cannot read path file {file}: {e}"))?;
+            Box::new(SampledPath::from_csv(&text)?)
+        }
+    };
+    let lengths = LinkLengths::default();
+    let chain = Chain::for_lock(lengths, p.lock, [Elbow::Negative, Elbow::Positive])?;
+    let guess = p.guess.clone().unwrap_or_else(|| p.lock.paper_guess());
+    let redundant: Vec<String> = chain
+        .redundant_joints()
+        .iter()
+        .map(|&j| joint_name(j))
+        .collect();
+    println!(
+        "lock {}: {} free joints, mobility {}, redundancy {} ({})",
+        p.lock.name(),
+        chain.free_count(),
+        chain.mobility(),
+        chain.redundancy(),
+        redundant.join(", ")
+    );
+    println!(
+        "link lengths (both arms) {:?} m; path on [{}, {}] s; guess {:?} rad",
+        robofmu::dual_arm::kinematics::CHOSEN_LENGTHS,
+        path.start(),
+        path.end(),
+        guess
+    );
+    Ok((chain, path, guess))
+}
+
+fn shooting_options(intervals: usize) -> ShootingOptions {
+    ShootingOptions {
+        intervals,
+        ..ShootingOptions::default()
+    }
+}
+
+fn direct_options(intervals: usize) -> DirectOptions {
+    DirectOptions {
+        intervals,
+        ..DirectOptions::default()
+    }
+}
+
+/// Prints the checks of a solution: path following and start condition.
+fn print_checks(trajectory: &Trajectory, chain: &Chain, path: &dyn Path) {
+    println!(
+        "max distance of the tips from the path {:.2e} m; at t0 {:.2e} m",
+        trajectory.tracking_error(chain.lengths(), path),
+        trajectory.start_error(chain.lengths(), path)
+    );
+}
+
+fn solve(args: SolveArgs) -> Result<(), CliError> {
+    let (chain, path, guess) = setup(&args.problem)?;
+    let intervals = args.problem.intervals;
+    let started = Instant::now();
+    let (trajectory, iterations, residual, history) = match args.method {
+        Method::Pmp => {
+            let s =
+                Shooting::new(&chain, path.as_ref(), shooting_options(intervals)).solve(&guess)?;
+            println!(
+                "shooting: {} Newton iterations in {:.1} ms; redundant joints at tf {:?} rad",
+                s.iterations,
+                started.elapsed().as_secs_f64() * 1e3,
+                s.redundant_final
+            );
+            for (i, step) in s.history.iter().enumerate() {
+                println!("  iteration {i}: ||e|| = {:.3e}", step.residual);
+            }
+            (s.trajectory, s.iterations, s.residual, Some(s.history))
+        }
+        Method::Direct => {
+            let d = solve_direct(&chain, path.as_ref(), &guess, direct_options(intervals))?;
+            println!(
+                "direct method on {intervals} intervals: {} Newton steps in {:.1} ms",
+                d.iterations,
+                started.elapsed().as_secs_f64() * 1e3
+            );
+            (d.trajectory, d.iterations, d.last_step, None)
+        }
+    };
+    print_checks(&trajectory, &chain, path.as_ref());
+    if let Some(dir) = &args.out {
+        write_outputs(dir, &chain, path.as_ref(), &trajectory, history.as_deref())?;
+        println!("wrote CSV and PNG files to {}", dir.display());
+    }
+    println!(
+        "PI = {:.6} rad^2/s  iterations = {iterations}  residual = {residual:.1e}",
+        trajectory.pi()
+    );
+    Ok(())
+}
+
+fn write_outputs(
+    dir: &std::path::Path,
+    chain: &Chain,
+    path: &dyn Path,
+    trajectory: &Trajectory,
+    history: Option<&[robofmu::dual_arm::shooting::NewtonStep]>,
+) -> Result<(), CliError> {
+    std::fs::create_dir_all(dir)?;
+    std::fs::write(
+        dir.join("trajectory.csv"),
+        output::trajectory_csv(trajectory, path),
+    )?;
+    output::joints_png(
+        &dir.join("joints.png"),
+        trajectory,
+        chain.free_joints(),
+        "Optimal joint paths",
+    )?;
+    output::cost_png(&dir.join("pi.png"), trajectory, "Cost PI(t)")?;
+    output::snapshots_png(
+        &dir.join("snapshots.png"),
+        trajectory,
+        chain.lengths(),
+        path,
+        6,
+        "Arms along the path (right red, left blue, later darker)",
+    )?;
+    if let Some(history) = history {
+        let redundant = chain.redundant_joints();
+        std::fs::write(
+            dir.join("newton.csv"),
+            output::newton_csv(history, &redundant),
+        )?;
+        output::newton_png(&dir.join("newton.png"), history, "Newton residuals")?;
+    }
+    Ok(())
+}
+
+fn compare(p: ProblemArgs) -> Result<(), CliError> {
+    let (chain, path, guess) = setup(&p)?;
+    let path = path.as_ref();
+    let n = p.intervals;
+    let shooting = Shooting::new(&chain, path, shooting_options(n));
+    let report = |label: &str, s: &PmpSolution| {
+        println!(
+            "{label}: PI = {:.8} rad^2/s, {} iterations, ||e|| = {:.1e}, S_f = {:?}",
+            s.pi(),
+            s.iterations,
+            s.residual,
+            s.redundant_final
+        );
+    };
+    match shooting.solve(&guess) {
+        Ok(s) => report("shooting from the guess", &s),
+        Err(e) => println!("shooting from the guess failed: {e}"),
+    }
+    let coarse = solve_direct(&chain, path, &guess, direct_options(n))?;
+    let fine = solve_direct(&chain, path, &guess, direct_options(2 * n))?;
+    let extrapolated = (4.0 * fine.pi() - coarse.pi()) / 3.0;
+    let print_direct = |k: usize, d: &DirectSolution| {
+        println!(
+            "direct, {k} intervals: PI = {:.8} rad^2/s, {} Newton steps",
+            d.pi(),
+            d.iterations
+        );
+    };
+    print_direct(n, &coarse);
+    print_direct(2 * n, &fine);
+    println!("direct, Richardson extrapolation: PI = {extrapolated:.8} rad^2/s");
+    // The shooting started from the direct method's redundant joints at tf.
+    let last = fine.trajectory.joints.last().ok_or("empty direct path")?;
+    let final_guess: Vec<f64> = chain.redundant_joints().iter().map(|&j| last[j]).collect();
+    let pmp = shooting.solve(&final_guess)?;
+    report("shooting from the direct optimum", &pmp);
+    print_checks(&pmp.trajectory, &chain, path);
+    let joint_gap = pmp
+        .trajectory
+        .max_joint_difference(&coarse.trajectory)
+        .ok_or("the two methods' grids differ")?;
+    println!(
+        "PI pmp = {:.6}  direct = {:.6}  relative difference = {:.1e}  (extrapolated {:.1e})  max joint difference = {joint_gap:.1e} rad",
+        pmp.pi(),
+        coarse.pi(),
+        (coarse.pi() - pmp.pi()) / pmp.pi(),
+        (extrapolated - pmp.pi()) / pmp.pi()
+    );
+    Ok(())
+}

@@ -1,0 +1,5 @@
+//! Control math without any FMI: polynomial trajectories and a PID law with an exact
+//! discretisation. The planner and PID FMU bindings (fmus/planner, fmus/pid) translate variables to these calls.
+
+pub mod pid;
+pub mod trajectory;

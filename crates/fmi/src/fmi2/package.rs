@@ -1,0 +1,142 @@
+//! Writes an FMU archive (modelDescription.xml, binaries/<platform>/<modelIdentifier>
+//! with the platform's library extension, documentation/index.html), and the small
+//! command-line packager that every FMU crate's binary runs.
+
+use super::description::model_description;
+use super::documentation::documentation;
+use super::model::Model;
+use std::fs::File;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use zip::ZipWriter;
+use zip::write::SimpleFileOptions;
+
+/// Contents of one FMU.
+pub struct FmuContents<'a> {
+    pub model_identifier: &'a str,
+    pub model_description: &'a str,
+    pub documentation: &'a str,
+    /// The compiled cdylib of the model.
+    pub library: &'a Path,
+}
+
+/// The FMI 2.0 platform folder of the machine this packager was built for
+/// (`binaries/<platform>/`): linux64, darwin64, win64 or their 32-bit forms.
+pub fn platform_folder() -> &'static str {
+    let bits64 = cfg!(target_pointer_width = "64");
+    match (std::env::consts::OS, bits64) {
+        ("macos", _) => "darwin64",
+        ("windows", true) => "win64",
+        ("windows", false) => "win32",
+        (_, true) => "linux64",
+        (_, false) => "linux32",
+    }
+}
+
+/// The file name cargo gives the cdylib of the crate `crate_name` on this platform
+/// (`librobofmu_pid_fmu.so` for `robofmu-pid-fmu` on Linux).
+pub fn library_file_name(crate_name: &str) -> String {
+    let stem = crate_name.replace('-', "_");
+    format!(
+        "{}{stem}{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    )
+}
+
+/// Writes the FMU archive to `out`.
+pub fn write_fmu(out: &Path, c: &FmuContents) -> Result<(), String> {
+    let binary = std::fs::read(c.library)
+        .map_err(|e| format!("cannot read {}: {e} (build it first)", c.library.display()))?;
+    let file = File::create(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let mut zip = ZipWriter::new(file);
+    let options = SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    let library_entry = format!(
+        "binaries/{}/{}{}",
+        platform_folder(),
+        c.model_identifier,
+        std::env::consts::DLL_SUFFIX
+    );
+    let entries: [(&str, &[u8]); 3] = [
+        ("modelDescription.xml", c.model_description.as_bytes()),
+        (&library_entry, &binary),
+        ("documentation/index.html", c.documentation.as_bytes()),
+    ];
+    let zip_error = |e: &dyn std::fmt::Display| format!("writing {}: {e}", out.display());
+    for (name, data) in entries {
+        zip.start_file(name, options).map_err(|e| zip_error(&e))?;
+        zip.write_all(data).map_err(|e| zip_error(&e))?;
+    }
+    zip.finish().map_err(|e| zip_error(&e))?;
+    Ok(())
+}
+
+const USAGE: &str = "usage: <packager> package [--out DIR] | model-description [--out DIR]";
+
+/// Entry point of an FMU crate's packager binary (`src/main.rs` calls it with
+/// `env!("CARGO_PKG_NAME")`): `package` writes `<DIR>/<modelName>.fmu` (default
+/// `dist`) from the cdylib built beside the binary; `model-description` writes
+/// `<DIR>/<modelName>.xml` (default `modelDescription`).
+pub fn packager_main<M: Model>(crate_name: &str) -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match run_packager::<M>(crate_name, &args) {
+        Ok(path) => {
+            println!("wrote {}", path.display());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("{crate_name}: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run_packager<M: Model>(crate_name: &str, args: &[String]) -> Result<PathBuf, String> {
+    let (command, out) = match args {
+        [command] => (command.as_str(), None),
+        [command, flag, dir] if flag == "--out" => (command.as_str(), Some(PathBuf::from(dir))),
+        _ => return Err(USAGE.to_string()),
+    };
+    let name = M::info().model_name;
+    match command {
+        "package" => {
+            let dir = out.unwrap_or_else(|| PathBuf::from("dist"));
+            create_dir(&dir)?;
+            let path = dir.join(format!("{name}.fmu"));
+            package::<M>(crate_name, &path)?;
+            Ok(path)
+        }
+        "model-description" => {
+            let dir = out.unwrap_or_else(|| PathBuf::from("modelDescription"));
+            create_dir(&dir)?;
+            let path = dir.join(format!("{name}.xml"));
+            std::fs::write(&path, model_description::<M>()?)
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            Ok(path)
+        }
+        _ => Err(USAGE.to_string()),
+    }
+}
+
+fn create_dir(dir: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))
+}
+
+/// Packages M from the cdylib that cargo built beside the running binary.
+fn package<M: Model>(crate_name: &str, out: &Path) -> Result<(), String> {
+    let exe = std::env::current_exe().map_err(|e| format!("cannot locate the packager: {e}"))?;
+    let library = exe
+        .parent()
+        .ok_or("the packager has no parent directory")?
+        .join(library_file_name(crate_name));
+    let model_description = model_description::<M>()?;
+    let documentation = documentation::<M>()?;
+    let contents = FmuContents {
+        model_identifier: M::info().model_identifier,
+        model_description: &model_description,
+        documentation: &documentation,
+        library: &library,
+    };
+    write_fmu(out, &contents)
+}

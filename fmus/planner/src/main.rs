@@ -1,0 +1,8 @@
+//! Packager of this FMU: `robofmu-planner-fmu package [--out DIR]` writes the .fmu from the cdylib
+//! built beside this binary; `robofmu-planner-fmu model-description [--out DIR]` writes the XML.
+
+fn main() -> std::process::ExitCode {
+    robofmu_fmi::fmi2::package::packager_main::<robofmu_planner_fmu::Planner>(env!(
+        "CARGO_PKG_NAME"
+    ))
+}

@@ -1,0 +1,8 @@
+//! Packager of this FMU: `robofmu-pss3-plant-fmu package [--out DIR]` writes the .fmu from the cdylib
+//! built beside this binary; `robofmu-pss3-plant-fmu model-description [--out DIR]` writes the XML.
+
+fn main() -> std::process::ExitCode {
+    robofmu_fmi::fmi2::package::packager_main::<robofmu_pss3_plant_fmu::Pss3Plant>(env!(
+        "CARGO_PKG_NAME"
+    ))
+}

@@ -1,0 +1,403 @@
+//! The variable table of Pss3Plant: inputs, outputs, state derivatives, parameters.
+//!
+//! Value references: a vector variable's group below plus i = 1..3.
+
+use super::{Pss3Plant, parameters};
+use nalgebra::Vector3;
+use robofmu::pss3::dynamics::{PlantInputs, PlantOutputs};
+use robofmu_fmi::fmi2::{Model, Variable};
+
+pub const ACTUATOR_FORCE: u32 = 0;
+pub const TORQUE_COMMAND: u32 = 10;
+pub const GENERALIZED_FORCE_COMMAND: u32 = 20;
+pub const DISTURBANCE_TORQUE: u32 = 30;
+pub const THETA: u32 = 100;
+pub const OMEGA: u32 = 110;
+pub const THETA_DOT: u32 = 120;
+pub const OMEGA_DOT: u32 = 130;
+pub const YAW_PITCH_ROLL: u32 = 140;
+pub const L: u32 = 150;
+pub const L_DOT: u32 = 160;
+pub const FORCE: u32 = 170;
+pub const STOP_FORCE: u32 = 180;
+pub const AT_STOP: u32 = 190;
+pub const DET_J: u32 = 201;
+pub const COND_J: u32 = 202;
+pub const KINETIC_ENERGY: u32 = 203;
+pub const POTENTIAL_ENERGY: u32 = 204;
+pub const GRAVITY_COMPENSATION: u32 = 210;
+pub const DER_THETA: u32 = 300;
+pub const DER_OMEGA: u32 = 310;
+
+/// Group and component (0..2) of a value reference of a vector variable.
+pub fn split(vr: u32) -> (u32, usize) {
+    let component = (vr + 9) % 10;
+    (vr - component - 1, component as usize)
+}
+
+type InputField = fn(&mut PlantInputs) -> &mut Vector3<f64>;
+
+const INPUTS: [(u32, &str, &str, InputField); 4] = [
+    (
+        ACTUATOR_FORCE,
+        "actuatorForce",
+        "Force applied by actuator i along its axis u_i",
+        |i| &mut i.forces,
+    ),
+    (
+        TORQUE_COMMAND,
+        "torqueCommand",
+        "Commanded moment about P in {A}, realised by the actuators (f = J^-T tau)",
+        |i| &mut i.commanded_torque,
+    ),
+    (
+        GENERALIZED_FORCE_COMMAND,
+        "generalizedForceCommand",
+        "Commanded generalized force in Euler-angle coordinates (thx, thy, thz), realised \
+         by the actuators (tau = E^-T Q, f = J^-T tau)",
+        |i| &mut i.generalized_force,
+    ),
+    (
+        DISTURBANCE_TORQUE,
+        "disturbanceTorque",
+        "External moment on the platform about P in {A} (not through the actuators)",
+        |i| &mut i.disturbance_torque,
+    ),
+];
+
+type VectorOutput = fn(&PlantOutputs) -> Vector3<f64>;
+
+/// A vector output read from `PlantOutputs`.
+struct PlantOutput {
+    group: u32,
+    name: &'static str,
+    unit: &'static str,
+    display: Option<&'static str>,
+    description: &'static str,
+    get: VectorOutput,
+    depends: Depends,
+}
+
+/// What an output or state derivative depends on (ModelStructure dependencies).
+#[derive(Clone, Copy)]
+enum Depends {
+    /// The Euler angles only (a function of the pose).
+    Theta,
+    /// The continuous states (pose and angular velocity).
+    States,
+    /// The states and every input (through the accelerations).
+    StatesAndInputs,
+    /// The pose and the actuator commands (the realised actuator force).
+    ThetaAndCommands,
+}
+
+fn names(group: &str) -> impl Iterator<Item = String> + '_ {
+    (0..3).map(move |i| indexed(group, i))
+}
+
+impl Depends {
+    fn names(self) -> Vec<String> {
+        let mut knowns: Vec<String> = names("theta").collect();
+        if matches!(self, Depends::States | Depends::StatesAndInputs) {
+            knowns.extend(names("omega"));
+        }
+        let commands = ["actuatorForce", "torqueCommand", "generalizedForceCommand"];
+        match self {
+            Depends::ThetaAndCommands => knowns.extend(commands.into_iter().flat_map(names)),
+            Depends::StatesAndInputs => knowns.extend(
+                commands
+                    .into_iter()
+                    .chain(["disturbanceTorque"])
+                    .flat_map(names),
+            ),
+            _ => {}
+        }
+        knowns
+    }
+}
+
+/// Vector outputs read from `PlantOutputs` (omega: its metadata only).
+const PLANT_OUTPUTS: [PlantOutput; 6] = [
+    PlantOutput {
+        group: OMEGA_DOT,
+        name: "omegaDot",
+        unit: "rad/s2",
+        display: Some("deg/s2"),
+        description: "Angular acceleration of the platform in {A}",
+        get: |o| o.omega_dot,
+        depends: Depends::StatesAndInputs,
+    },
+    PlantOutput {
+        group: L,
+        name: "l",
+        unit: "m",
+        display: Some("mm"),
+        description: "Actuator displacement",
+        get: |o| o.actuator_displacements,
+        depends: Depends::Theta,
+    },
+    PlantOutput {
+        group: L_DOT,
+        name: "lDot",
+        unit: "m/s",
+        display: None,
+        description: "Actuator velocity",
+        get: |o| o.actuator_velocities,
+        depends: Depends::States,
+    },
+    PlantOutput {
+        group: FORCE,
+        name: "force",
+        unit: "N",
+        display: None,
+        description: "Total actuator force from the inputs (actuatorForce plus the mapped commands), without end-stop forces",
+        get: |o| o.actuator_forces,
+        depends: Depends::ThetaAndCommands,
+    },
+    PlantOutput {
+        group: STOP_FORCE,
+        name: "stopForce",
+        unit: "N",
+        display: None,
+        description: "End-stop force on the actuator along u_i",
+        get: |o| o.end_stop_forces,
+        depends: Depends::States,
+    },
+    PlantOutput {
+        group: OMEGA,
+        name: "omega",
+        unit: "rad/s",
+        display: Some("deg/s"),
+        description: "Angular velocity of the platform in {A} (continuous state)",
+        get: |o| o.omega,
+        depends: Depends::States,
+    },
+];
+
+type ScalarOutput = fn(&PlantOutputs) -> f64;
+
+const SCALAR_OUTPUTS: [(u32, &str, Option<&str>, &str, ScalarOutput); 4] = [
+    (
+        DET_J,
+        "detJ",
+        Some("m3"),
+        "Determinant of the actuator Jacobian J (lDot = J omega)",
+        |o| o.jacobian_det,
+    ),
+    (COND_J, "condJ", None, "2-norm condition number of J", |o| {
+        o.jacobian_cond
+    }),
+    (
+        KINETIC_ENERGY,
+        "kineticEnergy",
+        Some("J"),
+        "Kinetic energy of platform, legs and sliders",
+        |o| o.kinetic_energy,
+    ),
+    (
+        POTENTIAL_ENERGY,
+        "potentialEnergy",
+        Some("J"),
+        "Potential energy of gravity (zero at the height of C) plus the energy in the \
+         end-stop springs",
+        |o| o.potential_energy + o.end_stop_energy,
+    ),
+];
+
+fn vr(group: u32, i: usize) -> u32 {
+    group + i as u32 + 1
+}
+
+fn indexed(name: &str, i: usize) -> String {
+    format!("{name}[{}]", i + 1)
+}
+
+fn inputs(table: &mut Vec<Variable<Pss3Plant>>) {
+    for (group, name, description, field) in INPUTS {
+        let unit = if group == ACTUATOR_FORCE { "N" } else { "N.m" };
+        for i in 0..3 {
+            table.push(
+                Variable::real(
+                    vr(group, i),
+                    indexed(name, i),
+                    description,
+                    move |m: &Pss3Plant| field(&mut m.inputs.clone())[i],
+                )
+                .unit(unit, None)
+                .input()
+                .start_real(0.0)
+                .set_real(move |m, v| {
+                    field(&mut m.inputs)[i] = v;
+                    Ok(())
+                }),
+            );
+        }
+    }
+}
+
+fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
+    for i in 0..3 {
+        table.push(
+            Variable::real(
+                vr(THETA, i),
+                indexed("theta", i),
+                "Euler angle (thx, thy, thz) of R = Rz Ry Rx (continuous state)",
+                move |m: &Pss3Plant| m.current_state().map_or(f64::NAN, |s| s.euler[i]),
+            )
+            .unit("rad", Some("deg"))
+            .output()
+            .depends_on([indexed("theta", i)]),
+        );
+    }
+    // omega (a state) is read from the state itself, not through the outputs.
+    let omega = &PLANT_OUTPUTS[5];
+    for i in 0..3 {
+        table.push(
+            Variable::real(
+                vr(omega.group, i),
+                indexed(omega.name, i),
+                omega.description,
+                move |m: &Pss3Plant| m.current_state().map_or(f64::NAN, |s| s.omega[i]),
+            )
+            .unit(omega.unit, omega.display)
+            .output()
+            .depends_on([indexed("omega", i)]),
+        );
+    }
+    for i in 0..3 {
+        table.push(
+            Variable::real(
+                vr(THETA_DOT, i),
+                indexed("thetaDot", i),
+                "Euler-angle rate",
+                move |m: &Pss3Plant| m.euler_rates().map_or(f64::NAN, |r| r[i]),
+            )
+            .unit("rad/s", Some("deg/s"))
+            .output()
+            .depends_on(Depends::States.names()),
+        );
+    }
+}
+
+fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
+    state_outputs(table);
+    plant_vector_output(table, &PLANT_OUTPUTS[0]);
+    let names = [
+        ("yaw", "Yaw as in the thesis: thx"),
+        ("pitch", "Pitch as in the thesis: -thy"),
+        ("roll", "Roll as in the thesis: thz"),
+    ];
+    for (i, (name, description)) in names.into_iter().enumerate() {
+        let sign = if i == 1 { -1.0 } else { 1.0 };
+        table.push(
+            Variable::real(
+                vr(YAW_PITCH_ROLL, i),
+                name,
+                description,
+                move |m: &Pss3Plant| m.current_state().map_or(f64::NAN, |s| sign * s.euler[i]),
+            )
+            .unit("rad", Some("deg"))
+            .output()
+            .depends_on([indexed("theta", i)]),
+        );
+    }
+    for output in &PLANT_OUTPUTS[1..5] {
+        plant_vector_output(table, output);
+    }
+    for i in 0..3 {
+        table.push(
+            Variable::integer(
+                vr(AT_STOP, i),
+                indexed("atStop", i),
+                "End-stop contact: -1 lower stop, 0 free, +1 upper stop (changes at events)",
+                move |m: &Pss3Plant| m.contact(i),
+            )
+            .output()
+            .depends_on(Depends::Theta.names()),
+        );
+    }
+    for (vr, name, unit, description, get) in SCALAR_OUTPUTS {
+        let mut v = Variable::real(vr, name, description, move |m: &Pss3Plant| m.output(get));
+        if let Some(unit) = unit {
+            v = v.unit(unit, None);
+        }
+        let depends = if vr == KINETIC_ENERGY {
+            Depends::States
+        } else {
+            Depends::Theta
+        };
+        table.push(v.output().depends_on(depends.names()));
+    }
+    for i in 0..3 {
+        table.push(
+            Variable::real(
+                vr(GRAVITY_COMPENSATION, i),
+                indexed("gravityCompensation", i),
+                "Euler-angle generalized force G = E^T g(theta) that holds the current pose \
+                 at rest against gravity (feedforward for generalizedForceCommand)",
+                move |m: &Pss3Plant| m.gravity_compensation().map_or(f64::NAN, |g| g[i]),
+            )
+            .unit("N.m", None)
+            .output()
+            .depends_on(Depends::Theta.names()),
+        );
+    }
+}
+
+fn plant_vector_output(table: &mut Vec<Variable<Pss3Plant>>, output: &PlantOutput) {
+    let get = output.get;
+    for i in 0..3 {
+        table.push(
+            Variable::real(
+                vr(output.group, i),
+                indexed(output.name, i),
+                output.description,
+                move |m: &Pss3Plant| m.output(|o| get(o)[i]),
+            )
+            .unit(output.unit, output.display)
+            .output()
+            .depends_on(output.depends.names()),
+        );
+    }
+}
+
+fn derivatives(table: &mut Vec<Variable<Pss3Plant>>) {
+    for i in 0..3 {
+        let state = indexed("theta", i);
+        table.push(
+            Variable::real(
+                vr(DER_THETA, i),
+                format!("der({state})"),
+                "Euler-angle rate",
+                move |m: &Pss3Plant| m.euler_rates().map_or(f64::NAN, |r| r[i]),
+            )
+            .unit("rad/s", Some("deg/s"))
+            .derivative_of(&state)
+            .depends_on(Depends::States.names()),
+        );
+    }
+    for i in 0..3 {
+        let state = indexed("omega", i);
+        table.push(
+            Variable::real(
+                vr(DER_OMEGA, i),
+                format!("der({state})"),
+                "Angular acceleration in {A}",
+                move |m: &Pss3Plant| m.output(|o| o.omega_dot[i]),
+            )
+            .unit("rad/s2", Some("deg/s2"))
+            .derivative_of(&state)
+            .depends_on(Depends::StatesAndInputs.names()),
+        );
+    }
+}
+
+/// The whole table, sorted by value reference.
+pub fn table() -> Vec<Variable<Pss3Plant>> {
+    let mut table = Vec::new();
+    inputs(&mut table);
+    outputs(&mut table);
+    derivatives(&mut table);
+    table.extend(parameters::variables(&Pss3Plant::new()));
+    table
+}

@@ -1,0 +1,36 @@
+//! The checked-in modelDescription/Pss3Plant.xml must equal what the code generates (the
+//! variable table is the single source of truth). Regenerate with
+//! `UPDATE_MODEL_DESCRIPTION=1 cargo test --release -p robofmu-pss3-plant-fmu --test model_description`.
+
+use robofmu_fmi::fmi2::description::{check_checked_in, model_description};
+use robofmu_pss3_plant_fmu::Pss3Plant;
+
+#[test]
+fn checked_in_model_description_matches_the_code() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../modelDescription");
+    check_checked_in::<Pss3Plant>(&dir).unwrap();
+}
+
+/// Number of `<Unknown>` entries in one ModelStructure section.
+fn unknowns(xml: &str, section: &str) -> usize {
+    match (
+        xml.find(&format!("<{section}>")),
+        xml.find(&format!("</{section}>")),
+    ) {
+        (Some(start), Some(end)) => xml[start..end].matches("<Unknown ").count(),
+        _ => 0,
+    }
+}
+
+#[test]
+fn model_structure_lists_exactly_the_outputs_and_derivatives() {
+    // Expected values: every variable of causality "output" (37, counted in the
+    // table) is an Output; 6 states (Euler angles and omega) have derivatives; the
+    // initial unknowns are the outputs and the derivatives.
+    let xml = model_description::<Pss3Plant>().unwrap();
+    let outputs = xml.matches("causality=\"output\"").count();
+    assert_eq!(outputs, 37);
+    assert_eq!(unknowns(&xml, "Outputs"), outputs);
+    assert_eq!(unknowns(&xml, "Derivatives"), 6);
+    assert_eq!(unknowns(&xml, "InitialUnknowns"), outputs + 6);
+}
