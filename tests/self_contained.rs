@@ -32,7 +32,13 @@ fn repository_files() -> Vec<PathBuf> {
     let top = PathBuf::from(top.trim_end());
     let listing = git(
         &top,
-        &["ls-files", "-z", "--cached", "--others", "--exclude-standard"],
+        &[
+            "ls-files",
+            "-z",
+            "--cached",
+            "--others",
+            "--exclude-standard",
+        ],
     );
     listing
         .split(|&b| b == 0)

@@ -14,13 +14,13 @@ pub struct FmiArgs {
 
 #[derive(Subcommand)]
 enum FmiCommand {
-    /// Regenerate modelDescription/<Model>.xml from the code (the checked-in copies).
+    /// Regenerate modelDescription/MODEL.xml from the code (the checked-in copies).
     WriteModelDescriptions {
         /// Directory to write into.
         #[arg(long, default_value = "modelDescription")]
         dir: PathBuf,
     },
-    /// Package every FMU as <out>/<Model>.fmu from the release cdylibs.
+    /// Package every FMU as OUT/MODEL.fmu from the release cdylibs.
     Package {
         /// Directory holding the built cdylibs (lib*.so).
         #[arg(long, default_value = "target/release")]

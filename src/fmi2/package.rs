@@ -1,4 +1,4 @@
-//! Writes an FMU archive: modelDescription.xml, binaries/linux64/<modelIdentifier>.so
+//! Writes an FMU archive: modelDescription.xml, `binaries/linux64/<modelIdentifier>.so`
 //! and documentation/index.html.
 
 use std::fs::File;

@@ -12,7 +12,7 @@ use crate::fmi2::description::model_description;
 pub struct FmuEntry {
     pub model_name: &'static str,
     pub model_identifier: &'static str,
-    /// File name of the cdylib built from fmus/<dir> (target/release/<file>).
+    /// File name of the cdylib built from `fmus/<dir>` (`target/release/<file>`).
     pub library_file: &'static str,
     pub model_description: fn() -> Result<String, String>,
     pub documentation: fn() -> Result<String, String>,
