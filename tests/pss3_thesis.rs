@@ -1,4 +1,4 @@
-//! The 3-PSS robot against the published figures of ../shared/spec/3pss.md: the
+//! The 3-PSS robot against the published figures of docs/3pss-model.md: the
 //! thesis's path 1 table and the workspace statements of the spec.
 
 use nalgebra::Vector3;
@@ -132,7 +132,7 @@ fn assert_deg(name: &str, value_rad: f64, expected_deg: f64, tol_deg: f64) {
 
 #[test]
 fn stroke_box_matches_the_workspace_statements_of_the_spec() {
-    // Expected: ../shared/spec/3pss.md, "Workspace" and "Jacobian": every l in
+    // Expected: docs/3pss-model.md, "Workspace" and "Jacobian": every l in
     // [2, 152]^3 mm assembles; no singularity inside (det J keeps its sign, cond J
     // between about 1.1 and 1.95); thx about -13.3..12.7 deg, thy -11.8..11.3 deg, thz
     // 122.1..154.4 deg; reachable tilt about 1 deg at thz = 123 or 153 deg and about
@@ -162,7 +162,7 @@ fn stroke_box_matches_the_workspace_statements_of_the_spec() {
 
 #[test]
 fn tilt_and_roll_are_coupled_as_the_spec_states() {
-    // Expected: ../shared/spec/3pss.md, "Workspace": reachable tilt about 1 deg at thz =
+    // Expected: docs/3pss-model.md, "Workspace": reachable tilt about 1 deg at thz =
     // 123 or 153 deg, about 12.5 deg near thz = 133..143 deg. Measured on slices
     // thz = const of the orientation workspace (IK on a 0.05 deg grid of thx, thy);
     // "about" read as +-0.75 deg at the ends (measured: 1.15 and 1.61 deg) and +-1 deg

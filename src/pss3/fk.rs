@@ -18,7 +18,7 @@ pub const START_ROLL_DEG: f64 = 122.07;
 /// Halvings of one Newton step before giving up on it.
 const MAX_STEP_HALVINGS: usize = 30;
 
-/// The default seed: the start pose (0, 0, 122.07 deg) of ../shared/spec/3pss.md, rad.
+/// The default seed: the start pose (0, 0, 122.07 deg) of docs/3pss-model.md, rad.
 pub fn start_pose() -> Vector3<f64> {
     Vector3::new(0.0, 0.0, START_ROLL_DEG.to_radians())
 }

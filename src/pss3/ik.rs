@@ -89,7 +89,7 @@ mod tests {
 
     #[test]
     fn start_pose_of_the_spec_has_all_actuators_at_2_mm() {
-        // ../shared/spec/3pss.md: at l = (2, 2, 2) mm the platform is at thx = thy = 0,
+        // docs/3pss-model.md: at l = (2, 2, 2) mm the platform is at thx = thy = 0,
         // thz = 122.07 deg (rounded to 0.01 deg, i.e. l within about 0.1 mm).
         let g = Geometry::default();
         let asm = inverse_kinematics(&g, &Vector3::new(0.0, 0.0, 122.07f64.to_radians())).unwrap();

@@ -2,7 +2,7 @@
 //!
 //! Differentiating |P + r_i - M_i| = a gives l_dot_i (n_i.u_i) = (r_i x n_i).omega, so
 //! row i of J is (r_i x n_i)^T / (n_i.u_i). (The thesis's velocity equations drop the
-//! leg direction; this is the form of ../shared/spec/3pss.md.)
+//! leg direction; this form is derived in docs/3pss-model.md.)
 
 use super::error::KinematicsError;
 use super::ik::Assembly;

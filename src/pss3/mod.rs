@@ -1,7 +1,7 @@
 //! The 3-PSS spherical parallel robot: three horizontal prismatic actuators, three
 //! S-S legs and a platform that rotates about a fixed spherical joint at P.
 //!
-//! Conventions (see ../shared/spec/3pss.md): base frame {A} with Z up; orientation
+//! Conventions (see docs/3pss-model.md): base frame {A} with Z up; orientation
 //! R = Rz(thz) Ry(thy) Rx(thx) of the platform frame {B} in {A}; Euler angles are
 //! stored as `Vector3` (thx, thy, thz) in rad; angular velocities `omega` are in {A}.
 //! Everything is SI.

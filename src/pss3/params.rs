@@ -178,7 +178,7 @@ mod tests {
 
     #[test]
     fn default_vectors_match_the_spec_table() {
-        // Expected values: ../shared/spec/3pss.md, "Equivalently: h_1 = ..., b_1^B = ...".
+        // Expected values: docs/3pss-model.md, "Default parameters" (table of h_i, b_i).
         let g = Geometry::default();
         let close = |v: Vector3<f64>, w: [f64; 3]| (v - Vector3::from(w)).amax() < 6e-6;
         assert!(

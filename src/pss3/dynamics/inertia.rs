@@ -4,7 +4,7 @@ use super::error::PlantParamError;
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 
 /// Mass properties of the platform, the three legs and the three sliders (SI).
-/// `Inertia::default()` is the spec's set (../shared/spec/3pss.md, "Inertia").
+/// `Inertia::default()` is the spec's set (docs/3pss-model.md, "Inertia").
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Inertia {
     /// Platform mass, kg.

@@ -24,8 +24,8 @@ const RATE_STEP: f64 = 1e-3;
 pub struct Linearization {
     /// With respect to the state (thx, thy, thz, omega_x, omega_y, omega_z).
     pub state: SMatrix<f64, 6, 6>,
-    /// With respect to the inputs (forces f[3], disturbance torque[3], commanded
-    /// torque[3]).
+    /// With respect to the inputs (actuator forces, disturbance torque, commanded torque;
+    /// three components each).
     pub inputs: SMatrix<f64, 6, 9>,
 }
 

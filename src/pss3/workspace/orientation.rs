@@ -21,7 +21,7 @@ pub struct OrientationGrid {
 
 impl Default for OrientationGrid {
     /// thx, thy in [-16, 16] deg and thz in [118, 158] deg, both every 0.5 deg: a margin
-    /// around the workspace of ../shared/spec/3pss.md.
+    /// around the workspace in docs/3pss-model.md.
     fn default() -> Self {
         Self {
             tilt_limit: 16f64.to_radians(),

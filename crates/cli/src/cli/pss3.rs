@@ -1,5 +1,5 @@
 //! `robofmu pss3 ...`: kinematics of the 3-PSS robot with the default parameters of
-//! ../shared/spec/3pss.md. Angles are degrees on the command line and in the printout,
+//! docs/3pss-model.md. Angles are degrees on the command line and in the printout,
 //! lengths metres; everything inside and in CSV files is SI.
 
 mod csv;
