@@ -14,10 +14,11 @@ computed from the planner's and the plant's values at the start of the step, as 
 master's "sampled" coupling; the only difference is that the PID integrates over
 [t, t + h] the error sampled at t + h instead of t (see tests/python/test_container.py for
 what that changes). The toolbox's default "parallel" mode is a Jacobi scheme: the plant
-would step with a PID output computed from inputs one step old.
+would step with a PID output computed from inputs one step old. The container has no
+rollback: the scenario's coupling and max_step_halvings are our master's options only.
 
 The connected signals are the container's locals, named "alias.variable" as in our
-master's results; every output of the embedded FMUs is also a container output, under
+master's results (the toolbox lower-cases the alias); every output of the embedded FMUs is also a container output, under
 its variable name (prefixed with the FMU alias where two FMUs share a name).
 """
 
