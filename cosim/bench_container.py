@@ -113,13 +113,16 @@ def container_run(scenario: Scenario, container: Path) -> dict[str, float]:
     return dict(zip(recorded, values))
 
 
-def _median_per_step(run, scenario: Scenario, runs: int) -> float:
-    walls = []
+def _medians_per_step(runs_by_name, scenario: Scenario, runs: int) -> dict[str, float]:
+    """Median wall time per step of each run; the runs are interleaved (one of each per
+    round) so that a change of the machine's load affects them alike."""
+    walls: dict[str, list[float]] = {name: [] for name in runs_by_name}
     for _ in range(runs):
-        started = time.perf_counter()
-        run()
-        walls.append(time.perf_counter() - started)
-    return statistics.median(walls) / scenario.steps
+        for name, run in runs_by_name.items():
+            started = time.perf_counter()
+            run()
+            walls[name].append(time.perf_counter() - started)
+    return {name: statistics.median(w) / scenario.steps for name, w in walls.items()}
 
 
 def container_lines(scenario: Scenario, runs: int = 5) -> list[str]:
@@ -127,17 +130,16 @@ def container_lines(scenario: Scenario, runs: int = 5) -> list[str]:
     with tempfile.TemporaryDirectory(prefix="cosim-bench-") as work:
         container = Path(work) / f"{scenario.name}.fmu"
         build_container(scenario, container)
-        per_step = {
-            "container": _median_per_step(lambda: container_run(scenario, container),
-                                          scenario, runs),
-            "master": _median_per_step(lambda: Master(scenario).run(), scenario, runs),
-            "minimal": _median_per_step(lambda: minimal_run(scenario), scenario, runs),
-        }
+        per_step = _medians_per_step({
+            "container": lambda: container_run(scenario, container),
+            "master": lambda: Master(scenario).run(),
+            "minimal": lambda: minimal_run(scenario),
+        }, scenario, runs)
     us = {k: 1e6 * v for k, v in per_step.items()}
     return [
         f"{scenario.name}: container FMU (toolbox runtime, sequential) {us['container']:.0f} us "
         f"per step, master {us['master']:.0f} us, minimal FMPy loop {us['minimal']:.0f} us "
-        f"(medians of {runs} whole runs of {scenario.steps} steps)",
+        f"(medians of {runs} interleaved whole runs of {scenario.steps} steps)",
         f"container/master ratio: {per_step['container'] / per_step['master']:.2f}; "
         f"container/minimal ratio: {per_step['container'] / per_step['minimal']:.2f}",
     ]
