@@ -193,8 +193,13 @@ def test_container_runs_bare_in_fmpy_and_tracks_the_plan(tmp_path):
     error = columns(result, "q") - columns(result, "theta")
     rms = np.degrees(np.sqrt(np.mean(np.sum(error ** 2, axis=1))))
     assert rms < 0.05, rms
-    # The toolbox's output is itself a valid FMU for FMPy's validation.
+    # The toolbox's output is itself a valid FMU for FMPy's validation and for the
+    # toolbox's own checker (exit code 0: no error).
     assert validate_fmu(str(fmu)) == []
+    fmutool = Path(sys.executable).parent / "fmutool"
+    check = subprocess.run([str(fmutool), "-input", str(fmu), "-check"], capture_output=True,
+                           text=True)
+    assert check.returncode == 0 and "ERROR" not in check.stdout + check.stderr, check.stdout
 
 
 def test_toolbox_ssp_reader_ignores_parameter_bindings(tmp_path):
