@@ -22,8 +22,9 @@ the linearised axis m theta'' = u, a bounded disturbance d moves
 - the actuator forces f = M(theta) u (M = J^-T E^-T, probed on the plant FMU along the
   motion) by at most max ||M||_inf x S_1 max|d|.
 The tolerances are these bounds, taken over the three axes (the plant couples them),
-times 2 (the plant is nonlinear, the design mass is the largest over the motion). They are first order in h, and so is the measured
-difference (test_container_difference_is_first_order_in_the_step).
+times 2 (the plant is nonlinear, the design mass is the largest over the motion). They
+are first order in h, and so is the measured difference
+(test_container_difference_is_first_order_in_the_step).
 
 The master records the PID output after its step with the inputs of t_{k-1} still set;
 the container records it after the refresh at t_k, i.e. the torque the plant then
