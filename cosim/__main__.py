@@ -1,4 +1,5 @@
-"""Command line: ``python -m cosim SCENARIO [--out DIR] [--quiet]``."""
+"""Command line: ``python -m cosim SCENARIO [--out DIR] [--quiet]``;
+``python -m cosim container SCENARIO --out X.fmu`` writes the scenario as a container FMU."""
 
 from __future__ import annotations
 
@@ -13,6 +14,10 @@ from .scenario import ScenarioError, load_scenario
 
 
 def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["container"]:
+        from .container import main as container_main
+        return container_main(argv[1:])
     parser = argparse.ArgumentParser(prog="python -m cosim", description=__doc__)
     parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
     parser.add_argument("--out", type=Path, default=Path("results"),

@@ -9,6 +9,7 @@ import sys
 import time
 from pathlib import Path
 
+from .bench_container import print_container_lines
 from .master import Master
 from .scenario import load_scenario
 
@@ -34,6 +35,7 @@ def main(argv=None) -> int:
                   f"median {median:.3f} s over {args.runs} runs "
                   f"({1e6 * median / scenario.steps:.0f} us per step; min {min(walls):.3f} s, "
                   f"max {max(walls):.3f} s)")
+    print_container_lines(ROOT / "scenarios" / f"{args.scenarios[0]}.toml", args.runs)
     return 0
 
 

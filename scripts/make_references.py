@@ -12,7 +12,10 @@ forms evaluated with numpy, independently of the Rust code and without running a
 
 Each case directory holds <Model>_ref.csv (cross-check format: quoted names, time
 first), <Model>_ref.opt (StartTime, StopTime, StepSize, RelTol) and case.json (start
-values, per-signal absolute tolerances for each interface, event times).
+values, per-signal absolute tolerances for each interface, event times); a case driven
+by inputs also holds <Model>_input.csv. The "defaults" cases have no start values: the
+FMUs' default parameters and inputs (the FMI cross-check layout, scripts/cross-check.sh,
+can express no other).
 
 Run: .venv/bin/python scripts/make_references.py
 """
@@ -25,15 +28,23 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent / "tests" / "references"
 
 
-def write_case(model, case, options, columns, start_values, tolerances, event_times=()):
-    directory = ROOT / model / case
-    directory.mkdir(parents=True, exist_ok=True)
+def write_signals(path, columns):
+    """A CSV of quoted names, time first."""
     names = list(columns)
     data = np.column_stack([columns[n] for n in names])
-    with open(directory / f"{model}_ref.csv", "w") as f:
+    with open(path, "w") as f:
         f.write(",".join(f'"{n}"' for n in names) + "\n")
         for row in data:
             f.write(",".join(repr(float(v)) for v in row) + "\n")
+
+
+def write_case(model, case, options, columns, start_values, tolerances, event_times=(),
+               inputs=None):
+    directory = ROOT / model / case
+    directory.mkdir(parents=True, exist_ok=True)
+    write_signals(directory / f"{model}_ref.csv", columns)
+    if inputs is not None:
+        write_signals(directory / f"{model}_input.csv", inputs)
     with open(directory / f"{model}_ref.opt", "w") as f:
         for key in ["StartTime", "StopTime", "StepSize", "RelTol"]:
             f.write(f"{key}, {options[key]!r}\n")
@@ -70,14 +81,16 @@ def polynomial(order, t0, tf, b):
     return c[::-1]
 
 
-def planner_case(case, order, t0, tf, boundaries, stop):
+def planner_case(case, order, t0, tf, boundaries, stop, at_defaults=False):
+    """at_defaults: the arguments are the FMU's default parameters; no start values."""
     options = {"StartTime": 0.0, "StopTime": stop, "StepSize": 0.01, "RelTol": 1e-6}
     t = grid(options)
     columns = {"time": t}
-    start_values = {"order": order, "t0": t0, "tf": tf}
+    start_values = {} if at_defaults else {
+        "order": order, "t0": t0, "tf": tf,
+        **{f"{key}[{axis}]": value
+           for axis, b in enumerate(boundaries, start=1) for key, value in b.items()}}
     for axis, b in enumerate(boundaries, start=1):
-        for key, value in b.items():
-            start_values[f"{key}[{axis}]"] = value
         p = polynomial(order, t0, tf, b)
         dp, ddp = np.polyder(p), np.polyder(p, 2)
         inside = (t >= t0) & (t <= tf)
@@ -146,6 +159,20 @@ def pid_cases():
                   "ModelExchange": {n: 1e-5 for n in names}}
     write_case("PID", "saturation", options, columns, limited, tolerances)
 
+    # The defaults: gains Kp 1, Ki 0.5, Kd 0.1, Tf 0.05 on every channel, error from the
+    # default inputs (setpoint 1, 0.5, -0.25; everything else 0), held constant.
+    columns = {"time": t, **{f"u[{i}]": pid_channel(t, 1.0, 0.5, 0.1, 0.05, e)
+                             for i, e in enumerate([1.0, 0.5, -0.25], start=1)}}
+    ends = np.array([options["StartTime"], options["StopTime"]])
+    inputs = {"time": ends}
+    for i, setpoint in enumerate([1.0, 0.5, -0.25], start=1):
+        inputs[f"setpoint[{i}]"] = np.full(2, setpoint)
+        for name in ("measurement", "setpointRate", "measuredRate", "feedforward"):
+            inputs[f"{name}[{i}]"] = np.zeros(2)
+    tolerances = {"CoSimulation": {n: 1e-9 for n in names},
+                  "ModelExchange": {n: 1e-5 for n in names}}
+    write_case("PID", "defaults", options, columns, {}, tolerances, inputs=inputs)
+
 
 def main():
     planner_case("quintic_t0_0.5", 5, 0.5, 2.0, [
@@ -158,6 +185,11 @@ def main():
         {"q0": 1.0, "qf": -1.0, "qdot0": 0.0, "qdotf": -0.5, "qddot0": 0.0, "qddotf": 0.0},
         {"q0": 0.3, "qf": 0.3, "qdot0": 1.0, "qdotf": 1.0, "qddot0": 0.0, "qddotf": 0.0},
     ], stop=2.0)
+    # The FMU's defaults: quintic rest to rest from 0 to (0.5, -0.3, 0.8) rad in [0, 2] s.
+    planner_case("defaults", 5, 0.0, 2.0, [
+        {"q0": 0.0, "qf": qf, "qdot0": 0.0, "qdotf": 0.0, "qddot0": 0.0, "qddotf": 0.0}
+        for qf in (0.5, -0.3, 0.8)
+    ], stop=2.5, at_defaults=True)
     pid_cases()
 
 

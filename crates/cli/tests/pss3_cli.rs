@@ -123,3 +123,46 @@ fn plant_reference_regenerates_the_checked_in_path1_case() {
     assert!((roll.to_degrees() - 154.36).abs() < 0.005, "{roll}");
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+#[test]
+fn plant_reference_regenerates_the_checked_in_default_pose_case() {
+    // Truth: tests/references/Pss3Plant/from_default_pose was written by this command;
+    // the case has no start values, so it must start where the FMU's defaults put the
+    // plant (roll 2.439784063985299 rad = forward kinematics at 77 mm, at rest) and end
+    // at rest (the quintic move has zero rate at both ends).
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = std::env::temp_dir().join(format!("robofmu-default-pose-{}", std::process::id()));
+    let run = robofmu(&[
+        "pss3",
+        "plant-reference",
+        "--from-default-pose",
+        "--out-dir",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let checked_in = root.join("tests/references/Pss3Plant/from_default_pose");
+    for file in [
+        "Pss3Plant_ref.csv",
+        "Pss3Plant_input.csv",
+        "Pss3Plant_ref.opt",
+        "case.json",
+    ] {
+        let fresh = std::fs::read(out.join(file)).unwrap();
+        let kept = std::fs::read(checked_in.join(file)).unwrap();
+        assert!(
+            fresh == kept,
+            "{file} differs: regenerate with robofmu pss3 plant-reference --from-default-pose"
+        );
+    }
+    let reference = std::fs::read_to_string(out.join("Pss3Plant_ref.csv")).unwrap();
+    let row = |line: &str| -> Vec<f64> { line.split(',').map(|v| v.parse().unwrap()).collect() };
+    let first = row(reference.lines().nth(1).unwrap());
+    let last = row(reference.lines().last().unwrap());
+    assert!((first[3] - 2.439784063985299).abs() < 1e-12, "{first:?}");
+    assert!(first[4..].iter().chain(&last[4..]).all(|w| w.abs() < 1e-12));
+    std::fs::remove_dir_all(&out).unwrap();
+}

@@ -12,13 +12,21 @@
 //! The path runs from one end stop to the other; the stroke parameters are widened
 //! (0..160 mm) so that the stops, whose damping switches on exactly at the stroke ends,
 //! stay out of an open-loop comparison. Nothing else depends on the stroke.
+//!
+//! With `--from-default-pose`, a case at the FMU's default parameters instead (the kind
+//! the FMI cross-check layout can express: it has no start values): from rest at the
+//! default pose (all actuators at 77 mm), the actuators move rest to rest to
+//! (110, 80, 50) mm in 2 s on a quintic in time; inputs and reference as for path 1.
 
 use super::csv::write_csv;
 use crate::cli::CliError;
 use clap::Args;
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{Plant, PlantParams, PlantState};
-use robofmu::pss3::{FkOptions, Params, Timing, linear_actuator_path};
+use robofmu::pss3::{
+    ActuatorState, FkOptions, Geometry, Params, PathError, PathSample, Timing, forward_motion,
+    linear_actuator_path, start_pose,
+};
 use std::path::PathBuf;
 
 /// Path 1 of the thesis: start and end displacements, m, and duration, s.
@@ -31,6 +39,10 @@ const STROKE: (f64, f64) = (0.0, 0.16);
 /// omega scaled by the path's rate of change (theta moves 0.56 rad in 2 s).
 const THETA_TOLERANCE: f64 = 1e-4;
 const OMEGA_TOLERANCE: f64 = 2e-4;
+/// The Pss3Plant FMU's default actuator displacement (parameter l0), m.
+const DEFAULT_DISPLACEMENT: f64 = 0.077;
+/// End displacements of the move from the default pose, m.
+const DEFAULT_POSE_MOVE_END: [f64; 3] = [0.11, 0.08, 0.05];
 
 #[derive(Args)]
 pub struct PlantReferenceArgs {
@@ -40,13 +52,73 @@ pub struct PlantReferenceArgs {
     /// Output directory.
     #[arg(long, default_value = "tests/references/Pss3Plant/path1")]
     out_dir: PathBuf,
+    /// Write the move from the FMU's default pose (default parameters) instead of path 1.
+    #[arg(long)]
+    from_default_pose: bool,
+}
+
+/// Actuator displacements at the start and the end, m, and the stroke, m, of a case.
+struct Case {
+    l_start: Vector3<f64>,
+    l_end: Vector3<f64>,
+    stroke: (f64, f64),
+}
+
+impl Case {
+    fn of(args: &PlantReferenceArgs) -> Self {
+        if args.from_default_pose {
+            let defaults = Params::default();
+            Case {
+                l_start: Vector3::repeat(DEFAULT_DISPLACEMENT),
+                l_end: Vector3::from(DEFAULT_POSE_MOVE_END),
+                stroke: (defaults.stroke_min, defaults.stroke_max),
+            }
+        } else {
+            Case {
+                l_start: Vector3::repeat(L_START),
+                l_end: Vector3::repeat(L_END),
+                stroke: STROKE,
+            }
+        }
+    }
+}
+
+/// Actuators moved rest to rest from l0 to lf along s(tau) = 10 tau^3 - 15 tau^4 + 6 tau^5
+/// (zero rate and acceleration at both ends); the platform motion by forward kinematics,
+/// each sample seeded with the previous pose.
+fn rest_to_rest_path(
+    geometry: &Geometry,
+    l0: &Vector3<f64>,
+    lf: &Vector3<f64>,
+    timing: &Timing,
+) -> Result<Vec<PathSample>, PathError> {
+    let t_total = timing.duration;
+    let mut seed = start_pose();
+    let mut samples = Vec::new();
+    for time in timing.times()? {
+        let tau = time / t_total;
+        let s = tau.powi(3) * (10.0 - 15.0 * tau + 6.0 * tau * tau);
+        let s_dot = 30.0 * tau * tau * (1.0 - tau).powi(2) / t_total;
+        let s_ddot = 60.0 * tau * (1.0 - tau) * (1.0 - 2.0 * tau) / (t_total * t_total);
+        let actuators = ActuatorState {
+            l: l0 + (lf - l0) * s,
+            l_dot: (lf - l0) * s_dot,
+            l_ddot: (lf - l0) * s_ddot,
+        };
+        let motion = forward_motion(geometry, &actuators, &seed, &FkOptions::default())
+            .map_err(|source| PathError::Kinematics { time, source })?;
+        seed = motion.assembly.euler;
+        samples.push(PathSample { time, motion });
+    }
+    Ok(samples)
 }
 
 pub fn run(args: &PlantReferenceArgs) -> Result<(), CliError> {
+    let case = Case::of(args);
     let params = PlantParams {
         geometry: Params {
-            stroke_min: STROKE.0,
-            stroke_max: STROKE.1,
+            stroke_min: case.stroke.0,
+            stroke_max: case.stroke.1,
             ..Params::default()
         },
         ..PlantParams::default()
@@ -56,13 +128,18 @@ pub fn run(args: &PlantReferenceArgs) -> Result<(), CliError> {
         duration: DURATION,
         dt: args.dt,
     };
-    let samples = linear_actuator_path(
-        &plant.model().geometry,
-        &Vector3::repeat(L_START),
-        &Vector3::repeat(L_END),
-        &timing,
-        &FkOptions::default(),
-    )?;
+    let geometry = &plant.model().geometry;
+    let samples = if args.from_default_pose {
+        rest_to_rest_path(geometry, &case.l_start, &case.l_end, &timing)?
+    } else {
+        linear_actuator_path(
+            geometry,
+            &case.l_start,
+            &case.l_end,
+            &timing,
+            &FkOptions::default(),
+        )?
+    };
     let mut reference = Vec::with_capacity(samples.len());
     let mut forces = Vec::with_capacity(samples.len());
     for s in &samples {
@@ -105,20 +182,27 @@ pub fn run(args: &PlantReferenceArgs) -> Result<(), CliError> {
         ),
     )?;
     let first = &samples[0].motion;
-    std::fs::write(
-        args.out_dir.join("case.json"),
-        case_json(&first.assembly.euler, &first.omega),
-    )?;
+    let start_values = if args.from_default_pose {
+        Vec::new() // every parameter at the FMU's default
+    } else {
+        path1_start_values(&first.assembly.euler, &first.omega)
+    };
+    std::fs::write(args.out_dir.join("case.json"), case_json(&start_values))?;
     println!(
-        "wrote {} samples of path 1 to {}",
+        "wrote {} samples of {} to {}",
         samples.len(),
+        if args.from_default_pose {
+            "the move from the default pose"
+        } else {
+            "path 1"
+        },
         args.out_dir.display()
     );
     Ok(())
 }
 
-/// case.json: start values (stroke, initial state) and tolerances per interface.
-fn case_json(theta0: &Vector3<f64>, omega0: &Vector3<f64>) -> String {
+/// The start values of path 1: stroke and initial state, as case.json lines.
+fn path1_start_values(theta0: &Vector3<f64>, omega0: &Vector3<f64>) -> Vec<String> {
     let mut start = vec![
         format!("    \"strokeMin\": {:?}", STROKE.0),
         format!("    \"strokeMax\": {:?}", STROKE.1),
@@ -127,6 +211,11 @@ fn case_json(theta0: &Vector3<f64>, omega0: &Vector3<f64>) -> String {
         start.push(format!("    \"theta0[{}]\": {:?}", i + 1, theta0[i]));
         start.push(format!("    \"omega0[{}]\": {:?}", i + 1, omega0[i]));
     }
+    start
+}
+
+/// case.json: start values and tolerances per interface.
+fn case_json(start: &[String]) -> String {
     let tolerances = |indent: &str| -> String {
         let mut t = Vec::new();
         for i in 1..=3 {

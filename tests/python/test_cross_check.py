@@ -1,0 +1,96 @@
+"""The FMI cross-check layout written by scripts/cross-check.sh, checked with FMPy's
+cross-check tooling (fmpy.cross_check): each FMU simulated the way the cross-check
+simulates it (default parameters, the _ref.opt experiment, the _in.csv inputs), its
+result validated against the reference (fmpy.cross_check.validate_result: at most 10 %
+of the samples outside a band of 10 % of the signal's range around the reference), the
+results filed as an importing tool files them, and the whole tree validated by FMPy's
+repository rules (validate_vendor_repo: layout, file sizes, modelDescription, options
+and CSV files naming existing variables)."""
+
+import subprocess
+from pathlib import Path
+
+import fmpy
+import pytest
+from fmpy.cross_check import validate_result
+from fmpy.cross_check.validate_vendor_repo import read_csv, validate_repo
+from fmpy.util import read_ref_opt_file, write_csv
+
+from conftest import MODELS
+
+ROOT = Path(__file__).resolve().parents[2]
+INTERFACES = {"cs": "CoSimulation", "me": "ModelExchange"}
+# FMPy 0.3.32's validate_signal imports from scipy.ndimage.filters, deprecated (still
+# there) in SciPy 1.17: a warning about FMPy's import path, not about our FMUs.
+pytestmark = pytest.mark.filterwarnings(
+    "ignore:Please import .* from the `scipy.ndimage` namespace:DeprecationWarning")
+
+
+@pytest.fixture(scope="module")
+def tree(tmp_path_factory):
+    out = tmp_path_factory.mktemp("cross-check")
+    subprocess.run(["bash", str(ROOT / "scripts" / "cross-check.sh"), str(out)], check=True,
+                   capture_output=True)
+    return out
+
+
+def model_dirs(tree: Path) -> list[Path]:
+    return sorted(p.parent for p in (tree / "fmus").glob("2.0/*/linux64/robofmu/*/*/*.fmu"))
+
+
+def simulate(model_dir: Path):
+    """The cross-check's simulation: defaults, the _ref.opt experiment, _in.csv inputs."""
+    model = model_dir.name
+    options = read_ref_opt_file(str(model_dir / f"{model}_ref.opt"))
+    reference = read_csv(str(model_dir / f"{model}_ref.csv"))
+    inputs = model_dir / f"{model}_in.csv"
+    interface = INTERFACES[model_dir.parts[-5]]
+    result = fmpy.simulate_fmu(
+        str(model_dir / f"{model}.fmu"), fmi_type=interface, validate=False,
+        start_time=options["StartTime"], stop_time=options["StopTime"],
+        step_size=options["StepSize"] if interface == "CoSimulation" else None,
+        output_interval=options["StepSize"], relative_tolerance=options["RelTol"],
+        input=read_csv(str(inputs)) if inputs.exists() else None,
+        output=list(reference.dtype.names[1:]))
+    return result, reference, options
+
+
+def test_tree_has_every_model_on_both_interfaces(tree):
+    dirs = model_dirs(tree)
+    assert sorted((d.parts[-5], d.name) for d in dirs) == sorted(
+        (kind, model) for kind in INTERFACES for model in MODELS)
+    for d in dirs:
+        assert (d / "ReadMe.txt").is_file()
+        # The planner alone has no inputs.
+        assert (d / f"{d.name}_in.csv").exists() == (d.name != "Planner")
+
+
+def test_results_validate_and_the_tree_follows_the_repository_rules(tree):
+    for model_dir in model_dirs(tree):
+        result, reference, options = simulate(model_dir)
+        problem = validate_result(result=result, reference=reference,
+                                  t_start=options["StartTime"], t_stop=options["StopTime"])
+        assert problem is None, (model_dir, problem)
+        # File the result as an importing tool (FMPy) files it in the cross-check.
+        fmi_version, kind, platform, tool, version, model = model_dir.parts[-6:]
+        results = (tree / "results" / fmi_version / kind / platform / "FMPy" /
+                   fmpy.__version__ / tool / version / model)
+        results.mkdir(parents=True)
+        write_csv(str(results / f"{model}_out.csv"), result)
+        (results / "passed").touch()
+        (results / "ReadMe.txt").write_text("Simulated with FMPy by tests/python/test_cross_check.py.\n")
+    fmu_count, result_count, problems = validate_repo(str(tree))
+    assert problems == []
+    assert (fmu_count, result_count) == (6, 6)
+
+
+def test_result_validation_rejects_a_wrong_result(tree):
+    # Truth: a planner result with the third axis scaled by 0.5 leaves the 10 % band
+    # around the reference for most samples, so the validation must report it; this
+    # shows the check above can fail.
+    model_dir = next(d for d in model_dirs(tree) if d.name == "Planner")
+    result, reference, options = simulate(model_dir)
+    result["q[3]"] = 0.5 * result["q[3]"]
+    problem = validate_result(result=result, reference=reference,
+                              t_start=options["StartTime"], t_stop=options["StopTime"])
+    assert problem is not None and "q[3]" in problem
