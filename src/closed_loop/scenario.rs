@@ -2,8 +2,10 @@
 //! loop it describes. Only the planner -> PID -> plant topology of this module is
 //! accepted; any other connection or an unmodelled plant parameter is refused by name,
 //! so the reference can never silently describe a different loop than the FMUs run.
+//! A hand-written scenario (with a `[motion]` table) is read by `human`.
 
 use super::error::LoopError;
+use super::human::parse_human_scenario;
 use crate::control::pid::PidGains;
 use crate::control::trajectory::{Boundary, Order, Polynomial};
 use crate::pss3::dynamics::PlantParams;
@@ -197,6 +199,9 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
         .to_string();
     let fmus = doc.get("fmus").and_then(Value::as_table);
     let [planner, pid, plant] = roles(fmus.ok_or_else(|| bad("missing 'fmus'".into()))?)?;
+    if doc.contains_key("motion") {
+        return parse_human_scenario(&doc, name, [planner, pid, plant]);
+    }
     let found = connections(&doc)?;
     let expected = expected_connections(&planner, &pid, &plant);
     if let Some((from, to)) = found.symmetric_difference(&expected).next() {
