@@ -154,9 +154,9 @@ class Master:
 
     def _switch_plan(self, switch) -> None:
         """A plan switch of a multi-segment motion: the (stateless) FMU is reset and
-        initialised with the next segment's parameters at the current time."""
+        initialised with the next segment's parameters, its experiment starting now."""
         fmu = self.fmus[switch.alias]
-        fmu.reset(self.scenario.start_time, self.scenario.stop_time)
+        fmu.reset(self._time(switch.step, 1), self.scenario.stop_time)
         self._initialize(switch.alias, switch.parameters)
         fmu.enter_initialization()
         fmu.exit_initialization()
