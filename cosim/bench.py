@@ -9,8 +9,11 @@ Per scenario and run, in one process:
 - master (FMPy calls): the same master through FmuInstance's FMPy wrappers;
 - ctypes loop: the minimal loop's calls through the prepared prototypes (no recording).
 Times are the stepping loops only (instantiation and initialisation excluded), medians
-over the runs. The last line is ``master/minimal ratio: X``, X the master's median time
-per step over the minimal loop's, of the first scenario.
+over the runs. Then the sweep throughput (``--sweep-runs``, 0 to skip): the same
+closed-loop runs (the regulation scenario over a grid of bandwidths) serially in this
+process and on LocalClusters of 1 and 2 workers, in runs per second between the first
+and the last completed run. The last line is ``master/minimal ratio: X``, X the
+master's median time per step over the minimal loop's, of the first scenario.
 """
 
 from __future__ import annotations
@@ -94,10 +97,33 @@ def _median_per_step(scenario, make, runs: int) -> float:
     return statistics.median(per_step)
 
 
+def sweep_throughput(runs: int) -> None:
+    import tempfile
+
+    from .sweep import run_sweep
+    from .sweep.spec import parse_spec
+    omegas = [10.0 + 40.0 * k / max(runs - 1, 1) for k in range(runs)]
+    data = {"scenario": str(ROOT / "scenarios" / "regulation.toml"), "name": "bench",
+            "grid": {"gains.omega": {"values": omegas, "unit": "rad/s"}}}
+    spec = parse_spec(data, ROOT, "bench")
+    steps = load_scenario(spec.scenario).steps
+    print(f"sweep throughput: {runs} runs of regulation ({steps} steps each), runs/s "
+          "between the first and the last completed run:")
+    with tempfile.TemporaryDirectory() as out:
+        for label, workers in (("serial, in process", 0), ("LocalCluster, 1 worker", 1),
+                               ("LocalCluster, 2 workers", 2)):
+            outcome = run_sweep(spec, Path(out) / label.replace(" ", "_"), workers=workers,
+                                progress=False, plots=False)
+            print(f"  {label:28s} {outcome.throughput():6.2f} runs/s ({outcome.failed} "
+                  f"failed, {outcome.wall_s:.1f} s with start-up)")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m cosim.bench", description=__doc__)
     parser.add_argument("scenarios", nargs="*", default=["three_axis_quintic"])
     parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--sweep-runs", type=int, default=24,
+                        help="closed-loop runs per sweep throughput measurement (0: skip)")
     args = parser.parse_args(argv)
     ratio = None
     for name in args.scenarios:
@@ -116,6 +142,8 @@ def main(argv=None) -> int:
             print(f"  {label:28s} {1e6 * median:7.1f} us")
         if ratio is None:
             ratio = medians["master"] / medians["minimal FMPy loop"]
+    if args.sweep_runs > 0:
+        sweep_throughput(args.sweep_runs)
     print(f"master/minimal ratio: {ratio:.2f}")
     return 0
 

@@ -34,6 +34,13 @@ class SweepOutcome:
     skipped: int  # done before (--resume)
     failed: int
     wall_s: float
+    completed_at: list[float]  # perf_counter() as each row was written
+
+    def throughput(self) -> float:
+        """Runs per second between the first and the last completed run (leaves out
+        the cluster's start-up and the workers' first imports)."""
+        t = self.completed_at
+        return (len(t) - 1) / (t[-1] - t[0]) if len(t) > 1 and t[-1] > t[0] else 0.0
 
 
 def reachable_on(plant_fmu: Path):
@@ -82,7 +89,7 @@ def _run_dask(todo, fmus, blobs, record, scheduler, workers, retries):
 
 def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
               workers: int | None = None, resume: bool = False, progress: bool = True,
-              retries: int = 2) -> SweepOutcome:
+              retries: int = 2, plots: bool = True) -> SweepOutcome:
     """Runs every run of `spec` not done yet; workers=0 runs serially in-process."""
     import time
     started = time.perf_counter()
@@ -95,9 +102,11 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
         if rid not in table.done:
             todo.append((rid, values, document_for(spec, values)))
     bar = Progress(len(todo), len(spec.runs) - len(todo), enabled=progress)
+    completed_at: list[float] = []
 
     def record(rid, values, outcome):
         table.append(rid, values_row(spec, values), outcome)
+        completed_at.append(time.perf_counter())
         bar.update(outcome["status"] == "ok")
 
     try:
@@ -107,12 +116,14 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
             _run_dask(todo, fmus, blobs, record, scheduler, workers, retries)
     finally:
         table.close()
-    header, rows = read_table(table.path)
-    axes = [c for c, v in zip(header[3:], _kinds(spec)) if v != "random"]
-    plots = plot_sweep(header, rows, axes, any(v.kind == "random" for v in spec.varied),
-                       out, spec.name)
-    return SweepOutcome(table.path, plots, len(todo), len(spec.runs) - len(todo),
-                        bar.failed, time.perf_counter() - started)
+    written = []
+    if plots:
+        header, rows = read_table(table.path)
+        axes = [c for c, v in zip(header[3:], _kinds(spec)) if v != "random"]
+        written = plot_sweep(header, rows, axes, any(v.kind == "random" for v in spec.varied),
+                             out, spec.name)
+    return SweepOutcome(table.path, written, len(todo), len(spec.runs) - len(todo),
+                        bar.failed, time.perf_counter() - started, completed_at)
 
 
 def _kinds(spec: Spec) -> list[str]:

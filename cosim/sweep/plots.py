@@ -45,15 +45,24 @@ def plot_sweep(header: list[str], rows: list[dict], axes: list[str], random: boo
     if varying:
         written.append(_grid_plot(ok, varying, metrics, out / f"{name}_grid.png"))
     if random:
-        written.append(_histograms(ok, metrics, out / f"{name}_histogram.png"))
+        written.append(_histograms(ok, metrics, varying, out / f"{name}_histogram.png"))
     return written
 
 
-def _grid_plot(rows, varying, metrics, path: Path) -> Path:
+def _panels(count: int, height: float):
     plt = _plt()
-    fig, panels = plt.subplots(1, len(metrics), figsize=(4.2 * len(metrics), 3.6),
+    columns = min(count, 3)
+    rows = -(-count // columns)
+    fig, panels = plt.subplots(rows, columns, figsize=(4.4 * columns, height * rows),
                                squeeze=False)
-    for ax, metric in zip(panels[0], metrics):
+    for ax in panels.flat[count:]:
+        ax.set_visible(False)
+    return plt, fig, panels.flat
+
+
+def _grid_plot(rows, varying, metrics, path: Path) -> Path:
+    plt, fig, panels = _panels(len(metrics), 3.6)
+    for ax, metric in zip(panels, metrics):
         if len(varying) == 2:
             xs = sorted({r[varying[0]] for r in rows})
             ys = sorted({r[varying[1]] for r in rows})
@@ -75,16 +84,36 @@ def _grid_plot(rows, varying, metrics, path: Path) -> Path:
     return path
 
 
-def _histograms(rows, metrics, path: Path) -> Path:
-    plt = _plt()
-    fig, panels = plt.subplots(1, len(metrics), figsize=(4.2 * len(metrics), 3.4),
-                               squeeze=False)
-    for ax, metric in zip(panels[0], metrics):
-        values = [r[metric] for r in rows if isinstance(r.get(metric), float)
-                  and math.isfinite(r[metric])]
+def _histograms(rows, metrics, varying, path: Path) -> Path:
+    """One histogram per metric over the random draws. With grid points, each run's
+    value is taken relative to the median of its grid point (the spread the random
+    quantities cause), in percent."""
+    groups: dict = {}
+    for r in rows:
+        groups.setdefault(tuple(r[a] for a in varying), []).append(r)
+    relative = len(groups) > 1
+    series = {}
+    for metric in metrics:
+        if metric == "wall_s":
+            continue
+        values = []
+        for members in groups.values():
+            x = np.array([r[metric] for r in members if isinstance(r.get(metric), float)])
+            x = x[np.isfinite(x)]
+            if relative and len(x):
+                median = float(np.median(x))
+                x = 100.0 * (x / median - 1.0) if median != 0.0 else x * 0.0
+            values += list(x)
+        if values:
+            series[metric] = values
+    plt, fig, panels = _panels(max(len(series), 1), 3.4)
+    for ax, (metric, values) in zip(panels, series.items()):
         ax.hist(values, bins=max(5, min(30, len(values) // 3)))
-        ax.set_xlabel(PLOTTED[metric])
+        ax.set_xlabel(PLOTTED[metric] + (": % from the grid point's median"
+                                         if relative else ""), fontsize=8)
         ax.set_ylabel("runs")
+    fig.suptitle(f"Monte Carlo over the random draws ({len(rows)} runs"
+                 + (f", {len(groups)} grid points)" if relative else ")"), fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
