@@ -41,16 +41,16 @@ def main(argv=None) -> int:
 
 
 def _reachable(args):
-    """The workspace filter on the base scenario's plant FMU (loaded lazily)."""
-    def check(pose):
-        spec_dir = args.spec.parent
-        import tomllib
-        data = tomllib.loads(args.spec.read_text())
-        scenario = (spec_dir / data["scenario"]).resolve()
+    """The workspace filter on the base scenario's plant FMU."""
+    import tomllib
+    data = tomllib.loads(args.spec.read_text())
+    scenario = (args.spec.parent / str(data.get("scenario", ""))).resolve()
+    try:
         plant = tomllib.loads(scenario.read_text())["fmus"]["plant"]
-        path = (args.fmu_dir / Path(plant).name) if args.fmu_dir else scenario.parent / plant
-        return reachable_on(path)(pose)
-    return check
+    except (OSError, KeyError, tomllib.TOMLDecodeError):
+        return None  # load_spec reports the scenario's problem by field
+    path = (args.fmu_dir / Path(plant).name) if args.fmu_dir else scenario.parent / plant
+    return reachable_on(path)
 
 
 if __name__ == "__main__":

@@ -15,6 +15,7 @@ import threading
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 from scipy.optimize import brentq
 
@@ -121,12 +122,13 @@ def test_a_killed_workers_runs_are_retried(tmp_path):
 
 def test_resume_runs_only_what_is_missing(tmp_path):
     spec = load_spec(write_spec(tmp_path, GRID_AND_DRAWS, samples=1, omegas="[10, 20, 30]"))
-    full = run_sweep(spec, tmp_path / "full", workers=0, progress=False)
+    full = run_sweep(spec, tmp_path / "full", workers=0, progress=False, plots=False)
     partial = tmp_path / "partial" / "small.csv"
     partial.parent.mkdir()
     lines = full.table.read_text().splitlines(keepends=True)
     partial.write_text("".join(lines[:2]))  # header and one run: a sweep cut short
-    again = run_sweep(spec, tmp_path / "partial", workers=0, resume=True, progress=False)
+    again = run_sweep(spec, tmp_path / "partial", workers=0, resume=True, progress=False,
+                      plots=False)
     assert (again.runs, again.skipped) == (2, 1)
     assert rows(partial) == rows(full.table)
 
@@ -135,7 +137,7 @@ def test_a_failing_run_is_recorded_with_its_reason(tmp_path):
     # A negative platform mass: the plant FMU answers NaN (an FMI error), the sweep goes on.
     text = BASE + "[grid.'plant.platformMass']\nvalues = [-1.0, 0.8]\nunit = \"kg\"\n"
     outcome = run_sweep(load_spec(write_spec(tmp_path, text)), tmp_path, workers=0,
-                        progress=False)
+                        progress=False, plots=False)
     by_mass = {r["plant.platformMass [kg]"]: r for r in rows(outcome.table).values()}
     assert outcome.failed == 1
     assert by_mass["-1.0"]["status"] == "failed" and "plant" in by_mass["-1.0"]["reason"]
@@ -150,7 +152,7 @@ def test_settling_time_follows_the_triple_pole_closed_form(tmp_path):
     s_band = brentq(lambda s: (s * s - s - 1.0) * math.exp(-s) - 0.02, 3.0, 20.0)
     text = BASE + "[grid.'gains.omega']\nvalues = [10, 30]\nunit = \"rad/s\"\n"
     outcome = run_sweep(load_spec(write_spec(tmp_path, text)), tmp_path, workers=0,
-                        progress=False)
+                        progress=False, plots=False)
     for row in rows(outcome.table).values():
         w = float(row["gains.omega [rad/s]"])
         assert abs(float(row["settling_time_s"]) * w / s_band - 1.0) < 0.015, row
@@ -189,3 +191,34 @@ def test_workspace_targets_outside_the_reachable_set_are_left_out(tmp_path):
     spec = load_spec(write_spec(tmp_path, text),
                      reachable=reachable_on(ROOT / "dist" / "Pss3Plant.fmu"))
     assert [run["motion.waypoints[1].angles"] for run in spec.runs] == [[0.0, 0.0, 138.0]]
+
+
+def test_the_command_refuses_a_malformed_spec_by_field(tmp_path):
+    import subprocess
+    spec = write_spec(tmp_path, BASE + "[grid.'gains.omega']\nfrom = 10\nto = 60\n")
+    run = subprocess.run([sys.executable, "-m", "cosim", "sweep", str(spec), "--out",
+                          str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
+    assert run.returncode == 1
+    assert "field 'grid.gains.omega.steps' must be a positive integer" in run.stderr
+    assert not (tmp_path / "small.csv").exists()
+
+
+def test_random_draws_are_seeded_truncated_and_follow_their_distribution():
+    # Truth: the distributions' moments. Normal(0.8, 0.1) truncated to [0.7, 1.0]:
+    # mean 0.8 + 0.1 (phi(-1) - phi(2)) / (Phi(2) - Phi(-1)) = 0.8288; uniform(1, 3):
+    # mean 2, variance 1/3. Bounds: 5 standard errors of the mean over 4000 draws.
+    from scipy.stats import norm, truncnorm
+    from cosim.sweep.spec import random_draws
+    tables = {"a": {"distribution": "normal", "mean": 0.8, "sd": 0.1, "min": 0.7,
+                    "max": 1.0},
+              "b": {"distribution": "uniform", "low": 1.0, "high": 3.0}}
+    draws = random_draws(tables, 11, 4000)
+    assert draws == random_draws(tables, 11, 4000) != random_draws(tables, 12, 4000)
+    a, b = (np.array(column) for column in zip(*draws))
+    assert a.min() >= 0.7 and a.max() <= 1.0
+    expected = 0.8 + 0.1 * (norm.pdf(-1) - norm.pdf(2)) / (norm.cdf(2) - norm.cdf(-1))
+    assert expected == pytest.approx(truncnorm(-1, 2, 0.8, 0.1).mean(), rel=1e-12)
+    sd = truncnorm(-1, 2, 0.8, 0.1).std()
+    assert abs(a.mean() - expected) < 5 * sd / np.sqrt(len(a))
+    assert abs(b.mean() - 2.0) < 5 * np.sqrt(1 / 3 / len(b))
+    assert abs(b.var() - 1 / 3) < 0.03
