@@ -74,6 +74,7 @@ KNOWN = {"name", "description", "start_time", "stop_time", "step_size", "fmus", 
 class Waypoint:
     time: float
     angles: list[float]
+    omega: list[float]  # base frame, rad/s
     rates: list[float]
     accelerations: list[float]
 
@@ -114,7 +115,7 @@ def _waypoint(raw, k: int) -> Waypoint:
     omega_dot = quantity_vector(raw.get("omega_dot", "0, 0, 0 rad/s^2"),
                                 "angular acceleration", f"{where}.omega_dot", 3)
     rates = euler_rates(angles, omega)
-    return Waypoint(quantity(raw["time"], "time", f"{where}.time"), angles, rates,
+    return Waypoint(quantity(raw["time"], "time", f"{where}.time"), angles, omega, rates,
                     euler_accelerations(angles, rates, omega_dot))
 
 
@@ -205,9 +206,7 @@ def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
     theta0 = (quantity_vector(start_raw["angles"], "angle", "start.angles", 3)
               if "angles" in start_raw else points[0].angles)
     omega0 = (quantity_vector(start_raw["omega"], "angular velocity", "start.omega", 3)
-              if "omega" in start_raw else
-              quantity_vector(data["motion"]["waypoints"][0].get("omega", "0, 0, 0 rad/s"),
-                              "angular velocity", "motion.waypoints[0].omega", 3))
+              if "omega" in start_raw else points[0].omega)
     plant_fmu = base_dir / str(fmus["plant"])
     gains = _gains(_table(data, "gains"), plant_fmu, design_poses(theta0, points))
     pid = {}
@@ -221,7 +220,7 @@ def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
     start_time = (quantity(data["start_time"], "time", "start_time")
                   if "start_time" in data else 0.0)
     step = quantity(data["step_size"], "time", "step_size") if "step_size" in data else 1e-3
-    plain = {"name": data.get("name"), "start_time": start_time,
+    plain = {"start_time": start_time,
              "stop_time": quantity(data.get("stop_time"), "time", "stop_time"),
              "step_size": step, "order": ["planner", "pid", "plant"], "fmus": dict(fmus),
              "parameters": {"planner": segment_parameters(order, points[0], points[1]),
@@ -229,7 +228,7 @@ def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
              "connections": [{"from": f"{a}.{x}[{i}]", "to": f"{b}.{y}[{i}]"}
                              for a, x, b, y in CONNECTIONS for i in (1, 2, 3)],
              "record": data.get("record", RECORD)}
-    for key in ("coupling", "max_step_halvings", "description"):
+    for key in ("name", "coupling", "max_step_halvings", "description"):
         if key in data:
             plain[key] = data[key]
     switches = []

@@ -174,6 +174,7 @@ fn hand_written_scenarios_are_refused_by_field() {
             "profile = \"septic\"",
             "motion.profile",
         ),
+        ("[gains]", "[gain]", "unknown field 'gain'"),
     ];
     for (from, to, field) in cases {
         let e = parse_loop_scenario(&text.replacen(from, to, 1))

@@ -206,12 +206,32 @@ fn gains(doc: &Table, poses: Vec<Vector3<f64>>) -> Result<[PidGains; 3], LoopErr
     Ok(gains)
 }
 
+/// The top-level fields of the hand-written form (as cosim/closed_loop.py reads it).
+const KNOWN: [&str; 13] = [
+    "name",
+    "description",
+    "start_time",
+    "stop_time",
+    "step_size",
+    "fmus",
+    "motion",
+    "start",
+    "gains",
+    "plant",
+    "record",
+    "coupling",
+    "max_step_halvings",
+];
+
 /// The loop of a hand-written scenario (`aliases` from the FMU file names).
 pub fn parse_human_scenario(
     doc: &Table,
     name: String,
     aliases: [String; 3],
 ) -> Result<LoopSpec, LoopError> {
+    if let Some(key) = doc.keys().find(|k| !KNOWN.contains(&k.as_str())) {
+        return Err(bad(format!("unknown field '{key}'")));
+    }
     if let Some(key) = table(doc, "plant")?.and_then(|p| p.keys().next()) {
         return Err(bad(format!(
             "plant parameter 'plant.{key}' is not modelled by the reference (it uses the \
