@@ -31,6 +31,7 @@ fn regulation(target: Vector3<f64>, offset: Vector3<f64>) -> LoopSpec {
         stop_time: 0.4,
         step_size: 0.01,
         trajectories: hold(target, 0.4),
+        later_segments: Vec::new(),
         gains: design.gains,
         plant: PlantParams::default(),
         theta0: target + offset,

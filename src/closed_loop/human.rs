@@ -2,8 +2,8 @@
 //! base-frame angular velocities and accelerations, gains by the triple-pole rule or
 //! explicit, every quantity with its unit (`"5 deg"`, `"-5, 3, 132 deg"`). The Python
 //! harness (cosim/closed_loop.py) reads the same files with the same rules; this reader
-//! resolves them into the loop the reference simulates. The reference models one
-//! segment (two waypoints) on the default plant.
+//! resolves them into the loop the reference simulates, on the default plant. Several
+//! waypoints make a multi-segment motion, one polynomial per segment.
 
 use super::error::LoopError;
 use super::gains::design_gains;
@@ -147,7 +147,7 @@ fn table<'a>(doc: &'a Table, key: &str) -> Result<Option<&'a Table>, LoopError> 
     }
 }
 
-fn motion(doc: &Table) -> Result<(Order, Waypoint, Waypoint), LoopError> {
+fn motion(doc: &Table) -> Result<(Order, Vec<Waypoint>), LoopError> {
     let motion = table(doc, "motion")?.ok_or_else(|| bad("missing 'motion'".into()))?;
     let order = match motion.get("profile").and_then(Value::as_str) {
         Some("cubic") => Order::Cubic,
@@ -159,18 +159,42 @@ fn motion(doc: &Table) -> Result<(Order, Waypoint, Waypoint), LoopError> {
         }
     };
     let points = motion.get("waypoints").and_then(Value::as_array);
-    match points.map(Vec::as_slice) {
-        Some([a, b]) => Ok((order, waypoint(a, 0)?, waypoint(b, 1)?)),
+    match points {
+        Some(list) if list.len() >= 2 => Ok((
+            order,
+            list.iter()
+                .enumerate()
+                .map(|(k, p)| waypoint(p, k))
+                .collect::<Result<_, _>>()?,
+        )),
         _ => Err(bad(
-            "'motion.waypoints': the reference models exactly two waypoints (one segment)".into(),
+            "'motion.waypoints' must list at least two waypoints".into()
         )),
     }
 }
 
-/// The design poses of the Python harness: the start, and 0, 1/4, ..., 1 of the segment.
-fn default_poses(start: &Vector3<f64>, a: &Waypoint, b: &Waypoint) -> Vec<Vector3<f64>> {
+/// The polynomials of the segment from `a` to `b`.
+fn segment(order: Order, a: &Waypoint, b: &Waypoint) -> Result<[Polynomial; 3], LoopError> {
+    let boundary = |i: usize| Boundary {
+        q0: a.q[i],
+        qf: b.q[i],
+        qdot0: a.qdot[i],
+        qdotf: b.qdot[i],
+        qddot0: a.qddot[i],
+        qddotf: b.qddot[i],
+    };
+    let axis = |i| Polynomial::new(order, a.time, b.time, &boundary(i));
+    Ok([axis(0)?, axis(1)?, axis(2)?])
+}
+
+/// The design poses of the Python harness: the start, and 0, 1/4, ..., 1 of every
+/// segment.
+fn default_poses(start: &Vector3<f64>, points: &[Waypoint]) -> Vec<Vector3<f64>> {
     let mut poses = vec![*start];
-    poses.extend([0.0, 0.25, 0.5, 0.75, 1.0].map(|s| a.q + (b.q - a.q) * s));
+    for pair in points.windows(2) {
+        let (a, b) = (&pair[0], &pair[1]);
+        poses.extend([0.0, 0.25, 0.5, 0.75, 1.0].map(|s| a.q + (b.q - a.q) * s));
+    }
     poses
 }
 
@@ -238,25 +262,22 @@ pub fn parse_human_scenario(
              default plant)"
         )));
     }
-    let (order, a, b) = motion(doc)?;
+    let (order, points) = motion(doc)?;
+    let first = &points[0];
     let start = table(doc, "start")?;
     let theta0 = match start.and_then(|s| s.get("angles")) {
         Some(v) => triple(Some(v), "angle", "start.angles")?,
-        None => a.q,
+        None => first.q,
     };
     let omega0 = match start.and_then(|s| s.get("omega")) {
         Some(v) => triple(Some(v), "angular velocity", "start.omega")?,
-        None => a.omega,
+        None => first.omega,
     };
-    let boundary = |i: usize| Boundary {
-        q0: a.q[i],
-        qf: b.q[i],
-        qdot0: a.qdot[i],
-        qdotf: b.qdot[i],
-        qddot0: a.qddot[i],
-        qddotf: b.qddot[i],
-    };
-    let axis = |i| Polynomial::new(order, a.time, b.time, &boundary(i));
+    let mut segments = points
+        .windows(2)
+        .map(|pair| Ok((pair[0].time, segment(order, &pair[0], &pair[1])?)))
+        .collect::<Result<Vec<_>, LoopError>>()?;
+    let (_, trajectories) = segments.remove(0);
     let start_time = match doc.get("start_time") {
         Some(v) => scalar(Some(v), "time", "start_time")?,
         None => 0.0,
@@ -271,8 +292,9 @@ pub fn parse_human_scenario(
         start_time,
         stop_time: scalar(doc.get("stop_time"), "time", "stop_time")?,
         step_size,
-        trajectories: [axis(0)?, axis(1)?, axis(2)?],
-        gains: gains(doc, default_poses(&theta0, &a, &b))?,
+        trajectories,
+        later_segments: segments,
+        gains: gains(doc, default_poses(&theta0, &points))?,
         plant: PlantParams::default(),
         theta0,
         omega0,

@@ -23,14 +23,28 @@ pub struct LoopSpec {
     pub stop_time: f64,
     /// Communication step of the co-simulation, s: the reference samples at it.
     pub step_size: f64,
-    /// Planned motion of each Euler angle.
+    /// Planned motion of each Euler angle (the first segment of a multi-segment one).
     pub trajectories: [Polynomial; 3],
+    /// Further segments of a multi-segment motion, each with its start time (s), in
+    /// order; each takes over from its start time on.
+    pub later_segments: Vec<(f64, [Polynomial; 3])>,
     pub gains: [PidGains; 3],
     pub plant: PlantParams,
     /// Initial Euler angles, rad.
     pub theta0: Vector3<f64>,
     /// Initial angular velocity in the base frame, rad/s.
     pub omega0: Vector3<f64>,
+}
+
+impl LoopSpec {
+    /// The planner polynomials in force at time `t` (s).
+    pub fn trajectories_at(&self, t: f64) -> &[Polynomial; 3] {
+        self.later_segments
+            .iter()
+            .rev()
+            .find(|(start, _)| *start <= t)
+            .map_or(&self.trajectories, |(_, segment)| segment)
+    }
 }
 
 /// The FMU roles, recognised by the FMU file names of the scenario.
@@ -249,6 +263,7 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
             parameters(&doc, &planner)?,
             &format!("parameters.{planner}."),
         )?,
+        later_segments: Vec::new(),
         gains: gains(parameters(&doc, &pid)?, &format!("parameters.{pid}."))?,
         plant: PlantParams::default(),
         theta0: initial(plant_params, "theta0", &format!("parameters.{plant}."))?,
