@@ -1,5 +1,6 @@
 """Cost of the master per communication step against a minimal FMPy loop over the same
-FMUs: ``python -m cosim.bench [--runs 5] [scenario ...]`` (names under scenarios/).
+FMUs: ``python -m cosim.bench [--runs 5] [scenario ...]`` (names under scenarios/, or
+paths to .toml files).
 
 Per scenario and run, in one process:
 - minimal loop: FMPy's own calls alone, per step one getReal and one setReal per
@@ -127,7 +128,8 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     ratio = None
     for name in args.scenarios:
-        scenario = load_scenario(ROOT / "scenarios" / f"{name}.toml")
+        path = Path(name) if name.endswith(".toml") else ROOT / "scenarios" / f"{name}.toml"
+        scenario = load_scenario(path)
         cases = {
             "minimal FMPy loop": lambda s: _Timed(s, minimal_loop),
             "master": lambda s: Master(s),

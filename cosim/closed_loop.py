@@ -54,7 +54,7 @@ from pathlib import Path
 
 from .design import design_gains, euler_accelerations, euler_rates
 from .scenario import ScenarioError
-from .units import quantity, quantity_vector
+from .units import UNITS, quantity, quantity_vector
 
 CONNECTIONS = [("planner", "q", "pid", "setpoint"),
                ("planner", "qdot", "pid", "setpointRate"),
@@ -177,17 +177,13 @@ def _gains(raw: dict, plant_fmu: Path, poses) -> list[tuple[float, float, float]
 
 
 def _plant_value(value, name: str):
-    if isinstance(value, str):
-        return quantity_vector(value, _dimension_of(value, name), f"plant.{name}", 1)[0]
-    return value
-
-
-def _dimension_of(text: str, name: str) -> str:
-    from .units import UNITS
-    unit = text.strip().rsplit(" ", 1)[-1]
+    """A plant parameter: a number (SI, as the FMU states it) or "value unit"."""
+    if not isinstance(value, str):
+        return value
+    unit = value.strip().rsplit(" ", 1)[-1]
     if unit not in UNITS:
-        raise ScenarioError(f"field 'plant.{name}': unknown unit in {text!r}")
-    return UNITS[unit][1]
+        raise ScenarioError(f"field 'plant.{name}': unknown unit in {value!r}")
+    return quantity(value, UNITS[unit][1], f"plant.{name}")
 
 
 def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
