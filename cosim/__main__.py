@@ -1,5 +1,6 @@
-"""Command line: ``python -m cosim SCENARIO [--out DIR] [--quiet]``;
-``python -m cosim container SCENARIO --out X.fmu`` writes the scenario as a container FMU."""
+"""Command line: ``python -m cosim SCENARIO [--out DIR] [--fmu-dir DIR] [--quiet]``;
+``python -m cosim sweep SPEC ...`` (see cosim.sweep.cli); ``python -m cosim container
+SCENARIO --out X.fmu`` writes the scenario as a container FMU (see cosim.container)."""
 
 from __future__ import annotations
 
@@ -14,7 +15,10 @@ from .scenario import ScenarioError, load_scenario
 
 
 def main(argv=None) -> int:
-    argv = sys.argv[1:] if argv is None else argv
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["sweep"]:
+        from .sweep.cli import main as sweep
+        return sweep(argv[1:])
     if argv[:1] == ["container"]:
         from .container import main as container_main
         return container_main(argv[1:])
@@ -22,10 +26,13 @@ def main(argv=None) -> int:
     parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
     parser.add_argument("--out", type=Path, default=Path("results"),
                         help="directory for the result CSV (default: results)")
+    parser.add_argument("--fmu-dir", type=Path,
+                        help="find the FMUs by file name here instead of relative to the "
+                        "scenario")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
     try:
-        scenario = load_scenario(args.scenario)
+        scenario = load_scenario(args.scenario, args.fmu_dir)
         progress = None if args.quiet else text_progress()
         started = time.perf_counter()
         result = Master(scenario, progress=progress).run()

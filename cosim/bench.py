@@ -1,5 +1,21 @@
-"""Wall time of closed-loop scenarios through the FMUs: the median of several runs.
-``python -m cosim.bench [--runs 5] [scenario ...]`` (names under scenarios/)."""
+"""Cost of the master per communication step against a minimal FMPy loop over the same
+FMUs: ``python -m cosim.bench [--runs 5] [scenario ...]`` (names under scenarios/, or
+paths to .toml files).
+
+Per scenario and run, in one process:
+- minimal loop: FMPy's own calls alone, per step one getReal and one setReal per
+  connected FMU pair and one doStep per FMU, nothing recorded;
+- master: cosim.master.Master with its prepared ctypes calls (cosim.fastpath), every
+  connection and recorded signal stored each step;
+- master (FMPy calls): the same master through FmuInstance's FMPy wrappers;
+- ctypes loop: the minimal loop's calls through the prepared prototypes (no recording).
+Times are the stepping loops only (instantiation and initialisation excluded), medians
+over the runs. Then the sweep throughput (``--sweep-runs``, 0 to skip): the same
+closed-loop runs (the regulation scenario over a grid of bandwidths) serially in this
+process and on LocalClusters of 1 and 2 workers, in runs per second between the first
+and the last completed run. The last line is ``master/minimal ratio: X``, X the
+master's median time per step over the minimal loop's, of the first scenario.
+"""
 
 from __future__ import annotations
 
@@ -16,26 +32,127 @@ from .scenario import load_scenario
 ROOT = Path(__file__).resolve().parent.parent
 
 
+class _Timed(Master):
+    """A master whose stepping loop is replaced by `loop(master)` (timed)."""
+
+    def __init__(self, scenario, loop):
+        super().__init__(scenario)
+        self.loop = loop
+
+    def _advance(self, numerator, denominator, halvings_left):
+        raise AssertionError("not used")
+
+    def run(self):
+        s = self.scenario
+        self.fmus = {a: self.open_fmu(a, s.fmus[a], s) for a in s.order}
+        try:
+            for alias, values in s.parameters.items():
+                self._initialize(alias, values)
+            for alias in s.order:
+                self.fmus[alias].enter_initialization()
+            for alias in s.order:
+                self._set_inputs(alias)
+            for alias in s.order:
+                self.fmus[alias].exit_initialization()
+            started = time.perf_counter()
+            self.loop(self)
+            self.loop_seconds = time.perf_counter() - started
+        finally:
+            for fmu in self.fmus.values():
+                fmu.close()
+
+
+def minimal_loop(master: Master) -> None:
+    """FMPy calls alone: per pair getReal + setReal, then doStep per FMU (sampled)."""
+    s = master.scenario
+    refs = {a: {v.name: v.valueReference for v in f.variables.values()}
+            for a, f in master.fmus.items()}
+    pairs = [(master.fmus[src]._fmu, [refs[src][v] for v in variables],
+              master.fmus[alias]._fmu, [refs[alias][v] for v in inputs])
+             for alias in s.order for src, variables, inputs in master.inputs[alias]]
+    slaves = [master.fmus[a]._fmu for a in s.order]
+    h = s.step_size
+    for k in range(s.steps):
+        for source, src_refs, target, dst_refs in pairs:
+            target.setReal(dst_refs, source.getReal(src_refs))
+        t = s.start_time + k * h
+        for slave in slaves:
+            slave.doStep(t, h)
+
+
+def ctypes_loop(master: Master) -> None:
+    """The minimal loop's calls through cosim.fastpath's prepared prototypes."""
+    from .fastpath import Kernel
+    s = master.scenario
+    kernel = Kernel(master.fmus, master.inputs, {}, s.order)
+    h = s.step_size
+    for k in range(s.steps):
+        kernel.step_all(s.start_time + k * h, h, True)
+
+
+def _median_per_step(scenario, make, runs: int) -> float:
+    per_step = []
+    for _ in range(runs):
+        m = make(scenario)
+        m.run()
+        per_step.append(m.loop_seconds / scenario.steps)
+    return statistics.median(per_step)
+
+
+def sweep_throughput(runs: int) -> None:
+    import tempfile
+
+    from .sweep import run_sweep
+    from .sweep.spec import parse_spec
+    omegas = [10.0 + 40.0 * k / max(runs - 1, 1) for k in range(runs)]
+    data = {"scenario": str(ROOT / "scenarios" / "regulation.toml"), "name": "bench",
+            "grid": {"gains.omega": {"values": omegas, "unit": "rad/s"}}}
+    spec = parse_spec(data, ROOT, "bench")
+    steps = load_scenario(spec.scenario).steps
+    print(f"sweep throughput: {runs} runs of regulation ({steps} steps each), runs/s "
+          "between the first and the last completed run:")
+    with tempfile.TemporaryDirectory() as out:
+        for label, workers in (("serial, in process", 0), ("LocalCluster, 1 worker", 1),
+                               ("LocalCluster, 2 workers", 2)):
+            outcome = run_sweep(spec, Path(out) / label.replace(" ", "_"), workers=workers,
+                                progress=False, plots=False)
+            print(f"  {label:28s} {outcome.throughput():6.2f} runs/s ({outcome.failed} "
+                  f"failed, {outcome.wall_s:.1f} s with start-up)")
+
+
+def _scenario_path(name: str) -> Path:
+    """A scenario file path, or the name of one under scenarios/."""
+    return Path(name) if name.endswith(".toml") else ROOT / "scenarios" / f"{name}.toml"
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m cosim.bench", description=__doc__)
     parser.add_argument("scenarios", nargs="*", default=["three_axis_quintic"])
     parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--sweep-runs", type=int, default=24,
+                        help="closed-loop runs per sweep throughput measurement (0: skip)")
     args = parser.parse_args(argv)
+    ratio = None
     for name in args.scenarios:
-        scenario = load_scenario(ROOT / "scenarios" / f"{name}.toml")
-        for coupling in ("sampled", "gauss-seidel"):
-            scenario.coupling = coupling
-            walls = []
-            for _ in range(args.runs):
-                started = time.perf_counter()
-                Master(scenario).run()
-                walls.append(time.perf_counter() - started)
-            median = statistics.median(walls)
-            print(f"{name} ({coupling}): {scenario.steps} steps of {scenario.step_size} s, "
-                  f"median {median:.3f} s over {args.runs} runs "
-                  f"({1e6 * median / scenario.steps:.0f} us per step; min {min(walls):.3f} s, "
-                  f"max {max(walls):.3f} s)")
-    print_container_lines(ROOT / "scenarios" / f"{args.scenarios[0]}.toml", args.runs)
+        scenario = load_scenario(_scenario_path(name))
+        cases = {
+            "minimal FMPy loop": lambda s: _Timed(s, minimal_loop),
+            "master": lambda s: Master(s),
+            "master (FMPy calls)": lambda s: Master(s, fast=False),
+            "ctypes loop (no recording)": lambda s: _Timed(s, ctypes_loop),
+        }
+        medians = {label: _median_per_step(scenario, make, args.runs)
+                   for label, make in cases.items()}
+        print(f"{name}: {scenario.steps} steps of {scenario.step_size} s, median over "
+              f"{args.runs} runs of the stepping loop, per step:")
+        for label, median in medians.items():
+            print(f"  {label:28s} {1e6 * median:7.1f} us")
+        if ratio is None:
+            ratio = medians["master"] / medians["minimal FMPy loop"]
+    print_container_lines(_scenario_path(args.scenarios[0]), args.runs)
+    if args.sweep_runs > 0:
+        sweep_throughput(args.sweep_runs)
+    print(f"master/minimal ratio: {ratio:.2f}")
     return 0
 
 

@@ -13,9 +13,6 @@ from fmpy import calloc, free
 
 from .errors import FmuError, StepDiscarded
 
-
-
-
 _GETTERS = {"Real": "getReal", "Integer": "getInteger", "Boolean": "getBoolean"}
 _SETTERS = {"Real": "setReal", "Integer": "setInteger", "Boolean": "setBoolean"}
 _CONVERT = {"Real": float, "Integer": int, "Boolean": bool}
@@ -133,6 +130,14 @@ class FmuInstance:
 
     def free_state(self, state) -> None:
         self._call("fmi2FreeFMUstate", lambda: self._fmu.freeFMUstate(state))
+
+    def reset(self, start_time: float, stop_time: float) -> None:
+        """fmi2Reset: back to the state after instantiation (start values of every
+        parameter), then the experiment set up again; the instance is reused."""
+        self._call("fmi2Reset", self._fmu.reset)
+        self.messages.clear()
+        self._call("fmi2SetupExperiment",
+                   lambda: self._fmu.setupExperiment(startTime=start_time, stopTime=stop_time))
 
     def close(self) -> None:
         """Terminates and frees the instance; safe to call after a failure."""

@@ -22,9 +22,12 @@ from __future__ import annotations
 
 import csv
 import sys
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
+
+import numpy as np
 
 from .errors import CosimError, StepDiscarded
 from .scenario import Scenario, Signal
@@ -54,15 +57,27 @@ def _open_fmu(alias, path, scenario):
     return FmuInstance(alias, path, scenario.start_time, scenario.stop_time)
 
 
+def _close_fmu(fmu) -> None:
+    fmu.close()
+
+
 class Master:
     """Runs one scenario. ``open_fmu(alias, path, scenario)`` creates the instances
-    (FMPy by default; tests pass stand-ins with the same methods)."""
+    (FMPy by default; tests pass stand-ins with the same methods) and
+    ``close_fmu(instance)`` ends them (a sweep worker's pool keeps them for the next
+    run). With ``fast`` (default) the per-step calls of FMPy instances go through the
+    prepared ctypes calls of cosim.fastpath; the results are the same bit for bit."""
 
     def __init__(self, scenario: Scenario, open_fmu: Callable = _open_fmu,
-                 progress: Callable[[float], None] | None = None):
+                 progress: Callable[[float], None] | None = None,
+                 close_fmu: Callable = _close_fmu, fast: bool = True):
         self.scenario = scenario
         self.open_fmu = open_fmu
+        self.close_fmu = close_fmu
         self.progress = progress
+        self.fast = fast
+        self.kernel = None
+        self.loop_seconds = float("nan")  # wall time of the stepping loop (recording included)
         # Per target FMU and source FMU: the source variables and the target inputs, so
         # that each pair is one get and one set call per step.
         self.inputs: dict[str, list[tuple[str, tuple[str, ...], tuple[str, ...]]]] = {}
@@ -87,6 +102,9 @@ class Master:
         return s.start_time + numerator * s.step_size / denominator
 
     def _set_inputs(self, alias: str) -> None:
+        if self.kernel is not None:
+            self.kernel.set_inputs(alias)
+            return
         for source, variables, inputs in self.inputs[alias]:
             self.fmus[alias].set_values(inputs, self.fmus[source].get_values(variables))
 
@@ -97,13 +115,16 @@ class Master:
         saved = ({a: f.get_state() for a, f in self.fmus.items()} if halvings_left > 0 else None)
         sampled = self.scenario.coupling == "sampled"
         try:
-            if sampled:
+            if self.kernel is not None:
+                self.kernel.step_all(t, h, sampled)
+            else:
+                if sampled:
+                    for alias in self.scenario.order:
+                        self._set_inputs(alias)
                 for alias in self.scenario.order:
-                    self._set_inputs(alias)
-            for alias in self.scenario.order:
-                if not sampled:
-                    self._set_inputs(alias)
-                self.fmus[alias].do_step(t, h)
+                    if not sampled:
+                        self._set_inputs(alias)
+                    self.fmus[alias].do_step(t, h)
         except StepDiscarded as d:
             if saved is None:
                 raise CosimError(f"{d} (no step halvings left; raise max_step_halvings "
@@ -117,39 +138,73 @@ class Master:
             for alias, state in (saved or {}).items():
                 self.fmus[alias].free_state(state)
 
-    def _record(self, result: Result, t: float) -> None:
-        result.time.append(t)
+    def _record(self, rows: np.ndarray, k: int) -> None:
+        if self.kernel is not None:
+            self.kernel.record(rows[k])
+            return
+        column = 0
         for alias, variables in self.recorded_by_fmu.items():
-            for variable, value in zip(variables, self.fmus[alias].get_values(variables)):
-                result.columns[f"{alias}.{variable}"].append(value)
+            values = self.fmus[alias].get_values(variables)
+            rows[k, column:column + len(values)] = values
+            column += len(values)
+
+    def _initialize(self, alias: str, parameters: dict) -> None:
+        for name, value in parameters.items():
+            self.fmus[alias].set_value(name, value)
+
+    def _switch_plan(self, switch) -> None:
+        """A plan switch of a multi-segment motion: the (stateless) FMU is reset and
+        initialised with the next segment's parameters, its experiment starting now."""
+        fmu = self.fmus[switch.alias]
+        fmu.reset(self._time(switch.step, 1), self.scenario.stop_time)
+        self._initialize(switch.alias, switch.parameters)
+        fmu.enter_initialization()
+        fmu.exit_initialization()
+
+    def _build_kernel(self) -> None:
+        self.kernel = None
+        if self.fast and all(hasattr(f, "_fmu") for f in self.fmus.values()):
+            from .fastpath import Kernel
+            kernel = Kernel(self.fmus, self.inputs, self.recorded_by_fmu, self.scenario.order)
+            self.kernel = kernel if kernel.ok else None
 
     def run(self) -> Result:
         s = self.scenario
         self.fmus = {}
-        names = [str(sig) for sig in self.recorded]
-        result = Result(names=names, time=[], columns={n: [] for n in names}, discards=self.discards)
+        names = [f"{alias}.{v}" for alias, vs in self.recorded_by_fmu.items() for v in vs]
+        rows = np.empty((s.steps + 1, len(names)))
+        switches = {switch.step: switch for switch in s.schedule}
         try:
             for alias in s.order:
                 self.fmus[alias] = self.open_fmu(alias, s.fmus[alias], s)
             for alias, values in s.parameters.items():
-                for name, value in values.items():
-                    self.fmus[alias].set_value(name, value)
+                self._initialize(alias, values)
             for alias in s.order:
                 self.fmus[alias].enter_initialization()
+            self._build_kernel()
             for alias in s.order:  # consistent inputs at the start time, in order
                 self._set_inputs(alias)
             for alias in s.order:
                 self.fmus[alias].exit_initialization()
-            self._record(result, self._time(0, 1))
+            self._record(rows, 0)
+            loop_started = time.perf_counter()
             for k in range(s.steps):
+                if k in switches:
+                    self._switch_plan(switches[k])
                 self._advance(k, 1, s.max_step_halvings)
-                self._record(result, self._time(k + 1, 1))
+                self._record(rows, k + 1)
                 if self.progress is not None:
                     self.progress((k + 1) / s.steps)
+            self.loop_seconds = time.perf_counter() - loop_started
         finally:
+            self.kernel = None
             for fmu in self.fmus.values():
-                fmu.close()
-        return result
+                self.close_fmu(fmu)
+        times = [self._time(k, 1) for k in range(s.steps + 1)]
+        order = [str(sig) for sig in self.recorded]
+        columns = {name: rows[:, j].tolist() for j, name in enumerate(names)}
+        return Result(names=order, time=times, columns={n: columns[n] for n in order},
+                      discards=self.discards)
 
 
 def text_progress(stream=sys.stderr, width: int = 40) -> Callable[[float], None]:

@@ -23,6 +23,10 @@ Schema (TOML shown; JSON has the same structure)::
     record = ["plant.theta[1]"]        # extra signals to record (optional)
 
 A malformed scenario raises ScenarioError naming the offending field.
+
+A closed-loop scenario can also be written in a person's units (waypoints in degrees,
+base-frame angular velocities, gains by a design rule): a file with a [motion] table is
+resolved into the form above by cosim.closed_loop when it is loaded.
 """
 
 from __future__ import annotations
@@ -72,6 +76,8 @@ class Scenario:
     record: list[Signal] = field(default_factory=list)
     max_step_halvings: int = 0
     coupling: str = "sampled"
+    # Plan switches of a multi-segment motion (cosim.closed_loop.PlanSwitch), in order.
+    schedule: list = field(default_factory=list)
 
     @property
     def steps(self) -> int:
@@ -173,8 +179,23 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
                     record=record, max_step_halvings=halvings, coupling=coupling)
 
 
-def load_scenario(path: str | Path) -> Scenario:
-    """Reads and validates a .toml or .json scenario file."""
+def parse_document(data: dict, base_dir: Path, fmu_dir: str | Path | None = None) -> Scenario:
+    """A plain or hand-written (closed-loop) scenario document, validated."""
+    if fmu_dir is not None and isinstance(data, dict) and isinstance(data.get("fmus"), dict):
+        data = dict(data, fmus={alias: str(Path(fmu_dir).resolve() / Path(str(f)).name)
+                                for alias, f in data["fmus"].items()})
+    from .closed_loop import is_closed_loop, resolve
+    if not is_closed_loop(data):
+        return parse_scenario(data, base_dir)
+    plain, schedule = resolve(data, base_dir)
+    scenario = parse_scenario(plain, base_dir)
+    scenario.schedule = schedule
+    return scenario
+
+
+def load_scenario(path: str | Path, fmu_dir: str | Path | None = None) -> Scenario:
+    """Reads and validates a .toml or .json scenario file. FMU paths are relative to the
+    file's folder, or, with `fmu_dir`, looked up by file name in `fmu_dir`."""
     path = Path(path)
     try:
         if path.suffix == ".toml":
@@ -186,6 +207,6 @@ def load_scenario(path: str | Path) -> Scenario:
     except (tomllib.TOMLDecodeError, json.JSONDecodeError) as e:
         raise ScenarioError(f"{path}: not valid {path.suffix[1:].upper()}: {e}") from e
     try:
-        return parse_scenario(data, path.parent)
+        return parse_document(data, path.parent, fmu_dir)
     except ScenarioError as e:
         raise ScenarioError(f"{path}: {e}") from e

@@ -100,6 +100,9 @@ def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.Eleme
 
 def write_ssp(scenario: Scenario, path: Path) -> None:
     """Writes the SSP archive of `scenario` to `path`."""
+    if scenario.schedule:
+        raise ScenarioError("a multi-segment motion (a sequence of plans) has no SSP form: "
+                            "SSP parameters are fixed for the whole run")
     variables = {alias: _variables(p) for alias, p in scenario.fmus.items()}
     tree = system_structure(scenario, variables)
     ET.indent(tree)

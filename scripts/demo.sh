@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # The main demo: builds the FMUs, creates the Python environment, runs every
 # closed-loop scenario (planner -> PID -> 3-PSS plant) through FMPy, and writes the
-# result CSVs and PNG plots to results/ with a summary table on the terminal.
+# result CSVs and PNG plots to results/ with a summary table on the terminal; then a
+# small sweep on a Dask LocalCluster (sweeps/demo_gains.toml: 15 runs) with its table
+# and plots in results/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build-fmus.sh
 bash scripts/setup-venv.sh
 .venv/bin/python -m cosim.demo --out results "$@"
+.venv/bin/python -m cosim sweep sweeps/demo_gains.toml --out results

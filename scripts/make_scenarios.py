@@ -1,170 +1,36 @@
 #!/usr/bin/env python3
-"""Writes the closed-loop scenarios in scenarios/ (planner -> PID -> 3-PSS plant).
-
-Every number comes from the project's own tools, so the files state nothing by hand:
-- planner boundary conditions: base-frame angular velocities and accelerations
-  converted to Euler-angle rates and accelerations (`robofmu closed-loop boundary`);
-- PID gains: pole placement on the linearised plant (`robofmu closed-loop design-gains`,
-  triple pole at -BANDWIDTH on the gravity-compensated, decoupled axes) over the poses
-  of the motion;
-- path 1 of the thesis: the first and last samples of `robofmu pss3 actuator-path`
-  (all actuators 2 -> 152 mm in 2 s).
-
-It then writes each scenario's reference, the loop as one continuous-time ODE in Rust
+"""Writes the Rust reference of every hand-written closed-loop scenario in scenarios/
+(planner -> PID -> 3-PSS plant): the loop as one continuous-time ODE
 (`robofmu closed-loop reference`, Dop853 at 1e-11, every 10 ms), to
 tests/closed_loop_references/<name>/<name>_ref.csv with its options file.
 
-Run after `cargo build --release`:  python3 scripts/make_scenarios.py
+The scenarios are written by hand in a person's units (cosim/closed_loop.py documents
+the form); the Rust reference and the Python harness both resolve them (Euler-rate
+boundary conditions, triple-pole gains) when they load them.
+
+Run after `cargo build --release`:  python3 scripts/make_scenarios.py [name ...]
 """
 
 from __future__ import annotations
 
-import csv
-import math
-import re
 import subprocess
-import tempfile
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 ROBOFMU = ROOT / "target" / "release" / "robofmu"
-OUT = ROOT / "scenarios"
+SCENARIOS = ROOT / "scenarios"
 REFERENCES = ROOT / "tests" / "closed_loop_references"
 
-# Closed-loop bandwidth, rad/s. The tracking error of the triple-pole loop is about
-# jerk / w^3; the largest planned jerk (~1.7 rad/s^3) and the 0.05 deg requirement
-# need w >= 12.5 rad/s. 30 rad/s leaves a factor of 14 in error and stays 30 times
-# below the 1 kHz communication rate (ZOH phase lag w h / 2 = 0.015 rad).
-BANDWIDTH = 30.0
-STEP = 0.001
 
-CONNECTIONS = [("planner", "q", "pid", "setpoint"),
-               ("planner", "qdot", "pid", "setpointRate"),
-               ("plant", "theta", "pid", "measurement"),
-               ("plant", "thetaDot", "pid", "measuredRate"),
-               ("plant", "gravityCompensation", "pid", "feedforward"),
-               ("pid", "u", "plant", "generalizedForceCommand")]
-RECORD = ([f"plant.force[{i}]" for i in (1, 2, 3)] + [f"plant.l[{i}]" for i in (1, 2, 3)]
-          + [f"plant.omegaDot[{i}]" for i in (1, 2, 3)]
-          + [f"planner.qddot[{i}]" for i in (1, 2, 3)])
-
-
-def robofmu(*args: str) -> str:
-    return subprocess.run([str(ROBOFMU), *args], check=True, capture_output=True,
-                          text=True).stdout
-
-
-def vec(v) -> str:
-    return ",".join(repr(float(x)) for x in v)
-
-
-def boundary(angles_deg, omega, omega_dot):
-    text = robofmu("closed-loop", "boundary", f"--angles={vec(angles_deg)}",
-                   f"--omega={vec(omega)}", f"--omega-dot={vec(omega_dot)}")
-    values = {}
-    for name, body in re.findall(r"^(\w+) = \[(.*)\]$", text, re.M):
-        values[name] = [float(x) for x in body.split(",")]
-    return values
-
-
-def gains(poses_deg):
-    text = robofmu("closed-loop", "design-gains", f"--bandwidth={BANDWIDTH}",
-                   *[f"--angles={vec(p)}" for p in poses_deg])
-    rows = re.findall(r"Kp = (\S+) .* Ki = (\S+) .* Kd = (\S+) ", text)
-    assert len(rows) == 3, text
-    return [tuple(float(x) for x in r) for r in rows]
-
-
-def path1():
-    """Start and end of the thesis's path 1 for the default model: (angles in deg,
-    omega, omega_dot) in the base frame, SI."""
-    with tempfile.TemporaryDirectory() as tmp:
-        out = Path(tmp) / "path1.csv"
-        robofmu("pss3", "actuator-path", "--l0", "0.002,0.002,0.002",
-                "--lf", "0.152,0.152,0.152", "--duration", "2", "--dt", "0.001", "--out", str(out))
-        rows = list(csv.DictReader(out.open()))
-    return [([math.degrees(float(row[f"th{a}_rad"])) for a in "xyz"],
-             [float(row[f"omega_{a}_rad_per_s"]) for a in "xyz"],
-             [float(row[f"omega_dot_{a}_rad_per_s2"]) for a in "xyz"])
-            for row in (rows[0], rows[-1])]
-
-
-def line(key: str, value) -> str:
-    if isinstance(value, bool):
-        return f'"{key}" = {"true" if value else "false"}'
-    return f'"{key}" = {value!r}'
-
-
-def write(name: str, comment: str, order: int, start, end, poses, stop_time: float = 2.0,
-          tf: float = 2.0, plant_start=None):
-    """One scenario; the plant starts at the planner's start unless `plant_start`
-    (angles in deg, omega) is given."""
-    b0, bf = boundary(*start), boundary(*end)
-    g = gains(poses)
-    out = [f"# {line_}" for line_ in comment.strip().splitlines()]
-    out += ["# Generated by scripts/make_scenarios.py; edit that script, not this file.",
-            f'name = "{name}"', f"stop_time = {stop_time!r}", f"step_size = {STEP!r}",
-            'order = ["planner", "pid", "plant"]',
-            "record = [" + ", ".join(f'"{r}"' for r in RECORD) + "]", "",
-            "[fmus]", 'planner = "../dist/Planner.fmu"', 'pid = "../dist/PID.fmu"',
-            'plant = "../dist/Pss3Plant.fmu"', "", "[parameters.planner]",
-            f"order = {order}", "t0 = 0.0", f"tf = {tf!r}"]
-    for i in range(3):
-        out += [line(f"q0[{i+1}]", b0["q"][i]), line(f"qf[{i+1}]", bf["q"][i]),
-                line(f"qdot0[{i+1}]", b0["qdot"][i]), line(f"qdotf[{i+1}]", bf["qdot"][i])]
-        if order == 5:
-            out += [line(f"qddot0[{i+1}]", b0["qddot"][i]), line(f"qddotf[{i+1}]", bf["qddot"][i])]
-    out += ["", "[parameters.pid]"]
-    for i, (kp, ki, kd) in enumerate(g):
-        out += [line(f"Kp[{i+1}]", kp), line(f"Ki[{i+1}]", ki), line(f"Kd[{i+1}]", kd),
-                line(f"Tf[{i+1}]", 0.0), line(f"useRateInputs[{i+1}]", True)]
-    out += ["", "[parameters.plant]"]
-    theta0 = b0["q"] if plant_start is None else [math.radians(a) for a in plant_start[0]]
-    omega0 = start[1] if plant_start is None else plant_start[1]
-    out += [line(f"theta0[{i+1}]", theta0[i]) for i in range(3)]
-    out += [line(f"omega0[{i+1}]", float(omega0[i])) for i in range(3)]
-    for a, x, b, y in CONNECTIONS:
-        for i in (1, 2, 3):
-            out += ["", "[[connections]]", f'from = "{a}.{x}[{i}]"', f'to = "{b}.{y}[{i}]"']
-    (OUT / f"{name}.toml").write_text("\n".join(out) + "\n")
-    reference = REFERENCES / name / f"{name}_ref.csv"
-    reference.parent.mkdir(parents=True, exist_ok=True)
-    robofmu("closed-loop", "reference", "--scenario", str(OUT / f"{name}.toml"),
-            "--out", str(reference), "--every", "10", "--tolerance", "1e-11")
-    print(f"wrote scenarios/{name}.toml and its reference")
-
-
-def main():
-    OUT.mkdir(exist_ok=True)
-    rest = (0.0, 0.0, 0.0)
-    three_start = ((-5.0, 3.0, 132.0), (0.02, -0.03, 0.05), rest)
-    three_end = ((4.0, -5.0, 145.0), (0.03, 0.02, 0.08), (0.01, 0.0, -0.02))
-    three_poses = [tuple(a + (b - a) * s for a, b in zip(three_start[0], three_end[0]))
-                   for s in (0.0, 0.25, 0.5, 0.75, 1.0)]
-    p1_start, p1_end = path1()
-    p1_poses = [p1_start[0], [0.0, 0.0, 0.5 * (p1_start[0][2] + p1_end[0][2])], p1_end[0]]
-    for order, kind in ((3, "cubic"), (5, "quintic")):
-        write(f"three_axis_{kind}", f"""
-Tracking of a 2 s motion that uses all three rotations, {kind} planner.
-Boundary conditions in the base frame (converted to Euler-angle rates):
-  t0: angles (-5, 3, 132) deg, omega (0.02, -0.03, 0.05) rad/s, omega_dot 0
-  tf: angles (4, -5, 145) deg, omega (0.03, 0.02, 0.08) rad/s, omega_dot (0.01, 0, -0.02) rad/s^2
-PID: triple pole at -{BANDWIDTH} rad/s over the poses of the motion.""",
-              order, three_start, three_end, three_poses)
-        write(f"path1_{kind}", f"""
-Tracking of the thesis's path 1 (all actuators 2 -> 152 mm in 2 s), {kind} planner:
-boundary angles, omega and omega_dot from the kinematics of the default model
-(roll 122.07 -> 154.36 deg, omega_z 18.49 -> 12.29 deg/s, omega_dot_z -0.77 -> -5.06 deg/s^2).
-PID: triple pole at -{BANDWIDTH} rad/s over the poses of the motion.""",
-              order, p1_start, p1_end, p1_poses)
-    target = ((0.0, 0.0, 138.0), rest, rest)
-    write("regulation", f"""
-Regulation (the thesis's first test): the setpoint holds (0, 0, 138) deg while the
-platform starts at rest at (3, -2, 136) deg.
-PID: triple pole at -{BANDWIDTH} rad/s over the start and target poses.""",
-          5, target, target, [(3.0, -2.0, 136.0), (0.0, 0.0, 138.0)],
-          stop_time=1.0, tf=1.0, plant_start=((3.0, -2.0, 136.0), rest))
+def main(names: list[str]) -> None:
+    for name in names or sorted(p.stem for p in SCENARIOS.glob("*.toml")):
+        reference = REFERENCES / name / f"{name}_ref.csv"
+        reference.parent.mkdir(parents=True, exist_ok=True)
+        subprocess.run([str(ROBOFMU), "closed-loop", "reference", "--scenario",
+                        str(SCENARIOS / f"{name}.toml"), "--out", str(reference),
+                        "--every", "10", "--tolerance", "1e-11"], check=True)
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])

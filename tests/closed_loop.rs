@@ -31,6 +31,7 @@ fn regulation(target: Vector3<f64>, offset: Vector3<f64>) -> LoopSpec {
         stop_time: 0.4,
         step_size: 0.01,
         trajectories: hold(target, 0.4),
+        later_segments: Vec::new(),
         gains: design.gains,
         plant: PlantParams::default(),
         theta0: target + offset,
@@ -117,7 +118,7 @@ fn actuator_forces_stay_within_the_cylinder_limit() {
 
 #[test]
 fn scenarios_with_another_loop_are_refused_by_name() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/regulation.toml");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenarios/regulation_plain.toml");
     let text = std::fs::read_to_string(path).unwrap();
     let cut = text.replacen("from = \"pid.u[2]\"", "from = \"pid.u[1]\"", 1);
     let e = parse_loop_scenario(&cut).unwrap_err().to_string();
@@ -131,4 +132,55 @@ fn scenarios_with_another_loop_are_refused_by_name() {
     let missing = text.replacen("\"Kp[2]\"", "\"Kq[2]\"", 1);
     let e = parse_loop_scenario(&missing).unwrap_err().to_string();
     assert!(e.contains("missing 'parameters.pid.Kp[2]'"), "{e}");
+}
+
+#[test]
+fn hand_written_scenarios_resolve_to_the_plain_form() {
+    // Truth: the plain form that scripts/make_scenarios.py generated from the same
+    // motion with `robofmu closed-loop boundary` and `design-gains` (gains rounded to
+    // 6 decimals there, hence the 1e-6 relative tolerance on them).
+    let plain = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenarios/regulation_plain.toml");
+    let plain = parse_loop_scenario(&std::fs::read_to_string(plain).unwrap()).unwrap();
+    let human = scenario("regulation.toml");
+    assert_eq!((human.theta0 - plain.theta0).amax(), 0.0);
+    assert_eq!((human.omega0 - plain.omega0).amax(), 0.0);
+    for (h, p) in human.gains.iter().zip(&plain.gains) {
+        for (a, b) in [(h.kp, p.kp), (h.ki, p.ki), (h.kd, p.kd)] {
+            assert!((a - b).abs() < 1e-6 * b, "{a} vs {b}");
+        }
+    }
+    for t in [0.0, 0.4, 1.0] {
+        let (h, p) = (
+            human.trajectories[2].sample(t),
+            plain.trajectories[2].sample(t),
+        );
+        assert!((h.q - p.q).abs() < 1e-15, "{t}");
+    }
+}
+
+#[test]
+fn hand_written_scenarios_are_refused_by_field() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/regulation.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let cases = [
+        ("omega = \"30 rad/s\"", "omega = \"30 rad\"", "gains.omega"),
+        (
+            "angles = \"3, -2, 136 deg\"",
+            "angles = \"3, -2 deg\"",
+            "start.angles",
+        ),
+        ("[gains]", "[plant]\ng = \"1.62 m\"\n[gains]", "plant.g"),
+        (
+            "profile = \"quintic\"",
+            "profile = \"septic\"",
+            "motion.profile",
+        ),
+        ("[gains]", "[gain]", "unknown field 'gain'"),
+    ];
+    for (from, to, field) in cases {
+        let e = parse_loop_scenario(&text.replacen(from, to, 1))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(field), "{e}");
+    }
 }

@@ -14,6 +14,7 @@
 
 mod error;
 mod gains;
+mod human;
 mod scenario;
 mod simulate;
 

@@ -2,8 +2,10 @@
 //! loop it describes. Only the planner -> PID -> plant topology of this module is
 //! accepted; any other connection or an unmodelled plant parameter is refused by name,
 //! so the reference can never silently describe a different loop than the FMUs run.
+//! A hand-written scenario (with a `[motion]` table) is read by `human`.
 
 use super::error::LoopError;
+use super::human::parse_human_scenario;
 use crate::control::pid::PidGains;
 use crate::control::trajectory::{Boundary, Order, Polynomial};
 use crate::pss3::dynamics::PlantParams;
@@ -21,14 +23,28 @@ pub struct LoopSpec {
     pub stop_time: f64,
     /// Communication step of the co-simulation, s: the reference samples at it.
     pub step_size: f64,
-    /// Planned motion of each Euler angle.
+    /// Planned motion of each Euler angle (the first segment of a multi-segment one).
     pub trajectories: [Polynomial; 3],
+    /// Further segments of a multi-segment motion, each with its start time (s), in
+    /// order; each takes over from its start time on.
+    pub later_segments: Vec<(f64, [Polynomial; 3])>,
     pub gains: [PidGains; 3],
     pub plant: PlantParams,
     /// Initial Euler angles, rad.
     pub theta0: Vector3<f64>,
     /// Initial angular velocity in the base frame, rad/s.
     pub omega0: Vector3<f64>,
+}
+
+impl LoopSpec {
+    /// The planner polynomials in force at time `t` (s).
+    pub fn trajectories_at(&self, t: f64) -> &[Polynomial; 3] {
+        self.later_segments
+            .iter()
+            .rev()
+            .find(|(start, _)| *start <= t)
+            .map_or(&self.trajectories, |(_, segment)| segment)
+    }
 }
 
 /// The FMU roles, recognised by the FMU file names of the scenario.
@@ -197,6 +213,9 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
         .to_string();
     let fmus = doc.get("fmus").and_then(Value::as_table);
     let [planner, pid, plant] = roles(fmus.ok_or_else(|| bad("missing 'fmus'".into()))?)?;
+    if doc.contains_key("motion") {
+        return parse_human_scenario(&doc, name, [planner, pid, plant]);
+    }
     let found = connections(&doc)?;
     let expected = expected_connections(&planner, &pid, &plant);
     if let Some((from, to)) = found.symmetric_difference(&expected).next() {
@@ -244,6 +263,7 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
             parameters(&doc, &planner)?,
             &format!("parameters.{planner}."),
         )?,
+        later_segments: Vec::new(),
         gains: gains(parameters(&doc, &pid)?, &format!("parameters.{pid}."))?,
         plant: PlantParams::default(),
         theta0: initial(plant_params, "theta0", &format!("parameters.{plant}."))?,

@@ -70,7 +70,8 @@ fn plant_state(y: &LoopVector) -> PlantState {
 
 fn control(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<Control, LoopError> {
     let state = plant_state(y);
-    let planned: [_; 3] = std::array::from_fn(|i| spec.trajectories[i].sample(y[0]));
+    let trajectories = spec.trajectories_at(y[0]);
+    let planned: [_; 3] = std::array::from_fn(|i| trajectories[i].sample(y[0]));
     let theta_dot = euler_rates(&state.euler, &state.omega).map_err(DynamicsError::from)?;
     let gravity_compensation = plant.gravity_compensation(&state.euler)?;
     let mut u = Vector3::zeros();

@@ -19,7 +19,7 @@ from cosim.report import vector  # noqa: E402
 from cosim.scenario import load_scenario  # noqa: E402
 
 SCENARIOS = ["regulation", "path1_cubic", "path1_quintic", "three_axis_cubic",
-             "three_axis_quintic"]
+             "three_axis_quintic", "three_axis_waypoints"]
 
 # Absolute tolerances of the co-simulation (sampled coupling, h = 1 ms) against the
 # continuous-time reference. The FMUs hold the PID output over each step (zero-order
@@ -27,10 +27,11 @@ SCENARIOS = ["regulation", "path1_cubic", "path1_quintic", "three_axis_cubic",
 # growing with how fast u changes (test_deviation_is_first_order_in_the_step shows the
 # order). Measured at h = 1 ms: tracking runs theta <= 8e-7 rad, theta_dot <= 5.4e-5
 # rad/s, u <= 5.4e-2 N m, force <= 5.1e-2 N (path 1 cubic, whose acceleration jumps at
-# t0); the regulation from a 3 deg error, with its fast initial transient, theta 5.7e-4
-# rad, theta_dot 2.9e-2 rad/s, u 1.04 N m, force 1.9 N. Tolerances are about 3 times
-# the measured values, and 1e4 times tighter than the cross-check band (10 % of a
-# signal's range: 0.02 to 0.05 rad for the angles).
+# t0; the multi-segment three_axis_waypoints, run as a sequence of two plans, theta
+# 2.6e-7 rad, u 3e-4 N m); the regulation from a 3 deg error, with its fast initial
+# transient, theta 5.7e-4 rad, theta_dot 2.9e-2 rad/s, u 1.04 N m, force 1.9 N.
+# Tolerances are about 3 times the measured values, and 1e4 times tighter than the
+# cross-check band (10 % of a signal's range: 0.02 to 0.05 rad for the angles).
 TRACKING = {"theta": 3e-6, "thetaDot": 2e-4, "u": 0.15, "force": 0.15}
 REGULATION = {"theta": 2e-3, "thetaDot": 0.1, "u": 3.0, "force": 6.0}
 

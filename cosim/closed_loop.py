@@ -1,0 +1,236 @@
+"""Hand-written closed-loop scenarios (planner -> PID -> 3-PSS plant) in a person's
+units, resolved at load time into the FMU parameters of a plain scenario.
+
+Example (every quantity states its unit; see cosim/units.py for the units)::
+
+    name = "three_axis_quintic"
+    stop_time = "2 s"
+    step_size = "1 ms"
+
+    [fmus]
+    planner = "../dist/Planner.fmu"
+    pid = "../dist/PID.fmu"
+    plant = "../dist/Pss3Plant.fmu"
+
+    [motion]
+    profile = "quintic"                 # or "cubic"; the same for every segment
+    [[motion.waypoints]]
+    time = "0 s"
+    angles = "-5, 3, 132 deg"           # Euler angles thx, thy, thz
+    omega = "0.02, -0.03, 0.05 rad/s"   # base frame (optional, default 0)
+    omega_dot = "0, 0, 0 rad/s^2"       # base frame (optional, default 0)
+    [[motion.waypoints]]
+    time = "2 s"
+    angles = "4, -5, 145 deg"
+
+    [start]                             # plant start (optional: first waypoint)
+    angles = "3, -2, 136 deg"
+    omega = "0, 0, 0 rad/s"
+
+    [gains]                             # design rule ...
+    omega = "30 rad/s"                  # triple pole at -omega on the nominal plant
+    # design_poses = ["0, 0, 138 deg"]  # optional, see below
+    # ... or explicit gains: Kp = "800, 600, 640 N m/rad", Ki = "... N m/(rad s)",
+    # Kd = "... N m s/rad"
+
+    [plant]                             # other plant parameters (FMU names, SI or units)
+    platformMass = "2.5 kg"
+
+Several waypoints make a multi-segment motion: one planner polynomial per segment,
+each starting with the angles, rates (and, quintic, accelerations) the previous one
+ends with, so velocity (and, quintic, acceleration) is continuous at every waypoint.
+The master runs them as a sequence of plans: at each interior waypoint it resets the
+planner FMU (a stateless function of time) and loads the next segment's parameters.
+
+Default design poses: the plant start and, per segment, the poses at 0, 1/4, 1/2, 3/4
+and 1 of the segment (linear in the angles). The Rust reference
+(robofmu closed-loop reference) reads the same file with the same rules.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from .design import design_gains, euler_accelerations, euler_rates
+from .scenario import ScenarioError
+from .units import UNITS, quantity, quantity_vector
+
+CONNECTIONS = [("planner", "q", "pid", "setpoint"),
+               ("planner", "qdot", "pid", "setpointRate"),
+               ("plant", "theta", "pid", "measurement"),
+               ("plant", "thetaDot", "pid", "measuredRate"),
+               ("plant", "gravityCompensation", "pid", "feedforward"),
+               ("pid", "u", "plant", "generalizedForceCommand")]
+RECORD = ([f"plant.force[{i}]" for i in (1, 2, 3)] + [f"plant.l[{i}]" for i in (1, 2, 3)]
+          + [f"plant.omegaDot[{i}]" for i in (1, 2, 3)]
+          + [f"planner.qddot[{i}]" for i in (1, 2, 3)])
+PROFILES = {"cubic": 3, "quintic": 5}
+KNOWN = {"name", "description", "start_time", "stop_time", "step_size", "fmus", "motion",
+         "start", "gains", "plant", "record", "coupling", "max_step_halvings"}
+
+
+@dataclass(frozen=True)
+class Waypoint:
+    time: float
+    angles: list[float]
+    omega: list[float]  # base frame, rad/s
+    rates: list[float]
+    accelerations: list[float]
+
+
+@dataclass(frozen=True)
+class PlanSwitch:
+    """At communication step `step`, FMU `alias` is reset and given `parameters`."""
+
+    step: int
+    alias: str
+    parameters: dict
+
+
+def is_closed_loop(data: dict) -> bool:
+    return isinstance(data, dict) and "motion" in data
+
+
+def _table(data: dict, key: str, where: str = "") -> dict:
+    value = data.get(key, {})
+    if not isinstance(value, dict):
+        raise ScenarioError(f"field '{where}{key}' must be a table")
+    return value
+
+
+def _waypoint(raw, k: int) -> Waypoint:
+    where = f"motion.waypoints[{k}]"
+    if not isinstance(raw, dict):
+        raise ScenarioError(f"field '{where}' must be a table")
+    unknown = sorted(set(raw) - {"time", "angles", "omega", "omega_dot"})
+    if unknown:
+        raise ScenarioError(f"unknown field '{where}.{unknown[0]}'")
+    for key in ("time", "angles"):
+        if key not in raw:
+            raise ScenarioError(f"missing field '{where}.{key}'")
+    angles = quantity_vector(raw["angles"], "angle", f"{where}.angles", 3)
+    omega = quantity_vector(raw.get("omega", "0, 0, 0 rad/s"), "angular velocity",
+                            f"{where}.omega", 3)
+    omega_dot = quantity_vector(raw.get("omega_dot", "0, 0, 0 rad/s^2"),
+                                "angular acceleration", f"{where}.omega_dot", 3)
+    rates = euler_rates(angles, omega)
+    return Waypoint(quantity(raw["time"], "time", f"{where}.time"), angles, omega, rates,
+                    euler_accelerations(angles, rates, omega_dot))
+
+
+def waypoints(motion: dict) -> tuple[int, list[Waypoint]]:
+    profile = motion.get("profile")
+    if profile not in PROFILES:
+        raise ScenarioError(f"field 'motion.profile' must be one of {sorted(PROFILES)}, "
+                            f"got {profile!r}")
+    raw = motion.get("waypoints")
+    if not isinstance(raw, list) or len(raw) < 2:
+        raise ScenarioError("field 'motion.waypoints' must list at least two waypoints")
+    points = [_waypoint(p, k) for k, p in enumerate(raw)]
+    for k in range(1, len(points)):
+        if points[k].time <= points[k - 1].time:
+            raise ScenarioError(f"field 'motion.waypoints[{k}].time' must be after the "
+                                "previous waypoint's")
+    return PROFILES[profile], points
+
+
+def segment_parameters(order: int, a: Waypoint, b: Waypoint) -> dict:
+    p = {"order": order, "t0": a.time, "tf": b.time}
+    for i in range(3):
+        n = i + 1
+        p |= {f"q0[{n}]": a.angles[i], f"qf[{n}]": b.angles[i],
+              f"qdot0[{n}]": a.rates[i], f"qdotf[{n}]": b.rates[i]}
+        if order == 5:
+            p |= {f"qddot0[{n}]": a.accelerations[i], f"qddotf[{n}]": b.accelerations[i]}
+    return p
+
+
+def design_poses(start: list[float], points: list[Waypoint]) -> list[list[float]]:
+    poses = [start]
+    for a, b in zip(points, points[1:]):
+        poses += [[x + (y - x) * s for x, y in zip(a.angles, b.angles)]
+                  for s in (0.0, 0.25, 0.5, 0.75, 1.0)]
+    return poses
+
+
+def _gains(raw: dict, plant_fmu: Path, poses) -> list[tuple[float, float, float]]:
+    explicit = {"Kp": "stiffness gain", "Ki": "integral gain", "Kd": "damping gain"}
+    if "omega" in raw:
+        unknown = sorted(set(raw) - {"omega", "design_poses"})
+        if unknown:
+            raise ScenarioError(f"field 'gains.{unknown[0]}' cannot be combined with the "
+                                "design rule 'gains.omega'")
+        if "design_poses" in raw:
+            listed = raw["design_poses"]
+            if not isinstance(listed, list) or not listed:
+                raise ScenarioError("field 'gains.design_poses' must be a list of angles")
+            poses = [quantity_vector(p, "angle", f"gains.design_poses[{k}]", 3)
+                     for k, p in enumerate(listed)]
+        return design_gains(plant_fmu, poses,
+                            quantity(raw["omega"], "angular velocity", "gains.omega"))
+    if set(raw) != set(explicit):
+        raise ScenarioError("field 'gains' needs either 'omega' (design rule) or all of "
+                            "'Kp', 'Ki', 'Kd'")
+    columns = [quantity_vector(raw[k], dim, f"gains.{k}", 3) for k, dim in explicit.items()]
+    return list(zip(*columns))
+
+
+def _plant_value(value, name: str):
+    """A plant parameter: a number (SI, as the FMU states it) or "value unit"."""
+    if not isinstance(value, str):
+        return value
+    unit = value.strip().rsplit(" ", 1)[-1]
+    if unit not in UNITS:
+        raise ScenarioError(f"field 'plant.{name}': unknown unit in {value!r}")
+    return quantity(value, UNITS[unit][1], f"plant.{name}")
+
+
+def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
+    """The plain scenario (as parse_scenario reads it) and the plan switches."""
+    unknown = sorted(set(data) - KNOWN)
+    if unknown:
+        raise ScenarioError(f"unknown field '{unknown[0]}'")
+    fmus = _table(data, "fmus")
+    if set(fmus) != {"planner", "pid", "plant"}:
+        raise ScenarioError("field 'fmus' must name exactly 'planner', 'pid' and 'plant'")
+    order, points = waypoints(_table(data, "motion"))
+    start_raw = _table(data, "start")
+    unknown = sorted(set(start_raw) - {"angles", "omega"})
+    if unknown:
+        raise ScenarioError(f"unknown field 'start.{unknown[0]}'")
+    theta0 = (quantity_vector(start_raw["angles"], "angle", "start.angles", 3)
+              if "angles" in start_raw else points[0].angles)
+    omega0 = (quantity_vector(start_raw["omega"], "angular velocity", "start.omega", 3)
+              if "omega" in start_raw else points[0].omega)
+    plant_fmu = base_dir / str(fmus["plant"])
+    gains = _gains(_table(data, "gains"), plant_fmu, design_poses(theta0, points))
+    pid = {}
+    for i, (kp, ki, kd) in enumerate(gains):
+        n = i + 1
+        pid |= {f"Kp[{n}]": kp, f"Ki[{n}]": ki, f"Kd[{n}]": kd, f"Tf[{n}]": 0.0,
+                f"useRateInputs[{n}]": True}
+    plant = {f"theta0[{i + 1}]": theta0[i] for i in range(3)}
+    plant |= {f"omega0[{i + 1}]": omega0[i] for i in range(3)}
+    plant |= {k: _plant_value(v, k) for k, v in _table(data, "plant").items()}
+    start_time = (quantity(data["start_time"], "time", "start_time")
+                  if "start_time" in data else 0.0)
+    step = quantity(data["step_size"], "time", "step_size") if "step_size" in data else 1e-3
+    plain = {"start_time": start_time,
+             "stop_time": quantity(data.get("stop_time"), "time", "stop_time"),
+             "step_size": step, "order": ["planner", "pid", "plant"], "fmus": dict(fmus),
+             "parameters": {"planner": segment_parameters(order, points[0], points[1]),
+                            "pid": pid, "plant": plant},
+             "connections": [{"from": f"{a}.{x}[{i}]", "to": f"{b}.{y}[{i}]"}
+                             for a, x, b, y in CONNECTIONS for i in (1, 2, 3)],
+             "record": data.get("record", RECORD)}
+    for key in ("name", "coupling", "max_step_halvings", "description"):
+        if key in data:
+            plain[key] = data[key]
+    switches = []
+    for a, b in zip(points[1:], points[2:]):
+        steps = (a.time - start_time) / step
+        if abs(steps - round(steps)) > 1e-9 * max(1.0, steps):
+            raise ScenarioError(f"waypoint time {a.time} s is not a communication point")
+        switches.append(PlanSwitch(round(steps), "planner", segment_parameters(order, a, b)))
+    return plain, switches

@@ -1,0 +1,277 @@
+"""Sweep specifications: a base scenario plus what varies, expanded into runs.
+
+A SPEC is a TOML file::
+
+    scenario = "../scenarios/three_axis_quintic.toml"   # relative to the SPEC file
+    name = "gains"            # output names (optional, default: the SPEC file's stem)
+    seed = 1                  # random samples (required with [random])
+    samples = 20              # random draws (required with [random])
+
+    [grid.'gains.omega']      # a grid: from/to/steps, or values = [...]
+    from = 10
+    to = 60
+    steps = 11
+    unit = "rad/s"            # written into the scenario as "<value> rad/s"
+
+    [random.'plant.platformMass']
+    distribution = "normal"   # normal (mean, sd), uniform (low, high); min/max truncate
+    mean = 2.0
+    sd = 0.2
+    min = 1.5
+
+    [workspace]               # end orientations on a grid, kept if reachable
+    path = "motion.waypoints[1].angles"
+    thx = {from = -10, to = 10, steps = 3}
+    thy = {values = [0]}
+    thz = {from = 130, to = 150, steps = 3}
+    unit = "deg"
+
+Every varied name is a path into the scenario document ("table.key", "list[index]").
+The runs are the product of the grid values, the reachable workspace targets and the
+random draws (common random numbers: draw j is the same at every grid point). A
+malformed SPEC raises SpecError naming the field.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..scenario import ScenarioError
+
+DISTRIBUTIONS = {"normal": ("mean", "sd"), "uniform": ("low", "high")}
+KNOWN = {"scenario", "name", "seed", "samples", "grid", "random", "workspace", "fmu_dir"}
+
+
+class SpecError(ValueError):
+    """A SPEC that cannot be run; the message names the field."""
+
+
+@dataclass(frozen=True)
+class Varied:
+    """One varied quantity: its path in the scenario and the unit it is written with."""
+
+    path: str
+    unit: str | None
+    kind: str  # "grid", "random" or "workspace"
+
+
+@dataclass
+class Spec:
+    name: str
+    scenario: Path
+    document: dict
+    varied: list[Varied]
+    runs: list[dict] = field(default_factory=list)  # column -> value (float or list)
+    fmu_dir: Path | None = None
+
+
+def _number(table: dict, key: str, where: str) -> float:
+    value = table.get(key)
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise SpecError(f"field '{where}.{key}' must be a finite number, got {value!r}")
+    return float(value)
+
+
+def _unit(table: dict, where: str) -> str | None:
+    unit = table.get("unit")
+    if unit is not None and not isinstance(unit, str):
+        raise SpecError(f"field '{where}.unit' must be a string, got {unit!r}")
+    return unit
+
+
+def grid_values(table, where: str) -> list[float]:
+    """from/to/steps (inclusive, evenly spaced) or an explicit values list."""
+    if not isinstance(table, dict):
+        raise SpecError(f"field '{where}' must be a table (from/to/steps or values)")
+    if "values" in table:
+        values = table["values"]
+        if not isinstance(values, list) or not values:
+            raise SpecError(f"field '{where}.values' must be a non-empty list")
+        return [_number({"v": v}, "v", f"{where}.values") for v in values]
+    start, stop = _number(table, "from", where), _number(table, "to", where)
+    steps = table.get("steps")
+    if isinstance(steps, bool) or not isinstance(steps, int) or steps < 1:
+        raise SpecError(f"field '{where}.steps' must be a positive integer, got {steps!r}")
+    if steps == 1:
+        return [start]
+    return [start + (stop - start) * k / (steps - 1) for k in range(steps)]
+
+
+def _draw(rng: np.random.Generator, table: dict, where: str) -> float:
+    kind = table.get("distribution")
+    if kind not in DISTRIBUTIONS:
+        raise SpecError(f"field '{where}.distribution' must be one of "
+                        f"{sorted(DISTRIBUTIONS)}, got {kind!r}")
+    a, b = (_number(table, key, where) for key in DISTRIBUTIONS[kind])
+    low = _number(table, "min", where) if "min" in table else -math.inf
+    high = _number(table, "max", where) if "max" in table else math.inf
+    if kind == "normal" and b <= 0.0:
+        raise SpecError(f"field '{where}.sd' must be positive, got {b}")
+    if kind == "uniform" and b <= a:
+        raise SpecError(f"field '{where}.high' must be above '{where}.low'")
+    if not low < high:
+        raise SpecError(f"field '{where}.max' must be above '{where}.min'")
+    for _ in range(100000):  # rejection sampling: the truncated distribution
+        x = float(rng.normal(a, b) if kind == "normal" else rng.uniform(a, b))
+        if low <= x <= high:
+            return x
+    raise SpecError(f"field '{where}': min/max leave (almost) no probability")
+
+
+def random_draws(tables: dict, seed, samples) -> list[list[float]]:
+    if isinstance(seed, bool) or not isinstance(seed, int):
+        raise SpecError(f"field 'seed' must be an integer with [random], got {seed!r}")
+    if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
+        raise SpecError(f"field 'samples' must be a positive integer, got {samples!r}")
+    rng = np.random.Generator(np.random.PCG64(seed))
+    return [[_draw(rng, table, f"random.{path}") for path, table in tables.items()]
+            for _ in range(samples)]
+
+
+_STEP = re.compile(r"([^.\[\]]+)|\[(-?\d+)\]")
+
+
+def set_path(document: dict, path: str, value) -> None:
+    """Sets document[path] (tables created as needed), or raises SpecError naming path."""
+    keys = [m.group(1) if m.group(1) is not None else int(m.group(2))
+            for m in _STEP.finditer(path)]
+    if not keys or "".join(f".{k}" if isinstance(k, str) else f"[{k}]" for k in keys
+                           ).lstrip(".") != path:
+        raise SpecError(f"field '{path}' is not a path like \"table.key\" or \"list[1].key\"")
+    node = document
+    for key, following in zip(keys, keys[1:]):
+        try:
+            if isinstance(key, str) and key not in node:
+                node[key] = {} if isinstance(following, str) else []
+            node = node[key]
+        except (TypeError, IndexError, KeyError):
+            raise SpecError(f"field '{path}': '{key}' does not exist in the scenario") from None
+    try:
+        node[keys[-1]] = value
+    except (TypeError, IndexError):
+        raise SpecError(f"field '{path}': '{keys[-1]}' does not exist in the scenario") from None
+
+
+def written(value, unit: str | None):
+    """The value as the scenario states it: "<value> <unit>" or the bare number."""
+    if unit is None:
+        return value
+    if isinstance(value, list):
+        return ", ".join(repr(v) for v in value) + f" {unit}"
+    return f"{value!r} {unit}"
+
+
+def run_id(values: dict) -> str:
+    """A stable identity of a run: its varied values (for --resume)."""
+    text = json.dumps(values, sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _tables(data: dict, key: str) -> dict:
+    value = data.get(key, {})
+    if not isinstance(value, dict):
+        raise SpecError(f"field '{key}' must be a table of \"path\" = {{...}}")
+    return value
+
+
+def load_spec(path: str | Path, fmu_dir: str | Path | None = None,
+              reachable=None) -> Spec:
+    """Reads a SPEC; `reachable(pose)` filters workspace targets (default: all kept)."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text())
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        raise SpecError(f"{path}: cannot read the SPEC: {e}") from e
+    try:
+        return parse_spec(data, path.parent, path.stem, fmu_dir, reachable)
+    except SpecError as e:
+        raise SpecError(f"{path}: {e}") from e
+
+
+def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
+               reachable=None) -> Spec:
+    unknown = sorted(set(data) - KNOWN)
+    if unknown:
+        raise SpecError(f"unknown field '{unknown[0]}'")
+    if not isinstance(data.get("scenario"), str):
+        raise SpecError("field 'scenario' must name the base scenario file")
+    scenario = (base / data["scenario"]).resolve()
+    try:
+        document = tomllib.loads(scenario.read_text())
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        raise SpecError(f"field 'scenario': cannot read {scenario}: {e}") from e
+    name = data.get("name", default_name)
+    if not isinstance(name, str) or not re.fullmatch(r"[\w.-]+", name):
+        raise SpecError(f"field 'name' must be a file-name-safe string, got {name!r}")
+    if fmu_dir is None and "fmu_dir" in data:
+        fmu_dir = base / str(data["fmu_dir"])
+    grid, randoms = _tables(data, "grid"), _tables(data, "random")
+    varied, axes = [], []
+    for p, table in grid.items():
+        axes.append(grid_values(table, f"grid.{p}"))
+        varied.append(Varied(p, _unit(table, f"grid.{p}"), "grid"))
+    targets = workspace_targets(data.get("workspace"), reachable)
+    if targets is not None:
+        unit = _unit(data["workspace"], "workspace")
+        varied.append(Varied(data["workspace"]["path"], unit, "workspace"))
+        axes.append(targets)
+    draws = [[]]
+    if randoms:
+        draws = random_draws(randoms, data.get("seed"), data.get("samples"))
+        varied += [Varied(p, _unit(t, f"random.{p}"), "random") for p, t in randoms.items()]
+    elif "samples" in data or "seed" in data:
+        raise SpecError("field 'samples'/'seed' needs a [random] table")
+    if not varied:
+        raise SpecError("nothing varies: give a [grid], [random] or [workspace] table")
+    runs = []
+    for point in itertools.product(*axes):
+        for draw in draws:
+            runs.append({v.path: value for v, value in zip(varied, [*point, *draw])})
+    spec = Spec(name, scenario, document, varied, runs,
+                Path(fmu_dir).resolve() if fmu_dir is not None else None)
+    if runs:
+        check_document(spec, runs[0])
+    return spec
+
+
+def workspace_targets(table, reachable) -> list[list[float]] | None:
+    if table is None:
+        return None
+    if not isinstance(table, dict) or not isinstance(table.get("path"), str):
+        raise SpecError("field 'workspace.path' must name the angles to vary")
+    unknown = sorted(set(table) - {"path", "unit", "thx", "thy", "thz"})
+    if unknown:
+        raise SpecError(f"unknown field 'workspace.{unknown[0]}'")
+    axes = [grid_values(table.get(a), f"workspace.{a}") for a in ("thx", "thy", "thz")]
+    targets = [list(p) for p in itertools.product(*axes)]
+    if reachable is not None:
+        scale = math.pi / 180.0 if table.get("unit") == "deg" else 1.0
+        targets = [p for p in targets if reachable([scale * x for x in p])]
+    return targets
+
+
+def document_for(spec: Spec, values: dict) -> dict:
+    """The scenario document of one run: the base with the varied values written in."""
+    document = json.loads(json.dumps(spec.document))
+    for v in spec.varied:
+        set_path(document, v.path, written(values[v.path], v.unit))
+    return document
+
+
+def check_document(spec: Spec, values: dict) -> None:
+    """Resolves one run's scenario on the client, so that a bad path or unit is refused
+    before anything is sent to the cluster."""
+    from ..scenario import parse_document
+    try:
+        parse_document(document_for(spec, values), spec.scenario.parent, spec.fmu_dir)
+    except ScenarioError as e:
+        raise SpecError(f"the varied scenario is invalid: {e}") from e

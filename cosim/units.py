@@ -1,0 +1,72 @@
+"""Quantities with stated units in hand-written scenarios: ``"5 deg"``, ``"1 ms"``,
+``"-5, 3, 132 deg"`` (a vector: numbers separated by commas, one unit at the end).
+
+Values are converted to SI at load time; everything after loading is SI. A bare number
+is refused where a unit is expected, so that a scenario always says what it means.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .scenario import ScenarioError
+
+DEG = math.pi / 180.0
+
+# unit -> (SI factor, dimension). The dimension is checked against what the field expects.
+UNITS: dict[str, tuple[float, str]] = {
+    "s": (1.0, "time"), "ms": (1e-3, "time"),
+    "rad": (1.0, "angle"), "deg": (DEG, "angle"),
+    "rad/s": (1.0, "angular velocity"), "deg/s": (DEG, "angular velocity"),
+    "rad/s^2": (1.0, "angular acceleration"), "deg/s^2": (DEG, "angular acceleration"),
+    "N m/rad": (1.0, "stiffness gain"), "N m/deg": (1.0 / DEG, "stiffness gain"),
+    "N m/(rad s)": (1.0, "integral gain"), "N m s/rad": (1.0, "damping gain"),
+    "kg": (1.0, "mass"), "g": (1e-3, "mass"), "kg m^2": (1.0, "inertia"),
+    "m": (1.0, "length"), "mm": (1e-3, "length"), "N": (1.0, "force"),
+}
+
+
+def quantity_vector(text, dimension: str, field: str, length: int | None = None) -> list[float]:
+    """SI values of ``"x[, y, ...] unit"`` whose unit has `dimension`."""
+    if not isinstance(text, str):
+        raise ScenarioError(f"field '{field}' must be a string \"value unit\" (e.g. "
+                            f"\"{_example(dimension)}\"), got {text!r}")
+    numbers, unit = _split(text.strip(), field)
+    factor, found = _unit(unit, field)
+    if found != dimension:
+        raise ScenarioError(f"field '{field}' must be a {dimension}, got unit '{unit}' "
+                            f"({found})")
+    try:
+        values = [float(x) * factor for x in numbers.split(",")]
+    except ValueError:
+        raise ScenarioError(f"field '{field}': cannot read numbers in {text!r}") from None
+    if not all(math.isfinite(v) for v in values):
+        raise ScenarioError(f"field '{field}' must be finite, got {text!r}")
+    if length is not None and len(values) != length:
+        raise ScenarioError(f"field '{field}' must have {length} values, got {len(values)}")
+    return values
+
+
+def quantity(text, dimension: str, field: str) -> float:
+    """SI value of ``"x unit"``."""
+    return quantity_vector(text, dimension, field, length=1)[0]
+
+
+def _split(text: str, field: str) -> tuple[str, str]:
+    for unit in sorted(UNITS, key=len, reverse=True):
+        if text.endswith(unit) and (len(text) == len(unit) or text[-len(unit) - 1] == " "):
+            return text[:-len(unit)].strip(), unit
+    known = ", ".join(UNITS)
+    raise ScenarioError(f"field '{field}': no known unit at the end of {text!r} (units: {known})")
+
+
+def _unit(unit: str, field: str) -> tuple[float, str]:
+    try:
+        return UNITS[unit]
+    except KeyError:
+        raise ScenarioError(f"field '{field}': unknown unit '{unit}'") from None
+
+
+def _example(dimension: str) -> str:
+    unit = next(u for u, (_, d) in UNITS.items() if d == dimension)
+    return f"1 {unit}"

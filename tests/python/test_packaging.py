@@ -1,0 +1,50 @@
+"""The harness as an installed package: `pip install` of pyproject.toml (from a copy of
+the sources, without touching the working tree), the `cosim` console command, and the
+FMUs found from the scenario's folder or from --fmu-dir. About 5 s."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_installed_console_command_runs_a_scenario_anywhere(tmp_path):
+    source = tmp_path / "src"
+    shutil.copytree(ROOT / "cosim", source / "cosim",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy(ROOT / name, source / name)
+    prefix = tmp_path / "prefix"
+    # --no-deps --no-build-isolation: the dependencies are this venv's (no download).
+    subprocess.run([sys.executable, "-m", "pip", "install", "--quiet", "--no-deps",
+                    "--no-build-isolation", "--disable-pip-version-check", "--prefix",
+                    str(prefix), str(source)], check=True, capture_output=True)
+    command = prefix / "bin" / "cosim"
+    site = next(prefix.glob("lib/python*/site-packages"))
+    env = {"PYTHONPATH": str(site), "PATH": "/usr/bin:/bin"}
+    work = tmp_path / "elsewhere"
+    work.mkdir()
+    # A scenario away from the repository: FMUs by file name from --fmu-dir ...
+    shutil.copy(ROOT / "scenarios" / "regulation.toml", work / "regulation.toml")
+    run = subprocess.run([str(command), "regulation.toml", "--out", "out", "--quiet",
+                          "--fmu-dir", str(ROOT / "dist")], cwd=work, env=env,
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "1000 steps" in run.stdout and (work / "out" / "regulation.csv").exists()
+    # ... and relative to the scenario's own folder (scenarios/../dist) by default.
+    run = subprocess.run([str(command), str(ROOT / "scenarios" / "regulation.toml"),
+                          "--out", "out2", "--quiet"], cwd=work, env=env,
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    imported = subprocess.run([str(Path(sys.executable)), "-c",
+                               "import cosim, sys; print(cosim.__file__)"], cwd=work,
+                              env=env, capture_output=True, text=True)
+    assert imported.stdout.startswith(str(site)), imported.stdout
+    # Without --fmu-dir, a copied scenario finds no ../dist: refused with the path.
+    run = subprocess.run([str(command), "regulation.toml", "--quiet"], cwd=work, env=env,
+                         capture_output=True, text=True)
+    assert run.returncode != 0 and "Pss3Plant.fmu" in run.stderr

@@ -1,0 +1,120 @@
+"""Hand-written closed-loop scenarios (cosim.closed_loop): units, the Euler-rate and gain
+conversions against the Rust side, and multi-segment motions through the planner FMU."""
+
+from __future__ import annotations
+
+import math
+import sys
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+from cosim.master import Master  # noqa: E402
+from cosim.report import read_csv, vector  # noqa: E402
+from cosim.scenario import ScenarioError, load_scenario, parse_document  # noqa: E402
+
+NAMES = ["regulation", "path1_cubic", "path1_quintic", "three_axis_cubic",
+         "three_axis_quintic"]
+
+
+def test_the_regulation_resolves_to_its_former_plain_form():
+    # Truth: tests/scenarios/regulation_plain.toml, written by the Rust tools
+    # (`robofmu closed-loop boundary` and `design-gains`, gains rounded to 6 decimals).
+    plain = load_scenario(ROOT / "tests" / "scenarios" / "regulation_plain.toml")
+    human = load_scenario(ROOT / "scenarios" / "regulation.toml")
+    assert human.parameters["planner"] == plain.parameters["planner"]
+    assert human.parameters["plant"] == plain.parameters["plant"]
+    for key, value in plain.parameters["pid"].items():
+        assert human.parameters["pid"][key] == pytest.approx(value, rel=1e-6, abs=1e-12)
+    assert sorted(map(str, human.connections)) == sorted(map(str, plain.connections))
+    assert human.record == plain.record and human.steps == plain.steps
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_boundary_conditions_are_the_rust_references(name):
+    # Truth: the Rust reference CSV's planner rows at t0 and tf, computed by the Rust
+    # library's Euler-rate conversion (pss3::rotation) from the same file.
+    ref = read_csv(ROOT / "tests" / "closed_loop_references" / name / f"{name}_ref.csv")
+    p = load_scenario(ROOT / "scenarios" / f"{name}.toml").parameters["planner"]
+    for row, end in ((0, "0"), (-1, "f")):
+        for i in (1, 2, 3):
+            assert p[f"q{end}[{i}]"] == pytest.approx(ref[f"planner.q[{i}]"][row], abs=1e-14)
+            assert p[f"qdot{end}[{i}]"] == pytest.approx(ref[f"planner.qdot[{i}]"][row],
+                                                         abs=1e-14)
+            if p["order"] == 5:
+                assert p[f"qddot{end}[{i}]"] == pytest.approx(
+                    ref[f"planner.qddot[{i}]"][row], abs=1e-14)
+
+
+def document(name: str) -> dict:
+    return tomllib.loads((ROOT / "scenarios" / f"{name}.toml").read_text())
+
+
+@pytest.mark.parametrize("path, value, field", [
+    (("gains", "omega"), 30, "gains.omega"),
+    (("gains", "omega"), "30 rad", "gains.omega"),
+    (("motion", "profile"), "septic", "motion.profile"),
+    (("start", "angles"), "3, -2 deg", "start.angles"),
+    (("stop_time",), "1 parsec", "stop_time"),
+])
+def test_quantities_without_their_unit_are_refused(path, value, field):
+    data = document("regulation")
+    node = data
+    for key in path[:-1]:
+        node = node[key]
+    node[path[-1]] = value
+    with pytest.raises(ScenarioError, match=field.replace(".", r"\.")):
+        parse_document(data, ROOT / "scenarios")
+
+
+def test_degrees_and_radians_state_the_same_motion():
+    data = document("three_axis_quintic")
+    data["motion"]["waypoints"][1]["angles"] = ", ".join(
+        repr(math.radians(a)) for a in (4, -5, 145)) + " rad"
+    data["motion"]["waypoints"][1]["omega"] = ", ".join(
+        repr(math.degrees(w)) for w in (0.03, 0.02, 0.08)) + " deg/s"
+    a = parse_document(data, ROOT / "scenarios").parameters["planner"]
+    b = load_scenario(ROOT / "scenarios" / "three_axis_quintic.toml").parameters["planner"]
+    assert a == pytest.approx(b, rel=1e-14, abs=1e-15)
+
+
+def multi_segment(profile: str) -> dict:
+    data = document("three_axis_quintic")
+    data["motion"]["profile"] = profile
+    first, last = data["motion"]["waypoints"]
+    middle = {"time": "1 s", "angles": "0, -1, 140 deg", "omega": "0.05, -0.02, 0.1 rad/s",
+              "omega_dot": "0.02, 0.01, 0 rad/s^2"}
+    data["motion"]["waypoints"] = [first, middle, last]
+    return data
+
+
+@pytest.mark.parametrize("profile", ["cubic", "quintic"])
+def test_multi_segment_motions_pass_every_waypoint_continuously(profile):
+    # Truth: the waypoint's angles and its base-frame omega (converted by the
+    # planner-independent E^-1) at t = 1 s; velocity continuity shows as a
+    # first-difference of q equal to q_dot h to O(h^2) on both sides of the waypoint.
+    from cosim.design import euler_rates
+    scenario = parse_document(multi_segment(profile), ROOT / "scenarios")
+    assert [s.step for s in scenario.schedule] == [1000]
+    r = Master(scenario).run()
+    q, qdot = vector(r.columns, "planner", "q"), vector(r.columns, "planner", "qdot")
+    angles = np.radians([0.0, -1.0, 140.0])
+    assert np.abs(q[1000] - angles).max() < 1e-15
+    assert np.abs(qdot[1000] - euler_rates(angles, [0.05, -0.02, 0.1])).max() < 1e-15
+    h = scenario.step_size
+    for k in (999, 1000):
+        assert np.abs((q[k + 1] - q[k]) / h - 0.5 * (qdot[k] + qdot[k + 1])).max() < 1e-6
+    # Sample 1000 is the first segment at its end; the second segment, extrapolated
+    # back from samples 1001..1003 (quadratically, error O(h^3)), must meet it.
+    qddot = vector(r.columns, "planner", "qddot")
+    right = 3.0 * qddot[1001] - 3.0 * qddot[1002] + qddot[1003]
+    jump = np.abs(right - qddot[1000]).max()
+    # Quintic: acceleration continuous; cubic: it jumps (the cubic cannot match it).
+    assert (jump < 1e-6) if profile == "quintic" else (jump > 1e-2), jump
+    theta = vector(r.columns, "plant", "theta")
+    assert math.degrees(np.abs(theta - q).max()) < 0.05  # the loop tracks it

@@ -1,0 +1,224 @@
+"""Sweeps on Dask (cosim.sweep): a 2-worker LocalCluster against the same runs made
+serially, a killed worker, --resume, failures, malformed SPECs, the metrics, and the
+instance reuse (fmi2Reset) the workers rely on.
+
+Cost: about 30 s on 2 cores (two LocalCluster start-ups, 4 + 8 closed-loop runs of
+1000 steps on the cluster, a few serial runs)."""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+from cosim.master import Master  # noqa: E402
+from cosim.scenario import load_scenario  # noqa: E402
+from cosim.sweep import SpecError, load_spec, run_sweep  # noqa: E402
+from cosim.sweep.runner import InstancePool  # noqa: E402
+
+BASE = '''scenario = "{scenario}"
+name = "{name}"
+'''
+GRID_AND_DRAWS = BASE + '''seed = 3
+samples = {samples}
+[grid.'gains.omega']
+values = {omegas}
+unit = "rad/s"
+[random.'plant.platformMass']
+distribution = "uniform"
+low = 0.75
+high = 0.85
+unit = "kg"
+'''
+
+
+def write_spec(tmp_path, text: str, name: str = "small", **fields) -> Path:
+    spec = tmp_path / f"{name}.toml"
+    spec.write_text(text.format(scenario=ROOT / "scenarios" / "regulation.toml", name=name,
+                                **fields))
+    return spec
+
+
+def rows(path: Path) -> dict[str, dict]:
+    """run_id -> row, without the wall time (the only column that may differ)."""
+    with open(path, newline="") as f:
+        return {r["run_id"]: {k: v for k, v in r.items() if k != "wall_s"}
+                for r in csv.DictReader(f)}
+
+
+def test_reset_instances_give_the_runs_of_fresh_instances():
+    # Truth: a fresh instantiation. fmi2Reset must bring back every start value, so a
+    # run after another run with other parameters is the fresh run bit for bit.
+    pool = InstancePool()
+    other = load_scenario(ROOT / "scenarios" / "regulation.toml")
+    other.parameters["plant"]["platformMass"] = 0.85
+    other.parameters["pid"]["Kp[1]"] = 900.0
+    used = []
+    Master(other, open_fmu=pool.open, close_fmu=used.append).run()
+    for fmu in used:
+        pool.release(fmu)
+    scenario = load_scenario(ROOT / "scenarios" / "three_axis_quintic.toml")
+    reused = Master(scenario, open_fmu=pool.open, close_fmu=pool.release).run()
+    fresh = Master(scenario).run()
+    assert pool.opened == 3  # the second run reused all three instances
+    assert reused.columns == fresh.columns
+
+
+def test_fast_path_matches_fmpy_calls_bit_for_bit():
+    # Truth: the same master through FMPy's wrappers (FmuInstance.get/set_values).
+    scenario = load_scenario(ROOT / "scenarios" / "three_axis_quintic.toml")
+    assert Master(scenario).run().columns == Master(scenario, fast=False).run().columns
+
+
+def test_two_worker_cluster_gives_the_serial_results(tmp_path):
+    spec = load_spec(write_spec(tmp_path, GRID_AND_DRAWS, samples=2, omegas="[10, 30]"))
+    serial = run_sweep(spec, tmp_path / "serial", workers=0, progress=False)
+    dask = run_sweep(spec, tmp_path / "dask", workers=2, progress=False)
+    assert (serial.runs, serial.failed, dask.runs, dask.failed) == (4, 0, 4, 0)
+    assert rows(serial.table) == rows(dask.table)
+    assert [p.name for p in dask.plots] == ["small_grid.png", "small_histogram.png"]
+
+
+def test_a_killed_workers_runs_are_retried(tmp_path):
+    from distributed import Client, LocalCluster
+    spec = load_spec(write_spec(tmp_path, GRID_AND_DRAWS, samples=4, omegas="[10, 30]"))
+    serial = run_sweep(spec, tmp_path / "serial", workers=0, progress=False)
+    table = tmp_path / "dask" / "small.csv"
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        killed = []
+
+        def kill_a_busy_worker():
+            while not table.exists() or len(table.read_text().splitlines()) < 2:
+                time.sleep(0.02)
+            for _ in range(500):  # a worker with a run in progress, within 10 s
+                busy = [w for w, tasks in client.processing().items() if tasks]
+                if busy:
+                    pid = client.run(os.getpid, workers=busy[:1])[busy[0]]
+                    os.kill(pid, 9)
+                    killed.append(pid)
+                    return
+                time.sleep(0.02)
+
+        killer = threading.Thread(target=kill_a_busy_worker)
+        killer.start()
+        outcome = run_sweep(spec, tmp_path / "dask", scheduler=cluster.scheduler_address,
+                            progress=False)
+        killer.join()
+    assert killed and outcome.failed == 0 and outcome.runs == 8
+    assert rows(table) == rows(serial.table)
+
+
+def test_resume_runs_only_what_is_missing(tmp_path):
+    spec = load_spec(write_spec(tmp_path, GRID_AND_DRAWS, samples=1, omegas="[10, 20, 30]"))
+    full = run_sweep(spec, tmp_path / "full", workers=0, progress=False, plots=False)
+    partial = tmp_path / "partial" / "small.csv"
+    partial.parent.mkdir()
+    lines = full.table.read_text().splitlines(keepends=True)
+    partial.write_text("".join(lines[:2]))  # header and one run: a sweep cut short
+    again = run_sweep(spec, tmp_path / "partial", workers=0, resume=True, progress=False,
+                      plots=False)
+    assert (again.runs, again.skipped) == (2, 1)
+    assert rows(partial) == rows(full.table)
+
+
+def test_a_failing_run_is_recorded_with_its_reason(tmp_path):
+    # A negative platform mass: the plant FMU answers NaN (an FMI error), the sweep goes on.
+    text = BASE + "[grid.'plant.platformMass']\nvalues = [-1.0, 0.8]\nunit = \"kg\"\n"
+    outcome = run_sweep(load_spec(write_spec(tmp_path, text)), tmp_path, workers=0,
+                        progress=False, plots=False)
+    by_mass = {r["plant.platformMass [kg]"]: r for r in rows(outcome.table).values()}
+    assert outcome.failed == 1
+    assert by_mass["-1.0"]["status"] == "failed" and "plant" in by_mass["-1.0"]["reason"]
+    assert by_mass["0.8"]["status"] == "ok"
+
+
+def test_settling_time_follows_the_triple_pole_closed_form(tmp_path):
+    # Truth: the loop's error with a triple pole at -w from an initial offset e0 at rest
+    # (integral zero) is e0 (1 + w t - (w t)^2) e^(-w t); its last exit from the 2 %
+    # band is at w t = 7.889. The co-simulation adds the zero-order hold (half a step,
+    # w h / 2 = 0.005 at w = 10 rad/s, 0.015 at 30) and the neglected coupling: 1.5 %.
+    s_band = brentq(lambda s: (s * s - s - 1.0) * math.exp(-s) - 0.02, 3.0, 20.0)
+    text = BASE + "[grid.'gains.omega']\nvalues = [10, 30]\nunit = \"rad/s\"\n"
+    outcome = run_sweep(load_spec(write_spec(tmp_path, text)), tmp_path, workers=0,
+                        progress=False, plots=False)
+    for row in rows(outcome.table).values():
+        w = float(row["gains.omega [rad/s]"])
+        assert abs(float(row["settling_time_s"]) * w / s_band - 1.0) < 0.015, row
+        # Regulation from a 3 deg error: the largest error is the initial one.
+        assert abs(float(row["max_error_deg"]) - 3.0) < 1e-9
+        assert row["force_limit_hit"] == "0" and row["end_stop_hit"] == "0"
+
+
+@pytest.mark.parametrize("text, field", [
+    (BASE + "[grid.'gains.omega']\nfrom = 10\nto = 60\nsteps = 0\nunit = \"rad/s\"\n",
+     "grid.gains.omega.steps"),
+    (BASE + "seed = 1\nsamples = 2\n[random.'plant.platformMass']\n"
+            "distribution = \"lognormal\"\n", "random.plant.platformMass.distribution"),
+    (BASE + "seed = 1\nsamples = 2\n[random.'plant.platformMass']\n"
+            "distribution = \"normal\"\nmean = 0.8\n", "random.plant.platformMass.sd"),
+    (BASE + "[grid.'gains.omega']\nvalues = [10]\nunit = \"rad\"\n", "gains.omega"),
+    (BASE + "[grid.'gains.omega']\nvalues = [10]\n", "gains.omega"),
+    (BASE + "samples = 3\n[grid.'gains.omega']\nvalues = [10]\nunit = \"rad/s\"\n",
+     "samples"),
+    (BASE + "repeat = 3\n", "repeat"),
+    (BASE, "nothing varies"),
+])
+def test_malformed_specs_are_refused_naming_the_field(tmp_path, text, field):
+    with pytest.raises(SpecError, match=field.replace(".", r"\.")):
+        load_spec(write_spec(tmp_path, text))
+
+
+def test_workspace_targets_outside_the_reachable_set_are_left_out(tmp_path):
+    # Truth: the plant FMU's inverse kinematics at the pose. At thx = 10 deg actuator 3
+    # would be 157.8 mm long, beyond the 152 mm stroke end; at 60 deg leg 3 cannot reach
+    # its platform joint; at 0 deg all three are within the stroke.
+    from cosim.sweep import reachable_on
+    text = BASE + ("[workspace]\npath = \"motion.waypoints[1].angles\"\nunit = \"deg\"\n"
+                   "[workspace.thx]\nvalues = [0, 10, 60]\n[workspace.thy]\nvalues = [0]\n"
+                   "[workspace.thz]\nvalues = [138]\n")
+    spec = load_spec(write_spec(tmp_path, text),
+                     reachable=reachable_on(ROOT / "dist" / "Pss3Plant.fmu"))
+    assert [run["motion.waypoints[1].angles"] for run in spec.runs] == [[0.0, 0.0, 138.0]]
+
+
+def test_the_command_refuses_a_malformed_spec_by_field(tmp_path):
+    import subprocess
+    spec = write_spec(tmp_path, BASE + "[grid.'gains.omega']\nfrom = 10\nto = 60\n")
+    run = subprocess.run([sys.executable, "-m", "cosim", "sweep", str(spec), "--out",
+                          str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
+    assert run.returncode == 1
+    assert "field 'grid.gains.omega.steps' must be a positive integer" in run.stderr
+    assert not (tmp_path / "small.csv").exists()
+
+
+def test_random_draws_are_seeded_truncated_and_follow_their_distribution():
+    # Truth: the distributions' moments. Normal(0.8, 0.1) truncated to [0.7, 1.0]:
+    # mean 0.8 + 0.1 (phi(-1) - phi(2)) / (Phi(2) - Phi(-1)) = 0.8288; uniform(1, 3):
+    # mean 2, variance 1/3. Bounds: 5 standard errors of the mean over 4000 draws.
+    from scipy.stats import norm, truncnorm
+    from cosim.sweep.spec import random_draws
+    tables = {"a": {"distribution": "normal", "mean": 0.8, "sd": 0.1, "min": 0.7,
+                    "max": 1.0},
+              "b": {"distribution": "uniform", "low": 1.0, "high": 3.0}}
+    draws = random_draws(tables, 11, 4000)
+    assert draws == random_draws(tables, 11, 4000) != random_draws(tables, 12, 4000)
+    a, b = (np.array(column) for column in zip(*draws))
+    assert a.min() >= 0.7 and a.max() <= 1.0
+    expected = 0.8 + 0.1 * (norm.pdf(-1) - norm.pdf(2)) / (norm.cdf(2) - norm.cdf(-1))
+    assert expected == pytest.approx(truncnorm(-1, 2, 0.8, 0.1).mean(), rel=1e-12)
+    sd = truncnorm(-1, 2, 0.8, 0.1).std()
+    assert abs(a.mean() - expected) < 5 * sd / np.sqrt(len(a))
+    assert abs(b.mean() - 2.0) < 5 * np.sqrt(1 / 3 / len(b))
+    assert abs(b.var() - 1 / 3) < 0.03
