@@ -154,3 +154,22 @@ fn cli_lists_the_extremals_of_a_configuration_as_a_table() {
     assert!(row.starts_with("| 3 | B | 1 (returned) | 4.80709"), "{row}");
     assert!(row.contains("| yes |"), "{row}");
 }
+
+#[test]
+fn same_side_elbow_pairs_average_to_the_mirror_pair() {
+    // Truth: both arms start at the base with the same lengths and follow the same path,
+    // and the cost is a sum over the arms, so an arm's cost depends only on its own
+    // elbow branch: PI(-,-) + PI(+,+) = 2 PI(-,+) = 2 PI(+,-). Lock 3 has no redundancy,
+    // so each branch pair has exactly one path.
+    let pi = |elbows: [Elbow; 2]| {
+        let c = Chain::for_lock(LinkLengths::default(), Lock::Three, elbows).unwrap();
+        best_path(&c, &PaperPath::B, &[], MultiStartOptions::default())
+            .unwrap()
+            .best()
+            .pi()
+    };
+    let (n, p) = (Elbow::Negative, Elbow::Positive);
+    let mirror = pi([n, p]);
+    assert!((pi([p, n]) - mirror).abs() < 1e-9 * mirror);
+    assert!((pi([n, n]) + pi([p, p]) - 2.0 * mirror).abs() < 1e-9 * mirror);
+}

@@ -48,6 +48,20 @@ struct ProblemArgs {
     /// Intervals of the output grid (and of the direct method's grid).
     #[arg(long, default_value_t = 200)]
     intervals: usize,
+    /// Elbow branches of the right and left arm's inverse kinematics at tf (`negative`:
+    /// clockwise bend, `positive`: counter-clockwise); the default makes the arms mirror
+    /// images. Other pairs put both elbows on one side (docs/dual-arm.md).
+    #[arg(long, value_delimiter = ',', value_parser = parse_elbow,
+          default_value = "negative,positive")]
+    elbows: Vec<Elbow>,
+}
+
+fn parse_elbow(text: &str) -> Result<Elbow, String> {
+    match text.to_ascii_lowercase().as_str() {
+        "negative" => Ok(Elbow::Negative),
+        "positive" => Ok(Elbow::Positive),
+        _ => Err(format!("unknown elbow {text:?}: use negative or positive")),
+    }
 }
 
 #[derive(Args)]
@@ -106,16 +120,24 @@ fn read_path(name: &str) -> Result<Box<dyn Path>, CliError> {
     })
 }
 
-/// The chain of a lock with the chosen lengths and elbow branches.
-fn chain_of(lock: Lock) -> Result<Chain, CliError> {
-    let elbows = [Elbow::Negative, Elbow::Positive];
+/// The mirror-image elbow branches: right arm clockwise, left counter-clockwise.
+const MIRROR_ELBOWS: [Elbow; 2] = [Elbow::Negative, Elbow::Positive];
+
+/// The chain of a lock with the chosen lengths and the elbow branches of both arms.
+fn chain_of(lock: Lock, elbows: [Elbow; 2]) -> Result<Chain, CliError> {
     Ok(Chain::for_lock(LinkLengths::default(), lock, elbows)?)
 }
 
 /// The chain, path and guess of the problem, with a header printed.
 fn setup(p: &ProblemArgs) -> Result<Problem, CliError> {
     let path = read_path(&p.path)?;
-    let chain = chain_of(p.lock)?;
+    let elbows: [Elbow; 2] = p.elbows.as_slice().try_into().map_err(|_| {
+        format!(
+            "--elbows needs two values (right, left), {} given",
+            p.elbows.len()
+        )
+    })?;
+    let chain = chain_of(p.lock, elbows)?;
     let guess = p.guess.clone().unwrap_or_else(|| p.lock.paper_guess());
     let redundant: Vec<String> = chain
         .redundant_joints()

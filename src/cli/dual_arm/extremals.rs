@@ -1,7 +1,7 @@
 //! The multi-start search on the terminal: the extremals found by `dual-arm solve`
 //! (default method) and the `dual-arm extremals` table of every configuration.
 
-use super::{chain_of, parse_lock, read_path};
+use super::{MIRROR_ELBOWS, chain_of, parse_lock, read_path};
 use crate::cli::CliError;
 use clap::Args;
 use robofmu::dual_arm::locks::{Chain, Lock};
@@ -88,7 +88,7 @@ pub fn run(args: &ExtremalsArgs) -> Result<(), CliError> {
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for lock in &locks {
         for name in &paths {
-            let chain = chain_of(*lock)?;
+            let chain = chain_of(*lock, MIRROR_ELBOWS)?;
             let path = read_path(name)?;
             print_configuration(&chain, *lock, name, path.as_ref());
         }
