@@ -54,7 +54,7 @@ pub fn reach(chain: &Chain, side: Side) -> Annulus {
 }
 
 /// Checks that both arms can reach the path at `samples + 1` equally spaced times;
-/// the first time one cannot is an `Unreachable` error.
+/// the first time one cannot is an `OutsideReach` error.
 pub fn check_path_in_reach(
     chain: &Chain,
     path: &dyn Path,
@@ -65,10 +65,13 @@ pub fn check_path_in_reach(
     for k in 0..=samples {
         let t = t0 + (tf - t0) * k as f64 / samples.max(1) as f64;
         let r = path.position(t);
-        if let Some((side, _)) = annuli.iter().find(|(_, a)| !a.contains(r)) {
-            return Err(DualArmError::Unreachable {
+        if let Some((side, a)) = annuli.iter().find(|(_, a)| !a.contains(r)) {
+            return Err(DualArmError::OutsideReach {
                 t,
                 arm: side.name(),
+                distance: (r - a.centre).norm(),
+                inner: a.inner,
+                outer: a.outer,
             });
         }
     }
