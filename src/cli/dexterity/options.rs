@@ -125,9 +125,9 @@ pub enum ModeOption {
 }
 
 /// Help text of every `--mode` option.
-pub const MODE_HELP: &str = "Working mode: a mode index, `best` (largest over the modes at \
-    each pose, no real machine) or `all` (one line per mode and one for the best); default: the fixed mode of \
-    docs/dexterity.md (1rrr 0, 2rrr 3, 3rrr 7)";
+pub const MODE_HELP: &str = "Working mode: a mode index, `best` (largest over the modes \
+    at each pose, no real machine) or `all` (one line per mode and one for the best); \
+    default: the fixed mode of docs/dexterity.md (1rrr 0, 2rrr 3, 3rrr 7)";
 
 /// Parses `best`, `all` or a working-mode index.
 pub fn parse_mode_option(s: &str) -> Result<ModeOption, String> {
