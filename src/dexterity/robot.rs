@@ -20,6 +20,21 @@ pub enum RobotKind {
 impl RobotKind {
     pub const ALL: [RobotKind; 3] = [Self::Serial1Rrr, Self::Parallel2Rrr, Self::Parallel3Rrr];
 
+    /// The working mode a machine of this kind is assumed assembled in when none is
+    /// named: a parallel manipulator cannot change mode without passing through a
+    /// singularity (nor the serial arm change elbow without stretching or folding), so
+    /// every figure refers to one fixed mode. The choice, argued in docs/dexterity.md:
+    /// the mode with the largest GCI over the paper's orientation range (all modes of a
+    /// manipulator reach the same poses): 3-RRR mode 7, 2-RRR mode 3; the 1-RRR's two
+    /// elbow modes have equal GCI and equal largest LCI, mode 0 is taken.
+    pub fn default_mode(self) -> usize {
+        match self {
+            Self::Serial1Rrr => 0,
+            Self::Parallel2Rrr => 3,
+            Self::Parallel3Rrr => 7,
+        }
+    }
+
     /// Short name used on the command line and in file names.
     pub fn name(self) -> &'static str {
         match self {

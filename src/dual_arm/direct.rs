@@ -182,6 +182,61 @@ pub fn solve_direct(
     minimise(chain, path, times, q, options)
 }
 
+/// Minimises the discrete cost from a joint path already sampled on a uniform grid (an
+/// extremal of the shooting method, say): its nodes are the grid and its redundant
+/// joints the start of the Newton iteration.
+pub fn solve_direct_from(
+    chain: &Chain,
+    path: &dyn Path,
+    start: &Trajectory,
+    options: DirectOptions,
+) -> Result<DirectSolution, DualArmError> {
+    if start.times.len() < 3 {
+        return Err(DualArmError::InvalidInput(
+            "the direct method needs at least 2 intervals".into(),
+        ));
+    }
+    let q = free_joints(chain, start);
+    minimise(chain, path, start.times.clone(), q, options)
+}
+
+/// The free joints `q` of every sample of a trajectory.
+fn free_joints(chain: &Chain, trajectory: &Trajectory) -> Vec<DVector<f64>> {
+    trajectory
+        .joints
+        .iter()
+        .map(|theta| {
+            DVector::from_iterator(
+                chain.free_count(),
+                chain.free_joints().iter().map(|&j| theta[j]),
+            )
+        })
+        .collect()
+}
+
+/// The diagonal and upper blocks of a block-tridiagonal Hessian.
+pub(super) type HessianBlocks = (Vec<DMatrix<f64>>, Vec<DMatrix<f64>>);
+
+/// Diagonal and upper blocks of the Hessian of `Phi` in the redundant joints of every
+/// node (the cost restricted to the constraints) at the nodes of a joint path sampled
+/// on a uniform grid.
+pub(super) fn reduced_hessian(
+    chain: &Chain,
+    path: &dyn Path,
+    trajectory: &Trajectory,
+) -> Result<HessianBlocks, DualArmError> {
+    let times = trajectory.times.clone();
+    let dt = times[1] - times[0];
+    let grid = Grid {
+        chain,
+        path,
+        times,
+        dt,
+    };
+    let (_, diag, upper) = grid.derivatives(&free_joints(chain, trajectory))?;
+    Ok((diag, upper))
+}
+
 /// Damped Newton iteration on the redundant joints of every node from the path `q`.
 fn minimise(
     chain: &Chain,

@@ -9,6 +9,14 @@ pub enum DualArmError {
     InvalidInput(String),
     /// The end-effector point is out of reach of an arm for the given joints.
     Unreachable { t: f64, arm: &'static str },
+    /// The path leaves an arm's reachable annulus: no joints at all reach it.
+    OutsideReach {
+        t: f64,
+        arm: &'static str,
+        distance: f64,
+        inner: f64,
+        outer: f64,
+    },
     /// The constraint Jacobian lost rank (a kinematic singularity).
     Singular { t: f64 },
     /// The adaptive integrator gave up.
@@ -30,6 +38,18 @@ impl fmt::Display for DualArmError {
                 f,
                 "the end-effector point at t = {t:.6} s is out of reach of the {arm} arm \
                  (inverse kinematics has no solution; try another initial guess)"
+            ),
+            Self::OutsideReach {
+                t,
+                arm,
+                distance,
+                inner,
+                outer,
+            } => write!(
+                f,
+                "the path at t = {t:.6} s is out of reach of the {arm} arm whatever its \
+                 joints: {distance:.4} m from the arm's first free joint, outside [{inner:.4}, \
+                 {outer:.4}] m"
             ),
             Self::Singular { t } => write!(
                 f,

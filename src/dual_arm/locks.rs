@@ -201,6 +201,18 @@ impl Chain {
         &self.free
     }
 
+    /// The value of a locked joint, rad; `None` for a free joint.
+    pub fn locked_value(&self, joint: usize) -> Option<f64> {
+        self.fixed.get(joint).copied().flatten()
+    }
+
+    /// Smallest singular value of the constraint Jacobian's columns of the joints solved
+    /// by inverse kinematics: how far `q` is from a fold of the inverse kinematics.
+    pub fn inverse_kinematics_margin(&self, q: &DVector<f64>) -> f64 {
+        let solved = self.jacobian(q).select_columns(&self.solved_positions());
+        solved.singular_values().min()
+    }
+
     /// Robot joint indices of the redundant joints, in the order of the guess `S`.
     pub fn redundant_joints(&self) -> Vec<usize> {
         self.redundant.iter().map(|&i| self.free[i]).collect()

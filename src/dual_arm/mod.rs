@@ -11,6 +11,10 @@
 //!   `|delta theta|^2 / delta t` minimised by a damped Newton method on the redundant
 //!   joints of every node (the other joints follow by inverse kinematics).
 //!
+//! Pontryagin's conditions are necessary only, so the default answer is
+//! [`multistart::best_path`]: the cheapest extremal the shooting reaches from several
+//! starts, with a [`optimality`] check that it is a local minimum.
+//!
 //! Everything is SI: metres, radians, seconds.
 
 pub mod direct;
@@ -18,8 +22,11 @@ mod error;
 pub mod kinematics;
 mod linalg;
 pub mod locks;
+pub mod multistart;
+pub mod optimality;
 pub mod paths;
 pub mod pmp;
+pub mod reach;
 pub mod shooting;
 pub mod trajectory;
 

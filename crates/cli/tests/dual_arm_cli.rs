@@ -25,6 +25,17 @@ fn cli_prints_pi_last_and_fails_with_a_message() {
     // (1.344570 rad^2/s).
     assert!(last.starts_with("PI = 1.34457"), "{last}");
     assert!(last.contains("iterations = ") && last.contains("residual = "));
+    // The default method names its search and its local-minimum checks.
+    assert!(
+        stdout.contains("multi-start shooting: 10 starts"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("returned path is a local minimum")
+            && stdout.contains("second-order check passed")
+            && stdout.contains("neighbourhood check passed"),
+        "{stdout}"
+    );
     let bad = run(&[
         "dual-arm", "solve", "--lock", "1", "--path", "B", "--guess", "0.5",
     ]);

@@ -1,11 +1,14 @@
 //! `robofmu dual-arm`: optimal joint paths of the dual-arm cam-lock robot.
 
+mod extremals;
+mod output;
+
 use super::CliError;
 use clap::{Args, Subcommand, ValueEnum};
 use robofmu::dual_arm::direct::{DirectOptions, DirectSolution, solve_direct};
 use robofmu::dual_arm::kinematics::{Elbow, LinkLengths, joint_name};
 use robofmu::dual_arm::locks::{Chain, Lock};
-mod output;
+use robofmu::dual_arm::multistart::best_path;
 use robofmu::dual_arm::paths::{PaperPath, Path, SampledPath};
 use robofmu::dual_arm::shooting::{PmpSolution, Shooting, ShootingOptions};
 use robofmu::dual_arm::trajectory::Trajectory;
@@ -25,6 +28,9 @@ enum DualArmCommand {
     Solve(SolveArgs),
     /// Solve with both methods and compare their PI and joint paths.
     Compare(ProblemArgs),
+    /// List every extremal the multi-start search finds, each checked for a local
+    /// minimum, as a Markdown table (all configurations unless --lock and --path).
+    Extremals(extremals::ExtremalsArgs),
 }
 
 /// The problem: lock, path, initial guess, grid.
@@ -42,6 +48,20 @@ struct ProblemArgs {
     /// Intervals of the output grid (and of the direct method's grid).
     #[arg(long, default_value_t = 200)]
     intervals: usize,
+    /// Elbow branches of the right and left arm's inverse kinematics at tf (`negative`:
+    /// clockwise bend, `positive`: counter-clockwise); the default makes the arms mirror
+    /// images. Other pairs put both elbows on one side (docs/dual-arm.md).
+    #[arg(long, value_delimiter = ',', value_parser = parse_elbow,
+          default_value = "negative,positive")]
+    elbows: Vec<Elbow>,
+}
+
+fn parse_elbow(text: &str) -> Result<Elbow, String> {
+    match text.to_ascii_lowercase().as_str() {
+        "negative" => Ok(Elbow::Negative),
+        "positive" => Ok(Elbow::Positive),
+        _ => Err(format!("unknown elbow {text:?}: use negative or positive")),
+    }
 }
 
 #[derive(Args)]
@@ -49,7 +69,7 @@ struct SolveArgs {
     #[command(flatten)]
     problem: ProblemArgs,
     /// Solution method.
-    #[arg(long, value_enum, default_value_t = Method::Pmp)]
+    #[arg(long, value_enum, default_value_t = Method::Best)]
     method: Method,
     /// Directory for CSV tables and PNG figures.
     #[arg(long)]
@@ -58,7 +78,11 @@ struct SolveArgs {
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum Method {
-    /// Pontryagin's principle, shooting with Newton.
+    /// The cheapest extremal of the shooting method from several starts (the guess, the
+    /// direct method's final joints, a spread about both), checked to be a local minimum.
+    Best,
+    /// Pontryagin's principle, one shooting run from the guess: an extremal, not
+    /// necessarily the minimum.
     Pmp,
     /// Direct minimisation on a time grid.
     Direct,
@@ -76,15 +100,16 @@ pub fn run(args: DualArmArgs) -> Result<(), CliError> {
     match args.command {
         DualArmCommand::Solve(a) => solve(a),
         DualArmCommand::Compare(p) => compare(p),
+        DualArmCommand::Extremals(a) => extremals::run(&a),
     }
 }
 
 /// The chain, path and initial guess of a run.
 type Problem = (Chain, Box<dyn Path>, Vec<f64>);
 
-/// The chain, path and guess of the problem, with a header printed.
-fn setup(p: &ProblemArgs) -> Result<Problem, CliError> {
-    let path: Box<dyn Path> = match p.path.as_str() {
+/// The paper's path `A` or `B`, or a path read from a CSV file.
+fn read_path(name: &str) -> Result<Box<dyn Path>, CliError> {
+    Ok(match name {
         "A" | "a" => Box::new(PaperPath::A),
         "B" | "b" => Box::new(PaperPath::B),
         file => {
@@ -92,9 +117,27 @@ fn setup(p: &ProblemArgs) -> Result<Problem, CliError> {
                 .map_err(|e| format!("cannot read path file {file}: {e}"))?;
             Box::new(SampledPath::from_csv(&text)?)
         }
-    };
-    let lengths = LinkLengths::default();
-    let chain = Chain::for_lock(lengths, p.lock, [Elbow::Negative, Elbow::Positive])?;
+    })
+}
+
+/// The mirror-image elbow branches: right arm clockwise, left counter-clockwise.
+const MIRROR_ELBOWS: [Elbow; 2] = [Elbow::Negative, Elbow::Positive];
+
+/// The chain of a lock with the chosen lengths and the elbow branches of both arms.
+fn chain_of(lock: Lock, elbows: [Elbow; 2]) -> Result<Chain, CliError> {
+    Ok(Chain::for_lock(LinkLengths::default(), lock, elbows)?)
+}
+
+/// The chain, path and guess of the problem, with a header printed.
+fn setup(p: &ProblemArgs) -> Result<Problem, CliError> {
+    let path = read_path(&p.path)?;
+    let elbows: [Elbow; 2] = p.elbows.as_slice().try_into().map_err(|_| {
+        format!(
+            "--elbows needs two values (right, left), {} given",
+            p.elbows.len()
+        )
+    })?;
+    let chain = chain_of(p.lock, elbows)?;
     let guess = p.guess.clone().unwrap_or_else(|| p.lock.paper_guess());
     let redundant: Vec<String> = chain
         .redundant_joints()
@@ -147,7 +190,18 @@ fn solve(args: SolveArgs) -> Result<(), CliError> {
     let intervals = args.problem.intervals;
     let started = Instant::now();
     let (trajectory, iterations, residual, history) = match args.method {
+        Method::Best => {
+            let options = extremals::options(intervals);
+            let best = best_path(&chain, path.as_ref(), &guess, options)?;
+            extremals::print_search(&chain, &best, started.elapsed().as_secs_f64());
+            let s = best.best().clone();
+            (s.trajectory, s.iterations, s.residual, Some(s.history))
+        }
         Method::Pmp => {
+            println!(
+                "one shooting run from the guess: an extremal of Pontryagin's conditions, \
+                 not necessarily the minimum (the default --method best searches several starts)"
+            );
             let s =
                 Shooting::new(&chain, path.as_ref(), shooting_options(intervals)).solve(&guess)?;
             println!(

@@ -1,7 +1,7 @@
 //! Subcommands that write maps over x, y at one orientation: LCI, load index and the
 //! reachable and common workspaces (CSV and PNG).
 
-use super::options::{ReadingArgs, check_mode, index_of, parse_mode};
+use super::options::{ReadingArgs, check_mode, index_of, mode_label, mode_or_default, parse_mode};
 use super::output::{cell, cm, file_in, write_csv};
 use super::sweeps::peak_phi;
 use crate::cli::CliError;
@@ -50,33 +50,44 @@ fn square_grid(robot: &Robot, square: Square, points: usize) -> XyGrid {
     }
 }
 
+/// One mapped quantity: CSV column and file-name suffix, plot title, values.
+struct MapColumn {
+    name: String,
+    title: String,
+    values: Vec<Option<f64>>,
+}
+
 /// Writes one CSV of x, y and one column per map, and one heat map per column.
 fn write_maps(
     dir: &Path,
     stem: &str,
     grid: &XyGrid,
-    columns: &[(String, Vec<Option<f64>>)],
+    columns: &[MapColumn],
     what: &str,
 ) -> Result<(), CliError> {
     let mut header = vec!["x_cm", "y_cm"];
-    header.extend(columns.iter().map(|c| c.0.as_str()));
+    header.extend(columns.iter().map(|c| c.name.as_str()));
     let rows: Vec<Vec<String>> = (0..grid.len())
         .map(|i| {
             let (x, y) = grid.position(i);
             let mut row = vec![format!("{:.4}", cm(x)), format!("{:.4}", cm(y))];
-            row.extend(columns.iter().map(|c| cell(c.1[i])));
+            row.extend(columns.iter().map(|c| cell(c.values[i])));
             row
         })
         .collect();
     write_csv(&file_in(dir, &format!("{stem}.csv"))?, &header, &rows)?;
     let axis: Vec<f64> = grid.coordinates().into_iter().map(cm).collect();
-    for (name, values) in columns {
+    for MapColumn {
+        name,
+        title,
+        values,
+    } in columns
+    {
         if values.iter().all(Option::is_none) {
             continue;
         }
-        let title = format!("{what}, {stem} ({name})");
         let axes = Axes {
-            title: &title,
+            title,
             x_label: "x (cm)",
             y_label: "y (cm)",
         };
@@ -95,20 +106,25 @@ fn write_maps(
     Ok(())
 }
 
-/// LCI maps of every working mode and of the best mode.
+/// LCI maps of every working mode and of the best over modes, each titled by its mode.
 pub fn lci_maps(a: &MapArgs) -> Result<(), CliError> {
     let robot = a.reading.robots()[index_of(a.robot)];
     let grid = square_grid(&robot, a.square, a.grid);
     let phi = a.phi.to_radians();
-    let mut columns: Vec<(String, Vec<Option<f64>>)> = (0..robot.working_modes())
-        .map(|m| {
-            (
-                format!("mode{m}"),
-                lci_map(&robot, phi, &grid, ModeChoice::Only(m)),
-            )
-        })
+    let column = |name: String, choice: ModeChoice| MapColumn {
+        name,
+        title: format!(
+            "LCI of the {} at phi = {} deg, {}",
+            a.robot,
+            a.phi,
+            mode_label(choice, a.robot)
+        ),
+        values: lci_map(&robot, phi, &grid, choice),
+    };
+    let mut columns: Vec<MapColumn> = (0..robot.working_modes())
+        .map(|m| column(format!("mode{m}"), ModeChoice::Only(m)))
         .collect();
-    columns.push(("best".into(), lci_map(&robot, phi, &grid, ModeChoice::Best)));
+    columns.push(column("best".into(), ModeChoice::Best));
     let stem = format!("lci-{}-phi{}", a.robot, a.phi);
     write_maps(&a.out, &stem, &grid, &columns, "LCI")?;
     println!("wrote {}/{stem}.csv and its PNG maps", a.out.display());
@@ -124,9 +140,10 @@ pub struct LoadMapArgs {
     /// peaks (1 deg sweep from 10 to 180 deg on an 81-point grid).
     #[arg(long, allow_negative_numbers = true)]
     phi: Option<f64>,
-    /// Working mode: `best` or a mode index.
-    #[arg(long, default_value = "best", value_parser = parse_mode)]
-    mode: ModeChoice,
+    /// Working mode: a mode index or `best` (largest over the modes at each pose);
+    /// default: the fixed mode of docs/dexterity.md (1rrr 0, 2rrr 3, 3rrr 7).
+    #[arg(long, value_parser = parse_mode)]
+    mode: Option<ModeChoice>,
     /// Grid points per axis over the own workspace square.
     #[arg(long, default_value_t = 121)]
     grid: usize,
@@ -141,19 +158,28 @@ pub struct LoadMapArgs {
 pub fn load_maps(a: &LoadMapArgs) -> Result<(), CliError> {
     let robots = a.reading.robots();
     let which = index_of(a.robot);
-    check_mode(&robots[which], a.mode)?;
+    let mode = mode_or_default(a.mode, a.robot);
+    check_mode(&robots[which], mode)?;
     let phi_deg = match a.phi {
         Some(p) => p,
-        None => peak_phi(&robots, which, 81).ok_or("no reachable pose in the sweep")?,
+        None => peak_phi(&robots, which, mode, 81).ok_or("no reachable pose in the sweep")?,
     };
     let robot = robots[which];
     let grid = XyGrid::own(&robot, a.grid);
-    let values = load_index_map(&robot, phi_deg.to_radians(), &grid, a.mode);
+    let label = mode_label(mode, a.robot);
+    let columns = [MapColumn {
+        name: "load_index_per_m".into(),
+        title: format!(
+            "Load index (1/m) of the {} at phi = {phi_deg} deg, {label}",
+            a.robot
+        ),
+        values: load_index_map(&robot, phi_deg.to_radians(), &grid, mode),
+    }];
     let stem = format!("load-{}-phi{phi_deg}", a.robot);
-    let columns = [("load_index_per_m".to_string(), values)];
     write_maps(&a.out, &stem, &grid, &columns, "load index (1/m)")?;
     println!(
-        "phi = {phi_deg} deg; wrote {}/{stem}.csv and .png",
+        "phi = {phi_deg} deg ({}, {label}); wrote {}/{stem}.csv and .png",
+        a.robot,
         a.out.display()
     );
     Ok(())
@@ -190,7 +216,8 @@ pub fn workspaces(a: &WorkspaceArgs) -> Result<(), CliError> {
     maps.push(common_map(&robots, phi, &grid));
     let cell_area = cm(grid.step()).powi(2);
     println!(
-        "# workspace areas at phi = {} deg ({} x {} grid)",
+        "# workspace areas at phi = {} deg ({} x {} grid), reachable in any working mode \
+         (each mode of these manipulators reaches the same poses)",
         a.phi, a.grid, a.grid
     );
     let names: Vec<String> = RobotKind::ALL
@@ -222,7 +249,7 @@ pub fn workspaces(a: &WorkspaceArgs) -> Result<(), CliError> {
         .collect();
     let axis: Vec<f64> = grid.coordinates().into_iter().map(cm).collect();
     let title = format!(
-        "Manipulators reaching (x, y) at phi = {} deg (3: common)",
+        "Manipulators reaching (x, y) at phi = {} deg, any mode (3: common)",
         a.phi
     );
     let axes = Axes {

@@ -116,6 +116,27 @@ impl From<Workspace> for Region {
     }
 }
 
+/// A `--mode` value: one working mode, the best over the modes at each pose, every mode
+/// in turn, or (absent) the manipulator's default mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModeOption {
+    Choice(ModeChoice),
+    All,
+}
+
+/// Help text of every `--mode` option.
+pub const MODE_HELP: &str = "Working mode: a mode index, `best` (largest over the modes \
+    at each pose, no real machine) or `all` (one line per mode and one for the best); \
+    default: the fixed mode of docs/dexterity.md (1rrr 0, 2rrr 3, 3rrr 7)";
+
+/// Parses `best`, `all` or a working-mode index.
+pub fn parse_mode_option(s: &str) -> Result<ModeOption, String> {
+    if s.eq_ignore_ascii_case("all") {
+        return Ok(ModeOption::All);
+    }
+    parse_mode(s).map(ModeOption::Choice)
+}
+
 /// Parses `best` or a working-mode index.
 pub fn parse_mode(s: &str) -> Result<ModeChoice, String> {
     if s.eq_ignore_ascii_case("best") {
@@ -123,7 +144,23 @@ pub fn parse_mode(s: &str) -> Result<ModeChoice, String> {
     }
     s.parse()
         .map(ModeChoice::Only)
-        .map_err(|_| format!("'{s}' is neither 'best' nor a mode index"))
+        .map_err(|_| format!("'{s}' is neither 'best', 'all' nor a mode index"))
+}
+
+/// The mode choice of an optional `--mode` for `kind`: its default mode when absent.
+pub fn mode_or_default(mode: Option<ModeChoice>, kind: RobotKind) -> ModeChoice {
+    mode.unwrap_or(ModeChoice::Only(kind.default_mode()))
+}
+
+/// How a mode choice is named in every printed figure and plot title.
+pub fn mode_label(choice: ModeChoice, kind: RobotKind) -> String {
+    match choice {
+        ModeChoice::Best => "best over modes".into(),
+        ModeChoice::Only(mode) if mode == kind.default_mode() => {
+            format!("mode {mode} (default)")
+        }
+        ModeChoice::Only(mode) => format!("mode {mode}"),
+    }
 }
 
 /// Rejects a working-mode index the manipulator does not have.

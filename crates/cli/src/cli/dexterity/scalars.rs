@@ -1,12 +1,33 @@
 //! Subcommands that print numbers: the largest LCI at one orientation and the GCI.
+//! Each value is printed first on its line, followed by the manipulator and the working
+//! mode it refers to (`--mode all`: one line per mode and one for the best over modes).
 
-use super::options::{ReadingArgs, Workspace, check_mode, index_of, parse_mode};
+use super::options::{
+    MODE_HELP, ModeOption, ReadingArgs, Workspace, check_mode, index_of, mode_label,
+    parse_mode_option,
+};
 use crate::cli::CliError;
 use clap::Args;
-use robofmu::dexterity::RobotKind;
 use robofmu::dexterity::gci::{GciGrid, gci as global_index};
 use robofmu::dexterity::sweep::max_lci_in;
 use robofmu::dexterity::workspace::ModeChoice;
+use robofmu::dexterity::{Manipulator, Robot, RobotKind};
+
+/// The mode choices an optional `--mode` asks for: every mode then the best for `all`.
+fn choices(mode: Option<ModeOption>, robot: &Robot) -> Result<Vec<ModeChoice>, CliError> {
+    let list = match mode {
+        None => vec![ModeChoice::Only(robot.kind().default_mode())],
+        Some(ModeOption::Choice(c)) => vec![c],
+        Some(ModeOption::All) => (0..robot.working_modes())
+            .map(ModeChoice::Only)
+            .chain([ModeChoice::Best])
+            .collect(),
+    };
+    for &choice in &list {
+        check_mode(robot, choice)?;
+    }
+    Ok(list)
+}
 
 #[derive(Args)]
 pub struct MaxLciArgs {
@@ -22,27 +43,40 @@ pub struct MaxLciArgs {
     /// Grid points per axis (161 over the paper's 40 cm square: 0.25 cm steps).
     #[arg(long, default_value_t = 161)]
     grid: usize,
-    /// Working mode: `best` (largest over the modes) or a mode index.
-    #[arg(long, default_value = "best", value_parser = parse_mode)]
-    mode: ModeChoice,
+    #[arg(long, help = MODE_HELP, value_parser = parse_mode_option)]
+    mode: Option<ModeOption>,
     #[command(flatten)]
     reading: ReadingArgs,
 }
 
-/// Prints the largest LCI (4 decimals) and nothing else.
+/// Prints the largest LCI (4 decimals) first, then its manipulator, mode and position.
 pub fn max_lci(a: &MaxLciArgs) -> Result<(), CliError> {
     let robots = a.reading.robots();
-    check_mode(&robots[index_of(a.robot)], a.mode)?;
-    let found = max_lci_in(
-        &robots,
-        index_of(a.robot),
-        a.phi.to_radians(),
-        a.workspace.into(),
-        a.grid,
-        a.mode,
-    )
-    .ok_or_else(|| format!("{} reaches no grid point at phi = {} deg", a.robot, a.phi))?;
-    println!("{:.4}", found.value);
+    let which = index_of(a.robot);
+    for choice in choices(a.mode, &robots[which])? {
+        let found = max_lci_in(
+            &robots,
+            which,
+            a.phi.to_radians(),
+            a.workspace.into(),
+            a.grid,
+            choice,
+        )
+        .ok_or_else(|| format!("{} reaches no grid point at phi = {} deg", a.robot, a.phi))?;
+        let attained = match choice {
+            ModeChoice::Best => format!(", attained in mode {}", found.mode),
+            ModeChoice::Only(_) => String::new(),
+        };
+        println!(
+            "{:.4}  ({}, {}{attained}; at x = {:.2} cm, y = {:.2} cm, phi = {} deg)",
+            found.value,
+            a.robot,
+            mode_label(choice, a.robot),
+            100.0 * found.pose.x,
+            100.0 * found.pose.y,
+            a.phi
+        );
+    }
     Ok(())
 }
 
@@ -63,9 +97,8 @@ pub struct GciArgs {
     /// Upper end of the orientation range (deg).
     #[arg(long, default_value_t = 180.0, allow_negative_numbers = true)]
     phi_max: f64,
-    /// Working mode: `best` (largest LCI over the modes at each pose) or a mode index.
-    #[arg(long, default_value = "best", value_parser = parse_mode)]
-    mode: ModeChoice,
+    #[arg(long, help = MODE_HELP, value_parser = parse_mode_option)]
+    mode: Option<ModeOption>,
     #[command(flatten)]
     reading: ReadingArgs,
 }
@@ -84,39 +117,51 @@ impl GciArgs {
     }
 }
 
-/// Prints the GCI (4 decimals) and nothing else.
+/// Prints the GCI (4 decimals) first, then its manipulator, mode and workspace volume.
 pub fn gci(a: &GciArgs) -> Result<(), CliError> {
     let robot = a.reading.robots()[index_of(a.robot)];
-    check_mode(&robot, a.mode)?;
-    let value = global_index(&robot, &a.grid()?, a.mode).ok_or("empty workspace")?;
-    println!("{:.4}", value.value);
+    let grid = a.grid()?;
+    for choice in choices(a.mode, &robot)? {
+        let value = global_index(&robot, &grid, choice).ok_or("empty workspace")?;
+        println!(
+            "{:.4}  ({}, {}; workspace volume {:.4} m^2 rad)",
+            value.value,
+            a.robot,
+            mode_label(choice, a.robot),
+            value.volume
+        );
+    }
     Ok(())
 }
 
 /// Prints the GCI on the grid divided by 8, 4, 2 and 1 per axis.
 pub fn gci_convergence(a: &GciArgs) -> Result<(), CliError> {
     let robot = a.reading.robots()[index_of(a.robot)];
-    check_mode(&robot, a.mode)?;
     let finest = a.grid()?;
-    println!(
-        "# GCI of {} over phi in [{}, {}] deg, midpoint rule",
-        a.robot, a.phi_min, a.phi_max
-    );
-    println!("xy_cells  phi_cells  gci      change   volume_m2rad");
-    let mut previous: Option<f64> = None;
-    for divisor in [8, 4, 2, 1] {
-        let grid = GciGrid {
-            xy_cells: (finest.xy_cells / divisor).max(1),
-            phi_cells: (finest.phi_cells / divisor).max(1),
-            ..finest
-        };
-        let g = global_index(&robot, &grid, a.mode).ok_or("empty workspace")?;
-        let change = previous.map_or("-".to_string(), |p| format!("{:+.5}", g.value - p));
+    for choice in choices(a.mode, &robot)? {
         println!(
-            "{:8}  {:9}  {:.5}  {:>8}  {:.5}",
-            grid.xy_cells, grid.phi_cells, g.value, change, g.volume
+            "# GCI of {} ({}) over phi in [{}, {}] deg, midpoint rule",
+            a.robot,
+            mode_label(choice, a.robot),
+            a.phi_min,
+            a.phi_max
         );
-        previous = Some(g.value);
+        println!("xy_cells  phi_cells  gci      change   volume_m2rad");
+        let mut previous: Option<f64> = None;
+        for divisor in [8, 4, 2, 1] {
+            let grid = GciGrid {
+                xy_cells: (finest.xy_cells / divisor).max(1),
+                phi_cells: (finest.phi_cells / divisor).max(1),
+                ..finest
+            };
+            let g = global_index(&robot, &grid, choice).ok_or("empty workspace")?;
+            let change = previous.map_or("-".to_string(), |p| format!("{:+.5}", g.value - p));
+            println!(
+                "{:8}  {:9}  {:.5}  {:>8}  {:.5}",
+                grid.xy_cells, grid.phi_cells, g.value, change, g.volume
+            );
+            previous = Some(g.value);
+        }
     }
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! Subcommands over orientations and readings: the largest LCI versus phi, and the
 //! largest LCI at one orientation for every reading of the parallel layouts.
 
-use super::options::{ReadingArgs, check_mode, parse_mode};
+use super::options::{ReadingArgs, check_mode, mode_label, mode_or_default, parse_mode};
 use super::output::{cell, file_in, write_csv};
 use crate::cli::CliError;
 use crate::plot::{Axes, Series, line_chart};
@@ -27,12 +27,15 @@ pub struct SweepArgs {
     /// Grid points per axis over each searched square.
     #[arg(long, default_value_t = 161)]
     grid: usize,
-    /// Working mode of the 2-RRR: `best` or a fixed mode index (0 to 3).
-    #[arg(long, default_value = "best", value_parser = parse_mode)]
-    mode_2rrr: ModeChoice,
-    /// Working mode of the 3-RRR: `best` or a fixed mode index (0 to 7).
-    #[arg(long, default_value = "best", value_parser = parse_mode)]
-    mode_3rrr: ModeChoice,
+    /// Working mode of the 1-RRR: a mode index (0, 1) or `best`; default 0.
+    #[arg(long, value_parser = parse_mode)]
+    mode_1rrr: Option<ModeChoice>,
+    /// Working mode of the 2-RRR: a mode index (0 to 3) or `best`; default 3.
+    #[arg(long, value_parser = parse_mode)]
+    mode_2rrr: Option<ModeChoice>,
+    /// Working mode of the 3-RRR: a mode index (0 to 7) or `best`; default 7.
+    #[arg(long, value_parser = parse_mode)]
+    mode_3rrr: Option<ModeChoice>,
     /// Output directory for the CSV and PNG files.
     #[arg(long, default_value = "dexterity-out")]
     out: PathBuf,
@@ -40,21 +43,22 @@ pub struct SweepArgs {
     reading: ReadingArgs,
 }
 
-/// Text for a working-mode choice.
-fn mode_label(choice: ModeChoice) -> String {
-    match choice {
-        ModeChoice::Best => "best".into(),
-        ModeChoice::Only(mode) => format!("mode {mode}"),
+impl SweepArgs {
+    /// The working mode of each manipulator, in the order of `RobotKind::ALL`.
+    fn choices(&self) -> [ModeChoice; 3] {
+        let given = [self.mode_1rrr, self.mode_2rrr, self.mode_3rrr];
+        std::array::from_fn(|k| mode_or_default(given[k], RobotKind::ALL[k]))
     }
-}
 
-/// The parallel manipulators' working modes of a sweep.
-fn modes_label(a: &SweepArgs) -> String {
-    format!(
-        "2rrr {}, 3rrr {}",
-        mode_label(a.mode_2rrr),
-        mode_label(a.mode_3rrr)
-    )
+    /// The manipulators' working modes, for the terminal and the plot titles.
+    fn modes_label(&self) -> String {
+        RobotKind::ALL
+            .iter()
+            .zip(self.choices())
+            .map(|(&kind, choice)| format!("{kind} {}", mode_label(choice, kind)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
 }
 
 /// Orientations from `from` to `to` (deg, inclusive) every `step`.
@@ -68,14 +72,15 @@ fn value(row: &SweepRow, k: usize) -> Option<f64> {
     row.max[k].map(|m| m.value)
 }
 
-/// Orientation (deg) where the largest LCI of `robots[which]` over its own workspace
-/// peaks, on a 1 deg sweep from 10 to 180 deg with `points` per grid axis.
-pub fn peak_phi(robots: &[Robot], which: usize, points: usize) -> Option<f64> {
+/// Orientation (deg) where the largest LCI of `robots[which]` in the working modes of
+/// `choice` over its own workspace peaks, on a 1 deg sweep from 10 to 180 deg with
+/// `points` per grid axis.
+pub fn peak_phi(robots: &[Robot], which: usize, choice: ModeChoice, points: usize) -> Option<f64> {
     let degrees = orientations(10.0, 180.0, 1.0);
     let phis: Vec<f64> = degrees.iter().map(|d| d.to_radians()).collect();
     let rows = sweep(
         &robots[which..=which],
-        &[ModeChoice::Best],
+        &[choice],
         &phis,
         Region::Own,
         points,
@@ -93,11 +98,11 @@ pub fn phi_sweep(a: &SweepArgs) -> Result<(), CliError> {
         return Err("need step > 0 and to >= from".into());
     }
     let robots = a.reading.robots();
-    let choices = [ModeChoice::Best, a.mode_2rrr, a.mode_3rrr];
+    let choices = a.choices();
     for (robot, &choice) in robots.iter().zip(&choices) {
         check_mode(robot, choice)?;
     }
-    println!("# working modes: 1rrr best, {}", modes_label(a));
+    println!("# working modes: {}", a.modes_label());
     let degrees = orientations(a.from, a.to, a.step);
     let phis: Vec<f64> = degrees.iter().map(|d| d.to_radians()).collect();
     let mut header = vec!["phi_deg".to_string()];
@@ -119,7 +124,8 @@ pub fn phi_sweep(a: &SweepArgs) -> Result<(), CliError> {
                 .filter_map(|r| Some((value(r, k)?, r.phi.to_degrees())))
                 .max_by(|x, y| x.0.total_cmp(&y.0));
             if let Some((v, d)) = peak {
-                println!("{name:6} {kind}: largest LCI {v:.4} at phi = {d:.1} deg");
+                let mode = mode_label(choices[k], *kind);
+                println!("{name:6} {kind} ({mode}): largest LCI {v:.4} at phi = {d:.1} deg");
             }
         }
         summarise_leaders(&rows, name);
@@ -167,11 +173,16 @@ fn summarise_leaders(rows: &[SweepRow], name: &str) {
 }
 
 fn plot_sweep(a: &SweepArgs, rows: &[SweepRow], name: &str) -> Result<(), CliError> {
-    let series: Vec<Series> = RobotKind::ALL
+    let labels: Vec<String> = RobotKind::ALL
+        .iter()
+        .zip(a.choices())
+        .map(|(&kind, choice)| format!("{kind}, {}", mode_label(choice, kind)))
+        .collect();
+    let series: Vec<Series> = labels
         .iter()
         .enumerate()
-        .map(|(k, kind)| Series {
-            label: kind.name(),
+        .map(|(k, label)| Series {
+            label,
             points: rows
                 .iter()
                 .filter_map(|r| Some((r.phi.to_degrees(), value(r, k)?)))
@@ -179,10 +190,8 @@ fn plot_sweep(a: &SweepArgs, rows: &[SweepRow], name: &str) -> Result<(), CliErr
         })
         .collect();
     let title = format!(
-        "Largest LCI, {name} workspace ({}; {} x {} grid)",
-        modes_label(a),
-        a.grid,
-        a.grid
+        "Largest LCI, {name} workspace, modes as labelled ({} x {} grid)",
+        a.grid, a.grid
     );
     let axes = Axes {
         title: &title,
@@ -258,7 +267,7 @@ pub fn readings(a: &ReadingsArgs) -> Result<(), CliError> {
             let best =
                 max_lci(&robot, phi, &grid, ModeChoice::Best, |_: usize| true).map(|v| v.value);
             println!(
-                "{kind} base {:?} {:?} base-apex {:?} platform-apex {:?} frame {:?}: modes [{}] best {}",
+                "{kind} base {:?} {:?} base-apex {:?} platform-apex {:?} frame {:?}: modes [{}] best over modes {}",
                 reading.base_direction,
                 reading.base_origin,
                 reading.base_apex,
