@@ -2,15 +2,14 @@
 //! functions the exported symbols forward to): state machine, argument checks,
 //! logging, FMU state serialization, Discard, directional derivatives, unwinds.
 
+use robofmu_fmi::core::{
+    DefaultExperiment, Log, Model, ModelInfo, StepOutcome, Variability, Variable,
+};
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
-use robofmu_fmi::fmi2::{
-    DefaultExperiment, Logger, Model, ModelInfo, StepOutcome, Variability, Variable,
-};
 use robofmu_pid_fmu::Pid;
 use std::ffi::c_char;
-use std::sync::LazyLock;
 
 /// Instantiated with loggingOn = 0, so that only the categories a test enables log.
 fn quiet<M: Model>(kind: i32) -> Host<M> {
@@ -403,30 +402,26 @@ static PANICKY_INFO: ModelInfo = ModelInfo {
     log_categories: &[],
 };
 
-static PANICKY_VARIABLES: LazyLock<Vec<Variable<Panicky>>> = LazyLock::new(|| {
-    vec![
-        Variable::real(1, "k", "a parameter", |_: &Panicky| 1.0)
-            .parameter(Variability::Fixed)
-            .start_real(1.0)
-            .set_real(|_, _| Ok(())),
-    ]
-});
-
 impl Model for Panicky {
     fn info() -> &'static ModelInfo {
         &PANICKY_INFO
     }
-    fn variables() -> &'static [Variable<Self>] {
-        &PANICKY_VARIABLES
+    fn variables() -> Vec<Variable<Self>> {
+        vec![
+            Variable::real(1, "k", "a parameter", |_: &Panicky| 1.0)
+                .parameter(Variability::Fixed)
+                .start_real(1.0)
+                .set_real(|_, _| Ok(())),
+        ]
     }
     fn new() -> Self {
         Panicky
     }
     fn set_time(&mut self, _time: f64) {}
-    fn exit_initialization(&mut self, _log: &Logger) -> Result<(), String> {
+    fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {
         Ok(())
     }
-    fn do_step(&mut self, _time: f64, _step: f64, _log: &Logger) -> StepOutcome {
+    fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
         panic!("deliberate test panic")
     }
 }

@@ -4,10 +4,9 @@
 //! the planner itself is unit-agnostic.
 
 use robofmu_control::trajectory::{Boundary, Order, Polynomial};
-use robofmu_fmi::fmi2::{
-    DefaultExperiment, LogCategory, Logger, Model, ModelInfo, StepOutcome, Variability, Variable,
+use robofmu_fmi::core::{
+    DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
-use std::sync::LazyLock;
 
 pub const AXES: usize = 3;
 
@@ -55,6 +54,30 @@ impl Planner {
                 .map(|v| [v[0].clone(), v[1].clone(), v[2].clone()])
                 .map_err(|e| e.to_string()),
         };
+    }
+
+    /// Every axis's coefficients and its samples at 21 equally spaced times of
+    /// [t0, tf] finite: otherwise t0, tf and that axis's boundary values make the
+    /// trajectory overflow (e.g. tf - t0 = 5e-324 s), named in the message.
+    fn check_overflow(&self, axes: &[Polynomial; AXES]) -> Result<(), String> {
+        for (a, p) in axes.iter().enumerate() {
+            let times = (0..=20).map(|k| self.t0 + (self.tf - self.t0) * f64::from(k) / 20.0);
+            let finite = p.shifted_coefficients().iter().all(|c| c.is_finite())
+                && times
+                    .map(|t| p.sample(t))
+                    .all(|s| s.q.is_finite() && s.qdot.is_finite() && s.qddot.is_finite());
+            if !finite {
+                return Err(format!(
+                    "t0 = {:e} s, tf = {:e} s and the boundary values of axis {} ({:?}) make \
+                     the trajectory overflow (its coefficients or samples are not finite)",
+                    self.t0,
+                    self.tf,
+                    a + 1,
+                    self.boundary[a]
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn sample(&self, axis: usize) -> Option<robofmu_control::trajectory::Sample> {
@@ -206,15 +229,13 @@ fn variables() -> Vec<Variable<Planner>> {
     table
 }
 
-static VARIABLES: LazyLock<Vec<Variable<Planner>>> = LazyLock::new(variables);
-
 impl Model for Planner {
     fn info() -> &'static ModelInfo {
         &INFO
     }
 
-    fn variables() -> &'static [Variable<Self>] {
-        &VARIABLES
+    fn variables() -> Vec<Variable<Self>> {
+        variables()
     }
 
     fn new() -> Self {
@@ -232,9 +253,10 @@ impl Model for Planner {
         self.time = time;
     }
 
-    fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
+    fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         self.rebuild();
         let axes = self.axes.as_ref().map_err(String::clone)?;
+        self.check_overflow(axes)?;
         for (a, p) in axes.iter().enumerate() {
             log.debug(
                 "logTrajectory",
@@ -249,7 +271,7 @@ impl Model for Planner {
         Ok(())
     }
 
-    fn do_step(&mut self, _time: f64, _step: f64, _log: &Logger) -> StepOutcome {
+    fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
         // Outputs are explicit functions of time: nothing to integrate.
         StepOutcome::Completed
     }

@@ -1,9 +1,11 @@
 //! modelDescription.xml generated from a model's `ModelInfo` and variable table.
 
 use super::instance::log_categories;
-use super::model::Model;
-use super::units::{UnitDefinition, unit};
-use super::variables::{Causality, Initial, Kind, Variable, check_table, derivative_variables};
+use crate::core::model::Model;
+use crate::core::units::{UnitDefinition, unit};
+use crate::core::variables::{
+    Causality, Initial, Kind, Variable, check_table, derivative_variables,
+};
 use serde::Serialize;
 
 /// Name and version of the generating tool, as written into generationTool.
@@ -315,14 +317,19 @@ fn used_units<M>(table: &[Variable<M>]) -> Result<Vec<&'static UnitDefinition>, 
             }
         }
     }
-    used.sort_by_key(|u| super::units::UNITS.iter().position(|k| k.name == u.name));
+    used.sort_by_key(|u| {
+        crate::core::units::UNITS
+            .iter()
+            .position(|k| k.name == u.name)
+    });
     Ok(used)
 }
 
 /// The text of modelDescription.xml for model M.
 pub fn model_description<M: Model>() -> Result<String, String> {
     let info = M::info();
-    let table = M::variables();
+    let sorted = crate::core::instance::sorted_table::<M>()?;
+    let table = &sorted[..];
     check_table(table)?;
     let derivatives = derivative_variables(table);
     if derivatives.len() != info.number_of_continuous_states {

@@ -1,8 +1,8 @@
 //! documentation/index.html of an FMU: the model's description and a table of its
 //! variables, generated from the same table as modelDescription.xml.
 
-use super::model::Model;
-use super::variables::Kind;
+use crate::core::model::Model;
+use crate::core::variables::Kind;
 
 fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
@@ -14,7 +14,7 @@ fn escape(text: &str) -> String {
 pub fn documentation<M: Model>() -> Result<String, String> {
     let info = M::info();
     let mut rows = String::new();
-    for v in M::variables() {
+    for v in &crate::core::instance::sorted_table::<M>()? {
         let (start, unit) = match &v.kind {
             Kind::Real { start, unit, .. } => {
                 (start.map(|s| format!("{s:?}")), unit.map(str::to_string))

@@ -1,14 +1,10 @@
 //! Functions of FMI 2.0 Co-Simulation.
 
-use super::{check_finite, input_slice, output_ref, with_instance};
+use super::{input_slice, output_ref, with_instance};
+use crate::core::model::{Model, StepOutcome};
 use crate::fmi2::mode::{Call, Mode};
-use crate::fmi2::model::{Model, StepOutcome};
 use crate::fmi2::types::*;
 use std::ffi::c_int;
-
-/// Largest accepted difference between the master's communication point and the
-/// instance time, relative to max(1, |t|): absorbs round-off of t += h in the master.
-const TIME_MATCH: f64 = 1e-9;
 
 pub unsafe fn do_step<M: Model>(
     c: Fmi2Component,
@@ -18,29 +14,11 @@ pub unsafe fn do_step<M: Model>(
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2DoStep", Call::DoStep, |inst| {
-            let t = check_finite(current_communication_point, "currentCommunicationPoint")?;
-            let h = check_finite(communication_step_size, "communicationStepSize")?;
-            if h <= 0.0 {
-                return Err(format!("communicationStepSize = {h} is not positive"));
-            }
-            if (t - inst.time).abs() > TIME_MATCH * t.abs().max(1.0) {
-                return Err(format!(
-                    "currentCommunicationPoint {t} differs from the FMU time {}",
-                    inst.time
-                ));
-            }
-            let before = inst.model.clone();
-            inst.set_time(t);
-            match inst.model.do_step(t, h, &inst.log) {
-                StepOutcome::Completed => {
-                    inst.set_time(t + h);
-                    inst.last_successful_time = t + h;
-                    Ok(Fmi2Status::Ok)
-                }
-                StepOutcome::Discarded { reason, terminate } => {
-                    inst.model = before;
-                    inst.set_time(t);
-                    inst.terminated_by_model = terminate;
+            let t = current_communication_point;
+            let h = communication_step_size;
+            match inst.core.do_step(t, h, &inst.log)? {
+                StepOutcome::Completed => Ok(Fmi2Status::Ok),
+                StepOutcome::Discarded { reason, .. } => {
                     inst.mode = Mode::StepFailed;
                     inst.log.status(
                         Fmi2Status::Discard,
@@ -155,7 +133,7 @@ pub unsafe fn get_real_status<M: Model>(
             if kind != FMI2_LAST_SUCCESSFUL_TIME {
                 return Err(no_such_status(kind, "fmi2GetRealStatus"));
             }
-            *out = inst.last_successful_time;
+            *out = inst.core.last_successful_time;
             Ok(Fmi2Status::Ok)
         })
     }
@@ -185,7 +163,7 @@ pub unsafe fn get_boolean_status<M: Model>(
             if kind != FMI2_TERMINATED {
                 return Err(no_such_status(kind, "fmi2GetBooleanStatus"));
             }
-            *out = if inst.terminated_by_model {
+            *out = if inst.core.terminated_by_model {
                 FMI2_TRUE
             } else {
                 FMI2_FALSE

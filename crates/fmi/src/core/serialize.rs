@@ -1,9 +1,11 @@
-//! Byte format of serialized FMU states (fmi2SerializeFMUstate).
+//! Byte format of serialized FMU states (fmi2SerializeFMUstate, fmi3SerializeFMUState),
+//! shared by the front-ends.
 //!
 //! Layout, little endian:
 //!   magic "RBFMUST\0" (8) | format version u32 | guid length u32 | guid bytes |
 //!   payload length u64 | payload | FNV-1a 64 checksum of everything before it (8)
-//! Payload: time f64 | last successful time f64 | terminated u8 |
+//! Payload: writing standard u8 (2: FMI 2.0, 3: FMI 3.0) | time f64 |
+//!   stop time defined u8 | stop time f64 | last successful time f64 | terminated u8 |
 //!   every writable variable in table order (Real f64, Integer i32, Boolean u8) |
 //!   number of continuous states u32 | states f64... | extra length u64 | extra bytes.
 //!
@@ -12,13 +14,13 @@
 //! model state. Foreign (other magic, version or model), truncated, padded or
 //! corrupted bytes are rejected with a message.
 
-use super::instance::{Snapshot, model_with_start_values};
+use super::instance::{Snapshot, Standard, model_with_start_values};
 use super::model::Model;
-use super::variables::Kind;
+use super::variables::{Kind, Variable};
 
 const MAGIC: &[u8; 8] = b"RBFMUST\0";
 /// Version of the layout above; bump it when the layout changes.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
@@ -27,12 +29,14 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 /// Serialized bytes of a snapshot.
-pub fn serialize<M: Model>(s: &Snapshot<M>) -> Vec<u8> {
-    let mut payload = Vec::new();
+pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
+    let mut payload = vec![s.standard.code()];
     payload.extend_from_slice(&s.time.to_le_bytes());
+    payload.push(s.stop_time.is_some() as u8);
+    payload.extend_from_slice(&s.stop_time.unwrap_or(0.0).to_le_bytes());
     payload.extend_from_slice(&s.last_successful_time.to_le_bytes());
     payload.push(s.terminated_by_model as u8);
-    for v in M::variables() {
+    for v in table {
         match &v.kind {
             Kind::Real {
                 get, set: Some(_), ..
@@ -109,7 +113,7 @@ impl<'a> Reader<'a> {
 }
 
 /// Parses bytes written by `serialize` for the same model.
-pub fn deserialize<M: Model>(bytes: &[u8]) -> Result<Snapshot<M>, String> {
+pub fn deserialize<M: Model>(table: &[Variable<M>], bytes: &[u8]) -> Result<Snapshot<M>, String> {
     let mut r = Reader { bytes, at: 0 };
     if r.take(8, "the header")? != MAGIC {
         return Err("these bytes are not a serialized robofmu FMU state".to_string());
@@ -144,19 +148,24 @@ pub fn deserialize<M: Model>(bytes: &[u8]) -> Result<Snapshot<M>, String> {
     if checksum != fnv1a(&bytes[..body_end]) {
         return Err("corrupt FMU state: checksum mismatch".to_string());
     }
-    read_payload(payload)
+    read_payload(table, payload)
 }
 
-fn read_payload<M: Model>(payload: &[u8]) -> Result<Snapshot<M>, String> {
+fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snapshot<M>, String> {
     let mut r = Reader {
         bytes: payload,
         at: 0,
     };
+    let code = r.array::<1>("the writing standard")?[0];
+    let standard = Standard::from_code(code)
+        .ok_or_else(|| format!("corrupt FMU state: unknown writing standard {code}"))?;
     let time = r.f64("time")?;
+    let stop_defined = r.flag("stop time flag")?;
+    let stop_time = Some(r.f64("stop time")?).filter(|_| stop_defined);
     let last_successful_time = r.f64("last successful time")?;
     let terminated_by_model = r.flag("terminated flag")?;
-    let mut model = model_with_start_values::<M>()?;
-    for v in M::variables() {
+    let mut model = model_with_start_values::<M>(table)?;
+    for v in table {
         let name = v.name.as_str();
         let result = match &v.kind {
             Kind::Real { set: Some(set), .. } => set(&mut model, r.f64(name)?),
@@ -189,7 +198,9 @@ fn read_payload<M: Model>(payload: &[u8]) -> Result<Snapshot<M>, String> {
     Ok(Snapshot {
         model,
         time,
+        stop_time,
         last_successful_time,
         terminated_by_model,
+        standard,
     })
 }
