@@ -11,12 +11,14 @@
 //! FMU is reported as a failed case with its signal.
 
 pub mod binary;
+pub mod cycles;
 pub mod description;
 pub mod fmu;
 pub mod host;
 pub mod isolate;
 pub mod matrix;
 pub mod rng;
+pub mod sequences;
 
 use binary::Binary;
 use fmu::Fmu;

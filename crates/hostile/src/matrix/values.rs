@@ -90,11 +90,17 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
     cases
 }
 
+/// Whether the log names the variable, or its array (\"theta0\" for \"theta0[2]\").
+fn names(log: &str, variable: &str) -> bool {
+    let array = variable.split('[').next().unwrap_or(variable);
+    log.contains(variable) || log.contains(array)
+}
+
 /// Set, initialize, one step (CS) or derivatives (ME), read every Real.
 fn scenario(inst: &Instance, v: &Variable, value: Value) -> Observed {
     let refused_naming = |what: &str, s: Status| {
         let log = inst.take_log();
-        if s == ERROR && log.contains(&v.name) {
+        if s == ERROR && names(&log, &v.name) {
             Observed::of(ERROR, log)
         } else {
             Observed::broken(format!("{what} returned {} (log: {log})", status_name(s)))
