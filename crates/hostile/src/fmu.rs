@@ -23,8 +23,8 @@ pub fn dist_dir() -> PathBuf {
         .unwrap_or_else(|| workspace_root().join("dist"))
 }
 
-/// An FMU unpacked into a temporary folder.
-#[derive(Debug, Clone)]
+/// An FMU unpacked into a folder of its own.
+#[derive(Debug)]
 pub struct Fmu {
     pub description: Description,
     pub library: PathBuf,
@@ -47,8 +47,9 @@ impl Fmu {
             .map_err(|_| "modelDescription.xml is not UTF-8")?;
         let description = description::parse(&xml)?;
         let binary = format!("binaries/linux64/{}.so", description.model_identifier);
-        let folder =
-            std::env::temp_dir().join(format!("robofmu-hostile-{}-{model}", std::process::id()));
+        let folder = workspace_root()
+            .join("target/hostile")
+            .join(format!("{}-{model}", std::process::id()));
         std::fs::create_dir_all(&folder).map_err(|e| e.to_string())?;
         let library = folder.join(format!("{}.so", description.model_identifier));
         std::fs::write(&library, entry(&mut zip, &binary)?).map_err(|e| e.to_string())?;
@@ -65,6 +66,14 @@ impl Fmu {
 
     pub fn name(&self) -> &str {
         &self.description.model_name
+    }
+}
+
+impl Drop for Fmu {
+    fn drop(&mut self) {
+        if let Some(folder) = self.library.parent() {
+            let _ = std::fs::remove_dir_all(folder);
+        }
     }
 }
 

@@ -302,7 +302,9 @@ impl<'a> Instance<'a> {
         (s, state)
     }
 
-    /// Serialized bytes of a state of this instance.
+    /// Serialized bytes of a state of this instance. The state pointer is only
+    /// handed to the FMU (never dereferenced here): checking it is the FMU's job.
+    #[allow(clippy::not_unsafe_ptr_arg_deref)]
     pub fn serialize(&self, state: crate::binary::FmuState) -> Result<Vec<u8>, String> {
         let mut size = 0usize;
         // SAFETY: a state issued by this instance, buffers of the announced size.

@@ -16,9 +16,12 @@ pub mod description;
 pub mod fmu;
 pub mod host;
 pub mod isolate;
+pub mod lifecycle;
 pub mod matrix;
+pub mod plant_hard;
 pub mod rng;
 pub mod sequences;
+pub mod threads;
 
 use binary::Binary;
 use fmu::Fmu;
