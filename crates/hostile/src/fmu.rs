@@ -1,6 +1,7 @@
 //! The packaged FMUs under dist/: found, checked to be newer than the sources,
-//! unpacked (modelDescription.xml and binaries/linux64/<id>.so) into a temporary
-//! folder and opened with dlopen.
+//! unpacked (modelDescription.xml and `binaries/linux64/<id>.so`) into
+//! `target/hostile/<pid>-<model>` (removed when the `Fmu` is dropped) and opened
+//! with dlopen.
 
 use crate::binary::Binary;
 use crate::description::{self, Description};
@@ -31,7 +32,7 @@ pub struct Fmu {
 }
 
 impl Fmu {
-    /// Unpacks dist/<model>.fmu; an error says how to build it.
+    /// Unpacks `dist/<model>.fmu`; an error says how to build it.
     pub fn unpack(model: &str) -> Result<Fmu, String> {
         let archive = dist_dir().join(format!("{model}.fmu"));
         if !archive.is_file() {

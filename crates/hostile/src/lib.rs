@@ -1,6 +1,6 @@
 //! A hostile FMI 2.0 importer for the project's FMUs.
 //!
-//! It unpacks the packaged dist/<Model>.fmu files, opens their binaries with
+//! It unpacks the packaged `dist/<Model>.fmu` files, opens their binaries with
 //! dlopen and calls them through dlsym'd function pointers exactly as a C importer
 //! would (no call goes through the Rust library). On top of that it probes them:
 //! a matrix of bad inputs and illegal call orders whose every case records the

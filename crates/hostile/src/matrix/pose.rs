@@ -1,5 +1,5 @@
 //! Model Exchange at a point where the model cannot be evaluated: the plant's
-//! continuous state set to a pose that cannot assemble (theta[2] = 0.351832 rad,
+//! continuous state set to a pose that cannot assemble (`theta[2]` = 0.351832 rad,
 //! found by the probes of issue 12). FMI 2.0 section 3.2.2 lets every function that
 //! evaluates the model return fmi2Discard there so that the integrator can retry
 //! with a smaller step; fmi2Error would end the instance (issue 12 item 2).
