@@ -263,8 +263,13 @@ pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
         }
     }
     let mut text = format!(
-        "{:<24} {:>6} {:>6} {:>6} {:>6}\n",
-        "class", "cases", "pass", "fail", "known"
+        "{:<24} {:>6} {:>6} {:>6} {:>6}  per model ({})\n",
+        "class",
+        "cases",
+        "pass",
+        "fail",
+        "known",
+        crate::fmu::MODELS.join("/")
     );
     let mut details = String::new();
     let mut failed = false;
@@ -296,7 +301,16 @@ pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
             }
         }
         failed |= fail > 0;
-        text += &format!("{class:<24} {n:>6} {pass:>6} {fail:>6} {known:>6}\n");
+        let per_model: Vec<String> = (0..crate::fmu::MODELS.len())
+            .map(|m| {
+                let count = cases.iter().filter(|c| c.class == class && c.model == m).count();
+                count.to_string()
+            })
+            .collect();
+        text += &format!(
+            "{class:<24} {n:>6} {pass:>6} {fail:>6} {known:>6}  {}\n",
+            per_model.join("/")
+        );
     }
     text += &format!("total cases: {}\n", cases.len());
     (details + &text, failed)
