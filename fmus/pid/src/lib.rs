@@ -5,8 +5,8 @@
 //! (Co-Simulation). Signals carry no unit: the controller is generic.
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
-use robofmu_fmi::fmi2::{
-    DefaultExperiment, LogCategory, Logger, Model, ModelInfo, StepOutcome, Variability, Variable,
+use robofmu_fmi::core::{
+    DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
 use std::sync::LazyLock;
 
@@ -392,7 +392,7 @@ impl Model for Pid {
         // The law is time invariant.
     }
 
-    fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
+    fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         for c in 0..CHANNELS {
             self.gains[c]
                 .validate()
@@ -405,7 +405,7 @@ impl Model for Pid {
         Ok(())
     }
 
-    fn do_step(&mut self, _time: f64, step: f64, _log: &Logger) -> StepOutcome {
+    fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
         for c in 0..CHANNELS {
             if let Err(e) = self.gains[c].validate() {
                 return StepOutcome::Discarded {

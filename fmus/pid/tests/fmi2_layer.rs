@@ -2,12 +2,12 @@
 //! functions the exported symbols forward to): state machine, argument checks,
 //! logging, FMU state serialization, Discard, directional derivatives, unwinds.
 
+use robofmu_fmi::core::{
+    DefaultExperiment, Log, Model, ModelInfo, StepOutcome, Variability, Variable,
+};
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
-use robofmu_fmi::fmi2::{
-    DefaultExperiment, Logger, Model, ModelInfo, StepOutcome, Variability, Variable,
-};
 use robofmu_pid_fmu::Pid;
 use std::ffi::c_char;
 use std::sync::LazyLock;
@@ -423,10 +423,10 @@ impl Model for Panicky {
         Panicky
     }
     fn set_time(&mut self, _time: f64) {}
-    fn exit_initialization(&mut self, _log: &Logger) -> Result<(), String> {
+    fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {
         Ok(())
     }
-    fn do_step(&mut self, _time: f64, _step: f64, _log: &Logger) -> StepOutcome {
+    fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
         panic!("deliberate test panic")
     }
 }

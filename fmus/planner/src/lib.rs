@@ -4,8 +4,8 @@
 //! the planner itself is unit-agnostic.
 
 use robofmu_control::trajectory::{Boundary, Order, Polynomial};
-use robofmu_fmi::fmi2::{
-    DefaultExperiment, LogCategory, Logger, Model, ModelInfo, StepOutcome, Variability, Variable,
+use robofmu_fmi::core::{
+    DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
 use std::sync::LazyLock;
 
@@ -232,7 +232,7 @@ impl Model for Planner {
         self.time = time;
     }
 
-    fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
+    fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         self.rebuild();
         let axes = self.axes.as_ref().map_err(String::clone)?;
         for (a, p) in axes.iter().enumerate() {
@@ -249,7 +249,7 @@ impl Model for Planner {
         Ok(())
     }
 
-    fn do_step(&mut self, _time: f64, _step: f64, _log: &Logger) -> StepOutcome {
+    fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
         // Outputs are explicit functions of time: nothing to integrate.
         StepOutcome::Completed
     }

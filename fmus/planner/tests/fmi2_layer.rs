@@ -1,7 +1,7 @@
 //! FMI 2.0 layer tests that need the planner: instantiation checks, parameters
 //! refused at exitInitializationMode, and a model without directional derivatives.
 
-use robofmu_fmi::fmi2::Model;
+use robofmu_fmi::core::Model;
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::host::{self as fmu_host, Host};
 use robofmu_fmi::fmi2::types::*;

@@ -21,8 +21,8 @@ use robofmu::pss3::dynamics::{
     StopContact,
 };
 use robofmu::pss3::{FkOptions, assemble, forward_kinematics, start_pose};
-use robofmu_fmi::fmi2::{
-    DefaultExperiment, LogCategory, Logger, Model, ModelInfo, StepOutcome, Variable,
+use robofmu_fmi::core::{
+    DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variable,
 };
 use std::sync::LazyLock;
 
@@ -302,7 +302,7 @@ impl Model for Pss3Plant {
         // The plant is time invariant.
     }
 
-    fn exit_initialization(&mut self, log: &Logger) -> Result<(), String> {
+    fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         self.plant()?;
         self.check_settings()?;
         self.state = self.initial_state()?;
@@ -320,7 +320,7 @@ impl Model for Pss3Plant {
         Ok(())
     }
 
-    fn do_step(&mut self, _time: f64, step: f64, _log: &Logger) -> StepOutcome {
+    fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
         let plant = match self.plant() {
             Ok(p) => p,
             Err(reason) => {

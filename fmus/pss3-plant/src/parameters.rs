@@ -6,7 +6,7 @@ use super::Pss3Plant;
 use nalgebra::Vector3;
 use robofmu::pss3::ParamError;
 use robofmu::pss3::dynamics::{EndStopMode, PlantParamError};
-use robofmu_fmi::fmi2::{Variability, Variable};
+use robofmu_fmi::core::{Variability, Variable};
 
 /// First value reference of the parameters.
 pub const FIRST_VR: u32 = 1000;

@@ -13,8 +13,8 @@ use super::Pss3Plant;
 use super::variables::*;
 use nalgebra::Vector3;
 use robofmu::pss3::rotation::moment_from_generalized_force;
-use robofmu_fmi::fmi2::Model;
-use robofmu_fmi::fmi2::variables::{Kind, find};
+use robofmu_fmi::core::Model;
+use robofmu_fmi::core::variables::{Kind, find};
 
 /// Finite-difference step for a state (rad, rad/s), scaled by 1 + |value|.
 const STATE_STEP: f64 = 1e-4;

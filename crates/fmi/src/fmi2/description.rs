@@ -1,9 +1,11 @@
 //! modelDescription.xml generated from a model's `ModelInfo` and variable table.
 
 use super::instance::log_categories;
-use super::model::Model;
-use super::units::{UnitDefinition, unit};
-use super::variables::{Causality, Initial, Kind, Variable, check_table, derivative_variables};
+use crate::core::model::Model;
+use crate::core::units::{UnitDefinition, unit};
+use crate::core::variables::{
+    Causality, Initial, Kind, Variable, check_table, derivative_variables,
+};
 use serde::Serialize;
 
 /// Name and version of the generating tool, as written into generationTool.
@@ -315,7 +317,11 @@ fn used_units<M>(table: &[Variable<M>]) -> Result<Vec<&'static UnitDefinition>, 
             }
         }
     }
-    used.sort_by_key(|u| super::units::UNITS.iter().position(|k| k.name == u.name));
+    used.sort_by_key(|u| {
+        crate::core::units::UNITS
+            .iter()
+            .position(|k| k.name == u.name)
+    });
     Ok(used)
 }
 

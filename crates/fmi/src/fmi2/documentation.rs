@@ -1,8 +1,8 @@
 //! documentation/index.html of an FMU: the model's description and a table of its
 //! variables, generated from the same table as modelDescription.xml.
 
-use super::model::Model;
-use super::variables::Kind;
+use crate::core::model::Model;
+use crate::core::variables::Kind;
 
 fn escape(text: &str) -> String {
     text.replace('&', "&amp;")

@@ -2,7 +2,7 @@
 //! entry points (the functions the exported symbols forward to), addresses variables
 //! by name and keeps the log.
 
-use crate::fmi2::Model;
+use crate::core::Model;
 use crate::fmi2::api;
 use crate::fmi2::types::*;
 use std::ffi::{CStr, CString, c_char, c_void};

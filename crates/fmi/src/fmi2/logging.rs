@@ -10,14 +10,8 @@
 //! and fmi2SetDebugLogging; an empty category list enables all categories).
 
 use super::types::{Fmi2CallbackLogger, Fmi2ComponentEnvironment, Fmi2Status};
+use crate::core::logging::{Log, LogCategory};
 use std::ffi::CString;
-
-/// A log category: name as declared in LogCategories, and its description.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct LogCategory {
-    pub name: &'static str,
-    pub description: &'static str,
-}
 
 /// Categories the layer itself logs under; models add their own after these.
 pub const LAYER_CATEGORIES: [LogCategory; 6] = [
@@ -155,6 +149,12 @@ impl Logger {
                 text.as_ptr(),
             );
         }
+    }
+}
+
+impl Log for Logger {
+    fn debug(&self, category: &str, message: &str) {
+        Logger::debug(self, category, message);
     }
 }
 

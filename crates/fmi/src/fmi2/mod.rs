@@ -1,9 +1,10 @@
-//! The generic FMI 2.0 layer: everything an FMU needs except the model.
+//! The FMI 2.0 front-end: C types, the 2.0 state machine, the 44 C functions of Model
+//! Exchange and Co-Simulation and the 2.0 modelDescription writer, around the
+//! version-neutral [`core`](crate::core).
 //!
-//! A model implements [`Model`] with a table of [`Variable`]s (safe Rust, no FFI);
-//! an FMU crate calls [`export_fmi2!`](crate::export_fmi2) once to get the 44 C
-//! functions of Model Exchange and Co-Simulation. modelDescription.xml is generated
-//! from the same table by [`description::model_description`].
+//! A model implements [`core::Model`](crate::core::Model); an FMU crate calls
+//! [`export_fmi2!`](crate::export_fmi2) once to get the C functions. modelDescription.xml
+//! is generated from the same variable table by [`description::model_description`].
 
 pub mod api;
 pub mod description;
@@ -13,13 +14,7 @@ pub mod host;
 pub mod instance;
 pub mod logging;
 pub mod mode;
-pub mod model;
 pub mod package;
-pub mod serialize;
 pub mod types;
-pub mod units;
-pub mod variables;
 
-pub use logging::{LogCategory, Logger};
-pub use model::{DefaultExperiment, Model, ModelInfo, StepOutcome};
-pub use variables::{Variability, Variable};
+pub use logging::Logger;

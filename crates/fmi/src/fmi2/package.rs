@@ -4,7 +4,7 @@
 
 use super::description::model_description;
 use super::documentation::documentation;
-use super::model::Model;
+use crate::core::model::Model;
 use std::fs::File;
 use std::io::Write;
 use std::path::{Path, PathBuf};

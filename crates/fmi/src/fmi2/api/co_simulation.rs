@@ -1,8 +1,8 @@
 //! Functions of FMI 2.0 Co-Simulation.
 
 use super::{check_finite, input_slice, output_ref, with_instance};
+use crate::core::model::{Model, StepOutcome};
 use crate::fmi2::mode::{Call, Mode};
-use crate::fmi2::model::{Model, StepOutcome};
 use crate::fmi2::types::*;
 use std::ffi::c_int;
 
@@ -23,24 +23,24 @@ pub unsafe fn do_step<M: Model>(
             if h <= 0.0 {
                 return Err(format!("communicationStepSize = {h} is not positive"));
             }
-            if (t - inst.time).abs() > TIME_MATCH * t.abs().max(1.0) {
+            if (t - inst.core.time).abs() > TIME_MATCH * t.abs().max(1.0) {
                 return Err(format!(
                     "currentCommunicationPoint {t} differs from the FMU time {}",
-                    inst.time
+                    inst.core.time
                 ));
             }
-            let before = inst.model.clone();
-            inst.set_time(t);
-            match inst.model.do_step(t, h, &inst.log) {
+            let before = inst.core.model.clone();
+            inst.core.set_time(t);
+            match inst.core.model.do_step(t, h, &inst.log) {
                 StepOutcome::Completed => {
-                    inst.set_time(t + h);
-                    inst.last_successful_time = t + h;
+                    inst.core.set_time(t + h);
+                    inst.core.last_successful_time = t + h;
                     Ok(Fmi2Status::Ok)
                 }
                 StepOutcome::Discarded { reason, terminate } => {
-                    inst.model = before;
-                    inst.set_time(t);
-                    inst.terminated_by_model = terminate;
+                    inst.core.model = before;
+                    inst.core.set_time(t);
+                    inst.core.terminated_by_model = terminate;
                     inst.mode = Mode::StepFailed;
                     inst.log.status(
                         Fmi2Status::Discard,
@@ -155,7 +155,7 @@ pub unsafe fn get_real_status<M: Model>(
             if kind != FMI2_LAST_SUCCESSFUL_TIME {
                 return Err(no_such_status(kind, "fmi2GetRealStatus"));
             }
-            *out = inst.last_successful_time;
+            *out = inst.core.last_successful_time;
             Ok(Fmi2Status::Ok)
         })
     }
@@ -185,7 +185,7 @@ pub unsafe fn get_boolean_status<M: Model>(
             if kind != FMI2_TERMINATED {
                 return Err(no_such_status(kind, "fmi2GetBooleanStatus"));
             }
-            *out = if inst.terminated_by_model {
+            *out = if inst.core.terminated_by_model {
                 FMI2_TRUE
             } else {
                 FMI2_FALSE

@@ -2,10 +2,10 @@
 //! initialization, termination.
 
 use super::{check_finite, input_slice, panic_message, with_instance};
+use crate::core::model::Model;
 use crate::fmi2::instance::{Instance, log_categories};
 use crate::fmi2::logging::Logger;
 use crate::fmi2::mode::{Call, Interface, Mode};
-use crate::fmi2::model::Model;
 use crate::fmi2::types::*;
 use std::ffi::{CStr, CString, c_char, c_int};
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -165,14 +165,17 @@ pub unsafe fn setup_experiment<M: Model>(
             if tolerance_defined != FMI2_FALSE && !(tolerance.is_finite() && tolerance > 0.0) {
                 return Err(format!("tolerance = {tolerance} is not a positive number"));
             }
+            let mut stop = None;
             if stop_time_defined != FMI2_FALSE {
-                let stop = check_finite(stop_time, "stopTime")?;
-                if stop < start {
-                    return Err(format!("stopTime {stop} is before startTime {start}"));
+                let defined = check_finite(stop_time, "stopTime")?;
+                if defined < start {
+                    return Err(format!("stopTime {defined} is before startTime {start}"));
                 }
+                stop = Some(defined);
             }
-            inst.set_time(start);
-            inst.last_successful_time = start;
+            inst.core.stop_time = stop;
+            inst.core.set_time(start);
+            inst.core.last_successful_time = start;
             Ok(Fmi2Status::Ok)
         })
     }
@@ -199,15 +202,18 @@ pub unsafe fn exit_initialization_mode<M: Model>(c: Fmi2Component) -> Fmi2Status
             "fmi2ExitInitializationMode",
             Call::ExitInitializationMode,
             |inst| {
-                inst.model
+                inst.core
+                    .model
                     .exit_initialization(&inst.log)
                     .map_err(|e| format!("invalid parameters: {e}"))?;
                 inst.mode = match inst.interface {
                     Interface::ModelExchange => Mode::EventMode,
                     Interface::CoSimulation => Mode::StepComplete,
                 };
-                inst.log
-                    .debug("logEvents", &format!("initialized at t = {} s", inst.time));
+                inst.log.debug(
+                    "logEvents",
+                    &format!("initialized at t = {} s", inst.core.time),
+                );
                 Ok(Fmi2Status::Ok)
             },
         )

@@ -1,10 +1,10 @@
 //! fmi2GetDirectionalDerivative.
 
 use super::{input_slice, output_slice, with_instance};
+use crate::core::model::Model;
+use crate::core::variables::find;
 use crate::fmi2::mode::Call;
-use crate::fmi2::model::Model;
 use crate::fmi2::types::*;
-use crate::fmi2::variables::find;
 
 #[allow(clippy::too_many_arguments)]
 pub unsafe fn get_directional_derivative<M: Model>(
@@ -44,7 +44,7 @@ pub unsafe fn get_directional_derivative<M: Model>(
                 for (o, &u) in out.iter_mut().zip(unknowns) {
                     let mut sum = 0.0;
                     for (&k, &seed) in knowns.iter().zip(seeds) {
-                        sum += inst.model.partial_derivative(u, k)? * seed;
+                        sum += inst.core.model.partial_derivative(u, k)? * seed;
                     }
                     *o = sum;
                 }

@@ -1,10 +1,10 @@
 //! FMU state: get, set, free, serialize, deserialize.
 
 use super::{input_slice, output_ref, output_slice, with_instance};
-use crate::fmi2::instance::Snapshot;
+use crate::core::instance::Snapshot;
+use crate::core::model::Model;
+use crate::core::serialize::{deserialize, serialize};
 use crate::fmi2::mode::Call;
-use crate::fmi2::model::Model;
-use crate::fmi2::serialize::{deserialize, serialize};
 use crate::fmi2::types::*;
 
 /// The snapshot behind an FMU state pointer.

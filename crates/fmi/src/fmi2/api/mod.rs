@@ -26,8 +26,8 @@ pub use values::*;
 
 use super::instance::Instance;
 use super::mode::{Call, Mode};
-use super::model::Model;
 use super::types::{Fmi2Component, Fmi2Status};
+use crate::core::model::Model;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 /// Text of a caught panic payload.

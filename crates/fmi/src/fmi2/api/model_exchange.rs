@@ -1,9 +1,9 @@
 //! Functions of FMI 2.0 Model Exchange.
 
 use super::{check_finite, input_slice, output_ref, output_slice, with_instance};
+use crate::core::model::Model;
 use crate::fmi2::instance::Instance;
 use crate::fmi2::mode::{Call, Mode};
-use crate::fmi2::model::Model;
 use crate::fmi2::types::*;
 
 /// Checks an array length against the model's count.
@@ -23,8 +23,10 @@ pub unsafe fn enter_event_mode<M: Model>(c: Fmi2Component) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2EnterEventMode", Call::EnterEventMode, |inst| {
             inst.mode = Mode::EventMode;
-            inst.log
-                .debug("logEvents", &format!("event mode at t = {} s", inst.time));
+            inst.log.debug(
+                "logEvents",
+                &format!("event mode at t = {} s", inst.core.time),
+            );
             Ok(Fmi2Status::Ok)
         })
     }
@@ -41,8 +43,8 @@ pub unsafe fn new_discrete_states<M: Model>(
             Call::NewDiscreteStates,
             |inst| {
                 let info = output_ref(event_info, "fmi2EventInfo")?;
-                inst.model.update_discrete_states();
-                let next = inst.model.next_time_event(inst.time);
+                inst.core.model.update_discrete_states();
+                let next = inst.core.model.next_time_event(inst.core.time);
                 *info = Fmi2EventInfo {
                     new_discrete_states_needed: FMI2_FALSE,
                     terminate_simulation: FMI2_FALSE,
@@ -105,7 +107,7 @@ pub unsafe fn completed_integrator_step<M: Model>(
 pub unsafe fn set_time<M: Model>(c: Fmi2Component, time: Fmi2Real) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2SetTime", Call::SetTime, |inst| {
-            inst.set_time(check_finite(time, "time")?);
+            inst.core.set_time(check_finite(time, "time")?);
             Ok(Fmi2Status::Ok)
         })
     }
@@ -127,7 +129,7 @@ pub unsafe fn set_continuous_states<M: Model>(
                 if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
                     return Err(format!("x[] contains {bad}"));
                 }
-                inst.model.set_continuous_states(x);
+                inst.core.model.set_continuous_states(x);
                 Ok(Fmi2Status::Ok)
             },
         )
@@ -148,7 +150,7 @@ unsafe fn fill_states<M: Model>(
         with_instance::<M>(c, function, call, |inst| {
             check_len(n, expected(), "the array")?;
             let out = output_slice(ptr, n, "the array")?;
-            f(&inst.model, out);
+            f(&inst.core.model, out);
             if let Some(bad) = out.iter().find(|v| !v.is_finite()) {
                 return Err(format!("the model computed {bad}"));
             }
@@ -173,10 +175,10 @@ unsafe fn fill_fallible<M: Model>(
         with_instance::<M>(c, function, call, |inst| {
             check_len(n, expected(), "the array")?;
             let out = output_slice(ptr, n, "the array")?;
-            if let Err(reason) = f(&inst.model, out) {
+            if let Err(reason) = f(&inst.core.model, out) {
                 inst.log.status(
                     Fmi2Status::Discard,
-                    &format!("{function}: at t = {} s: {reason}", inst.time),
+                    &format!("{function}: at t = {} s: {reason}", inst.core.time),
                 );
                 return Ok(Fmi2Status::Discard);
             }

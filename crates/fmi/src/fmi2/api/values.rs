@@ -1,11 +1,11 @@
 //! fmi2Get*/fmi2Set* for Real, Integer, Boolean and String variables.
 
 use super::{input_slice, output_slice, with_instance};
+use crate::core::model::Model;
+use crate::core::variables::find;
 use crate::fmi2::instance::Instance;
 use crate::fmi2::mode::Call;
-use crate::fmi2::model::Model;
 use crate::fmi2::types::*;
-use crate::fmi2::variables::find;
 
 /// Applies `f` to each (value reference, value) pair; stops at the first error.
 fn each<T>(
@@ -30,7 +30,7 @@ pub unsafe fn get_real<M: Model>(
             let vrs = input_slice(vr, nvr, "vr[]")?;
             let out = output_slice(value, nvr, "value[]")?;
             each(vrs, out, |r, v| {
-                *v = inst.get_real(r)?;
+                *v = inst.core.get_real(r)?;
                 Ok(())
             })
         })
@@ -48,7 +48,7 @@ pub unsafe fn get_integer<M: Model>(
             let vrs = input_slice(vr, nvr, "vr[]")?;
             let out = output_slice(value, nvr, "value[]")?;
             each(vrs, out, |r, v| {
-                *v = inst.get_integer(r)?;
+                *v = inst.core.get_integer(r)?;
                 Ok(())
             })
         })
@@ -66,7 +66,7 @@ pub unsafe fn get_boolean<M: Model>(
             let vrs = input_slice(vr, nvr, "vr[]")?;
             let out = output_slice(value, nvr, "value[]")?;
             each(vrs, out, |r, v| {
-                *v = if inst.get_boolean(r)? {
+                *v = if inst.core.get_boolean(r)? {
                     FMI2_TRUE
                 } else {
                     FMI2_FALSE

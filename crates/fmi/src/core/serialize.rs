@@ -1,9 +1,11 @@
-//! Byte format of serialized FMU states (fmi2SerializeFMUstate).
+//! Byte format of serialized FMU states (fmi2SerializeFMUstate, fmi3SerializeFMUState),
+//! shared by the front-ends.
 //!
 //! Layout, little endian:
 //!   magic "RBFMUST\0" (8) | format version u32 | guid length u32 | guid bytes |
 //!   payload length u64 | payload | FNV-1a 64 checksum of everything before it (8)
-//! Payload: time f64 | last successful time f64 | terminated u8 |
+//! Payload: writing standard u8 (2: FMI 2.0, 3: FMI 3.0) | time f64 |
+//!   stop time defined u8 | stop time f64 | last successful time f64 | terminated u8 |
 //!   every writable variable in table order (Real f64, Integer i32, Boolean u8) |
 //!   number of continuous states u32 | states f64... | extra length u64 | extra bytes.
 //!
@@ -12,13 +14,13 @@
 //! model state. Foreign (other magic, version or model), truncated, padded or
 //! corrupted bytes are rejected with a message.
 
-use super::instance::{Snapshot, model_with_start_values};
+use super::instance::{Snapshot, Standard, model_with_start_values};
 use super::model::Model;
 use super::variables::Kind;
 
 const MAGIC: &[u8; 8] = b"RBFMUST\0";
 /// Version of the layout above; bump it when the layout changes.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
@@ -28,8 +30,10 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 
 /// Serialized bytes of a snapshot.
 pub fn serialize<M: Model>(s: &Snapshot<M>) -> Vec<u8> {
-    let mut payload = Vec::new();
+    let mut payload = vec![s.standard.code()];
     payload.extend_from_slice(&s.time.to_le_bytes());
+    payload.push(s.stop_time.is_some() as u8);
+    payload.extend_from_slice(&s.stop_time.unwrap_or(0.0).to_le_bytes());
     payload.extend_from_slice(&s.last_successful_time.to_le_bytes());
     payload.push(s.terminated_by_model as u8);
     for v in M::variables() {
@@ -152,7 +156,12 @@ fn read_payload<M: Model>(payload: &[u8]) -> Result<Snapshot<M>, String> {
         bytes: payload,
         at: 0,
     };
+    let code = r.array::<1>("the writing standard")?[0];
+    let standard = Standard::from_code(code)
+        .ok_or_else(|| format!("corrupt FMU state: unknown writing standard {code}"))?;
     let time = r.f64("time")?;
+    let stop_defined = r.flag("stop time flag")?;
+    let stop_time = Some(r.f64("stop time")?).filter(|_| stop_defined);
     let last_successful_time = r.f64("last successful time")?;
     let terminated_by_model = r.flag("terminated flag")?;
     let mut model = model_with_start_values::<M>()?;
@@ -189,7 +198,9 @@ fn read_payload<M: Model>(payload: &[u8]) -> Result<Snapshot<M>, String> {
     Ok(Snapshot {
         model,
         time,
+        stop_time,
         last_successful_time,
         terminated_by_model,
+        standard,
     })
 }

@@ -1,8 +1,8 @@
 //! The contract between a model and the FMI layer. A model implements `Model` in safe
-//! Rust; the layer does all pointer handling, argument checking, state-machine
+//! Rust with core types only; a front-end does all pointer handling, argument checking, state-machine
 //! enforcement, logging and unwind catching.
 
-use super::logging::{LogCategory, Logger};
+use super::logging::{Log, LogCategory};
 use super::variables::Variable;
 
 /// DefaultExperiment of modelDescription.xml.
@@ -21,7 +21,7 @@ pub struct ModelInfo {
     pub model_name: &'static str,
     /// modelIdentifier: a C identifier naming the binary.
     pub model_identifier: &'static str,
-    /// The token fmi2Instantiate checks.
+    /// The instantiation token (FMI 2.0 guid, FMI 3.0 instantiationToken).
     pub guid: &'static str,
     pub description: &'static str,
     pub default_experiment: DefaultExperiment,
@@ -46,7 +46,7 @@ pub enum StepOutcome {
     },
 }
 
-/// A model that can be exported as an FMU by `export_fmi2!`.
+/// A model that can be exported as an FMU by a front-end (`export_fmi2!`).
 ///
 /// Slices passed to the continuous-state methods have exactly
 /// `info().number_of_continuous_states` (or `number_of_event_indicators`) elements,
@@ -66,10 +66,10 @@ pub trait Model: Clone + Send + Sized + 'static {
 
     /// End of initialization: check the parameters together (a message says which
     /// one is wrong and why) and prepare for simulation.
-    fn exit_initialization(&mut self, log: &Logger) -> Result<(), String>;
+    fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String>;
 
     /// Co-simulation step from `time` to `time + step` with the inputs held.
-    fn do_step(&mut self, time: f64, step: f64, log: &Logger) -> StepOutcome;
+    fn do_step(&mut self, time: f64, step: f64, log: &dyn Log) -> StepOutcome;
 
     fn continuous_states(&self, _x: &mut [f64]) {}
 

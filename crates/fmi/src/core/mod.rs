@@ -1,0 +1,18 @@
+//! The version-neutral core of the FMI layer: what a model implements and what every
+//! front-end (FMI 2.0, FMI 3.0) shares.
+//!
+//! A model implements [`Model`] with a table of [`Variable`]s in safe Rust, without any
+//! FFI or front-end type; [`Instance`] holds one model with its time and stop time,
+//! [`Snapshot`] is an FMU state and [`serialize`] its checked byte format.
+
+pub mod instance;
+pub mod logging;
+pub mod model;
+pub mod serialize;
+pub mod units;
+pub mod variables;
+
+pub use instance::{Instance, Snapshot, Standard};
+pub use logging::{Log, LogCategory};
+pub use model::{DefaultExperiment, Model, ModelInfo, StepOutcome};
+pub use variables::{Variability, Variable};
