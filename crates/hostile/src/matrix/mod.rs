@@ -303,7 +303,10 @@ pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
         failed |= fail > 0;
         let per_model: Vec<String> = (0..crate::fmu::MODELS.len())
             .map(|m| {
-                let count = cases.iter().filter(|c| c.class == class && c.model == m).count();
+                let count = cases
+                    .iter()
+                    .filter(|c| c.class == class && c.model == m)
+                    .count();
                 count.to_string()
             })
             .collect();
