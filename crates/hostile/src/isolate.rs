@@ -5,8 +5,9 @@ use std::io::{BufRead, BufReader, Write};
 use std::os::fd::FromRawFd;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-/// Seconds a child may run before SIGALRM ends it (a hang counts as a crash).
-const CHILD_TIME_LIMIT: u32 = 300;
+/// Seconds one case may run before SIGALRM ends its child (a hang counts as a
+/// crash of that case); the clock restarts for every case.
+const CASE_TIME_LIMIT: u32 = 120;
 
 /// Result of one case: the text the probe returned, or how the child died.
 pub type CaseResult = Result<String, String>;
@@ -49,8 +50,9 @@ fn run_child(
         // SAFETY: the child's ends of the pipe.
         unsafe { libc::close(fds[0]) };
         let mut out = unsafe { std::fs::File::from_raw_fd(fds[1]) };
-        unsafe { libc::alarm(CHILD_TIME_LIMIT) };
         for i in start..n {
+            // SAFETY: alarm has no preconditions.
+            unsafe { libc::alarm(CASE_TIME_LIMIT) };
             let text = catch_unwind(AssertUnwindSafe(|| probe(i)));
             let Ok(text) = text else {
                 // SAFETY: leave without running the parent's destructors.
