@@ -169,3 +169,32 @@ fn read_element(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_the_plant_description() {
+        // Expected values: the checked-in modelDescription/Pss3Plant.xml (96
+        // ScalarVariables, six <Unknown> under <Derivatives>, theta[2] has
+        // valueReference 102, the state of variable 13 is theta[1] = vr 101).
+        let xml = include_str!("../../../modelDescription/Pss3Plant.xml");
+        let d = parse(xml).unwrap();
+        assert_eq!(d.model_name, "Pss3Plant");
+        assert_eq!(d.model_identifier, "Pss3Plant");
+        assert_eq!(d.variables.len(), 96);
+        assert_eq!(d.number_of_states, 6);
+        assert_eq!(d.number_of_event_indicators, 6);
+        assert!(d.provides_directional_derivative);
+        assert_eq!(d.by_name("theta[2]").vr, 102);
+        assert_eq!(d.state_derivative_pairs().len(), 6);
+        assert_eq!(d.state_derivative_pairs()[0].0, 101);
+        assert_eq!(d.by_name("endStopMode").var_type, VarType::Integer);
+    }
+
+    #[test]
+    fn refuses_a_description_without_guid() {
+        assert!(parse("<fmiModelDescription modelName=\"x\"/>").is_err());
+    }
+}
