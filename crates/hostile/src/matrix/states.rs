@@ -148,7 +148,7 @@ pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
                     model: m,
                     interface: Some(interface),
                     name: format!("{name}({bad:?})"),
-                    expect: Expect::error("state"),
+                    expect: Expect::error("not a live FMU state"),
                     why: WHY_BAD,
                     probe: Box::new(move |l| probe(l, m, interface, bad, use_it)),
                 });
