@@ -126,3 +126,42 @@ fn one_call_with_a_seed_vector_equals_the_sum_of_single_columns() {
         "{together:?}"
     );
 }
+
+#[test]
+fn a_co_simulation_instance_continues_from_a_model_exchange_state() {
+    // Decision (issue 12): accepted. An FMU state holds the parameters, inputs,
+    // continuous states, contact flags and time, which mean the same in both
+    // interfaces; the interface itself is the instance's, not the state's.
+    // Truth (second formulation): the CS instance restored from an ME state moved
+    // off the initial pose steps exactly as a CS instance initialized at that pose.
+    let me = continuous(true);
+    let moved_theta = [0.06, -0.03, 2.36];
+    let mut x = me.states();
+    x[..3].copy_from_slice(&moved_theta);
+    assert_eq!(me.set_states(&x), Fmi2Status::Ok);
+    me.handle_event();
+    let bytes = me.serialize();
+
+    let restored = H::new(FMI2_CO_SIMULATION);
+    assert_eq!(restored.initialize(), Fmi2Status::Ok);
+    assert_eq!(
+        restored.restore(&bytes),
+        Fmi2Status::Ok,
+        "{}",
+        restored.last_message()
+    );
+    let direct = H::new(FMI2_CO_SIMULATION);
+    direct.set_vector("theta0", moved_theta);
+    direct.set_vector("omega0", OMEGA);
+    assert_eq!(direct.initialize(), Fmi2Status::Ok);
+    for h in [&restored, &direct] {
+        assert_eq!(h.step(0.0, 1e-3), Fmi2Status::Ok, "{}", h.last_message());
+    }
+    for name in ["theta", "omega", "l", "force"] {
+        assert_eq!(restored.vector(name), direct.vector(name), "{name}");
+    }
+    assert!(
+        restored.vector("theta") != moved_theta,
+        "the step moved nothing"
+    );
+}

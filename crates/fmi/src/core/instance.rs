@@ -142,6 +142,12 @@ fn wrong_type<M>(v: &Variable<M>, wanted: &str) -> String {
     )
 }
 
+/// Largest magnitude the layer accepts for a Real value set by the host. No model
+/// quantity in SI units comes near it, and the product of two such values is still
+/// finite, so an extreme finite value (say 1e308) is refused where it is set, naming
+/// the variable, instead of overflowing later in the model.
+pub const MAX_MAGNITUDE: f64 = 1e150;
+
 /// Largest accepted difference between the master's communication point and the
 /// instance time (and overshoot of the stop time), relative to max(1, |t|): absorbs
 /// round-off of t += h in the master.
@@ -368,6 +374,13 @@ impl<M: Model> Instance<M> {
         };
         if !value.is_finite() {
             return Err(format!("\"{}\" cannot be set to {value}", v.name));
+        }
+        if value.abs() > MAX_MAGNITUDE {
+            return Err(format!(
+                "\"{}\" = {value:e} exceeds the magnitude {MAX_MAGNITUDE:e} the layer accepts \
+                 (such a value overflows the model's arithmetic)",
+                v.name
+            ));
         }
         if min.is_some_and(|m| value < m) || max.is_some_and(|m| value > m) {
             return Err(format!(
