@@ -257,8 +257,9 @@ impl<'a> Instance<'a> {
         }
     }
 
-    /// A Co-Simulation step the model must refuse: a force input of 1e308 N (only
-    /// models with such an input can reach StepFailed).
+    /// A Co-Simulation step the model must refuse: a force input of 1e100 N (finite
+    /// and accepted when set, but no step can be integrated with it). Only models
+    /// with such an input can reach StepFailed.
     fn fail_a_step(&self) -> Result<(), String> {
         let force = self
             .description
@@ -266,13 +267,19 @@ impl<'a> Instance<'a> {
             .iter()
             .find(|v| v.name == "actuatorForce[1]")
             .ok_or("the model has no force input to fail a step with")?;
-        self.set_real(force.vr, 1e308);
+        let s = self.set_real(force.vr, 1e100);
+        if s != OK {
+            return Err(format!(
+                "a force of 1e100 N was refused: {}",
+                self.env.take_log()
+            ));
+        }
         let s = self.do_step(0.0, 1e-3);
         self.env.take_log();
         if s == crate::binary::DISCARD {
             Ok(())
         } else {
-            Err(format!("a step with a force of 1e308 N returned {s}"))
+            Err(format!("a step with a force of 1e100 N returned {s}"))
         }
     }
 
