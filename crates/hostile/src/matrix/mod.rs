@@ -161,7 +161,7 @@ pub fn judge(case: &Case, result: &isolate::CaseResult) -> Verdict {
 
 fn mismatch(expect: &Expect, seen: &Observed) -> Option<String> {
     if let Some(p) = &seen.problem {
-        return Some(p.clone());
+        return Some(shorten(p));
     }
     if !expect.statuses.contains(&seen.status) {
         let wanted: Vec<String> = expect.statuses.iter().map(|&s| status_name(s)).collect();
@@ -186,7 +186,7 @@ fn mismatch(expect: &Expect, seen: &Observed) -> Option<String> {
 }
 
 fn shorten(log: &str) -> String {
-    match log.char_indices().nth(300) {
+    match log.char_indices().nth(400) {
         Some((i, _)) => format!("{}...", &log[..i]),
         None => log.to_string(),
     }
