@@ -310,3 +310,42 @@ fn a_step_ending_at_the_stop_time_despite_round_off_is_accepted() {
     }
     assert_eq!(h.last_successful_time(), 0.1 + 0.1 + 0.1);
 }
+
+#[test]
+fn one_array_declaration_gives_named_scalars_with_getters_setters_and_dimensions() {
+    use robofmu_fmi::core::variables::{ArrayElement, Kind, RealArray};
+    // theta[1..3] at value references 101..103 over a plain [f64; 3].
+    let array = RealArray::new(101, "theta", 3, "angle", |m: &[f64; 3], i| m[i])
+        .set(|m, i, v| {
+            m[i] = v;
+            Ok(())
+        })
+        .each(|v, i| v.state().start_real(0.1 * (i + 1) as f64));
+    let table = array.variables();
+    let names: Vec<&str> = table.iter().map(|v| v.name.as_str()).collect();
+    assert_eq!(names, ["theta[1]", "theta[2]", "theta[3]"]);
+    let vrs: Vec<u32> = table.iter().map(|v| v.value_reference).collect();
+    assert_eq!(vrs, [101, 102, 103]);
+    assert_eq!(
+        table[2].array,
+        Some(ArrayElement {
+            base: "theta".to_string(),
+            index: 2,
+            length: 3
+        })
+    );
+    let mut model = [1.0, 2.0, 3.0];
+    let Kind::Real {
+        get,
+        set: Some(set),
+        start,
+        ..
+    } = &table[1].kind
+    else {
+        panic!("theta[2] is a settable Real");
+    };
+    assert_eq!(get(&model), 2.0);
+    set(&mut model, -4.5).unwrap();
+    assert_eq!(model, [1.0, -4.5, 3.0]);
+    assert_eq!(*start, Some(0.2));
+}

@@ -2,32 +2,44 @@
 //! table used to be built once per load into a static and never freed, so every
 //! dlopen / instantiate / free / dlclose cycle leaked it).
 //!
-//! Truth: a counting global allocator; the live heap bytes after instantiate, a
-//! simulation step, an FMU state and free equal the live bytes before the first
-//! instantiation. One test in this binary, so no other thread allocates meanwhile.
+//! Truth: a counting global allocator; the live heap bytes of the test's thread (the
+//! FMU runs entirely in the calling thread; the test harness's own threads are not
+//! counted) after instantiate, a simulation step, an FMU state and free equal those
+//! before the first instantiation.
 
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::host::instantiate;
 use robofmu_fmi::fmi2::types::*;
 use robofmu_pss3_plant_fmu::Pss3Plant;
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicIsize, Ordering};
+use std::cell::Cell;
 
 struct Counting;
 
-static LIVE: AtomicIsize = AtomicIsize::new(0);
+thread_local! {
+    /// Live bytes allocated by this thread (const-initialized: no allocation itself).
+    static LIVE: Cell<isize> = const { Cell::new(0) };
+}
+
+fn count(delta: isize) {
+    LIVE.with(|live| live.set(live.get() + delta));
+}
+
+fn live() -> isize {
+    LIVE.with(Cell::get)
+}
 
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        LIVE.fetch_add(layout.size() as isize, Ordering::SeqCst);
+        count(layout.size() as isize);
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        LIVE.fetch_sub(layout.size() as isize, Ordering::SeqCst);
+        count(-(layout.size() as isize));
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        LIVE.fetch_add(new_size as isize - layout.size() as isize, Ordering::SeqCst);
+        count(new_size as isize - layout.size() as isize);
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
@@ -84,12 +96,12 @@ fn cycle(keep_state: bool) {
 
 #[test]
 fn free_instance_releases_everything_the_instance_allocated() {
-    let before = LIVE.load(Ordering::SeqCst);
+    let before = live();
     cycle(false);
-    let after_first = LIVE.load(Ordering::SeqCst);
+    let after_first = live();
     cycle(true);
     cycle(false);
-    let after_three = LIVE.load(Ordering::SeqCst);
+    let after_three = live();
     assert_eq!(
         after_first - before,
         0,

@@ -1,4 +1,4 @@
-//! Writes an FMU archive (modelDescription.xml, binaries/<platform>/<modelIdentifier>
+//! Writes an FMU archive (modelDescription.xml, `binaries/<platform>/<modelIdentifier>`
 //! with the platform's library extension, documentation/index.html), and the small
 //! command-line packager that every FMU crate's binary runs.
 
