@@ -127,7 +127,7 @@ pub fn on_instance(
     Observed::of(status, inst.take_log())
 }
 
-/// Why the known failures fail (issue 12 item 3, not fully fixed on fmi-core 883cac0).
+/// Why the known failures fail (issue 12 item 3, not fully fixed on fmi-core 07ebadb).
 const UNNAMED_PARAMETER: &str = "issue 12 item 3 open: refused at fmi2ExitInitializationMode, but the message names a consequence (an output evaluating to inf, a negative time constant, a leg that cannot reach) instead of the parameter set";
 
 /// Cases known to fail on the FMI layer this suite runs against, by full name
