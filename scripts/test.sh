@@ -5,9 +5,13 @@ cd "$(dirname "$0")/.."
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets -- -D warnings
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace
-cargo test --workspace --release
-# FMUs through a real importer: build dist/*.fmu, create the pinned venv, run pytest
-# (pytest exits 5 when it collects nothing; that counts as a failure too).
+# dist/*.fmu first: the hostile importer's tests (crates/hostile) dlopen the packaged
+# binaries and fail when they are missing or older than the sources.
 bash scripts/build-fmus.sh
+cargo test --workspace --release
+# valgrind memcheck over each FMU's lifecycle (installs valgrind in CI).
+bash scripts/memcheck.sh
+# FMUs through a real importer: create the pinned venv, run pytest
+# (pytest exits 5 when it collects nothing; that counts as a failure too).
 bash scripts/setup-venv.sh
 .venv/bin/python -m pytest tests/python -q

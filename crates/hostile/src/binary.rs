@@ -1,0 +1,171 @@
+//! An FMU binary opened with dlopen: the FMI 2.0 functions looked up with dlsym, as
+//! a C importer would. Statuses are kept as C ints so that a corrupt return value
+//! is reported, not undefined behaviour in the importer.
+
+use std::ffi::{CString, c_char, c_int, c_uint, c_void};
+use std::path::Path;
+
+pub type Component = *mut c_void;
+pub type FmuState = *mut c_void;
+pub type Status = c_int;
+pub type Vr = c_uint;
+
+pub const OK: Status = 0;
+pub const WARNING: Status = 1;
+pub const DISCARD: Status = 2;
+pub const ERROR: Status = 3;
+pub const FATAL: Status = 4;
+
+/// Name of a status as the standard spells it.
+pub fn status_name(status: Status) -> String {
+    match status {
+        OK => "fmi2OK".into(),
+        WARNING => "fmi2Warning".into(),
+        DISCARD => "fmi2Discard".into(),
+        ERROR => "fmi2Error".into(),
+        FATAL => "fmi2Fatal".into(),
+        5 => "fmi2Pending".into(),
+        other => format!("status {other}"),
+    }
+}
+
+/// fmi2CallbackFunctions with nullable members.
+#[repr(C)]
+pub struct CallbackFunctions {
+    pub logger: *const c_void,
+    pub allocate_memory: *const c_void,
+    pub free_memory: *const c_void,
+    pub step_finished: *const c_void,
+    pub component_environment: *mut c_void,
+}
+
+/// fmi2EventInfo.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default)]
+pub struct EventInfo {
+    pub new_discrete_states_needed: c_int,
+    pub terminate_simulation: c_int,
+    pub nominals_changed: c_int,
+    pub states_changed: c_int,
+    pub next_event_time_defined: c_int,
+    pub next_event_time: f64,
+}
+
+type Str = *const c_char;
+
+macro_rules! functions {
+    ($($field:ident = $symbol:literal : fn($($arg:ty),*) $(-> $ret:ty)?;)*) => {
+        /// The FMI 2.0 functions of one loaded binary.
+        #[allow(clippy::type_complexity)]
+        pub struct Binary {
+            handle: *mut c_void,
+            $(pub $field: unsafe extern "C" fn($($arg),*) $(-> $ret)?,)*
+        }
+
+        impl Binary {
+            fn look_up(handle: *mut c_void) -> Result<Binary, String> {
+                Ok(Binary {
+                    handle,
+                    $($field: {
+                        let name = concat!($symbol, "\0");
+                        // SAFETY: a live handle and a NUL-terminated name.
+                        let p = unsafe { libc::dlsym(handle, name.as_ptr() as *const c_char) };
+                        if p.is_null() {
+                            return Err(format!("symbol {} is missing", $symbol));
+                        }
+                        // SAFETY: the symbol has this C signature in FMI 2.0.
+                        unsafe { std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($arg),*) $(-> $ret)?>(p) }
+                    },)*
+                })
+            }
+        }
+    };
+}
+
+functions! {
+    get_types_platform = "fmi2GetTypesPlatform": fn() -> Str;
+    get_version = "fmi2GetVersion": fn() -> Str;
+    set_debug_logging = "fmi2SetDebugLogging": fn(Component, c_int, usize, *const Str) -> Status;
+    instantiate = "fmi2Instantiate": fn(Str, c_int, Str, Str, *const CallbackFunctions, c_int, c_int) -> Component;
+    free_instance = "fmi2FreeInstance": fn(Component);
+    setup_experiment = "fmi2SetupExperiment": fn(Component, c_int, f64, f64, c_int, f64) -> Status;
+    enter_initialization_mode = "fmi2EnterInitializationMode": fn(Component) -> Status;
+    exit_initialization_mode = "fmi2ExitInitializationMode": fn(Component) -> Status;
+    terminate = "fmi2Terminate": fn(Component) -> Status;
+    reset = "fmi2Reset": fn(Component) -> Status;
+    get_real = "fmi2GetReal": fn(Component, *const Vr, usize, *mut f64) -> Status;
+    get_integer = "fmi2GetInteger": fn(Component, *const Vr, usize, *mut c_int) -> Status;
+    get_boolean = "fmi2GetBoolean": fn(Component, *const Vr, usize, *mut c_int) -> Status;
+    get_string = "fmi2GetString": fn(Component, *const Vr, usize, *mut Str) -> Status;
+    set_real = "fmi2SetReal": fn(Component, *const Vr, usize, *const f64) -> Status;
+    set_integer = "fmi2SetInteger": fn(Component, *const Vr, usize, *const c_int) -> Status;
+    set_boolean = "fmi2SetBoolean": fn(Component, *const Vr, usize, *const c_int) -> Status;
+    set_string = "fmi2SetString": fn(Component, *const Vr, usize, *const Str) -> Status;
+    get_fmu_state = "fmi2GetFMUstate": fn(Component, *mut FmuState) -> Status;
+    set_fmu_state = "fmi2SetFMUstate": fn(Component, FmuState) -> Status;
+    free_fmu_state = "fmi2FreeFMUstate": fn(Component, *mut FmuState) -> Status;
+    serialized_size = "fmi2SerializedFMUstateSize": fn(Component, FmuState, *mut usize) -> Status;
+    serialize = "fmi2SerializeFMUstate": fn(Component, FmuState, *mut c_char, usize) -> Status;
+    deserialize = "fmi2DeSerializeFMUstate": fn(Component, *const c_char, usize, *mut FmuState) -> Status;
+    get_directional_derivative = "fmi2GetDirectionalDerivative": fn(Component, *const Vr, usize, *const Vr, usize, *const f64, *mut f64) -> Status;
+    enter_event_mode = "fmi2EnterEventMode": fn(Component) -> Status;
+    new_discrete_states = "fmi2NewDiscreteStates": fn(Component, *mut EventInfo) -> Status;
+    enter_continuous_time_mode = "fmi2EnterContinuousTimeMode": fn(Component) -> Status;
+    completed_integrator_step = "fmi2CompletedIntegratorStep": fn(Component, c_int, *mut c_int, *mut c_int) -> Status;
+    set_time = "fmi2SetTime": fn(Component, f64) -> Status;
+    set_continuous_states = "fmi2SetContinuousStates": fn(Component, *const f64, usize) -> Status;
+    get_derivatives = "fmi2GetDerivatives": fn(Component, *mut f64, usize) -> Status;
+    get_event_indicators = "fmi2GetEventIndicators": fn(Component, *mut f64, usize) -> Status;
+    get_continuous_states = "fmi2GetContinuousStates": fn(Component, *mut f64, usize) -> Status;
+    get_nominals = "fmi2GetNominalsOfContinuousStates": fn(Component, *mut f64, usize) -> Status;
+    set_real_input_derivatives = "fmi2SetRealInputDerivatives": fn(Component, *const Vr, usize, *const c_int, *const f64) -> Status;
+    get_real_output_derivatives = "fmi2GetRealOutputDerivatives": fn(Component, *const Vr, usize, *const c_int, *mut f64) -> Status;
+    do_step = "fmi2DoStep": fn(Component, f64, f64, c_int) -> Status;
+    cancel_step = "fmi2CancelStep": fn(Component) -> Status;
+    get_status = "fmi2GetStatus": fn(Component, c_int, *mut c_int) -> Status;
+    get_real_status = "fmi2GetRealStatus": fn(Component, c_int, *mut f64) -> Status;
+    get_integer_status = "fmi2GetIntegerStatus": fn(Component, c_int, *mut c_int) -> Status;
+    get_boolean_status = "fmi2GetBooleanStatus": fn(Component, c_int, *mut c_int) -> Status;
+    get_string_status = "fmi2GetStringStatus": fn(Component, c_int, *mut Str) -> Status;
+}
+
+// The function pointers are plain code addresses; FMI 2.0 lets instances of one
+// binary be used from different threads (one thread per instance at a time).
+unsafe impl Send for Binary {}
+unsafe impl Sync for Binary {}
+
+impl Binary {
+    /// dlopen (RTLD_NOW | RTLD_LOCAL) and dlsym of all 44 functions.
+    pub fn open(path: &Path) -> Result<Binary, String> {
+        let c_path = CString::new(path.as_os_str().as_encoded_bytes())
+            .map_err(|_| format!("{} contains a NUL byte", path.display()))?;
+        // SAFETY: a NUL-terminated path.
+        let handle = unsafe { libc::dlopen(c_path.as_ptr(), libc::RTLD_NOW | libc::RTLD_LOCAL) };
+        if handle.is_null() {
+            return Err(format!("dlopen {}: {}", path.display(), dl_error()));
+        }
+        Binary::look_up(handle).inspect_err(|_| {
+            // SAFETY: the handle was just opened and nothing from it is in use.
+            unsafe { libc::dlclose(handle) };
+        })
+    }
+}
+
+impl Drop for Binary {
+    fn drop(&mut self) {
+        // SAFETY: the handle came from dlopen; every instance was freed by its owner.
+        unsafe { libc::dlclose(self.handle) };
+    }
+}
+
+fn dl_error() -> String {
+    // SAFETY: dlerror returns null or a NUL-terminated message.
+    let e = unsafe { libc::dlerror() };
+    if e.is_null() {
+        "unknown error".into()
+    } else {
+        unsafe { std::ffi::CStr::from_ptr(e) }
+            .to_string_lossy()
+            .into_owned()
+    }
+}

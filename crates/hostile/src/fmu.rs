@@ -1,0 +1,128 @@
+//! The packaged FMUs under dist/: found, checked to be newer than the sources,
+//! unpacked (modelDescription.xml and `binaries/linux64/<id>.so`) into
+//! `target/hostile/<pid>-<model>` (removed when the `Fmu` is dropped) and opened
+//! with dlopen.
+
+use crate::binary::Binary;
+use crate::description::{self, Description};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+/// The FMUs the project ships.
+pub const MODELS: [&str; 3] = ["Planner", "PID", "Pss3Plant"];
+
+/// The workspace root (two levels above this crate).
+pub fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// dist/ of the workspace, or ROBOFMU_HOSTILE_DIST when set.
+pub fn dist_dir() -> PathBuf {
+    std::env::var_os("ROBOFMU_HOSTILE_DIST")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| workspace_root().join("dist"))
+}
+
+/// An FMU unpacked into a folder of its own.
+#[derive(Debug)]
+pub struct Fmu {
+    pub description: Description,
+    pub library: PathBuf,
+}
+
+impl Fmu {
+    /// Unpacks `dist/<model>.fmu`; an error says how to build it.
+    pub fn unpack(model: &str) -> Result<Fmu, String> {
+        let archive = dist_dir().join(format!("{model}.fmu"));
+        if !archive.is_file() {
+            return Err(format!(
+                "{} is missing: run `bash scripts/build-fmus.sh` first",
+                archive.display()
+            ));
+        }
+        check_not_stale(&archive)?;
+        let file = std::fs::File::open(&archive).map_err(|e| e.to_string())?;
+        let mut zip = zip::ZipArchive::new(file).map_err(|e| e.to_string())?;
+        let xml = String::from_utf8(entry(&mut zip, "modelDescription.xml")?)
+            .map_err(|_| "modelDescription.xml is not UTF-8")?;
+        let description = description::parse(&xml)?;
+        let binary = format!("binaries/linux64/{}.so", description.model_identifier);
+        let folder = workspace_root()
+            .join("target/hostile")
+            .join(format!("{}-{model}", std::process::id()));
+        std::fs::create_dir_all(&folder).map_err(|e| e.to_string())?;
+        let library = folder.join(format!("{}.so", description.model_identifier));
+        std::fs::write(&library, entry(&mut zip, &binary)?).map_err(|e| e.to_string())?;
+        Ok(Fmu {
+            description,
+            library,
+        })
+    }
+
+    /// dlopen of the unpacked binary.
+    pub fn open(&self) -> Binary {
+        Binary::open(&self.library).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    pub fn name(&self) -> &str {
+        &self.description.model_name
+    }
+}
+
+impl Drop for Fmu {
+    fn drop(&mut self) {
+        if let Some(folder) = self.library.parent() {
+            let _ = std::fs::remove_dir_all(folder);
+        }
+    }
+}
+
+fn entry(zip: &mut zip::ZipArchive<std::fs::File>, name: &str) -> Result<Vec<u8>, String> {
+    let mut f = zip
+        .by_name(name)
+        .map_err(|e| format!("{name} in the FMU: {e}"))?;
+    let mut bytes = Vec::new();
+    f.read_to_end(&mut bytes).map_err(|e| e.to_string())?;
+    Ok(bytes)
+}
+
+/// Refuses an FMU older than the FMI layer or FMU sources: it would test old code.
+fn check_not_stale(archive: &Path) -> Result<(), String> {
+    let built = modified(archive).unwrap_or(SystemTime::UNIX_EPOCH);
+    let root = workspace_root();
+    let mut folders = vec![root.join("crates/fmi/src")];
+    if let Ok(fmus) = std::fs::read_dir(root.join("fmus")) {
+        folders.extend(fmus.flatten().map(|e| e.path().join("src")));
+    }
+    for folder in folders {
+        if let Some(newest) = newest_file(&folder)
+            && newest > built
+        {
+            return Err(format!(
+                "{} is older than {}: run `bash scripts/build-fmus.sh` to rebuild it",
+                archive.display(),
+                folder.display()
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn modified(path: &Path) -> Option<SystemTime> {
+    std::fs::metadata(path).and_then(|m| m.modified()).ok()
+}
+
+fn newest_file(folder: &Path) -> Option<SystemTime> {
+    let mut newest = None;
+    for entry in std::fs::read_dir(folder).ok()?.flatten() {
+        let path = entry.path();
+        let t = if path.is_dir() {
+            newest_file(&path)
+        } else {
+            modified(&path)
+        };
+        newest = newest.max(t);
+    }
+    newest
+}

@@ -1,0 +1,134 @@
+//! Handles the FMU never issued, passed to every function that takes one: null,
+//! a zeroed and a random heap block owned by the importer, and a live instance of
+//! another FMU. FMI 2.0 leaves this undefined; issue 12 item 4 asks a careful FMU
+//! to check a tag in every instance and answer fmi2Error. No log text is required:
+//! without a valid instance there is no logger the FMU could trust. Afterwards the
+//! block must be intact (the importer frees it: a double free would crash) and the
+//! other FMU's instance must still answer.
+
+use super::calls::{Args, calls};
+use super::{Case, Expect, Observed};
+use crate::Loaded;
+use crate::binary::{Component, OK, Status, status_name};
+use crate::host::{Instance, Interface, State};
+use crate::rng::SplitMix64;
+use std::ffi::c_void;
+
+const WHY_NULL: &str = "null instance: undefined in FMI 2.0; fmi2Error (fmi2FreeInstance: ignored)";
+const WHY_FOREIGN: &str = "handle not issued by this FMU: undefined in FMI 2.0; refused with fmi2Error after a tag check (issue 12 item 4)";
+
+#[derive(Clone, Copy, Debug)]
+enum Handle {
+    Null,
+    ZeroedBlock,
+    RandomBlock,
+    OtherFmuInstance,
+}
+
+const BLOCK: usize = 4096;
+
+/// A heap block owned by the importer.
+fn block(random: bool) -> *mut c_void {
+    // SAFETY: calloc of a fixed size.
+    let p = unsafe { libc::calloc(1, BLOCK) } as *mut u8;
+    if random {
+        let mut rng = SplitMix64::new(0x5eed);
+        for i in 0..BLOCK {
+            // SAFETY: within the block.
+            unsafe { *p.add(i) = rng.next_u64() as u8 };
+        }
+    }
+    p as *mut c_void
+}
+
+type Invoke = unsafe fn(&crate::binary::Binary, Component, &Args) -> Status;
+
+fn probe(
+    l: &Loaded,
+    m: usize,
+    interface: Interface,
+    handle: Handle,
+    invoke: Option<Invoke>,
+) -> Observed {
+    let own = Instance::new(&l.binaries[m], &l.fmus[m].description, interface);
+    let (_, state) = own.get_state();
+    let args = Args::new(own.description, state);
+    let other_model = (m + 1) % l.fmus.len();
+    let other = Instance::new(
+        &l.binaries[other_model],
+        &l.fmus[other_model].description,
+        interface,
+    );
+    if let Err(e) = other.reach(State::InitializationMode) {
+        return Observed::broken(e);
+    }
+    let c = match handle {
+        Handle::Null => std::ptr::null_mut(),
+        Handle::ZeroedBlock => block(false),
+        Handle::RandomBlock => block(true),
+        Handle::OtherFmuInstance => other.c,
+    };
+    let binary = own.binary;
+    // SAFETY: the point of the probe: a handle this binary never issued.
+    let status = match invoke {
+        Some(f) => unsafe { f(binary, c, &args) },
+        None => {
+            unsafe { (binary.free_instance)(c) };
+            OK
+        }
+    };
+    if matches!(handle, Handle::ZeroedBlock | Handle::RandomBlock) {
+        // SAFETY: our own block; a crash here means the FMU freed it.
+        unsafe { libc::free(c) };
+    }
+    let (s, values) = other.get_reals(&[other.description.real_vrs()[0]]);
+    if s != OK || !values[0].is_finite() {
+        return Observed::broken(format!(
+            "the other FMU's instance no longer answers: {} ({})",
+            status_name(s),
+            other.take_log()
+        ));
+    }
+    own.free_state(state);
+    let log = format!("{} {}", own.take_log(), other.take_log());
+    Observed::of(status, log)
+}
+
+pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
+    let mut cases = Vec::new();
+    for interface in Interface::BOTH {
+        for handle in [
+            Handle::Null,
+            Handle::ZeroedBlock,
+            Handle::RandomBlock,
+            Handle::OtherFmuInstance,
+        ] {
+            let why = if matches!(handle, Handle::Null) {
+                WHY_NULL
+            } else {
+                WHY_FOREIGN
+            };
+            let mut all: Vec<(&'static str, Option<Invoke>)> = calls()
+                .into_iter()
+                .map(|c| (c.name, Some(c.invoke)))
+                .collect();
+            all.push(("fmi2FreeInstance", None));
+            for (name, invoke) in all {
+                cases.push(Case {
+                    class: "bad instance handle",
+                    model: m,
+                    interface: Some(interface),
+                    name: format!("{name}({handle:?})"),
+                    expect: if invoke.is_some() {
+                        Expect::silent_error()
+                    } else {
+                        Expect::ok()
+                    },
+                    why,
+                    probe: Box::new(move |l| probe(l, m, interface, handle, invoke)),
+                });
+            }
+        }
+    }
+    cases
+}

@@ -1,0 +1,314 @@
+//! Random sequences of legal calls with legal arguments, from a fixed seed. The
+//! importer tracks the FMI 2.0 state machine itself and picks, at each step, one of
+//! the calls the standard allows in the current state. A legal sequence must never
+//! produce fmi2Error or fmi2Fatal; fmi2Discard is accepted where the model may be
+//! unable to evaluate (a step, or a Model Exchange evaluation at a state the
+//! integrator chose); a getter that returns fmi2OK never delivers NaN or inf.
+
+use crate::Loaded;
+use crate::binary::{DISCARD, EventInfo, FmuState, OK, Status, status_name};
+use crate::description::{VarType, Variable};
+use crate::host::{Instance, Interface, State};
+use crate::rng::SplitMix64;
+
+/// Sequences run by default; ROBOFMU_HOSTILE_SEQUENCES overrides.
+pub const DEFAULT_SEQUENCES: usize = 30_000;
+/// The seed of sequence i is BASE_SEED + i.
+pub const BASE_SEED: u64 = 0x5EED_F0F0;
+
+pub fn count_from_env() -> usize {
+    std::env::var("ROBOFMU_HOSTILE_SEQUENCES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(DEFAULT_SEQUENCES)
+}
+
+struct Run<'a> {
+    inst: Instance<'a>,
+    rng: SplitMix64,
+    state: State,
+    time: f64,
+    calls: usize,
+}
+
+/// Plausible magnitude of an input.
+fn input_scale(v: &Variable) -> f64 {
+    match v.name.split('[').next().unwrap_or("") {
+        "actuatorForce" => 100.0,
+        "torqueCommand" | "generalizedForceCommand" | "disturbanceTorque" => 10.0,
+        _ => 2.0,
+    }
+}
+
+impl Run<'_> {
+    /// Records a call; Err when its status is not acceptable.
+    fn check(&mut self, what: &str, s: Status, may_discard: bool) -> Result<Status, String> {
+        self.calls += 1;
+        if s == OK || (s == DISCARD && may_discard) {
+            Ok(s)
+        } else {
+            Err(format!(
+                "call {} {what} in {:?} returned {} (log: {})",
+                self.calls,
+                self.state,
+                status_name(s),
+                self.inst.take_log()
+            ))
+        }
+    }
+
+    fn me(&self) -> bool {
+        self.inst.interface == Interface::ModelExchange
+    }
+
+    fn set_input(&mut self) -> Result<(), String> {
+        let inputs: Vec<&Variable> = self
+            .inst
+            .description
+            .variables
+            .iter()
+            .filter(|v| v.causality == "input" && v.var_type == VarType::Real)
+            .collect();
+        if inputs.is_empty() {
+            return Ok(());
+        }
+        let v = inputs[self.rng.below(inputs.len())];
+        let scale = input_scale(v);
+        let x = self.rng.uniform(-scale, scale);
+        let s = self.inst.set_real(v.vr, x);
+        self.check(&format!("fmi2SetReal({} = {x})", v.name), s, false)?;
+        Ok(())
+    }
+
+    fn get_all(&mut self) -> Result<(), String> {
+        let vrs = self.inst.description.real_vrs();
+        let (s, x) = self.inst.get_reals(&vrs);
+        let s = self.check("fmi2GetReal(all)", s, self.me())?;
+        if s == OK
+            && let Some(i) = x.iter().position(|v| !v.is_finite())
+        {
+            return Err(format!(
+                "fmi2GetReal returned fmi2OK with {} = {}",
+                self.inst
+                    .description
+                    .variables
+                    .iter()
+                    .find(|v| v.vr == vrs[i])
+                    .map_or("?", |v| &v.name),
+                x[i]
+            ));
+        }
+        Ok(())
+    }
+
+    /// Get, serialize, deserialize and set back the state: nothing changes.
+    fn state_round_trip(&mut self) -> Result<(), String> {
+        let (s, state) = self.inst.get_state();
+        self.check("fmi2GetFMUstate", s, false)?;
+        let bytes = self.inst.serialize(state)?;
+        self.calls += 2;
+        let mut copy: FmuState = std::ptr::null_mut();
+        // SAFETY: the instance's own serialized bytes and a null slot.
+        let s = unsafe {
+            (self.inst.binary.deserialize)(
+                self.inst.c,
+                bytes.as_ptr() as *const std::ffi::c_char,
+                bytes.len(),
+                &mut copy,
+            )
+        };
+        self.check("fmi2DeSerializeFMUstate", s, false)?;
+        // SAFETY: a state of this instance.
+        let s = unsafe { (self.inst.binary.set_fmu_state)(self.inst.c, copy) };
+        self.check("fmi2SetFMUstate", s, false)?;
+        let s = self.inst.free_state(copy);
+        self.check("fmi2FreeFMUstate", s, false)?;
+        let s = self.inst.free_state(state);
+        self.check("fmi2FreeFMUstate", s, false)?;
+        Ok(())
+    }
+
+    fn evaluate(&mut self) -> Result<(), String> {
+        let d = self.inst.description;
+        let b = self.inst.binary;
+        let mut dx = vec![0.0; d.number_of_states];
+        let mut z = vec![0.0; d.number_of_event_indicators];
+        // SAFETY: arrays of the declared sizes.
+        let s = unsafe { (b.get_derivatives)(self.inst.c, dx.as_mut_ptr(), dx.len()) };
+        if self.check("fmi2GetDerivatives", s, true)? == OK && dx.iter().any(|v| !v.is_finite()) {
+            return Err("fmi2GetDerivatives returned fmi2OK with a non-finite value".into());
+        }
+        let s = unsafe { (b.get_event_indicators)(self.inst.c, z.as_mut_ptr(), z.len()) };
+        self.check("fmi2GetEventIndicators", s, true)?;
+        if d.provides_directional_derivative && !d.state_derivative_pairs().is_empty() {
+            let (x, der) = d.state_derivative_pairs()[self.rng.below(d.number_of_states)];
+            let mut out = 0.0;
+            let s = unsafe {
+                (b.get_directional_derivative)(self.inst.c, &der, 1, &x, 1, &1.0, &mut out)
+            };
+            if self.check("fmi2GetDirectionalDerivative", s, true)? == OK && !out.is_finite() {
+                return Err(
+                    "fmi2GetDirectionalDerivative returned fmi2OK with a non-finite value".into(),
+                );
+            }
+        }
+        Ok(())
+    }
+
+    fn perturb_states(&mut self) -> Result<(), String> {
+        let n = self.inst.description.number_of_states;
+        let mut x = vec![0.0; n];
+        let b = self.inst.binary;
+        // SAFETY: arrays of the state count.
+        let s = unsafe { (b.get_continuous_states)(self.inst.c, x.as_mut_ptr(), n) };
+        self.check("fmi2GetContinuousStates", s, false)?;
+        // Small trial steps mostly, sometimes a large one (an integrator's
+        // rejected trial): both may leave the region where the model evaluates.
+        let reach = if self.rng.below(4) == 0 { 0.5 } else { 0.05 };
+        for xi in &mut x {
+            *xi += self.rng.uniform(-reach, reach);
+        }
+        let s = unsafe { (b.set_continuous_states)(self.inst.c, x.as_ptr(), n) };
+        self.check("fmi2SetContinuousStates", s, false)?;
+        Ok(())
+    }
+
+    fn advance_time(&mut self) -> Result<(), String> {
+        self.time += self.rng.uniform(1e-4, 1e-2);
+        // SAFETY: a finite time.
+        let s = unsafe { (self.inst.binary.set_time)(self.inst.c, self.time) };
+        self.check("fmi2SetTime", s, false)?;
+        Ok(())
+    }
+
+    fn transition(
+        &mut self,
+        what: &str,
+        f: unsafe extern "C" fn(crate::binary::Component) -> Status,
+        to: State,
+    ) -> Result<(), String> {
+        // SAFETY: a live instance.
+        let s = unsafe { f(self.inst.c) };
+        self.check(what, s, false)?;
+        self.state = to;
+        Ok(())
+    }
+
+    fn reset(&mut self) -> Result<(), String> {
+        self.transition("fmi2Reset", self.inst.binary.reset, State::Instantiated)?;
+        self.time = 0.0;
+        Ok(())
+    }
+
+    /// One random call that is legal in the current state.
+    fn step(&mut self) -> Result<(), String> {
+        let b = self.inst.binary;
+        let choice = self.rng.below(8);
+        match (self.state, choice) {
+            (State::Instantiated, 0..=2) => self.set_input(),
+            (State::Instantiated, 3) => self.state_round_trip(),
+            (State::Instantiated, _) => {
+                // SAFETY: a live instance.
+                let s = unsafe { (b.setup_experiment)(self.inst.c, 0, 0.0, 0.0, 0, 0.0) };
+                self.check("fmi2SetupExperiment", s, false)?;
+                self.transition(
+                    "fmi2EnterInitializationMode",
+                    b.enter_initialization_mode,
+                    State::InitializationMode,
+                )
+            }
+            (State::InitializationMode, 0..=1) => self.set_input(),
+            (State::InitializationMode, 2) => self.get_all(),
+            (State::InitializationMode, 3) => self.state_round_trip(),
+            (State::InitializationMode, _) => {
+                let to = if self.me() {
+                    State::EventMode
+                } else {
+                    State::StepComplete
+                };
+                self.transition("fmi2ExitInitializationMode", b.exit_initialization_mode, to)
+            }
+            (State::EventMode, 0) => self.set_input(),
+            (State::EventMode, 1) => self.get_all(),
+            (State::EventMode, 2) => {
+                let mut info = EventInfo::default();
+                // SAFETY: a live instance and an event info to fill.
+                let s = unsafe { (b.new_discrete_states)(self.inst.c, &mut info) };
+                self.check("fmi2NewDiscreteStates", s, false).map(|_| ())
+            }
+            (State::EventMode, 3) => self.evaluate(),
+            (State::EventMode, 4) => self.state_round_trip(),
+            (State::EventMode, 5) if self.rng.below(8) == 0 => {
+                self.transition("fmi2Terminate", b.terminate, State::Terminated)
+            }
+            (State::EventMode, _) => self.transition(
+                "fmi2EnterContinuousTimeMode",
+                b.enter_continuous_time_mode,
+                State::ContinuousTimeMode,
+            ),
+            (State::ContinuousTimeMode, 0) => self.set_input(),
+            (State::ContinuousTimeMode, 1) => self.get_all(),
+            (State::ContinuousTimeMode, 2) => self.advance_time(),
+            (State::ContinuousTimeMode, 3) => self.perturb_states(),
+            (State::ContinuousTimeMode, 4) => self.evaluate(),
+            (State::ContinuousTimeMode, 5) => self.state_round_trip(),
+            (State::ContinuousTimeMode, 6) => {
+                let (mut enter, mut stop) = (0, 0);
+                // SAFETY: two flags to fill.
+                let s =
+                    unsafe { (b.completed_integrator_step)(self.inst.c, 1, &mut enter, &mut stop) };
+                self.check("fmi2CompletedIntegratorStep", s, false)
+                    .map(|_| ())
+            }
+            (State::ContinuousTimeMode, _) => {
+                self.transition("fmi2EnterEventMode", b.enter_event_mode, State::EventMode)
+            }
+            (State::StepComplete, 0..=1) => self.set_input(),
+            (State::StepComplete, 2) => self.get_all(),
+            (State::StepComplete, 3) => self.state_round_trip(),
+            (State::StepComplete, 4) if self.rng.below(8) == 0 => {
+                self.transition("fmi2Terminate", b.terminate, State::Terminated)
+            }
+            (State::StepComplete, _) => {
+                let h = self.rng.uniform(1e-4, 1e-2);
+                let s = self.inst.do_step(self.time, h);
+                if self.check(&format!("fmi2DoStep(t = {}, h = {h})", self.time), s, true)? == OK {
+                    self.time += h;
+                } else {
+                    self.state = State::StepFailed;
+                }
+                Ok(())
+            }
+            (State::StepFailed, 0..=3) => self.get_all(),
+            (State::StepFailed, _) => self.reset(),
+            (State::Terminated, 0..=3) => self.get_all(),
+            (State::Terminated, _) => self.reset(),
+            (State::Error, _) => Err("reached the Error state".into()),
+        }
+    }
+}
+
+/// Runs sequence `seed`: the number of calls, or what went wrong.
+pub fn run_sequence(l: &Loaded, seed: u64) -> Result<usize, String> {
+    let mut rng = SplitMix64::new(seed);
+    let m = rng.below(l.fmus.len());
+    let interface = Interface::BOTH[rng.below(2)];
+    let length = 10 + rng.below(30);
+    let mut run = Run {
+        inst: Instance::new(&l.binaries[m], &l.fmus[m].description, interface),
+        rng,
+        state: State::Instantiated,
+        time: 0.0,
+        calls: 1,
+    };
+    for _ in 0..length {
+        run.step().map_err(|e| {
+            format!(
+                "seed {seed:#x} ({} {}): {e}",
+                l.fmus[m].name(),
+                interface.short()
+            )
+        })?;
+    }
+    Ok(run.calls + 1)
+}

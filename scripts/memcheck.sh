@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# valgrind memcheck over the lifecycle of every packaged FMU (dist/*.fmu, built by
+# scripts/build-fmus.sh): load, instantiate, initialize, steps, FMU states, reset,
+# free, unload, for Model Exchange and Co-Simulation. Fails on any memcheck error
+# and on any definite leak. Installs valgrind from Debian when it is missing and
+# this runs as root (CI); otherwise asks for it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if ! command -v valgrind >/dev/null 2>&1; then
+    if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null 2>&1; then
+        apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq valgrind >/dev/null
+    else
+        echo "valgrind is missing: install it (Debian: apt-get install valgrind)" >&2
+        exit 1
+    fi
+fi
+cargo build --release -p robofmu-hostile --bin robofmu-hostile-lifecycle
+valgrind --error-exitcode=1 --errors-for-leak-kinds=definite --leak-check=full \
+    --show-leak-kinds=definite -q target/release/robofmu-hostile-lifecycle
