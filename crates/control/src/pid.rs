@@ -48,11 +48,18 @@ pub struct PidState {
     pub filter: f64,
 }
 
+/// Shortest positive derivative filter time constant, 1 ps: a faster filter pole
+/// (1/Tf above 1e12 rad/s) is no filter at all for any step a simulation takes, and
+/// toward Tf -> 0 the filter's state derivative (e - x)/Tf overflows.
+pub const MIN_FILTER_TIME: f64 = 1e-12;
+
 /// Why a set of gains is unusable.
 #[derive(Debug, Clone, PartialEq)]
 pub enum PidError {
     NonFinite(&'static str),
     NegativeFilterTime(f64),
+    /// 0 < Tf below [`MIN_FILTER_TIME`]: the filter pole 1/Tf would overflow the model.
+    FilterTooShort(f64),
     /// The error path differentiates through the filter: Tf must be positive.
     FilterNeeded,
     EmptyLimits {
@@ -66,11 +73,18 @@ impl std::fmt::Display for PidError {
         match self {
             PidError::NonFinite(what) => write!(f, "{what} is not a finite number"),
             PidError::NegativeFilterTime(tf) => {
-                write!(f, "the derivative filter time constant {tf} s is negative")
+                write!(f, "the derivative filter time constant Tf = {tf} s is negative")
+            }
+            PidError::FilterTooShort(tf) => {
+                write!(
+                    f,
+                    "the derivative filter time constant Tf = {tf} s is below {MIN_FILTER_TIME} s \
+                     (use Tf = 0 with rate inputs for an unfiltered derivative)"
+                )
             }
             PidError::FilterNeeded => write!(
                 f,
-                "Kd != 0 without rate inputs needs a derivative filter time constant Tf > 0"
+                "Kd != 0 without rate inputs needs a derivative filter time constant Tf >= {MIN_FILTER_TIME} s"
             ),
             PidError::EmptyLimits { min, max } => {
                 write!(
@@ -99,6 +113,9 @@ impl PidGains {
         }
         if self.tf < 0.0 {
             return Err(PidError::NegativeFilterTime(self.tf));
+        }
+        if self.tf > 0.0 && self.tf < MIN_FILTER_TIME {
+            return Err(PidError::FilterTooShort(self.tf));
         }
         if !self.use_rate_inputs && self.kd != 0.0 && self.tf <= 0.0 {
             return Err(PidError::FilterNeeded);
@@ -328,6 +345,12 @@ mod tests {
             PidGains { tf: -1.0, ..g }.validate(),
             Err(PidError::NegativeFilterTime(-1.0))
         );
+        // The smallest subnormal: (e - x)/Tf overflows for any |e - x| > 1.8e-16.
+        assert_eq!(
+            PidGains { tf: 5e-324, ..g }.validate(),
+            Err(PidError::FilterTooShort(5e-324))
+        );
+        assert!(PidGains { tf: MIN_FILTER_TIME, ..g }.validate().is_ok());
         assert_eq!(
             PidGains {
                 limits: Some((1.0, 1.0)),

@@ -25,6 +25,9 @@ use robofmu_fmi::core::{
     DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo, StepOutcome, Variable,
 };
 
+/// The geometry parameters that decide, with the start pose, whether the robot assembles.
+const GEOMETRY: &str = "the geometry lp, ld, gamma, lb, alpha, beta, a";
+
 static INFO: ModelInfo = ModelInfo {
     model_name: "Pss3Plant",
     model_identifier: "Pss3Plant",
@@ -157,6 +160,8 @@ impl Pss3Plant {
     }
 
     /// The initial state from theta0 (or l0) and omega0, checked.
+    /// The initial state from theta0 or l0. A failure names the start values and the
+    /// geometry parameters together: whether a pose assembles depends on both.
     fn initial_state(&self) -> Result<PlantState, String> {
         let plant = self.plant()?;
         let (euler, source) = if self.initial.from_actuators {
@@ -166,14 +171,16 @@ impl Pss3Plant {
                 &start_pose(),
                 &FkOptions::default(),
             )
-            .map_err(|e| format!("l0: no initial pose for these actuator displacements: {e}"))?;
+            .map_err(|e| {
+                format!("l0: no initial pose for these actuator displacements with {GEOMETRY}: {e}")
+            })?;
             (solution.assembly.euler, "l0")
         } else {
             (self.initial.theta0, "theta0")
         };
         plant
             .initial_state(euler, self.initial.omega0)
-            .map_err(|e| format!("{source}: the initial state is invalid: {e}"))
+            .map_err(|e| format!("{source}: the initial state is invalid with {GEOMETRY}: {e}"))
     }
 
     /// The state: the initial one until initialization ends.
