@@ -1,0 +1,491 @@
+//! modelDescription.xml of FMI 3.0, generated from a model's `ModelInfo` and the FMI 3.0
+//! view of its variable table (`table::Table3`): Float64 / Int32 / Boolean variables,
+//! arrays with `<Dimension>`, units with display units, and the ModelStructure
+//! (`<Output>`, `<ContinuousStateDerivative>`, `<InitialUnknown>`, `<EventIndicator>`
+//! with their dependencies as value references).
+
+use super::logging::log_categories;
+use super::table::{Table3, Variable3, table};
+use crate::core::model::Model;
+use crate::core::units::{UNITS, UnitDefinition, unit};
+use crate::core::variables::{Causality, Initial, Kind, VariableType, check_table, find};
+use serde::Serialize;
+
+/// Name and version of the generating tool, as written into generationTool.
+pub const GENERATION_TOOL: &str = concat!("robofmu ", env!("CARGO_PKG_VERSION"));
+
+#[derive(Serialize)]
+#[serde(rename = "fmiModelDescription")]
+struct ModelDescription {
+    #[serde(rename = "@fmiVersion")]
+    fmi_version: &'static str,
+    #[serde(rename = "@modelName")]
+    model_name: &'static str,
+    #[serde(rename = "@instantiationToken")]
+    instantiation_token: &'static str,
+    #[serde(rename = "@description")]
+    description: &'static str,
+    #[serde(rename = "@generationTool")]
+    generation_tool: &'static str,
+    #[serde(rename = "@variableNamingConvention")]
+    naming: &'static str,
+    #[serde(rename = "ModelExchange")]
+    model_exchange: Interface,
+    #[serde(rename = "CoSimulation")]
+    co_simulation: Interface,
+    #[serde(rename = "UnitDefinitions", skip_serializing_if = "Option::is_none")]
+    unit_definitions: Option<UnitDefinitions>,
+    #[serde(rename = "LogCategories")]
+    log_categories: LogCategories,
+    #[serde(rename = "DefaultExperiment")]
+    default_experiment: DefaultExperiment,
+    #[serde(rename = "ModelVariables")]
+    model_variables: ModelVariables,
+    #[serde(rename = "ModelStructure")]
+    model_structure: ModelStructure,
+}
+
+/// Attributes of <ModelExchange> and <CoSimulation>; `None` ones are left out.
+#[derive(Serialize)]
+struct Interface {
+    #[serde(rename = "@modelIdentifier")]
+    model_identifier: &'static str,
+    #[serde(rename = "@canGetAndSetFMUState")]
+    get_set_state: bool,
+    #[serde(rename = "@canSerializeFMUState")]
+    serialize_state: bool,
+    #[serde(rename = "@providesDirectionalDerivatives")]
+    directional_derivatives: bool,
+    #[serde(rename = "@providesAdjointDerivatives")]
+    adjoint_derivatives: bool,
+    #[serde(rename = "@providesPerElementDependencies")]
+    per_element_dependencies: bool,
+    #[serde(
+        rename = "@needsCompletedIntegratorStep",
+        skip_serializing_if = "Option::is_none"
+    )]
+    needs_completed_integrator_step: Option<bool>,
+    #[serde(
+        rename = "@canHandleVariableCommunicationStepSize",
+        skip_serializing_if = "Option::is_none"
+    )]
+    variable_step: Option<bool>,
+    #[serde(rename = "@hasEventMode", skip_serializing_if = "Option::is_none")]
+    has_event_mode: Option<bool>,
+}
+
+#[derive(Serialize)]
+struct UnitDefinitions {
+    #[serde(rename = "Unit")]
+    units: Vec<Unit>,
+}
+
+#[derive(Serialize)]
+struct Unit {
+    #[serde(rename = "@name")]
+    name: &'static str,
+    #[serde(rename = "BaseUnit")]
+    base: BaseUnit,
+    #[serde(rename = "DisplayUnit")]
+    display_units: Vec<DisplayUnit>,
+}
+
+#[derive(Serialize)]
+struct BaseUnit {
+    #[serde(rename = "@kg", skip_serializing_if = "is_zero")]
+    kg: i32,
+    #[serde(rename = "@m", skip_serializing_if = "is_zero")]
+    m: i32,
+    #[serde(rename = "@s", skip_serializing_if = "is_zero")]
+    s: i32,
+    #[serde(rename = "@rad", skip_serializing_if = "is_zero")]
+    rad: i32,
+}
+
+fn is_zero(v: &i32) -> bool {
+    *v == 0
+}
+
+#[derive(Serialize)]
+struct DisplayUnit {
+    #[serde(rename = "@name")]
+    name: &'static str,
+    #[serde(rename = "@factor")]
+    factor: String,
+}
+
+#[derive(Serialize)]
+struct LogCategories {
+    #[serde(rename = "Category")]
+    categories: Vec<Category>,
+}
+
+#[derive(Serialize)]
+struct Category {
+    #[serde(rename = "@name")]
+    name: &'static str,
+    #[serde(rename = "@description")]
+    description: &'static str,
+}
+
+#[derive(Serialize)]
+struct DefaultExperiment {
+    #[serde(rename = "@startTime")]
+    start_time: String,
+    #[serde(rename = "@stopTime")]
+    stop_time: String,
+    #[serde(rename = "@tolerance")]
+    tolerance: String,
+    #[serde(rename = "@stepSize")]
+    step_size: String,
+}
+
+#[derive(Serialize)]
+struct ModelVariables {
+    #[serde(rename = "$value")]
+    variables: Vec<TypedVariable>,
+}
+
+/// One element of <ModelVariables>: its tag is the type.
+#[derive(Serialize)]
+enum TypedVariable {
+    Float64(ModelVariable),
+    Int32(ModelVariable),
+    Boolean(ModelVariable),
+}
+
+/// The attributes of a variable; those that do not apply to its type stay None.
+#[derive(Serialize)]
+struct ModelVariable {
+    #[serde(rename = "@name")]
+    name: String,
+    #[serde(rename = "@valueReference")]
+    value_reference: u32,
+    #[serde(rename = "@description")]
+    description: String,
+    #[serde(rename = "@causality")]
+    causality: &'static str,
+    #[serde(rename = "@variability")]
+    variability: &'static str,
+    #[serde(rename = "@initial", skip_serializing_if = "Option::is_none")]
+    initial: Option<&'static str>,
+    #[serde(rename = "@unit", skip_serializing_if = "Option::is_none")]
+    unit: Option<&'static str>,
+    #[serde(rename = "@displayUnit", skip_serializing_if = "Option::is_none")]
+    display_unit: Option<&'static str>,
+    #[serde(rename = "@min", skip_serializing_if = "Option::is_none")]
+    min: Option<String>,
+    #[serde(rename = "@max", skip_serializing_if = "Option::is_none")]
+    max: Option<String>,
+    /// Space-separated start values of all elements.
+    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
+    start: Option<String>,
+    #[serde(rename = "@derivative", skip_serializing_if = "Option::is_none")]
+    derivative: Option<u32>,
+    #[serde(rename = "Dimension", skip_serializing_if = "Option::is_none")]
+    dimension: Option<Dimension>,
+}
+
+#[derive(Serialize)]
+struct Dimension {
+    #[serde(rename = "@start")]
+    start: usize,
+}
+
+#[derive(Serialize)]
+struct ModelStructure {
+    #[serde(rename = "$value")]
+    unknowns: Vec<Unknown>,
+}
+
+/// The ModelStructure elements, in the order of the schema (the tags are the
+/// standard's, hence the shared suffix).
+#[derive(Serialize)]
+#[allow(clippy::enum_variant_names)]
+enum Unknown {
+    Output(Dependencies),
+    ContinuousStateDerivative(Dependencies),
+    InitialUnknown(Dependencies),
+    EventIndicator(Dependencies),
+}
+
+#[derive(Serialize)]
+struct Dependencies {
+    #[serde(rename = "@valueReference")]
+    value_reference: u32,
+    /// Space-separated value references of the knowns; absent: all knowns.
+    #[serde(rename = "@dependencies", skip_serializing_if = "Option::is_none")]
+    dependencies: Option<String>,
+}
+
+/// Shortest decimal text that reads back to the same f64.
+fn number(v: f64) -> String {
+    format!("{v:?}")
+}
+
+fn joined<T: ToString>(values: impl IntoIterator<Item = T>) -> String {
+    values
+        .into_iter()
+        .map(|v| v.to_string())
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The type-specific attributes of `v`, read from its first element (shared by all)
+/// and the start values of every element.
+fn model_variable<M: Model>(v: &Variable3) -> Result<TypedVariable, String> {
+    let mut out = ModelVariable {
+        name: v.name.clone(),
+        value_reference: v.value_reference,
+        description: v.description.clone(),
+        causality: v.causality.as_str(),
+        variability: v.variability.as_str(),
+        initial: v.initial.map(Initial::as_str),
+        unit: None,
+        display_unit: None,
+        min: None,
+        max: None,
+        start: None,
+        derivative: v.derivative_of,
+        dimension: v.dimension.map(|start| Dimension { start }),
+    };
+    let elements: Vec<_> = v
+        .elements()
+        .iter()
+        .map(|&vr| find(M::variables(), vr).ok_or_else(|| format!("no element {vr}")))
+        .collect::<Result<_, _>>()?;
+    let Some(first) = elements.first() else {
+        return Ok(TypedVariable::Float64(out));
+    };
+    let starts: Option<Vec<String>> = elements
+        .iter()
+        .map(|e| match &e.kind {
+            Kind::Real { start, .. } => start.map(number),
+            Kind::Integer { start, .. } => start.map(|s| s.to_string()),
+            Kind::Boolean { start, .. } => start.map(|s| s.to_string()),
+        })
+        .collect();
+    out.start = starts.map(joined);
+    Ok(match &first.kind {
+        Kind::Real {
+            unit,
+            display_unit,
+            min,
+            max,
+            ..
+        } => {
+            out.unit = *unit;
+            out.display_unit = *display_unit;
+            out.min = min.map(number);
+            out.max = max.map(number);
+            TypedVariable::Float64(out)
+        }
+        Kind::Integer { min, max, .. } => {
+            out.min = min.map(|m| m.to_string());
+            out.max = max.map(|m| m.to_string());
+            TypedVariable::Int32(out)
+        }
+        Kind::Boolean { .. } => TypedVariable::Boolean(out),
+    })
+}
+
+/// The units the table uses, in the order of the layer's unit list, after checking
+/// that every unit and display unit is defined.
+fn used_units<M: Model>() -> Result<Vec<&'static UnitDefinition>, String> {
+    let mut used: Vec<&'static UnitDefinition> = Vec::new();
+    for v in M::variables() {
+        if let Kind::Real {
+            unit: Some(name),
+            display_unit,
+            ..
+        } = &v.kind
+        {
+            let def = unit(name).ok_or_else(|| format!("\"{}\": unknown unit {name}", v.name))?;
+            if let Some(d) = display_unit
+                && !def.display_units.iter().any(|du| du.name == *d)
+            {
+                return Err(format!(
+                    "\"{}\": {d} is not a display unit of {name}",
+                    v.name
+                ));
+            }
+            if !used.iter().any(|u| u.name == def.name) {
+                used.push(def);
+            }
+        }
+    }
+    used.sort_by_key(|u| UNITS.iter().position(|k| k.name == u.name));
+    Ok(used)
+}
+
+fn unit_definitions(units: &[&'static UnitDefinition]) -> Option<UnitDefinitions> {
+    (!units.is_empty()).then(|| UnitDefinitions {
+        units: units
+            .iter()
+            .map(|u| Unit {
+                name: u.name,
+                base: BaseUnit {
+                    kg: u.base.kg,
+                    m: u.base.m,
+                    s: u.base.s,
+                    rad: u.base.rad,
+                },
+                display_units: u
+                    .display_units
+                    .iter()
+                    .map(|d| DisplayUnit {
+                        name: d.name,
+                        factor: number(d.factor),
+                    })
+                    .collect(),
+            })
+            .collect(),
+    })
+}
+
+fn dependencies(v: &Variable3) -> Dependencies {
+    Dependencies {
+        value_reference: v.value_reference,
+        dependencies: v.dependencies.as_ref().map(|d| joined(d.iter())),
+    }
+}
+
+/// Whether `v` is an initial unknown (section 2.4.8 of FMI 3.0): outputs and state
+/// derivatives computed at initialization, and calculated parameters.
+fn is_initial_unknown(v: &Variable3) -> bool {
+    let calculated = matches!(v.initial, Some(Initial::Calculated | Initial::Approx));
+    (calculated && (v.causality == Causality::Output || v.derivative_of.is_some()))
+        || v.causality == Causality::CalculatedParameter
+}
+
+fn model_structure(t: &Table3) -> ModelStructure {
+    let all = || t.variables.iter();
+    let mut unknowns: Vec<Unknown> = all()
+        .filter(|v| v.causality == Causality::Output)
+        .map(|v| Unknown::Output(dependencies(v)))
+        .collect();
+    unknowns.extend(
+        t.derivatives()
+            .map(|v| Unknown::ContinuousStateDerivative(dependencies(v))),
+    );
+    unknowns.extend(all().filter(|v| is_initial_unknown(v)).map(|v| {
+        Unknown::InitialUnknown(Dependencies {
+            value_reference: v.value_reference,
+            dependencies: None,
+        })
+    }));
+    unknowns.extend(
+        t.event_indicators()
+            .map(|v| Unknown::EventIndicator(dependencies(v))),
+    );
+    ModelStructure { unknowns }
+}
+
+fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
+    let common = || Interface {
+        model_identifier: info.model_identifier,
+        get_set_state: true,
+        serialize_state: true,
+        directional_derivatives: info.provides_directional_derivative,
+        adjoint_derivatives: info.provides_directional_derivative,
+        per_element_dependencies: true,
+        needs_completed_integrator_step: None,
+        variable_step: None,
+        has_event_mode: None,
+    };
+    let model_exchange = Interface {
+        needs_completed_integrator_step: Some(false),
+        ..common()
+    };
+    let co_simulation = Interface {
+        variable_step: Some(true),
+        has_event_mode: Some(true),
+        ..common()
+    };
+    (model_exchange, co_simulation)
+}
+
+/// The text of the FMI 3.0 modelDescription.xml for model M.
+pub fn model_description<M: Model>() -> Result<String, String> {
+    let info = M::info();
+    check_table(M::variables())?;
+    let t = table::<M>()?;
+    let states: usize = t.derivatives().map(Variable3::size).sum();
+    if states != info.number_of_continuous_states {
+        return Err(format!(
+            "{states} state derivatives but {} continuous states",
+            info.number_of_continuous_states
+        ));
+    }
+    let variables = t
+        .variables
+        .iter()
+        .map(model_variable::<M>)
+        .collect::<Result<Vec<_>, _>>()?;
+    let (model_exchange, co_simulation) = interfaces(info);
+    let experiment = info.default_experiment;
+    let description = ModelDescription {
+        fmi_version: "3.0",
+        model_name: info.model_name,
+        instantiation_token: info.guid,
+        description: info.description,
+        generation_tool: GENERATION_TOOL,
+        naming: "structured",
+        model_exchange,
+        co_simulation,
+        unit_definitions: unit_definitions(&used_units::<M>()?),
+        log_categories: LogCategories {
+            categories: log_categories::<M>()
+                .iter()
+                .map(|c| Category {
+                    name: c.name,
+                    description: c.description,
+                })
+                .collect(),
+        },
+        default_experiment: DefaultExperiment {
+            start_time: number(experiment.start_time),
+            stop_time: number(experiment.stop_time),
+            tolerance: number(experiment.tolerance),
+            step_size: number(experiment.step_size),
+        },
+        model_variables: ModelVariables { variables },
+        model_structure: model_structure(t),
+    };
+    let mut xml = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    let mut serializer = quick_xml::se::Serializer::new(&mut xml);
+    serializer.indent(' ', 2);
+    description
+        .serialize(serializer)
+        .map_err(|e| format!("XML serialization failed: {e}"))?;
+    xml.push('\n');
+    Ok(xml)
+}
+
+/// The drift check of an FMU crate: the checked-in `<dir>/<modelName>.xml` must equal
+/// what the code generates. With the environment variable UPDATE_MODEL_DESCRIPTION
+/// set, the file is rewritten first.
+pub fn check_checked_in<M: Model>(dir: &std::path::Path) -> Result<(), String> {
+    let generated = model_description::<M>()?;
+    let path = dir.join(format!("{}.xml", M::info().model_name));
+    if std::env::var_os("UPDATE_MODEL_DESCRIPTION").is_some() {
+        std::fs::write(&path, &generated).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    let on_disk = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    if on_disk != generated {
+        return Err(format!(
+            "{} drifted from the code: rerun this test with UPDATE_MODEL_DESCRIPTION=1",
+            path.display()
+        ));
+    }
+    Ok(())
+}
+
+/// The type name of a table variable type in FMI 3.0.
+pub fn type_name(t: VariableType) -> &'static str {
+    match t {
+        VariableType::Real => "Float64",
+        VariableType::Integer => "Int32",
+        VariableType::Boolean => "Boolean",
+    }
+}
