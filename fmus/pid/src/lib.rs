@@ -8,7 +8,6 @@ use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
 use robofmu_fmi::core::{
     DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
-use std::sync::LazyLock;
 
 pub const CHANNELS: usize = 3;
 
@@ -298,8 +297,6 @@ fn variables() -> Vec<Variable<Pid>> {
     table
 }
 
-static VARIABLES: LazyLock<Vec<Variable<Pid>>> = LazyLock::new(variables);
-
 /// d(output or state derivative)/d(input or state) of one channel, from the law in
 /// `control::pid` (the limits make u flat, conditional integration makes dI/dt flat).
 fn channel_partial(m: &Pid, c: usize, unknown: u32, known: u32) -> Result<f64, String> {
@@ -366,8 +363,8 @@ impl Model for Pid {
         &INFO
     }
 
-    fn variables() -> &'static [Variable<Self>] {
-        &VARIABLES
+    fn variables() -> Vec<Variable<Self>> {
+        variables()
     }
 
     fn new() -> Self {

@@ -10,7 +10,6 @@ use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
 use robofmu_pid_fmu::Pid;
 use std::ffi::c_char;
-use std::sync::LazyLock;
 
 /// Instantiated with loggingOn = 0, so that only the categories a test enables log.
 fn quiet<M: Model>(kind: i32) -> Host<M> {
@@ -403,21 +402,17 @@ static PANICKY_INFO: ModelInfo = ModelInfo {
     log_categories: &[],
 };
 
-static PANICKY_VARIABLES: LazyLock<Vec<Variable<Panicky>>> = LazyLock::new(|| {
-    vec![
-        Variable::real(1, "k", "a parameter", |_: &Panicky| 1.0)
-            .parameter(Variability::Fixed)
-            .start_real(1.0)
-            .set_real(|_, _| Ok(())),
-    ]
-});
-
 impl Model for Panicky {
     fn info() -> &'static ModelInfo {
         &PANICKY_INFO
     }
-    fn variables() -> &'static [Variable<Self>] {
-        &PANICKY_VARIABLES
+    fn variables() -> Vec<Variable<Self>> {
+        vec![
+            Variable::real(1, "k", "a parameter", |_: &Panicky| 1.0)
+                .parameter(Variability::Fixed)
+                .start_real(1.0)
+                .set_real(|_, _| Ok(())),
+        ]
     }
     fn new() -> Self {
         Panicky

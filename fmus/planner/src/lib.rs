@@ -7,7 +7,6 @@ use robofmu_control::trajectory::{Boundary, Order, Polynomial};
 use robofmu_fmi::core::{
     DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
-use std::sync::LazyLock;
 
 pub const AXES: usize = 3;
 
@@ -206,15 +205,13 @@ fn variables() -> Vec<Variable<Planner>> {
     table
 }
 
-static VARIABLES: LazyLock<Vec<Variable<Planner>>> = LazyLock::new(variables);
-
 impl Model for Planner {
     fn info() -> &'static ModelInfo {
         &INFO
     }
 
-    fn variables() -> &'static [Variable<Self>] {
-        &VARIABLES
+    fn variables() -> Vec<Variable<Self>> {
+        variables()
     }
 
     fn new() -> Self {

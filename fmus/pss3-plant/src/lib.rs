@@ -22,9 +22,8 @@ use robofmu::pss3::dynamics::{
 };
 use robofmu::pss3::{FkOptions, assemble, forward_kinematics, start_pose};
 use robofmu_fmi::core::{
-    DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variable,
+    DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo, StepOutcome, Variable,
 };
-use std::sync::LazyLock;
 
 static INFO: ModelInfo = ModelInfo {
     model_name: "Pss3Plant",
@@ -81,6 +80,17 @@ pub struct Pss3Plant {
     started: bool,
     /// End-stop contacts as last updated at an event (ME) or after a step (CS).
     contacts: [StopContact; 3],
+    /// Values computed by `calculate_values` for the current state and inputs, or why
+    /// the model cannot be evaluated there.
+    computed: Result<Computed, String>,
+}
+
+/// Everything the outputs show, computed once per change.
+#[derive(Clone)]
+struct Computed {
+    outputs: PlantOutputs,
+    euler_rates: Vector3<f64>,
+    gravity_compensation: Vector3<f64>,
 }
 
 /// Hysteresis of the contact flags, m: a contact begins `CONTACT_HYSTERESIS` beyond a
@@ -175,34 +185,37 @@ impl Pss3Plant {
         }
     }
 
-    fn outputs(&self) -> Result<PlantOutputs, String> {
+    /// Computes the outputs, Euler-angle rates and gravity compensation of the
+    /// current state and inputs.
+    fn compute(&self) -> Result<Computed, String> {
         let state = self.current_state()?;
-        self.plant()?
+        let plant = self.plant()?;
+        let outputs = plant
             .outputs(&state, &self.inputs)
-            .map_err(|e| e.to_string())
-    }
-
-    /// One component of the outputs, NaN when they cannot be evaluated (the layer turns
-    /// a NaN into fmi2Error with the variable's name, never passes it on).
-    fn output(&self, f: impl Fn(&PlantOutputs) -> f64) -> f64 {
-        self.outputs().map_or(f64::NAN, |o| f(&o))
-    }
-
-    fn euler_rates(&self) -> Result<Vector3<f64>, String> {
-        let state = self.current_state()?;
-        self.plant()?
+            .map_err(|e| e.to_string())?;
+        let euler_rates = plant
             .derivative(&state, &self.inputs)
             .map(|d| d.euler_rates)
-            .map_err(|e| e.to_string())
+            .map_err(|e| e.to_string())?;
+        let gravity_compensation = plant
+            .gravity_compensation(&state.euler)
+            .map_err(|e| e.to_string())?;
+        Ok(Computed {
+            outputs,
+            euler_rates,
+            gravity_compensation,
+        })
     }
 
-    /// G_x = E^T g(theta): the Euler-angle generalized force that holds the current
-    /// pose at rest against gravity.
-    fn gravity_compensation(&self) -> Result<Vector3<f64>, String> {
-        let state = self.current_state()?;
-        self.plant()?
-            .gravity_compensation(&state.euler)
-            .map_err(|e| e.to_string())
+    /// One computed value, NaN when the model could not be evaluated (the layer
+    /// returns Discard with the reason before any getter runs in that case).
+    fn computed(&self, f: impl Fn(&Computed) -> f64) -> f64 {
+        self.computed.as_ref().map_or(f64::NAN, f)
+    }
+
+    /// One component of the computed outputs.
+    fn output(&self, f: impl Fn(&PlantOutputs) -> f64) -> f64 {
+        self.computed(|c| f(&c.outputs))
     }
 
     /// Actuator displacements l of the current state.
@@ -260,15 +273,13 @@ impl Pss3Plant {
     }
 }
 
-static VARIABLES: LazyLock<Vec<Variable<Pss3Plant>>> = LazyLock::new(variables::table);
-
 impl Model for Pss3Plant {
     fn info() -> &'static ModelInfo {
         &INFO
     }
 
-    fn variables() -> &'static [Variable<Self>] {
-        &VARIABLES
+    fn variables() -> Vec<Variable<Self>> {
+        variables::table()
     }
 
     fn new() -> Self {
@@ -293,6 +304,7 @@ impl Model for Pss3Plant {
             },
             started: false,
             contacts: [StopContact::Free; 3],
+            computed: Err("not computed yet".to_string()),
         };
         model.rebuild();
         model
@@ -345,6 +357,11 @@ impl Model for Pss3Plant {
         }
     }
 
+    fn calculate_values(&mut self) -> Result<(), String> {
+        self.computed = self.compute();
+        self.computed.as_ref().map(|_| ()).map_err(Clone::clone)
+    }
+
     fn continuous_states(&self, x: &mut [f64]) {
         x.copy_from_slice(self.state.to_vector().as_slice());
     }
@@ -376,12 +393,21 @@ impl Model for Pss3Plant {
         Ok(())
     }
 
-    fn update_discrete_states(&mut self) {
+    /// The contacts change; the continuous states never jump (the stops are springs).
+    fn update_discrete_states(&mut self) -> EventUpdate {
         self.refresh_contacts();
+        EventUpdate::default()
     }
 
-    fn partial_derivative(&self, unknown: u32, known: u32) -> Result<f64, String> {
-        partials::partial_derivative(self, unknown, known)
+    fn directional_derivative(
+        &self,
+        table: &[Variable<Self>],
+        unknowns: &[u32],
+        knowns: &[u32],
+        seed: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), String> {
+        partials::directional_derivative(self, table, unknowns, knowns, seed, out)
     }
 
     fn write_extra_state(&self, out: &mut Vec<u8>) {

@@ -1,4 +1,6 @@
-//! Partial derivatives for fmi2GetDirectionalDerivative.
+//! Directional derivatives for fmi2GetDirectionalDerivative, for a whole seed vector in
+//! one call: the plant is linearized once per call (not once per (unknown, known)
+//! pair) and each seeded known is moved once for all the finite-difference unknowns.
 //!
 //! Knowns: the states theta[i], omega[i] and the inputs. Unknowns:
 //! - der(theta), der(omega), thetaDot, omegaDot: from `Plant::linearize` (state part by
@@ -12,9 +14,10 @@
 use super::Pss3Plant;
 use super::variables::*;
 use nalgebra::Vector3;
+use robofmu::pss3::dynamics::{Linearization, PlantState};
 use robofmu::pss3::rotation::moment_from_generalized_force;
-use robofmu_fmi::core::Model;
 use robofmu_fmi::core::variables::{Kind, find};
+use robofmu_fmi::core::{Model, Variable};
 
 /// Finite-difference step for a state (rad, rad/s), scaled by 1 + |value|.
 const STATE_STEP: f64 = 1e-4;
@@ -47,34 +50,98 @@ fn known(vr: u32) -> Option<Known> {
     })
 }
 
-pub fn partial_derivative(m: &Pss3Plant, unknown: u32, known_vr: u32) -> Result<f64, String> {
-    let k = known(known_vr)
-        .ok_or_else(|| format!("value reference {known_vr} is neither a state nor an input"))?;
-    let (group, i) = split(unknown);
-    match group {
-        DER_THETA | THETA_DOT if i < 3 => rate_partial(m, i, k),
-        DER_OMEGA | OMEGA_DOT if i < 3 => rate_partial(m, 3 + i, k),
-        THETA if i < 3 => Ok(identity(Known::State(i), k)),
-        OMEGA if i < 3 => Ok(identity(Known::State(3 + i), k)),
-        YAW_PITCH_ROLL if i < 3 => {
-            let sign = if i == 1 { -1.0 } else { 1.0 };
-            Ok(sign * identity(Known::State(i), k))
-        }
-        _ => output_partial(m, unknown, k),
+/// dvUnknown = J dvKnown for the unknowns and knowns given (see the module doc).
+pub fn directional_derivative(
+    m: &Pss3Plant,
+    table: &[Variable<Pss3Plant>],
+    unknowns: &[u32],
+    known_vrs: &[u32],
+    seed: &[f64],
+    out: &mut [f64],
+) -> Result<(), String> {
+    let knowns = known_vrs
+        .iter()
+        .map(|&vr| {
+            known(vr).ok_or_else(|| format!("value reference {vr} is neither a state nor an input"))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let seeded: Vec<(Known, f64)> = knowns
+        .into_iter()
+        .zip(seed.iter().copied())
+        .filter(|&(_, s)| s != 0.0)
+        .collect();
+    let mut linearization = None;
+    let mut by_differences = Vec::new();
+    for (o, &unknown) in out.iter_mut().zip(unknowns) {
+        let (group, i) = split(unknown);
+        let row = match group {
+            DER_THETA | THETA_DOT if i < 3 => Some(i),
+            DER_OMEGA | OMEGA_DOT if i < 3 => Some(3 + i),
+            _ => None,
+        };
+        *o = match (group, row) {
+            (_, Some(row)) => {
+                if linearization.is_none() {
+                    linearization = Some(linearize(m)?);
+                }
+                let (state, lin) = linearization.as_ref().expect("just computed");
+                let mut sum = 0.0;
+                for &(k, s) in &seeded {
+                    sum += rate_partial(state, lin, row, k)? * s;
+                }
+                sum
+            }
+            (THETA, _) if i < 3 => along(&seeded, |k| identity(Known::State(i), k)),
+            (OMEGA, _) if i < 3 => along(&seeded, |k| identity(Known::State(3 + i), k)),
+            (YAW_PITCH_ROLL, _) if i < 3 => {
+                let sign = if i == 1 { -1.0 } else { 1.0 };
+                sign * along(&seeded, |k| identity(Known::State(i), k))
+            }
+            _ => {
+                by_differences.push(unknown);
+                0.0
+            }
+        };
     }
+    if by_differences.is_empty() {
+        return Ok(());
+    }
+    for &(k, s) in &seeded {
+        let column = output_partials(m, table, &by_differences, k)?;
+        for (o, &unknown) in out.iter_mut().zip(unknowns) {
+            if let Some(at) = by_differences.iter().position(|&u| u == unknown) {
+                *o += column[at] * s;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn along(seeded: &[(Known, f64)], partial: impl Fn(Known) -> f64) -> f64 {
+    seeded.iter().map(|&(k, s)| partial(k) * s).sum()
 }
 
 fn identity(state: Known, k: Known) -> f64 {
     if state == k { 1.0 } else { 0.0 }
 }
 
-/// d(row of the state derivative)/d(known) from the linearisation.
-fn rate_partial(m: &Pss3Plant, row: usize, k: Known) -> Result<f64, String> {
+/// The current state and the linearisation there.
+fn linearize(m: &Pss3Plant) -> Result<(PlantState, Linearization), String> {
     let state = m.current_state()?;
     let lin = m
         .plant()?
         .linearize(&state, &m.inputs)
         .map_err(|e| e.to_string())?;
+    Ok((state, lin))
+}
+
+/// d(row of the state derivative)/d(known) from the linearisation.
+fn rate_partial(
+    state: &PlantState,
+    lin: &Linearization,
+    row: usize,
+    k: Known,
+) -> Result<f64, String> {
     Ok(match k {
         Known::State(j) => lin.state[(row, j)],
         Known::Input(j) if j < 9 => lin.inputs[(row, j)],
@@ -110,23 +177,27 @@ fn moved(m: &Pss3Plant, k: Known, delta: f64) -> Result<Pss3Plant, String> {
     Ok(copy)
 }
 
-/// d(output)/d(known) by central differences with one Richardson extrapolation.
-fn output_partial(m: &Pss3Plant, unknown: u32, k: Known) -> Result<f64, String> {
-    let variable = find(Pss3Plant::variables(), unknown)
-        .ok_or_else(|| format!("unknown value reference {unknown}"))?;
-    let Kind::Real { get, .. } = &variable.kind else {
-        return Err(format!("\"{}\" is not a Real variable", variable.name));
-    };
-    let value = |delta: f64| -> Result<f64, String> {
-        let v = get(&moved(m, k, delta)?);
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(format!(
-                "\"{}\" cannot be evaluated near this point",
-                variable.name
-            ))
-        }
+/// d(output)/d(known) of every output in `unknowns` by central differences with one
+/// Richardson extrapolation: four evaluations of the moved plant for all of them.
+fn output_partials(
+    m: &Pss3Plant,
+    table: &[Variable<Pss3Plant>],
+    unknowns: &[u32],
+    k: Known,
+) -> Result<Vec<f64>, String> {
+    let getters = unknowns
+        .iter()
+        .map(|&vr| match find(table, vr).map(|v| (&v.name, &v.kind)) {
+            Some((_, Kind::Real { get, .. })) => Ok(get),
+            Some((name, _)) => Err(format!("\"{name}\" is not a Real variable")),
+            None => Err(format!("unknown value reference {vr}")),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let values = |delta: f64| -> Result<Vec<f64>, String> {
+        let mut copy = moved(m, k, delta)?;
+        copy.calculate_values()
+            .map_err(|e| format!("the plant cannot be evaluated near this point: {e}"))?;
+        Ok(getters.iter().map(|get| get(&copy)).collect())
     };
     let current = match k {
         Known::State(j) => m.current_state()?.to_vector()[j],
@@ -144,6 +215,18 @@ fn output_partial(m: &Pss3Plant, unknown: u32, k: Known) -> Result<f64, String> 
         Known::State(_) => STATE_STEP,
         Known::Input(_) => INPUT_STEP,
     } * (1.0 + current.abs());
-    let central = |h: f64| -> Result<f64, String> { Ok((value(h)? - value(-h)?) / (2.0 * h)) };
-    Ok((4.0 * central(0.5 * h)? - central(h)?) / 3.0)
+    let central = |h: f64| -> Result<Vec<f64>, String> {
+        let (plus, minus) = (values(h)?, values(-h)?);
+        Ok(plus
+            .iter()
+            .zip(&minus)
+            .map(|(p, q)| (p - q) / (2.0 * h))
+            .collect())
+    };
+    let (half, full) = (central(0.5 * h)?, central(h)?);
+    Ok(half
+        .iter()
+        .zip(&full)
+        .map(|(a, b)| (4.0 * a - b) / 3.0)
+        .collect())
 }

@@ -270,7 +270,7 @@ fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
                 vr(THETA_DOT, i),
                 indexed("thetaDot", i),
                 "Euler-angle rate",
-                move |m: &Pss3Plant| m.euler_rates().map_or(f64::NAN, |r| r[i]),
+                move |m: &Pss3Plant| m.computed(|c| c.euler_rates[i]),
             )
             .unit("rad/s", Some("deg/s"))
             .output()
@@ -335,7 +335,7 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
                 indexed("gravityCompensation", i),
                 "Euler-angle generalized force G = E^T g(theta) that holds the current pose \
                  at rest against gravity (feedforward for generalizedForceCommand)",
-                move |m: &Pss3Plant| m.gravity_compensation().map_or(f64::NAN, |g| g[i]),
+                move |m: &Pss3Plant| m.computed(|c| c.gravity_compensation[i]),
             )
             .unit("N.m", None)
             .output()
@@ -369,7 +369,7 @@ fn derivatives(table: &mut Vec<Variable<Pss3Plant>>) {
                 vr(DER_THETA, i),
                 format!("der({state})"),
                 "Euler-angle rate",
-                move |m: &Pss3Plant| m.euler_rates().map_or(f64::NAN, |r| r[i]),
+                move |m: &Pss3Plant| m.computed(|c| c.euler_rates[i]),
             )
             .unit("rad/s", Some("deg/s"))
             .derivative_of(&state)

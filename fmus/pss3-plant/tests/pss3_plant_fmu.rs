@@ -386,7 +386,7 @@ fn dependencies_name_only_inputs_and_states() {
     // and continuous states; a dependency on a parameter is refused by the layer.
     use robofmu_fmi::core::variables::check_table;
     use robofmu_fmi::core::{Model, Variability, Variable};
-    assert_eq!(check_table(Pss3Plant::variables()), Ok(()));
+    assert_eq!(check_table(&Pss3Plant::variables()), Ok(()));
     let table: Vec<Variable<()>> = vec![
         Variable::real(1, "k", "a parameter", |_: &()| 1.0)
             .parameter(Variability::Fixed)

@@ -2,8 +2,9 @@
 //! time of the experiment, and typed, checked access to the variables. A front-end
 //! adds its mode, logger and C entry points around it.
 
-use super::model::Model;
-use super::variables::{Kind, Variable, find};
+use super::logging::Log;
+use super::model::{Model, StepOutcome};
+use super::variables::{Initial, Kind, Variable, VariableType, check_table, find};
 
 /// The FMI standard whose front-end wrote an FMU state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -30,11 +31,18 @@ impl Standard {
     }
 }
 
-/// The version-neutral part of an instance.
+/// The version-neutral part of an instance. The model is private so that every change
+/// goes through [`Instance::model_mut`], which marks the computed values stale.
 pub struct Instance<M: Model> {
-    pub model: M,
+    /// The variable table, built for this instance and sorted by value reference.
+    table: Vec<Variable<M>>,
+    model: M,
+    /// Computed values are stale (`Model::calculate_values` not called since a change).
+    dirty: bool,
+    /// Why the model could not be evaluated at the last calculation, if it could not.
+    evaluation_error: Option<String>,
     pub time: f64,
-    /// Stop time of the experiment, if the host defined one.
+    /// Stop time of the experiment, if the host defined one: steps beyond it are refused.
     pub stop_time: Option<f64>,
     pub last_successful_time: f64,
     /// Set when a step was discarded because the model cannot go on at all.
@@ -54,9 +62,9 @@ pub struct Snapshot<M: Model> {
 }
 
 /// A new model with every start value of the table applied through its writer.
-pub fn model_with_start_values<M: Model>() -> Result<M, String> {
+pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, String> {
     let mut model = M::new();
-    for v in M::variables() {
+    for v in table {
         let result = match &v.kind {
             Kind::Real {
                 set: Some(set),
@@ -80,9 +88,30 @@ pub fn model_with_start_values<M: Model>() -> Result<M, String> {
     Ok(model)
 }
 
-/// The variable with value reference `vr`.
-pub fn variable<M: Model>(vr: u32) -> Result<&'static Variable<M>, String> {
-    find(M::variables(), vr).ok_or_else(|| format!("unknown value reference {vr}"))
+/// The model's variable table sorted by value reference and checked (`check_table`).
+pub fn sorted_table<M: Model>() -> Result<Vec<Variable<M>>, String> {
+    let mut table = M::variables();
+    table.sort_by_key(|v| v.value_reference);
+    check_table(&table)?;
+    Ok(table)
+}
+
+/// The variable with value reference `vr` in a sorted table.
+pub fn variable<M>(table: &[Variable<M>], vr: u32) -> Result<&Variable<M>, String> {
+    find(table, vr).ok_or_else(|| format!("unknown value reference {vr}"))
+}
+
+/// Whether reading `v` needs the computed values (an output, derivative or other
+/// calculated variable, as opposed to a parameter, input or state).
+pub fn is_calculated<M>(v: &Variable<M>) -> bool {
+    matches!(v.initial, Some(Initial::Calculated | Initial::Approx))
+        || matches!(
+            v.kind,
+            Kind::Real {
+                derivative_of: Some(_),
+                ..
+            }
+        )
 }
 
 fn wrong_type<M>(v: &Variable<M>, wanted: &str) -> String {
@@ -94,14 +123,23 @@ fn wrong_type<M>(v: &Variable<M>, wanted: &str) -> String {
     )
 }
 
+/// Largest accepted difference between the master's communication point and the
+/// instance time (and overshoot of the stop time), relative to max(1, |t|): absorbs
+/// round-off of t += h in the master.
+pub const TIME_MATCH: f64 = 1e-9;
+
 impl<M: Model> Instance<M> {
     /// The model with its start values, at the default experiment's start time.
     pub fn new() -> Result<Self, String> {
-        let mut model = model_with_start_values::<M>()?;
+        let table = sorted_table::<M>()?;
+        let mut model = model_with_start_values::<M>(&table)?;
         let time = M::info().default_experiment.start_time;
         model.set_time(time);
         Ok(Instance {
+            table,
             model,
+            dirty: true,
+            evaluation_error: None,
             time,
             stop_time: None,
             last_successful_time: time,
@@ -109,9 +147,74 @@ impl<M: Model> Instance<M> {
         })
     }
 
+    /// Back to the state right after instantiation (the table is kept).
+    pub fn reset(&mut self) -> Result<(), String> {
+        self.model = model_with_start_values::<M>(&self.table)?;
+        self.dirty = true;
+        self.stop_time = None;
+        self.terminated_by_model = false;
+        self.set_time(M::info().default_experiment.start_time);
+        self.last_successful_time = self.time;
+        Ok(())
+    }
+
+    pub fn table(&self) -> &[Variable<M>] {
+        &self.table
+    }
+
+    pub fn model(&self) -> &M {
+        &self.model
+    }
+
+    /// The model for a change: the computed values become stale.
+    pub fn model_mut(&mut self) -> &mut M {
+        self.dirty = true;
+        &mut self.model
+    }
+
     pub fn set_time(&mut self, time: f64) {
         self.time = time;
-        self.model.set_time(time);
+        self.model_mut().set_time(time);
+    }
+
+    /// Brings the computed values up to date (once per change) and checks that every
+    /// calculated Real is finite; Err: why the model cannot be evaluated here.
+    pub fn update_values(&mut self) -> Result<(), String> {
+        if self.dirty {
+            self.dirty = false;
+            self.evaluation_error = self
+                .model
+                .calculate_values()
+                .and_then(|()| self.check_calculated_finite())
+                .err();
+        }
+        self.evaluation_error.clone().map_or(Ok(()), Err)
+    }
+
+    fn check_calculated_finite(&self) -> Result<(), String> {
+        for v in self.table.iter().filter(|v| is_calculated(v)) {
+            if let Kind::Real { get, .. } = &v.kind {
+                let value = get(&self.model);
+                if !value.is_finite() {
+                    return Err(format!("\"{}\" evaluates to {value}", v.name));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Prepares reading `vrs`: Err for an unknown value reference; Ok(Some(reason))
+    /// when one of them is calculated and the model cannot be evaluated here (the
+    /// front-end returns Discard); Ok(None) when all can be read.
+    pub fn prepare_read(&mut self, vrs: &[u32]) -> Result<Option<String>, String> {
+        let mut needs_values = false;
+        for &vr in vrs {
+            needs_values |= is_calculated(variable(&self.table, vr)?);
+        }
+        if needs_values {
+            return Ok(self.update_values().err());
+        }
+        Ok(None)
     }
 
     pub fn snapshot(&self, standard: Standard) -> Snapshot<M> {
@@ -127,47 +230,116 @@ impl<M: Model> Instance<M> {
 
     pub fn restore(&mut self, s: &Snapshot<M>) {
         self.model = s.model.clone();
+        self.dirty = true;
         self.time = s.time;
         self.stop_time = s.stop_time;
         self.last_successful_time = s.last_successful_time;
         self.terminated_by_model = s.terminated_by_model;
     }
 
-    pub fn get_real(&self, vr: u32) -> Result<f64, String> {
-        let v = variable::<M>(vr)?;
-        match &v.kind {
-            Kind::Real { get, .. } => {
-                let value = get(&self.model);
-                if value.is_finite() {
-                    Ok(value)
-                } else {
-                    Err(format!("\"{}\" evaluated to {value}", v.name))
-                }
+    /// End of initialization: the model's own checks, then the computed values at the
+    /// start must exist and be finite (a parameter that overflows is refused here,
+    /// not noticed by a getter later).
+    pub fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
+        self.model_mut().exit_initialization(log)?;
+        self.update_values()
+            .map_err(|e| format!("the model cannot be evaluated at the start: {e}"))
+    }
+
+    /// A co-simulation step from `t` by `h` with the inputs held. Err: an illegal
+    /// call (non-finite or non-positive step, wrong time, past the stop time).
+    /// A discarded step leaves the instance as it was before the step.
+    pub fn do_step(&mut self, t: f64, h: f64, log: &dyn Log) -> Result<StepOutcome, String> {
+        for (value, what) in [
+            (t, "currentCommunicationPoint"),
+            (h, "communicationStepSize"),
+        ] {
+            if !value.is_finite() {
+                return Err(format!("{what} = {value} is not finite"));
             }
-            _ => Err(wrong_type(v, "Real")),
+        }
+        if h <= 0.0 {
+            return Err(format!("communicationStepSize = {h} is not positive"));
+        }
+        if (t - self.time).abs() > TIME_MATCH * t.abs().max(1.0) {
+            return Err(format!(
+                "currentCommunicationPoint {t} differs from the FMU time {}",
+                self.time
+            ));
+        }
+        if let Some(stop) = self.stop_time
+            && t + h > stop + TIME_MATCH * stop.abs().max(1.0)
+        {
+            return Err(format!(
+                "the step from t = {t} s by {h} s ends after stopTime = {stop} s"
+            ));
+        }
+        let before = self.model.clone();
+        self.set_time(t);
+        let mut outcome = self.model_mut().do_step(t, h, log);
+        if outcome == StepOutcome::Completed {
+            self.set_time(t + h);
+            if let Err(reason) = self.update_values() {
+                outcome = StepOutcome::Discarded {
+                    reason: format!("after the step: {reason}"),
+                    terminate: false,
+                };
+            }
+        }
+        match &outcome {
+            StepOutcome::Completed => self.last_successful_time = t + h,
+            StepOutcome::Discarded { terminate, .. } => {
+                self.model = before;
+                self.dirty = true;
+                self.set_time(t);
+                self.terminated_by_model = *terminate;
+            }
+        }
+        Ok(outcome)
+    }
+
+    /// The variable `vr`, checked to be of type `wanted`.
+    fn typed(&self, vr: u32, wanted: VariableType) -> Result<&Variable<M>, String> {
+        let v = variable(&self.table, vr)?;
+        if v.variable_type() == wanted {
+            Ok(v)
+        } else {
+            Err(wrong_type(v, wanted.as_str()))
+        }
+    }
+
+    /// Reads a Real (after `prepare_read`, so computed values are current).
+    pub fn get_real(&self, vr: u32) -> Result<f64, String> {
+        let v = self.typed(vr, VariableType::Real)?;
+        let Kind::Real { get, .. } = &v.kind else {
+            unreachable!("checked by typed")
+        };
+        let value = get(&self.model);
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(format!("\"{}\" evaluated to {value}", v.name))
         }
     }
 
     pub fn get_integer(&self, vr: u32) -> Result<i32, String> {
-        let v = variable::<M>(vr)?;
-        match &v.kind {
+        match &self.typed(vr, VariableType::Integer)?.kind {
             Kind::Integer { get, .. } => Ok(get(&self.model)),
-            _ => Err(wrong_type(v, "Integer")),
+            _ => unreachable!("checked by typed"),
         }
     }
 
     pub fn get_boolean(&self, vr: u32) -> Result<bool, String> {
-        let v = variable::<M>(vr)?;
-        match &v.kind {
+        match &self.typed(vr, VariableType::Boolean)?.kind {
             Kind::Boolean { get, .. } => Ok(get(&self.model)),
-            _ => Err(wrong_type(v, "Boolean")),
+            _ => unreachable!("checked by typed"),
         }
     }
 
     /// Writes a Real through its writer after the type, finiteness and range checks
     /// (whether the variable may be set now is the front-end's rule).
     pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
-        let v = variable::<M>(vr)?;
+        let v = variable(&self.table, vr)?;
         let Kind::Real { set, min, max, .. } = &v.kind else {
             return Err(wrong_type(v, "Real"));
         };
@@ -185,11 +357,12 @@ impl<M: Model> Instance<M> {
         let set = set
             .as_ref()
             .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
+        self.dirty = true;
         set(&mut self.model, value).map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
     }
 
     pub fn set_integer(&mut self, vr: u32, value: i32) -> Result<(), String> {
-        let v = variable::<M>(vr)?;
+        let v = variable(&self.table, vr)?;
         let Kind::Integer { set, min, max, .. } = &v.kind else {
             return Err(wrong_type(v, "Integer"));
         };
@@ -199,17 +372,19 @@ impl<M: Model> Instance<M> {
         let set = set
             .as_ref()
             .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
+        self.dirty = true;
         set(&mut self.model, value).map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
     }
 
     pub fn set_boolean(&mut self, vr: u32, value: bool) -> Result<(), String> {
-        let v = variable::<M>(vr)?;
+        let v = variable(&self.table, vr)?;
         let Kind::Boolean { set, .. } = &v.kind else {
             return Err(wrong_type(v, "Boolean"));
         };
         let set = set
             .as_ref()
             .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
+        self.dirty = true;
         set(&mut self.model, value).map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
     }
 }

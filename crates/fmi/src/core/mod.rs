@@ -14,5 +14,5 @@ pub mod variables;
 
 pub use instance::{Instance, Snapshot, Standard};
 pub use logging::{Log, LogCategory};
-pub use model::{DefaultExperiment, Model, ModelInfo, StepOutcome};
+pub use model::{DefaultExperiment, EventUpdate, Model, ModelInfo, StepOutcome};
 pub use variables::{Variability, Variable};

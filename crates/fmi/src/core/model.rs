@@ -46,6 +46,19 @@ pub enum StepOutcome {
     },
 }
 
+/// What an event update (fmi2NewDiscreteStates, fmi3UpdateDiscreteStates) changed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct EventUpdate {
+    /// Another event iteration is needed at the same time instant.
+    pub discrete_states_need_update: bool,
+    /// The model cannot go on: the host should terminate the simulation.
+    pub terminate_simulation: bool,
+    /// The continuous states were changed (re-initialized) by the event.
+    pub values_of_continuous_states_changed: bool,
+    /// The nominal values of the continuous states changed.
+    pub nominals_of_continuous_states_changed: bool,
+}
+
 /// A model that can be exported as an FMU by a front-end (`export_fmi2!`).
 ///
 /// Slices passed to the continuous-state methods have exactly
@@ -54,8 +67,9 @@ pub enum StepOutcome {
 pub trait Model: Clone + Send + Sized + 'static {
     fn info() -> &'static ModelInfo;
 
-    /// The variable table, sorted by value reference.
-    fn variables() -> &'static [Variable<Self>];
+    /// Builds the variable table (any order: the layer sorts it by value reference).
+    /// Each instance owns the table it built, so nothing of it outlives the instance.
+    fn variables() -> Vec<Variable<Self>>;
 
     /// A model with every field defined; the layer then applies all start values of
     /// the table through its writers, so defaults live in the table only.
@@ -70,6 +84,15 @@ pub trait Model: Clone + Send + Sized + 'static {
 
     /// Co-simulation step from `time` to `time + step` with the inputs held.
     fn do_step(&mut self, time: f64, step: f64, log: &dyn Log) -> StepOutcome;
+
+    /// Computes every calculated value (outputs, derivatives, ...) after a change of
+    /// parameters, inputs, states or time, for the getters to read. The layer calls it
+    /// once before the first read after a change (not once per read). An error means
+    /// the model cannot be evaluated at this point: reads of calculated variables then
+    /// return Discard with this reason.
+    fn calculate_values(&mut self) -> Result<(), String> {
+        Ok(())
+    }
 
     fn continuous_states(&self, _x: &mut [f64]) {}
 
@@ -90,8 +113,11 @@ pub trait Model: Clone + Send + Sized + 'static {
         Ok(())
     }
 
-    /// Event mode, fmi2NewDiscreteStates: update the discrete variables (Model Exchange).
-    fn update_discrete_states(&mut self) {}
+    /// Event mode, fmi2NewDiscreteStates: update the discrete variables (Model Exchange)
+    /// and say what else the event changed or needs.
+    fn update_discrete_states(&mut self) -> EventUpdate {
+        EventUpdate::default()
+    }
 
     /// Next time event strictly after `time`, if any (Model Exchange).
     fn next_time_event(&self, _time: f64) -> Option<f64> {
@@ -103,6 +129,30 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// `provides_directional_derivative`.
     fn partial_derivative(&self, _unknown: u32, _known: u32) -> Result<f64, String> {
         Err("this model provides no partial derivatives".to_string())
+    }
+
+    /// Directional derivative dvUnknown = J dvKnown for all `unknowns` at once, J the
+    /// Jacobian d(unknowns)/d(knowns) at the current point (computed values are
+    /// current). `table` is the instance's variable table. The default sums
+    /// `partial_derivative` over the pairs; a model overrides it to linearize once
+    /// per call instead of once per pair. An error (the model cannot be evaluated
+    /// here) makes the call return Discard.
+    fn directional_derivative(
+        &self,
+        _table: &[Variable<Self>],
+        unknowns: &[u32],
+        knowns: &[u32],
+        seed: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), String> {
+        for (o, &u) in out.iter_mut().zip(unknowns) {
+            let mut sum = 0.0;
+            for (&k, &s) in knowns.iter().zip(seed) {
+                sum += self.partial_derivative(u, k)? * s;
+            }
+            *o = sum;
+        }
+        Ok(())
     }
 
     /// Internal state that is neither a settable variable nor a continuous state,

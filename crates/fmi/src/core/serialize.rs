@@ -16,7 +16,7 @@
 
 use super::instance::{Snapshot, Standard, model_with_start_values};
 use super::model::Model;
-use super::variables::Kind;
+use super::variables::{Kind, Variable};
 
 const MAGIC: &[u8; 8] = b"RBFMUST\0";
 /// Version of the layout above; bump it when the layout changes.
@@ -29,14 +29,14 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 /// Serialized bytes of a snapshot.
-pub fn serialize<M: Model>(s: &Snapshot<M>) -> Vec<u8> {
+pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
     let mut payload = vec![s.standard.code()];
     payload.extend_from_slice(&s.time.to_le_bytes());
     payload.push(s.stop_time.is_some() as u8);
     payload.extend_from_slice(&s.stop_time.unwrap_or(0.0).to_le_bytes());
     payload.extend_from_slice(&s.last_successful_time.to_le_bytes());
     payload.push(s.terminated_by_model as u8);
-    for v in M::variables() {
+    for v in table {
         match &v.kind {
             Kind::Real {
                 get, set: Some(_), ..
@@ -113,7 +113,7 @@ impl<'a> Reader<'a> {
 }
 
 /// Parses bytes written by `serialize` for the same model.
-pub fn deserialize<M: Model>(bytes: &[u8]) -> Result<Snapshot<M>, String> {
+pub fn deserialize<M: Model>(table: &[Variable<M>], bytes: &[u8]) -> Result<Snapshot<M>, String> {
     let mut r = Reader { bytes, at: 0 };
     if r.take(8, "the header")? != MAGIC {
         return Err("these bytes are not a serialized robofmu FMU state".to_string());
@@ -148,10 +148,10 @@ pub fn deserialize<M: Model>(bytes: &[u8]) -> Result<Snapshot<M>, String> {
     if checksum != fnv1a(&bytes[..body_end]) {
         return Err("corrupt FMU state: checksum mismatch".to_string());
     }
-    read_payload(payload)
+    read_payload(table, payload)
 }
 
-fn read_payload<M: Model>(payload: &[u8]) -> Result<Snapshot<M>, String> {
+fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snapshot<M>, String> {
     let mut r = Reader {
         bytes: payload,
         at: 0,
@@ -164,8 +164,8 @@ fn read_payload<M: Model>(payload: &[u8]) -> Result<Snapshot<M>, String> {
     let stop_time = Some(r.f64("stop time")?).filter(|_| stop_defined);
     let last_successful_time = r.f64("last successful time")?;
     let terminated_by_model = r.flag("terminated flag")?;
-    let mut model = model_with_start_values::<M>()?;
-    for v in M::variables() {
+    let mut model = model_with_start_values::<M>(table)?;
+    for v in table {
         let name = v.name.as_str();
         let result = match &v.kind {
             Kind::Real { set: Some(set), .. } => set(&mut model, r.f64(name)?),

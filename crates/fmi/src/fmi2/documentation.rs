@@ -15,7 +15,7 @@ fn escape(text: &str) -> String {
 pub fn documentation<M: Model>(standard: &str) -> Result<String, String> {
     let info = M::info();
     let mut rows = String::new();
-    for v in M::variables() {
+    for v in &crate::core::instance::sorted_table::<M>()? {
         let (start, unit) = match &v.kind {
             Kind::Real { start, unit, .. } => {
                 (start.map(|s| format!("{s:?}")), unit.map(str::to_string))

@@ -80,7 +80,7 @@ pub struct Host<M: Model> {
 /// Value reference of the variable `name`.
 pub fn vr<M: Model>(name: &str) -> u32 {
     M::variables()
-        .iter()
+        .into_iter()
         .find(|v| v.name == name)
         .unwrap_or_else(|| panic!("no variable {name}"))
         .value_reference

@@ -96,7 +96,7 @@ impl<M: Model> Instance<M> {
     /// The mode check for writing `vr` as a `wanted` variable (a wrong type is
     /// reported by the core's writer instead).
     fn check_write(&self, vr: u32, wanted: VariableType) -> Result<(), String> {
-        let v = core_instance::variable::<M>(vr)?;
+        let v = core_instance::variable(self.core.table(), vr)?;
         if v.variable_type() == wanted {
             self.check_settable(v)?;
         }

@@ -203,7 +203,6 @@ pub unsafe fn exit_initialization_mode<M: Model>(c: Fmi2Component) -> Fmi2Status
             Call::ExitInitializationMode,
             |inst| {
                 inst.core
-                    .model
                     .exit_initialization(&inst.log)
                     .map_err(|e| format!("invalid parameters: {e}"))?;
                 inst.mode = match inst.interface {

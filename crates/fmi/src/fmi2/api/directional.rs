@@ -34,21 +34,33 @@ pub unsafe fn get_directional_derivative<M: Model>(
                 let seeds = input_slice(dv_known, n_known, "dvKnown[]")?;
                 let out = output_slice(dv_unknown, n_unknown, "dvUnknown[]")?;
                 for &vr in unknowns.iter().chain(knowns) {
-                    if find(M::variables(), vr).is_none() {
+                    if find(inst.core.table(), vr).is_none() {
                         return Err(format!("unknown value reference {vr}"));
                     }
                 }
                 if let Some(bad) = seeds.iter().find(|s| !s.is_finite()) {
                     return Err(format!("dvKnown contains {bad}"));
                 }
-                for (o, &u) in out.iter_mut().zip(unknowns) {
-                    let mut sum = 0.0;
-                    for (&k, &seed) in knowns.iter().zip(seeds) {
-                        sum += inst.core.model.partial_derivative(u, k)? * seed;
-                    }
-                    *o = sum;
-                }
-                Ok(Fmi2Status::Ok)
+                let evaluated = inst.core.update_values().and_then(|()| {
+                    let core = &inst.core;
+                    core.model()
+                        .directional_derivative(core.table(), unknowns, knowns, seeds, out)
+                });
+                let reason = match evaluated {
+                    Ok(()) => match out.iter().find(|v| !v.is_finite()) {
+                        None => return Ok(Fmi2Status::Ok),
+                        Some(bad) => format!("the derivative evaluates to {bad}"),
+                    },
+                    Err(reason) => reason,
+                };
+                inst.log.status(
+                    Fmi2Status::Discard,
+                    &format!(
+                        "fmi2GetDirectionalDerivative: at t = {} s: {reason}",
+                        inst.core.time
+                    ),
+                );
+                Ok(Fmi2Status::Discard)
             },
         )
     }

@@ -67,9 +67,9 @@ pub unsafe fn serialized_fmu_state_size<M: Model>(
     size: *mut usize,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2SerializedFMUstateSize", Call::FmuState, |_| {
+        with_instance::<M>(c, "fmi2SerializedFMUstateSize", Call::FmuState, |inst| {
             let s = snapshot::<M>(state)?;
-            *output_ref(size, "size")? = serialize(s).len();
+            *output_ref(size, "size")? = serialize(inst.core.table(), s).len();
             Ok(Fmi2Status::Ok)
         })
     }
@@ -82,8 +82,8 @@ pub unsafe fn serialize_fmu_state<M: Model>(
     size: usize,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2SerializeFMUstate", Call::FmuState, |_| {
-            let data = serialize(snapshot::<M>(state)?);
+        with_instance::<M>(c, "fmi2SerializeFMUstate", Call::FmuState, |inst| {
+            let data = serialize(inst.core.table(), snapshot::<M>(state)?);
             if size != data.len() {
                 return Err(format!(
                     "size {size} differs from fmi2SerializedFMUstateSize = {}",
@@ -104,10 +104,10 @@ pub unsafe fn de_serialize_fmu_state<M: Model>(
     state: *mut Fmi2FmuState,
 ) -> Fmi2Status {
     unsafe {
-        with_instance::<M>(c, "fmi2DeSerializeFMUstate", Call::FmuState, |_| {
+        with_instance::<M>(c, "fmi2DeSerializeFMUstate", Call::FmuState, |inst| {
             let data = input_slice(bytes as *const u8, size, "serializedState[]")?;
             let slot = output_ref(state, "FMUstate")?;
-            store(slot, deserialize::<M>(data)?);
+            store(slot, deserialize::<M>(inst.core.table(), data)?);
             Ok(Fmi2Status::Ok)
         })
     }

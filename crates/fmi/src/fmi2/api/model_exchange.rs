@@ -15,6 +15,10 @@ fn check_len(n: usize, expected: usize, what: &str) -> Result<(), String> {
     }
 }
 
+fn fmi2_boolean(value: bool) -> Fmi2Boolean {
+    if value { FMI2_TRUE } else { FMI2_FALSE }
+}
+
 fn states<M: Model>() -> usize {
     M::info().number_of_continuous_states
 }
@@ -43,13 +47,17 @@ pub unsafe fn new_discrete_states<M: Model>(
             Call::NewDiscreteStates,
             |inst| {
                 let info = output_ref(event_info, "fmi2EventInfo")?;
-                inst.core.model.update_discrete_states();
-                let next = inst.core.model.next_time_event(inst.core.time);
+                let update = inst.core.model_mut().update_discrete_states();
+                let next = inst.core.model().next_time_event(inst.core.time);
                 *info = Fmi2EventInfo {
-                    new_discrete_states_needed: FMI2_FALSE,
-                    terminate_simulation: FMI2_FALSE,
-                    nominals_of_continuous_states_changed: FMI2_FALSE,
-                    values_of_continuous_states_changed: FMI2_FALSE,
+                    new_discrete_states_needed: fmi2_boolean(update.discrete_states_need_update),
+                    terminate_simulation: fmi2_boolean(update.terminate_simulation),
+                    nominals_of_continuous_states_changed: fmi2_boolean(
+                        update.nominals_of_continuous_states_changed,
+                    ),
+                    values_of_continuous_states_changed: fmi2_boolean(
+                        update.values_of_continuous_states_changed,
+                    ),
                     next_event_time_defined: if next.is_some() {
                         FMI2_TRUE
                     } else {
@@ -129,7 +137,7 @@ pub unsafe fn set_continuous_states<M: Model>(
                 if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
                     return Err(format!("x[] contains {bad}"));
                 }
-                inst.core.model.set_continuous_states(x);
+                inst.core.model_mut().set_continuous_states(x);
                 Ok(Fmi2Status::Ok)
             },
         )
@@ -150,7 +158,7 @@ unsafe fn fill_states<M: Model>(
         with_instance::<M>(c, function, call, |inst| {
             check_len(n, expected(), "the array")?;
             let out = output_slice(ptr, n, "the array")?;
-            f(&inst.core.model, out);
+            f(inst.core.model(), out);
             if let Some(bad) = out.iter().find(|v| !v.is_finite()) {
                 return Err(format!("the model computed {bad}"));
             }
@@ -175,7 +183,7 @@ unsafe fn fill_fallible<M: Model>(
         with_instance::<M>(c, function, call, |inst| {
             check_len(n, expected(), "the array")?;
             let out = output_slice(ptr, n, "the array")?;
-            if let Err(reason) = f(&inst.core.model, out) {
+            if let Err(reason) = f(inst.core.model(), out) {
                 inst.log.status(
                     Fmi2Status::Discard,
                     &format!("{function}: at t = {} s: {reason}", inst.core.time),

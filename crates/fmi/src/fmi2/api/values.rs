@@ -7,6 +7,23 @@ use crate::fmi2::instance::Instance;
 use crate::fmi2::mode::Call;
 use crate::fmi2::types::*;
 
+/// Brings the computed values up to date for reading `vrs`; Some(Discard) (logged)
+/// when a calculated one is requested and the model cannot be evaluated here.
+fn prepare<M: Model>(
+    inst: &mut Instance<M>,
+    function: &str,
+    vrs: &[Fmi2ValueReference],
+) -> Result<Option<Fmi2Status>, String> {
+    let Some(reason) = inst.core.prepare_read(vrs)? else {
+        return Ok(None);
+    };
+    inst.log.status(
+        Fmi2Status::Discard,
+        &format!("{function}: at t = {} s: {reason}", inst.core.time),
+    );
+    Ok(Some(Fmi2Status::Discard))
+}
+
 /// Applies `f` to each (value reference, value) pair; stops at the first error.
 fn each<T>(
     vrs: &[Fmi2ValueReference],
@@ -29,6 +46,9 @@ pub unsafe fn get_real<M: Model>(
         with_instance::<M>(c, "fmi2GetReal", Call::GetValues, |inst| {
             let vrs = input_slice(vr, nvr, "vr[]")?;
             let out = output_slice(value, nvr, "value[]")?;
+            if let Some(status) = prepare(inst, "fmi2GetReal", vrs)? {
+                return Ok(status);
+            }
             each(vrs, out, |r, v| {
                 *v = inst.core.get_real(r)?;
                 Ok(())
@@ -47,6 +67,9 @@ pub unsafe fn get_integer<M: Model>(
         with_instance::<M>(c, "fmi2GetInteger", Call::GetValues, |inst| {
             let vrs = input_slice(vr, nvr, "vr[]")?;
             let out = output_slice(value, nvr, "value[]")?;
+            if let Some(status) = prepare(inst, "fmi2GetInteger", vrs)? {
+                return Ok(status);
+            }
             each(vrs, out, |r, v| {
                 *v = inst.core.get_integer(r)?;
                 Ok(())
@@ -65,6 +88,9 @@ pub unsafe fn get_boolean<M: Model>(
         with_instance::<M>(c, "fmi2GetBoolean", Call::GetValues, |inst| {
             let vrs = input_slice(vr, nvr, "vr[]")?;
             let out = output_slice(value, nvr, "value[]")?;
+            if let Some(status) = prepare(inst, "fmi2GetBoolean", vrs)? {
+                return Ok(status);
+            }
             each(vrs, out, |r, v| {
                 *v = if inst.core.get_boolean(r)? {
                     FMI2_TRUE
@@ -78,8 +104,8 @@ pub unsafe fn get_boolean<M: Model>(
 }
 
 /// No model has String variables: any value reference is unknown or of another type.
-fn no_string_variable<M: Model>(vr: u32) -> String {
-    match find(M::variables(), vr) {
+fn no_string_variable<M: Model>(inst: &Instance<M>, vr: u32) -> String {
+    match find(inst.core.table(), vr) {
         Some(v) => format!(
             "\"{}\" (value reference {vr}) is a {} variable, not String",
             v.name,
@@ -100,11 +126,11 @@ pub unsafe fn get_string<M: Model>(
             c,
             "fmi2GetString",
             Call::GetValues,
-            |_: &mut Instance<M>| {
+            |inst: &mut Instance<M>| {
                 let vrs = input_slice(vr, nvr, "vr[]")?;
                 output_slice(value, nvr, "value[]")?;
                 match vrs.first() {
-                    Some(&r) => Err(no_string_variable::<M>(r)),
+                    Some(&r) => Err(no_string_variable(inst, r)),
                     None => Ok(Fmi2Status::Ok),
                 }
             },
@@ -177,11 +203,11 @@ pub unsafe fn set_string<M: Model>(
             c,
             "fmi2SetString",
             Call::SetDiscrete,
-            |_: &mut Instance<M>| {
+            |inst: &mut Instance<M>| {
                 let vrs = input_slice(vr, nvr, "vr[]")?;
                 input_slice(value, nvr, "value[]")?;
                 match vrs.first() {
-                    Some(&r) => Err(no_string_variable::<M>(r)),
+                    Some(&r) => Err(no_string_variable(inst, r)),
                     None => Ok(Fmi2Status::Ok),
                 }
             },
