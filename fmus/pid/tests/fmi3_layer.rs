@@ -11,7 +11,7 @@ use robofmu_fmi::fmi3::api;
 use robofmu_fmi::fmi3::mode::Interface;
 use robofmu_fmi::fmi3::types::*;
 use std::ffi::{CStr, c_void};
-use std::sync::{LazyLock, Mutex};
+use std::sync::Mutex;
 
 /// Log lines received: (status, message).
 type Lines = Mutex<Vec<(Fmi3Status, String)>>;
@@ -95,21 +95,17 @@ static PANICKY_INFO: ModelInfo = ModelInfo {
     log_categories: &[],
 };
 
-static PANICKY_VARIABLES: LazyLock<Vec<Variable<Panicky>>> = LazyLock::new(|| {
-    vec![
-        Variable::real(1, "k", "a parameter", |_: &Panicky| 1.0)
-            .parameter(Variability::Fixed)
-            .start_real(1.0)
-            .set_real(|_, _| Ok(())),
-    ]
-});
-
 impl Model for Panicky {
     fn info() -> &'static ModelInfo {
         &PANICKY_INFO
     }
-    fn variables() -> &'static [Variable<Self>] {
-        &PANICKY_VARIABLES
+    fn variables() -> Vec<Variable<Self>> {
+        vec![
+            Variable::real(1, "k", "a parameter", |_: &Panicky| 1.0)
+                .parameter(Variability::Fixed)
+                .start_real(1.0)
+                .set_real(|_, _| Ok(())),
+        ]
     }
     fn new() -> Self {
         Panicky
@@ -150,8 +146,10 @@ fn serialized_states_record_the_fmi3_front_end() {
     );
     let snapshot = unsafe { &*(state as *const robofmu_fmi::core::Snapshot<robofmu_pid_fmu::Pid>) };
     assert_eq!(snapshot.standard, robofmu_fmi::core::Standard::Fmi3);
-    let bytes = robofmu_fmi::core::serialize::serialize(snapshot);
-    let back = robofmu_fmi::core::serialize::deserialize::<robofmu_pid_fmu::Pid>(&bytes).unwrap();
+    let table = robofmu_fmi::core::instance::sorted_table::<robofmu_pid_fmu::Pid>().unwrap();
+    let bytes = robofmu_fmi::core::serialize::serialize(&table, snapshot);
+    let back =
+        robofmu_fmi::core::serialize::deserialize::<robofmu_pid_fmu::Pid>(&table, &bytes).unwrap();
     assert_eq!(back.standard, robofmu_fmi::core::Standard::Fmi3);
     assert_eq!(back.time, 0.1);
     assert_eq!(

@@ -5,10 +5,11 @@
 //! with their dependencies as value references).
 
 use super::logging::log_categories;
-use super::table::{Table3, Variable3, table};
+use super::table::{Table3, Variable3, build};
+use crate::core::instance::sorted_table;
 use crate::core::model::Model;
 use crate::core::units::{UNITS, UnitDefinition, unit};
-use crate::core::variables::{Causality, Initial, Kind, VariableType, check_table, find};
+use crate::core::variables::{Causality, Initial, Kind, Variable, find};
 use serde::Serialize;
 
 /// Name and version of the generating tool, as written into generationTool.
@@ -233,7 +234,7 @@ fn joined<T: ToString>(values: impl IntoIterator<Item = T>) -> String {
 
 /// The type-specific attributes of `v`, read from its first element (shared by all)
 /// and the start values of every element.
-fn model_variable<M: Model>(v: &Variable3) -> Result<TypedVariable, String> {
+fn model_variable<M>(table: &[Variable<M>], v: &Variable3) -> Result<TypedVariable, String> {
     let mut out = ModelVariable {
         name: v.name.clone(),
         value_reference: v.value_reference,
@@ -252,7 +253,7 @@ fn model_variable<M: Model>(v: &Variable3) -> Result<TypedVariable, String> {
     let elements: Vec<_> = v
         .elements()
         .iter()
-        .map(|&vr| find(M::variables(), vr).ok_or_else(|| format!("no element {vr}")))
+        .map(|&vr| find(table, vr).ok_or_else(|| format!("no element {vr}")))
         .collect::<Result<_, _>>()?;
     let Some(first) = elements.first() else {
         return Ok(TypedVariable::Float64(out));
@@ -291,9 +292,9 @@ fn model_variable<M: Model>(v: &Variable3) -> Result<TypedVariable, String> {
 
 /// The units the table uses, in the order of the layer's unit list, after checking
 /// that every unit and display unit is defined.
-fn used_units<M: Model>() -> Result<Vec<&'static UnitDefinition>, String> {
+fn used_units<M>(table: &[Variable<M>]) -> Result<Vec<&'static UnitDefinition>, String> {
     let mut used: Vec<&'static UnitDefinition> = Vec::new();
-    for v in M::variables() {
+    for v in table {
         if let Kind::Real {
             unit: Some(name),
             display_unit,
@@ -408,8 +409,8 @@ fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
 /// The text of the FMI 3.0 modelDescription.xml for model M.
 pub fn model_description<M: Model>() -> Result<String, String> {
     let info = M::info();
-    check_table(M::variables())?;
-    let t = table::<M>()?;
+    let table = sorted_table::<M>()?;
+    let t = build(&table)?;
     let states: usize = t.derivatives().map(Variable3::size).sum();
     if states != info.number_of_continuous_states {
         return Err(format!(
@@ -420,7 +421,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
     let variables = t
         .variables
         .iter()
-        .map(model_variable::<M>)
+        .map(|v| model_variable(&table, v))
         .collect::<Result<Vec<_>, _>>()?;
     let (model_exchange, co_simulation) = interfaces(info);
     let experiment = info.default_experiment;
@@ -433,7 +434,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         naming: "structured",
         model_exchange,
         co_simulation,
-        unit_definitions: unit_definitions(&used_units::<M>()?),
+        unit_definitions: unit_definitions(&used_units(&table)?),
         log_categories: LogCategories {
             categories: log_categories::<M>()
                 .iter()
@@ -450,7 +451,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
             step_size: number(experiment.step_size),
         },
         model_variables: ModelVariables { variables },
-        model_structure: model_structure(t),
+        model_structure: model_structure(&t),
     };
     let mut xml = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let mut serializer = quick_xml::se::Serializer::new(&mut xml);
@@ -479,13 +480,4 @@ pub fn check_checked_in<M: Model>(dir: &std::path::Path) -> Result<(), String> {
         ));
     }
     Ok(())
-}
-
-/// The type name of a table variable type in FMI 3.0.
-pub fn type_name(t: VariableType) -> &'static str {
-    match t {
-        VariableType::Real => "Float64",
-        VariableType::Integer => "Int32",
-        VariableType::Boolean => "Boolean",
-    }
 }

@@ -5,35 +5,40 @@
 
 use super::logging::Logger;
 use super::mode::{Interface, Mode};
-use super::table::{Source, Table3, Variable3, table};
+use super::table::{Source, Table3, Variable3, build};
 use crate::core::instance::{self as core_instance, Snapshot, Standard};
 use crate::core::model::Model;
-use crate::core::variables::{Causality, Initial, Variability, VariableType};
+use crate::core::variables::{Causality, Initial, Variability};
+use std::sync::Arc;
 
 /// Everything an instance owns. Instances share no mutable state.
 pub struct Instance<M: Model> {
     pub mode: Mode,
     pub interface: Interface,
     pub log: Logger,
-    /// Model, time, stop time.
+    /// Model, time, stop time, the model's variable table.
     pub core: core_instance::Instance<M>,
-    pub table: &'static Table3,
+    /// The FMI 3.0 view of the core's table (shared, so that a call can hold it while
+    /// it changes the instance).
+    pub table: Arc<Table3>,
 }
 
 impl<M: Model> Instance<M> {
     pub fn new(interface: Interface, log: Logger) -> Result<Self, String> {
+        let core = core_instance::Instance::new()?;
+        let table = Arc::new(build(core.table())?);
         Ok(Instance {
             mode: Mode::Instantiated,
             interface,
             log,
-            core: core_instance::Instance::new()?,
-            table: table::<M>()?,
+            core,
+            table,
         })
     }
 
     /// fmi3Reset: back to the state right after instantiation.
     pub fn reset(&mut self) -> Result<(), String> {
-        self.core = core_instance::Instance::new()?;
+        self.core.reset()?;
         self.mode = Mode::Instantiated;
         Ok(())
     }
@@ -49,41 +54,14 @@ impl<M: Model> Instance<M> {
         }
     }
 
-    /// The FMI 3.0 variable with value reference `vr`, of type `wanted`.
-    pub fn variable(&self, vr: u32, wanted: VariableType) -> Result<&'static Variable3, String> {
-        let v = self
-            .table
-            .find(vr)
-            .ok_or_else(|| format!("unknown value reference {vr}"))?;
-        if v.variable_type != wanted {
-            return Err(format!(
-                "\"{}\" (value reference {vr}) is a {} variable, not {}",
-                v.name,
-                super::description::type_name(v.variable_type),
-                super::description::type_name(wanted)
-            ));
-        }
-        Ok(v)
-    }
-
-    /// The variables of `vrs` checked against `wanted` and the total element count.
-    pub fn variables(
-        &self,
-        vrs: &[u32],
-        wanted: VariableType,
-        n_values: usize,
-    ) -> Result<Vec<&'static Variable3>, String> {
-        let variables = vrs
+    /// Makes the computed values current for reading `variables`; Ok(Some(reason))
+    /// when one of them is calculated and the model cannot be evaluated here.
+    pub fn prepare_read(&mut self, variables: &[&Variable3]) -> Result<Option<String>, String> {
+        let elements: Vec<u32> = variables
             .iter()
-            .map(|&vr| self.variable(vr, wanted))
-            .collect::<Result<Vec<_>, _>>()?;
-        let total: usize = variables.iter().map(|v| v.size()).sum();
-        if total != n_values {
-            return Err(format!(
-                "nValues = {n_values}, but the variables have {total} elements"
-            ));
-        }
-        Ok(variables)
+            .flat_map(|v| v.elements().iter().copied())
+            .collect();
+        self.core.prepare_read(&elements)
     }
 
     /// Reads the Float64 variable `v` into `out` (its size).
@@ -91,7 +69,7 @@ impl<M: Model> Instance<M> {
         match &v.source {
             Source::Time => out[0] = self.core.time,
             Source::EventIndicators => {
-                self.core.model.event_indicators(out)?;
+                self.core.model().event_indicators(out)?;
                 if let Some(bad) = out.iter().find(|z| !z.is_finite()) {
                     return Err(format!("the model computed the event indicator {bad}"));
                 }

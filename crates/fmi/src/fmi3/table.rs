@@ -11,7 +11,15 @@
 use crate::core::model::Model;
 use crate::core::variables::{Causality, Initial, Kind, Variability, Variable, VariableType};
 use std::collections::HashMap;
-use std::sync::{LazyLock, Mutex};
+
+/// The type name of a table variable type in FMI 3.0.
+pub fn type_name(t: VariableType) -> &'static str {
+    match t {
+        VariableType::Real => "Float64",
+        VariableType::Integer => "Int32",
+        VariableType::Boolean => "Boolean",
+    }
+}
 
 /// Value reference of the independent variable `time`.
 pub const TIME_VALUE_REFERENCE: u32 = 0;
@@ -73,6 +81,43 @@ pub struct Table3 {
 impl Table3 {
     pub fn find(&self, vr: u32) -> Option<&Variable3> {
         self.by_reference.get(&vr).map(|&i| &self.variables[i])
+    }
+
+    /// The variable with value reference `vr`, of type `wanted`.
+    pub fn typed(&self, vr: u32, wanted: VariableType) -> Result<&Variable3, String> {
+        let v = self
+            .find(vr)
+            .ok_or_else(|| format!("unknown value reference {vr}"))?;
+        if v.variable_type != wanted {
+            return Err(format!(
+                "\"{}\" (value reference {vr}) is a {} variable, not {}",
+                v.name,
+                type_name(v.variable_type),
+                type_name(wanted)
+            ));
+        }
+        Ok(v)
+    }
+
+    /// The variables of `vrs`, checked against `wanted` and the total element count
+    /// `n_values`.
+    pub fn typed_all(
+        &self,
+        vrs: &[u32],
+        wanted: VariableType,
+        n_values: usize,
+    ) -> Result<Vec<&Variable3>, String> {
+        let variables = vrs
+            .iter()
+            .map(|&vr| self.typed(vr, wanted))
+            .collect::<Result<Vec<_>, _>>()?;
+        let total: usize = variables.iter().map(|v| v.size()).sum();
+        if total != n_values {
+            return Err(format!(
+                "nValues = {n_values}, but the variables have {total} elements"
+            ));
+        }
+        Ok(variables)
     }
 
     /// The continuous-state derivatives in state order.
@@ -200,9 +245,9 @@ fn groups<M>(table: &[Variable<M>]) -> Result<Vec<(String, Vec<usize>, bool)>, S
     Ok(order)
 }
 
-/// The FMI 3.0 view of model M's table (see the module documentation).
-pub fn build<M: Model>() -> Result<Table3, String> {
-    let table = M::variables();
+/// The FMI 3.0 view of model M's table (see the module documentation), built from the
+/// table an instance owns.
+pub fn build<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
     if table
         .iter()
         .any(|v| v.value_reference == TIME_VALUE_REFERENCE)
@@ -344,20 +389,6 @@ fn check_state_order<M>(table: &[Variable<M>], variables: &[Variable3]) -> Resul
     } else {
         Err("the derivative arrays do not list the states in the model's order".to_string())
     }
-}
-
-/// The FMI 3.0 table of model M, built once per model type (the table is static).
-pub fn table<M: Model>() -> Result<&'static Table3, String> {
-    static TABLES: LazyLock<Mutex<HashMap<std::any::TypeId, &'static Table3>>> =
-        LazyLock::new(|| Mutex::new(HashMap::new()));
-    let key = std::any::TypeId::of::<M>();
-    let mut tables = TABLES.lock().map_err(|_| "table cache poisoned")?;
-    if let Some(t) = tables.get(&key) {
-        return Ok(t);
-    }
-    let built: &'static Table3 = Box::leak(Box::new(build::<M>()?));
-    tables.insert(key, built);
-    Ok(built)
 }
 
 #[cfg(test)]

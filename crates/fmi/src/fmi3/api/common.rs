@@ -191,7 +191,6 @@ pub unsafe fn exit_initialization_mode<M: Model>(c: Fmi3Instance) -> Fmi3Status 
             Call::ExitInitializationMode,
             |inst| {
                 inst.core
-                    .model
                     .exit_initialization(&inst.log)
                     .map_err(|e| format!("invalid parameters: {e}"))?;
                 inst.mode = after_initialization(inst.interface);

@@ -7,7 +7,7 @@
 
 use super::{output_ref, output_slice, with_instance};
 use crate::core::model::Model;
-use crate::core::variables::{Causality, find};
+use crate::core::variables::{Causality, Variable, find};
 use crate::fmi3::mode::Call;
 use crate::fmi3::table::{Source, Table3, Variable3};
 use crate::fmi3::types::*;
@@ -43,8 +43,12 @@ fn is_unknown(v: &Variable3) -> bool {
         || v.source == Source::EventIndicators
 }
 
-/// The dependencies of the variable `v` of model M.
-fn dependencies<M: Model>(t: &Table3, v: &Variable3) -> Result<Vec<Dependency>, String> {
+/// The dependencies of the variable `v` of model M (whose table is `table`).
+fn dependencies<M: Model>(
+    table: &[Variable<M>],
+    t: &Table3,
+    v: &Variable3,
+) -> Result<Vec<Dependency>, String> {
     if !is_unknown(v) {
         return Ok(Vec::new());
     }
@@ -57,13 +61,13 @@ fn dependencies<M: Model>(t: &Table3, v: &Variable3) -> Result<Vec<Dependency>, 
         return Ok(out);
     }
     for (i, &e) in elements.iter().enumerate() {
-        let scalar = find(M::variables(), e).ok_or_else(|| format!("no element {e}"))?;
+        let scalar = find(table, e).ok_or_else(|| format!("no element {e}"))?;
         let knowns = match &scalar.dependencies {
             None => all_knowns(t),
             Some(names) => names
                 .iter()
                 .map(|name| {
-                    M::variables()
+                    table
                         .iter()
                         .find(|s| &s.name == name)
                         .and_then(|s| locate(t, s.value_reference))
@@ -96,7 +100,7 @@ pub unsafe fn get_number_of_variable_dependencies<M: Model>(
                     .table
                     .find(vr)
                     .ok_or_else(|| format!("unknown value reference {vr}"))?;
-                *out = dependencies::<M>(inst.table, v)?.len();
+                *out = dependencies(inst.core.table(), &inst.table, v)?.len();
                 Ok(Fmi3Status::Ok)
             },
         )
@@ -127,7 +131,7 @@ pub unsafe fn get_variable_dependencies<M: Model>(
                     .table
                     .find(dependent)
                     .ok_or_else(|| format!("unknown value reference {dependent}"))?;
-                let list = dependencies::<M>(inst.table, v)?;
+                let list = dependencies(inst.core.table(), &inst.table, v)?;
                 let n = out.n_dependencies;
                 if n != list.len() {
                     return Err(format!(

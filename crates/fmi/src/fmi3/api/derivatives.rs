@@ -1,6 +1,9 @@
 //! fmi3GetDirectionalDerivative and fmi3GetAdjointDerivative: the Jacobian J of the
 //! unknowns (outputs, state derivatives) with respect to the knowns (inputs, states),
-//! element by element, times a seed: J s (directional) or s^T J (adjoint).
+//! element by element, times a seed: J s (directional, one call of the model's
+//! `directional_derivative`) or s^T J (adjoint, one such call per known element, each
+//! giving a column of J). Where the model cannot be evaluated the call returns
+//! fmi3Discard with its reason.
 
 use super::{input_slice, output_slice, with_instance};
 use crate::core::model::Model;
@@ -36,20 +39,29 @@ pub struct DerivativeRequest {
     pub n_sensitivity: usize,
 }
 
-/// J (rows: unknown elements, columns: known elements) at the current point.
-fn jacobian<M: Model>(
-    inst: &Instance<M>,
+/// J s (`adjoint` false) or s^T J (true) at the current point.
+fn evaluate<M: Model>(
+    inst: &mut Instance<M>,
+    adjoint: bool,
     rows: &[u32],
     columns: &[u32],
-) -> Result<Vec<Vec<f64>>, String> {
-    rows.iter()
-        .map(|&u| {
-            columns
-                .iter()
-                .map(|&k| inst.core.model.partial_derivative(u, k))
-                .collect()
-        })
-        .collect()
+    seed: &[f64],
+    out: &mut [f64],
+) -> Result<(), String> {
+    inst.core.update_values()?;
+    let (model, table) = (inst.core.model(), inst.core.table());
+    if !adjoint {
+        return model.directional_derivative(table, rows, columns, seed, out);
+    }
+    let mut unit = vec![0.0; columns.len()];
+    let mut column = vec![0.0; rows.len()];
+    for (k, o) in out.iter_mut().enumerate() {
+        unit[k] = 1.0;
+        model.directional_derivative(table, rows, columns, &unit, &mut column)?;
+        unit[k] = 0.0;
+        *o = column.iter().zip(seed).map(|(j, s)| j * s).sum();
+    }
+    Ok(())
 }
 
 unsafe fn derivative<M: Model>(
@@ -86,15 +98,18 @@ unsafe fn derivative<M: Model>(
             if let Some(bad) = seed.iter().find(|s| !s.is_finite()) {
                 return Err(format!("seed[] contains {bad}"));
             }
-            let j = jacobian(inst, &rows, &columns)?;
-            for (i, o) in out.iter_mut().enumerate() {
-                *o = if adjoint {
-                    j.iter().zip(seed).map(|(row, s)| row[i] * s).sum()
-                } else {
-                    j[i].iter().zip(seed).map(|(d, s)| d * s).sum()
-                };
-            }
-            Ok(Fmi3Status::Ok)
+            let reason = match evaluate(inst, adjoint, &rows, &columns, seed, out) {
+                Ok(()) => match out.iter().find(|v| !v.is_finite()) {
+                    None => return Ok(Fmi3Status::Ok),
+                    Some(bad) => format!("the derivative evaluates to {bad}"),
+                },
+                Err(reason) => reason,
+            };
+            inst.log.status(
+                Fmi3Status::Discard,
+                &format!("{function}: at t = {} s: {reason}", inst.core.time),
+            );
+            Ok(Fmi3Status::Discard)
         })
     }
 }

@@ -68,9 +68,9 @@ pub unsafe fn serialized_fmu_state_size<M: Model>(
     size: *mut usize,
 ) -> Fmi3Status {
     unsafe {
-        with_instance::<M>(c, "fmi3SerializedFMUStateSize", Call::FmuState, |_| {
+        with_instance::<M>(c, "fmi3SerializedFMUStateSize", Call::FmuState, |inst| {
             let s = snapshot::<M>(state)?;
-            *output_ref(size, "size")? = serialize(s).len();
+            *output_ref(size, "size")? = serialize(inst.core.table(), s).len();
             Ok(Fmi3Status::Ok)
         })
     }
@@ -83,8 +83,8 @@ pub unsafe fn serialize_fmu_state<M: Model>(
     size: usize,
 ) -> Fmi3Status {
     unsafe {
-        with_instance::<M>(c, "fmi3SerializeFMUState", Call::FmuState, |_| {
-            let data = serialize(snapshot::<M>(state)?);
+        with_instance::<M>(c, "fmi3SerializeFMUState", Call::FmuState, |inst| {
+            let data = serialize(inst.core.table(), snapshot::<M>(state)?);
             if size != data.len() {
                 return Err(format!(
                     "size {size} differs from fmi3SerializedFMUStateSize = {}",
@@ -105,10 +105,10 @@ pub unsafe fn deserialize_fmu_state<M: Model>(
     state: *mut Fmi3FmuState,
 ) -> Fmi3Status {
     unsafe {
-        with_instance::<M>(c, "fmi3DeserializeFMUState", Call::FmuState, |_| {
+        with_instance::<M>(c, "fmi3DeserializeFMUState", Call::FmuState, |inst| {
             let data = input_slice(bytes, size, "serializedState[]")?;
             let slot = output_ref(state, "FMUState")?;
-            store(slot, deserialize::<M>(data)?);
+            store(slot, deserialize::<M>(inst.core.table(), data)?);
             Ok(Fmi3Status::Ok)
         })
     }

@@ -52,12 +52,12 @@ pub unsafe fn update_discrete_states<M: Model>(
                 let values = output_ref(out.values_changed, "valuesOfContinuousStatesChanged")?;
                 let defined = output_ref(out.next_event_time_defined, "nextEventTimeDefined")?;
                 let next_time = output_ref(out.next_event_time, "nextEventTime")?;
-                inst.core.model.update_discrete_states();
-                let next = inst.core.model.next_time_event(inst.core.time);
-                *need = FMI3_FALSE;
-                *terminate = FMI3_FALSE;
-                *nominals = FMI3_FALSE;
-                *values = FMI3_FALSE;
+                let update = inst.core.model_mut().update_discrete_states();
+                let next = inst.core.model().next_time_event(inst.core.time);
+                *need = fmi3_bool(update.discrete_states_need_update);
+                *terminate = fmi3_bool(update.terminate_simulation);
+                *nominals = fmi3_bool(update.nominals_of_continuous_states_changed);
+                *values = fmi3_bool(update.values_of_continuous_states_changed);
                 *defined = fmi3_bool(next.is_some());
                 *next_time = next.unwrap_or(0.0);
                 if let Some(t) = next {
@@ -132,7 +132,7 @@ pub unsafe fn set_continuous_states<M: Model>(
                 if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
                     return Err(format!("continuousStates[] contains {bad}"));
                 }
-                inst.core.model.set_continuous_states(x);
+                inst.core.model_mut().set_continuous_states(x);
                 Ok(Fmi3Status::Ok)
             },
         )
@@ -154,7 +154,7 @@ unsafe fn fill<M: Model>(
         with_instance::<M>(c, function, Call::ContinuousStateQuery, |inst| {
             check_len(n, expected(), "the array")?;
             let out = output_slice(ptr, n, "the array")?;
-            if let Err(reason) = f(&inst.core.model, out) {
+            if let Err(reason) = f(inst.core.model(), out) {
                 inst.log.status(
                     Fmi3Status::Discard,
                     &format!("{function}: at t = {} s: {reason}", inst.core.time),

@@ -6,8 +6,8 @@
 
 use super::{input_slice, with_instance};
 use crate::core::model::Model;
-use crate::fmi3::description::type_name;
 use crate::fmi3::mode::Call;
+use crate::fmi3::table::type_name;
 use crate::fmi3::types::*;
 
 /// Why the value reference `vr` cannot be accessed as `type_name`.
