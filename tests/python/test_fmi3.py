@@ -135,3 +135,26 @@ def test_co_simulation_event_mode_marks_every_end_stop_contact():
     print(f"{len(repeated)} events at {np.round(repeated, 3)} s")
     assert len(repeated) >= 6  # three actuators, each into and out of its stop
     assert np.array_equal(np.unique(repeated), np.unique(changed))
+
+
+def test_co_simulation_returns_early_at_the_end_stop_contacts():
+    # Expected: with earlyReturnAllowed, a step in which a contact begins or ends
+    # stops just after it: there an actuator displacement l[i] equals the contact edge,
+    # strokeMin -+ 1 nm (hysteresis, fmus/pss3-plant), to within the bisection's
+    # 2^-30 of the 1 ms step times |lDot| (< 1e-12 m), where the 1 ms grid alone is off
+    # by up to |lDot| h = 3e-4 m. Independent truth: the stroke parameter.
+    md3 = read_model_description(fmu3_path("Pss3Plant"))
+    stroke_min = float({v.name: v for v in md3.modelVariables}["strokeMin"].start)
+    start = fmi3_names.start_values(
+        {"theta0[2]": 0.003, "theta0[3]": 2.4, "omega0[1]": 0.01, "omega0[3]": -0.3}, md3)
+    result = simulate_fmu(fmu3_path("Pss3Plant"), fmi_type="CoSimulation", stop_time=1.0,
+                          step_size=1e-3, output_interval=1e-3, start_values=start,
+                          output=["l", "atStop"], use_event_mode=True,
+                          early_return_allowed=True)
+    time = result["time"]
+    off_grid = np.abs(time * 1e3 - np.round(time * 1e3)) > 1e-6
+    assert off_grid.sum() >= 6  # three actuators, each into and out of its stop
+    distance = np.min(np.abs(np.abs(result["l"][off_grid] - stroke_min) - 1e-9), axis=1)
+    print(f"{off_grid.sum()} early returns, largest distance to the contact edge "
+          f"{distance.max():.2e} m")
+    assert distance.max() < 1e-10

@@ -43,6 +43,7 @@ fn initialized<M: Model>(lines: &Lines) -> Fmi3Instance {
             log_message: Some(capture),
             interface: Interface::CoSimulation {
                 event_mode_used: false,
+                early_return_allowed: false,
             },
         })
     };

@@ -73,6 +73,11 @@ struct Interface {
     variable_step: Option<bool>,
     #[serde(rename = "@hasEventMode", skip_serializing_if = "Option::is_none")]
     has_event_mode: Option<bool>,
+    #[serde(
+        rename = "@mightReturnEarlyFromDoStep",
+        skip_serializing_if = "Option::is_none"
+    )]
+    might_return_early: Option<bool>,
 }
 
 #[derive(Serialize)]
@@ -393,6 +398,7 @@ fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
         needs_completed_integrator_step: None,
         variable_step: None,
         has_event_mode: None,
+        might_return_early: None,
     };
     let model_exchange = Interface {
         needs_completed_integrator_step: Some(false),
@@ -401,6 +407,8 @@ fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
     let co_simulation = Interface {
         variable_step: Some(true),
         has_event_mode: Some(true),
+        // Steps end early at events (sign changes of the event indicators).
+        might_return_early: (info.number_of_event_indicators > 0).then_some(true),
         ..common()
     };
     (model_exchange, co_simulation)

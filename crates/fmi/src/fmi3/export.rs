@@ -61,7 +61,7 @@ macro_rules! export_fmi3 {
                 _visible: Fmi3Boolean,
                 logging_on: Fmi3Boolean,
                 event_mode_used: Fmi3Boolean,
-                _early_return_allowed: Fmi3Boolean,
+                early_return_allowed: Fmi3Boolean,
                 _required_intermediate_variables: *const Fmi3ValueReference,
                 _n_required_intermediate_variables: usize,
                 environment: Fmi3InstanceEnvironment,
@@ -78,6 +78,7 @@ macro_rules! export_fmi3 {
                         log_message,
                         interface: $crate::fmi3::mode::Interface::CoSimulation {
                             event_mode_used: event_mode_used != FMI3_FALSE,
+                            early_return_allowed: early_return_allowed != FMI3_FALSE,
                         },
                     })
                 }

@@ -1,17 +1,20 @@
 //! The state machine of FMI 3.0 (Model Exchange and Co-Simulation, sections 3.3 and
 //! 4.3 of the standard): the states an instance can be in and which call is legal in
-//! which state. Co-Simulation steps are never asynchronous and never return early, so
-//! Intermediate Update Mode is never entered; there are no structural parameters, so
-//! Configuration and Reconfiguration Mode are never entered either.
+//! which state. Co-Simulation steps are never asynchronous and return early only at
+//! events, without intermediate updates, so Intermediate Update Mode is never
+//! entered; there are no structural parameters, so Configuration and Reconfiguration
+//! Mode are never entered either.
 
 /// Interface an instance was created for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Interface {
     ModelExchange,
     /// `event_mode_used`: the importer passed eventModeUsed = true, so a step that
-    /// needs event handling ends in Event Mode instead of being handled inside the FMU.
+    /// needs event handling ends in Event Mode instead of being handled inside the FMU;
+    /// `early_return_allowed`: a step may end early, at an event.
     CoSimulation {
         event_mode_used: bool,
+        early_return_allowed: bool,
     },
 }
 
@@ -105,10 +108,13 @@ impl Call {
     /// States in which the call is legal, for the given interface.
     fn allowed(self, interface: Interface) -> u16 {
         let me = interface == Interface::ModelExchange;
-        let cs_events = interface
-            == Interface::CoSimulation {
+        let cs_events = matches!(
+            interface,
+            Interface::CoSimulation {
                 event_mode_used: true,
-            };
+                ..
+            }
+        );
         let only_me = |m: u16| if me { m } else { 0 };
         let only_cs = |m: u16| if me { 0 } else { m };
         match self {
@@ -167,6 +173,7 @@ pub fn after_initialization(interface: Interface) -> Mode {
     match interface {
         Interface::CoSimulation {
             event_mode_used: false,
+            ..
         } => StepMode,
         _ => EventMode,
     }
@@ -179,9 +186,11 @@ mod tests {
     const ME: Interface = Interface::ModelExchange;
     const CS: Interface = Interface::CoSimulation {
         event_mode_used: false,
+        early_return_allowed: false,
     };
     const CS_EVENTS: Interface = Interface::CoSimulation {
         event_mode_used: true,
+        early_return_allowed: true,
     };
 
     #[test]

@@ -4,13 +4,17 @@
 //! before and after each step. The model handles a state event inside the step (the
 //! plant updates its end-stop contacts at the end of every step, as in FMI 2.0);
 //! with eventModeUsed the step also reports eventHandlingNeeded, so that the importer
-//! passes through Event Mode at the communication point where the contact changed.
-//! Steps never return early (mightReturnEarlyFromDoStep is not declared). The
-//! core checks the step (communication point, positive size, stopTime) and restores
-//! the state of a discarded step.
+//! passes through Event Mode where the contact changed. With earlyReturnAllowed the
+//! step ends early, just after the first sign change: the layer locates it by
+//! bisection of the step length (repeating the step from a snapshot of its start,
+//! `BISECTIONS` halvings of h) and returns earlyReturn with lastSuccessfulTime there.
+//! The core checks the step (communication point, positive size, stopTime) and
+//! restores the state of a discarded step.
 
 use super::{input_slice, output_ref, with_instance};
+use crate::core::instance::{Snapshot, Standard};
 use crate::core::model::{Model, StepOutcome};
+use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::{Call, Interface, Mode};
 use crate::fmi3::types::*;
 
@@ -28,12 +32,59 @@ fn indicators<M: Model>(model: &M) -> Option<Vec<f64>> {
     (!z.is_empty() && model.event_indicators(&mut z).is_ok()).then_some(z)
 }
 
+/// Halvings of the step that locate an event for an early return: 2^-30 h (1e-12 s for
+/// a 1 ms step).
+const BISECTIONS: usize = 30;
+
 /// Whether an indicator changed sign between `before` and `after`.
 fn sign_changed(before: &Option<Vec<f64>>, after: &Option<Vec<f64>>) -> bool {
     match (before, after) {
         (Some(b), Some(a)) => b.iter().zip(a).any(|(x, y)| (*x > 0.0) != (*y > 0.0)),
         _ => false,
     }
+}
+
+/// Restarts the step from `start` and advances it by `tau`; whether an event indicator
+/// changed sign in (t, t + tau] (a step the model discards counts as one: it went too
+/// far).
+fn event_within<M: Model>(
+    inst: &mut Instance<M>,
+    start: &Snapshot<M>,
+    z_start: &Option<Vec<f64>>,
+    tau: f64,
+) -> Result<bool, String> {
+    inst.core.restore(start);
+    Ok(match inst.core.do_step(start.time, tau, &inst.log)? {
+        StepOutcome::Completed => sign_changed(z_start, &indicators(inst.core.model())),
+        StepOutcome::Discarded { .. } => true,
+    })
+}
+
+/// After a step of length h from `start` in which an event indicator changed sign:
+/// the instance advanced to just after the first sign change instead (bisection);
+/// whether that is before the end of the step.
+fn return_early<M: Model>(
+    inst: &mut Instance<M>,
+    start: &Snapshot<M>,
+    z_start: &Option<Vec<f64>>,
+    h: f64,
+) -> Result<bool, String> {
+    let (mut before, mut after) = (0.0, h);
+    for _ in 0..BISECTIONS {
+        let mid = 0.5 * (before + after);
+        if event_within(inst, start, z_start, mid)? {
+            after = mid;
+        } else {
+            before = mid;
+        }
+    }
+    if !event_within(inst, start, z_start, after)? {
+        return Err(format!(
+            "the event located at t = {} s vanished when the step was repeated",
+            start.time + after
+        ));
+    }
+    Ok(after < h)
 }
 
 pub unsafe fn do_step<M: Model>(
@@ -51,15 +102,24 @@ pub unsafe fn do_step<M: Model>(
             let last = output_ref(out.last_successful_time, "lastSuccessfulTime")?;
             let (t, h) = (current_communication_point, communication_step_size);
             let z_before = indicators(inst.core.model());
+            let (events_used, early_allowed) = match inst.interface {
+                Interface::CoSimulation {
+                    event_mode_used,
+                    early_return_allowed,
+                } => (event_mode_used, early_return_allowed),
+                Interface::ModelExchange => (false, false),
+            };
+            let start =
+                (early_allowed && z_before.is_some()).then(|| inst.core.snapshot(Standard::Fmi3));
             *early = FMI3_FALSE;
             match inst.core.do_step(t, h, &inst.log)? {
                 StepOutcome::Completed => {
-                    let events_used = inst.interface
-                        == Interface::CoSimulation {
-                            event_mode_used: true,
-                        };
                     let z_after = indicators(inst.core.model());
-                    *event = fmi3_bool(events_used && sign_changed(&z_before, &z_after));
+                    let changed = sign_changed(&z_before, &z_after);
+                    if let (true, Some(start)) = (changed, &start) {
+                        *early = fmi3_bool(return_early(inst, start, &z_before, h)?);
+                    }
+                    *event = fmi3_bool(events_used && changed);
                     *terminate = FMI3_FALSE;
                     *last = inst.core.last_successful_time;
                     Ok(Fmi3Status::Ok)
