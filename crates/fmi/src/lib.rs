@@ -5,5 +5,6 @@
 //! FMI 3.0 C functions from one cdylib.
 
 pub mod core;
+pub mod ffi;
 pub mod fmi2;
 pub mod fmi3;

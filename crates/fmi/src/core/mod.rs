@@ -5,6 +5,7 @@
 //! FFI or front-end type; [`Instance`] holds one model with its time and stop time,
 //! [`Snapshot`] is an FMU state and [`serialize`] its checked byte format.
 
+pub mod description;
 pub mod instance;
 pub mod logging;
 pub mod model;
