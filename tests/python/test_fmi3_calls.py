@@ -169,3 +169,21 @@ def test_variable_dependencies_match_the_fmi2_model_structure(tmp_path, model):
                 got.add(name if of_independent == 0 else f"{name}[{of_independent}]")
         assert got == expected, unknown.variable.name
     lib.free(c)
+
+
+def test_foreign_and_stale_handles_are_refused(pid):
+    # Expected: handles are looked up in the layer's registry before use, so a pointer
+    # the FMU never issued and a freed FMU state give fmi3Error, never a crash.
+    import ctypes
+    c = pid.instantiate_co_simulation()
+    pid.initialize(c)
+    garbage = ctypes.create_string_buffer(256)
+    assert pid.call("fmi3Terminate", ctypes.addressof(garbage)) == ERROR
+    state = pid.get_state(c)
+    address = state.value
+    assert pid.call("fmi3FreeFMUState", c, ctypes.byref(state)) == OK
+    assert state.value is None  # the slot is cleared
+    stale = ctypes.c_void_p(address)
+    expect_error(pid, pid.call("fmi3SetFMUState", c, stale), "not a live FMU state")
+    pid.free(c)
+    pid.free(c)  # a second free of the same handle is ignored

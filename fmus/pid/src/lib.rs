@@ -87,39 +87,49 @@ fn split(vr: u32) -> (u32, usize) {
     (vr - (vr - 1) % 10 - 1, ((vr - 1) % 10) as usize)
 }
 
-type RealField = fn(&mut Pid, usize) -> &mut f64;
+/// Read and write access to one Real field of channel c (reading needs no copy of
+/// the model).
+#[derive(Clone, Copy)]
+struct RealField {
+    read: fn(&Pid, usize) -> f64,
+    write: fn(&mut Pid, usize) -> &mut f64,
+}
+
+/// `field!(gains.kp)`: the `RealField` of `m.gains[c].kp`.
+macro_rules! field {
+    ($group:ident . $member:tt) => {
+        RealField {
+            read: |m, c| m.$group[c].$member,
+            write: |m, c| &mut m.$group[c].$member,
+        }
+    };
+}
 
 /// Tunable Real parameters: group, name, description, default, field.
 const REAL_PARAMETERS: [(u32, &str, &str, f64, RealField); 6] = [
-    (KP, "Kp", "Proportional gain", 1.0, |m, c| {
-        &mut m.gains[c].kp
-    }),
-    (KI, "Ki", "Integral gain (1/s)", 0.5, |m, c| {
-        &mut m.gains[c].ki
-    }),
-    (KD, "Kd", "Derivative gain (s)", 0.1, |m, c| {
-        &mut m.gains[c].kd
-    }),
+    (KP, "Kp", "Proportional gain", 1.0, field!(gains.kp)),
+    (KI, "Ki", "Integral gain (1/s)", 0.5, field!(gains.ki)),
+    (KD, "Kd", "Derivative gain (s)", 0.1, field!(gains.kd)),
     (
         TF,
         "Tf",
         "Derivative filter time constant (0 allowed only with rate inputs)",
         0.05,
-        |m, c| &mut m.gains[c].tf,
+        field!(gains.tf),
     ),
     (
         U_MIN,
         "uMin",
         "Lower output limit (used when limitOutput)",
         -1.0,
-        |m, c| &mut m.limits[c].0,
+        field!(limits.0),
     ),
     (
         U_MAX,
         "uMax",
         "Upper output limit (used when limitOutput)",
         1.0,
-        |m, c| &mut m.limits[c].1,
+        field!(limits.1),
     ),
 ];
 
@@ -130,35 +140,35 @@ const INPUTS: [(u32, &str, &str, [f64; CHANNELS], RealField); 5] = [
         "setpoint",
         "Setpoint r",
         [1.0, 0.5, -0.25],
-        |m, c| &mut m.inputs[c].setpoint,
+        field!(inputs.setpoint),
     ),
     (
         MEASUREMENT,
         "measurement",
         "Measurement y (e = r - y)",
         [0.0; CHANNELS],
-        |m, c| &mut m.inputs[c].measurement,
+        field!(inputs.measurement),
     ),
     (
         SETPOINT_RATE,
         "setpointRate",
         "Setpoint rate dr/dt (used when useRateInputs)",
         [0.0; CHANNELS],
-        |m, c| &mut m.inputs[c].setpoint_rate,
+        field!(inputs.setpoint_rate),
     ),
     (
         MEASURED_RATE,
         "measuredRate",
         "Measured rate dy/dt (used when useRateInputs)",
         [0.0; CHANNELS],
-        |m, c| &mut m.inputs[c].measured_rate,
+        field!(inputs.measured_rate),
     ),
     (
         FEEDFORWARD,
         "feedforward",
         "Added to the output before the limits",
         [0.0; CHANNELS],
-        |m, c| &mut m.inputs[c].feedforward,
+        field!(inputs.feedforward),
     ),
 ];
 
@@ -167,10 +177,10 @@ fn real(group: u32, c: usize, name: &str, description: &str, field: RealField) -
         vr(group, c),
         format!("{name}[{}]", c + 1),
         &format!("Channel {}: {description}", c + 1),
-        move |m: &Pid| *field(&mut m.clone(), c),
+        move |m: &Pid| (field.read)(m, c),
     )
     .set_real(move |m, v| {
-        *field(m, c) = v;
+        *(field.write)(m, c) = v;
         m.sync_limits(c);
         Ok(())
     })
@@ -251,7 +261,7 @@ fn variables() -> Vec<Variable<Pid>> {
                 c,
                 "integral",
                 "integral of the error (state)",
-                |m, c| &mut m.states[c].integral,
+                field!(states.integral),
             )
             .state()
             .start_real(0.0),
@@ -264,7 +274,7 @@ fn variables() -> Vec<Variable<Pid>> {
                 c,
                 "filter",
                 "derivative filter state (state)",
-                |m, c| &mut m.states[c].filter,
+                field!(states.filter),
             )
             .state()
             .start_real(0.0),

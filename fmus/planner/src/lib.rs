@@ -56,6 +56,30 @@ impl Planner {
         };
     }
 
+    /// Every axis's coefficients and its samples at 21 equally spaced times of
+    /// [t0, tf] finite: otherwise t0, tf and that axis's boundary values make the
+    /// trajectory overflow (e.g. tf - t0 = 5e-324 s), named in the message.
+    fn check_overflow(&self, axes: &[Polynomial; AXES]) -> Result<(), String> {
+        for (a, p) in axes.iter().enumerate() {
+            let times = (0..=20).map(|k| self.t0 + (self.tf - self.t0) * f64::from(k) / 20.0);
+            let finite = p.shifted_coefficients().iter().all(|c| c.is_finite())
+                && times
+                    .map(|t| p.sample(t))
+                    .all(|s| s.q.is_finite() && s.qdot.is_finite() && s.qddot.is_finite());
+            if !finite {
+                return Err(format!(
+                    "t0 = {:e} s, tf = {:e} s and the boundary values of axis {} ({:?}) make \
+                     the trajectory overflow (its coefficients or samples are not finite)",
+                    self.t0,
+                    self.tf,
+                    a + 1,
+                    self.boundary[a]
+                ));
+            }
+        }
+        Ok(())
+    }
+
     fn sample(&self, axis: usize) -> Option<robofmu_control::trajectory::Sample> {
         self.axes.as_ref().ok().map(|p| p[axis].sample(self.time))
     }
@@ -232,6 +256,7 @@ impl Model for Planner {
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         self.rebuild();
         let axes = self.axes.as_ref().map_err(String::clone)?;
+        self.check_overflow(axes)?;
         for (a, p) in axes.iter().enumerate() {
             log.debug(
                 "logTrajectory",

@@ -382,7 +382,7 @@ impl Model for Pss3Plant {
     }
 
     /// Per actuator i: l_i - lower edge and upper edge - l_i, the edges of
-    /// `contact_edges` (a sign change is a change of atStop[i]).
+    /// `contact_edges` (a sign change is a change of `atStop[i]`).
     fn event_indicators(&self, z: &mut [f64]) -> Result<(), String> {
         let l = self.displacements()?;
         for i in 0..3 {

@@ -5,6 +5,7 @@
 use super::{Pss3Plant, parameters};
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{PlantInputs, PlantOutputs};
+use robofmu_fmi::core::variables::RealArray;
 use robofmu_fmi::core::{Model, Variable};
 
 pub const ACTUATOR_FORCE: u32 = 0;
@@ -215,23 +216,17 @@ fn indexed(name: &str, i: usize) -> String {
 fn inputs(table: &mut Vec<Variable<Pss3Plant>>) {
     for (group, name, description, field) in INPUTS {
         let unit = if group == ACTUATOR_FORCE { "N" } else { "N.m" };
-        for i in 0..3 {
-            table.push(
-                Variable::real(
-                    vr(group, i),
-                    indexed(name, i),
-                    description,
-                    move |m: &Pss3Plant| field(&mut m.inputs.clone())[i],
-                )
-                .unit(unit, None)
-                .input()
-                .start_real(0.0)
-                .set_real(move |m, v| {
-                    field(&mut m.inputs)[i] = v;
-                    Ok(())
-                }),
-            );
-        }
+        let read = move |m: &Pss3Plant, i: usize| {
+            let mut inputs = m.inputs;
+            field(&mut inputs)[i]
+        };
+        let array = RealArray::new(vr(group, 0), name, 3, description, read)
+            .set(move |m, i, v| {
+                field(&mut m.inputs)[i] = v;
+                Ok(())
+            })
+            .each(move |v, _| v.unit(unit, None).input().start_real(0.0));
+        table.extend(array.variables());
     }
 }
 
@@ -345,20 +340,17 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
 }
 
 fn plant_vector_output(table: &mut Vec<Variable<Pss3Plant>>, output: &PlantOutput) {
-    let get = output.get;
-    for i in 0..3 {
-        table.push(
-            Variable::real(
-                vr(output.group, i),
-                indexed(output.name, i),
-                output.description,
-                move |m: &Pss3Plant| m.output(|o| get(o)[i]),
-            )
-            .unit(output.unit, output.display)
-            .output()
-            .depends_on(output.depends.names()),
-        );
-    }
+    let (get, unit, display) = (output.get, output.unit, output.display);
+    let depends = output.depends.names();
+    let array = RealArray::new(
+        vr(output.group, 0),
+        output.name,
+        3,
+        output.description,
+        move |m: &Pss3Plant, i| m.output(|o| get(o)[i]),
+    )
+    .each(move |v, _| v.unit(unit, display).output().depends_on(depends.clone()));
+    table.extend(array.variables());
 }
 
 fn derivatives(table: &mut Vec<Variable<Pss3Plant>>) {

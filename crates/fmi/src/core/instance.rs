@@ -36,6 +36,8 @@ impl Standard {
 pub struct Instance<M: Model> {
     /// The variable table, built for this instance and sorted by value reference.
     table: Vec<Variable<M>>,
+    /// `calculated_flags` of the table.
+    calculated: Vec<bool>,
     model: M,
     /// Computed values are stale (`Model::calculate_values` not called since a change).
     dirty: bool,
@@ -101,17 +103,34 @@ pub fn variable<M>(table: &[Variable<M>], vr: u32) -> Result<&Variable<M>, Strin
     find(table, vr).ok_or_else(|| format!("unknown value reference {vr}"))
 }
 
-/// Whether reading `v` needs the computed values (an output, derivative or other
-/// calculated variable, as opposed to a parameter, input or state).
-pub fn is_calculated<M>(v: &Variable<M>) -> bool {
-    matches!(v.initial, Some(Initial::Calculated | Initial::Approx))
-        || matches!(
-            v.kind,
+/// Per variable of a table: whether reading it needs the computed values (an output,
+/// derivative or other calculated variable, as opposed to a parameter, an input or a
+/// continuous state, even one declared as an output).
+pub fn calculated_flags<M>(table: &[Variable<M>]) -> Vec<bool> {
+    let states: Vec<&String> = table
+        .iter()
+        .filter_map(|v| match &v.kind {
             Kind::Real {
-                derivative_of: Some(_),
+                derivative_of: Some(state),
                 ..
-            }
-        )
+            } => Some(state),
+            _ => None,
+        })
+        .collect();
+    table
+        .iter()
+        .map(|v| {
+            let derivative = matches!(
+                v.kind,
+                Kind::Real {
+                    derivative_of: Some(_),
+                    ..
+                }
+            );
+            let calculated = matches!(v.initial, Some(Initial::Calculated | Initial::Approx));
+            derivative || (calculated && !states.contains(&&v.name))
+        })
+        .collect()
 }
 
 fn wrong_type<M>(v: &Variable<M>, wanted: &str) -> String {
@@ -122,6 +141,12 @@ fn wrong_type<M>(v: &Variable<M>, wanted: &str) -> String {
         v.variable_type().as_str()
     )
 }
+
+/// Largest magnitude the layer accepts for a Real value set by the host. No model
+/// quantity in SI units comes near it, and the product of two such values is still
+/// finite, so an extreme finite value (say 1e308) is refused where it is set, naming
+/// the variable, instead of overflowing later in the model.
+pub const MAX_MAGNITUDE: f64 = 1e150;
 
 /// Largest accepted difference between the master's communication point and the
 /// instance time (and overshoot of the stop time), relative to max(1, |t|): absorbs
@@ -136,6 +161,7 @@ impl<M: Model> Instance<M> {
         let time = M::info().default_experiment.start_time;
         model.set_time(time);
         Ok(Instance {
+            calculated: calculated_flags(&table),
             table,
             model,
             dirty: true,
@@ -192,7 +218,8 @@ impl<M: Model> Instance<M> {
     }
 
     fn check_calculated_finite(&self) -> Result<(), String> {
-        for v in self.table.iter().filter(|v| is_calculated(v)) {
+        let calculated = self.table.iter().zip(&self.calculated);
+        for (v, _) in calculated.filter(|(_, c)| **c) {
             if let Kind::Real { get, .. } = &v.kind {
                 let value = get(&self.model);
                 if !value.is_finite() {
@@ -209,7 +236,9 @@ impl<M: Model> Instance<M> {
     pub fn prepare_read(&mut self, vrs: &[u32]) -> Result<Option<String>, String> {
         let mut needs_values = false;
         for &vr in vrs {
-            needs_values |= is_calculated(variable(&self.table, vr)?);
+            let at = self.table.binary_search_by_key(&vr, |v| v.value_reference);
+            let at = at.map_err(|_| format!("unknown value reference {vr}"))?;
+            needs_values |= self.calculated[at];
         }
         if needs_values {
             return Ok(self.update_values().err());
@@ -345,6 +374,13 @@ impl<M: Model> Instance<M> {
         };
         if !value.is_finite() {
             return Err(format!("\"{}\" cannot be set to {value}", v.name));
+        }
+        if value.abs() > MAX_MAGNITUDE {
+            return Err(format!(
+                "\"{}\" = {value:e} exceeds the magnitude {MAX_MAGNITUDE:e} the layer accepts \
+                 (such a value overflows the model's arithmetic)",
+                v.name
+            ));
         }
         if min.is_some_and(|m| value < m) || max.is_some_and(|m| value > m) {
             return Err(format!(

@@ -111,6 +111,17 @@ impl VariableType {
     }
 }
 
+/// Position of a scalar in an array variable `base[1..length]`: the FMI 2.0 name is
+/// `base[index + 1]`; an FMI 3.0 front-end declares one array `base` with
+/// `<Dimension start="length"/>` from its elements.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ArrayElement {
+    pub base: String,
+    /// 0-based.
+    pub index: usize,
+    pub length: usize,
+}
+
 /// One scalar variable.
 pub struct Variable<M> {
     pub value_reference: u32,
@@ -123,6 +134,8 @@ pub struct Variable<M> {
     /// Names of the inputs and continuous states an output or state derivative
     /// depends on (ModelStructure `dependencies`); None: on all of them.
     pub dependencies: Option<Vec<String>>,
+    /// Set for the elements declared by [`RealArray`].
+    pub array: Option<ArrayElement>,
 }
 
 impl<M> Variable<M> {
@@ -140,7 +153,14 @@ impl<M> Variable<M> {
             initial: None,
             kind,
             dependencies: None,
+            array: None,
         }
+    }
+
+    /// Replaces the description (e.g. per element of an array).
+    pub fn describe(mut self, description: impl Into<String>) -> Self {
+        self.description = description.into();
+        self
     }
 
     /// A Real variable read by `get` (a local until a role is given).
@@ -349,6 +369,82 @@ impl<M> Variable<M> {
             Kind::Integer { start, .. } => start.is_some(),
             Kind::Boolean { start, .. } => start.is_some(),
         }
+    }
+}
+
+type ElementGetter<M> = dyn Fn(&M, usize) -> f64 + Send + Sync;
+type ElementSetter<M> = dyn Fn(&mut M, usize, f64) -> Result<(), String> + Send + Sync;
+/// A role applied to element i of an array (causality, unit, start value, ...).
+type ElementRole<M> = Box<dyn Fn(Variable<M>, usize) -> Variable<M>>;
+
+/// One declaration of a Real array `base[1..length]`: value references
+/// `first_vr + i`, one getter and one setter taking the element index, and the
+/// [`ArrayElement`] metadata an FMI 3.0 array needs. [`RealArray::variables`] gives
+/// the scalars (FMI 2.0 names `base[1]` ...).
+pub struct RealArray<M> {
+    first_vr: u32,
+    base: String,
+    length: usize,
+    get: std::sync::Arc<ElementGetter<M>>,
+    set: Option<std::sync::Arc<ElementSetter<M>>>,
+    roles: Vec<ElementRole<M>>,
+    description: String,
+}
+
+impl<M: 'static> RealArray<M> {
+    pub fn new(
+        first_vr: u32,
+        base: &str,
+        length: usize,
+        description: &str,
+        get: impl Fn(&M, usize) -> f64 + Send + Sync + 'static,
+    ) -> Self {
+        RealArray {
+            first_vr,
+            base: base.to_string(),
+            length,
+            get: std::sync::Arc::new(get),
+            set: None,
+            roles: Vec::new(),
+            description: description.to_string(),
+        }
+    }
+
+    /// The writer of every element.
+    pub fn set(
+        mut self,
+        set: impl Fn(&mut M, usize, f64) -> Result<(), String> + Send + Sync + 'static,
+    ) -> Self {
+        self.set = Some(std::sync::Arc::new(set));
+        self
+    }
+
+    /// Applies `role` (causality, unit, start value, description, ...) to element `i`.
+    pub fn each(mut self, role: impl Fn(Variable<M>, usize) -> Variable<M> + 'static) -> Self {
+        self.roles.push(Box::new(role));
+        self
+    }
+
+    /// The scalar variables, element 0 first.
+    pub fn variables(self) -> Vec<Variable<M>> {
+        (0..self.length)
+            .map(|i| {
+                let get = self.get.clone();
+                let name = format!("{}[{}]", self.base, i + 1);
+                let first = self.first_vr + i as u32;
+                let mut v = Variable::real(first, name, &self.description, move |m: &M| get(m, i));
+                if let Some(set) = &self.set {
+                    let set = set.clone();
+                    v = v.set_real(move |m, x| set(m, i, x));
+                }
+                v.array = Some(ArrayElement {
+                    base: self.base.clone(),
+                    index: i,
+                    length: self.length,
+                });
+                self.roles.iter().fold(v, |v, role| role(v, i))
+            })
+            .collect()
     }
 }
 

@@ -31,6 +31,21 @@ extern "C" fn capture(
         .push((status, text(category), text(message)));
 }
 
+/// fmi2CallbackAllocateMemory of the host: zeroed memory from the C heap.
+pub extern "C" fn allocate(count: usize, size: usize) -> *mut c_void {
+    // SAFETY: calloc accepts any sizes and returns null on failure.
+    unsafe { libc::calloc(count, size) }
+}
+
+/// fmi2CallbackFreeMemory of the host.
+///
+/// # Safety
+/// `pointer` is null or came from `allocate` and was not freed yet.
+pub unsafe extern "C" fn free(pointer: *mut c_void) {
+    // SAFETY: by the contract above.
+    unsafe { libc::free(pointer) }
+}
+
 /// A raw fmi2Instantiate of `M` with the capturing logger: the component (null when
 /// refused), its log and the callbacks, which must outlive the component.
 pub fn instantiate<M: Model>(
@@ -49,8 +64,8 @@ pub fn instantiate<M: Model>(
     };
     let functions = Box::new(Fmi2CallbackFunctions {
         logger: Some(logger),
-        allocate_memory: None,
-        free_memory: None,
+        allocate_memory: Some(allocate),
+        free_memory: Some(free),
         step_finished: None,
         component_environment: &*lines as *const Lines as *mut c_void,
     });

@@ -1,6 +1,7 @@
 //! The FMI 3.0 view of a model's variable table: the scalars `x[1]`..`x[n]` of the
 //! table become one array variable `x` with `<Dimension start="n"/>` (named like the
-//! FMI 2.0 scalars, so one declaration serves both standards), plus the variables FMI
+//! FMI 2.0 scalars, so one declaration serves both standards; elements declared by
+//! the core's `RealArray` must agree with their `ArrayElement` metadata), plus the variables FMI
 //! 3.0 requires that FMI 2.0 leaves implicit: the independent variable `time` and the
 //! event indicators.
 //!
@@ -233,6 +234,19 @@ fn groups<M>(table: &[Variable<M>]) -> Result<Vec<(String, Vec<usize>, bool)>, S
         for (k, &i) in members.iter().enumerate() {
             if split_index(&table[i].name).1 != Some(k + 1) {
                 return Err(format!("the elements of \"{base}\" are not numbered 1..n"));
+            }
+            if let Some(a) = &table[i].array
+                && (a.base != *base || a.index != k || a.length != members.len())
+            {
+                return Err(format!(
+                    "\"{}\" is declared as element {} of {} of \"{}\", but the table has \
+                     {} elements named {base}[..]",
+                    table[i].name,
+                    a.index + 1,
+                    a.length,
+                    a.base,
+                    members.len()
+                ));
             }
             if !same_declaration(&table[members[0]], &table[i]) {
                 return Err(format!(

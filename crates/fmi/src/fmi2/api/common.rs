@@ -2,6 +2,8 @@
 //! initialization, termination.
 
 use super::{check_finite, input_slice, panic_message, with_instance};
+use crate::core::handles::{self, HandleKind};
+use crate::core::instance::Snapshot;
 use crate::core::model::Model;
 use crate::fmi2::instance::{Instance, log_categories};
 use crate::fmi2::logging::Logger;
@@ -63,6 +65,12 @@ pub unsafe fn instantiate<M: Model>(
             )
         };
         let created = (|| -> Result<Instance<M>, String> {
+            if functions.allocate_memory.is_none() || functions.free_memory.is_none() {
+                return Err(
+                    "the callback functions allocateMemory and freeMemory must not be null"
+                        .to_string(),
+                );
+            }
             if name?.is_empty() {
                 return Err("instanceName is empty".to_string());
             }
@@ -96,7 +104,9 @@ pub unsafe fn instantiate<M: Model>(
                         instance.interface
                     ),
                 );
-                Box::into_raw(Box::new(instance)) as Fmi2Component
+                let c = Box::into_raw(Box::new(instance)) as Fmi2Component;
+                handles::register::<M>(c as usize, HandleKind::Instance, c as usize);
+                c
             }
             Err(message) => {
                 make_logger().status(Fmi2Status::Error, &format!("fmi2Instantiate: {message}"));
@@ -121,13 +131,20 @@ pub unsafe fn instantiate<M: Model>(
     })
 }
 
+/// Frees the instance and every FMU state it still owns. A handle that is not a live
+/// instance of this FMU is ignored (fmi2FreeInstance returns nothing to report with).
 pub unsafe fn free_instance<M: Model>(c: Fmi2Component) {
-    if c.is_null() {
+    if !handles::unregister::<M>(c as usize, HandleKind::Instance) {
         return;
     }
     // Dropping cannot reasonably panic, but the boundary must hold regardless.
     let _ = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: `c` came from `instantiate::<M>` and is freed exactly once.
+        for state in handles::take_states_of(c as usize) {
+            // SAFETY: registered by fmu_state for M when it was boxed, and just
+            // unregistered, so freed exactly once.
+            drop(unsafe { Box::from_raw(state as *mut Snapshot<M>) });
+        }
+        // SAFETY: registered by `instantiate::<M>` and just unregistered: freed once.
         drop(unsafe { Box::from_raw(c as *mut Instance<M>) });
     }));
 }

@@ -2,9 +2,10 @@
 //! the `export_fmi2!` macro from the FMU crate's `#[unsafe(no_mangle)]` symbols.
 //!
 //! Every function here has the contract of its FMI 2.0 namesake: pointers are null or
-//! valid for the lengths given, and an `Fmi2Component` is null or was returned by
-//! `instantiate` for the same model type and not yet freed. Within that contract
-//! nothing can crash: null pointers, bad value references, wrong types, non-finite
+//! valid for the lengths given. Instance and FMU-state handles are looked up in the
+//! registry of live handles (`core::handles`) before they are dereferenced, so a
+//! garbage, freed or foreign handle returns fmi2Error. Within that contract nothing
+//! can crash: null pointers, bad value references, wrong types, non-finite
 //! values and calls in the wrong mode return fmi2Error with a log line (and move the
 //! instance to the Error mode, as the standard prescribes); a panic is caught, logged
 //! and returns fmi2Fatal.
@@ -27,6 +28,7 @@ pub use values::*;
 use super::instance::Instance;
 use super::mode::{Call, Mode};
 use super::types::{Fmi2Component, Fmi2Status};
+use crate::core::handles::{self, HandleKind};
 use crate::core::model::Model;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
@@ -50,7 +52,9 @@ unsafe fn with_instance<M: Model>(
     call: Call,
     body: impl FnOnce(&mut Instance<M>) -> Result<Fmi2Status, String>,
 ) -> Fmi2Status {
-    if c.is_null() {
+    // Not an instance of this FMU that is still live (null, garbage, freed, another
+    // FMU's): there is no logger to report through, only the status.
+    if !handles::is_live::<M>(c as usize, HandleKind::Instance) {
         return Fmi2Status::Error;
     }
     let instance = c as *mut Instance<M>;

@@ -2,6 +2,8 @@
 //! initialization, event mode, termination, reset.
 
 use super::{check_finite, input_slice, panic_message, with_instance};
+use crate::core::handles::{self, HandleKind};
+use crate::core::instance::Snapshot;
 use crate::core::logging::Log;
 use crate::core::model::Model;
 use crate::fmi3::instance::Instance;
@@ -75,7 +77,9 @@ pub unsafe fn instantiate<M: Model>(args: Instantiation) -> Fmi3Instance {
                         instance.interface
                     ),
                 );
-                Box::into_raw(Box::new(instance)) as Fmi3Instance
+                let c = Box::into_raw(Box::new(instance)) as Fmi3Instance;
+                handles::register::<Instance<M>>(c as usize, HandleKind::Instance, c as usize);
+                c
             }
             Err(message) => {
                 logger().status(Fmi3Status::Error, &format!("{}: {message}", args.function));
@@ -116,13 +120,20 @@ pub unsafe fn refuse_scheduled_execution<M: Model>(
     std::ptr::null_mut()
 }
 
+/// Frees the instance and every FMU state it still owns. A handle that is not a live
+/// FMI 3.0 instance of this FMU is ignored (fmi3FreeInstance reports nothing).
 pub unsafe fn free_instance<M: Model>(c: Fmi3Instance) {
-    if c.is_null() {
+    if !handles::unregister::<Instance<M>>(c as usize, HandleKind::Instance) {
         return;
     }
     // Dropping cannot reasonably panic, but the boundary must hold regardless.
     let _ = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: `c` came from `instantiate::<M>` and is freed exactly once.
+        for state in handles::take_states_of(c as usize) {
+            // SAFETY: registered by fmu_state for M when it was boxed, and just
+            // unregistered, so freed exactly once.
+            drop(unsafe { Box::from_raw(state as *mut Snapshot<M>) });
+        }
+        // SAFETY: registered by `instantiate::<M>` and just unregistered: freed once.
         drop(unsafe { Box::from_raw(c as *mut Instance<M>) });
     }));
 }

@@ -2,37 +2,61 @@
 //! checked format; the standard field records that FMI 3.0 wrote them.
 
 use super::{input_slice, output_ref, output_slice, with_instance};
+use crate::core::handles::{self, HandleKind};
 use crate::core::instance::Snapshot;
 use crate::core::model::Model;
 use crate::core::serialize::{deserialize, serialize};
 use crate::fmi3::mode::Call;
 use crate::fmi3::types::*;
 
-/// The snapshot behind an FMU state pointer.
-unsafe fn snapshot<'a, M: Model>(state: Fmi3FmuState) -> Result<&'a Snapshot<M>, String> {
+/// Checks that `state` is a live FMU state of this model (looked up, not
+/// dereferenced). States are the core's snapshots, shared with FMI 2.0.
+fn check_state<M: Model>(state: Fmi3FmuState) -> Result<(), String> {
     if state.is_null() {
         return Err("FMUState is a null pointer".to_string());
     }
-    // SAFETY: non-null FMU states were created by get_fmu_state/deserialize for M.
+    if !handles::is_live::<M>(state as usize, HandleKind::State) {
+        return Err(format!(
+            "FMUState {state:p} is not a live FMU state of {}: never issued, already \
+             freed, or another FMU's",
+            M::info().model_name
+        ));
+    }
+    Ok(())
+}
+
+/// The snapshot behind an FMU state pointer.
+unsafe fn snapshot<'a, M: Model>(state: Fmi3FmuState) -> Result<&'a Snapshot<M>, String> {
+    check_state::<M>(state)?;
+    // SAFETY: registered as a live state of M, created by `store` below.
     Ok(unsafe { &*(state as *const Snapshot<M>) })
 }
 
 /// Stores `s` in `*slot`, reusing the state already there (the standard lets the
-/// host pass a previously obtained state to be overwritten).
-unsafe fn store<M: Model>(slot: &mut Fmi3FmuState, s: Snapshot<M>) {
+/// host pass a previously obtained state to be overwritten). A new state belongs to
+/// the instance `owner` and is freed with it at the latest.
+unsafe fn store<M: Model>(
+    slot: &mut Fmi3FmuState,
+    s: Snapshot<M>,
+    owner: Fmi3Instance,
+) -> Result<(), String> {
     if slot.is_null() {
-        *slot = Box::into_raw(Box::new(s)) as Fmi3FmuState;
+        let state = Box::into_raw(Box::new(s)) as Fmi3FmuState;
+        handles::register::<M>(state as usize, HandleKind::State, owner as usize);
+        *slot = state;
     } else {
-        // SAFETY: a non-null state was created by this module for M.
+        check_state::<M>(*slot)?;
+        // SAFETY: registered as a live state of M.
         unsafe { *(*slot as *mut Snapshot<M>) = s };
     }
+    Ok(())
 }
 
 pub unsafe fn get_fmu_state<M: Model>(c: Fmi3Instance, state: *mut Fmi3FmuState) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, "fmi3GetFMUState", Call::FmuState, |inst| {
             let slot = output_ref(state, "FMUState")?;
-            store(slot, inst.snapshot());
+            store(slot, inst.snapshot(), c)?;
             Ok(Fmi3Status::Ok)
         })
     }
@@ -53,7 +77,9 @@ pub unsafe fn free_fmu_state<M: Model>(c: Fmi3Instance, state: *mut Fmi3FmuState
         with_instance::<M>(c, "fmi3FreeFMUState", Call::FmuState, |_| {
             let slot = output_ref(state, "FMUState")?;
             if !slot.is_null() {
-                // SAFETY: created by this module for M, freed once, then nulled.
+                check_state::<M>(*slot)?;
+                handles::unregister::<M>(*slot as usize, HandleKind::State);
+                // SAFETY: was a live state of M, now unregistered: freed exactly once.
                 drop(Box::from_raw(*slot as *mut Snapshot<M>));
                 *slot = std::ptr::null_mut();
             }
@@ -108,7 +134,7 @@ pub unsafe fn deserialize_fmu_state<M: Model>(
         with_instance::<M>(c, "fmi3DeserializeFMUState", Call::FmuState, |inst| {
             let data = input_slice(bytes, size, "serializedState[]")?;
             let slot = output_ref(state, "FMUState")?;
-            store(slot, deserialize::<M>(inst.core.table(), data)?);
+            store(slot, deserialize::<M>(inst.core.table(), data)?, c)?;
             Ok(Fmi3Status::Ok)
         })
     }

@@ -4,7 +4,9 @@
 //! Every function here has the contract of its FMI 3.0 namesake: pointers are null or
 //! valid for the lengths given, and an `Fmi3Instance` is null or was returned by an
 //! instantiate function for the same model type and not yet freed. Within that
-//! contract nothing can crash: null pointers, bad value references, wrong types or
+//! contract nothing can crash (and handles are looked up in the core's registry
+//! before use, keyed by the FMI 3.0 instance type, so that an FMI 2.0 instance of the
+//! same model is refused too): null pointers, bad value references, wrong types or
 //! lengths, non-finite values and calls in the wrong state return fmi3Error with a log
 //! line (and move the instance to the Error state, as the standard prescribes); a panic
 //! is caught, logged and returns fmi3Fatal.
@@ -33,6 +35,7 @@ use crate::ffi::{check_finite, input_slice, output_ref, output_slice};
 use super::instance::Instance;
 use super::mode::{Call, Mode};
 use super::types::{Fmi3Instance, Fmi3Status};
+use crate::core::handles::{self, HandleKind};
 use crate::core::model::Model;
 use crate::ffi::panic_message;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -46,7 +49,9 @@ unsafe fn with_instance<M: Model>(
     call: Call,
     body: impl FnOnce(&mut Instance<M>) -> Result<Fmi3Status, String>,
 ) -> Fmi3Status {
-    if c.is_null() {
+    // Not a live FMI 3.0 instance of this FMU (null, garbage, freed, another FMU's, or
+    // an FMI 2.0 instance of the same model): no logger to report through.
+    if !handles::is_live::<Instance<M>>(c as usize, HandleKind::Instance) {
         return Fmi3Status::Error;
     }
     let instance = c as *mut Instance<M>;
