@@ -349,3 +349,25 @@ fn one_array_declaration_gives_named_scalars_with_getters_setters_and_dimensions
     assert_eq!(model, [1.0, -4.5, 3.0]);
     assert_eq!(*start, Some(0.2));
 }
+
+#[test]
+fn an_array_with_a_missing_element_is_rejected_by_the_table_check() {
+    use robofmu_fmi::core::variables::{RealArray, check_table};
+    let array = || {
+        RealArray::new(11, "u", 3, "input", |m: &[f64; 3], i| m[i])
+            .set(|m, i, v| {
+                m[i] = v;
+                Ok(())
+            })
+            .each(|v, _| v.input().start_real(0.0))
+            .variables()
+    };
+    assert_eq!(check_table(&array()), Ok(()));
+    let mut gap = array();
+    gap.remove(1);
+    let message = check_table(&gap).unwrap_err();
+    assert!(
+        message.contains("element 2 is not at value reference 12"),
+        "{message}"
+    );
+}

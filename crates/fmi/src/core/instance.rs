@@ -4,7 +4,7 @@
 
 use super::logging::Log;
 use super::model::{Model, StepOutcome};
-use super::variables::{Initial, Kind, Variable, VariableType, check_table, find};
+use super::variables::{Initial, Kind, Variable, VariableType, find};
 
 /// The FMI standard whose front-end wrote an FMU state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -90,11 +90,21 @@ pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, Str
     Ok(model)
 }
 
-/// The model's variable table sorted by value reference and checked (`check_table`).
+/// The model's variable table sorted by value reference, with unique value
+/// references (all the runtime relies on; the full `check_table` runs where the
+/// modelDescription is written, in every FMU crate's drift test).
 pub fn sorted_table<M: Model>() -> Result<Vec<Variable<M>>, String> {
     let mut table = M::variables();
     table.sort_by_key(|v| v.value_reference);
-    check_table(&table)?;
+    if let Some(pair) = table
+        .windows(2)
+        .find(|p| p[0].value_reference == p[1].value_reference)
+    {
+        return Err(format!(
+            "\"{}\" and \"{}\" share the value reference {}",
+            pair[0].name, pair[1].name, pair[0].value_reference
+        ));
+    }
     Ok(table)
 }
 

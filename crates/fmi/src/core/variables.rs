@@ -543,6 +543,34 @@ pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
         }
         check_dependencies(v, table)?;
     }
+    check_arrays(table)
+}
+
+/// Every array `base[1..n]`: all n elements present, named `base[i]`, with value
+/// references increasing by one (what an FMI 3.0 array of one value reference needs).
+fn check_arrays<M>(table: &[Variable<M>]) -> Result<(), String> {
+    for v in table {
+        let Some(element) = &v.array else { continue };
+        if v.name != format!("{}[{}]", element.base, element.index + 1) {
+            return Err(format!(
+                "\"{}\": array element named unlike its position",
+                v.name
+            ));
+        }
+        let first = v.value_reference - element.index as u32;
+        for i in 0..element.length {
+            let found = find(table, first + i as u32).and_then(|e| e.array.as_ref());
+            let same = found.is_some_and(|e| e.base == element.base && e.index == i);
+            if !same {
+                return Err(format!(
+                    "array \"{}\": element {} is not at value reference {}",
+                    element.base,
+                    i + 1,
+                    first + i as u32
+                ));
+            }
+        }
+    }
     Ok(())
 }
 

@@ -3,7 +3,9 @@
 use super::instance::log_categories;
 use crate::core::model::Model;
 use crate::core::units::{UnitDefinition, unit};
-use crate::core::variables::{Causality, Initial, Kind, Variable, derivative_variables};
+use crate::core::variables::{
+    Causality, Initial, Kind, Variable, check_table, derivative_variables,
+};
 use serde::Serialize;
 
 /// Name and version of the generating tool, as written into generationTool.
@@ -328,6 +330,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
     let info = M::info();
     let sorted = crate::core::instance::sorted_table::<M>()?;
     let table = &sorted[..];
+    check_table(table)?;
     let derivatives = derivative_variables(table);
     if derivatives.len() != info.number_of_continuous_states {
         return Err(format!(
