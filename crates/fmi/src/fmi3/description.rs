@@ -11,7 +11,7 @@ use crate::core::description::{
 };
 use crate::core::instance::sorted_table;
 use crate::core::model::Model;
-use crate::core::variables::{Causality, Initial, Kind, Variable, find};
+use crate::core::variables::{Causality, Initial, Kind, Variable, check_table, find};
 use serde::Serialize;
 
 #[derive(Serialize)]
@@ -292,6 +292,7 @@ fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
 pub fn model_description<M: Model>() -> Result<String, String> {
     let info = M::info();
     let table = sorted_table::<M>()?;
+    check_table(&table)?;
     let t = build(&table)?;
     let states: usize = t.derivatives().map(Variable3::size).sum();
     if states != info.number_of_continuous_states {
