@@ -10,6 +10,7 @@ import time
 from pathlib import Path
 
 from .errors import CosimError
+from .fmi3 import open_fmi3
 from .master import Master, text_progress
 from .scenario import ScenarioError, load_scenario
 
@@ -30,12 +31,15 @@ def main(argv=None) -> int:
                         help="find the FMUs by file name here instead of relative to the "
                         "scenario")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.add_argument("--fmi3", action="store_true",
+                        help="run the FMI 3.0 builds (dist/fmi3/<Model>.fmu) of the FMUs")
     args = parser.parse_args(argv)
     try:
         scenario = load_scenario(args.scenario, args.fmu_dir)
         progress = None if args.quiet else text_progress()
         started = time.perf_counter()
-        result = Master(scenario, progress=progress).run()
+        options = {"open_fmu": open_fmi3} if args.fmi3 else {}
+        result = Master(scenario, progress=progress, **options).run()
         wall = time.perf_counter() - started
     except (ScenarioError, CosimError) as e:
         print(f"cosim: {e}", file=sys.stderr)

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Builds every FMU crate under fmus/ in release mode and packages dist/<Model>.fmu
+# (FMI 2.0) and dist/fmi3/<Model>.fmu (FMI 3.0, same cdylib)
 # (modelDescription.xml, binaries/<platform>/<modelIdentifier>.<ext>,
 # documentation/). Each FMU crate's own binary is its packager: it finds the cdylib
 # built beside it, so adding an FMU needs no change here.

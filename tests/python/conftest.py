@@ -16,3 +16,11 @@ def fmu_path(model):
     if not path.exists():
         pytest.fail(f"{path} is missing: run scripts/build-fmus.sh first")
     return str(path)
+
+
+def fmu3_path(model):
+    """The FMI 3.0 build of `model` (scripts/build-fmus.sh writes dist/fmi3/)."""
+    path = DIST / "fmi3" / f"{model}.fmu"
+    if not path.exists():
+        pytest.fail(f"{path} is missing: run scripts/build-fmus.sh first")
+    return str(path)

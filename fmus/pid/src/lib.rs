@@ -464,3 +464,4 @@ impl Model for Pid {
 
 // The exported fmi2* symbols of this FMU.
 robofmu_fmi::export_fmi2!(Pid);
+robofmu_fmi::export_fmi3!(Pid);

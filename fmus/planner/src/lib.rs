@@ -284,3 +284,4 @@ impl Model for Planner {
 
 // The exported fmi2* symbols of this FMU.
 robofmu_fmi::export_fmi2!(Planner);
+robofmu_fmi::export_fmi3!(Planner);

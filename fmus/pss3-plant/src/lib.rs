@@ -445,3 +445,4 @@ impl Model for Pss3Plant {
 
 // The exported fmi2* symbols of this FMU.
 robofmu_fmi::export_fmi2!(Pss3Plant);
+robofmu_fmi::export_fmi3!(Pss3Plant);

@@ -6,6 +6,7 @@
 //! [`Snapshot`] is an FMU state and [`serialize`] its checked byte format; [`handles`]
 //! registers the live instances and states so that every handle is checked before use.
 
+pub mod description;
 pub mod handles;
 pub mod instance;
 pub mod logging;

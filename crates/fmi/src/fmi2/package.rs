@@ -4,7 +4,10 @@
 
 use super::description::model_description;
 use super::documentation::documentation;
+use crate::core::instance::Standard;
 use crate::core::model::Model;
+use crate::fmi3::description::model_description as fmi3_description;
+use crate::fmi3::package::platform_tuple;
 use std::fs::File;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -19,6 +22,9 @@ pub struct FmuContents<'a> {
     pub documentation: &'a str,
     /// The compiled cdylib of the model.
     pub library: &'a Path,
+    /// The folder under `binaries/`: `platform_folder()` for FMI 2.0,
+    /// `fmi3::package::platform_tuple()` for FMI 3.0.
+    pub platform: &'a str,
 }
 
 /// The FMI 2.0 platform folder of the machine this packager was built for
@@ -54,7 +60,7 @@ pub fn write_fmu(out: &Path, c: &FmuContents) -> Result<(), String> {
     let options = SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
     let library_entry = format!(
         "binaries/{}/{}{}",
-        platform_folder(),
+        c.platform,
         c.model_identifier,
         std::env::consts::DLL_SUFFIX
     );
@@ -75,14 +81,18 @@ pub fn write_fmu(out: &Path, c: &FmuContents) -> Result<(), String> {
 const USAGE: &str = "usage: <packager> package [--out DIR] | model-description [--out DIR]";
 
 /// Entry point of an FMU crate's packager binary (`src/main.rs` calls it with
-/// `env!("CARGO_PKG_NAME")`): `package` writes `<DIR>/<modelName>.fmu` (default
-/// `dist`) from the cdylib built beside the binary; `model-description` writes
-/// `<DIR>/<modelName>.xml` (default `modelDescription`).
+/// `env!("CARGO_PKG_NAME")`): `package` writes the FMI 2.0 FMU `<DIR>/<modelName>.fmu`
+/// and the FMI 3.0 FMU `<DIR>/fmi3/<modelName>.fmu` (default `dist`) from the cdylib
+/// built beside the binary, which exports both; `model-description` writes
+/// `<DIR>/<modelName>.xml` and `<DIR>/fmi3/<modelName>.xml` (default
+/// `modelDescription`).
 pub fn packager_main<M: Model>(crate_name: &str) -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match run_packager::<M>(crate_name, &args) {
-        Ok(path) => {
-            println!("wrote {}", path.display());
+        Ok(paths) => {
+            for path in paths {
+                println!("wrote {}", path.display());
+            }
             ExitCode::SUCCESS
         }
         Err(e) => {
@@ -92,7 +102,7 @@ pub fn packager_main<M: Model>(crate_name: &str) -> ExitCode {
     }
 }
 
-fn run_packager<M: Model>(crate_name: &str, args: &[String]) -> Result<PathBuf, String> {
+fn run_packager<M: Model>(crate_name: &str, args: &[String]) -> Result<Vec<PathBuf>, String> {
     let (command, out) = match args {
         [command] => (command.as_str(), None),
         [command, flag, dir] if flag == "--out" => (command.as_str(), Some(PathBuf::from(dir))),
@@ -102,18 +112,30 @@ fn run_packager<M: Model>(crate_name: &str, args: &[String]) -> Result<PathBuf, 
     match command {
         "package" => {
             let dir = out.unwrap_or_else(|| PathBuf::from("dist"));
-            create_dir(&dir)?;
-            let path = dir.join(format!("{name}.fmu"));
-            package::<M>(crate_name, &path)?;
-            Ok(path)
+            let paths = [
+                dir.join(format!("{name}.fmu")),
+                dir.join("fmi3").join(format!("{name}.fmu")),
+            ];
+            create_dir(&dir.join("fmi3"))?;
+            package::<M>(crate_name, &paths[0], Standard::Fmi2)?;
+            package::<M>(crate_name, &paths[1], Standard::Fmi3)?;
+            Ok(paths.to_vec())
         }
         "model-description" => {
             let dir = out.unwrap_or_else(|| PathBuf::from("modelDescription"));
-            create_dir(&dir)?;
-            let path = dir.join(format!("{name}.xml"));
-            std::fs::write(&path, model_description::<M>()?)
-                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            Ok(path)
+            create_dir(&dir.join("fmi3"))?;
+            let paths = [
+                dir.join(format!("{name}.xml")),
+                dir.join("fmi3").join(format!("{name}.xml")),
+            ];
+            for (path, text) in paths
+                .iter()
+                .zip([model_description::<M>()?, fmi3_description::<M>()?])
+            {
+                std::fs::write(path, text)
+                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            }
+            Ok(paths.to_vec())
         }
         _ => Err(USAGE.to_string()),
     }
@@ -123,20 +145,32 @@ fn create_dir(dir: &Path) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))
 }
 
-/// Packages M from the cdylib that cargo built beside the running binary.
-fn package<M: Model>(crate_name: &str, out: &Path) -> Result<(), String> {
+/// Packages M for `standard` from the cdylib that cargo built beside the running
+/// binary.
+fn package<M: Model>(crate_name: &str, out: &Path, standard: Standard) -> Result<(), String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot locate the packager: {e}"))?;
     let library = exe
         .parent()
         .ok_or("the packager has no parent directory")?
         .join(library_file_name(crate_name));
-    let model_description = model_description::<M>()?;
-    let documentation = documentation::<M>()?;
+    let (model_description, documentation, platform) = match standard {
+        Standard::Fmi2 => (
+            model_description::<M>()?,
+            documentation::<M>("FMI 2.0")?,
+            platform_folder().to_string(),
+        ),
+        Standard::Fmi3 => (
+            fmi3_description::<M>()?,
+            documentation::<M>("FMI 3.0")?,
+            platform_tuple(),
+        ),
+    };
     let contents = FmuContents {
         model_identifier: M::info().model_identifier,
         model_description: &model_description,
         documentation: &documentation,
         library: &library,
+        platform: &platform,
     };
     write_fmu(out, &contents)
 }

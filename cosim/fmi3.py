@@ -1,0 +1,158 @@
+"""The FMI 3.0 build of a scenario's FMUs behind the interface the master uses
+(`FmuInstance` in fmu.py): the same scalar names (`theta[1]`) on the FMI 3.0 arrays
+(`theta`, element 1). Choose it with ``python -m cosim SCENARIO --fmi3`` or
+``Master(scenario, open_fmu=open_fmi3)``; a scenario's ``dist/<Model>.fmu`` is then
+read as ``dist/fmi3/<Model>.fmu``.
+
+FMI 3.0 writes whole arrays, and reading is illegal before initialization, so the
+instance keeps the values it last wrote (start values first) and completes a partial
+write of an array from them."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from fmpy import extract, read_model_description
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi3 import FMU3Slave
+
+from .errors import FmuError, StepDiscarded
+
+_ELEMENT = re.compile(r"^(.*)\[(\d+)\]$")
+_FMI3_DISCARD = 2
+_CONVERT = {"Float64": float, "Int32": int, "Boolean": bool}
+
+
+def fmi3_path(path: Path) -> Path:
+    """dist/<Model>.fmu -> dist/fmi3/<Model>.fmu (the FMI 3.0 build beside it)."""
+    return path.parent / "fmi3" / path.name
+
+
+def _start(variable) -> list:
+    words = str(variable.start).split()
+    if variable.type == "Boolean":
+        return [w.lower() in ("true", "1") for w in words]
+    return [_CONVERT[variable.type](w) for w in words]
+
+
+class Fmu3Instance:
+    """A co-simulation instance of an FMI 3.0 FMU, addressed by FMI 2.0 scalar names."""
+
+    def __init__(self, alias: str, path: Path, start_time: float, stop_time: float):
+        self.alias = alias
+        self.messages: list[str] = []
+        md = read_model_description(str(path))
+        if md.coSimulation is None:
+            raise FmuError(f"{alias} ({path}) does not support co-simulation")
+        self.variables = {v.name: v for v in md.modelVariables}
+        self.can_get_state = bool(md.coSimulation.canGetAndSetFMUstate)
+        self._written = {v.name: _start(v) for v in md.modelVariables
+                         if v.type in _CONVERT and v.start is not None}
+        self._start_time, self._stop_time = start_time, stop_time
+        self._unzip = extract(str(path))
+        self._fmu = FMU3Slave(guid=md.guid, unzipDirectory=self._unzip,
+                              modelIdentifier=md.coSimulation.modelIdentifier,
+                              instanceName=alias)
+        self._call("fmi3InstantiateCoSimulation",
+                   lambda: self._fmu.instantiate(logMessage=self._log))
+
+    def _log(self, _env, status, category, message):
+        text = message.decode("utf-8", "replace") if message else ""
+        self.messages.append(f"[{(category or b'').decode('utf-8', 'replace')}] {text}")
+        del self.messages[:-20]
+
+    def _last_message(self) -> str:
+        return self.messages[-1] if self.messages else "(the FMU logged no reason)"
+
+    def _call(self, name: str, fn):
+        try:
+            return fn()
+        except FMICallException as e:
+            raise FmuError(f"{self.alias}: {name} failed with status {e.status}: "
+                           f"{self._last_message()}") from e
+        except Exception as e:  # instantiate raises a plain Exception on NULL
+            raise FmuError(f"{self.alias}: {name} failed: {e}; {self._last_message()}") from e
+
+    def _locate(self, name: str):
+        """(FMI 3.0 variable, element index or None) of an FMI 2.0 scalar name."""
+        match = _ELEMENT.match(name)
+        base, index = (match.group(1), int(match.group(2)) - 1) if match else (name, None)
+        variable = self.variables.get(base)
+        if variable is None or variable.type not in _CONVERT:
+            raise FmuError(f"{self.alias} has no variable '{name}' of a supported type")
+        return variable, index
+
+    def get_values(self, names: tuple[str, ...]) -> list[float]:
+        """Values of `names` (Int32 and Boolean as float), one FMI call per variable."""
+        located = [self._locate(name) for name in names]
+        arrays = {}
+        for variable, _ in located:
+            if variable.name not in arrays:
+                size = int(variable.shape[0]) if variable.shape else 1
+                getter = getattr(self._fmu, "get" + variable.type)
+                arrays[variable.name] = self._call(
+                    f"fmi3Get{variable.type}({variable.name})",
+                    lambda: getter([variable.valueReference], size))
+        return [float(arrays[v.name][0 if i is None else i]) for v, i in located]
+
+    def set_values(self, names: tuple[str, ...], values) -> None:
+        """Sets `names` to `values`: whole arrays, completed from the last written."""
+        changed = {}
+        for name, value in zip(names, values):
+            variable, index = self._locate(name)
+            array = changed.setdefault(variable.name, list(self._written[variable.name]))
+            array[0 if index is None else index] = _CONVERT[variable.type](value)
+        for base, array in changed.items():
+            variable = self.variables[base]
+            setter = getattr(self._fmu, "set" + variable.type)
+            self._call(f"fmi3Set{variable.type}({base})",
+                       lambda: setter([variable.valueReference], array))
+            self._written[base] = array
+
+    def get_value(self, name: str) -> float:
+        return self.get_values((name,))[0]
+
+    def set_value(self, name: str, value) -> None:
+        self.set_values((name,), [value])
+
+    def enter_initialization(self) -> None:
+        self._call("fmi3EnterInitializationMode",
+                   lambda: self._fmu.enterInitializationMode(startTime=self._start_time,
+                                                             stopTime=self._stop_time))
+
+    def exit_initialization(self) -> None:
+        self._call("fmi3ExitInitializationMode", self._fmu.exitInitializationMode)
+
+    def do_step(self, time: float, step: float) -> None:
+        try:
+            self._fmu.doStep(currentCommunicationPoint=time, communicationStepSize=step)
+        except FMICallException as e:
+            if e.status == _FMI3_DISCARD:
+                raise StepDiscarded(self.alias, time, self._last_message()) from None
+            raise FmuError(f"{self.alias}: fmi3DoStep at t = {time:.9g} s failed with status "
+                           f"{e.status}: {self._last_message()}") from e
+
+    def get_state(self):
+        if not self.can_get_state:
+            raise FmuError(f"{self.alias} cannot get and set its FMU state (no rollback)")
+        return self._call("fmi3GetFMUState", self._fmu.getFMUState)
+
+    def set_state(self, state) -> None:
+        self._call("fmi3SetFMUState", lambda: self._fmu.setFMUState(state))
+
+    def free_state(self, state) -> None:
+        self._call("fmi3FreeFMUState", lambda: self._fmu.freeFMUState(state))
+
+    def close(self) -> None:
+        """Terminates and frees the instance; safe to call after a failure."""
+        try:
+            self._fmu.terminate()
+        except FMICallException:
+            pass
+        self._fmu.freeInstance()
+
+
+def open_fmi3(alias, path, scenario):
+    """The master's `open_fmu` for the FMI 3.0 builds of the scenario's FMUs."""
+    return Fmu3Instance(alias, fmi3_path(Path(path)), scenario.start_time, scenario.stop_time)

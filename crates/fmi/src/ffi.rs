@@ -1,0 +1,70 @@
+//! Helpers of the C boundary shared by the front-ends: slices and references from the
+//! host's pointers (null accepted only where nothing is read or written), finiteness
+//! checks, and the text of a caught panic.
+
+/// Text of a caught panic payload.
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        s.to_string()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "unknown panic payload".to_string()
+    }
+}
+
+/// A slice from a C array; null is accepted only for an empty array.
+///
+/// # Safety
+/// A non-null `ptr` must be valid for `n` elements for the returned lifetime.
+pub unsafe fn input_slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Result<&'a [T], String> {
+    if n == 0 {
+        Ok(&[])
+    } else if ptr.is_null() {
+        Err(format!("{what} is a null pointer (length {n})"))
+    } else {
+        // SAFETY: non-null and, by the caller's contract, valid for n elements.
+        Ok(unsafe { std::slice::from_raw_parts(ptr, n) })
+    }
+}
+
+/// A mutable slice over a C output array; null is accepted only for an empty array.
+///
+/// # Safety
+/// A non-null `ptr` must be valid and unaliased for `n` elements for the returned
+/// lifetime.
+pub unsafe fn output_slice<'a, T>(
+    ptr: *mut T,
+    n: usize,
+    what: &str,
+) -> Result<&'a mut [T], String> {
+    if n == 0 {
+        Ok(&mut [])
+    } else if ptr.is_null() {
+        Err(format!("{what} is a null pointer (length {n})"))
+    } else {
+        // SAFETY: non-null and, by the caller's contract, valid for n elements.
+        Ok(unsafe { std::slice::from_raw_parts_mut(ptr, n) })
+    }
+}
+
+/// A single output value behind a pointer.
+///
+/// # Safety
+/// A non-null `ptr` must be valid and unaliased for the returned lifetime.
+pub unsafe fn output_ref<'a, T>(ptr: *mut T, what: &str) -> Result<&'a mut T, String> {
+    if ptr.is_null() {
+        Err(format!("{what} is a null pointer"))
+    } else {
+        // SAFETY: non-null and, by the caller's contract, valid.
+        Ok(unsafe { &mut *ptr })
+    }
+}
+
+pub fn check_finite(value: f64, what: &str) -> Result<f64, String> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(format!("{what} = {value} is not finite"))
+    }
+}

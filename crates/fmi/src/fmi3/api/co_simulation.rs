@@ -1,0 +1,198 @@
+//! Functions of FMI 3.0 Co-Simulation.
+//!
+//! Events in a step: the layer compares the signs of the model's event indicators
+//! before and after each step. The model handles a state event inside the step (the
+//! plant updates its end-stop contacts at the end of every step, as in FMI 2.0);
+//! with eventModeUsed the step also reports eventHandlingNeeded, so that the importer
+//! passes through Event Mode where the contact changed. With earlyReturnAllowed the
+//! step ends early, just after the first sign change: the layer locates it by
+//! bisection of the step length (repeating the step from a snapshot of its start,
+//! `BISECTIONS` halvings of h) and returns earlyReturn with lastSuccessfulTime there.
+//! The core checks the step (communication point, positive size, stopTime) and
+//! restores the state of a discarded step.
+
+use super::{input_slice, output_ref, with_instance};
+use crate::core::instance::{Snapshot, Standard};
+use crate::core::model::{Model, StepOutcome};
+use crate::fmi3::instance::Instance;
+use crate::fmi3::mode::{Call, Interface, Mode};
+use crate::fmi3::types::*;
+
+/// The outputs of fmi3DoStep.
+pub struct StepResult {
+    pub event_handling_needed: *mut Fmi3Boolean,
+    pub terminate_simulation: *mut Fmi3Boolean,
+    pub early_return: *mut Fmi3Boolean,
+    pub last_successful_time: *mut Fmi3Float64,
+}
+
+/// The event indicators of the model now, if it has any and they can be evaluated.
+fn indicators<M: Model>(model: &M) -> Option<Vec<f64>> {
+    let mut z = vec![0.0; M::info().number_of_event_indicators];
+    (!z.is_empty() && model.event_indicators(&mut z).is_ok()).then_some(z)
+}
+
+/// Halvings of the step that locate an event for an early return: 2^-30 h (1e-12 s for
+/// a 1 ms step).
+const BISECTIONS: usize = 30;
+
+/// Whether an indicator changed sign between `before` and `after`.
+fn sign_changed(before: &Option<Vec<f64>>, after: &Option<Vec<f64>>) -> bool {
+    match (before, after) {
+        (Some(b), Some(a)) => b.iter().zip(a).any(|(x, y)| (*x > 0.0) != (*y > 0.0)),
+        _ => false,
+    }
+}
+
+/// Restarts the step from `start` and advances it by `tau`; whether an event indicator
+/// changed sign in (t, t + tau] (a step the model discards counts as one: it went too
+/// far).
+fn event_within<M: Model>(
+    inst: &mut Instance<M>,
+    start: &Snapshot<M>,
+    z_start: &Option<Vec<f64>>,
+    tau: f64,
+) -> Result<bool, String> {
+    inst.core.restore(start);
+    Ok(match inst.core.do_step(start.time, tau, &inst.log)? {
+        StepOutcome::Completed => sign_changed(z_start, &indicators(inst.core.model())),
+        StepOutcome::Discarded { .. } => true,
+    })
+}
+
+/// After a step of length h from `start` in which an event indicator changed sign:
+/// the instance advanced to just after the first sign change instead (bisection);
+/// whether that is before the end of the step.
+fn return_early<M: Model>(
+    inst: &mut Instance<M>,
+    start: &Snapshot<M>,
+    z_start: &Option<Vec<f64>>,
+    h: f64,
+) -> Result<bool, String> {
+    let (mut before, mut after) = (0.0, h);
+    for _ in 0..BISECTIONS {
+        let mid = 0.5 * (before + after);
+        if event_within(inst, start, z_start, mid)? {
+            after = mid;
+        } else {
+            before = mid;
+        }
+    }
+    if !event_within(inst, start, z_start, after)? {
+        return Err(format!(
+            "the event located at t = {} s vanished when the step was repeated",
+            start.time + after
+        ));
+    }
+    Ok(after < h)
+}
+
+pub unsafe fn do_step<M: Model>(
+    c: Fmi3Instance,
+    current_communication_point: Fmi3Float64,
+    communication_step_size: Fmi3Float64,
+    _no_set_fmu_state_prior_to_current_point: Fmi3Boolean,
+    out: StepResult,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, "fmi3DoStep", Call::DoStep, |inst| {
+            let event = output_ref(out.event_handling_needed, "eventHandlingNeeded")?;
+            let terminate = output_ref(out.terminate_simulation, "terminateSimulation")?;
+            let early = output_ref(out.early_return, "earlyReturn")?;
+            let last = output_ref(out.last_successful_time, "lastSuccessfulTime")?;
+            let (t, h) = (current_communication_point, communication_step_size);
+            let z_before = indicators(inst.core.model());
+            let (events_used, early_allowed) = match inst.interface {
+                Interface::CoSimulation {
+                    event_mode_used,
+                    early_return_allowed,
+                } => (event_mode_used, early_return_allowed),
+                Interface::ModelExchange => (false, false),
+            };
+            let start =
+                (early_allowed && z_before.is_some()).then(|| inst.core.snapshot(Standard::Fmi3));
+            *early = FMI3_FALSE;
+            match inst.core.do_step(t, h, &inst.log)? {
+                StepOutcome::Completed => {
+                    let z_after = indicators(inst.core.model());
+                    let changed = sign_changed(&z_before, &z_after);
+                    if let (true, Some(start)) = (changed, &start) {
+                        *early = fmi3_bool(return_early(inst, start, &z_before, h)?);
+                    }
+                    *event = fmi3_bool(events_used && changed);
+                    *terminate = FMI3_FALSE;
+                    *last = inst.core.last_successful_time;
+                    Ok(Fmi3Status::Ok)
+                }
+                StepOutcome::Discarded {
+                    reason,
+                    terminate: cannot_go_on,
+                } => {
+                    inst.mode = Mode::StepDiscarded;
+                    *event = FMI3_FALSE;
+                    *terminate = fmi3_bool(cannot_go_on);
+                    *last = inst.core.time;
+                    inst.log.status(
+                        Fmi3Status::Discard,
+                        &format!("fmi3DoStep: step from t = {t} s by {h} s rejected: {reason}"),
+                    );
+                    Ok(Fmi3Status::Discard)
+                }
+            }
+        })
+    }
+}
+
+pub unsafe fn enter_step_mode<M: Model>(c: Fmi3Instance) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, "fmi3EnterStepMode", Call::EnterStepMode, |inst| {
+            inst.mode = Mode::StepMode;
+            Ok(Fmi3Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn get_output_derivatives<M: Model>(
+    c: Fmi3Instance,
+    vr: *const Fmi3ValueReference,
+    nvr: usize,
+    orders: *const Fmi3Int32,
+    values: *mut Fmi3Float64,
+    n_values: usize,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(
+            c,
+            "fmi3GetOutputDerivatives",
+            Call::GetOutputDerivatives,
+            |_| {
+                input_slice(vr, nvr, "valueReferences[]")?;
+                input_slice(orders, nvr, "orders[]")?;
+                if n_values > 0 && values.is_null() {
+                    return Err("values[] is a null pointer".to_string());
+                }
+                if nvr == 0 {
+                    return Ok(Fmi3Status::Ok);
+                }
+                Err(
+                    "output derivatives are not provided (maxOutputDerivativeOrder=\"0\")"
+                        .to_string(),
+                )
+            },
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sign_change_of_any_indicator_is_an_event() {
+        let before = Some(vec![0.5, -1.0]);
+        assert!(!sign_changed(&before, &Some(vec![0.1, -2.0])));
+        assert!(sign_changed(&before, &Some(vec![-0.1, -2.0])));
+        assert!(sign_changed(&before, &Some(vec![0.1, 2.0])));
+        assert!(!sign_changed(&None, &Some(vec![-0.1, 2.0])));
+    }
+}

@@ -1,0 +1,265 @@
+//! Functions of FMI 3.0 Model Exchange, and fmi3UpdateDiscreteStates (Event Mode of
+//! both interfaces).
+
+use super::{check_finite, input_slice, output_ref, output_slice, with_instance};
+use crate::core::logging::Log;
+use crate::core::model::Model;
+use crate::fmi3::instance::Instance;
+use crate::fmi3::mode::{Call, Mode};
+use crate::fmi3::types::*;
+
+/// Checks an array length against the model's count.
+fn check_len(n: usize, expected: usize, what: &str) -> Result<(), String> {
+    if n == expected {
+        Ok(())
+    } else {
+        Err(format!("{what} has length {n}, the model has {expected}"))
+    }
+}
+
+fn states<M: Model>() -> usize {
+    M::info().number_of_continuous_states
+}
+
+fn indicators<M: Model>() -> usize {
+    M::info().number_of_event_indicators
+}
+
+/// The outputs of fmi3UpdateDiscreteStates.
+pub struct DiscreteStatesUpdate {
+    pub discrete_states_need_update: *mut Fmi3Boolean,
+    pub terminate_simulation: *mut Fmi3Boolean,
+    pub nominals_changed: *mut Fmi3Boolean,
+    pub values_changed: *mut Fmi3Boolean,
+    pub next_event_time_defined: *mut Fmi3Boolean,
+    pub next_event_time: *mut Fmi3Float64,
+}
+
+pub unsafe fn update_discrete_states<M: Model>(
+    c: Fmi3Instance,
+    out: DiscreteStatesUpdate,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(
+            c,
+            "fmi3UpdateDiscreteStates",
+            Call::UpdateDiscreteStates,
+            |inst| {
+                let need = output_ref(out.discrete_states_need_update, "discreteStatesNeedUpdate")?;
+                let terminate = output_ref(out.terminate_simulation, "terminateSimulation")?;
+                let nominals =
+                    output_ref(out.nominals_changed, "nominalsOfContinuousStatesChanged")?;
+                let values = output_ref(out.values_changed, "valuesOfContinuousStatesChanged")?;
+                let defined = output_ref(out.next_event_time_defined, "nextEventTimeDefined")?;
+                let next_time = output_ref(out.next_event_time, "nextEventTime")?;
+                let update = inst.core.model_mut().update_discrete_states();
+                let next = inst.core.model().next_time_event(inst.core.time);
+                *need = fmi3_bool(update.discrete_states_need_update);
+                *terminate = fmi3_bool(update.terminate_simulation);
+                *nominals = fmi3_bool(update.nominals_of_continuous_states_changed);
+                *values = fmi3_bool(update.values_of_continuous_states_changed);
+                *defined = fmi3_bool(next.is_some());
+                *next_time = next.unwrap_or(0.0);
+                if let Some(t) = next {
+                    inst.log
+                        .debug("logEvents", &format!("next time event at t = {t} s"));
+                }
+                Ok(Fmi3Status::Ok)
+            },
+        )
+    }
+}
+
+pub unsafe fn enter_continuous_time_mode<M: Model>(c: Fmi3Instance) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(
+            c,
+            "fmi3EnterContinuousTimeMode",
+            Call::EnterContinuousTimeMode,
+            |inst| {
+                inst.mode = Mode::ContinuousTimeMode;
+                Ok(Fmi3Status::Ok)
+            },
+        )
+    }
+}
+
+pub unsafe fn completed_integrator_step<M: Model>(
+    c: Fmi3Instance,
+    _no_set_fmu_state_prior_to_current_point: Fmi3Boolean,
+    enter_event_mode: *mut Fmi3Boolean,
+    terminate_simulation: *mut Fmi3Boolean,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(
+            c,
+            "fmi3CompletedIntegratorStep",
+            Call::CompletedIntegratorStep,
+            |_: &mut Instance<M>| {
+                let enter = output_ref(enter_event_mode, "enterEventMode")?;
+                let stop = output_ref(terminate_simulation, "terminateSimulation")?;
+                // The models have no step events.
+                *enter = FMI3_FALSE;
+                *stop = FMI3_FALSE;
+                Ok(Fmi3Status::Ok)
+            },
+        )
+    }
+}
+
+pub unsafe fn set_time<M: Model>(c: Fmi3Instance, time: Fmi3Float64) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, "fmi3SetTime", Call::SetTime, |inst| {
+            inst.core.set_time(check_finite(time, "time")?);
+            Ok(Fmi3Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn set_continuous_states<M: Model>(
+    c: Fmi3Instance,
+    x: *const Fmi3Float64,
+    nx: usize,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(
+            c,
+            "fmi3SetContinuousStates",
+            Call::SetContinuousStates,
+            |inst| {
+                check_len(nx, states::<M>(), "continuousStates[]")?;
+                let x = input_slice(x, nx, "continuousStates[]")?;
+                if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
+                    return Err(format!("continuousStates[] contains {bad}"));
+                }
+                inst.core.model_mut().set_continuous_states(x);
+                Ok(Fmi3Status::Ok)
+            },
+        )
+    }
+}
+
+/// Fills an output array of the model's count with `f`. An error of the model (it
+/// cannot be evaluated here) is logged and returned as fmi3Discard, leaving the
+/// instance usable; a non-finite value is an error.
+unsafe fn fill<M: Model>(
+    c: Fmi3Instance,
+    function: &str,
+    ptr: *mut Fmi3Float64,
+    n: usize,
+    expected: fn() -> usize,
+    f: impl FnOnce(&M, &mut [f64]) -> Result<(), String>,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, function, Call::ContinuousStateQuery, |inst| {
+            check_len(n, expected(), "the array")?;
+            let out = output_slice(ptr, n, "the array")?;
+            if let Err(reason) = f(inst.core.model(), out) {
+                inst.log.status(
+                    Fmi3Status::Discard,
+                    &format!("{function}: at t = {} s: {reason}", inst.core.time),
+                );
+                return Ok(Fmi3Status::Discard);
+            }
+            if let Some(bad) = out.iter().find(|v| !v.is_finite()) {
+                return Err(format!("the model computed {bad}"));
+            }
+            Ok(Fmi3Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn get_continuous_state_derivatives<M: Model>(
+    c: Fmi3Instance,
+    dx: *mut Fmi3Float64,
+    nx: usize,
+) -> Fmi3Status {
+    unsafe {
+        fill::<M>(
+            c,
+            "fmi3GetContinuousStateDerivatives",
+            dx,
+            nx,
+            states::<M>,
+            M::derivatives,
+        )
+    }
+}
+
+pub unsafe fn get_event_indicators<M: Model>(
+    c: Fmi3Instance,
+    z: *mut Fmi3Float64,
+    nz: usize,
+) -> Fmi3Status {
+    unsafe {
+        fill::<M>(
+            c,
+            "fmi3GetEventIndicators",
+            z,
+            nz,
+            indicators::<M>,
+            M::event_indicators,
+        )
+    }
+}
+
+pub unsafe fn get_continuous_states<M: Model>(
+    c: Fmi3Instance,
+    x: *mut Fmi3Float64,
+    nx: usize,
+) -> Fmi3Status {
+    unsafe {
+        fill::<M>(c, "fmi3GetContinuousStates", x, nx, states::<M>, |m, x| {
+            m.continuous_states(x);
+            Ok(())
+        })
+    }
+}
+
+pub unsafe fn get_nominals_of_continuous_states<M: Model>(
+    c: Fmi3Instance,
+    nominals: *mut Fmi3Float64,
+    nx: usize,
+) -> Fmi3Status {
+    unsafe {
+        fill::<M>(
+            c,
+            "fmi3GetNominalsOfContinuousStates",
+            nominals,
+            nx,
+            states::<M>,
+            |m, n| {
+                m.nominals_of_continuous_states(n);
+                Ok(())
+            },
+        )
+    }
+}
+
+unsafe fn get_count<M: Model>(
+    c: Fmi3Instance,
+    function: &str,
+    out: *mut usize,
+    count: fn() -> usize,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, function, Call::CountQuery, |_| {
+            *output_ref(out, "the count")? = count();
+            Ok(Fmi3Status::Ok)
+        })
+    }
+}
+
+pub unsafe fn get_number_of_event_indicators<M: Model>(
+    c: Fmi3Instance,
+    n: *mut usize,
+) -> Fmi3Status {
+    unsafe { get_count::<M>(c, "fmi3GetNumberOfEventIndicators", n, indicators::<M>) }
+}
+
+pub unsafe fn get_number_of_continuous_states<M: Model>(
+    c: Fmi3Instance,
+    n: *mut usize,
+) -> Fmi3Status {
+    unsafe { get_count::<M>(c, "fmi3GetNumberOfContinuousStates", n, states::<M>) }
+}

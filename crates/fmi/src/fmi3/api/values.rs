@@ -1,0 +1,187 @@
+//! fmi3Get*/fmi3Set* for the types the models use: Float64, Int32 and Boolean
+//! (scalars and arrays; nValues counts the elements). Reading a calculated variable
+//! where the model cannot be evaluated returns fmi3Discard with the model's reason.
+
+use super::{input_slice, output_slice, with_instance};
+use crate::core::model::Model;
+use crate::core::variables::VariableType;
+use crate::fmi3::instance::Instance;
+use crate::fmi3::mode::Call;
+use crate::fmi3::table::Variable3;
+use crate::fmi3::types::*;
+use std::sync::Arc;
+
+/// Reads the variables of `vrs` (of type `wanted`, `n_values` elements in all) into
+/// `out` with `read`, after making the computed values current.
+fn read<M: Model, T: Default + Clone>(
+    inst: &mut Instance<M>,
+    function: &str,
+    vrs: &[Fmi3ValueReference],
+    wanted: VariableType,
+    out: &mut [T],
+    read: impl Fn(&Instance<M>, &Variable3, &mut [T]) -> Result<(), String>,
+) -> Result<Fmi3Status, String> {
+    let table = Arc::clone(&inst.table);
+    let variables = table.typed_all(vrs, wanted, out.len())?;
+    if let Some(reason) = inst.prepare_read(&variables)? {
+        inst.log.status(
+            Fmi3Status::Discard,
+            &format!("{function}: at t = {} s: {reason}", inst.core.time),
+        );
+        return Ok(Fmi3Status::Discard);
+    }
+    let mut at = 0;
+    for v in variables {
+        read(inst, v, &mut out[at..at + v.size()])?;
+        at += v.size();
+    }
+    Ok(Fmi3Status::Ok)
+}
+
+/// Writes `values` to the variables of `vrs` (of type `wanted`) with `write`.
+fn write<M: Model, T>(
+    inst: &mut Instance<M>,
+    vrs: &[Fmi3ValueReference],
+    wanted: VariableType,
+    values: &[T],
+    write: impl Fn(&mut Instance<M>, &Variable3, &[T]) -> Result<(), String>,
+) -> Result<Fmi3Status, String> {
+    let table = Arc::clone(&inst.table);
+    let mut at = 0;
+    for v in table.typed_all(vrs, wanted, values.len())? {
+        write(inst, v, &values[at..at + v.size()])?;
+        at += v.size();
+    }
+    Ok(Fmi3Status::Ok)
+}
+
+pub unsafe fn get_float64<M: Model>(
+    c: Fmi3Instance,
+    vr: *const Fmi3ValueReference,
+    nvr: usize,
+    values: *mut Fmi3Float64,
+    n_values: usize,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, "fmi3GetFloat64", Call::GetValues, |inst| {
+            let vrs = input_slice(vr, nvr, "valueReferences[]")?;
+            let out = output_slice(values, n_values, "values[]")?;
+            read(
+                inst,
+                "fmi3GetFloat64",
+                vrs,
+                VariableType::Real,
+                out,
+                |i, v, o| i.get_float64(v, o),
+            )
+        })
+    }
+}
+
+pub unsafe fn get_int32<M: Model>(
+    c: Fmi3Instance,
+    vr: *const Fmi3ValueReference,
+    nvr: usize,
+    values: *mut Fmi3Int32,
+    n_values: usize,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, "fmi3GetInt32", Call::GetValues, |inst| {
+            let vrs = input_slice(vr, nvr, "valueReferences[]")?;
+            let out = output_slice(values, n_values, "values[]")?;
+            read(
+                inst,
+                "fmi3GetInt32",
+                vrs,
+                VariableType::Integer,
+                out,
+                |i, v, o| i.get_int32(v, o),
+            )
+        })
+    }
+}
+
+pub unsafe fn get_boolean<M: Model>(
+    c: Fmi3Instance,
+    vr: *const Fmi3ValueReference,
+    nvr: usize,
+    values: *mut Fmi3Boolean,
+    n_values: usize,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, "fmi3GetBoolean", Call::GetValues, |inst| {
+            let vrs = input_slice(vr, nvr, "valueReferences[]")?;
+            let out = output_slice(values, n_values, "values[]")?;
+            read(
+                inst,
+                "fmi3GetBoolean",
+                vrs,
+                VariableType::Boolean,
+                out,
+                |i, v, o| {
+                    let mut flags = vec![false; o.len()];
+                    i.get_boolean(v, &mut flags)?;
+                    for (byte, flag) in o.iter_mut().zip(flags) {
+                        *byte = fmi3_bool(flag);
+                    }
+                    Ok(())
+                },
+            )
+        })
+    }
+}
+
+pub unsafe fn set_float64<M: Model>(
+    c: Fmi3Instance,
+    vr: *const Fmi3ValueReference,
+    nvr: usize,
+    values: *const Fmi3Float64,
+    n_values: usize,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, "fmi3SetFloat64", Call::SetFloat64, |inst| {
+            let vrs = input_slice(vr, nvr, "valueReferences[]")?;
+            let given = input_slice(values, n_values, "values[]")?;
+            write(inst, vrs, VariableType::Real, given, |i, v, x| {
+                i.set_float64(v, x)
+            })
+        })
+    }
+}
+
+pub unsafe fn set_int32<M: Model>(
+    c: Fmi3Instance,
+    vr: *const Fmi3ValueReference,
+    nvr: usize,
+    values: *const Fmi3Int32,
+    n_values: usize,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, "fmi3SetInt32", Call::SetDiscrete, |inst| {
+            let vrs = input_slice(vr, nvr, "valueReferences[]")?;
+            let given = input_slice(values, n_values, "values[]")?;
+            write(inst, vrs, VariableType::Integer, given, |i, v, x| {
+                i.set_int32(v, x)
+            })
+        })
+    }
+}
+
+pub unsafe fn set_boolean<M: Model>(
+    c: Fmi3Instance,
+    vr: *const Fmi3ValueReference,
+    nvr: usize,
+    values: *const Fmi3Boolean,
+    n_values: usize,
+) -> Fmi3Status {
+    unsafe {
+        with_instance::<M>(c, "fmi3SetBoolean", Call::SetDiscrete, |inst| {
+            let vrs = input_slice(vr, nvr, "valueReferences[]")?;
+            let given = input_slice(values, n_values, "values[]")?;
+            write(inst, vrs, VariableType::Boolean, given, |i, v, x| {
+                let flags: Vec<bool> = x.iter().map(|&b| b != FMI3_FALSE).collect();
+                i.set_boolean(v, &flags)
+            })
+        })
+    }
+}

@@ -1,0 +1,160 @@
+//! One FMI 3.0 instance: the version-neutral [`core::Instance`](crate::core::Instance)
+//! plus the 3.0 mode, interface, logger and the FMI 3.0 view of the variable table.
+//! Values are read and written per FMI 3.0 variable (a scalar or an array) through the
+//! table's elements.
+
+use super::logging::Logger;
+use super::mode::{Interface, Mode};
+use super::table::{Source, Table3, Variable3, build};
+use crate::core::instance::{self as core_instance, Snapshot, Standard};
+use crate::core::model::Model;
+use crate::core::variables::{Causality, Initial, Variability};
+use std::sync::Arc;
+
+/// Everything an instance owns. Instances share no mutable state.
+pub struct Instance<M: Model> {
+    pub mode: Mode,
+    pub interface: Interface,
+    pub log: Logger,
+    /// Model, time, stop time, the model's variable table.
+    pub core: core_instance::Instance<M>,
+    /// The FMI 3.0 view of the core's table (shared, so that a call can hold it while
+    /// it changes the instance).
+    pub table: Arc<Table3>,
+}
+
+impl<M: Model> Instance<M> {
+    pub fn new(interface: Interface, log: Logger) -> Result<Self, String> {
+        let core = core_instance::Instance::new()?;
+        let table = Arc::new(build(core.table())?);
+        Ok(Instance {
+            mode: Mode::Instantiated,
+            interface,
+            log,
+            core,
+            table,
+        })
+    }
+
+    /// fmi3Reset: back to the state right after instantiation.
+    pub fn reset(&mut self) -> Result<(), String> {
+        self.core.reset()?;
+        self.mode = Mode::Instantiated;
+        Ok(())
+    }
+
+    pub fn snapshot(&self) -> Snapshot<M> {
+        self.core.snapshot(Standard::Fmi3)
+    }
+
+    pub fn restore(&mut self, s: &Snapshot<M>) {
+        self.core.restore(s);
+        if self.mode == Mode::StepDiscarded {
+            self.mode = Mode::StepMode;
+        }
+    }
+
+    /// Makes the computed values current for reading `variables`; Ok(Some(reason))
+    /// when one of them is calculated and the model cannot be evaluated here.
+    pub fn prepare_read(&mut self, variables: &[&Variable3]) -> Result<Option<String>, String> {
+        let elements: Vec<u32> = variables
+            .iter()
+            .flat_map(|v| v.elements().iter().copied())
+            .collect();
+        self.core.prepare_read(&elements)
+    }
+
+    /// Reads the Float64 variable `v` into `out` (its size).
+    pub fn get_float64(&self, v: &Variable3, out: &mut [f64]) -> Result<(), String> {
+        match &v.source {
+            Source::Time => out[0] = self.core.time,
+            Source::EventIndicators => {
+                self.core.model().event_indicators(out)?;
+                if let Some(bad) = out.iter().find(|z| !z.is_finite()) {
+                    return Err(format!("the model computed the event indicator {bad}"));
+                }
+            }
+            Source::Elements(elements) => {
+                for (o, &e) in out.iter_mut().zip(elements) {
+                    *o = self.core.get_real(e)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    pub fn get_int32(&self, v: &Variable3, out: &mut [i32]) -> Result<(), String> {
+        for (o, &e) in out.iter_mut().zip(v.elements()) {
+            *o = self.core.get_integer(e)?;
+        }
+        Ok(())
+    }
+
+    pub fn get_boolean(&self, v: &Variable3, out: &mut [bool]) -> Result<(), String> {
+        for (o, &e) in out.iter_mut().zip(v.elements()) {
+            *o = self.core.get_boolean(e)?;
+        }
+        Ok(())
+    }
+
+    pub fn set_float64(&mut self, v: &Variable3, values: &[f64]) -> Result<(), String> {
+        self.check_settable(v)?;
+        for (&x, &e) in values.iter().zip(v.elements()) {
+            self.core.set_real(e, x)?;
+        }
+        Ok(())
+    }
+
+    pub fn set_int32(&mut self, v: &Variable3, values: &[i32]) -> Result<(), String> {
+        self.check_settable(v)?;
+        for (&x, &e) in values.iter().zip(v.elements()) {
+            self.core.set_integer(e, x)?;
+        }
+        Ok(())
+    }
+
+    pub fn set_boolean(&mut self, v: &Variable3, values: &[bool]) -> Result<(), String> {
+        self.check_settable(v)?;
+        for (&x, &e) in values.iter().zip(v.elements()) {
+            self.core.set_boolean(e, x)?;
+        }
+        Ok(())
+    }
+
+    /// Whether `v` may be written in the current mode (FMI 3.0 rules for fmi3Set*,
+    /// section 2.3.4).
+    fn check_settable(&self, v: &Variable3) -> Result<(), String> {
+        use Mode::*;
+        let mode = self.mode;
+        let exact = v.initial == Some(Initial::Exact);
+        let ok = v.variability != Variability::Constant
+            && v.source != Source::Time
+            && match mode {
+                Instantiated => {
+                    v.causality == Causality::Input
+                        || matches!(v.initial, Some(Initial::Exact | Initial::Approx))
+                }
+                InitializationMode => v.causality == Causality::Input || exact,
+                EventMode | StepMode => {
+                    v.causality == Causality::Input
+                        || (v.causality == Causality::Parameter
+                            && v.variability == Variability::Tunable)
+                }
+                ContinuousTimeMode => {
+                    v.causality == Causality::Input && v.variability == Variability::Continuous
+                }
+                _ => false,
+            };
+        if ok {
+            Ok(())
+        } else {
+            Err(format!(
+                "\"{}\" (causality {}, variability {}) cannot be set in {:?}",
+                v.name,
+                v.causality.as_str(),
+                v.variability.as_str(),
+                mode
+            ))
+        }
+    }
+}

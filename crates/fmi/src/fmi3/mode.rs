@@ -1,0 +1,254 @@
+//! The state machine of FMI 3.0 (Model Exchange and Co-Simulation, sections 3.3 and
+//! 4.3 of the standard): the states an instance can be in and which call is legal in
+//! which state. Co-Simulation steps are never asynchronous and return early only at
+//! events, without intermediate updates, so Intermediate Update Mode is never
+//! entered; there are no structural parameters, so Configuration and Reconfiguration
+//! Mode are never entered either.
+
+/// Interface an instance was created for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Interface {
+    ModelExchange,
+    /// `event_mode_used`: the importer passed eventModeUsed = true, so a step that
+    /// needs event handling ends in Event Mode instead of being handled inside the FMU;
+    /// `early_return_allowed`: a step may end early, at an event.
+    CoSimulation {
+        event_mode_used: bool,
+        early_return_allowed: bool,
+    },
+}
+
+/// State of an instance. `StepDiscarded` is the Step Mode after a step returned
+/// fmi3Discard (only fmi3Terminate, state and output queries remain legal).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    Instantiated,
+    InitializationMode,
+    EventMode,
+    ContinuousTimeMode,
+    StepMode,
+    StepDiscarded,
+    Terminated,
+    Error,
+    Fatal,
+}
+
+impl Mode {
+    fn bit(self) -> u16 {
+        1 << (self as u16)
+    }
+}
+
+/// Every call that depends on the mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Call {
+    SetDebugLogging,
+    EnterInitializationMode,
+    ExitInitializationMode,
+    EnterEventMode,
+    Terminate,
+    Reset,
+    GetValues,
+    SetFloat64,
+    SetDiscrete,
+    VariableDependencies,
+    FmuState,
+    Derivative,
+    /// A function of a capability the FMU lacks (structural parameters, clocks,
+    /// Scheduled Execution, other variable types): answered with fmi3Error saying so.
+    Unsupported,
+    UpdateDiscreteStates,
+    EnterContinuousTimeMode,
+    CompletedIntegratorStep,
+    SetTime,
+    SetContinuousStates,
+    ContinuousStateQuery,
+    /// fmi3GetNumberOfContinuousStates and fmi3GetNumberOfEventIndicators.
+    CountQuery,
+    EnterStepMode,
+    GetOutputDerivatives,
+    DoStep,
+}
+
+const fn mask(modes: &[Mode]) -> u16 {
+    let mut m = 0;
+    let mut i = 0;
+    while i < modes.len() {
+        m |= 1 << (modes[i] as u16);
+        i += 1;
+    }
+    m
+}
+
+use Mode::*;
+
+/// Every state but Fatal (after fmi3Fatal only fmi3FreeInstance is allowed).
+const LIVE: u16 = mask(&[
+    Instantiated,
+    InitializationMode,
+    EventMode,
+    ContinuousTimeMode,
+    StepMode,
+    StepDiscarded,
+    Terminated,
+    Error,
+]);
+/// States in which variables can be read (section 2.3.3; also Error, for diagnosis).
+const READABLE: u16 = mask(&[
+    InitializationMode,
+    EventMode,
+    ContinuousTimeMode,
+    StepMode,
+    StepDiscarded,
+    Terminated,
+    Error,
+]);
+
+impl Call {
+    /// States in which the call is legal, for the given interface.
+    fn allowed(self, interface: Interface) -> u16 {
+        let me = interface == Interface::ModelExchange;
+        let cs_events = matches!(
+            interface,
+            Interface::CoSimulation {
+                event_mode_used: true,
+                ..
+            }
+        );
+        let only_me = |m: u16| if me { m } else { 0 };
+        let only_cs = |m: u16| if me { 0 } else { m };
+        match self {
+            Call::SetDebugLogging | Call::Reset | Call::FmuState => LIVE,
+            Call::VariableDependencies | Call::Unsupported => LIVE,
+            Call::EnterInitializationMode => mask(&[Instantiated]),
+            Call::ExitInitializationMode => mask(&[InitializationMode]),
+            Call::EnterEventMode if me => mask(&[ContinuousTimeMode]),
+            Call::EnterEventMode if cs_events => mask(&[StepMode]),
+            Call::EnterEventMode => 0,
+            Call::Terminate => mask(&[EventMode, ContinuousTimeMode, StepMode, StepDiscarded]),
+            Call::GetValues => READABLE,
+            Call::SetFloat64 => mask(&[
+                Instantiated,
+                InitializationMode,
+                EventMode,
+                ContinuousTimeMode,
+                StepMode,
+            ]),
+            Call::SetDiscrete => mask(&[Instantiated, InitializationMode, EventMode, StepMode]),
+            Call::Derivative => mask(&[
+                InitializationMode,
+                EventMode,
+                ContinuousTimeMode,
+                StepMode,
+                Terminated,
+            ]),
+            Call::UpdateDiscreteStates => mask(&[EventMode]),
+            Call::EnterContinuousTimeMode => only_me(mask(&[EventMode])),
+            Call::CompletedIntegratorStep | Call::SetContinuousStates => {
+                only_me(mask(&[ContinuousTimeMode]))
+            }
+            Call::SetTime => only_me(mask(&[EventMode, ContinuousTimeMode])),
+            Call::ContinuousStateQuery => only_me(mask(&[
+                InitializationMode,
+                EventMode,
+                ContinuousTimeMode,
+                Terminated,
+            ])),
+            Call::CountQuery => only_me(LIVE),
+            Call::EnterStepMode => only_cs(mask(&[EventMode])),
+            Call::GetOutputDerivatives => only_cs(mask(&[StepMode, StepDiscarded, Terminated])),
+            Call::DoStep => only_cs(mask(&[StepMode])),
+        }
+    }
+
+    /// Whether the call is legal in `mode` for an instance of `interface`.
+    pub fn is_legal(self, mode: Mode, interface: Interface) -> bool {
+        self.allowed(interface) & mode.bit() != 0
+    }
+}
+
+/// The state after fmi3ExitInitializationMode: Event Mode for Model Exchange and for
+/// Co-Simulation with event mode, Step Mode otherwise.
+pub fn after_initialization(interface: Interface) -> Mode {
+    match interface {
+        Interface::CoSimulation {
+            event_mode_used: false,
+            ..
+        } => StepMode,
+        _ => EventMode,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ME: Interface = Interface::ModelExchange;
+    const CS: Interface = Interface::CoSimulation {
+        event_mode_used: false,
+        early_return_allowed: false,
+    };
+    const CS_EVENTS: Interface = Interface::CoSimulation {
+        event_mode_used: true,
+        early_return_allowed: true,
+    };
+
+    #[test]
+    fn co_simulation_event_mode_exists_only_when_the_importer_uses_it() {
+        // Expected values: the Co-Simulation state machine of FMI 3.0 (section 4.3):
+        // fmi3EnterEventMode leaves Step Mode only with eventModeUsed = true, and
+        // fmi3EnterStepMode leaves Event Mode.
+        assert!(!Call::EnterEventMode.is_legal(StepMode, CS));
+        assert!(Call::EnterEventMode.is_legal(StepMode, CS_EVENTS));
+        assert!(Call::EnterStepMode.is_legal(EventMode, CS_EVENTS));
+        assert!(!Call::EnterStepMode.is_legal(EventMode, ME));
+        assert_eq!(after_initialization(CS), StepMode);
+        assert_eq!(after_initialization(CS_EVENTS), EventMode);
+        assert_eq!(after_initialization(ME), EventMode);
+    }
+
+    #[test]
+    fn interface_specific_calls_are_illegal_for_the_other_interface() {
+        // Expected values: fmi3DoStep exists only in Co-Simulation (section 4.2.1),
+        // fmi3SetTime and the continuous-state functions only in Model Exchange (3.2).
+        assert!(!Call::DoStep.is_legal(StepMode, ME));
+        assert!(Call::DoStep.is_legal(StepMode, CS));
+        assert!(!Call::SetTime.is_legal(EventMode, CS_EVENTS));
+        assert!(Call::SetTime.is_legal(ContinuousTimeMode, ME));
+        assert!(!Call::ContinuousStateQuery.is_legal(StepMode, CS));
+    }
+
+    #[test]
+    fn only_free_instance_is_possible_after_fatal() {
+        for call in [
+            Call::Reset,
+            Call::GetValues,
+            Call::FmuState,
+            Call::SetDebugLogging,
+            Call::VariableDependencies,
+        ] {
+            for interface in [ME, CS, CS_EVENTS] {
+                assert!(!call.is_legal(Fatal, interface), "{call:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn discarded_step_allows_termination_but_no_further_step() {
+        // Section 4.2.1: after fmi3Discard from fmi3DoStep the importer may only
+        // terminate, restore a state or read values.
+        assert!(!Call::DoStep.is_legal(StepDiscarded, CS));
+        assert!(Call::Terminate.is_legal(StepDiscarded, CS));
+        assert!(Call::GetValues.is_legal(StepDiscarded, CS));
+        assert!(Call::FmuState.is_legal(StepDiscarded, CS));
+    }
+
+    #[test]
+    fn values_are_not_readable_before_initialization() {
+        assert!(!Call::GetValues.is_legal(Instantiated, CS));
+        assert!(Call::GetValues.is_legal(InitializationMode, CS));
+        assert!(!Call::SetDiscrete.is_legal(ContinuousTimeMode, ME));
+        assert!(Call::SetFloat64.is_legal(ContinuousTimeMode, ME));
+        assert!(!Call::SetFloat64.is_legal(Terminated, ME));
+    }
+}
