@@ -127,31 +127,13 @@ pub fn on_instance(
     Observed::of(status, inst.take_log())
 }
 
-/// Why the known failures fail (issue 12 item 3, not fully fixed on fmi-core 07ebadb).
-const UNNAMED_PARAMETER: &str = "issue 12 item 3 open: refused at fmi2ExitInitializationMode, but the message names a consequence (an output evaluating to inf, a negative time constant, a leg that cannot reach) instead of the parameter set";
-
 /// Cases known to fail on the FMI layer this suite runs against, by full name
 /// (`full_name`), each with the reason. They are reported (not hidden); one that
-/// passes is an error, so the list is shrunk as fixes land.
+/// passes is an error, so the list is shrunk as fixes land. Empty since the PID
+/// refuses 0 < Tf < 1 ps naming Tf and the plant's start-pose failure names the
+/// geometry parameters (issue 12 item 3).
 pub fn known_failures() -> Vec<(String, &'static str)> {
-    let mut known = Vec::new();
-    for interface in ["ME", "CS"] {
-        for i in 1..=3 {
-            for value in ["5e-324", "-5e-324"] {
-                known.push((
-                    format!("extreme value / PID / {interface} / Tf[{i}] = Real({value})"),
-                    UNNAMED_PARAMETER,
-                ));
-            }
-        }
-        for (parameter, value) in [("gamma", "5e-324"), ("gamma", "-5e-324"), ("lb", "5e-324")] {
-            known.push((
-                format!("extreme value / Pss3Plant / {interface} / {parameter} = Real({value})"),
-                UNNAMED_PARAMETER,
-            ));
-        }
-    }
-    known
+    Vec::new()
 }
 
 /// Outcome of one case.
