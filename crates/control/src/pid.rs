@@ -73,7 +73,10 @@ impl std::fmt::Display for PidError {
         match self {
             PidError::NonFinite(what) => write!(f, "{what} is not a finite number"),
             PidError::NegativeFilterTime(tf) => {
-                write!(f, "the derivative filter time constant Tf = {tf} s is negative")
+                write!(
+                    f,
+                    "the derivative filter time constant Tf = {tf} s is negative"
+                )
             }
             PidError::FilterTooShort(tf) => {
                 write!(
@@ -350,7 +353,14 @@ mod tests {
             PidGains { tf: 5e-324, ..g }.validate(),
             Err(PidError::FilterTooShort(5e-324))
         );
-        assert!(PidGains { tf: MIN_FILTER_TIME, ..g }.validate().is_ok());
+        assert!(
+            PidGains {
+                tf: MIN_FILTER_TIME,
+                ..g
+            }
+            .validate()
+            .is_ok()
+        );
         assert_eq!(
             PidGains {
                 limits: Some((1.0, 1.0)),
