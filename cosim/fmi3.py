@@ -133,6 +133,13 @@ class Fmu3Instance:
             raise FmuError(f"{self.alias}: fmi3DoStep at t = {time:.9g} s failed with status "
                            f"{e.status}: {self._last_message()}") from e
 
+    def reset(self, start_time: float, stop_time: float) -> None:
+        """fmi3Reset: back to the state after instantiation (start values of every
+        parameter); the next initialization starts the experiment at `start_time`."""
+        self._call("fmi3Reset", self._fmu.reset)
+        self.messages.clear()
+        self._start_time, self._stop_time = start_time, stop_time
+
     def get_state(self):
         if not self.can_get_state:
             raise FmuError(f"{self.alias} cannot get and set its FMU state (no rollback)")

@@ -163,7 +163,10 @@ class Master:
 
     def _build_kernel(self) -> None:
         self.kernel = None
-        if self.fast and all(hasattr(f, "_fmu") for f in self.fmus.values()):
+        from .fmu import FmuInstance
+        # The prepared ctypes calls are FMI 2.0 calls on FMI 2.0 scalar names: FMI 3.0
+        # instances (cosim.fmi3) and test doubles go through their own methods.
+        if self.fast and all(type(f) is FmuInstance for f in self.fmus.values()):
             from .fastpath import Kernel
             kernel = Kernel(self.fmus, self.inputs, self.recorded_by_fmu, self.scenario.order)
             self.kernel = kernel if kernel.ok else None
