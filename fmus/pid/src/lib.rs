@@ -5,6 +5,7 @@
 //! (Co-Simulation). Signals carry no unit: the controller is generic.
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
+use robofmu_fmi::core::variables::RealArray;
 use robofmu_fmi::core::{
     DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
@@ -172,14 +173,21 @@ const INPUTS: [(u32, &str, &str, [f64; CHANNELS], RealField); 5] = [
     ),
 ];
 
-fn real(group: u32, c: usize, name: &str, description: &str, field: RealField) -> Variable<Pid> {
-    Variable::real(
-        vr(group, c),
-        format!("{name}[{}]", c + 1),
-        &format!("Channel {}: {description}", c + 1),
-        move |m: &Pid| (field.read)(m, c),
-    )
-    .set_real(move |m, v| {
+/// `base[1..3]` read by `get`, each element described as "Channel c: `description`".
+fn channels(
+    group: u32,
+    base: &str,
+    description: &str,
+    get: impl Fn(&Pid, usize) -> f64 + Send + Sync + 'static,
+) -> RealArray<Pid> {
+    let description = description.to_string();
+    RealArray::new(vr(group, 0), base, CHANNELS, "", get)
+        .each(move |v, c| v.describe(format!("Channel {}: {description}", c + 1)))
+}
+
+/// The settable channel array of `field` (setting a limit updates the law's limits).
+fn settable(group: u32, base: &str, description: &str, field: RealField) -> RealArray<Pid> {
+    channels(group, base, description, field.read).set(move |m, c, v| {
         *(field.write)(m, c) = v;
         m.sync_limits(c);
         Ok(())
@@ -188,15 +196,14 @@ fn real(group: u32, c: usize, name: &str, description: &str, field: RealField) -
 
 fn variables() -> Vec<Variable<Pid>> {
     let mut table = Vec::new();
-    for (group, name, description, default, field) in REAL_PARAMETERS.iter().take(4) {
-        for c in 0..CHANNELS {
-            table.push(
-                real(*group, c, name, description, *field)
-                    .parameter(Variability::Tunable)
-                    .start_real(*default),
-            );
-        }
-    }
+    let parameter =
+        |(group, name, description, default, field): &(u32, &str, &str, f64, RealField)| {
+            let default = *default;
+            settable(*group, name, description, *field)
+                .each(move |v, _| v.parameter(Variability::Tunable).start_real(default))
+                .variables()
+        };
+    table.extend(REAL_PARAMETERS.iter().take(4).flat_map(parameter));
     for c in 0..CHANNELS {
         table.push(
             Variable::boolean(
@@ -214,15 +221,7 @@ fn variables() -> Vec<Variable<Pid>> {
             }),
         );
     }
-    for (group, name, description, default, field) in REAL_PARAMETERS.iter().skip(4) {
-        for c in 0..CHANNELS {
-            table.push(
-                real(*group, c, name, description, *field)
-                    .parameter(Variability::Tunable)
-                    .start_real(*default),
-            );
-        }
-    }
+    table.extend(REAL_PARAMETERS.iter().skip(4).flat_map(parameter));
     for c in 0..CHANNELS {
         table.push(
             Variable::boolean(vr(USE_RATES, c), format!("useRateInputs[{}]", c + 1), &format!("Channel {}: derivative from setpointRate - measuredRate instead of the filtered error", c + 1), move |m: &Pid| m.gains[c].use_rate_inputs)
@@ -235,50 +234,30 @@ fn variables() -> Vec<Variable<Pid>> {
         );
     }
     for (group, name, description, defaults, field) in INPUTS {
-        for (c, default) in defaults.into_iter().enumerate() {
-            table.push(
-                real(group, c, name, description, field)
-                    .input()
-                    .start_real(default),
-            );
-        }
+        let array = settable(group, name, description, field)
+            .each(move |v, c| v.input().start_real(defaults[c]));
+        table.extend(array.variables());
     }
-    for c in 0..CHANNELS {
-        table.push(
-            Variable::real(
-                vr(U, c),
-                format!("u[{}]", c + 1),
-                &format!("Channel {}: control output", c + 1),
-                move |m: &Pid| m.output(c).u,
-            )
-            .output(),
-        );
-    }
-    for c in 0..CHANNELS {
-        table.push(
-            real(
-                INTEGRAL,
-                c,
-                "integral",
-                "integral of the error (state)",
-                field!(states.integral),
-            )
-            .state()
-            .start_real(0.0),
-        );
-    }
-    for c in 0..CHANNELS {
-        table.push(
-            real(
-                FILTER,
-                c,
-                "filter",
-                "derivative filter state (state)",
-                field!(states.filter),
-            )
-            .state()
-            .start_real(0.0),
-        );
+    let u = channels(U, "u", "control output", |m, c| m.output(c).u).each(|v, _| v.output());
+    table.extend(u.variables());
+    let states = [
+        (
+            INTEGRAL,
+            "integral",
+            "integral of the error (state)",
+            field!(states.integral),
+        ),
+        (
+            FILTER,
+            "filter",
+            "derivative filter state (state)",
+            field!(states.filter),
+        ),
+    ];
+    for (group, name, description, field) in states {
+        let array =
+            settable(group, name, description, field).each(|v, _| v.state().start_real(0.0));
+        table.extend(array.variables());
     }
     for c in 0..CHANNELS {
         let name = format!("integral[{}]", c + 1);

@@ -230,48 +230,48 @@ fn inputs(table: &mut Vec<Variable<Pss3Plant>>) {
     }
 }
 
+/// The output `base[1..3]` read by `get`, with `unit` and display unit `display`, element
+/// i depending on `depends(i)`.
+fn vector_output(
+    group: u32,
+    base: &str,
+    description: &str,
+    (unit, display): (&'static str, Option<&'static str>),
+    get: impl Fn(&Pss3Plant, usize) -> f64 + Send + Sync + 'static,
+    depends: impl Fn(usize) -> Vec<String> + 'static,
+) -> Vec<Variable<Pss3Plant>> {
+    RealArray::new(vr(group, 0), base, 3, description, get)
+        .each(move |v, i| v.unit(unit, display).output().depends_on(depends(i)))
+        .variables()
+}
+
 fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
-    for i in 0..3 {
-        table.push(
-            Variable::real(
-                vr(THETA, i),
-                indexed("theta", i),
-                "Euler angle (thx, thy, thz) of R = Rz Ry Rx (continuous state)",
-                move |m: &Pss3Plant| m.current_state().map_or(f64::NAN, |s| s.euler[i]),
-            )
-            .unit("rad", Some("deg"))
-            .output()
-            .depends_on([indexed("theta", i)]),
-        );
-    }
+    table.extend(vector_output(
+        THETA,
+        "theta",
+        "Euler angle (thx, thy, thz) of R = Rz Ry Rx (continuous state)",
+        ("rad", Some("deg")),
+        |m, i| m.current_state().map_or(f64::NAN, |s| s.euler[i]),
+        |i| vec![indexed("theta", i)],
+    ));
     // omega (a state) is read from the state itself, not through the outputs.
     let omega = &PLANT_OUTPUTS[5];
-    for i in 0..3 {
-        table.push(
-            Variable::real(
-                vr(omega.group, i),
-                indexed(omega.name, i),
-                omega.description,
-                move |m: &Pss3Plant| m.current_state().map_or(f64::NAN, |s| s.omega[i]),
-            )
-            .unit(omega.unit, omega.display)
-            .output()
-            .depends_on([indexed("omega", i)]),
-        );
-    }
-    for i in 0..3 {
-        table.push(
-            Variable::real(
-                vr(THETA_DOT, i),
-                indexed("thetaDot", i),
-                "Euler-angle rate",
-                move |m: &Pss3Plant| m.computed(|c| c.euler_rates[i]),
-            )
-            .unit("rad/s", Some("deg/s"))
-            .output()
-            .depends_on(Depends::States.names()),
-        );
-    }
+    table.extend(vector_output(
+        omega.group,
+        omega.name,
+        omega.description,
+        (omega.unit, omega.display),
+        |m, i| m.current_state().map_or(f64::NAN, |s| s.omega[i]),
+        |i| vec![indexed("omega", i)],
+    ));
+    table.extend(vector_output(
+        THETA_DOT,
+        "thetaDot",
+        "Euler-angle rate",
+        ("rad/s", Some("deg/s")),
+        |m, i| m.computed(|c| c.euler_rates[i]),
+        |_| Depends::States.names(),
+    ));
 }
 
 fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
@@ -323,34 +323,27 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
         };
         table.push(v.output().depends_on(depends.names()));
     }
-    for i in 0..3 {
-        table.push(
-            Variable::real(
-                vr(GRAVITY_COMPENSATION, i),
-                indexed("gravityCompensation", i),
-                "Euler-angle generalized force G = E^T g(theta) that holds the current pose \
-                 at rest against gravity (feedforward for generalizedForceCommand)",
-                move |m: &Pss3Plant| m.computed(|c| c.gravity_compensation[i]),
-            )
-            .unit("N.m", None)
-            .output()
-            .depends_on(Depends::Theta.names()),
-        );
-    }
+    table.extend(vector_output(
+        GRAVITY_COMPENSATION,
+        "gravityCompensation",
+        "Euler-angle generalized force G = E^T g(theta) that holds the current pose \
+         at rest against gravity (feedforward for generalizedForceCommand)",
+        ("N.m", None),
+        |m, i| m.computed(|c| c.gravity_compensation[i]),
+        |_| Depends::Theta.names(),
+    ));
 }
 
 fn plant_vector_output(table: &mut Vec<Variable<Pss3Plant>>, output: &PlantOutput) {
-    let (get, unit, display) = (output.get, output.unit, output.display);
-    let depends = output.depends.names();
-    let array = RealArray::new(
-        vr(output.group, 0),
+    let (get, depends) = (output.get, output.depends);
+    table.extend(vector_output(
+        output.group,
         output.name,
-        3,
         output.description,
-        move |m: &Pss3Plant, i| m.output(|o| get(o)[i]),
-    )
-    .each(move |v, _| v.unit(unit, display).output().depends_on(depends.clone()));
-    table.extend(array.variables());
+        (output.unit, output.display),
+        move |m, i| m.output(|o| get(o)[i]),
+        move |_| depends.names(),
+    ));
 }
 
 fn derivatives(table: &mut Vec<Variable<Pss3Plant>>) {
