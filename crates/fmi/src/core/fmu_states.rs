@@ -1,7 +1,7 @@
 //! FMU states behind the host's opaque pointers, for both front-ends: a state is a
-//! boxed [`Snapshot`] registered in [`handles`](super::handles) under its model and
-//! owned by the instance that made it. `noun` is the standard's spelling of the
-//! handle in messages ("FMUstate" in FMI 2.0, "FMUState" in FMI 3.0).
+//! boxed [`Snapshot`] registered in [`handles`] under its model and owned by the
+//! instance that made it. `noun` is the standard's spelling of the handle in messages
+//! ("FMUstate" in FMI 2.0, "FMUState" in FMI 3.0).
 
 use super::handles::{self, HandleKind};
 use super::instance::Snapshot;
