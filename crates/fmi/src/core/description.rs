@@ -171,6 +171,18 @@ impl DefaultExperiment {
     }
 }
 
+/// The XML document of `root`: the XML declaration, `root` indented by two spaces, and
+/// a final newline.
+pub fn xml_document<T: Serialize>(root: &T) -> Result<String, String> {
+    let mut xml = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    let mut serializer = quick_xml::se::Serializer::new(&mut xml);
+    serializer.indent(' ', 2);
+    root.serialize(serializer)
+        .map_err(|e| format!("XML serialization failed: {e}"))?;
+    xml.push('\n');
+    Ok(xml)
+}
+
 /// The drift check of an FMU crate: the checked-in file `path` must equal `generated`.
 /// With the environment variable UPDATE_MODEL_DESCRIPTION set, the file is rewritten
 /// first.

@@ -84,6 +84,29 @@ pub fn take_states_of(owner: usize) -> Vec<usize> {
     taken
 }
 
+/// Frees the instance at `address`, registered under key `K` and boxed as an `I`, and
+/// every state it still owns (each boxed as an `S`). A handle that is not a live
+/// instance under `K` is ignored. A panic while dropping is caught: the C boundary
+/// holds regardless.
+///
+/// # Safety
+/// Every handle registered under `K` must come from `Box::<I>::into_raw`, and every
+/// state owned by such a handle from `Box::<S>::into_raw`.
+pub unsafe fn free_instance<K: 'static, I, S>(address: usize) {
+    if !unregister::<K>(address, HandleKind::Instance) {
+        return;
+    }
+    let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        for state in take_states_of(address) {
+            // SAFETY: boxed as an S when registered, and just unregistered, so freed
+            // exactly once.
+            drop(unsafe { Box::from_raw(state as *mut S) });
+        }
+        // SAFETY: boxed as an I when registered and just unregistered: freed once.
+        drop(unsafe { Box::from_raw(address as *mut I) });
+    }));
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -3,10 +3,11 @@
 //!
 //! A model implements [`Model`] with a table of [`Variable`]s in safe Rust, without any
 //! FFI or front-end type; [`Instance`] holds one model with its time and stop time,
-//! [`Snapshot`] is an FMU state and [`serialize`] its checked byte format; [`handles`]
+//! [`Snapshot`] is an FMU state ([`fmu_states`] keeps it behind the host's pointer) and [`serialize`] its checked byte format; [`handles`]
 //! registers the live instances and states so that every handle is checked before use.
 
 pub mod description;
+pub mod fmu_states;
 pub mod handles;
 pub mod instance;
 pub mod logging;

@@ -1,15 +1,14 @@
 //! modelDescription.xml generated from a model's `ModelInfo` and variable table.
 
 use super::instance::log_categories;
+use crate::core::description::{
+    self, DefaultExperiment, GENERATION_TOOL, LogCategories, UnitDefinitions, number,
+};
 use crate::core::model::Model;
-use crate::core::units::{UnitDefinition, unit};
 use crate::core::variables::{
     Causality, Initial, Kind, Variable, check_table, derivative_variables,
 };
 use serde::Serialize;
-
-/// Name and version of the generating tool, as written into generationTool.
-pub const GENERATION_TOOL: &str = concat!("robofmu ", env!("CARGO_PKG_VERSION"));
 
 #[derive(Serialize)]
 #[serde(rename = "fmiModelDescription")]
@@ -60,72 +59,6 @@ struct Interface {
     serialize_state: bool,
     #[serde(rename = "@providesDirectionalDerivative")]
     directional_derivative: bool,
-}
-
-#[derive(Serialize)]
-struct UnitDefinitions {
-    #[serde(rename = "Unit")]
-    units: Vec<Unit>,
-}
-
-#[derive(Serialize)]
-struct Unit {
-    #[serde(rename = "@name")]
-    name: &'static str,
-    #[serde(rename = "BaseUnit")]
-    base: BaseUnit,
-    #[serde(rename = "DisplayUnit")]
-    display_units: Vec<DisplayUnit>,
-}
-
-#[derive(Serialize)]
-struct BaseUnit {
-    #[serde(rename = "@kg", skip_serializing_if = "is_zero")]
-    kg: i32,
-    #[serde(rename = "@m", skip_serializing_if = "is_zero")]
-    m: i32,
-    #[serde(rename = "@s", skip_serializing_if = "is_zero")]
-    s: i32,
-    #[serde(rename = "@rad", skip_serializing_if = "is_zero")]
-    rad: i32,
-}
-
-fn is_zero(v: &i32) -> bool {
-    *v == 0
-}
-
-#[derive(Serialize)]
-struct DisplayUnit {
-    #[serde(rename = "@name")]
-    name: &'static str,
-    #[serde(rename = "@factor")]
-    factor: String,
-}
-
-#[derive(Serialize)]
-struct LogCategories {
-    #[serde(rename = "Category")]
-    categories: Vec<Category>,
-}
-
-#[derive(Serialize)]
-struct Category {
-    #[serde(rename = "@name")]
-    name: &'static str,
-    #[serde(rename = "@description")]
-    description: &'static str,
-}
-
-#[derive(Serialize)]
-struct DefaultExperiment {
-    #[serde(rename = "@startTime")]
-    start_time: String,
-    #[serde(rename = "@stopTime")]
-    stop_time: String,
-    #[serde(rename = "@tolerance")]
-    tolerance: String,
-    #[serde(rename = "@stepSize")]
-    step_size: String,
 }
 
 #[derive(Serialize)]
@@ -216,11 +149,6 @@ struct Unknown {
     dependencies: Option<String>,
 }
 
-/// Shortest decimal text that reads back to the same f64.
-fn number(v: f64) -> String {
-    format!("{v:?}")
-}
-
 /// A list of unknowns, or None when empty (an empty list element is omitted).
 fn unknown_list(unknowns: Vec<Unknown>) -> Option<UnknownList> {
     (!unknowns.is_empty()).then_some(UnknownList { unknowns })
@@ -292,39 +220,6 @@ fn scalar_variable<M>(v: &Variable<M>, table: &[Variable<M>]) -> ScalarVariable 
     }
 }
 
-/// The units the table uses, in the order of the layer's unit list, after checking
-/// that every unit and display unit is defined.
-fn used_units<M>(table: &[Variable<M>]) -> Result<Vec<&'static UnitDefinition>, String> {
-    let mut used: Vec<&'static UnitDefinition> = Vec::new();
-    for v in table {
-        if let Kind::Real {
-            unit: Some(name),
-            display_unit,
-            ..
-        } = &v.kind
-        {
-            let def = unit(name).ok_or_else(|| format!("\"{}\": unknown unit {name}", v.name))?;
-            if let Some(d) = display_unit
-                && !def.display_units.iter().any(|du| du.name == *d)
-            {
-                return Err(format!(
-                    "\"{}\": {d} is not a display unit of {name}",
-                    v.name
-                ));
-            }
-            if !used.iter().any(|u| u.name == def.name) {
-                used.push(def);
-            }
-        }
-    }
-    used.sort_by_key(|u| {
-        crate::core::units::UNITS
-            .iter()
-            .position(|k| k.name == u.name)
-    });
-    Ok(used)
-}
-
 /// The text of modelDescription.xml for model M.
 pub fn model_description<M: Model>() -> Result<String, String> {
     let info = M::info();
@@ -363,7 +258,6 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         })
         .map(|v| plain(index_of(v)))
         .collect();
-    let units = used_units(table)?;
     let interface = |variable_step: Option<bool>| Interface {
         model_identifier: info.model_identifier,
         variable_step,
@@ -371,7 +265,6 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         serialize_state: true,
         directional_derivative: info.provides_directional_derivative,
     };
-    let experiment = info.default_experiment;
     let description = ModelDescription {
         fmi_version: "2.0",
         model_name: info.model_name,
@@ -382,43 +275,9 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         event_indicators: info.number_of_event_indicators,
         model_exchange: interface(None),
         co_simulation: interface(Some(true)),
-        unit_definitions: (!units.is_empty()).then(|| UnitDefinitions {
-            units: units
-                .iter()
-                .map(|u| Unit {
-                    name: u.name,
-                    base: BaseUnit {
-                        kg: u.base.kg,
-                        m: u.base.m,
-                        s: u.base.s,
-                        rad: u.base.rad,
-                    },
-                    display_units: u
-                        .display_units
-                        .iter()
-                        .map(|d| DisplayUnit {
-                            name: d.name,
-                            factor: number(d.factor),
-                        })
-                        .collect(),
-                })
-                .collect(),
-        }),
-        log_categories: LogCategories {
-            categories: log_categories::<M>()
-                .iter()
-                .map(|c| Category {
-                    name: c.name,
-                    description: c.description,
-                })
-                .collect(),
-        },
-        default_experiment: DefaultExperiment {
-            start_time: number(experiment.start_time),
-            stop_time: number(experiment.stop_time),
-            tolerance: number(experiment.tolerance),
-            step_size: number(experiment.step_size),
-        },
+        unit_definitions: UnitDefinitions::of(table)?,
+        log_categories: LogCategories::of(&log_categories::<M>()),
+        default_experiment: DefaultExperiment::of(&info.default_experiment),
         model_variables: ModelVariables {
             variables: table.iter().map(|v| scalar_variable(v, table)).collect(),
         },
@@ -433,31 +292,13 @@ pub fn model_description<M: Model>() -> Result<String, String> {
             initial_unknowns: unknown_list(initial_unknowns),
         },
     };
-    let mut xml = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    let mut serializer = quick_xml::se::Serializer::new(&mut xml);
-    serializer.indent(' ', 2);
-    description
-        .serialize(serializer)
-        .map_err(|e| format!("XML serialization failed: {e}"))?;
-    xml.push('\n');
-    Ok(xml)
+    description::xml_document(&description)
 }
 
 /// The drift check of an FMU crate: the checked-in `<dir>/<modelName>.xml` must equal
 /// what the code generates. With the environment variable UPDATE_MODEL_DESCRIPTION
 /// set, the file is rewritten first.
 pub fn check_checked_in<M: Model>(dir: &std::path::Path) -> Result<(), String> {
-    let generated = model_description::<M>()?;
     let path = dir.join(format!("{}.xml", M::info().model_name));
-    if std::env::var_os("UPDATE_MODEL_DESCRIPTION").is_some() {
-        std::fs::write(&path, &generated).map_err(|e| format!("{}: {e}", path.display()))?;
-    }
-    let on_disk = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    if on_disk != generated {
-        return Err(format!(
-            "{} drifted from the code: rerun this test with UPDATE_MODEL_DESCRIPTION=1",
-            path.display()
-        ));
-    }
-    Ok(())
+    description::check_checked_in(&path, &model_description::<M>()?)
 }

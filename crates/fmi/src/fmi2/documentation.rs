@@ -45,7 +45,7 @@ pub fn documentation<M: Model>(standard: &str) -> Result<String, String> {
          <th>variability</th><th>start</th><th>unit</th><th>description</th></tr>\n{rows}</table>\n</body></html>\n",
         name = escape(info.model_name),
         description = escape(info.description),
-        tool = super::description::GENERATION_TOOL,
+        tool = crate::core::description::GENERATION_TOOL,
         start = e.start_time,
         stop = e.stop_time,
         step = e.step_size,

@@ -10,7 +10,7 @@
 //! and fmi2SetDebugLogging; an empty category list enables all categories).
 
 use super::types::{Fmi2CallbackLogger, Fmi2ComponentEnvironment, Fmi2Status};
-use crate::core::logging::{Log, LogCategory};
+use crate::core::logging::{CategoryFilter, Log, LogCategory};
 use std::ffi::CString;
 
 /// Categories the layer itself logs under; models add their own after these.
@@ -56,9 +56,7 @@ pub struct Logger {
     callback: Fmi2CallbackLogger,
     environment: Fmi2ComponentEnvironment,
     instance_name: CString,
-    categories: Vec<LogCategory>,
-    enabled: Vec<bool>,
-    logging_on: bool,
+    filter: CategoryFilter,
 }
 
 // The environment pointer is the host's opaque token; it is only handed back to the
@@ -73,14 +71,11 @@ impl Logger {
         categories: Vec<LogCategory>,
         logging_on: bool,
     ) -> Logger {
-        let enabled = vec![true; categories.len()];
         Logger {
             callback,
             environment,
             instance_name,
-            categories,
-            enabled,
-            logging_on,
+            filter: CategoryFilter::new(categories, logging_on),
         }
     }
 
@@ -88,35 +83,14 @@ impl Logger {
         self.instance_name.to_str().unwrap_or("?")
     }
 
-    /// fmi2SetDebugLogging: an empty list enables every category. Unknown names are
-    /// rejected (and nothing changes).
+    /// fmi2SetDebugLogging: see [`CategoryFilter::configure`].
     pub fn configure(&mut self, logging_on: bool, names: &[String]) -> Result<(), String> {
-        let mut enabled = vec![names.is_empty(); self.categories.len()];
-        for name in names {
-            match self.categories.iter().position(|c| c.name == name) {
-                Some(i) => enabled[i] = true,
-                None => {
-                    let known: Vec<&str> = self.categories.iter().map(|c| c.name).collect();
-                    return Err(format!(
-                        "unknown log category \"{name}\" (declared: {})",
-                        known.join(", ")
-                    ));
-                }
-            }
-        }
-        self.enabled = enabled;
-        self.logging_on = logging_on;
-        Ok(())
+        self.filter.configure(logging_on, names)
     }
 
     /// Whether a debug message of this category would reach the host.
     pub fn is_enabled(&self, category: &str) -> bool {
-        self.logging_on
-            && self
-                .categories
-                .iter()
-                .position(|c| c.name == category)
-                .is_some_and(|i| self.enabled[i])
+        self.filter.is_enabled(category)
     }
 
     /// Logs a message about a call that ends with `status`.

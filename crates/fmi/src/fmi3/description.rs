@@ -322,14 +322,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         model_variables: ModelVariables { variables },
         model_structure: model_structure(&t),
     };
-    let mut xml = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-    let mut serializer = quick_xml::se::Serializer::new(&mut xml);
-    serializer.indent(' ', 2);
-    description
-        .serialize(serializer)
-        .map_err(|e| format!("XML serialization failed: {e}"))?;
-    xml.push('\n');
-    Ok(xml)
+    description::xml_document(&description)
 }
 
 /// The drift check of an FMU crate: the checked-in `<dir>/<modelName>.xml` (dir:

@@ -7,7 +7,7 @@
 //! fmi3SetDebugLogging enables all categories).
 
 use super::types::{Fmi3InstanceEnvironment, Fmi3LogMessageCallback, Fmi3Status};
-use crate::core::logging::{Log, LogCategory};
+use crate::core::logging::{CategoryFilter, Log, LogCategory};
 use crate::core::model::Model;
 use std::ffi::CString;
 
@@ -61,9 +61,7 @@ fn status_category(status: Fmi3Status) -> &'static str {
 pub struct Logger {
     callback: Option<Fmi3LogMessageCallback>,
     environment: Fmi3InstanceEnvironment,
-    categories: Vec<LogCategory>,
-    enabled: Vec<bool>,
-    logging_on: bool,
+    filter: CategoryFilter,
 }
 
 // The environment pointer is the host's opaque token; it is only handed back to the
@@ -77,44 +75,20 @@ impl Logger {
         categories: Vec<LogCategory>,
         logging_on: bool,
     ) -> Logger {
-        let enabled = vec![true; categories.len()];
         Logger {
             callback,
             environment,
-            categories,
-            enabled,
-            logging_on,
+            filter: CategoryFilter::new(categories, logging_on),
         }
     }
 
-    /// fmi3SetDebugLogging: an empty list enables every category. Unknown names are
-    /// rejected (and nothing changes).
+    /// fmi3SetDebugLogging: see [`CategoryFilter::configure`].
     pub fn configure(&mut self, logging_on: bool, names: &[String]) -> Result<(), String> {
-        let mut enabled = vec![names.is_empty(); self.categories.len()];
-        for name in names {
-            match self.categories.iter().position(|c| c.name == name) {
-                Some(i) => enabled[i] = true,
-                None => {
-                    let known: Vec<&str> = self.categories.iter().map(|c| c.name).collect();
-                    return Err(format!(
-                        "unknown log category \"{name}\" (declared: {})",
-                        known.join(", ")
-                    ));
-                }
-            }
-        }
-        self.enabled = enabled;
-        self.logging_on = logging_on;
-        Ok(())
+        self.filter.configure(logging_on, names)
     }
 
     fn is_enabled(&self, category: &str) -> bool {
-        self.logging_on
-            && self
-                .categories
-                .iter()
-                .position(|c| c.name == category)
-                .is_some_and(|i| self.enabled[i])
+        self.filter.is_enabled(category)
     }
 
     /// Logs a message about a call that ends with `status`.

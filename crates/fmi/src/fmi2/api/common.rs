@@ -134,19 +134,9 @@ pub unsafe fn instantiate<M: Model>(
 /// Frees the instance and every FMU state it still owns. A handle that is not a live
 /// instance of this FMU is ignored (fmi2FreeInstance returns nothing to report with).
 pub unsafe fn free_instance<M: Model>(c: Fmi2Component) {
-    if !handles::unregister::<M>(c as usize, HandleKind::Instance) {
-        return;
-    }
-    // Dropping cannot reasonably panic, but the boundary must hold regardless.
-    let _ = catch_unwind(AssertUnwindSafe(|| {
-        for state in handles::take_states_of(c as usize) {
-            // SAFETY: registered by fmu_state for M when it was boxed, and just
-            // unregistered, so freed exactly once.
-            drop(unsafe { Box::from_raw(state as *mut Snapshot<M>) });
-        }
-        // SAFETY: registered by `instantiate::<M>` and just unregistered: freed once.
-        drop(unsafe { Box::from_raw(c as *mut Instance<M>) });
-    }));
+    // SAFETY: instantiate::<M> boxes an Instance<M> and registers it under M;
+    // fmu_state boxes its states as Snapshot<M>.
+    unsafe { handles::free_instance::<M, Instance<M>, Snapshot<M>>(c as usize) }
 }
 
 pub unsafe fn set_debug_logging<M: Model>(

@@ -30,18 +30,8 @@ use super::mode::{Call, Mode};
 use super::types::{Fmi2Component, Fmi2Status};
 use crate::core::handles::{self, HandleKind};
 use crate::core::model::Model;
+use crate::ffi::{check_finite, input_slice, output_ref, output_slice, panic_message};
 use std::panic::{AssertUnwindSafe, catch_unwind};
-
-/// Text of a caught panic payload.
-fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
-    if let Some(s) = payload.downcast_ref::<&str>() {
-        s.to_string()
-    } else if let Some(s) = payload.downcast_ref::<String>() {
-        s.clone()
-    } else {
-        "unknown panic payload".to_string()
-    }
-}
 
 /// Runs `body` on the instance behind `c` after checking that `call` is legal in its
 /// mode; turns errors into fmi2Error (+ Error mode) and panics into fmi2Fatal
@@ -91,47 +81,5 @@ unsafe fn with_instance<M: Model>(
             );
             Fmi2Status::Fatal
         }
-    }
-}
-
-/// A slice from a C array; null is accepted only for an empty array.
-unsafe fn input_slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Result<&'a [T], String> {
-    if n == 0 {
-        Ok(&[])
-    } else if ptr.is_null() {
-        Err(format!("{what} is a null pointer (length {n})"))
-    } else {
-        // SAFETY: non-null and, by the caller's contract, valid for n elements.
-        Ok(unsafe { std::slice::from_raw_parts(ptr, n) })
-    }
-}
-
-/// A mutable slice over a C output array; null is accepted only for an empty array.
-unsafe fn output_slice<'a, T>(ptr: *mut T, n: usize, what: &str) -> Result<&'a mut [T], String> {
-    if n == 0 {
-        Ok(&mut [])
-    } else if ptr.is_null() {
-        Err(format!("{what} is a null pointer (length {n})"))
-    } else {
-        // SAFETY: non-null and, by the caller's contract, valid for n elements.
-        Ok(unsafe { std::slice::from_raw_parts_mut(ptr, n) })
-    }
-}
-
-/// A single output value behind a pointer.
-unsafe fn output_ref<'a, T>(ptr: *mut T, what: &str) -> Result<&'a mut T, String> {
-    if ptr.is_null() {
-        Err(format!("{what} is a null pointer"))
-    } else {
-        // SAFETY: non-null and, by the caller's contract, valid.
-        Ok(unsafe { &mut *ptr })
-    }
-}
-
-fn check_finite(value: f64, what: &str) -> Result<f64, String> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(format!("{what} = {value} is not finite"))
     }
 }

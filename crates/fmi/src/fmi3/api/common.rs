@@ -123,19 +123,9 @@ pub unsafe fn refuse_scheduled_execution<M: Model>(
 /// Frees the instance and every FMU state it still owns. A handle that is not a live
 /// FMI 3.0 instance of this FMU is ignored (fmi3FreeInstance reports nothing).
 pub unsafe fn free_instance<M: Model>(c: Fmi3Instance) {
-    if !handles::unregister::<Instance<M>>(c as usize, HandleKind::Instance) {
-        return;
-    }
-    // Dropping cannot reasonably panic, but the boundary must hold regardless.
-    let _ = catch_unwind(AssertUnwindSafe(|| {
-        for state in handles::take_states_of(c as usize) {
-            // SAFETY: registered by fmu_state for M when it was boxed, and just
-            // unregistered, so freed exactly once.
-            drop(unsafe { Box::from_raw(state as *mut Snapshot<M>) });
-        }
-        // SAFETY: registered by `instantiate::<M>` and just unregistered: freed once.
-        drop(unsafe { Box::from_raw(c as *mut Instance<M>) });
-    }));
+    // SAFETY: instantiate::<M> boxes an Instance<M> and registers it under Instance<M>;
+    // fmu_state boxes its states as Snapshot<M>.
+    unsafe { handles::free_instance::<Instance<M>, Instance<M>, Snapshot<M>>(c as usize) }
 }
 
 pub unsafe fn set_debug_logging<M: Model>(
