@@ -85,24 +85,22 @@ fn actuator_path_writes_si_csv() {
     assert_eq!(rows[25][0], 1.0);
 }
 
-#[test]
-fn plant_reference_regenerates_the_checked_in_path1_case() {
-    // Truth: the checked-in tests/references/Pss3Plant/path1 files were written by this
-    // command (kinematics + inverse dynamics); regenerating must give the same bytes.
+/// Runs `robofmu pss3 plant-reference [extra] --out-dir <tmp>` and checks that every file
+/// equals the checked-in case `tests/references/Pss3Plant/<case>` byte for byte; returns
+/// the output directory (removed by the caller).
+fn regenerate_plant_case(case: &str, extra: &[&str]) -> std::path::PathBuf {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let out = std::env::temp_dir().join(format!("robofmu-path1-{}", std::process::id()));
-    let run = robofmu(&[
-        "pss3",
-        "plant-reference",
-        "--out-dir",
-        out.to_str().unwrap(),
-    ]);
+    let out = std::env::temp_dir().join(format!("robofmu-{case}-{}", std::process::id()));
+    let mut args = vec!["pss3", "plant-reference"];
+    args.extend_from_slice(extra);
+    args.extend_from_slice(&["--out-dir", out.to_str().unwrap()]);
+    let run = robofmu(&args);
     assert!(
         run.status.success(),
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    let checked_in = root.join("tests/references/Pss3Plant/path1");
+    let checked_in = root.join("tests/references/Pss3Plant").join(case);
     for file in [
         "Pss3Plant_ref.csv",
         "Pss3Plant_input.csv",
@@ -113,9 +111,18 @@ fn plant_reference_regenerates_the_checked_in_path1_case() {
         let kept = std::fs::read(checked_in.join(file)).unwrap();
         assert!(
             fresh == kept,
-            "{file} differs: regenerate with robofmu pss3 plant-reference"
+            "{file} differs: regenerate with robofmu pss3 plant-reference {}",
+            extra.join(" ")
         );
     }
+    out
+}
+
+#[test]
+fn plant_reference_regenerates_the_checked_in_path1_case() {
+    // Truth: the checked-in tests/references/Pss3Plant/path1 files were written by this
+    // command (kinematics + inverse dynamics); regenerating must give the same bytes.
+    let out = regenerate_plant_case("path1", &[]);
     // The spec's path-1 end roll: 154.36 deg at 2 s.
     let reference = std::fs::read_to_string(out.join("Pss3Plant_ref.csv")).unwrap();
     let last = reference.lines().last().unwrap();
@@ -130,34 +137,7 @@ fn plant_reference_regenerates_the_checked_in_default_pose_case() {
     // the case has no start values, so it must start where the FMU's defaults put the
     // plant (roll 2.439784063985299 rad = forward kinematics at 77 mm, at rest) and end
     // at rest (the quintic move has zero rate at both ends).
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let out = std::env::temp_dir().join(format!("robofmu-default-pose-{}", std::process::id()));
-    let run = robofmu(&[
-        "pss3",
-        "plant-reference",
-        "--from-default-pose",
-        "--out-dir",
-        out.to_str().unwrap(),
-    ]);
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    let checked_in = root.join("tests/references/Pss3Plant/from_default_pose");
-    for file in [
-        "Pss3Plant_ref.csv",
-        "Pss3Plant_input.csv",
-        "Pss3Plant_ref.opt",
-        "case.json",
-    ] {
-        let fresh = std::fs::read(out.join(file)).unwrap();
-        let kept = std::fs::read(checked_in.join(file)).unwrap();
-        assert!(
-            fresh == kept,
-            "{file} differs: regenerate with robofmu pss3 plant-reference --from-default-pose"
-        );
-    }
+    let out = regenerate_plant_case("from_default_pose", &["--from-default-pose"]);
     let reference = std::fs::read_to_string(out.join("Pss3Plant_ref.csv")).unwrap();
     let row = |line: &str| -> Vec<f64> { line.split(',').map(|v| v.parse().unwrap()).collect() };
     let first = row(reference.lines().nth(1).unwrap());
