@@ -18,6 +18,7 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave
 
 from .errors import FmuError, StepDiscarded
+from .fmu import LoggedCalls
 
 _ELEMENT = re.compile(r"^(.*)\[(\d+)\]$")
 _FMI3_DISCARD = 2
@@ -36,7 +37,7 @@ def _start(variable) -> list:
     return [_CONVERT[variable.type](w) for w in words]
 
 
-class Fmu3Instance:
+class Fmu3Instance(LoggedCalls):
     """A co-simulation instance of an FMI 3.0 FMU, addressed by FMI 2.0 scalar names."""
 
     def __init__(self, alias: str, path: Path, start_time: float, stop_time: float):
@@ -58,21 +59,8 @@ class Fmu3Instance:
                    lambda: self._fmu.instantiate(logMessage=self._log))
 
     def _log(self, _env, status, category, message):
-        text = message.decode("utf-8", "replace") if message else ""
-        self.messages.append(f"[{(category or b'').decode('utf-8', 'replace')}] {text}")
-        del self.messages[:-20]
+        self._remember(category, message)
 
-    def _last_message(self) -> str:
-        return self.messages[-1] if self.messages else "(the FMU logged no reason)"
-
-    def _call(self, name: str, fn):
-        try:
-            return fn()
-        except FMICallException as e:
-            raise FmuError(f"{self.alias}: {name} failed with status {e.status}: "
-                           f"{self._last_message()}") from e
-        except Exception as e:  # instantiate raises a plain Exception on NULL
-            raise FmuError(f"{self.alias}: {name} failed: {e}; {self._last_message()}") from e
 
     def _locate(self, name: str):
         """(FMI 3.0 variable, element index or None) of an FMI 2.0 scalar name."""

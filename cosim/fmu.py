@@ -18,7 +18,33 @@ _SETTERS = {"Real": "setReal", "Integer": "setInteger", "Boolean": "setBoolean"}
 _CONVERT = {"Real": float, "Integer": int, "Boolean": bool}
 
 
-class FmuInstance:
+class LoggedCalls:
+    """What both FMU adapters (FMI 2.0 here, FMI 3.0 in cosim.fmi3) share: the last log
+    lines of the instance and FMPy calls turned into FmuError with the FMU's reason.
+    Subclasses set `alias` and `messages`."""
+
+    alias: str
+    messages: list[str]
+
+    def _remember(self, category, message) -> None:
+        text = message.decode("utf-8", "replace") if message else ""
+        self.messages.append(f"[{(category or b'').decode('utf-8', 'replace')}] {text}")
+        del self.messages[:-20]
+
+    def _last_message(self) -> str:
+        return self.messages[-1] if self.messages else "(the FMU logged no reason)"
+
+    def _call(self, name: str, fn):
+        try:
+            return fn()
+        except FMICallException as e:
+            raise FmuError(f"{self.alias}: {name} failed with status {e.status}: "
+                           f"{self._last_message()}") from e
+        except Exception as e:  # instantiate raises a plain Exception on NULL
+            raise FmuError(f"{self.alias}: {name} failed: {e}; {self._last_message()}") from e
+
+
+class FmuInstance(LoggedCalls):
     """A co-simulation instance of an FMI 2.0 FMU, addressed by variable names."""
 
     def __init__(self, alias: str, path: Path, start_time: float, stop_time: float):
@@ -43,21 +69,8 @@ class FmuInstance:
                    lambda: self._fmu.setupExperiment(startTime=start_time, stopTime=stop_time))
 
     def _log(self, _env, _name, status, category, message):
-        text = message.decode("utf-8", "replace") if message else ""
-        self.messages.append(f"[{(category or b'').decode('utf-8', 'replace')}] {text}")
-        del self.messages[:-20]
+        self._remember(category, message)
 
-    def _last_message(self) -> str:
-        return self.messages[-1] if self.messages else "(the FMU logged no reason)"
-
-    def _call(self, name: str, fn):
-        try:
-            return fn()
-        except FMICallException as e:
-            raise FmuError(f"{self.alias}: {name} failed with status {e.status}: "
-                           f"{self._last_message()}") from e
-        except Exception as e:  # instantiate raises a plain Exception on NULL
-            raise FmuError(f"{self.alias}: {name} failed: {e}; {self._last_message()}") from e
 
     def _groups(self, names: tuple[str, ...]) -> list[tuple[str, list[int], list[int]]]:
         """(type, positions in `names`, value references) per variable type, cached."""
