@@ -302,3 +302,16 @@ pub fn check_checked_in<M: Model>(dir: &std::path::Path) -> Result<(), String> {
     let path = dir.join(format!("{}.xml", M::info().model_name));
     description::check_checked_in(&path, &model_description::<M>()?)
 }
+
+/// Number of `<Unknown>` entries in one ModelStructure section (`Outputs`,
+/// `Derivatives`, `InitialUnknowns`) of an FMI 2.0 modelDescription; 0 when the
+/// section is absent. For the bindings' structure tests.
+pub fn unknowns_in_section(xml: &str, section: &str) -> usize {
+    match (
+        xml.find(&format!("<{section}>")),
+        xml.find(&format!("</{section}>")),
+    ) {
+        (Some(start), Some(end)) => xml[start..end].matches("<Unknown ").count(),
+        _ => 0,
+    }
+}
