@@ -1,6 +1,8 @@
 //! Helpers of the C boundary shared by the front-ends: slices and references from the
 //! host's pointers (null accepted only where nothing is read or written), finiteness
-//! checks, and the text of a caught panic.
+//! checks, C strings in and out, and the text of a caught panic.
+
+use std::ffi::{CStr, CString, c_char};
 
 /// Text of a caught panic payload.
 pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
@@ -67,4 +69,22 @@ pub fn check_finite(value: f64, what: &str) -> Result<f64, String> {
     } else {
         Err(format!("{what} = {value} is not finite"))
     }
+}
+
+/// A C string argument as UTF-8 text.
+///
+/// # Safety
+/// A non-null `ptr` must point to a NUL-terminated string that lives for `'a`.
+pub unsafe fn text<'a>(ptr: *const c_char, what: &str) -> Result<&'a str, String> {
+    if ptr.is_null() {
+        return Err(format!("{what} is a null pointer"));
+    }
+    // SAFETY: non-null, and NUL-terminated by the caller's contract.
+    let s = unsafe { CStr::from_ptr(ptr) };
+    s.to_str().map_err(|_| format!("{what} is not UTF-8"))
+}
+
+/// `message` as a C string, NUL bytes (which would cut it short) replaced by spaces.
+pub fn c_string(message: &str) -> CString {
+    CString::new(message.replace('\0', " ")).unwrap_or_default()
 }

@@ -1,7 +1,14 @@
-//! Logging as a model sees it: a sink for debug messages under declared categories.
-//! Each front-end implements [`Log`] on its own logger (the FMI 2.0 one forwards to
-//! fmi2CallbackLogger); models never see a front-end type. [`CategoryFilter`] is the
-//! category bookkeeping both front-ends' loggers share.
+//! Logging as a model sees it: a sink for debug messages under declared categories
+//! ([`Log`]; models never see a front-end type), and the [`Logger`] of an instance of
+//! either front-end: the category bookkeeping ([`CategoryFilter`]) and the policy
+//! around a [`LogSink`], the host's callback of one standard.
+//!
+//! Policy: messages of status Error and Fatal always reach the host (it needs to know
+//! why a call failed); warnings, discards and debug messages only when logging is on
+//! and their category is enabled (loggingOn at instantiation and SetDebugLogging; an
+//! empty category list enables all categories).
+
+use super::frontend::StatusCode;
 
 /// A log category: name as declared in LogCategories, and its description.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -66,6 +73,96 @@ impl CategoryFilter {
                 .is_some_and(|i| self.enabled[i])
     }
 }
+
+/// The host's logger callback of one standard.
+pub trait LogSink {
+    type Status: StatusCode;
+    /// Passes one message to the host.
+    fn emit(&self, status: Self::Status, category: &str, message: &str);
+}
+
+/// The category a status is logged under.
+pub fn status_category<S: StatusCode>(status: S) -> &'static str {
+    if status == S::WARNING {
+        "logStatusWarning"
+    } else if status == S::DISCARD {
+        "logStatusDiscard"
+    } else if status == S::FATAL {
+        "logStatusFatal"
+    } else {
+        "logStatusError"
+    }
+}
+
+/// The logger of one instance: which categories the host enabled, and its callback.
+pub struct Logger<S> {
+    sink: S,
+    filter: CategoryFilter,
+}
+
+impl<S: LogSink> Logger<S> {
+    pub fn new(sink: S, categories: Vec<LogCategory>, logging_on: bool) -> Logger<S> {
+        Logger {
+            sink,
+            filter: CategoryFilter::new(categories, logging_on),
+        }
+    }
+
+    /// SetDebugLogging: see [`CategoryFilter::configure`].
+    pub fn configure(&mut self, logging_on: bool, names: &[String]) -> Result<(), String> {
+        self.filter.configure(logging_on, names)
+    }
+
+    /// Logs a message about a call that ends with `status`.
+    pub fn status(&self, status: S::Status, message: &str) {
+        let category = status_category(status);
+        if status >= S::Status::ERROR || self.filter.is_enabled(category) {
+            self.sink.emit(status, category, message);
+        }
+    }
+}
+
+impl<S: LogSink> Log for Logger<S> {
+    fn debug(&self, category: &str, message: &str) {
+        if self.filter.is_enabled(category) {
+            self.sink.emit(S::Status::OK, category, message);
+        }
+    }
+}
+
+/// The categories the layer itself logs under, as a `[LogCategory; 6]`; `$standard`
+/// ("fmi2" or "fmi3") names the status codes, `$events` describes logEvents.
+macro_rules! layer_categories {
+    ($standard:literal, $events:literal) => {
+        [
+            $crate::core::logging::LogCategory {
+                name: "logStatusWarning",
+                description: concat!("Calls that return ", $standard, "Warning"),
+            },
+            $crate::core::logging::LogCategory {
+                name: "logStatusDiscard",
+                description: concat!("Calls that return ", $standard, "Discard (rejected steps)"),
+            },
+            $crate::core::logging::LogCategory {
+                name: "logStatusError",
+                description: concat!("Calls that return ", $standard, "Error (always logged)"),
+            },
+            $crate::core::logging::LogCategory {
+                name: "logStatusFatal",
+                description: concat!("Calls that return ", $standard, "Fatal (always logged)"),
+            },
+            $crate::core::logging::LogCategory {
+                name: "logEvents",
+                description: $events,
+            },
+            $crate::core::logging::LogCategory {
+                name: "logCalls",
+                description: "The name of every FMI function called",
+            },
+        ]
+    };
+}
+pub(crate) use layer_categories;
 
 #[cfg(test)]
 mod tests {

@@ -7,7 +7,9 @@
 //! registers the live instances and states so that every handle is checked before use.
 
 pub mod description;
+pub mod entry;
 pub mod fmu_states;
+pub mod frontend;
 pub mod handles;
 pub mod instance;
 pub mod logging;

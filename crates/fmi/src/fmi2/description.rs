@@ -1,9 +1,10 @@
 //! modelDescription.xml generated from a model's `ModelInfo` and variable table.
 
-use super::instance::log_categories;
+use super::mode::Fmi2;
 use crate::core::description::{
     self, DefaultExperiment, GENERATION_TOOL, LogCategories, UnitDefinitions, number,
 };
+use crate::core::frontend::log_categories;
 use crate::core::model::Model;
 use crate::core::variables::{
     Causality, Initial, Kind, Variable, check_table, derivative_variables,
@@ -276,7 +277,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         model_exchange: interface(None),
         co_simulation: interface(Some(true)),
         unit_definitions: UnitDefinitions::of(table)?,
-        log_categories: LogCategories::of(&log_categories::<M>()),
+        log_categories: LogCategories::of(&log_categories::<Fmi2, M>()),
         default_experiment: DefaultExperiment::of(&info.default_experiment),
         model_variables: ModelVariables {
             variables: table.iter().map(|v| scalar_variable(v, table)).collect(),

@@ -81,78 +81,10 @@ macro_rules! export_fmi2 {
             pub unsafe extern "C" fn fmi2Reset(c: Fmi2Component) -> Fmi2Status {
                 unsafe { api::reset::<M>(c) }
             }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetReal(
-                c: Fmi2Component,
-                vr: *const Fmi2ValueReference,
-                n: usize,
-                v: *mut Fmi2Real,
-            ) -> Fmi2Status {
-                unsafe { api::get_real::<M>(c, vr, n, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetInteger(
-                c: Fmi2Component,
-                vr: *const Fmi2ValueReference,
-                n: usize,
-                v: *mut Fmi2Integer,
-            ) -> Fmi2Status {
-                unsafe { api::get_integer::<M>(c, vr, n, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetBoolean(
-                c: Fmi2Component,
-                vr: *const Fmi2ValueReference,
-                n: usize,
-                v: *mut Fmi2Boolean,
-            ) -> Fmi2Status {
-                unsafe { api::get_boolean::<M>(c, vr, n, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetString(
-                c: Fmi2Component,
-                vr: *const Fmi2ValueReference,
-                n: usize,
-                v: *mut Fmi2String,
-            ) -> Fmi2Status {
-                unsafe { api::get_string::<M>(c, vr, n, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetReal(
-                c: Fmi2Component,
-                vr: *const Fmi2ValueReference,
-                n: usize,
-                v: *const Fmi2Real,
-            ) -> Fmi2Status {
-                unsafe { api::set_real::<M>(c, vr, n, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetInteger(
-                c: Fmi2Component,
-                vr: *const Fmi2ValueReference,
-                n: usize,
-                v: *const Fmi2Integer,
-            ) -> Fmi2Status {
-                unsafe { api::set_integer::<M>(c, vr, n, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetBoolean(
-                c: Fmi2Component,
-                vr: *const Fmi2ValueReference,
-                n: usize,
-                v: *const Fmi2Boolean,
-            ) -> Fmi2Status {
-                unsafe { api::set_boolean::<M>(c, vr, n, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2SetString(
-                c: Fmi2Component,
-                vr: *const Fmi2ValueReference,
-                n: usize,
-                v: *const Fmi2String,
-            ) -> Fmi2Status {
-                unsafe { api::set_string::<M>(c, vr, n, v) }
-            }
+            $crate::__fmi2_values!(M, Fmi2Real, fmi2GetReal => get_real, fmi2SetReal => set_real);
+            $crate::__fmi2_values!(M, Fmi2Integer, fmi2GetInteger => get_integer, fmi2SetInteger => set_integer);
+            $crate::__fmi2_values!(M, Fmi2Boolean, fmi2GetBoolean => get_boolean, fmi2SetBoolean => set_boolean);
+            $crate::__fmi2_values!(M, Fmi2String, fmi2GetString => get_string, fmi2SetString => set_string);
             #[unsafe(no_mangle)]
             pub unsafe extern "C" fn fmi2GetFMUstate(
                 c: Fmi2Component,
@@ -317,46 +249,53 @@ macro_rules! export_fmi2 {
             pub unsafe extern "C" fn fmi2CancelStep(c: Fmi2Component) -> Fmi2Status {
                 unsafe { api::cancel_step::<M>(c) }
             }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetStatus(
-                c: Fmi2Component,
-                kind: c_int,
-                v: *mut Fmi2Status,
-            ) -> Fmi2Status {
-                unsafe { api::get_status::<M>(c, kind, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetRealStatus(
-                c: Fmi2Component,
-                kind: c_int,
-                v: *mut Fmi2Real,
-            ) -> Fmi2Status {
-                unsafe { api::get_real_status::<M>(c, kind, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetIntegerStatus(
-                c: Fmi2Component,
-                kind: c_int,
-                v: *mut Fmi2Integer,
-            ) -> Fmi2Status {
-                unsafe { api::get_integer_status::<M>(c, kind, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetBooleanStatus(
-                c: Fmi2Component,
-                kind: c_int,
-                v: *mut Fmi2Boolean,
-            ) -> Fmi2Status {
-                unsafe { api::get_boolean_status::<M>(c, kind, v) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi2GetStringStatus(
-                c: Fmi2Component,
-                kind: c_int,
-                v: *mut Fmi2String,
-            ) -> Fmi2Status {
-                unsafe { api::get_string_status::<M>(c, kind, v) }
-            }
+            $crate::__fmi2_status!(M, Fmi2Status, fmi2GetStatus => get_status);
+            $crate::__fmi2_status!(M, Fmi2Real, fmi2GetRealStatus => get_real_status);
+            $crate::__fmi2_status!(M, Fmi2Integer, fmi2GetIntegerStatus => get_integer_status);
+            $crate::__fmi2_status!(M, Fmi2Boolean, fmi2GetBooleanStatus => get_boolean_status);
+            $crate::__fmi2_status!(M, Fmi2String, fmi2GetStringStatus => get_string_status);
+        }
+    };
+}
+
+/// `fmi2Get<Type>` and `fmi2Set<Type>` of one type (used by `export_fmi2!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __fmi2_values {
+    ($model:ty, $t:ty, $get:ident => $get_api:ident, $set:ident => $set_api:ident) => {
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $get(
+            c: $crate::fmi2::types::Fmi2Component,
+            vr: *const $crate::fmi2::types::Fmi2ValueReference,
+            n: usize,
+            v: *mut $t,
+        ) -> $crate::fmi2::types::Fmi2Status {
+            unsafe { $crate::fmi2::api::$get_api::<$model>(c, vr, n, v) }
+        }
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $set(
+            c: $crate::fmi2::types::Fmi2Component,
+            vr: *const $crate::fmi2::types::Fmi2ValueReference,
+            n: usize,
+            v: *const $t,
+        ) -> $crate::fmi2::types::Fmi2Status {
+            unsafe { $crate::fmi2::api::$set_api::<$model>(c, vr, n, v) }
+        }
+    };
+}
+
+/// `fmi2Get<Type>Status` of one type (used by `export_fmi2!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __fmi2_status {
+    ($model:ty, $t:ty, $name:ident => $api:ident) => {
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $name(
+            c: $crate::fmi2::types::Fmi2Component,
+            kind: std::ffi::c_int,
+            v: *mut $t,
+        ) -> $crate::fmi2::types::Fmi2Status {
+            unsafe { $crate::fmi2::api::$api::<$model>(c, kind, v) }
         }
     };
 }

@@ -2,10 +2,10 @@
 //! plus the 2.0 mode, interface and logger. The C entry points in `api` only translate
 //! pointers into calls on this type.
 
-use super::logging::{LAYER_CATEGORIES, Logger};
-use super::mode::{Interface, Mode};
-use crate::core::instance::{self as core_instance, Snapshot, Standard};
-use crate::core::logging::LogCategory;
+use super::logging::Logger;
+use super::mode::{Fmi2, Interface, Mode};
+use crate::core::frontend::{FrontendInstance, Parts};
+use crate::core::instance as core_instance;
 use crate::core::model::Model;
 use crate::core::variables::{Causality, Initial, Variability, Variable, VariableType};
 
@@ -18,11 +18,22 @@ pub struct Instance<M: Model> {
     pub core: core_instance::Instance<M>,
 }
 
-/// All log categories of a model: the layer's, then the model's own.
-pub fn log_categories<M: Model>() -> Vec<LogCategory> {
-    let mut all = LAYER_CATEGORIES.to_vec();
-    all.extend_from_slice(M::info().log_categories);
-    all
+impl<M: Model> FrontendInstance for Instance<M> {
+    type Frontend = Fmi2;
+    type Model = M;
+
+    fn parts(&mut self) -> Parts<'_, Fmi2, M> {
+        Parts {
+            mode: &mut self.mode,
+            interface: self.interface,
+            log: &self.log,
+            core: &mut self.core,
+        }
+    }
+
+    fn log_mut(&mut self) -> &mut Logger {
+        &mut self.log
+    }
 }
 
 impl<M: Model> Instance<M> {
@@ -33,24 +44,6 @@ impl<M: Model> Instance<M> {
             log,
             core: core_instance::Instance::new()?,
         })
-    }
-
-    /// fmi2Reset: back to the state right after fmi2Instantiate.
-    pub fn reset(&mut self) -> Result<(), String> {
-        self.core = core_instance::Instance::new()?;
-        self.mode = Mode::Instantiated;
-        Ok(())
-    }
-
-    pub fn snapshot(&self) -> Snapshot<M> {
-        self.core.snapshot(Standard::Fmi2)
-    }
-
-    pub fn restore(&mut self, s: &Snapshot<M>) {
-        self.core.restore(s);
-        if self.mode == Mode::StepFailed {
-            self.mode = Mode::StepComplete;
-        }
     }
 
     /// Whether `v` may be written in the current mode (FMI 2.0 rules for fmi2Set*).

@@ -23,12 +23,6 @@ pub enum Mode {
     Fatal,
 }
 
-impl Mode {
-    fn bit(self) -> u16 {
-        1 << (self as u16)
-    }
-}
-
 /// Every call that depends on the mode.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Call {
@@ -60,37 +54,17 @@ pub enum Call {
     GetStatus,
 }
 
-const fn mask(modes: &[Mode]) -> u16 {
-    let mut m = 0;
-    let mut i = 0;
-    while i < modes.len() {
-        m |= 1 << (modes[i] as u16);
-        i += 1;
-    }
-    m
-}
-
+use super::logging::{Callback, LAYER_CATEGORIES};
+use super::types::Fmi2Status;
+use crate::core::frontend::{Frontend, modes};
+use crate::core::instance::Standard;
+use crate::core::logging::LogCategory;
 use Mode::*;
 
-const LIVE: u16 = mask(&[
-    Instantiated,
-    InitializationMode,
-    EventMode,
-    ContinuousTimeMode,
-    StepComplete,
-    StepFailed,
-    Terminated,
-    Error,
-]);
-const READABLE: u16 = mask(&[
-    InitializationMode,
-    EventMode,
-    ContinuousTimeMode,
-    StepComplete,
-    StepFailed,
-    Terminated,
-    Error,
-]);
+/// Every mode but Fatal (declared last): after Fatal only FreeInstance is allowed.
+const LIVE: u16 = modes!(Fatal) - 1;
+/// Modes in which variables can be read: all live ones after instantiation.
+const READABLE: u16 = LIVE & !modes!(Instantiated);
 
 impl Call {
     /// Modes in which the call is legal, for the given interface.
@@ -100,57 +74,95 @@ impl Call {
         let only_cs = |m: u16| if me { 0 } else { m };
         match self {
             Call::SetDebugLogging | Call::Reset | Call::FmuState => LIVE,
-            Call::SetupExperiment | Call::EnterInitializationMode => mask(&[Instantiated]),
-            Call::ExitInitializationMode => mask(&[InitializationMode]),
-            Call::Terminate => mask(&[EventMode, ContinuousTimeMode, StepComplete, StepFailed]),
+            Call::SetupExperiment | Call::EnterInitializationMode => modes!(Instantiated),
+            Call::ExitInitializationMode => modes!(InitializationMode),
+            Call::Terminate => modes!(EventMode, ContinuousTimeMode, StepComplete, StepFailed),
             Call::GetValues | Call::GetDirectionalDerivative => READABLE,
-            Call::SetReal => mask(&[
+            Call::SetReal => modes!(
                 Instantiated,
                 InitializationMode,
                 EventMode,
                 ContinuousTimeMode,
                 StepComplete,
-            ]),
-            Call::SetDiscrete => mask(&[Instantiated, InitializationMode, EventMode, StepComplete]),
-            Call::EnterEventMode => only_me(mask(&[EventMode, ContinuousTimeMode])),
-            Call::NewDiscreteStates | Call::EnterContinuousTimeMode => only_me(mask(&[EventMode])),
+            ),
+            Call::SetDiscrete => modes!(Instantiated, InitializationMode, EventMode, StepComplete),
+            Call::EnterEventMode => only_me(modes!(EventMode, ContinuousTimeMode)),
+            Call::NewDiscreteStates | Call::EnterContinuousTimeMode => only_me(modes!(EventMode)),
             Call::CompletedIntegratorStep | Call::SetContinuousStates => {
-                only_me(mask(&[ContinuousTimeMode]))
+                only_me(modes!(ContinuousTimeMode))
             }
-            Call::SetTime => only_me(mask(&[EventMode, ContinuousTimeMode])),
-            Call::GetEventIndicators | Call::GetContinuousStates => only_me(mask(&[
+            Call::SetTime => only_me(modes!(EventMode, ContinuousTimeMode)),
+            Call::GetEventIndicators | Call::GetContinuousStates => only_me(modes!(
                 InitializationMode,
                 EventMode,
                 ContinuousTimeMode,
                 Terminated,
                 Error,
-            ])),
+            )),
             Call::GetDerivatives => {
-                only_me(mask(&[EventMode, ContinuousTimeMode, Terminated, Error]))
+                only_me(modes!(EventMode, ContinuousTimeMode, Terminated, Error))
             }
-            Call::GetNominalsOfContinuousStates => only_me(mask(&[
+            Call::GetNominalsOfContinuousStates => only_me(modes!(
                 Instantiated,
                 EventMode,
                 ContinuousTimeMode,
                 Terminated,
                 Error,
-            ])),
+            )),
             Call::SetRealInputDerivatives => {
-                only_cs(mask(&[Instantiated, InitializationMode, StepComplete]))
+                only_cs(modes!(Instantiated, InitializationMode, StepComplete))
             }
             Call::GetRealOutputDerivatives => {
-                only_cs(mask(&[StepComplete, StepFailed, Terminated, Error]))
+                only_cs(modes!(StepComplete, StepFailed, Terminated, Error))
             }
-            Call::DoStep => only_cs(mask(&[StepComplete])),
+            Call::DoStep => only_cs(modes!(StepComplete)),
             // No step is ever in progress: cancelling is never legal.
             Call::CancelStep => 0,
-            Call::GetStatus => only_cs(mask(&[StepComplete, StepFailed, Terminated])),
+            Call::GetStatus => only_cs(modes!(StepComplete, StepFailed, Terminated)),
         }
     }
 
     /// Whether the call is legal in `mode` for an instance of `interface`.
     pub fn is_legal(self, mode: Mode, interface: Interface) -> bool {
-        self.allowed(interface) & mode.bit() != 0
+        self.allowed(interface) & modes!(mode) != 0
+    }
+}
+
+/// The FMI 2.0 front-end: its status, state machine and logger callback.
+pub struct Fmi2;
+
+impl Frontend for Fmi2 {
+    type Status = Fmi2Status;
+    type Mode = Mode;
+    type Interface = Interface;
+    type Call = Call;
+    type Sink = Callback;
+    const STANDARD: Standard = Standard::Fmi2;
+    const MODE_WORD: &'static str = "mode";
+    const INSTANTIATED: Mode = Instantiated;
+    const ERROR: Mode = Error;
+    const FATAL: Mode = Fatal;
+    const LAYER_CATEGORIES: [LogCategory; 6] = LAYER_CATEGORIES;
+
+    fn is_legal(call: Call, mode: Mode, interface: Interface) -> bool {
+        call.is_legal(mode, interface)
+    }
+
+    /// Event Mode for Model Exchange, stepComplete for Co-Simulation.
+    fn after_initialization(interface: Interface) -> Mode {
+        match interface {
+            Interface::ModelExchange => EventMode,
+            Interface::CoSimulation => StepComplete,
+        }
+    }
+
+    /// A failed step is undone: back to stepComplete.
+    fn after_restore(mode: Mode) -> Mode {
+        if mode == StepFailed {
+            StepComplete
+        } else {
+            mode
+        }
     }
 }
 

@@ -30,6 +30,14 @@ pub enum Fmi2Status {
     Pending = 5,
 }
 
+impl crate::core::frontend::StatusCode for Fmi2Status {
+    const OK: Self = Fmi2Status::Ok;
+    const WARNING: Self = Fmi2Status::Warning;
+    const DISCARD: Self = Fmi2Status::Discard;
+    const ERROR: Self = Fmi2Status::Error;
+    const FATAL: Self = Fmi2Status::Fatal;
+}
+
 impl Fmi2Status {
     /// The name the standard uses, for log lines.
     pub fn name(self) -> &'static str {

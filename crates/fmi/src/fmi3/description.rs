@@ -4,11 +4,12 @@
 //! (`<Output>`, `<ContinuousStateDerivative>`, `<InitialUnknown>`, `<EventIndicator>`
 //! with their dependencies as value references).
 
-use super::logging::log_categories;
+use super::mode::Fmi3;
 use super::table::{Table3, Variable3, build};
 use crate::core::description::{
     self, DefaultExperiment, GENERATION_TOOL, LogCategories, UnitDefinitions, number,
 };
+use crate::core::frontend::log_categories;
 use crate::core::instance::sorted_table;
 use crate::core::model::Model;
 use crate::core::variables::{Causality, Initial, Kind, Variable, check_table, find};
@@ -317,7 +318,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         model_exchange,
         co_simulation,
         unit_definitions: UnitDefinitions::of(&table)?,
-        log_categories: LogCategories::of(&log_categories::<M>()),
+        log_categories: LogCategories::of(&log_categories::<Fmi3, M>()),
         default_experiment: DefaultExperiment::of(&info.default_experiment),
         model_variables: ModelVariables { variables },
         model_structure: model_structure(&t),

@@ -139,76 +139,18 @@ macro_rules! export_fmi3 {
                 unsafe { api::reset::<M>(c) }
             }
 
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi3GetFloat64(
-                c: Fmi3Instance,
-                vr: *const Fmi3ValueReference,
-                nvr: usize,
-                values: *mut Fmi3Float64,
-                n_values: usize,
-            ) -> Fmi3Status {
-                unsafe { api::get_float64::<M>(c, vr, nvr, values, n_values) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi3GetInt32(
-                c: Fmi3Instance,
-                vr: *const Fmi3ValueReference,
-                nvr: usize,
-                values: *mut Fmi3Int32,
-                n_values: usize,
-            ) -> Fmi3Status {
-                unsafe { api::get_int32::<M>(c, vr, nvr, values, n_values) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi3GetBoolean(
-                c: Fmi3Instance,
-                vr: *const Fmi3ValueReference,
-                nvr: usize,
-                values: *mut Fmi3Boolean,
-                n_values: usize,
-            ) -> Fmi3Status {
-                unsafe { api::get_boolean::<M>(c, vr, nvr, values, n_values) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi3SetFloat64(
-                c: Fmi3Instance,
-                vr: *const Fmi3ValueReference,
-                nvr: usize,
-                values: *const Fmi3Float64,
-                n_values: usize,
-            ) -> Fmi3Status {
-                unsafe { api::set_float64::<M>(c, vr, nvr, values, n_values) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi3SetInt32(
-                c: Fmi3Instance,
-                vr: *const Fmi3ValueReference,
-                nvr: usize,
-                values: *const Fmi3Int32,
-                n_values: usize,
-            ) -> Fmi3Status {
-                unsafe { api::set_int32::<M>(c, vr, nvr, values, n_values) }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi3SetBoolean(
-                c: Fmi3Instance,
-                vr: *const Fmi3ValueReference,
-                nvr: usize,
-                values: *const Fmi3Boolean,
-                n_values: usize,
-            ) -> Fmi3Status {
-                unsafe { api::set_boolean::<M>(c, vr, nvr, values, n_values) }
-            }
-
-            $crate::__fmi3_no_variables_of_type!(M, fmi3GetFloat32, fmi3SetFloat32, Fmi3Float32, "Float32");
-            $crate::__fmi3_no_variables_of_type!(M, fmi3GetInt8, fmi3SetInt8, Fmi3Int8, "Int8");
-            $crate::__fmi3_no_variables_of_type!(M, fmi3GetUInt8, fmi3SetUInt8, Fmi3UInt8, "UInt8");
-            $crate::__fmi3_no_variables_of_type!(M, fmi3GetInt16, fmi3SetInt16, Fmi3Int16, "Int16");
-            $crate::__fmi3_no_variables_of_type!(M, fmi3GetUInt16, fmi3SetUInt16, Fmi3UInt16, "UInt16");
-            $crate::__fmi3_no_variables_of_type!(M, fmi3GetUInt32, fmi3SetUInt32, Fmi3UInt32, "UInt32");
-            $crate::__fmi3_no_variables_of_type!(M, fmi3GetInt64, fmi3SetInt64, Fmi3Int64, "Int64");
-            $crate::__fmi3_no_variables_of_type!(M, fmi3GetUInt64, fmi3SetUInt64, Fmi3UInt64, "UInt64");
-            $crate::__fmi3_no_variables_of_type!(M, fmi3GetString, fmi3SetString, Fmi3String, "String");
+            $crate::__fmi3_values!(M, Fmi3Float64, fmi3GetFloat64 => get_float64, fmi3SetFloat64 => set_float64);
+            $crate::__fmi3_values!(M, Fmi3Int32, fmi3GetInt32 => get_int32, fmi3SetInt32 => set_int32);
+            $crate::__fmi3_values!(M, Fmi3Boolean, fmi3GetBoolean => get_boolean, fmi3SetBoolean => set_boolean);
+            $crate::__fmi3_values!(M, Fmi3Float32, fmi3GetFloat32, fmi3SetFloat32, "Float32");
+            $crate::__fmi3_values!(M, Fmi3Int8, fmi3GetInt8, fmi3SetInt8, "Int8");
+            $crate::__fmi3_values!(M, Fmi3UInt8, fmi3GetUInt8, fmi3SetUInt8, "UInt8");
+            $crate::__fmi3_values!(M, Fmi3Int16, fmi3GetInt16, fmi3SetInt16, "Int16");
+            $crate::__fmi3_values!(M, Fmi3UInt16, fmi3GetUInt16, fmi3SetUInt16, "UInt16");
+            $crate::__fmi3_values!(M, Fmi3UInt32, fmi3GetUInt32, fmi3SetUInt32, "UInt32");
+            $crate::__fmi3_values!(M, Fmi3Int64, fmi3GetInt64, fmi3SetInt64, "Int64");
+            $crate::__fmi3_values!(M, Fmi3UInt64, fmi3GetUInt64, fmi3SetUInt64, "UInt64");
+            $crate::__fmi3_values!(M, Fmi3String, fmi3GetString, fmi3SetString, "String");
 
             #[unsafe(no_mangle)]
             pub unsafe extern "C" fn fmi3GetBinary(
@@ -337,62 +279,8 @@ macro_rules! export_fmi3 {
                 unsafe { api::deserialize_fmu_state::<M>(c, bytes, size, state) }
             }
 
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi3GetDirectionalDerivative(
-                c: Fmi3Instance,
-                unknowns: *const Fmi3ValueReference,
-                n_unknowns: usize,
-                knowns: *const Fmi3ValueReference,
-                n_knowns: usize,
-                seed: *const Fmi3Float64,
-                n_seed: usize,
-                sensitivity: *mut Fmi3Float64,
-                n_sensitivity: usize,
-            ) -> Fmi3Status {
-                unsafe {
-                    api::get_directional_derivative::<M>(
-                        c,
-                        api::DerivativeRequest {
-                            unknowns,
-                            n_unknowns,
-                            knowns,
-                            n_knowns,
-                            seed,
-                            n_seed,
-                            sensitivity,
-                            n_sensitivity,
-                        },
-                    )
-                }
-            }
-            #[unsafe(no_mangle)]
-            pub unsafe extern "C" fn fmi3GetAdjointDerivative(
-                c: Fmi3Instance,
-                unknowns: *const Fmi3ValueReference,
-                n_unknowns: usize,
-                knowns: *const Fmi3ValueReference,
-                n_knowns: usize,
-                seed: *const Fmi3Float64,
-                n_seed: usize,
-                sensitivity: *mut Fmi3Float64,
-                n_sensitivity: usize,
-            ) -> Fmi3Status {
-                unsafe {
-                    api::get_adjoint_derivative::<M>(
-                        c,
-                        api::DerivativeRequest {
-                            unknowns,
-                            n_unknowns,
-                            knowns,
-                            n_knowns,
-                            seed,
-                            n_seed,
-                            sensitivity,
-                            n_sensitivity,
-                        },
-                    )
-                }
-            }
+            $crate::__fmi3_derivative!(M, fmi3GetDirectionalDerivative => get_directional_derivative);
+            $crate::__fmi3_derivative!(M, fmi3GetAdjointDerivative => get_adjoint_derivative);
 
             #[unsafe(no_mangle)]
             pub unsafe extern "C" fn fmi3UpdateDiscreteStates(
@@ -543,50 +431,81 @@ macro_rules! export_fmi3 {
     };
 }
 
-/// `fmi3Get<Type>` and `fmi3Set<Type>` of a type no variable has (used by `export_fmi3!`).
+/// `fmi3Get<Type>` and `fmi3Set<Type>` (used by `export_fmi3!`): of a type the models
+/// use, forwarding to the typed functions of `api`; of a type no variable has (with
+/// its name), answering with `api::access_unsupported_type`.
 #[doc(hidden)]
 #[macro_export]
-macro_rules! __fmi3_no_variables_of_type {
-    ($model:ty, $get:ident, $set:ident, $t:ty, $name:literal) => {
+macro_rules! __fmi3_values {
+    ($model:ty, $t:ty, $get:ident => $get_api:ident, $set:ident => $set_api:ident) => {
+        $crate::__fmi3_values!(@define $t, $get, $set, (c, vr, nvr, values, n_values),
+            $crate::fmi3::api::$get_api::<$model>(c, vr, nvr, values, n_values),
+            $crate::fmi3::api::$set_api::<$model>(c, vr, nvr, values, n_values));
+    };
+    ($model:ty, $t:ty, $get:ident, $set:ident, $name:literal) => {
+        $crate::__fmi3_values!(@define $t, $get, $set, (c, vr, nvr, values, _n_values),
+            $crate::fmi3::api::access_unsupported_type::<$model>(
+                c, stringify!($get), $crate::fmi3::mode::Call::GetValues, $name, vr, nvr,
+                values.is_null()),
+            $crate::fmi3::api::access_unsupported_type::<$model>(
+                c, stringify!($set), $crate::fmi3::mode::Call::SetDiscrete, $name, vr, nvr,
+                values.is_null()));
+    };
+    (@define $t:ty, $get:ident, $set:ident,
+     ($c:ident, $vr:ident, $nvr:ident, $values:ident, $n_values:ident),
+     $get_body:expr, $set_body:expr) => {
         #[unsafe(no_mangle)]
         pub unsafe extern "C" fn $get(
-            c: $crate::fmi3::types::Fmi3Instance,
-            vr: *const $crate::fmi3::types::Fmi3ValueReference,
-            nvr: usize,
-            values: *mut $t,
-            _n_values: usize,
+            $c: $crate::fmi3::types::Fmi3Instance,
+            $vr: *const $crate::fmi3::types::Fmi3ValueReference,
+            $nvr: usize,
+            $values: *mut $t,
+            $n_values: usize,
         ) -> $crate::fmi3::types::Fmi3Status {
-            unsafe {
-                $crate::fmi3::api::access_unsupported_type::<$model>(
-                    c,
-                    stringify!($get),
-                    $crate::fmi3::mode::Call::GetValues,
-                    $name,
-                    vr,
-                    nvr,
-                    values.is_null(),
-                )
-            }
+            unsafe { $get_body }
         }
         #[unsafe(no_mangle)]
         pub unsafe extern "C" fn $set(
-            c: $crate::fmi3::types::Fmi3Instance,
-            vr: *const $crate::fmi3::types::Fmi3ValueReference,
-            nvr: usize,
-            values: *const $t,
-            _n_values: usize,
+            $c: $crate::fmi3::types::Fmi3Instance,
+            $vr: *const $crate::fmi3::types::Fmi3ValueReference,
+            $nvr: usize,
+            $values: *const $t,
+            $n_values: usize,
         ) -> $crate::fmi3::types::Fmi3Status {
-            unsafe {
-                $crate::fmi3::api::access_unsupported_type::<$model>(
-                    c,
-                    stringify!($set),
-                    $crate::fmi3::mode::Call::SetDiscrete,
-                    $name,
-                    vr,
-                    nvr,
-                    values.is_null(),
-                )
-            }
+            unsafe { $set_body }
+        }
+    };
+}
+
+/// fmi3GetDirectionalDerivative and fmi3GetAdjointDerivative, which take the same
+/// arguments (used by `export_fmi3!`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __fmi3_derivative {
+    ($model:ty, $name:ident => $api:ident) => {
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $name(
+            c: $crate::fmi3::types::Fmi3Instance,
+            unknowns: *const $crate::fmi3::types::Fmi3ValueReference,
+            n_unknowns: usize,
+            knowns: *const $crate::fmi3::types::Fmi3ValueReference,
+            n_knowns: usize,
+            seed: *const $crate::fmi3::types::Fmi3Float64,
+            n_seed: usize,
+            sensitivity: *mut $crate::fmi3::types::Fmi3Float64,
+            n_sensitivity: usize,
+        ) -> $crate::fmi3::types::Fmi3Status {
+            let request = $crate::fmi3::api::DerivativeRequest {
+                unknowns,
+                n_unknowns,
+                knowns,
+                n_knowns,
+                seed,
+                n_seed,
+                sensitivity,
+                n_sensitivity,
+            };
+            unsafe { $crate::fmi3::api::$api::<$model>(c, request) }
         }
     };
 }

@@ -4,9 +4,10 @@
 //! table's elements.
 
 use super::logging::Logger;
-use super::mode::{Interface, Mode};
+use super::mode::{Fmi3, Interface, Mode};
 use super::table::{Source, Table3, Variable3, build};
-use crate::core::instance::{self as core_instance, Snapshot, Standard};
+use crate::core::frontend::{FrontendInstance, Parts};
+use crate::core::instance as core_instance;
 use crate::core::model::Model;
 use crate::core::variables::{Causality, Initial, Variability};
 use std::sync::Arc;
@@ -23,6 +24,24 @@ pub struct Instance<M: Model> {
     pub table: Arc<Table3>,
 }
 
+impl<M: Model> FrontendInstance for Instance<M> {
+    type Frontend = Fmi3;
+    type Model = M;
+
+    fn parts(&mut self) -> Parts<'_, Fmi3, M> {
+        Parts {
+            mode: &mut self.mode,
+            interface: self.interface,
+            log: &self.log,
+            core: &mut self.core,
+        }
+    }
+
+    fn log_mut(&mut self) -> &mut Logger {
+        &mut self.log
+    }
+}
+
 impl<M: Model> Instance<M> {
     pub fn new(interface: Interface, log: Logger) -> Result<Self, String> {
         let core = core_instance::Instance::new()?;
@@ -34,24 +53,6 @@ impl<M: Model> Instance<M> {
             core,
             table,
         })
-    }
-
-    /// fmi3Reset: back to the state right after instantiation.
-    pub fn reset(&mut self) -> Result<(), String> {
-        self.core.reset()?;
-        self.mode = Mode::Instantiated;
-        Ok(())
-    }
-
-    pub fn snapshot(&self) -> Snapshot<M> {
-        self.core.snapshot(Standard::Fmi3)
-    }
-
-    pub fn restore(&mut self, s: &Snapshot<M>) {
-        self.core.restore(s);
-        if self.mode == Mode::StepDiscarded {
-            self.mode = Mode::StepMode;
-        }
     }
 
     /// Makes the computed values current for reading `variables`; Ok(Some(reason))

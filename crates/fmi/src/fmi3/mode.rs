@@ -33,12 +33,6 @@ pub enum Mode {
     Fatal,
 }
 
-impl Mode {
-    fn bit(self) -> u16 {
-        1 << (self as u16)
-    }
-}
-
 /// Every call that depends on the mode.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Call {
@@ -70,39 +64,18 @@ pub enum Call {
     DoStep,
 }
 
-const fn mask(modes: &[Mode]) -> u16 {
-    let mut m = 0;
-    let mut i = 0;
-    while i < modes.len() {
-        m |= 1 << (modes[i] as u16);
-        i += 1;
-    }
-    m
-}
-
+use super::logging::{Callback, LAYER_CATEGORIES};
+use super::types::Fmi3Status;
+use crate::core::frontend::{Frontend, modes};
+use crate::core::instance::Standard;
+use crate::core::logging::LogCategory;
 use Mode::*;
 
-/// Every state but Fatal (after fmi3Fatal only fmi3FreeInstance is allowed).
-const LIVE: u16 = mask(&[
-    Instantiated,
-    InitializationMode,
-    EventMode,
-    ContinuousTimeMode,
-    StepMode,
-    StepDiscarded,
-    Terminated,
-    Error,
-]);
-/// States in which variables can be read (section 2.3.3; also Error, for diagnosis).
-const READABLE: u16 = mask(&[
-    InitializationMode,
-    EventMode,
-    ContinuousTimeMode,
-    StepMode,
-    StepDiscarded,
-    Terminated,
-    Error,
-]);
+/// Every state but Fatal (declared last): after Fatal only FreeInstance is allowed.
+const LIVE: u16 = modes!(Fatal) - 1;
+/// States in which variables can be read (section 2.3.3; also Error, for diagnosis):
+/// all live ones after instantiation.
+const READABLE: u16 = LIVE & !modes!(Instantiated);
 
 impl Call {
     /// States in which the call is legal, for the given interface.
@@ -120,62 +93,92 @@ impl Call {
         match self {
             Call::SetDebugLogging | Call::Reset | Call::FmuState => LIVE,
             Call::VariableDependencies | Call::Unsupported => LIVE,
-            Call::EnterInitializationMode => mask(&[Instantiated]),
-            Call::ExitInitializationMode => mask(&[InitializationMode]),
-            Call::EnterEventMode if me => mask(&[ContinuousTimeMode]),
-            Call::EnterEventMode if cs_events => mask(&[StepMode]),
+            Call::EnterInitializationMode => modes!(Instantiated),
+            Call::ExitInitializationMode => modes!(InitializationMode),
+            Call::EnterEventMode if me => modes!(ContinuousTimeMode),
+            Call::EnterEventMode if cs_events => modes!(StepMode),
             Call::EnterEventMode => 0,
-            Call::Terminate => mask(&[EventMode, ContinuousTimeMode, StepMode, StepDiscarded]),
+            Call::Terminate => modes!(EventMode, ContinuousTimeMode, StepMode, StepDiscarded),
             Call::GetValues => READABLE,
-            Call::SetFloat64 => mask(&[
+            Call::SetFloat64 => modes!(
                 Instantiated,
                 InitializationMode,
                 EventMode,
                 ContinuousTimeMode,
                 StepMode,
-            ]),
-            Call::SetDiscrete => mask(&[Instantiated, InitializationMode, EventMode, StepMode]),
-            Call::Derivative => mask(&[
+            ),
+            Call::SetDiscrete => modes!(Instantiated, InitializationMode, EventMode, StepMode),
+            Call::Derivative => modes!(
                 InitializationMode,
                 EventMode,
                 ContinuousTimeMode,
                 StepMode,
                 Terminated,
-            ]),
-            Call::UpdateDiscreteStates => mask(&[EventMode]),
-            Call::EnterContinuousTimeMode => only_me(mask(&[EventMode])),
+            ),
+            Call::UpdateDiscreteStates => modes!(EventMode),
+            Call::EnterContinuousTimeMode => only_me(modes!(EventMode)),
             Call::CompletedIntegratorStep | Call::SetContinuousStates => {
-                only_me(mask(&[ContinuousTimeMode]))
+                only_me(modes!(ContinuousTimeMode))
             }
-            Call::SetTime => only_me(mask(&[EventMode, ContinuousTimeMode])),
-            Call::ContinuousStateQuery => only_me(mask(&[
+            Call::SetTime => only_me(modes!(EventMode, ContinuousTimeMode)),
+            Call::ContinuousStateQuery => only_me(modes!(
                 InitializationMode,
                 EventMode,
                 ContinuousTimeMode,
                 Terminated,
-            ])),
+            )),
             Call::CountQuery => only_me(LIVE),
-            Call::EnterStepMode => only_cs(mask(&[EventMode])),
-            Call::GetOutputDerivatives => only_cs(mask(&[StepMode, StepDiscarded, Terminated])),
-            Call::DoStep => only_cs(mask(&[StepMode])),
+            Call::EnterStepMode => only_cs(modes!(EventMode)),
+            Call::GetOutputDerivatives => only_cs(modes!(StepMode, StepDiscarded, Terminated)),
+            Call::DoStep => only_cs(modes!(StepMode)),
         }
     }
 
     /// Whether the call is legal in `mode` for an instance of `interface`.
     pub fn is_legal(self, mode: Mode, interface: Interface) -> bool {
-        self.allowed(interface) & mode.bit() != 0
+        self.allowed(interface) & modes!(mode) != 0
     }
 }
 
-/// The state after fmi3ExitInitializationMode: Event Mode for Model Exchange and for
-/// Co-Simulation with event mode, Step Mode otherwise.
-pub fn after_initialization(interface: Interface) -> Mode {
-    match interface {
-        Interface::CoSimulation {
-            event_mode_used: false,
-            ..
-        } => StepMode,
-        _ => EventMode,
+/// The FMI 3.0 front-end: its status, state machine and logger callback.
+pub struct Fmi3;
+
+impl Frontend for Fmi3 {
+    type Status = Fmi3Status;
+    type Mode = Mode;
+    type Interface = Interface;
+    type Call = Call;
+    type Sink = Callback;
+    const STANDARD: Standard = Standard::Fmi3;
+    const MODE_WORD: &'static str = "state";
+    const INSTANTIATED: Mode = Instantiated;
+    const ERROR: Mode = Error;
+    const FATAL: Mode = Fatal;
+    const LAYER_CATEGORIES: [LogCategory; 6] = LAYER_CATEGORIES;
+
+    fn is_legal(call: Call, mode: Mode, interface: Interface) -> bool {
+        call.is_legal(mode, interface)
+    }
+
+    /// Event Mode for Model Exchange and for Co-Simulation with event mode, Step Mode
+    /// otherwise.
+    fn after_initialization(interface: Interface) -> Mode {
+        match interface {
+            Interface::CoSimulation {
+                event_mode_used: false,
+                ..
+            } => StepMode,
+            _ => EventMode,
+        }
+    }
+
+    /// A discarded step is undone: back to Step Mode.
+    fn after_restore(mode: Mode) -> Mode {
+        if mode == StepDiscarded {
+            StepMode
+        } else {
+            mode
+        }
     }
 }
 
@@ -202,9 +205,9 @@ mod tests {
         assert!(Call::EnterEventMode.is_legal(StepMode, CS_EVENTS));
         assert!(Call::EnterStepMode.is_legal(EventMode, CS_EVENTS));
         assert!(!Call::EnterStepMode.is_legal(EventMode, ME));
-        assert_eq!(after_initialization(CS), StepMode);
-        assert_eq!(after_initialization(CS_EVENTS), EventMode);
-        assert_eq!(after_initialization(ME), EventMode);
+        assert_eq!(Fmi3::after_initialization(CS), StepMode);
+        assert_eq!(Fmi3::after_initialization(CS_EVENTS), EventMode);
+        assert_eq!(Fmi3::after_initialization(ME), EventMode);
     }
 
     #[test]

@@ -46,6 +46,14 @@ pub enum Fmi3Status {
     Fatal = 4,
 }
 
+impl crate::core::frontend::StatusCode for Fmi3Status {
+    const OK: Self = Fmi3Status::Ok;
+    const WARNING: Self = Fmi3Status::Warning;
+    const DISCARD: Self = Fmi3Status::Discard;
+    const ERROR: Self = Fmi3Status::Error;
+    const FATAL: Self = Fmi3Status::Fatal;
+}
+
 impl Fmi3Status {
     /// The name the standard uses, for log lines.
     pub fn name(self) -> &'static str {

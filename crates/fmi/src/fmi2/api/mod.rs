@@ -26,60 +26,19 @@ pub use model_exchange::*;
 pub use values::*;
 
 use super::instance::Instance;
-use super::mode::{Call, Mode};
+use super::mode::Call;
 use super::types::{Fmi2Component, Fmi2Status};
-use crate::core::handles::{self, HandleKind};
+use crate::core::entry;
 use crate::core::model::Model;
-use crate::ffi::{check_finite, input_slice, output_ref, output_slice, panic_message};
-use std::panic::{AssertUnwindSafe, catch_unwind};
+use crate::ffi::{check_finite, input_slice, output_ref, output_slice};
 
-/// Runs `body` on the instance behind `c` after checking that `call` is legal in its
-/// mode; turns errors into fmi2Error (+ Error mode) and panics into fmi2Fatal
-/// (+ Fatal mode), both with a log line naming `function`.
+/// [`entry::with_instance`] for FMI 2.0: runs `body` on the instance behind `c` after
+/// checking that `call` is legal in its mode; errors become fmi2Error, panics fmi2Fatal.
 unsafe fn with_instance<M: Model>(
     c: Fmi2Component,
     function: &str,
     call: Call,
     body: impl FnOnce(&mut Instance<M>) -> Result<Fmi2Status, String>,
 ) -> Fmi2Status {
-    // Not an instance of this FMU that is still live (null, garbage, freed, another
-    // FMU's): there is no logger to report through, only the status.
-    if !handles::is_live::<M>(c as usize, HandleKind::Instance) {
-        return Fmi2Status::Error;
-    }
-    let instance = c as *mut Instance<M>;
-    let outcome = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: by the contract above, `c` points to a live Instance<M>.
-        let inst = unsafe { &mut *instance };
-        if !call.is_legal(inst.mode, inst.interface) {
-            return Err(format!(
-                "illegal call sequence: not allowed in mode {:?} ({:?})",
-                inst.mode, inst.interface
-            ));
-        }
-        inst.log.debug("logCalls", function);
-        body(inst)
-    }));
-    // SAFETY: as above; the closure's borrow has ended.
-    let inst = unsafe { &mut *instance };
-    match outcome {
-        Ok(Ok(status)) => status,
-        Ok(Err(message)) => {
-            inst.log
-                .status(Fmi2Status::Error, &format!("{function}: {message}"));
-            if inst.mode != Mode::Fatal {
-                inst.mode = Mode::Error;
-            }
-            Fmi2Status::Error
-        }
-        Err(payload) => {
-            let message = panic_message(payload.as_ref());
-            inst.mode = Mode::Fatal;
-            inst.log.status(
-                Fmi2Status::Fatal,
-                &format!("{function}: internal error (panic): {message}"),
-            );
-            Fmi2Status::Fatal
-        }
-    }
+    unsafe { entry::with_instance(c, function, call, body) }
 }

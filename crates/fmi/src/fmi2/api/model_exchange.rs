@@ -1,6 +1,7 @@
 //! Functions of FMI 2.0 Model Exchange.
 
 use super::{check_finite, input_slice, output_ref, output_slice, with_instance};
+use crate::core::logging::Log;
 use crate::core::model::Model;
 use crate::fmi2::instance::Instance;
 use crate::fmi2::mode::{Call, Mode};

@@ -3,6 +3,7 @@
 
 use super::{input_slice, output_ref, output_slice, with_instance};
 use crate::core::fmu_states;
+use crate::core::frontend::FrontendInstance;
 use crate::core::model::Model;
 use crate::core::serialize::{deserialize, serialize};
 use crate::fmi3::mode::Call;
