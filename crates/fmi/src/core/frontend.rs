@@ -35,6 +35,8 @@ pub trait Frontend: 'static {
     const STANDARD: Standard;
     /// The standard's word for a mode in messages: "mode" or "state".
     const MODE_WORD: &'static str;
+    /// The standard's spelling of an FMU state in messages and function names.
+    const FMU_STATE: &'static str;
     const INSTANTIATED: Self::Mode;
     const ERROR: Self::Mode;
     const FATAL: Self::Mode;
@@ -57,6 +59,48 @@ macro_rules! modes {
     };
 }
 pub(crate) use modes;
+
+/// Implements [`StatusCode`] for a standard's status enum (variants `Ok`, `Warning`,
+/// `Discard`, `Error`, `Fatal`).
+macro_rules! status_code {
+    ($status:ident) => {
+        impl $crate::core::frontend::StatusCode for $status {
+            const OK: Self = $status::Ok;
+            const WARNING: Self = $status::Warning;
+            const DISCARD: Self = $status::Discard;
+            const ERROR: Self = $status::Error;
+            const FATAL: Self = $status::Fatal;
+        }
+    };
+}
+pub(crate) use status_code;
+
+/// Implements [`FrontendInstance`] for a front-end's `Instance<M>` (fields `mode`,
+/// `interface`, `log`, `core`) of front-end `$frontend`.
+macro_rules! frontend_instance {
+    ($instance:ident, $frontend:ty) => {
+        impl<M: $crate::core::model::Model> $crate::core::frontend::FrontendInstance
+            for $instance<M>
+        {
+            type Frontend = $frontend;
+            type Model = M;
+
+            fn parts(&mut self) -> $crate::core::frontend::Parts<'_, $frontend, M> {
+                $crate::core::frontend::Parts {
+                    mode: &mut self.mode,
+                    interface: self.interface,
+                    log: &self.log,
+                    core: &mut self.core,
+                }
+            }
+
+            fn log_mut(&mut self) -> &mut $crate::core::frontend::LoggerOf<$frontend> {
+                &mut self.log
+            }
+        }
+    };
+}
+pub(crate) use frontend_instance;
 
 /// The status type of front-end `F`.
 pub type StatusOf<F> = <F as Frontend>::Status;

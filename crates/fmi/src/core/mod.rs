@@ -8,6 +8,7 @@
 
 pub mod description;
 pub mod entry;
+pub mod fmu_state_calls;
 pub mod fmu_states;
 pub mod frontend;
 pub mod handles;

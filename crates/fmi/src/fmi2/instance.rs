@@ -4,7 +4,7 @@
 
 use super::logging::Logger;
 use super::mode::{Fmi2, Interface, Mode};
-use crate::core::frontend::{FrontendInstance, Parts};
+use crate::core::frontend::frontend_instance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
 use crate::core::variables::{Causality, Initial, Variability, Variable, VariableType};
@@ -18,23 +18,7 @@ pub struct Instance<M: Model> {
     pub core: core_instance::Instance<M>,
 }
 
-impl<M: Model> FrontendInstance for Instance<M> {
-    type Frontend = Fmi2;
-    type Model = M;
-
-    fn parts(&mut self) -> Parts<'_, Fmi2, M> {
-        Parts {
-            mode: &mut self.mode,
-            interface: self.interface,
-            log: &self.log,
-            core: &mut self.core,
-        }
-    }
-
-    fn log_mut(&mut self) -> &mut Logger {
-        &mut self.log
-    }
-}
+frontend_instance!(Instance, Fmi2);
 
 impl<M: Model> Instance<M> {
     pub fn new(interface: Interface, log: Logger) -> Result<Self, String> {

@@ -138,6 +138,7 @@ impl Frontend for Fmi2 {
     type Call = Call;
     type Sink = Callback;
     const STANDARD: Standard = Standard::Fmi2;
+    const FMU_STATE: &'static str = "FMUstate";
     const MODE_WORD: &'static str = "mode";
     const INSTANTIATED: Mode = Instantiated;
     const ERROR: Mode = Error;

@@ -1,6 +1,7 @@
 //! The C types of the FMI 2.0 binary interface (fmi2TypesPlatform.h and
 //! fmi2FunctionTypes.h), with the exact widths of the "default" platform.
 
+use crate::core::frontend::status_code;
 use std::ffi::{c_char, c_int, c_uint, c_void};
 
 pub type Fmi2Component = *mut c_void;
@@ -30,13 +31,7 @@ pub enum Fmi2Status {
     Pending = 5,
 }
 
-impl crate::core::frontend::StatusCode for Fmi2Status {
-    const OK: Self = Fmi2Status::Ok;
-    const WARNING: Self = Fmi2Status::Warning;
-    const DISCARD: Self = Fmi2Status::Discard;
-    const ERROR: Self = Fmi2Status::Error;
-    const FATAL: Self = Fmi2Status::Fatal;
-}
+status_code!(Fmi2Status);
 
 impl Fmi2Status {
     /// The name the standard uses, for log lines.

@@ -6,7 +6,7 @@
 use super::logging::Logger;
 use super::mode::{Fmi3, Interface, Mode};
 use super::table::{Source, Table3, Variable3, build};
-use crate::core::frontend::{FrontendInstance, Parts};
+use crate::core::frontend::frontend_instance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
 use crate::core::variables::{Causality, Initial, Variability};
@@ -24,23 +24,7 @@ pub struct Instance<M: Model> {
     pub table: Arc<Table3>,
 }
 
-impl<M: Model> FrontendInstance for Instance<M> {
-    type Frontend = Fmi3;
-    type Model = M;
-
-    fn parts(&mut self) -> Parts<'_, Fmi3, M> {
-        Parts {
-            mode: &mut self.mode,
-            interface: self.interface,
-            log: &self.log,
-            core: &mut self.core,
-        }
-    }
-
-    fn log_mut(&mut self) -> &mut Logger {
-        &mut self.log
-    }
-}
+frontend_instance!(Instance, Fmi3);
 
 impl<M: Model> Instance<M> {
     pub fn new(interface: Interface, log: Logger) -> Result<Self, String> {

@@ -150,6 +150,7 @@ impl Frontend for Fmi3 {
     type Call = Call;
     type Sink = Callback;
     const STANDARD: Standard = Standard::Fmi3;
+    const FMU_STATE: &'static str = "FMUState";
     const MODE_WORD: &'static str = "state";
     const INSTANTIATED: Mode = Instantiated;
     const ERROR: Mode = Error;

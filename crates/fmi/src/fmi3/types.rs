@@ -2,6 +2,7 @@
 //! fmi3FunctionTypes.h). Unlike FMI 2.0, fmi3Boolean is a C99 `bool` (one byte) and the
 //! logger callback is not variadic.
 
+use crate::core::frontend::status_code;
 use std::ffi::{c_char, c_void};
 
 pub type Fmi3Instance = *mut c_void;
@@ -46,13 +47,7 @@ pub enum Fmi3Status {
     Fatal = 4,
 }
 
-impl crate::core::frontend::StatusCode for Fmi3Status {
-    const OK: Self = Fmi3Status::Ok;
-    const WARNING: Self = Fmi3Status::Warning;
-    const DISCARD: Self = Fmi3Status::Discard;
-    const ERROR: Self = Fmi3Status::Error;
-    const FATAL: Self = Fmi3Status::Fatal;
-}
+status_code!(Fmi3Status);
 
 impl Fmi3Status {
     /// The name the standard uses, for log lines.
