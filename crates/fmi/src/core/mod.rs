@@ -15,6 +15,7 @@ pub mod handles;
 pub mod instance;
 pub mod logging;
 pub mod model;
+pub mod model_exchange_calls;
 pub mod serialize;
 pub mod units;
 pub mod variables;

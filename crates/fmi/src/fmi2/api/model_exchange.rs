@@ -1,38 +1,20 @@
 //! Functions of FMI 2.0 Model Exchange.
 
-use super::{check_finite, input_slice, output_ref, output_slice, with_instance};
-use crate::core::logging::Log;
+use super::{check_finite, output_ref, with_instance};
 use crate::core::model::Model;
+use crate::core::model_exchange_calls::{self as calls, indicators, states};
 use crate::fmi2::instance::Instance;
 use crate::fmi2::mode::{Call, Mode};
 use crate::fmi2::types::*;
-
-/// Checks an array length against the model's count.
-fn check_len(n: usize, expected: usize, what: &str) -> Result<(), String> {
-    if n == expected {
-        Ok(())
-    } else {
-        Err(format!("{what} has length {n}, the model has {expected}"))
-    }
-}
 
 fn fmi2_boolean(value: bool) -> Fmi2Boolean {
     if value { FMI2_TRUE } else { FMI2_FALSE }
 }
 
-fn states<M: Model>() -> usize {
-    M::info().number_of_continuous_states
-}
-
 pub unsafe fn enter_event_mode<M: Model>(c: Fmi2Component) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2EnterEventMode", Call::EnterEventMode, |inst| {
-            inst.mode = Mode::EventMode;
-            inst.log.debug(
-                "logEvents",
-                &format!("event mode at t = {} s", inst.core.time),
-            );
-            Ok(Fmi2Status::Ok)
+            calls::enter_event_mode(inst, Mode::EventMode)
         })
     }
 }
@@ -48,8 +30,7 @@ pub unsafe fn new_discrete_states<M: Model>(
             Call::NewDiscreteStates,
             |inst| {
                 let info = output_ref(event_info, "fmi2EventInfo")?;
-                let update = inst.core.model_mut().update_discrete_states();
-                let next = inst.core.model().next_time_event(inst.core.time);
+                let (update, next) = calls::update_discrete_states(inst);
                 *info = Fmi2EventInfo {
                     new_discrete_states_needed: fmi2_boolean(update.discrete_states_need_update),
                     terminate_simulation: fmi2_boolean(update.terminate_simulation),
@@ -59,17 +40,9 @@ pub unsafe fn new_discrete_states<M: Model>(
                     values_of_continuous_states_changed: fmi2_boolean(
                         update.values_of_continuous_states_changed,
                     ),
-                    next_event_time_defined: if next.is_some() {
-                        FMI2_TRUE
-                    } else {
-                        FMI2_FALSE
-                    },
+                    next_event_time_defined: fmi2_boolean(next.is_some()),
                     next_event_time: next.unwrap_or(0.0),
                 };
-                if let Some(t) = next {
-                    inst.log
-                        .debug("logEvents", &format!("next time event at t = {t} s"));
-                }
                 Ok(Fmi2Status::Ok)
             },
         )
@@ -132,69 +105,24 @@ pub unsafe fn set_continuous_states<M: Model>(
             c,
             "fmi2SetContinuousStates",
             Call::SetContinuousStates,
-            |inst| {
-                check_len(nx, states::<M>(), "x[]")?;
-                let x = input_slice(x, nx, "x[]")?;
-                if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
-                    return Err(format!("x[] contains {bad}"));
-                }
-                inst.core.model_mut().set_continuous_states(x);
-                Ok(Fmi2Status::Ok)
-            },
+            |inst| calls::set_continuous_states(inst, x, nx, "x[]"),
         )
     }
 }
 
-/// Fills an output array of the model's state count with `f`, then checks finiteness.
-unsafe fn fill_states<M: Model>(
+/// [`calls::fill`]: an output array of the model's count `expected` filled by `f`.
+unsafe fn fill<M: Model>(
     c: Fmi2Component,
     function: &str,
     call: Call,
     ptr: *mut Fmi2Real,
     n: usize,
     expected: fn() -> usize,
-    f: fn(&M, &mut [f64]),
+    f: impl FnOnce(&M, &mut [f64]) -> Result<(), String>,
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, function, call, |inst| {
-            check_len(n, expected(), "the array")?;
-            let out = output_slice(ptr, n, "the array")?;
-            f(inst.core.model(), out);
-            if let Some(bad) = out.iter().find(|v| !v.is_finite()) {
-                return Err(format!("the model computed {bad}"));
-            }
-            Ok(Fmi2Status::Ok)
-        })
-    }
-}
-
-/// Like `fill_states`, for a model function that may fail: its error is logged and
-/// returned as fmi2Discard (the model cannot be evaluated here; the integrator may
-/// retry with a smaller step), leaving the instance usable.
-unsafe fn fill_fallible<M: Model>(
-    c: Fmi2Component,
-    function: &str,
-    call: Call,
-    ptr: *mut Fmi2Real,
-    n: usize,
-    expected: fn() -> usize,
-    f: fn(&M, &mut [f64]) -> Result<(), String>,
-) -> Fmi2Status {
-    unsafe {
-        with_instance::<M>(c, function, call, |inst| {
-            check_len(n, expected(), "the array")?;
-            let out = output_slice(ptr, n, "the array")?;
-            if let Err(reason) = f(inst.core.model(), out) {
-                inst.log.status(
-                    Fmi2Status::Discard,
-                    &format!("{function}: at t = {} s: {reason}", inst.core.time),
-                );
-                return Ok(Fmi2Status::Discard);
-            }
-            if let Some(bad) = out.iter().find(|v| !v.is_finite()) {
-                return Err(format!("the model computed {bad}"));
-            }
-            Ok(Fmi2Status::Ok)
+            calls::fill(inst, function, ptr, n, expected(), f)
         })
     }
 }
@@ -205,7 +133,7 @@ pub unsafe fn get_derivatives<M: Model>(
     nx: usize,
 ) -> Fmi2Status {
     unsafe {
-        fill_fallible::<M>(
+        fill::<M>(
             c,
             "fmi2GetDerivatives",
             Call::GetDerivatives,
@@ -223,13 +151,13 @@ pub unsafe fn get_event_indicators<M: Model>(
     nz: usize,
 ) -> Fmi2Status {
     unsafe {
-        fill_fallible::<M>(
+        fill::<M>(
             c,
             "fmi2GetEventIndicators",
             Call::GetEventIndicators,
             z,
             nz,
-            || M::info().number_of_event_indicators,
+            indicators::<M>,
             M::event_indicators,
         )
     }
@@ -241,14 +169,17 @@ pub unsafe fn get_continuous_states<M: Model>(
     nx: usize,
 ) -> Fmi2Status {
     unsafe {
-        fill_states::<M>(
+        fill::<M>(
             c,
             "fmi2GetContinuousStates",
             Call::GetContinuousStates,
             x,
             nx,
             states::<M>,
-            M::continuous_states,
+            |m, x| {
+                m.continuous_states(x);
+                Ok(())
+            },
         )
     }
 }
@@ -259,14 +190,17 @@ pub unsafe fn get_nominals_of_continuous_states<M: Model>(
     nx: usize,
 ) -> Fmi2Status {
     unsafe {
-        fill_states::<M>(
+        fill::<M>(
             c,
             "fmi2GetNominalsOfContinuousStates",
             Call::GetNominalsOfContinuousStates,
             x_nominal,
             nx,
             states::<M>,
-            M::nominals_of_continuous_states,
+            |m, x| {
+                m.nominals_of_continuous_states(x);
+                Ok(())
+            },
         )
     }
 }

@@ -4,8 +4,8 @@
 use super::with_instance;
 use crate::core::entry;
 use crate::core::frontend::{FrontendInstance, log_categories};
-use crate::core::logging::Log;
 use crate::core::model::Model;
+use crate::core::model_exchange_calls;
 use crate::ffi::text;
 use crate::fmi3::instance::Instance;
 use crate::fmi3::logging::{Callback, Logger};
@@ -141,12 +141,7 @@ pub unsafe fn exit_initialization_mode<M: Model>(c: Fmi3Instance) -> Fmi3Status 
 pub unsafe fn enter_event_mode<M: Model>(c: Fmi3Instance) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, "fmi3EnterEventMode", Call::EnterEventMode, |inst| {
-            inst.mode = Mode::EventMode;
-            inst.log.debug(
-                "logEvents",
-                &format!("event mode at t = {} s", inst.core.time),
-            );
-            Ok(Fmi3Status::Ok)
+            model_exchange_calls::enter_event_mode(inst, Mode::EventMode)
         })
     }
 }

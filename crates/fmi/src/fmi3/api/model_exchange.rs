@@ -1,29 +1,12 @@
 //! Functions of FMI 3.0 Model Exchange, and fmi3UpdateDiscreteStates (Event Mode of
 //! both interfaces).
 
-use super::{check_finite, input_slice, output_ref, output_slice, with_instance};
-use crate::core::logging::Log;
+use super::{check_finite, output_ref, with_instance};
 use crate::core::model::Model;
+use crate::core::model_exchange_calls::{self as calls, indicators, states};
 use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::{Call, Mode};
 use crate::fmi3::types::*;
-
-/// Checks an array length against the model's count.
-fn check_len(n: usize, expected: usize, what: &str) -> Result<(), String> {
-    if n == expected {
-        Ok(())
-    } else {
-        Err(format!("{what} has length {n}, the model has {expected}"))
-    }
-}
-
-fn states<M: Model>() -> usize {
-    M::info().number_of_continuous_states
-}
-
-fn indicators<M: Model>() -> usize {
-    M::info().number_of_event_indicators
-}
 
 /// The outputs of fmi3UpdateDiscreteStates.
 pub struct DiscreteStatesUpdate {
@@ -52,18 +35,13 @@ pub unsafe fn update_discrete_states<M: Model>(
                 let values = output_ref(out.values_changed, "valuesOfContinuousStatesChanged")?;
                 let defined = output_ref(out.next_event_time_defined, "nextEventTimeDefined")?;
                 let next_time = output_ref(out.next_event_time, "nextEventTime")?;
-                let update = inst.core.model_mut().update_discrete_states();
-                let next = inst.core.model().next_time_event(inst.core.time);
+                let (update, next) = calls::update_discrete_states(inst);
                 *need = fmi3_bool(update.discrete_states_need_update);
                 *terminate = fmi3_bool(update.terminate_simulation);
                 *nominals = fmi3_bool(update.nominals_of_continuous_states_changed);
                 *values = fmi3_bool(update.values_of_continuous_states_changed);
                 *defined = fmi3_bool(next.is_some());
                 *next_time = next.unwrap_or(0.0);
-                if let Some(t) = next {
-                    inst.log
-                        .debug("logEvents", &format!("next time event at t = {t} s"));
-                }
                 Ok(Fmi3Status::Ok)
             },
         )
@@ -126,22 +104,12 @@ pub unsafe fn set_continuous_states<M: Model>(
             c,
             "fmi3SetContinuousStates",
             Call::SetContinuousStates,
-            |inst| {
-                check_len(nx, states::<M>(), "continuousStates[]")?;
-                let x = input_slice(x, nx, "continuousStates[]")?;
-                if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
-                    return Err(format!("continuousStates[] contains {bad}"));
-                }
-                inst.core.model_mut().set_continuous_states(x);
-                Ok(Fmi3Status::Ok)
-            },
+            |inst| calls::set_continuous_states(inst, x, nx, "continuousStates[]"),
         )
     }
 }
 
-/// Fills an output array of the model's count with `f`. An error of the model (it
-/// cannot be evaluated here) is logged and returned as fmi3Discard, leaving the
-/// instance usable; a non-finite value is an error.
+/// [`calls::fill`]: an output array of the model's count `expected` filled by `f`.
 unsafe fn fill<M: Model>(
     c: Fmi3Instance,
     function: &str,
@@ -152,19 +120,7 @@ unsafe fn fill<M: Model>(
 ) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, function, Call::ContinuousStateQuery, |inst| {
-            check_len(n, expected(), "the array")?;
-            let out = output_slice(ptr, n, "the array")?;
-            if let Err(reason) = f(inst.core.model(), out) {
-                inst.log.status(
-                    Fmi3Status::Discard,
-                    &format!("{function}: at t = {} s: {reason}", inst.core.time),
-                );
-                return Ok(Fmi3Status::Discard);
-            }
-            if let Some(bad) = out.iter().find(|v| !v.is_finite()) {
-                return Err(format!("the model computed {bad}"));
-            }
-            Ok(Fmi3Status::Ok)
+            calls::fill(inst, function, ptr, n, expected(), f)
         })
     }
 }

@@ -1,0 +1,111 @@
+//! The bodies of the Model Exchange functions that FMI 2.0 and FMI 3.0 define alike
+//! (entering Event Mode, updating discrete states, setting and reading the continuous
+//! state arrays): each front-end runs them inside its `with_instance` and writes the
+//! results into its own C types.
+
+use super::frontend::{FrontendInstance, StatusCode, StatusOf};
+use super::logging::Log;
+use super::model::{EventUpdate, Model};
+use crate::ffi::{input_slice, output_slice};
+
+type Result<I> = std::result::Result<StatusOf<<I as FrontendInstance>::Frontend>, String>;
+
+/// Checks an array length against the model's count.
+pub fn check_len(n: usize, expected: usize, what: &str) -> std::result::Result<(), String> {
+    if n == expected {
+        Ok(())
+    } else {
+        Err(format!("{what} has length {n}, the model has {expected}"))
+    }
+}
+
+/// The number of continuous states of M.
+pub fn states<M: Model>() -> usize {
+    M::info().number_of_continuous_states
+}
+
+/// The number of event indicators of M.
+pub fn indicators<M: Model>() -> usize {
+    M::info().number_of_event_indicators
+}
+
+/// EnterEventMode: `event_mode` (the front-end's Event Mode) with a log line.
+pub fn enter_event_mode<I: FrontendInstance>(
+    inst: &mut I,
+    event_mode: <I::Frontend as super::frontend::Frontend>::Mode,
+) -> Result<I> {
+    let parts = inst.parts();
+    *parts.mode = event_mode;
+    parts.log.debug(
+        "logEvents",
+        &format!("event mode at t = {} s", parts.core.time),
+    );
+    Ok(StatusCode::OK)
+}
+
+/// NewDiscreteStates / UpdateDiscreteStates: the model's update and its next time
+/// event (logged), for the front-end to write out.
+pub fn update_discrete_states<I: FrontendInstance>(inst: &mut I) -> (EventUpdate, Option<f64>) {
+    let parts = inst.parts();
+    let update = parts.core.model_mut().update_discrete_states();
+    let next = parts.core.model().next_time_event(parts.core.time);
+    if let Some(t) = next {
+        parts
+            .log
+            .debug("logEvents", &format!("next time event at t = {t} s"));
+    }
+    (update, next)
+}
+
+/// SetContinuousStates from the array `x` (named `what` in messages) of `nx` values.
+///
+/// # Safety
+/// `x` must be null or valid for `nx` values.
+pub unsafe fn set_continuous_states<I: FrontendInstance>(
+    inst: &mut I,
+    x: *const f64,
+    nx: usize,
+    what: &str,
+) -> Result<I> {
+    check_len(nx, states::<I::Model>(), what)?;
+    // SAFETY: by the contract above.
+    let x = unsafe { input_slice(x, nx, what) }?;
+    if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
+        return Err(format!("{what} contains {bad}"));
+    }
+    inst.parts().core.model_mut().set_continuous_states(x);
+    Ok(StatusCode::OK)
+}
+
+/// Fills the output array `ptr` of the model's count `expected` with `f`. An error of
+/// the model (it cannot be evaluated here; an integrator may retry with a smaller
+/// step) is logged and returned as Discard, leaving the instance usable; a non-finite
+/// value is an error.
+///
+/// # Safety
+/// `ptr` must be null or valid for `n` values.
+pub unsafe fn fill<I: FrontendInstance>(
+    inst: &mut I,
+    function: &str,
+    ptr: *mut f64,
+    n: usize,
+    expected: usize,
+    f: impl FnOnce(&I::Model, &mut [f64]) -> std::result::Result<(), String>,
+) -> Result<I> {
+    check_len(n, expected, "the array")?;
+    // SAFETY: by the contract above.
+    let out = unsafe { output_slice(ptr, n, "the array") }?;
+    let parts = inst.parts();
+    if let Err(reason) = f(parts.core.model(), out) {
+        let discard = StatusCode::DISCARD;
+        parts.log.status(
+            discard,
+            &format!("{function}: at t = {} s: {reason}", parts.core.time),
+        );
+        return Ok(discard);
+    }
+    if let Some(bad) = out.iter().find(|v| !v.is_finite()) {
+        return Err(format!("the model computed {bad}"));
+    }
+    Ok(StatusCode::OK)
+}
