@@ -197,6 +197,22 @@ pub fn exit_initialization_mode<I: FrontendInstance>(
     Ok(StatusCode::OK)
 }
 
+/// Logs that `function` cannot evaluate the model at the instance's time (`reason`)
+/// and returns Discard: the instance stays usable.
+pub fn discard<I: FrontendInstance>(
+    inst: &mut I,
+    function: &str,
+    reason: &str,
+) -> StatusOf<FrontendOf<I>> {
+    let parts = inst.parts();
+    let discard = StatusCode::DISCARD;
+    parts.log.status(
+        discard,
+        &format!("{function}: at t = {} s: {reason}", parts.core.time),
+    );
+    discard
+}
+
 /// Enters `mode` (a call whose only effect is the change of mode).
 pub fn enter<I: FrontendInstance>(
     inst: &mut I,

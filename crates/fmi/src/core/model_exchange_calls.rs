@@ -3,6 +3,7 @@
 //! state arrays): each front-end runs them inside its `with_instance` and writes the
 //! results into its own C types.
 
+use super::entry::discard;
 use super::frontend::{FrontendInstance, StatusCode, StatusOf};
 use super::logging::Log;
 use super::model::{EventUpdate, Model};
@@ -95,14 +96,8 @@ pub unsafe fn fill<I: FrontendInstance>(
     check_len(n, expected, "the array")?;
     // SAFETY: by the contract above.
     let out = unsafe { output_slice(ptr, n, "the array") }?;
-    let parts = inst.parts();
-    if let Err(reason) = f(parts.core.model(), out) {
-        let discard = StatusCode::DISCARD;
-        parts.log.status(
-            discard,
-            &format!("{function}: at t = {} s: {reason}", parts.core.time),
-        );
-        return Ok(discard);
+    if let Err(reason) = f(inst.parts().core.model(), out) {
+        return Ok(discard(inst, function, &reason));
     }
     if let Some(bad) = out.iter().find(|v| !v.is_finite()) {
         return Err(format!("the model computed {bad}"));

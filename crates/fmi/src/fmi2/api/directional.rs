@@ -1,6 +1,7 @@
 //! fmi2GetDirectionalDerivative.
 
 use super::{input_slice, output_slice, with_instance};
+use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::variables::find;
 use crate::fmi2::mode::Call;
@@ -53,14 +54,11 @@ pub unsafe fn get_directional_derivative<M: Model>(
                     },
                     Err(reason) => reason,
                 };
-                inst.log.status(
-                    Fmi2Status::Discard,
-                    &format!(
-                        "fmi2GetDirectionalDerivative: at t = {} s: {reason}",
-                        inst.core.time
-                    ),
-                );
-                Ok(Fmi2Status::Discard)
+                Ok(entry::discard(
+                    inst,
+                    "fmi2GetDirectionalDerivative",
+                    &reason,
+                ))
             },
         )
     }

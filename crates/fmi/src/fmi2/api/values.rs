@@ -1,37 +1,46 @@
 //! fmi2Get*/fmi2Set* for Real, Integer, Boolean and String variables.
 
 use super::{input_slice, output_slice, with_instance};
+use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::variables::find;
 use crate::fmi2::instance::Instance;
 use crate::fmi2::mode::Call;
 use crate::fmi2::types::*;
 
-/// Brings the computed values up to date for reading `vrs`; Some(Discard) (logged)
-/// when a calculated one is requested and the model cannot be evaluated here.
-fn prepare<M: Model>(
+/// Reads the variables `vr[0..nvr]` into `value` with `get`, after making the
+/// computed values current; Discard (logged) when a calculated one is requested and
+/// the model cannot be evaluated here.
+unsafe fn read<M: Model, T>(
     inst: &mut Instance<M>,
     function: &str,
-    vrs: &[Fmi2ValueReference],
-) -> Result<Option<Fmi2Status>, String> {
-    let Some(reason) = inst.core.prepare_read(vrs)? else {
-        return Ok(None);
-    };
-    inst.log.status(
-        Fmi2Status::Discard,
-        &format!("{function}: at t = {} s: {reason}", inst.core.time),
-    );
-    Ok(Some(Fmi2Status::Discard))
+    (vr, nvr): (*const Fmi2ValueReference, usize),
+    value: *mut T,
+    get: impl Fn(&Instance<M>, u32) -> Result<T, String>,
+) -> Result<Fmi2Status, String> {
+    let vrs = unsafe { input_slice(vr, nvr, "vr[]") }?;
+    let out = unsafe { output_slice(value, nvr, "value[]") }?;
+    if let Some(reason) = inst.core.prepare_read(vrs)? {
+        return Ok(entry::discard(inst, function, &reason));
+    }
+    for (&r, v) in vrs.iter().zip(out) {
+        *v = get(inst, r)?;
+    }
+    Ok(Fmi2Status::Ok)
 }
 
-/// Applies `f` to each (value reference, value) pair; stops at the first error.
-fn each<T>(
-    vrs: &[Fmi2ValueReference],
-    values: &mut [T],
-    mut f: impl FnMut(u32, &mut T) -> Result<(), String>,
+/// Writes `value[0..nvr]` to the variables `vr[0..nvr]` with `set`; stops at the
+/// first error.
+unsafe fn write<M: Model, T: Copy>(
+    inst: &mut Instance<M>,
+    (vr, nvr): (*const Fmi2ValueReference, usize),
+    value: *const T,
+    set: impl Fn(&mut Instance<M>, u32, T) -> Result<(), String>,
 ) -> Result<Fmi2Status, String> {
-    for (vr, value) in vrs.iter().zip(values.iter_mut()) {
-        f(*vr, value)?;
+    let vrs = unsafe { input_slice(vr, nvr, "vr[]") }?;
+    let values = unsafe { input_slice(value, nvr, "value[]") }?;
+    for (&r, &v) in vrs.iter().zip(values) {
+        set(inst, r, v)?;
     }
     Ok(Fmi2Status::Ok)
 }
@@ -44,14 +53,8 @@ pub unsafe fn get_real<M: Model>(
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2GetReal", Call::GetValues, |inst| {
-            let vrs = input_slice(vr, nvr, "vr[]")?;
-            let out = output_slice(value, nvr, "value[]")?;
-            if let Some(status) = prepare(inst, "fmi2GetReal", vrs)? {
-                return Ok(status);
-            }
-            each(vrs, out, |r, v| {
-                *v = inst.core.get_real(r)?;
-                Ok(())
+            read(inst, "fmi2GetReal", (vr, nvr), value, |i, r| {
+                i.core.get_real(r)
             })
         })
     }
@@ -65,14 +68,8 @@ pub unsafe fn get_integer<M: Model>(
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2GetInteger", Call::GetValues, |inst| {
-            let vrs = input_slice(vr, nvr, "vr[]")?;
-            let out = output_slice(value, nvr, "value[]")?;
-            if let Some(status) = prepare(inst, "fmi2GetInteger", vrs)? {
-                return Ok(status);
-            }
-            each(vrs, out, |r, v| {
-                *v = inst.core.get_integer(r)?;
-                Ok(())
+            read(inst, "fmi2GetInteger", (vr, nvr), value, |i, r| {
+                i.core.get_integer(r)
             })
         })
     }
@@ -86,18 +83,12 @@ pub unsafe fn get_boolean<M: Model>(
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2GetBoolean", Call::GetValues, |inst| {
-            let vrs = input_slice(vr, nvr, "vr[]")?;
-            let out = output_slice(value, nvr, "value[]")?;
-            if let Some(status) = prepare(inst, "fmi2GetBoolean", vrs)? {
-                return Ok(status);
-            }
-            each(vrs, out, |r, v| {
-                *v = if inst.core.get_boolean(r)? {
+            read(inst, "fmi2GetBoolean", (vr, nvr), value, |i, r| {
+                Ok(if i.core.get_boolean(r)? {
                     FMI2_TRUE
                 } else {
                     FMI2_FALSE
-                };
-                Ok(())
+                })
             })
         })
     }
@@ -146,12 +137,7 @@ pub unsafe fn set_real<M: Model>(
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2SetReal", Call::SetReal, |inst| {
-            let vrs = input_slice(vr, nvr, "vr[]")?;
-            let values = input_slice(value, nvr, "value[]")?;
-            for (&r, &v) in vrs.iter().zip(values) {
-                inst.set_real(r, v)?;
-            }
-            Ok(Fmi2Status::Ok)
+            write(inst, (vr, nvr), value, |i, r, v| i.set_real(r, v))
         })
     }
 }
@@ -164,12 +150,7 @@ pub unsafe fn set_integer<M: Model>(
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2SetInteger", Call::SetDiscrete, |inst| {
-            let vrs = input_slice(vr, nvr, "vr[]")?;
-            let values = input_slice(value, nvr, "value[]")?;
-            for (&r, &v) in vrs.iter().zip(values) {
-                inst.set_integer(r, v)?;
-            }
-            Ok(Fmi2Status::Ok)
+            write(inst, (vr, nvr), value, |i, r, v| i.set_integer(r, v))
         })
     }
 }
@@ -182,12 +163,9 @@ pub unsafe fn set_boolean<M: Model>(
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2SetBoolean", Call::SetDiscrete, |inst| {
-            let vrs = input_slice(vr, nvr, "vr[]")?;
-            let values = input_slice(value, nvr, "value[]")?;
-            for (&r, &v) in vrs.iter().zip(values) {
-                inst.set_boolean(r, v != FMI2_FALSE)?;
-            }
-            Ok(Fmi2Status::Ok)
+            write(inst, (vr, nvr), value, |i, r, v| {
+                i.set_boolean(r, v != FMI2_FALSE)
+            })
         })
     }
 }

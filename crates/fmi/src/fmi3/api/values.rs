@@ -3,6 +3,7 @@
 //! where the model cannot be evaluated returns fmi3Discard with the model's reason.
 
 use super::{input_slice, output_slice, with_instance};
+use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::variables::VariableType;
 use crate::fmi3::instance::Instance;
@@ -24,11 +25,7 @@ fn read<M: Model, T: Default + Clone>(
     let table = Arc::clone(&inst.table);
     let variables = table.typed_all(vrs, wanted, out.len())?;
     if let Some(reason) = inst.prepare_read(&variables)? {
-        inst.log.status(
-            Fmi3Status::Discard,
-            &format!("{function}: at t = {} s: {reason}", inst.core.time),
-        );
-        return Ok(Fmi3Status::Discard);
+        return Ok(entry::discard(inst, function, &reason));
     }
     let mut at = 0;
     for v in variables {
