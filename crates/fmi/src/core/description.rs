@@ -4,7 +4,7 @@
 //! checked-in description. The front-ends' writers embed these elements.
 
 use super::logging::LogCategory;
-use super::model::DefaultExperiment as Experiment;
+use super::model::{DefaultExperiment as Experiment, Model};
 use super::units::{UNITS, UnitDefinition, unit};
 use super::variables::{Kind, Variable};
 use serde::Serialize;
@@ -183,10 +183,11 @@ pub fn xml_document<T: Serialize>(root: &T) -> Result<String, String> {
     Ok(xml)
 }
 
-/// The drift check of an FMU crate: the checked-in file `path` must equal `generated`.
-/// With the environment variable UPDATE_MODEL_DESCRIPTION set, the file is rewritten
-/// first.
-pub fn check_checked_in(path: &std::path::Path, generated: &str) -> Result<(), String> {
+/// The drift check of an FMU crate: the checked-in `<dir>/<modelName>.xml` of model M
+/// must equal `generated`. With the environment variable UPDATE_MODEL_DESCRIPTION set,
+/// the file is rewritten first.
+pub fn check_checked_in<M: Model>(dir: &std::path::Path, generated: &str) -> Result<(), String> {
+    let path = &dir.join(format!("{}.xml", M::info().model_name));
     if std::env::var_os("UPDATE_MODEL_DESCRIPTION").is_some() {
         std::fs::write(path, generated).map_err(|e| format!("{}: {e}", path.display()))?;
     }

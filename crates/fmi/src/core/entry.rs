@@ -8,6 +8,7 @@ use super::handles::{self, HandleKind};
 use super::instance::Snapshot;
 use super::logging::Log;
 use super::model::Model;
+use super::variables::{Causality, Variability};
 use crate::ffi::{check_finite, input_slice, panic_message, text};
 use std::ffi::{c_char, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -211,6 +212,25 @@ pub fn discard<I: FrontendInstance>(
         &format!("{function}: at t = {} s: {reason}", parts.core.time),
     );
     discard
+}
+
+/// Ok when the standard's rule allows setting the variable `name` in `mode`
+/// (`allowed`), else the error that says why not.
+pub fn settable(
+    allowed: bool,
+    name: &str,
+    causality: Causality,
+    variability: Variability,
+    mode: impl std::fmt::Debug,
+) -> Result<(), String> {
+    if allowed {
+        return Ok(());
+    }
+    Err(format!(
+        "\"{name}\" (causality {}, variability {}) cannot be set in {mode:?}",
+        causality.as_str(),
+        variability.as_str()
+    ))
 }
 
 /// Enters `mode` (a call whose only effect is the change of mode).

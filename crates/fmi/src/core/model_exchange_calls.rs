@@ -7,7 +7,7 @@ use super::entry::discard;
 use super::frontend::{FrontendInstance, StatusCode, StatusOf};
 use super::logging::Log;
 use super::model::{EventUpdate, Model};
-use crate::ffi::{input_slice, output_slice};
+use crate::ffi::{input_slice, output_ref, output_slice};
 
 type Result<I> = std::result::Result<StatusOf<<I as FrontendInstance>::Frontend>, String>;
 
@@ -56,6 +56,24 @@ pub fn update_discrete_states<I: FrontendInstance>(inst: &mut I) -> (EventUpdate
             .debug("logEvents", &format!("next time event at t = {t} s"));
     }
     (update, next)
+}
+
+/// CompletedIntegratorStep: the models have no step events, so neither
+/// enterEventMode nor terminateSimulation.
+///
+/// # Safety
+/// Both pointers must be null or valid.
+pub unsafe fn completed_integrator_step<I: FrontendInstance, B: From<bool>>(
+    _inst: &mut I,
+    enter_event_mode: *mut B,
+    terminate_simulation: *mut B,
+) -> Result<I> {
+    // SAFETY: by the contract above.
+    let enter = unsafe { output_ref(enter_event_mode, "enterEventMode") }?;
+    let stop = unsafe { output_ref(terminate_simulation, "terminateSimulation") }?;
+    *enter = B::from(false);
+    *stop = B::from(false);
+    Ok(StatusCode::OK)
 }
 
 /// SetContinuousStates from the array `x` (named `what` in messages) of `nx` values.

@@ -300,8 +300,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
 /// what the code generates. With the environment variable UPDATE_MODEL_DESCRIPTION
 /// set, the file is rewritten first.
 pub fn check_checked_in<M: Model>(dir: &std::path::Path) -> Result<(), String> {
-    let path = dir.join(format!("{}.xml", M::info().model_name));
-    description::check_checked_in(&path, &model_description::<M>()?)
+    description::check_checked_in::<M>(dir, &model_description::<M>()?)
 }
 
 /// Number of `<Unknown>` entries in one ModelStructure section (`Outputs`,

@@ -4,6 +4,7 @@
 
 use super::logging::Logger;
 use super::mode::{Fmi2, Interface, Mode};
+use crate::core::entry;
 use crate::core::frontend::frontend_instance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
@@ -57,17 +58,7 @@ impl<M: Model> Instance<M> {
                 _ => false,
             },
         };
-        if ok {
-            Ok(())
-        } else {
-            Err(format!(
-                "\"{}\" (causality {}, variability {}) cannot be set in {:?}",
-                v.name,
-                v.causality.as_str(),
-                v.variability.as_str(),
-                mode
-            ))
-        }
+        entry::settable(ok, &v.name, v.causality, v.variability, mode)
     }
 
     /// The mode check for writing `vr` as a `wanted` variable (a wrong type is

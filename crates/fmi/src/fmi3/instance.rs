@@ -6,6 +6,7 @@
 use super::logging::Logger;
 use super::mode::{Fmi3, Interface, Mode};
 use super::table::{Source, Table3, Variable3, build};
+use crate::core::entry;
 use crate::core::frontend::frontend_instance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
@@ -130,16 +131,6 @@ impl<M: Model> Instance<M> {
                 }
                 _ => false,
             };
-        if ok {
-            Ok(())
-        } else {
-            Err(format!(
-                "\"{}\" (causality {}, variability {}) cannot be set in {:?}",
-                v.name,
-                v.causality.as_str(),
-                v.variability.as_str(),
-                mode
-            ))
-        }
+        entry::settable(ok, &v.name, v.causality, v.variability, mode)
     }
 }

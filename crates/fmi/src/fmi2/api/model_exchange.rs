@@ -74,13 +74,8 @@ pub unsafe fn completed_integrator_step<M: Model>(
             c,
             "fmi2CompletedIntegratorStep",
             Call::CompletedIntegratorStep,
-            |_: &mut Instance<M>| {
-                let enter = output_ref(enter_event_mode, "enterEventMode")?;
-                let stop = output_ref(terminate_simulation, "terminateSimulation")?;
-                // The models have no step events.
-                *enter = FMI2_FALSE;
-                *stop = FMI2_FALSE;
-                Ok(Fmi2Status::Ok)
+            |inst: &mut Instance<M>| {
+                calls::completed_integrator_step(inst, enter_event_mode, terminate_simulation)
             },
         )
     }
