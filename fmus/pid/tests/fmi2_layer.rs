@@ -2,9 +2,12 @@
 //! functions the exported symbols forward to): state machine, argument checks,
 //! logging, FMU state serialization, Discard, directional derivatives, unwinds.
 
-use robofmu_fmi::core::{
-    DefaultExperiment, Log, Model, ModelInfo, StepOutcome, Variability, Variable,
-};
+#[path = "support/panicky.rs"]
+mod panicky;
+mod support;
+
+use panicky::Panicky;
+use robofmu_fmi::core::Model;
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
@@ -379,51 +382,6 @@ fn instances_on_different_threads_do_not_interfere() {
         .collect();
     let parallel: Vec<f64> = threads.into_iter().map(|t| t.join().unwrap()).collect();
     assert_eq!(alone, parallel);
-}
-
-/// A model whose step panics, to prove that unwinds stop at the boundary.
-#[derive(Clone)]
-struct Panicky;
-
-static PANICKY_INFO: ModelInfo = ModelInfo {
-    model_name: "Panicky",
-    model_identifier: "Panicky",
-    guid: "{panicky}",
-    description: "panics in doStep",
-    default_experiment: DefaultExperiment {
-        start_time: 0.0,
-        stop_time: 1.0,
-        tolerance: 1e-6,
-        step_size: 0.1,
-    },
-    number_of_continuous_states: 0,
-    number_of_event_indicators: 0,
-    provides_directional_derivative: false,
-    log_categories: &[],
-};
-
-impl Model for Panicky {
-    fn info() -> &'static ModelInfo {
-        &PANICKY_INFO
-    }
-    fn variables() -> Vec<Variable<Self>> {
-        vec![
-            Variable::real(1, "k", "a parameter", |_: &Panicky| 1.0)
-                .parameter(Variability::Fixed)
-                .start_real(1.0)
-                .set_real(|_, _| Ok(())),
-        ]
-    }
-    fn new() -> Self {
-        Panicky
-    }
-    fn set_time(&mut self, _time: f64) {}
-    fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {
-        Ok(())
-    }
-    fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
-        panic!("deliberate test panic")
-    }
 }
 
 #[test]

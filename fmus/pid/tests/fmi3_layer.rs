@@ -4,9 +4,12 @@
 //! the FMI 3.0 front-end says so. The call sequences of the real FMUs are tested
 //! through their shared libraries in tests/python/test_fmi3_calls.py.
 
-use robofmu_fmi::core::{
-    DefaultExperiment, Log, Model, ModelInfo, StepOutcome, Variability, Variable,
-};
+#[path = "support/panicky.rs"]
+mod panicky;
+mod support;
+
+use panicky::Panicky;
+use robofmu_fmi::core::Model;
 use robofmu_fmi::fmi3::api;
 use robofmu_fmi::fmi3::mode::Interface;
 use robofmu_fmi::fmi3::types::*;
@@ -72,51 +75,6 @@ fn step<M: Model>(c: Fmi3Instance, t: f64, h: f64) -> Fmi3Status {
                 last_successful_time: &mut last,
             },
         )
-    }
-}
-
-/// A model whose step panics, to prove that unwinds stop at the boundary.
-#[derive(Clone)]
-struct Panicky;
-
-static PANICKY_INFO: ModelInfo = ModelInfo {
-    model_name: "Panicky",
-    model_identifier: "Panicky",
-    guid: "{panicky}",
-    description: "panics in doStep",
-    default_experiment: DefaultExperiment {
-        start_time: 0.0,
-        stop_time: 1.0,
-        tolerance: 1e-6,
-        step_size: 0.1,
-    },
-    number_of_continuous_states: 0,
-    number_of_event_indicators: 0,
-    provides_directional_derivative: false,
-    log_categories: &[],
-};
-
-impl Model for Panicky {
-    fn info() -> &'static ModelInfo {
-        &PANICKY_INFO
-    }
-    fn variables() -> Vec<Variable<Self>> {
-        vec![
-            Variable::real(1, "k", "a parameter", |_: &Panicky| 1.0)
-                .parameter(Variability::Fixed)
-                .start_real(1.0)
-                .set_real(|_, _| Ok(())),
-        ]
-    }
-    fn new() -> Self {
-        Panicky
-    }
-    fn set_time(&mut self, _time: f64) {}
-    fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {
-        Ok(())
-    }
-    fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
-        panic!("deliberate test panic")
     }
 }
 

@@ -4,13 +4,16 @@
 //! fmi2Error (with a log line where an instance exists to log through), never a crash.
 //! Also: fmi2Instantiate refuses null allocateMemory / freeMemory callbacks.
 
-use robofmu_fmi::core::{DefaultExperiment, Log, Model, ModelInfo, StepOutcome, Variable};
+mod support;
+
+use robofmu_fmi::core::{Log, Model, ModelInfo, StepOutcome, Variable};
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::host::{Host, Lines};
 use robofmu_fmi::fmi2::types::*;
 use robofmu_pid_fmu::Pid;
 use std::ffi::{CString, c_void};
 use std::sync::Mutex;
+use support::test_info;
 
 const CS: i32 = FMI2_CO_SIMULATION;
 
@@ -18,22 +21,7 @@ const CS: i32 = FMI2_CO_SIMULATION;
 #[derive(Clone)]
 struct Other;
 
-static OTHER: ModelInfo = ModelInfo {
-    model_name: "Other",
-    model_identifier: "Other",
-    guid: "{other}",
-    description: "another FMU",
-    default_experiment: DefaultExperiment {
-        start_time: 0.0,
-        stop_time: 1.0,
-        tolerance: 1e-6,
-        step_size: 0.1,
-    },
-    number_of_continuous_states: 0,
-    number_of_event_indicators: 0,
-    provides_directional_derivative: false,
-    log_categories: &[],
-};
+static OTHER: ModelInfo = test_info("Other", "{other}", "another FMU");
 
 impl Model for Other {
     fn info() -> &'static ModelInfo {
