@@ -195,7 +195,7 @@ fn channels<T: ElementType>(
     group: u32,
     base: &'static str,
     description: &'static str,
-    get: impl Fn(&Pid, usize) -> T + Send + Sync + 'static,
+    get: impl Fn(&Pid, usize) -> T + Clone + Send + Sync + 'static,
 ) -> Array<Pid, T> {
     Array::new(vr(group, 0), base, CHANNELS, description, get).label("Channel")
 }

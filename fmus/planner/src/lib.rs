@@ -144,7 +144,7 @@ fn axes(
     first_vr: u32,
     base: &'static str,
     what: &'static str,
-    get: impl Fn(&Planner, usize) -> f64 + Send + Sync + 'static,
+    get: impl Fn(&Planner, usize) -> f64 + Clone + Send + Sync + 'static,
 ) -> RealArray<Planner> {
     RealArray::new(first_vr, base, AXES, what, get)
         .stride(AXIS_STRIDE)

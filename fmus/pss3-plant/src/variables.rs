@@ -261,7 +261,7 @@ fn vector_output(
     base: &'static str,
     description: &'static str,
     (unit, display): (&'static str, Option<&'static str>),
-    get: impl Fn(&Pss3Plant, usize) -> f64 + Send + Sync + 'static,
+    get: impl Fn(&Pss3Plant, usize) -> f64 + Clone + Send + Sync + 'static,
     depends: impl Fn(usize) -> &'static [&'static str] + 'static,
 ) -> Vec<Variable<Pss3Plant>> {
     RealArray::new(vr(group, 0), base, 3, description, get)

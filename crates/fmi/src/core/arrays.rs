@@ -5,7 +5,6 @@
 
 use super::variables::{Variable, find};
 use std::borrow::Cow;
-use std::sync::Arc;
 
 /// Position of a scalar in an array variable `base[1..length]`: the FMI 2.0 name is
 /// `base[index + 1]` (`der(base[index + 1])` for the derivative of an array state);
@@ -109,25 +108,13 @@ impl ElementType for bool {
     }
 }
 
-type ElementGetter<M, T> = dyn Fn(&M, usize) -> T + Send + Sync;
-type ElementSetter<M, T> = dyn Fn(&mut M, usize, T) -> Result<(), String> + Send + Sync;
-/// A role applied to element i of an array (causality, unit, start value, ...).
-type ElementRole<M> = Box<dyn Fn(Variable<M>, usize) -> Variable<M>>;
-
 /// One declaration of an array `base[1..length]` of element type T (see the module
-/// documentation).
+/// documentation). The elements are built at once and each call refines them, so a
+/// declaration allocates nothing beyond its scalars.
 pub struct Array<M, T: ElementType> {
+    elements: Vec<Variable<M>>,
     first_vr: u32,
-    stride: u32,
-    base: &'static str,
-    length: usize,
-    derivative: bool,
-    get: Arc<ElementGetter<M, T>>,
-    set: Option<Arc<ElementSetter<M, T>>>,
-    roles: Vec<ElementRole<M>>,
-    description: Cow<'static, str>,
-    /// Element i is described as "`label` i: `description`".
-    label: Option<&'static str>,
+    marker: std::marker::PhantomData<T>,
 }
 
 pub type RealArray<M> = Array<M, f64>;
@@ -142,90 +129,91 @@ impl<M: 'static, T: ElementType> Array<M, T> {
         base: &'static str,
         length: usize,
         description: impl Into<Cow<'static, str>>,
-        get: impl Fn(&M, usize) -> T + Send + Sync + 'static,
+        get: impl Fn(&M, usize) -> T + Clone + Send + Sync + 'static,
     ) -> Self {
+        Self::declare(first_vr, base, length, description.into(), false, get)
+    }
+
+    fn declare(
+        first_vr: u32,
+        base: &'static str,
+        length: usize,
+        description: Cow<'static, str>,
+        derivative: bool,
+        get: impl Fn(&M, usize) -> T + Clone + Send + Sync + 'static,
+    ) -> Self {
+        let elements = (0..length)
+            .map(|i| {
+                let element = ArrayElement {
+                    base,
+                    index: i,
+                    length,
+                    stride: 1,
+                    derivative,
+                };
+                let get = get.clone();
+                let vr = first_vr + i as u32;
+                let mut v =
+                    T::variable(vr, element.name(i), description.clone(), move |m| get(m, i));
+                if derivative {
+                    v = v.derivative_of(format!("{base}[{}]", i + 1));
+                }
+                v.array = Some(element);
+                v
+            })
+            .collect();
         Array {
+            elements,
             first_vr,
-            stride: 1,
-            base,
-            length,
-            derivative: false,
-            get: Arc::new(get),
-            set: None,
-            roles: Vec::new(),
-            description: description.into(),
-            label: None,
+            marker: std::marker::PhantomData,
         }
     }
 
     /// Value references `first_vr + i * stride` instead of consecutive ones (arrays
     /// whose elements interleave with other arrays' by index).
     pub fn stride(mut self, stride: u32) -> Self {
-        self.stride = stride;
+        for (i, v) in self.elements.iter_mut().enumerate() {
+            v.value_reference = self.first_vr + i as u32 * stride;
+            if let Some(element) = &mut v.array {
+                element.stride = stride;
+            }
+        }
         self
     }
 
     /// Describes element i as "`label` i: description" (e.g. "Axis 2: position").
-    pub fn label(mut self, label: &'static str) -> Self {
-        self.label = Some(label);
-        self
+    pub fn label(self, label: &'static str) -> Self {
+        self.each(move |v, i| {
+            let description = format!("{label} {}: {}", i + 1, v.description);
+            v.describe(description)
+        })
     }
 
     /// The writer of every element.
     pub fn set(
-        mut self,
-        set: impl Fn(&mut M, usize, T) -> Result<(), String> + Send + Sync + 'static,
+        self,
+        set: impl Fn(&mut M, usize, T) -> Result<(), String> + Clone + Send + Sync + 'static,
     ) -> Self {
-        self.set = Some(Arc::new(set));
-        self
+        self.each(move |v, i| {
+            let set = set.clone();
+            T::with_setter(v, move |m, x| set(m, i, x))
+        })
     }
 
     /// Applies `role` (causality, unit, start value, description, ...) to element `i`.
-    pub fn each(mut self, role: impl Fn(Variable<M>, usize) -> Variable<M> + 'static) -> Self {
-        self.roles.push(Box::new(role));
+    pub fn each(mut self, role: impl Fn(Variable<M>, usize) -> Variable<M>) -> Self {
+        self.elements = self
+            .elements
+            .into_iter()
+            .enumerate()
+            .map(|(i, v)| role(v, i))
+            .collect();
         self
-    }
-
-    fn element(&self) -> ArrayElement {
-        ArrayElement {
-            base: self.base,
-            index: 0,
-            length: self.length,
-            stride: self.stride,
-            derivative: self.derivative,
-        }
-    }
-
-    fn description(&self, i: usize) -> Cow<'static, str> {
-        match self.label {
-            Some(label) => format!("{label} {}: {}", i + 1, self.description).into(),
-            None => self.description.clone(),
-        }
     }
 
     /// The scalar variables, element 0 first.
     pub fn variables(self) -> Vec<Variable<M>> {
-        (0..self.length)
-            .map(|i| {
-                let element = ArrayElement {
-                    index: i,
-                    ..self.element()
-                };
-                let get = self.get.clone();
-                let vr = self.first_vr + i as u32 * self.stride;
-                let mut v =
-                    T::variable(vr, element.name(i), self.description(i), move |m| get(m, i));
-                if let Some(set) = &self.set {
-                    let set = set.clone();
-                    v = T::with_setter(v, move |m, x| set(m, i, x));
-                }
-                if self.derivative {
-                    v = v.derivative_of(format!("{}[{}]", self.base, i + 1));
-                }
-                v.array = Some(element);
-                self.roles.iter().fold(v, |v, role| role(v, i))
-            })
-            .collect()
+        self.elements
     }
 }
 
@@ -238,12 +226,9 @@ impl<M: 'static> RealArray<M> {
         state: &'static str,
         length: usize,
         description: impl Into<Cow<'static, str>>,
-        get: impl Fn(&M, usize) -> f64 + Send + Sync + 'static,
+        get: impl Fn(&M, usize) -> f64 + Clone + Send + Sync + 'static,
     ) -> Self {
-        Array {
-            derivative: true,
-            ..Array::new(first_vr, state, length, description, get)
-        }
+        Self::declare(first_vr, state, length, description.into(), true, get)
     }
 }
 
