@@ -322,16 +322,18 @@ fn one_array_declaration_gives_named_scalars_with_getters_setters_and_dimensions
         })
         .each(|v, i| v.state().start_real(0.1 * (i + 1) as f64));
     let table = array.variables();
-    let names: Vec<&str> = table.iter().map(|v| v.name.as_str()).collect();
+    let names: Vec<&str> = table.iter().map(|v| v.name.as_ref()).collect();
     assert_eq!(names, ["theta[1]", "theta[2]", "theta[3]"]);
     let vrs: Vec<u32> = table.iter().map(|v| v.value_reference).collect();
     assert_eq!(vrs, [101, 102, 103]);
     assert_eq!(
         table[2].array,
         Some(ArrayElement {
-            base: "theta".to_string(),
+            base: "theta",
             index: 2,
-            length: 3
+            length: 3,
+            stride: 1,
+            derivative: false,
         })
     );
     let mut model = [1.0, 2.0, 3.0];

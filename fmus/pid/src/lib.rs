@@ -5,7 +5,7 @@
 //! (Co-Simulation). Signals carry no unit: the controller is generic.
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
-use robofmu_fmi::core::variables::RealArray;
+use robofmu_fmi::core::variables::{Array, BooleanArray, ElementType, RealArray};
 use robofmu_fmi::core::{
     DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
@@ -88,20 +88,37 @@ fn split(vr: u32) -> (u32, usize) {
     (vr - (vr - 1) % 10 - 1, ((vr - 1) % 10) as usize)
 }
 
-/// Read and write access to one Real field of channel c (reading needs no copy of
-/// the model).
-#[derive(Clone, Copy)]
-struct RealField {
-    read: fn(&Pid, usize) -> f64,
-    write: fn(&mut Pid, usize) -> &mut f64,
+/// Read and write access to one field of channel c (reading needs no copy of the
+/// model).
+struct Field<T> {
+    read: fn(&Pid, usize) -> T,
+    write: fn(&mut Pid, usize) -> &mut T,
 }
 
-/// `field!(gains.kp)`: the `RealField` of `m.gains[c].kp`.
+// Copy without requiring T: Copy (the fields are function pointers).
+impl<T> Clone for Field<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<T> Copy for Field<T> {}
+
+type RealField = Field<f64>;
+
+/// `field!(gains.kp)`: the `Field` of `m.gains[c].kp`; `field!(limited)`: of
+/// `m.limited[c]`.
 macro_rules! field {
     ($group:ident . $member:tt) => {
-        RealField {
+        Field {
             read: |m, c| m.$group[c].$member,
             write: |m, c| &mut m.$group[c].$member,
+        }
+    };
+    ($group:ident) => {
+        Field {
+            read: |m, c| m.$group[c],
+            write: |m, c| &mut m.$group[c],
         }
     };
 }
@@ -174,19 +191,22 @@ const INPUTS: [(u32, &str, &str, [f64; CHANNELS], RealField); 5] = [
 ];
 
 /// `base[1..3]` read by `get`, each element described as "Channel c: `description`".
-fn channels(
+fn channels<T: ElementType>(
     group: u32,
-    base: &str,
-    description: &str,
-    get: impl Fn(&Pid, usize) -> f64 + Send + Sync + 'static,
-) -> RealArray<Pid> {
-    let description = description.to_string();
-    RealArray::new(vr(group, 0), base, CHANNELS, "", get)
-        .each(move |v, c| v.describe(format!("Channel {}: {description}", c + 1)))
+    base: &'static str,
+    description: &'static str,
+    get: impl Fn(&Pid, usize) -> T + Clone + Send + Sync + 'static,
+) -> Array<Pid, T> {
+    Array::new(vr(group, 0), base, CHANNELS, description, get).label("Channel")
 }
 
 /// The settable channel array of `field` (setting a limit updates the law's limits).
-fn settable(group: u32, base: &str, description: &str, field: RealField) -> RealArray<Pid> {
+fn settable<T: ElementType>(
+    group: u32,
+    base: &'static str,
+    description: &'static str,
+    field: Field<T>,
+) -> Array<Pid, T> {
     channels(group, base, description, field.read).set(move |m, c, v| {
         *(field.write)(m, c) = v;
         m.sync_limits(c);
@@ -194,45 +214,48 @@ fn settable(group: u32, base: &str, description: &str, field: RealField) -> Real
     })
 }
 
+/// The Boolean parameter `base[1..3]` (default false) of `field`.
+fn switches(
+    group: u32,
+    base: &'static str,
+    description: &'static str,
+    variability: Variability,
+    field: Field<bool>,
+) -> BooleanArray<Pid> {
+    settable(group, base, description, field)
+        .each(move |v, _| v.parameter(variability).start_boolean(false))
+}
+
 fn variables() -> Vec<Variable<Pid>> {
     let mut table = Vec::new();
-    let parameter =
-        |(group, name, description, default, field): &(u32, &str, &str, f64, RealField)| {
-            let default = *default;
-            settable(*group, name, description, *field)
-                .each(move |v, _| v.parameter(Variability::Tunable).start_real(default))
-                .variables()
-        };
-    table.extend(REAL_PARAMETERS.iter().take(4).flat_map(parameter));
-    for c in 0..CHANNELS {
-        table.push(
-            Variable::boolean(
-                vr(LIMITED, c),
-                format!("limitOutput[{}]", c + 1),
-                &format!("Channel {}: clamp the output to [uMin, uMax]", c + 1),
-                move |m: &Pid| m.limited[c],
-            )
-            .parameter(Variability::Tunable)
-            .start_boolean(false)
-            .set_boolean(move |m, v| {
-                m.limited[c] = v;
-                m.sync_limits(c);
-                Ok(())
-            }),
-        );
-    }
-    table.extend(REAL_PARAMETERS.iter().skip(4).flat_map(parameter));
-    for c in 0..CHANNELS {
-        table.push(
-            Variable::boolean(vr(USE_RATES, c), format!("useRateInputs[{}]", c + 1), &format!("Channel {}: derivative from setpointRate - measuredRate instead of the filtered error", c + 1), move |m: &Pid| m.gains[c].use_rate_inputs)
-                .parameter(Variability::Fixed)
-                .start_boolean(false)
-                .set_boolean(move |m, v| {
-                    m.gains[c].use_rate_inputs = v;
-                    Ok(())
-                }),
-        );
-    }
+    let parameter = |(group, name, description, default, field): &(
+        u32,
+        &'static str,
+        &'static str,
+        f64,
+        RealField,
+    )| {
+        let default = *default;
+        settable(*group, name, description, *field)
+            .each(move |v, _| v.parameter(Variability::Tunable).start_real(default))
+            .variables()
+    };
+    table.extend(REAL_PARAMETERS.iter().flat_map(parameter));
+    let limited = switches(
+        LIMITED,
+        "limitOutput",
+        "clamp the output to [uMin, uMax]",
+        Variability::Tunable,
+        field!(limited),
+    );
+    let use_rates = switches(
+        USE_RATES,
+        "useRateInputs",
+        "derivative from setpointRate - measuredRate instead of the filtered error",
+        Variability::Fixed,
+        field!(gains.use_rate_inputs),
+    );
+    table.extend(limited.variables().into_iter().chain(use_rates.variables()));
     for (group, name, description, defaults, field) in INPUTS {
         let array = settable(group, name, description, field)
             .each(move |v, c| v.input().start_real(defaults[c]));
@@ -259,30 +282,26 @@ fn variables() -> Vec<Variable<Pid>> {
             settable(group, name, description, field).each(|v, _| v.state().start_real(0.0));
         table.extend(array.variables());
     }
-    for c in 0..CHANNELS {
-        let name = format!("integral[{}]", c + 1);
-        table.push(
-            Variable::real(
-                vr(DER_INTEGRAL, c),
-                format!("der({name})"),
-                "Time derivative of the error integral",
-                move |m: &Pid| m.derivative(c).integral,
-            )
-            .derivative_of(&name),
-        );
-    }
-    for c in 0..CHANNELS {
-        let name = format!("filter[{}]", c + 1);
-        table.push(
-            Variable::real(
-                vr(DER_FILTER, c),
-                format!("der({name})"),
-                "Time derivative of the derivative filter state",
-                move |m: &Pid| m.derivative(c).filter,
-            )
-            .derivative_of(&name),
-        );
-    }
+    let der_integral = RealArray::derivatives(
+        vr(DER_INTEGRAL, 0),
+        "integral",
+        CHANNELS,
+        "Time derivative of the error integral",
+        |m: &Pid, c| m.derivative(c).integral,
+    );
+    let der_filter = RealArray::derivatives(
+        vr(DER_FILTER, 0),
+        "filter",
+        CHANNELS,
+        "Time derivative of the derivative filter state",
+        |m: &Pid, c| m.derivative(c).filter,
+    );
+    table.extend(
+        der_integral
+            .variables()
+            .into_iter()
+            .chain(der_filter.variables()),
+    );
     table
 }
 

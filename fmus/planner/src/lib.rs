@@ -4,6 +4,7 @@
 //! the planner itself is unit-agnostic.
 
 use robofmu_control::trajectory::{Boundary, Order, Polynomial};
+use robofmu_fmi::core::variables::RealArray;
 use robofmu_fmi::core::{
     DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
@@ -89,12 +90,15 @@ impl Planner {
 /// k = 0..5: q0, qf, qdot0, qdotf, qddot0, qddotf); outputs 100 + 10 (a - 1) + k
 /// (k = 0..2: q, qdot, qddot).
 fn boundary_vr(axis: usize, k: usize) -> u32 {
-    (10 * (axis + 1) + k) as u32
+    AXIS_STRIDE * (axis as u32 + 1) + k as u32
 }
 
 fn output_vr(axis: usize, k: usize) -> u32 {
-    (100 + 10 * axis + k) as u32
+    100 + AXIS_STRIDE * axis as u32 + k as u32
 }
+
+/// Step of the value references from one axis to the next.
+const AXIS_STRIDE: u32 = 10;
 
 /// Name, unit, description and default per axis of the boundary values, in the order
 /// of `boundary_field`.
@@ -129,10 +133,23 @@ fn boundary_field(b: &mut Boundary, k: usize) -> &mut f64 {
 }
 
 const OUTPUTS: [(&str, &str, &str); 3] = [
-    ("q", "rad", "position"),
-    ("qdot", "rad/s", "velocity"),
-    ("qddot", "rad/s2", "acceleration"),
+    ("q", "rad", "planned position"),
+    ("qdot", "rad/s", "planned velocity"),
+    ("qddot", "rad/s2", "planned acceleration"),
 ];
+
+/// The array `base[1..3]` of the axes, element a at `first_vr + 10 (a - 1)` (the
+/// value references step by axis), described as "Axis a: `what`".
+fn axes(
+    first_vr: u32,
+    base: &'static str,
+    what: &'static str,
+    get: impl Fn(&Planner, usize) -> f64 + Clone + Send + Sync + 'static,
+) -> RealArray<Planner> {
+    RealArray::new(first_vr, base, AXES, what, get)
+        .stride(AXIS_STRIDE)
+        .label("Axis")
+}
 
 fn display_unit(unit: &str) -> Option<&'static str> {
     match unit {
@@ -186,45 +203,32 @@ fn variables() -> Vec<Variable<Planner>> {
             Ok(())
         }),
     ];
-    for axis in 0..AXES {
-        for (k, (name, unit, what, defaults)) in BOUNDARY_FIELDS.iter().enumerate() {
-            table.push(
-                Variable::real(
-                    boundary_vr(axis, k),
-                    format!("{name}[{}]", axis + 1),
-                    &format!("Axis {}: {what}", axis + 1),
-                    move |m: &Planner| {
-                        let mut b = m.boundary[axis];
-                        *boundary_field(&mut b, k)
-                    },
-                )
-                .parameter(Variability::Fixed)
-                .unit(unit, display_unit(unit))
-                .start_real(defaults[axis])
-                .set_real(move |m, v| {
-                    *boundary_field(&mut m.boundary[axis], k) = v;
-                    m.rebuild();
-                    Ok(())
-                }),
-            );
-        }
+    for (k, &(name, unit, what, defaults)) in BOUNDARY_FIELDS.iter().enumerate() {
+        let get = move |m: &Planner, axis: usize| {
+            let mut b = m.boundary[axis];
+            *boundary_field(&mut b, k)
+        };
+        let array = axes(boundary_vr(0, k), name, what, get)
+            .set(move |m, axis, v| {
+                *boundary_field(&mut m.boundary[axis], k) = v;
+                m.rebuild();
+                Ok(())
+            })
+            .each(move |v, axis| {
+                v.parameter(Variability::Fixed)
+                    .unit(unit, display_unit(unit))
+                    .start_real(defaults[axis])
+            });
+        table.extend(array.variables());
     }
-    for axis in 0..AXES {
-        for (k, (name, unit, what)) in OUTPUTS.iter().enumerate() {
-            table.push(
-                Variable::real(
-                    output_vr(axis, k),
-                    format!("{name}[{}]", axis + 1),
-                    &format!("Axis {}: planned {what}", axis + 1),
-                    move |m: &Planner| match m.sample(axis) {
-                        Some(s) => [s.q, s.qdot, s.qddot][k],
-                        None => f64::NAN,
-                    },
-                )
-                .output()
-                .unit(unit, display_unit(unit)),
-            );
-        }
+    for (k, &(name, unit, what)) in OUTPUTS.iter().enumerate() {
+        let get = move |m: &Planner, axis: usize| match m.sample(axis) {
+            Some(s) => [s.q, s.qdot, s.qddot][k],
+            None => f64::NAN,
+        };
+        let array = axes(output_vr(0, k), name, what, get)
+            .each(move |v, _| v.output().unit(unit, display_unit(unit)));
+        table.extend(array.variables());
     }
     table
 }

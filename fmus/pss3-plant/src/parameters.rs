@@ -6,6 +6,7 @@ use super::Pss3Plant;
 use nalgebra::Vector3;
 use robofmu::pss3::ParamError;
 use robofmu::pss3::dynamics::{EndStopMode, PlantParamError};
+use robofmu_fmi::core::variables::RealArray;
 use robofmu_fmi::core::{Variability, Variable};
 
 /// First value reference of the parameters.
@@ -76,120 +77,121 @@ struct Scalar(
     Set,
 );
 
+/// `scalar!(name, unit, display unit, description, field.path)`: the `Scalar` that
+/// reads and writes `m.field.path`.
+macro_rules! scalar {
+    ($name:literal, $unit:expr, $display:expr, $description:literal, $($field:ident).+) => {
+        Scalar(
+            $name,
+            $unit,
+            $display,
+            $description,
+            |m| m.$($field).+,
+            |m, v| m.$($field).+ = v,
+        )
+    };
+}
+
 /// The scalar Real parameters in table order.
 fn scalars() -> Vec<Scalar> {
     vec![
-        Scalar(
+        scalar!(
             "lp",
             Some("m"),
             Some("mm"),
             "Height of the platform centre P above the base origin C",
-            |m| m.params.geometry.lp,
-            |m, v| m.params.geometry.lp = v,
+            params.geometry.lp
         ),
-        Scalar(
+        scalar!(
             "ld",
             Some("m"),
             Some("mm"),
             "Radius of the platform joints around P",
-            |m| m.params.geometry.ld,
-            |m, v| m.params.geometry.ld = v,
+            params.geometry.ld
         ),
-        Scalar(
+        scalar!(
             "gamma",
             Some("rad"),
             Some("deg"),
             "Angle of platform joint 1 in {B}",
-            |m| m.params.geometry.gamma,
-            |m, v| m.params.geometry.gamma = v,
+            params.geometry.gamma
         ),
-        Scalar(
+        scalar!(
             "lb",
             Some("m"),
             Some("mm"),
             "Distance from C to the slider joints at l = 0",
-            |m| m.params.geometry.lb,
-            |m, v| m.params.geometry.lb = v,
+            params.geometry.lb
         ),
-        Scalar(
+        scalar!(
             "alpha",
             Some("rad"),
             Some("deg"),
             "Azimuth offset of the slider joints",
-            |m| m.params.geometry.alpha,
-            |m, v| m.params.geometry.alpha = v,
+            params.geometry.alpha
         ),
-        Scalar(
+        scalar!(
             "beta",
             Some("rad"),
             Some("deg"),
             "Polar angle of the slider joints h_i from Z",
-            |m| m.params.geometry.beta,
-            |m, v| m.params.geometry.beta = v,
+            params.geometry.beta
         ),
-        Scalar(
+        scalar!(
             "a",
             Some("m"),
             Some("mm"),
             "Leg length, joint centre to joint centre",
-            |m| m.params.geometry.a,
-            |m, v| m.params.geometry.a = v,
+            params.geometry.a
         ),
-        Scalar(
+        scalar!(
             "strokeMin",
             Some("m"),
             Some("mm"),
             "Lower end of the actuator stroke (lower end stop)",
-            |m| m.params.geometry.stroke_min,
-            |m, v| m.params.geometry.stroke_min = v,
+            params.geometry.stroke_min
         ),
-        Scalar(
+        scalar!(
             "strokeMax",
             Some("m"),
             Some("mm"),
             "Upper end of the actuator stroke (upper end stop)",
-            |m| m.params.geometry.stroke_max,
-            |m, v| m.params.geometry.stroke_max = v,
+            params.geometry.stroke_max
         ),
-        Scalar(
+        scalar!(
             "platformMass",
             Some("kg"),
             None,
             "Platform mass",
-            |m| m.params.inertia.platform_mass,
-            |m, v| m.params.inertia.platform_mass = v,
+            params.inertia.platform_mass
         ),
-        Scalar(
+        scalar!(
             "legMass",
             Some("kg"),
             None,
             "Mass of each leg",
-            |m| m.params.inertia.leg_mass,
-            |m, v| m.params.inertia.leg_mass = v,
+            params.inertia.leg_mass
         ),
-        Scalar(
+        scalar!(
             "legComFraction",
             None,
             None,
             "Leg centre of mass along the leg from the slider joint, as a fraction of a",
-            |m| m.params.inertia.leg_com_fraction,
-            |m, v| m.params.inertia.leg_com_fraction = v,
+            params.inertia.leg_com_fraction
         ),
-        Scalar(
+        scalar!(
             "legTransverseInertia",
             Some("kg.m2"),
             None,
             "Leg inertia about its centre of mass, perpendicular to the leg",
-            |m| m.params.inertia.leg_transverse_inertia,
-            |m, v| m.params.inertia.leg_transverse_inertia = v,
+            params.inertia.leg_transverse_inertia
         ),
-        Scalar(
+        scalar!(
             "sliderMass",
             Some("kg"),
             None,
             "Mass of each slider (rod and stud)",
-            |m| m.params.inertia.slider_mass,
-            |m, v| m.params.inertia.slider_mass = v,
+            params.inertia.slider_mass
         ),
         Scalar(
             "g",
@@ -199,98 +201,107 @@ fn scalars() -> Vec<Scalar> {
             |m| -m.params.gravity.z,
             |m, v| m.params.gravity = Vector3::new(0.0, 0.0, -v),
         ),
-        Scalar(
+        scalar!(
             "sliderFriction",
             Some("N.s/m"),
             None,
             "Viscous friction on each slider, force -c lDot",
-            |m| m.params.friction.slider,
-            |m, v| m.params.friction.slider = v,
+            params.friction.slider
         ),
-        Scalar(
+        scalar!(
             "pivotFriction",
             Some("N.m.s/rad"),
             None,
             "Viscous friction at the spherical joint P, moment -c omega",
-            |m| m.params.friction.pivot,
-            |m, v| m.params.friction.pivot = v,
+            params.friction.pivot
         ),
-        Scalar(
+        scalar!(
             "endStopStiffness",
             Some("N/m"),
             None,
             "Stiffness of the end-stop springs (endStopMode 1)",
-            |m| m.params.end_stops.stiffness,
-            |m, v| m.params.end_stops.stiffness = v,
+            params.end_stops.stiffness
         ),
-        Scalar(
+        scalar!(
             "endStopDamping",
             Some("N.s/m"),
             None,
             "Damping of the end stops (endStopMode 1); the stop pushes, never pulls",
-            |m| m.params.end_stops.damping,
-            |m, v| m.params.end_stops.damping = v,
+            params.end_stops.damping
         ),
-        Scalar(
+        scalar!(
             "tolerance",
             None,
             None,
             "Relative and absolute tolerance of the co-simulation integrator (Dormand-Prince 5(4))",
-            |m| m.settings.tolerance,
-            |m, v| m.settings.tolerance = v,
+            settings.tolerance
         ),
-        Scalar(
+        scalar!(
             "maxStep",
             Some("s"),
             None,
             "Largest internal step of the co-simulation integrator",
-            |m| m.settings.max_step,
-            |m, v| m.settings.max_step = v,
+            settings.max_step
         ),
     ]
 }
 
-/// One vector parameter: name, unit, display unit, description, component access.
-type Component = fn(&mut Pss3Plant) -> &mut Vector3<f64>;
-
-fn vectors() -> [(
-    &'static str,
-    &'static str,
-    Option<&'static str>,
-    &'static str,
-    Component,
-); 4] {
-    [
-        (
-            "platformCom",
-            "m",
-            Some("mm"),
-            "Platform centre of mass relative to P, in {B}",
-            |m| &mut m.params.inertia.platform_com,
-        ),
-        (
-            "theta0",
-            "rad",
-            Some("deg"),
-            "Initial Euler angles (thx, thy, thz), used unless initFromActuators",
-            |m| &mut m.initial.theta0,
-        ),
-        (
-            "l0",
-            "m",
-            Some("mm"),
-            "Initial actuator displacements, used when initFromActuators",
-            |m| &mut m.initial.l0,
-        ),
-        (
-            "omega0",
-            "rad/s",
-            Some("deg/s"),
-            "Initial angular velocity of the platform in {A}",
-            |m| &mut m.initial.omega0,
-        ),
-    ]
+/// One vector parameter `name[1..3]`: name, unit, display unit, description, read and
+/// write access to the vector.
+struct VectorParameter {
+    name: &'static str,
+    unit: &'static str,
+    display: Option<&'static str>,
+    description: &'static str,
+    read: fn(&Pss3Plant) -> &Vector3<f64>,
+    write: fn(&mut Pss3Plant) -> &mut Vector3<f64>,
 }
+
+/// `vector!(name, unit, display unit, description, field.path)`: the
+/// `VectorParameter` of `m.field.path`.
+macro_rules! vector {
+    ($name:literal, $unit:literal, $display:expr, $description:literal, $($field:ident).+) => {
+        VectorParameter {
+            name: $name,
+            unit: $unit,
+            display: $display,
+            description: $description,
+            read: |m| &m.$($field).+,
+            write: |m| &mut m.$($field).+,
+        }
+    };
+}
+
+const VECTORS: [VectorParameter; 4] = [
+    vector!(
+        "platformCom",
+        "m",
+        Some("mm"),
+        "Platform centre of mass relative to P, in {B}",
+        params.inertia.platform_com
+    ),
+    vector!(
+        "theta0",
+        "rad",
+        Some("deg"),
+        "Initial Euler angles (thx, thy, thz), used unless initFromActuators",
+        initial.theta0
+    ),
+    vector!(
+        "l0",
+        "m",
+        Some("mm"),
+        "Initial actuator displacements, used when initFromActuators",
+        initial.l0
+    ),
+    vector!(
+        "omega0",
+        "rad/s",
+        Some("deg/s"),
+        "Initial angular velocity of the platform in {A}",
+        initial.omega0
+    ),
+];
 
 /// (row, column) pairs of the platform inertia tensor that are parameters; the
 /// off-diagonal ones set both symmetric entries.
@@ -340,22 +351,19 @@ pub fn variables(defaults: &Pss3Plant) -> Vec<Variable<Pss3Plant>> {
             defaults.params.inertia.platform_inertia[(row, col)],
         ));
     }
-    for (name, unit, display, description, component) in vectors() {
-        for i in 0..3 {
-            let v = Variable::real(
-                next(),
-                format!("{name}[{}]", i + 1),
-                description,
-                move |m: &Pss3Plant| component(&mut m.clone())[i],
-            )
-            .unit(unit, display)
-            .set_real(move |m, x| {
-                component(m)[i] = x;
+    for p in &VECTORS {
+        let (read, write) = (p.read, p.write);
+        let start = *read(defaults);
+        let array = RealArray::new(next(), p.name, 3, p.description, move |m, i| read(m)[i])
+            .set(move |m, i, x| {
+                write(m)[i] = x;
                 m.rebuild();
                 Ok(())
-            });
-            table.push(fixed(v, component(&mut defaults.clone())[i]));
-        }
+            })
+            .each(move |v, i| fixed(v.unit(p.unit, p.display), start[i]));
+        next();
+        next();
+        table.extend(array.variables());
     }
     table.push(
         Variable::boolean(

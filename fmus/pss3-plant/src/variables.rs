@@ -5,7 +5,7 @@
 use super::{Pss3Plant, parameters};
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{PlantInputs, PlantOutputs};
-use robofmu_fmi::core::variables::RealArray;
+use robofmu_fmi::core::variables::{IntegerArray, RealArray};
 use robofmu_fmi::core::{Model, Variable};
 
 pub const ACTUATOR_FORCE: u32 = 0;
@@ -92,28 +92,56 @@ enum Depends {
     ThetaAndCommands,
 }
 
-fn names(group: &str) -> impl Iterator<Item = String> + '_ {
-    (0..3).map(move |i| indexed(group, i))
+/// The element names `base[1]`, `base[2]`, `base[3]` of a literal `base`.
+macro_rules! elements {
+    ($base:literal) => {
+        [
+            concat!($base, "[1]"),
+            concat!($base, "[2]"),
+            concat!($base, "[3]"),
+        ]
+    };
 }
 
+/// The parts one after the other, in a static table (no allocation at instantiation).
+const fn concat<const N: usize>(parts: &[&[&'static str]]) -> [&'static str; N] {
+    let mut out = [""; N];
+    let (mut k, mut p) = (0, 0);
+    while p < parts.len() {
+        let mut i = 0;
+        while i < parts[p].len() {
+            out[k] = parts[p][i];
+            (k, i) = (k + 1, i + 1);
+        }
+        p += 1;
+    }
+    assert!(k == N, "the parts do not fill the table");
+    out
+}
+
+static THETA_NAMES: [&str; 3] = elements!("theta");
+static OMEGA_NAMES: [&str; 3] = elements!("omega");
+static COMMAND_NAMES: [&str; 9] = concat(&[
+    &elements!("actuatorForce"),
+    &elements!("torqueCommand"),
+    &elements!("generalizedForceCommand"),
+]);
+static STATE_NAMES: [&str; 6] = concat(&[&THETA_NAMES, &OMEGA_NAMES]);
+static THETA_AND_COMMAND_NAMES: [&str; 12] = concat(&[&THETA_NAMES, &COMMAND_NAMES]);
+static STATE_AND_INPUT_NAMES: [&str; 18] = concat(&[
+    &STATE_NAMES,
+    &COMMAND_NAMES,
+    &elements!("disturbanceTorque"),
+]);
+
 impl Depends {
-    fn names(self) -> Vec<String> {
-        let mut knowns: Vec<String> = names("theta").collect();
-        if matches!(self, Depends::States | Depends::StatesAndInputs) {
-            knowns.extend(names("omega"));
-        }
-        let commands = ["actuatorForce", "torqueCommand", "generalizedForceCommand"];
+    fn names(self) -> &'static [&'static str] {
         match self {
-            Depends::ThetaAndCommands => knowns.extend(commands.into_iter().flat_map(names)),
-            Depends::StatesAndInputs => knowns.extend(
-                commands
-                    .into_iter()
-                    .chain(["disturbanceTorque"])
-                    .flat_map(names),
-            ),
-            _ => {}
+            Depends::Theta => &THETA_NAMES,
+            Depends::States => &STATE_NAMES,
+            Depends::StatesAndInputs => &STATE_AND_INPUT_NAMES,
+            Depends::ThetaAndCommands => &THETA_AND_COMMAND_NAMES,
         }
-        knowns
     }
 }
 
@@ -209,10 +237,6 @@ fn vr(group: u32, i: usize) -> u32 {
     group + i as u32 + 1
 }
 
-fn indexed(name: &str, i: usize) -> String {
-    format!("{name}[{}]", i + 1)
-}
-
 fn inputs(table: &mut Vec<Variable<Pss3Plant>>) {
     for (group, name, description, field) in INPUTS {
         let unit = if group == ACTUATOR_FORCE { "N" } else { "N.m" };
@@ -234,11 +258,11 @@ fn inputs(table: &mut Vec<Variable<Pss3Plant>>) {
 /// i depending on `depends(i)`.
 fn vector_output(
     group: u32,
-    base: &str,
-    description: &str,
+    base: &'static str,
+    description: &'static str,
     (unit, display): (&'static str, Option<&'static str>),
-    get: impl Fn(&Pss3Plant, usize) -> f64 + Send + Sync + 'static,
-    depends: impl Fn(usize) -> Vec<String> + 'static,
+    get: impl Fn(&Pss3Plant, usize) -> f64 + Clone + Send + Sync + 'static,
+    depends: impl Fn(usize) -> &'static [&'static str] + 'static,
 ) -> Vec<Variable<Pss3Plant>> {
     RealArray::new(vr(group, 0), base, 3, description, get)
         .each(move |v, i| v.unit(unit, display).output().depends_on(depends(i)))
@@ -252,7 +276,7 @@ fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
         "Euler angle (thx, thy, thz) of R = Rz Ry Rx (continuous state)",
         ("rad", Some("deg")),
         |m, i| m.current_state().map_or(f64::NAN, |s| s.euler[i]),
-        |i| vec![indexed("theta", i)],
+        |i| &THETA_NAMES[i..=i],
     ));
     // omega (a state) is read from the state itself, not through the outputs.
     let omega = &PLANT_OUTPUTS[5];
@@ -262,7 +286,7 @@ fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
         omega.description,
         (omega.unit, omega.display),
         |m, i| m.current_state().map_or(f64::NAN, |s| s.omega[i]),
-        |i| vec![indexed("omega", i)],
+        |i| &OMEGA_NAMES[i..=i],
     ));
     table.extend(vector_output(
         THETA_DOT,
@@ -293,24 +317,21 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
             )
             .unit("rad", Some("deg"))
             .output()
-            .depends_on([indexed("theta", i)]),
+            .depends_on(&THETA_NAMES[i..=i]),
         );
     }
     for output in &PLANT_OUTPUTS[1..5] {
         plant_vector_output(table, output);
     }
-    for i in 0..3 {
-        table.push(
-            Variable::integer(
-                vr(AT_STOP, i),
-                indexed("atStop", i),
-                "End-stop contact: -1 lower stop, 0 free, +1 upper stop (changes at events)",
-                move |m: &Pss3Plant| m.contact(i),
-            )
-            .output()
-            .depends_on(Depends::Theta.names()),
-        );
-    }
+    let at_stop = IntegerArray::new(
+        vr(AT_STOP, 0),
+        "atStop",
+        3,
+        "End-stop contact: -1 lower stop, 0 free, +1 upper stop (changes at events)",
+        |m: &Pss3Plant, i| m.contact(i),
+    )
+    .each(|v, _| v.output().depends_on(Depends::Theta.names()));
+    table.extend(at_stop.variables());
     for (vr, name, unit, description, get) in SCALAR_OUTPUTS {
         let mut v = Variable::real(vr, name, description, move |m: &Pss3Plant| m.output(get));
         if let Some(unit) = unit {
@@ -347,34 +368,30 @@ fn plant_vector_output(table: &mut Vec<Variable<Pss3Plant>>, output: &PlantOutpu
 }
 
 fn derivatives(table: &mut Vec<Variable<Pss3Plant>>) {
-    for i in 0..3 {
-        let state = indexed("theta", i);
-        table.push(
-            Variable::real(
-                vr(DER_THETA, i),
-                format!("der({state})"),
-                "Euler-angle rate",
-                move |m: &Pss3Plant| m.computed(|c| c.euler_rates[i]),
-            )
-            .unit("rad/s", Some("deg/s"))
-            .derivative_of(&state)
-            .depends_on(Depends::States.names()),
-        );
-    }
-    for i in 0..3 {
-        let state = indexed("omega", i);
-        table.push(
-            Variable::real(
-                vr(DER_OMEGA, i),
-                format!("der({state})"),
-                "Angular acceleration in {A}",
-                move |m: &Pss3Plant| m.output(|o| o.omega_dot[i]),
-            )
-            .unit("rad/s2", Some("deg/s2"))
-            .derivative_of(&state)
-            .depends_on(Depends::StatesAndInputs.names()),
-        );
-    }
+    let der_theta = RealArray::derivatives(vr(DER_THETA, 0), "theta", 3, "Euler-angle rate", {
+        |m: &Pss3Plant, i| m.computed(|c| c.euler_rates[i])
+    })
+    .each(|v, _| {
+        v.unit("rad/s", Some("deg/s"))
+            .depends_on(Depends::States.names())
+    });
+    let der_omega = RealArray::derivatives(
+        vr(DER_OMEGA, 0),
+        "omega",
+        3,
+        "Angular acceleration in {A}",
+        |m: &Pss3Plant, i| m.output(|o| o.omega_dot[i]),
+    )
+    .each(|v, _| {
+        v.unit("rad/s2", Some("deg/s2"))
+            .depends_on(Depends::StatesAndInputs.names())
+    });
+    table.extend(
+        der_theta
+            .variables()
+            .into_iter()
+            .chain(der_omega.variables()),
+    );
 }
 
 /// The whole table, sorted by value reference.

@@ -394,7 +394,7 @@ fn dependencies_name_only_inputs_and_states() {
             .set_real(|_, _| Ok(())),
         Variable::real(2, "y", "an output", |_: &()| 1.0)
             .output()
-            .depends_on(["k".to_string()]),
+            .depends_on(&["k"]),
     ];
     let error = check_table(&table).unwrap_err();
     assert!(

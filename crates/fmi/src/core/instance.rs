@@ -117,13 +117,13 @@ pub fn variable<M>(table: &[Variable<M>], vr: u32) -> Result<&Variable<M>, Strin
 /// derivative or other calculated variable, as opposed to a parameter, an input or a
 /// continuous state, even one declared as an output).
 pub fn calculated_flags<M>(table: &[Variable<M>]) -> Vec<bool> {
-    let states: Vec<&String> = table
+    let states: Vec<&str> = table
         .iter()
         .filter_map(|v| match &v.kind {
             Kind::Real {
                 derivative_of: Some(state),
                 ..
-            } => Some(state),
+            } => Some(state.as_ref()),
             _ => None,
         })
         .collect();
@@ -138,7 +138,7 @@ pub fn calculated_flags<M>(table: &[Variable<M>]) -> Vec<bool> {
                 }
             );
             let calculated = matches!(v.initial, Some(Initial::Calculated | Initial::Approx));
-            derivative || (calculated && !states.contains(&&v.name))
+            derivative || (calculated && !states.contains(&v.name.as_ref()))
         })
         .collect()
 }

@@ -6,6 +6,7 @@
 //! [`Snapshot`] is an FMU state ([`fmu_states`] keeps it behind the host's pointer) and [`serialize`] its checked byte format; [`handles`]
 //! registers the live instances and states so that every handle is checked before use.
 
+pub mod arrays;
 pub mod description;
 pub mod entry;
 pub mod fmu_state_calls;

@@ -166,7 +166,7 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
     let terminated_by_model = r.flag("terminated flag")?;
     let mut model = model_with_start_values::<M>(table)?;
     for v in table {
-        let name = v.name.as_str();
+        let name = v.name.as_ref();
         let result = match &v.kind {
             Kind::Real { set: Some(set), .. } => set(&mut model, r.f64(name)?),
             Kind::Integer { set: Some(set), .. } => {

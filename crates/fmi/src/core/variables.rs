@@ -1,6 +1,14 @@
 //! The variable table of a model: for every variable its metadata (what
 //! modelDescription.xml says about it) and its accessors (how the layer reads and writes
 //! it). It is the single source of truth for both.
+//!
+//! Every instance builds its own table (nothing of it may outlive the instance: a
+//! table kept by the loaded library would leak at dlclose), so building one is kept
+//! cheap: names, descriptions and dependency lists are static strings wherever the
+//! declaration allows (`Cow<'static, str>`), and only array elements format theirs.
+
+pub use super::arrays::{Array, ArrayElement, BooleanArray, ElementType, IntegerArray, RealArray};
+use std::borrow::Cow;
 
 pub type Getter<M, T> = Box<dyn Fn(&M) -> T + Send + Sync>;
 pub type Setter<M, T> = Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>;
@@ -77,7 +85,7 @@ pub enum Kind<M> {
         unit: Option<&'static str>,
         display_unit: Option<&'static str>,
         /// Name of the state this variable is the time derivative of.
-        derivative_of: Option<String>,
+        derivative_of: Option<Cow<'static, str>>,
     },
     Integer {
         get: Getter<M, i32>,
@@ -111,35 +119,29 @@ impl VariableType {
     }
 }
 
-/// Position of a scalar in an array variable `base[1..length]`: the FMI 2.0 name is
-/// `base[index + 1]`; an FMI 3.0 front-end declares one array `base` with
-/// `<Dimension start="length"/>` from its elements.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ArrayElement {
-    pub base: String,
-    /// 0-based.
-    pub index: usize,
-    pub length: usize,
-}
-
 /// One scalar variable.
 pub struct Variable<M> {
     pub value_reference: u32,
-    pub name: String,
-    pub description: String,
+    pub name: Cow<'static, str>,
+    pub description: Cow<'static, str>,
     pub causality: Causality,
     pub variability: Variability,
     pub initial: Option<Initial>,
     pub kind: Kind<M>,
     /// Names of the inputs and continuous states an output or state derivative
     /// depends on (ModelStructure `dependencies`); None: on all of them.
-    pub dependencies: Option<Vec<String>>,
+    pub dependencies: Option<&'static [&'static str]>,
     /// Set for the elements declared by [`RealArray`].
     pub array: Option<ArrayElement>,
 }
 
 impl<M> Variable<M> {
-    fn with_kind(vr: u32, name: impl Into<String>, description: &str, kind: Kind<M>) -> Self {
+    fn with_kind(
+        vr: u32,
+        name: impl Into<Cow<'static, str>>,
+        description: impl Into<Cow<'static, str>>,
+        kind: Kind<M>,
+    ) -> Self {
         let variability = match kind {
             Kind::Real { .. } => Variability::Continuous,
             _ => Variability::Discrete,
@@ -147,7 +149,7 @@ impl<M> Variable<M> {
         Variable {
             value_reference: vr,
             name: name.into(),
-            description: description.to_string(),
+            description: description.into(),
             causality: Causality::Local,
             variability,
             initial: None,
@@ -158,7 +160,7 @@ impl<M> Variable<M> {
     }
 
     /// Replaces the description (e.g. per element of an array).
-    pub fn describe(mut self, description: impl Into<String>) -> Self {
+    pub fn describe(mut self, description: impl Into<Cow<'static, str>>) -> Self {
         self.description = description.into();
         self
     }
@@ -166,8 +168,8 @@ impl<M> Variable<M> {
     /// A Real variable read by `get` (a local until a role is given).
     pub fn real(
         vr: u32,
-        name: impl Into<String>,
-        description: &str,
+        name: impl Into<Cow<'static, str>>,
+        description: impl Into<Cow<'static, str>>,
         get: impl Fn(&M) -> f64 + Send + Sync + 'static,
     ) -> Self {
         let kind = Kind::Real {
@@ -186,8 +188,8 @@ impl<M> Variable<M> {
     /// An Integer variable read by `get`.
     pub fn integer(
         vr: u32,
-        name: impl Into<String>,
-        description: &str,
+        name: impl Into<Cow<'static, str>>,
+        description: impl Into<Cow<'static, str>>,
         get: impl Fn(&M) -> i32 + Send + Sync + 'static,
     ) -> Self {
         let kind = Kind::Integer {
@@ -203,8 +205,8 @@ impl<M> Variable<M> {
     /// A Boolean variable read by `get`.
     pub fn boolean(
         vr: u32,
-        name: impl Into<String>,
-        description: &str,
+        name: impl Into<Cow<'static, str>>,
+        description: impl Into<Cow<'static, str>>,
         get: impl Fn(&M) -> bool + Send + Sync + 'static,
     ) -> Self {
         let kind = Kind::Boolean {
@@ -244,19 +246,20 @@ impl<M> Variable<M> {
     }
 
     /// Role: time derivative of the state named `state` (local, calculated).
-    pub fn derivative_of(mut self, state: &str) -> Self {
+    pub fn derivative_of(mut self, state: impl Into<Cow<'static, str>>) -> Self {
         self.causality = Causality::Local;
         self.initial = Some(Initial::Calculated);
         if let Kind::Real { derivative_of, .. } = &mut self.kind {
-            *derivative_of = Some(state.to_string());
+            *derivative_of = Some(state.into());
         }
         self
     }
 
     /// The inputs and continuous states (by name) this output or derivative depends on;
     /// declared so that importers see which outputs have no direct feedthrough.
-    pub fn depends_on(mut self, names: impl IntoIterator<Item = String>) -> Self {
-        self.dependencies = Some(names.into_iter().collect());
+    /// A static list: building it costs nothing at instantiation.
+    pub fn depends_on(mut self, names: &'static [&'static str]) -> Self {
+        self.dependencies = Some(names);
         self
     }
 
@@ -372,82 +375,6 @@ impl<M> Variable<M> {
     }
 }
 
-type ElementGetter<M> = dyn Fn(&M, usize) -> f64 + Send + Sync;
-type ElementSetter<M> = dyn Fn(&mut M, usize, f64) -> Result<(), String> + Send + Sync;
-/// A role applied to element i of an array (causality, unit, start value, ...).
-type ElementRole<M> = Box<dyn Fn(Variable<M>, usize) -> Variable<M>>;
-
-/// One declaration of a Real array `base[1..length]`: value references
-/// `first_vr + i`, one getter and one setter taking the element index, and the
-/// [`ArrayElement`] metadata an FMI 3.0 array needs. [`RealArray::variables`] gives
-/// the scalars (FMI 2.0 names `base[1]` ...).
-pub struct RealArray<M> {
-    first_vr: u32,
-    base: String,
-    length: usize,
-    get: std::sync::Arc<ElementGetter<M>>,
-    set: Option<std::sync::Arc<ElementSetter<M>>>,
-    roles: Vec<ElementRole<M>>,
-    description: String,
-}
-
-impl<M: 'static> RealArray<M> {
-    pub fn new(
-        first_vr: u32,
-        base: &str,
-        length: usize,
-        description: &str,
-        get: impl Fn(&M, usize) -> f64 + Send + Sync + 'static,
-    ) -> Self {
-        RealArray {
-            first_vr,
-            base: base.to_string(),
-            length,
-            get: std::sync::Arc::new(get),
-            set: None,
-            roles: Vec::new(),
-            description: description.to_string(),
-        }
-    }
-
-    /// The writer of every element.
-    pub fn set(
-        mut self,
-        set: impl Fn(&mut M, usize, f64) -> Result<(), String> + Send + Sync + 'static,
-    ) -> Self {
-        self.set = Some(std::sync::Arc::new(set));
-        self
-    }
-
-    /// Applies `role` (causality, unit, start value, description, ...) to element `i`.
-    pub fn each(mut self, role: impl Fn(Variable<M>, usize) -> Variable<M> + 'static) -> Self {
-        self.roles.push(Box::new(role));
-        self
-    }
-
-    /// The scalar variables, element 0 first.
-    pub fn variables(self) -> Vec<Variable<M>> {
-        (0..self.length)
-            .map(|i| {
-                let get = self.get.clone();
-                let name = format!("{}[{}]", self.base, i + 1);
-                let first = self.first_vr + i as u32;
-                let mut v = Variable::real(first, name, &self.description, move |m: &M| get(m, i));
-                if let Some(set) = &self.set {
-                    let set = set.clone();
-                    v = v.set_real(move |m, x| set(m, i, x));
-                }
-                v.array = Some(ArrayElement {
-                    base: self.base.clone(),
-                    index: i,
-                    length: self.length,
-                });
-                self.roles.iter().fold(v, |v, role| role(v, i))
-            })
-            .collect()
-    }
-}
-
 /// Position of the variable with value reference `vr` in a table sorted by value
 /// reference (checked by `check_table`).
 pub fn find<M>(table: &[Variable<M>], vr: u32) -> Option<&Variable<M>> {
@@ -472,7 +399,7 @@ pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
             ));
         }
     }
-    let mut names: Vec<&str> = table.iter().map(|v| v.name.as_str()).collect();
+    let mut names: Vec<&str> = table.iter().map(|v| v.name.as_ref()).collect();
     names.sort_unstable();
     if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
         return Err(format!("duplicate variable name \"{}\"", w[0]));
@@ -543,35 +470,7 @@ pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
         }
         check_dependencies(v, table)?;
     }
-    check_arrays(table)
-}
-
-/// Every array `base[1..n]`: all n elements present, named `base[i]`, with value
-/// references increasing by one (what an FMI 3.0 array of one value reference needs).
-fn check_arrays<M>(table: &[Variable<M>]) -> Result<(), String> {
-    for v in table {
-        let Some(element) = &v.array else { continue };
-        if v.name != format!("{}[{}]", element.base, element.index + 1) {
-            return Err(format!(
-                "\"{}\": array element named unlike its position",
-                v.name
-            ));
-        }
-        let first = v.value_reference - element.index as u32;
-        for i in 0..element.length {
-            let found = find(table, first + i as u32).and_then(|e| e.array.as_ref());
-            let same = found.is_some_and(|e| e.base == element.base && e.index == i);
-            if !same {
-                return Err(format!(
-                    "array \"{}\": element {} is not at value reference {}",
-                    element.base,
-                    i + 1,
-                    first + i as u32
-                ));
-            }
-        }
-    }
-    Ok(())
+    super::arrays::check_arrays(table)
 }
 
 /// Dependencies only on outputs and derivatives, and only on inputs and states.
@@ -594,7 +493,7 @@ fn check_dependencies<M>(v: &Variable<M>, table: &[Variable<M>]) -> Result<(), S
             v.name
         ));
     }
-    for name in names {
+    for name in names.iter() {
         let is_state = derivative_variables(table)
             .iter()
             .any(|d| matches!(&d.kind, Kind::Real { derivative_of: Some(s), .. } if s == name));

@@ -211,9 +211,9 @@ fn scalar_variable<M>(v: &Variable<M>, table: &[Variable<M>]) -> ScalarVariable 
         Kind::Boolean { start, .. } => TypeElement::Boolean(BooleanAttributes { start: *start }),
     };
     ScalarVariable {
-        name: v.name.clone(),
+        name: v.name.to_string(),
         value_reference: v.value_reference,
-        description: v.description.clone(),
+        description: v.description.to_string(),
         causality: v.causality.as_str(),
         variability: v.variability.as_str(),
         initial: v.initial.map(Initial::as_str),

@@ -5,7 +5,7 @@
 //! with their dependencies as value references).
 
 use super::mode::Fmi3;
-use super::table::{Table3, Variable3, build};
+use super::table::{self, Table3, Variable3, build};
 use crate::core::description::{
     self, DefaultExperiment, GENERATION_TOOL, LogCategories, UnitDefinitions, number,
 };
@@ -170,9 +170,9 @@ fn joined<T: ToString>(values: impl IntoIterator<Item = T>) -> String {
 /// and the start values of every element.
 fn model_variable<M>(table: &[Variable<M>], v: &Variable3) -> Result<TypedVariable, String> {
     let mut out = ModelVariable {
-        name: v.name.clone(),
+        name: v.name.to_string(),
         value_reference: v.value_reference,
-        description: v.description.clone(),
+        description: table::description(table, v),
         causality: v.causality.as_str(),
         variability: v.variability.as_str(),
         initial: v.initial.map(Initial::as_str),
@@ -224,11 +224,11 @@ fn model_variable<M>(table: &[Variable<M>], v: &Variable3) -> Result<TypedVariab
     })
 }
 
-fn dependencies(v: &Variable3) -> Dependencies {
-    Dependencies {
+fn dependencies<M: Model>(table: &[Variable<M>], v: &Variable3) -> Result<Dependencies, String> {
+    Ok(Dependencies {
         value_reference: v.value_reference,
-        dependencies: v.dependencies.as_ref().map(|d| joined(d.iter())),
-    }
+        dependencies: table::dependencies(table, v)?.map(joined),
+    })
 }
 
 /// Whether `v` is an initial unknown (section 2.4.8 of FMI 3.0): outputs and state
@@ -239,27 +239,25 @@ fn is_initial_unknown(v: &Variable3) -> bool {
         || v.causality == Causality::CalculatedParameter
 }
 
-fn model_structure(t: &Table3) -> ModelStructure {
+fn model_structure<M: Model>(table: &[Variable<M>], t: &Table3) -> Result<ModelStructure, String> {
     let all = || t.variables.iter();
     let mut unknowns: Vec<Unknown> = all()
         .filter(|v| v.causality == Causality::Output)
-        .map(|v| Unknown::Output(dependencies(v)))
-        .collect();
-    unknowns.extend(
-        t.derivatives()
-            .map(|v| Unknown::ContinuousStateDerivative(dependencies(v))),
-    );
+        .map(|v| dependencies(table, v).map(Unknown::Output))
+        .collect::<Result<_, _>>()?;
+    for v in t.derivatives() {
+        unknowns.push(Unknown::ContinuousStateDerivative(dependencies(table, v)?));
+    }
     unknowns.extend(all().filter(|v| is_initial_unknown(v)).map(|v| {
         Unknown::InitialUnknown(Dependencies {
             value_reference: v.value_reference,
             dependencies: None,
         })
     }));
-    unknowns.extend(
-        t.event_indicators()
-            .map(|v| Unknown::EventIndicator(dependencies(v))),
-    );
-    ModelStructure { unknowns }
+    if let Some(v) = t.event_indicators() {
+        unknowns.push(Unknown::EventIndicator(dependencies(table, v)?));
+    }
+    Ok(ModelStructure { unknowns })
 }
 
 fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
@@ -321,7 +319,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         log_categories: LogCategories::of(&log_categories::<Fmi3, M>()),
         default_experiment: DefaultExperiment::of(&info.default_experiment),
         model_variables: ModelVariables { variables },
-        model_structure: model_structure(&t),
+        model_structure: model_structure(&table, &t)?,
     };
     description::xml_document(&description)
 }

@@ -10,7 +10,8 @@
 //! indicators take the value reference after the table's largest.
 
 use crate::core::model::Model;
-use crate::core::variables::{Causality, Initial, Kind, Variability, Variable, VariableType};
+use crate::core::variables::{Causality, Initial, Kind, Variability, Variable, VariableType, find};
+use std::borrow::Cow;
 use std::collections::HashMap;
 
 /// The type name of a table variable type in FMI 3.0.
@@ -40,8 +41,8 @@ pub enum Source {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Variable3 {
     pub value_reference: u32,
-    pub name: String,
-    pub description: String,
+    /// Static for a scalar or an array declared by the core's `Array` (no allocation).
+    pub name: Cow<'static, str>,
     pub variable_type: VariableType,
     pub causality: Causality,
     pub variability: Variability,
@@ -51,9 +52,6 @@ pub struct Variable3 {
     pub source: Source,
     /// Value reference of the (FMI 3.0) state this variable is the derivative of.
     pub derivative_of: Option<u32>,
-    /// FMI 3.0 value references of the knowns this output or derivative depends on,
-    /// ascending; None: on all of them.
-    pub dependencies: Option<Vec<u32>>,
 }
 
 impl Variable3 {
@@ -147,23 +145,32 @@ impl Table3 {
     }
 }
 
-/// `("x", Some(2))` for `x[2]`, `("der(x)", Some(2))` for `der(x[2])`, and the name
-/// itself with None when it has no single trailing index.
-fn split_index(name: &str) -> (String, Option<usize>) {
-    let (prefix, inner, suffix) = match name.strip_prefix("der(").and_then(|n| n.strip_suffix(')'))
-    {
-        Some(inner) => ("der(", inner, ")"),
-        None => ("", name, ""),
+/// The parts of a table name: `(false, "x", Some(2))` for `x[2]`, `(true, "x", Some(2))`
+/// for `der(x[2])`, and `(derivative, name, None)` when it has no single trailing
+/// index. Slices of `name`: nothing is allocated.
+fn split_index(name: &str) -> (bool, &str, Option<usize>) {
+    let (derivative, inner) = match name.strip_prefix("der(").and_then(|n| n.strip_suffix(')')) {
+        Some(inner) => (true, inner),
+        None => (false, name),
     };
     let parsed = inner.strip_suffix(']').and_then(|rest| {
         let open = rest.rfind('[')?;
         let index: usize = rest[open + 1..].parse().ok()?;
         let base = &rest[..open];
-        (!base.is_empty() && !base.ends_with(']')).then(|| (base.to_string(), index))
+        (!base.is_empty() && !base.ends_with(']')).then_some((base, index))
     });
     match parsed {
-        Some((base, index)) => (format!("{prefix}{base}{suffix}"), Some(index)),
-        None => (name.to_string(), None),
+        Some((base, index)) => (derivative, base, Some(index)),
+        None => (derivative, inner, None),
+    }
+}
+
+/// The FMI 3.0 name of the group `(derivative, base)`.
+fn group_name(derivative: bool, base: &str) -> String {
+    if derivative {
+        format!("der({base})")
+    } else {
+        base.to_string()
     }
 }
 
@@ -174,11 +181,7 @@ fn array_description(descriptions: &[&str]) -> String {
     let stripped: Vec<&str> = descriptions
         .iter()
         .enumerate()
-        .map(|(i, d)| {
-            d.split_once(&format!(" {}: ", i + 1))
-                .filter(|(word, _)| word.chars().all(char::is_alphabetic))
-                .map_or(*d, |(_, rest)| rest)
-        })
+        .map(|(i, d)| strip_element_label(d, i + 1))
         .collect();
     if stripped.iter().all(|d| *d == stripped[0]) {
         let mut chars = stripped[0].chars();
@@ -188,6 +191,16 @@ fn array_description(descriptions: &[&str]) -> String {
     } else {
         descriptions[0].to_string()
     }
+}
+
+/// `d` without a leading "<Word> <number>: " naming element `number`.
+fn strip_element_label(d: &str, number: usize) -> &str {
+    let labelled = d.split_once(": ").filter(|(label, _)| {
+        label.split_once(' ').is_some_and(|(word, n)| {
+            !word.is_empty() && word.chars().all(char::is_alphabetic) && n.parse() == Ok(number)
+        })
+    });
+    labelled.map_or(d, |(_, rest)| rest)
 }
 
 /// Metadata the elements of one array must share.
@@ -205,62 +218,97 @@ fn same_declaration<M>(a: &Variable<M>, b: &Variable<M>) -> bool {
         && unit(a) == unit(b)
 }
 
+/// The table positions of one FMI 3.0 variable: a scalar or the elements of an array
+/// named `base` (`der(base)`).
+struct Group<'a> {
+    derivative: bool,
+    base: &'a str,
+    is_array: bool,
+    members: Vec<usize>,
+}
+
 /// Groups of table positions, one per FMI 3.0 variable, in order of first appearance.
-fn groups<M>(table: &[Variable<M>]) -> Result<Vec<(String, Vec<usize>, bool)>, String> {
-    let mut order: Vec<(String, Vec<usize>, bool)> = Vec::new();
-    let mut position: HashMap<String, usize> = HashMap::new();
+fn groups<M>(table: &[Variable<M>]) -> Result<Vec<Group<'_>>, String> {
+    let mut order: Vec<Group> = Vec::new();
+    let mut position: HashMap<(bool, &str), usize> = HashMap::with_capacity(table.len());
     for (i, v) in table.iter().enumerate() {
-        let (base, index) = split_index(&v.name);
+        let (derivative, base, index) = split_index(&v.name);
         let is_array = index.is_some();
-        let slot = *position.entry(base.clone()).or_insert_with(|| {
-            order.push((base.clone(), Vec::new(), is_array));
+        let slot = *position.entry((derivative, base)).or_insert_with(|| {
+            order.push(Group {
+                derivative,
+                base,
+                is_array,
+                members: Vec::new(),
+            });
             order.len() - 1
         });
-        if order[slot].2 != is_array {
+        if order[slot].is_array != is_array {
             return Err(format!(
-                "\"{base}\" is declared both as a scalar and as an array"
+                "\"{}\" is declared both as a scalar and as an array",
+                group_name(derivative, base)
             ));
         }
-        order[slot].1.push(i);
+        order[slot].members.push(i);
     }
-    for (base, members, is_array) in &mut order {
-        if !*is_array {
-            if members.len() > 1 {
-                return Err(format!("duplicate variable \"{base}\""));
-            }
-            continue;
-        }
-        members.sort_by_key(|&i| split_index(&table[i].name).1);
-        for (k, &i) in members.iter().enumerate() {
-            if split_index(&table[i].name).1 != Some(k + 1) {
-                return Err(format!("the elements of \"{base}\" are not numbered 1..n"));
-            }
-            if let Some(a) = &table[i].array
-                && (a.base != *base || a.index != k || a.length != members.len())
-            {
-                return Err(format!(
-                    "\"{}\" is declared as element {} of {} of \"{}\", but the table has \
-                     {} elements named {base}[..]",
-                    table[i].name,
-                    a.index + 1,
-                    a.length,
-                    a.base,
-                    members.len()
-                ));
-            }
-            if !same_declaration(&table[members[0]], &table[i]) {
-                return Err(format!(
-                    "\"{}\" differs from \"{}\" in type, causality, variability, initial or unit",
-                    table[i].name, table[members[0]].name
-                ));
-            }
-        }
+    for group in &mut order {
+        check_group(table, group)?;
     }
     Ok(order)
 }
 
+/// A scalar declared once; an array's elements numbered 1..n, agreeing with their
+/// `ArrayElement` metadata, declared alike.
+fn check_group<M>(table: &[Variable<M>], group: &mut Group) -> Result<(), String> {
+    let name = || group_name(group.derivative, group.base);
+    if !group.is_array {
+        if group.members.len() > 1 {
+            return Err(format!("duplicate variable \"{}\"", name()));
+        }
+        return Ok(());
+    }
+    group
+        .members
+        .sort_by_key(|&i| split_index(&table[i].name).2);
+    let n = group.members.len();
+    let first = &table[group.members[0]];
+    for (k, &i) in group.members.iter().enumerate() {
+        let v = &table[i];
+        if split_index(&v.name).2 != Some(k + 1) {
+            return Err(format!(
+                "the elements of \"{}\" are not numbered 1..n",
+                name()
+            ));
+        }
+        if let Some(a) = &v.array
+            && (a.base != group.base
+                || a.derivative != group.derivative
+                || a.index != k
+                || a.length != n)
+        {
+            return Err(format!(
+                "\"{}\" is declared as element {} of {} of \"{}\", but the table has \
+                 {n} elements named {}[..]",
+                v.name,
+                a.index + 1,
+                a.length,
+                group_name(a.derivative, a.base),
+                name()
+            ));
+        }
+        if !same_declaration(first, v) {
+            return Err(format!(
+                "\"{}\" differs from \"{}\" in type, causality, variability, initial or unit",
+                v.name, first.name
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The FMI 3.0 view of model M's table (see the module documentation), built from the
-/// table an instance owns.
+/// table an instance owns. Descriptions of arrays and dependencies, needed only in
+/// modelDescription.xml, are derived there ([`description`], [`dependencies`]).
 pub fn build<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
     if table
         .iter()
@@ -271,16 +319,10 @@ pub fn build<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
         ));
     }
     let groups = groups(table)?;
-    // FMI 2.0 name of every element -> (FMI 3.0 value reference of its variable).
-    let mut owner: HashMap<&str, u32> = HashMap::new();
-    for (_, members, _) in &groups {
-        for &i in members {
-            owner.insert(&table[i].name, table[members[0]].value_reference);
-        }
-    }
-    let mut variables = vec![time_variable()];
-    for (base, members, is_array) in &groups {
-        variables.push(variable3(table, base, members, *is_array, &owner)?);
+    let mut variables = Vec::with_capacity(groups.len() + 2);
+    variables.push(time_variable());
+    for group in &groups {
+        variables.push(variable3(table, &groups, group)?);
     }
     let n_indicators = M::info().number_of_event_indicators;
     if n_indicators > 0 {
@@ -302,8 +344,7 @@ pub fn build<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
 fn time_variable() -> Variable3 {
     Variable3 {
         value_reference: TIME_VALUE_REFERENCE,
-        name: "time".to_string(),
-        description: "Simulation time".to_string(),
+        name: Cow::Borrowed("time"),
         variable_type: VariableType::Real,
         causality: Causality::Independent,
         variability: Variability::Continuous,
@@ -311,15 +352,13 @@ fn time_variable() -> Variable3 {
         dimension: None,
         source: Source::Time,
         derivative_of: None,
-        dependencies: None,
     }
 }
 
 fn event_indicator_variable(value_reference: u32, n: usize) -> Variable3 {
     Variable3 {
         value_reference,
-        name: "eventIndicators".to_string(),
-        description: "Event indicators: an event occurs where one changes sign".to_string(),
+        name: Cow::Borrowed("eventIndicators"),
         variable_type: VariableType::Real,
         causality: Causality::Local,
         variability: Variability::Continuous,
@@ -327,63 +366,109 @@ fn event_indicator_variable(value_reference: u32, n: usize) -> Variable3 {
         dimension: Some(n),
         source: Source::EventIndicators,
         derivative_of: None,
-        dependencies: None,
     }
 }
 
 fn variable3<M>(
     table: &[Variable<M>],
-    base: &str,
-    members: &[usize],
-    is_array: bool,
-    owner: &HashMap<&str, u32>,
+    groups: &[Group],
+    group: &Group,
 ) -> Result<Variable3, String> {
-    let first = &table[members[0]];
-    let lookup = |name: &str| {
-        owner
-            .get(name)
-            .copied()
-            .ok_or_else(|| format!("\"{}\" names the unknown variable \"{name}\"", first.name))
+    let first = &table[group.members[0]];
+    let derivative_of =
+        match &first.kind {
+            Kind::Real {
+                derivative_of: Some(state),
+                ..
+            } => Some(fmi3_reference(table, groups, state).ok_or_else(|| {
+                format!("\"{}\" names the unknown variable \"{state}\"", first.name)
+            })?),
+            _ => None,
+        };
+    let name = match (&first.array, group.is_array) {
+        (Some(a), true) if !a.derivative => Cow::Borrowed(a.base),
+        (_, true) => Cow::Owned(group_name(group.derivative, group.base)),
+        (_, false) => first.name.clone(),
     };
-    let derivative_of = match &first.kind {
-        Kind::Real {
-            derivative_of: Some(state),
-            ..
-        } => Some(lookup(state)?),
-        _ => None,
-    };
-    let mut dependencies: Option<Vec<u32>> = Some(Vec::new());
-    for &i in members {
-        match (&table[i].dependencies, &mut dependencies) {
-            (Some(names), Some(list)) => {
-                for name in names {
-                    list.push(lookup(name)?);
-                }
-            }
-            _ => dependencies = None,
-        }
-    }
-    if let Some(list) = &mut dependencies {
-        list.sort_unstable();
-        list.dedup();
-    }
-    let descriptions: Vec<&str> = members
-        .iter()
-        .map(|&i| table[i].description.as_str())
-        .collect();
     Ok(Variable3 {
         value_reference: first.value_reference,
-        name: base.to_string(),
-        description: array_description(&descriptions),
+        name,
         variable_type: first.variable_type(),
         causality: first.causality,
         variability: first.variability,
         initial: first.initial,
-        dimension: is_array.then_some(members.len()),
-        source: Source::Elements(members.iter().map(|&i| table[i].value_reference).collect()),
+        dimension: group.is_array.then_some(group.members.len()),
+        source: Source::Elements(
+            group
+                .members
+                .iter()
+                .map(|&i| table[i].value_reference)
+                .collect(),
+        ),
         derivative_of,
-        dependencies,
     })
+}
+
+/// The FMI 3.0 value reference of the variable owning the table scalar `name`.
+fn fmi3_reference<M>(table: &[Variable<M>], groups: &[Group], name: &str) -> Option<u32> {
+    let (derivative, base, index) = split_index(name);
+    groups
+        .iter()
+        .find(|g| g.derivative == derivative && g.base == base && g.is_array == index.is_some())
+        .filter(|g| g.members.iter().any(|&i| table[i].name == name))
+        .map(|g| table[g.members[0]].value_reference)
+}
+
+/// The description of the FMI 3.0 variable `v` (for modelDescription.xml): an array's
+/// elements' common text ([`array_description`]).
+pub fn description<M>(table: &[Variable<M>], v: &Variable3) -> String {
+    match &v.source {
+        Source::Time => "Simulation time".to_string(),
+        Source::EventIndicators => {
+            "Event indicators: an event occurs where one changes sign".to_string()
+        }
+        Source::Elements(elements) => {
+            let descriptions: Vec<&str> = elements
+                .iter()
+                .filter_map(|&e| find(table, e))
+                .map(|e| e.description.as_ref())
+                .collect();
+            if v.dimension.is_some() {
+                array_description(&descriptions)
+            } else {
+                descriptions
+                    .first()
+                    .map_or_else(String::new, |d| d.to_string())
+            }
+        }
+    }
+}
+
+/// FMI 3.0 value references of the knowns the output or derivative `v` depends on,
+/// ascending (for modelDescription.xml); None: on all of them.
+pub fn dependencies<M: Model>(
+    table: &[Variable<M>],
+    v: &Variable3,
+) -> Result<Option<Vec<u32>>, String> {
+    let groups = groups(table)?;
+    let mut list = Vec::new();
+    for &e in v.elements() {
+        let scalar = find(table, e).ok_or_else(|| format!("no element {e}"))?;
+        let Some(names) = scalar.dependencies else {
+            return Ok(None);
+        };
+        for name in names {
+            list.push(fmi3_reference(table, &groups, name).ok_or_else(|| {
+                format!("\"{}\" names the unknown variable \"{name}\"", scalar.name)
+            })?);
+        }
+    }
+    if v.elements().is_empty() {
+        return Ok(None);
+    }
+    list.sort_unstable();
+    list.dedup();
+    Ok(Some(list))
 }
 
 /// The FMI 3.0 state vector (the derivative arrays' elements in description order)
@@ -411,14 +496,11 @@ mod tests {
 
     #[test]
     fn indices_split_off_plain_and_derivative_names() {
-        assert_eq!(split_index("theta[2]"), ("theta".to_string(), Some(2)));
-        assert_eq!(
-            split_index("der(omega[3])"),
-            ("der(omega)".to_string(), Some(3))
-        );
-        assert_eq!(split_index("order"), ("order".to_string(), None));
-        assert_eq!(split_index("der(x)"), ("der(x)".to_string(), None));
-        assert_eq!(split_index("a[1][2]"), ("a[1][2]".to_string(), None));
+        assert_eq!(split_index("theta[2]"), (false, "theta", Some(2)));
+        assert_eq!(split_index("der(omega[3])"), (true, "omega", Some(3)));
+        assert_eq!(split_index("order"), (false, "order", None));
+        assert_eq!(split_index("der(x)"), (true, "x", None));
+        assert_eq!(split_index("a[1][2]"), (false, "a[1][2]", None));
     }
 
     #[test]

@@ -1,0 +1,268 @@
+//! One declaration for an array variable `base[1..n]` of the variable table: value
+//! references `first + i * stride`, one getter and one setter taking the element
+//! index, roles applied per element, and the [`ArrayElement`] metadata an FMI 3.0
+//! array needs. [`Array::variables`] gives the scalars (FMI 2.0 names `base[1]` ...).
+
+use super::variables::{Variable, find};
+use std::borrow::Cow;
+
+/// Position of a scalar in an array variable `base[1..length]`: the FMI 2.0 name is
+/// `base[index + 1]` (`der(base[index + 1])` for the derivative of an array state);
+/// an FMI 3.0 front-end declares one array `base` (`der(base)`) with
+/// `<Dimension start="length"/>` from its elements.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ArrayElement {
+    pub base: &'static str,
+    /// 0-based.
+    pub index: usize,
+    pub length: usize,
+    /// Step of the value references from one element to the next.
+    pub stride: u32,
+    /// The element is the time derivative of `base[index + 1]`.
+    pub derivative: bool,
+}
+
+impl ArrayElement {
+    /// The FMI 2.0 name of element `index`.
+    pub fn name(&self, index: usize) -> String {
+        if self.derivative {
+            format!("der({}[{}])", self.base, index + 1)
+        } else {
+            format!("{}[{}]", self.base, index + 1)
+        }
+    }
+
+    /// Value reference of element `index` of the array whose element `self.index`
+    /// has the value reference `vr`.
+    pub fn value_reference(&self, vr: u32, index: usize) -> u32 {
+        vr - self.index as u32 * self.stride + index as u32 * self.stride
+    }
+}
+
+/// The FMI types an array element can have, with their variable constructors.
+pub trait ElementType: Copy + Send + Sync + 'static {
+    fn variable<M>(
+        vr: u32,
+        name: String,
+        description: Cow<'static, str>,
+        get: impl Fn(&M) -> Self + Send + Sync + 'static,
+    ) -> Variable<M>;
+
+    fn with_setter<M>(
+        v: Variable<M>,
+        set: impl Fn(&mut M, Self) -> Result<(), String> + Send + Sync + 'static,
+    ) -> Variable<M>;
+}
+
+impl ElementType for f64 {
+    fn variable<M>(
+        vr: u32,
+        name: String,
+        description: Cow<'static, str>,
+        get: impl Fn(&M) -> f64 + Send + Sync + 'static,
+    ) -> Variable<M> {
+        Variable::real(vr, name, description, get)
+    }
+
+    fn with_setter<M>(
+        v: Variable<M>,
+        set: impl Fn(&mut M, f64) -> Result<(), String> + Send + Sync + 'static,
+    ) -> Variable<M> {
+        v.set_real(set)
+    }
+}
+
+impl ElementType for i32 {
+    fn variable<M>(
+        vr: u32,
+        name: String,
+        description: Cow<'static, str>,
+        get: impl Fn(&M) -> i32 + Send + Sync + 'static,
+    ) -> Variable<M> {
+        Variable::integer(vr, name, description, get)
+    }
+
+    fn with_setter<M>(
+        v: Variable<M>,
+        set: impl Fn(&mut M, i32) -> Result<(), String> + Send + Sync + 'static,
+    ) -> Variable<M> {
+        v.set_integer(set)
+    }
+}
+
+impl ElementType for bool {
+    fn variable<M>(
+        vr: u32,
+        name: String,
+        description: Cow<'static, str>,
+        get: impl Fn(&M) -> bool + Send + Sync + 'static,
+    ) -> Variable<M> {
+        Variable::boolean(vr, name, description, get)
+    }
+
+    fn with_setter<M>(
+        v: Variable<M>,
+        set: impl Fn(&mut M, bool) -> Result<(), String> + Send + Sync + 'static,
+    ) -> Variable<M> {
+        v.set_boolean(set)
+    }
+}
+
+/// One declaration of an array `base[1..length]` of element type T (see the module
+/// documentation). The elements are built at once and each call refines them, so a
+/// declaration allocates nothing beyond its scalars.
+pub struct Array<M, T: ElementType> {
+    elements: Vec<Variable<M>>,
+    first_vr: u32,
+    marker: std::marker::PhantomData<T>,
+}
+
+pub type RealArray<M> = Array<M, f64>;
+pub type IntegerArray<M> = Array<M, i32>;
+pub type BooleanArray<M> = Array<M, bool>;
+
+impl<M: 'static, T: ElementType> Array<M, T> {
+    /// The array `base[1..length]`, value references `first_vr + i` (see
+    /// [`Array::stride`]), element i read by `get(model, i)`.
+    pub fn new(
+        first_vr: u32,
+        base: &'static str,
+        length: usize,
+        description: impl Into<Cow<'static, str>>,
+        get: impl Fn(&M, usize) -> T + Clone + Send + Sync + 'static,
+    ) -> Self {
+        Self::declare(first_vr, base, length, description.into(), false, get)
+    }
+
+    fn declare(
+        first_vr: u32,
+        base: &'static str,
+        length: usize,
+        description: Cow<'static, str>,
+        derivative: bool,
+        get: impl Fn(&M, usize) -> T + Clone + Send + Sync + 'static,
+    ) -> Self {
+        let elements = (0..length)
+            .map(|i| {
+                let element = ArrayElement {
+                    base,
+                    index: i,
+                    length,
+                    stride: 1,
+                    derivative,
+                };
+                let get = get.clone();
+                let vr = first_vr + i as u32;
+                let mut v =
+                    T::variable(vr, element.name(i), description.clone(), move |m| get(m, i));
+                if derivative {
+                    v = v.derivative_of(format!("{base}[{}]", i + 1));
+                }
+                v.array = Some(element);
+                v
+            })
+            .collect();
+        Array {
+            elements,
+            first_vr,
+            marker: std::marker::PhantomData,
+        }
+    }
+
+    /// Value references `first_vr + i * stride` instead of consecutive ones (arrays
+    /// whose elements interleave with other arrays' by index).
+    pub fn stride(mut self, stride: u32) -> Self {
+        for (i, v) in self.elements.iter_mut().enumerate() {
+            v.value_reference = self.first_vr + i as u32 * stride;
+            if let Some(element) = &mut v.array {
+                element.stride = stride;
+            }
+        }
+        self
+    }
+
+    /// Describes element i as "`label` i: description" (e.g. "Axis 2: position").
+    pub fn label(self, label: &'static str) -> Self {
+        self.each(move |v, i| {
+            let description = format!("{label} {}: {}", i + 1, v.description);
+            v.describe(description)
+        })
+    }
+
+    /// The writer of every element.
+    pub fn set(
+        self,
+        set: impl Fn(&mut M, usize, T) -> Result<(), String> + Clone + Send + Sync + 'static,
+    ) -> Self {
+        self.each(move |v, i| {
+            let set = set.clone();
+            T::with_setter(v, move |m, x| set(m, i, x))
+        })
+    }
+
+    /// Applies `role` (causality, unit, start value, description, ...) to element `i`.
+    pub fn each(mut self, role: impl Fn(Variable<M>, usize) -> Variable<M>) -> Self {
+        self.elements = self
+            .elements
+            .into_iter()
+            .enumerate()
+            .map(|(i, v)| role(v, i))
+            .collect();
+        self
+    }
+
+    /// The scalar variables, element 0 first.
+    pub fn variables(self) -> Vec<Variable<M>> {
+        self.elements
+    }
+}
+
+impl<M: 'static> RealArray<M> {
+    /// The time derivatives `der(state[1..length])` of the array state `state`, value
+    /// references `first_vr + i` (see [`Array::stride`]), element i read by
+    /// `get(model, i)`.
+    pub fn derivatives(
+        first_vr: u32,
+        state: &'static str,
+        length: usize,
+        description: impl Into<Cow<'static, str>>,
+        get: impl Fn(&M, usize) -> f64 + Clone + Send + Sync + 'static,
+    ) -> Self {
+        Self::declare(first_vr, state, length, description.into(), true, get)
+    }
+}
+
+/// Every array: all elements present, named `base[i]` (`der(base[i])`), at the value
+/// references its stride gives (what an FMI 3.0 array of one value reference needs).
+pub(super) fn check_arrays<M>(table: &[Variable<M>]) -> Result<(), String> {
+    for v in table {
+        let Some(element) = &v.array else { continue };
+        if v.name != element.name(element.index) {
+            return Err(format!(
+                "\"{}\": array element named unlike its position",
+                v.name
+            ));
+        }
+        if element.stride == 0 {
+            return Err(format!(
+                "array \"{}\": value reference stride 0",
+                element.base
+            ));
+        }
+        for i in 0..element.length {
+            let vr = element.value_reference(v.value_reference, i);
+            let found = find(table, vr).and_then(|e| e.array.as_ref());
+            let same = found.is_some_and(|e| {
+                e.base == element.base && e.derivative == element.derivative && e.index == i
+            });
+            if !same {
+                return Err(format!(
+                    "array \"{}\": element {} is not at value reference {vr}",
+                    element.name(i),
+                    i + 1,
+                ));
+            }
+        }
+    }
+    Ok(())
+}
