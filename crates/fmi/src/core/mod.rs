@@ -9,6 +9,7 @@
 pub mod description;
 pub mod fmu_states;
 pub mod handles;
+pub mod input_derivatives;
 pub mod instance;
 pub mod logging;
 pub mod model;

@@ -82,8 +82,31 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// one is wrong and why) and prepare for simulation.
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String>;
 
-    /// Co-simulation step from `time` to `time + step` with the inputs held.
+    /// Co-simulation step from `time` to `time + step`: each continuous Real input
+    /// follows u(s) = u + u' s + u'' s^2/2 + ... (s the time since `time`) with the
+    /// derivatives last given by [`Model::set_input_derivative`], i.e. it is held
+    /// when none were given.
     fn do_step(&mut self, time: f64, step: f64, log: &dyn Log) -> StepOutcome;
+
+    /// Highest order of input time derivative that `do_step` uses (FMI 2.0
+    /// canInterpolateInputs when above 0); 0: the inputs are held over a step.
+    const MAX_INPUT_DERIVATIVE_ORDER: u32 = 0;
+
+    /// Stores the `order`-th time derivative (1 ..= `MAX_INPUT_DERIVATIVE_ORDER`) of the
+    /// continuous Real input `vr`, relative to the start of the next step; the layer
+    /// has checked the value reference, the order and that `value` is finite. It
+    /// holds for every later step until it is set again (it is part of the model's
+    /// state: clones, FMU states and resets carry it like any other field). It does
+    /// not change the input's value or any output read before the step.
+    fn set_input_derivative(&mut self, _vr: u32, _order: u32, _value: f64) -> Result<(), String> {
+        Err("this model takes no input derivatives".to_string())
+    }
+
+    /// The derivative stored by `set_input_derivative` (0 when none was set), for the
+    /// layer to write it into serialized FMU states.
+    fn input_derivative(&self, _vr: u32, _order: u32) -> f64 {
+        0.0
+    }
 
     /// Computes every calculated value (outputs, derivatives, ...) after a change of
     /// parameters, inputs, states or time, for the getters to read. The layer calls it
