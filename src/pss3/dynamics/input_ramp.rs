@@ -37,7 +37,11 @@ impl InputRamp {
                 r.disturbance_torque,
                 a.disturbance_torque,
             ),
-            commanded_torque: at(start.commanded_torque, r.commanded_torque, a.commanded_torque),
+            commanded_torque: at(
+                start.commanded_torque,
+                r.commanded_torque,
+                a.commanded_torque,
+            ),
             generalized_force: at(
                 start.generalized_force,
                 r.generalized_force,

@@ -204,7 +204,9 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
             Err(format!("{value} is not finite"))
         };
         set.map_err(|e| {
-            format!("FMU state input derivative of order {order} of value reference {vr} rejected: {e}")
+            format!(
+                "FMU state input derivative of order {order} of value reference {vr} rejected: {e}"
+            )
         })?;
     }
     let n = r.u32("number of states")? as usize;
