@@ -90,3 +90,42 @@ def test_plant_coupling_error_falls_as_h_with_held_inputs_and_h2_with_slopes(cap
         assert 3.4 < errors[True, h] / errors[True, h / 2] < 4.6, h
     # And far below the held error at the same step.
     assert errors[True, 1e-3] < errors[False, 1e-3] / 50
+
+
+PID_INPUTS = [f"{group}[{i}]" for group in ("setpoint", "measurement", "feedforward")
+              for i in (1, 2, 3)]
+PID_STATES = [f"{state}[{i}]" for state in ("integral", "filter") for i in (1, 2, 3)]
+# Linear errors e_i(t) = a_i + b_i t (setpoint ramps, measurement 0); PID defaults
+# Kp 1, Ki 0.5, Kd 0.1, Tf 0.05, no limits.
+RAMP_START = [0.25, -0.5, 1.0]
+RAMP_SLOPE = [-0.8, 0.3, 2.0]
+TF = 0.05
+
+
+def pid_closed_form(t):
+    """integral_i = a t + b t^2/2, filter_i = a (1 - exp(-t/Tf)) + b (t - Tf + Tf exp(-t/Tf))
+    (Laplace inverse of 1/s and 1/(Tf s + 1) on a step and a ramp, zero start)."""
+    decay = np.exp(-t / TF)
+    columns = [a * t + b * t * t / 2 for a, b in zip(RAMP_START, RAMP_SLOPE)]
+    columns += [a * (1 - decay) + b * (t - TF + TF * decay) for a, b in zip(RAMP_START, RAMP_SLOPE)]
+    return np.stack(columns, axis=1)
+
+
+@pytest.mark.filterwarnings("ignore")
+@pytest.mark.parametrize("h", [0.1, 0.01])
+def test_pid_with_slopes_steps_a_linear_error_exactly_at_any_step(h):
+    signals = {f"setpoint[{i + 1}]": (lambda a, b: lambda t: a + b * t)(a, b)
+               for i, (a, b) in enumerate(zip(RAMP_START, RAMP_SLOPE))}
+    rows = table(PID_INPUTS, signals, 2.0)
+    results = {}
+    for slopes in (False, True):
+        r = simulate_fmu(fmu_path("PID"), fmi_type="CoSimulation", input=rows, stop_time=2.0,
+                         output=PID_STATES, output_interval=h, set_input_derivatives=slopes)
+        got = np.stack([r[n] for n in PID_STATES], axis=1)
+        results[slopes] = np.abs(got - pid_closed_form(r["time"])).max()
+    # With slopes: exact up to rounding (2000 steps at most, states of order 1).
+    print(f"\nPID h = {h}: max |state - closed form| held {results[False]:.3g}, slopes {results[True]:.3g}")
+    assert results[True] < 1e-12, results
+    # Held inputs lag the ramp by half a step: integral off by b h t/2 (0.1 h at t = 2
+    # for b = 2), far above.
+    assert results[False] > 0.05 * h, results
