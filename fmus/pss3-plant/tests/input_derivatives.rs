@@ -10,6 +10,8 @@ use robofmu_pss3_plant_fmu::Pss3Plant;
 use std::ptr::null;
 
 type H = Host<Pss3Plant>;
+/// One hostile call on an instance.
+type Call = Box<dyn Fn(&H) -> Fmi2Status>;
 const CS: i32 = FMI2_CO_SIMULATION;
 
 /// A tilted, moving start (as in pss3_plant_fmu.rs) with constant forces.
@@ -47,7 +49,7 @@ fn run(h: &H, t0: f64, n: usize) -> Vec<[[f64; 3]; 2]> {
 #[test]
 fn bad_arguments_are_refused_with_a_line_naming_the_variable_and_order() {
     let force = vr::<Pss3Plant>("actuatorForce[1]");
-    let cases: [(&str, Box<dyn Fn(&H) -> Fmi2Status>, &str); 9] = [
+    let cases: [(&str, Call, &str); 9] = [
         (
             "null vr",
             Box::new(|h| unsafe {
