@@ -105,18 +105,6 @@ fn input_field(inputs: &mut PidInputs, group: u32) -> Option<&mut f64> {
     }
 }
 
-/// The derivative of order 1 or 2 of the input `vr` in `ramps`.
-fn ramp_slot(ramps: &mut [PidInputRamp; CHANNELS], vr: u32, order: u32) -> Option<&mut f64> {
-    let (group, c) = split(vr);
-    let ramp = ramps.get_mut(c)?;
-    let part = match order {
-        1 => &mut ramp.rate,
-        2 => &mut ramp.acceleration,
-        _ => return None,
-    };
-    input_field(part, group)
-}
-
 /// Read and write access to one Real field of channel c (reading needs no copy of
 /// the model).
 #[derive(Clone, Copy)]
@@ -439,16 +427,15 @@ impl Model for Pid {
 
     const MAX_INPUT_DERIVATIVE_ORDER: u32 = 2;
 
-    fn set_input_derivative(&mut self, vr: u32, order: u32, value: f64) -> Result<(), String> {
-        let slot = ramp_slot(&mut self.ramps, vr, order)
-            .ok_or_else(|| format!("no input derivative of order {order} for {vr}"))?;
-        *slot = value;
-        Ok(())
-    }
-
-    fn input_derivative(&self, vr: u32, order: u32) -> f64 {
-        let mut ramps = self.ramps;
-        ramp_slot(&mut ramps, vr, order).map_or(0.0, |v| *v)
+    fn input_derivative_mut(&mut self, vr: u32, order: u32) -> Option<&mut f64> {
+        let (group, c) = split(vr);
+        let ramp = self.ramps.get_mut(c)?;
+        let part = match order {
+            1 => &mut ramp.rate,
+            2 => &mut ramp.acceleration,
+            _ => return None,
+        };
+        input_field(part, group)
     }
 
     fn continuous_states(&self, x: &mut [f64]) {

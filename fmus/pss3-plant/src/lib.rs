@@ -284,16 +284,6 @@ impl Pss3Plant {
     }
 }
 
-/// The derivative of order 1 (rate) or 2 (acceleration) of the input `vr` in `ramp`.
-fn ramp_slot(ramp: &mut InputRamp, vr: u32, order: u32) -> Option<&mut f64> {
-    let part = match order {
-        1 => &mut ramp.rate,
-        2 => &mut ramp.acceleration,
-        _ => return None,
-    };
-    variables::input_component(part, vr)
-}
-
 impl Model for Pss3Plant {
     fn info() -> &'static ModelInfo {
         &INFO
@@ -382,16 +372,13 @@ impl Model for Pss3Plant {
 
     const MAX_INPUT_DERIVATIVE_ORDER: u32 = 2;
 
-    fn set_input_derivative(&mut self, vr: u32, order: u32, value: f64) -> Result<(), String> {
-        let slot = ramp_slot(&mut self.ramp, vr, order)
-            .ok_or_else(|| format!("no input derivative of order {order} for {vr}"))?;
-        *slot = value;
-        Ok(())
-    }
-
-    fn input_derivative(&self, vr: u32, order: u32) -> f64 {
-        let mut ramp = self.ramp;
-        ramp_slot(&mut ramp, vr, order).map_or(0.0, |v| *v)
+    fn input_derivative_mut(&mut self, vr: u32, order: u32) -> Option<&mut f64> {
+        let part = match order {
+            1 => &mut self.ramp.rate,
+            2 => &mut self.ramp.acceleration,
+            _ => return None,
+        };
+        variables::input_component(part, vr)
     }
 
     fn calculate_values(&mut self) -> Result<(), String> {

@@ -1,6 +1,6 @@
 //! Time derivatives of continuous inputs for the co-simulation step (FMI 2.0
 //! fmi2SetRealInputDerivatives), checked here for every front-end and stored by the
-//! model ([`Model::set_input_derivative`]).
+//! model ([`Model::input_derivative_mut`]).
 //!
 //! Semantics (FMI 2.0, section 4.2.1: inputs and their derivatives are set with
 //! respect to the beginning of a communication step): over a step from t, an input u
@@ -67,8 +67,16 @@ impl<M: Model> Instance<M> {
                  of magnitude at most {MAX_MAGNITUDE:e}"
             ));
         }
-        self.model_mut()
-            .set_input_derivative(vr, order, value)
-            .map_err(|e| format!("derivative of order {order} of \"{name}\": {e}"))
+        let slot = self.model_mut().input_derivative_mut(vr, order);
+        *slot.ok_or_else(|| no_slot::<M>(&name, order))? = value;
+        Ok(())
     }
+}
+
+/// The message for a model that declares an order but keeps no derivative for `name`.
+fn no_slot<M: Model>(name: &str, order: u32) -> String {
+    format!(
+        "{} keeps no derivative of order {order} for \"{name}\"",
+        M::info().model_name
+    )
 }

@@ -92,20 +92,15 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// canInterpolateInputs when above 0); 0: the inputs are held over a step.
     const MAX_INPUT_DERIVATIVE_ORDER: u32 = 0;
 
-    /// Stores the `order`-th time derivative (1 ..= `MAX_INPUT_DERIVATIVE_ORDER`) of the
-    /// continuous Real input `vr`, relative to the start of the next step; the layer
-    /// has checked the value reference, the order and that `value` is finite. It
-    /// holds for every later step until it is set again (it is part of the model's
-    /// state: clones, FMU states and resets carry it like any other field). It does
+    /// Where the model keeps the `order`-th time derivative (1 ..=
+    /// `MAX_INPUT_DERIVATIVE_ORDER`) of the continuous Real input `vr`, relative to
+    /// the start of the next step; None: it keeps none. The layer checks the value
+    /// reference, the order and the value (finite) before writing, and reads it to
+    /// serialize FMU states. A derivative holds for every later step until it is set
+    /// again (a field of the model: clones, FMU states and resets carry it); it does
     /// not change the input's value or any output read before the step.
-    fn set_input_derivative(&mut self, _vr: u32, _order: u32, _value: f64) -> Result<(), String> {
-        Err("this model takes no input derivatives".to_string())
-    }
-
-    /// The derivative stored by `set_input_derivative` (0 when none was set), for the
-    /// layer to write it into serialized FMU states.
-    fn input_derivative(&self, _vr: u32, _order: u32) -> f64 {
-        0.0
+    fn input_derivative_mut(&mut self, _vr: u32, _order: u32) -> Option<&mut f64> {
+        None
     }
 
     /// Computes every calculated value (outputs, derivatives, ...) after a change of

@@ -54,8 +54,15 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
             _ => {}
         }
     }
-    for (vr, order) in input_derivative_slots(table) {
-        payload.extend_from_slice(&s.model.input_derivative(vr, order).to_le_bytes());
+    let slots = input_derivative_slots(table);
+    // The slots are reached through `&mut`: read them from a copy (only for a model
+    // that takes derivatives).
+    let mut model = (!slots.is_empty()).then(|| s.model.clone());
+    for (vr, order) in slots {
+        let value = model
+            .as_mut()
+            .and_then(|m| m.input_derivative_mut(vr, order).copied());
+        payload.extend_from_slice(&value.unwrap_or(0.0).to_le_bytes());
     }
     let n = M::info().number_of_continuous_states;
     let mut x = vec![0.0; n];
@@ -198,16 +205,15 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
         if value == 0.0 {
             continue; // a fresh model holds zeros
         }
-        let set = if value.is_finite() {
-            model.set_input_derivative(vr, order, value)
-        } else {
-            Err(format!("{value} is not finite"))
-        };
-        set.map_err(|e| {
-            format!(
-                "FMU state input derivative of order {order} of value reference {vr} rejected: {e}"
-            )
-        })?;
+        match model.input_derivative_mut(vr, order) {
+            Some(slot) if value.is_finite() => *slot = value,
+            _ => {
+                return Err(format!(
+                    "corrupt FMU state: input derivative of order {order} of value \
+                     reference {vr} = {value}"
+                ));
+            }
+        }
     }
     let n = r.u32("number of states")? as usize;
     if n != M::info().number_of_continuous_states {
