@@ -12,11 +12,14 @@ FMPy 0.3.32 quirks the tables below work around (fmpy/simulation.py, class Input
   half a sample off the communication grid, so the slope sent at a communication point
   is the central difference of the signal there (error u''' dt^2/24)."""
 
+import json
+
 import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
+from fmpy.util import read_csv
 
-from conftest import fmu_path
+from conftest import REFERENCES, fmu_path
 
 PLANT_INPUTS = [f"{group}[{i}]" for group in ("actuatorForce", "torqueCommand",
                                               "disturbanceTorque") for i in (1, 2, 3)]
@@ -129,3 +132,33 @@ def test_pid_with_slopes_steps_a_linear_error_exactly_at_any_step(h):
     # Held inputs lag the ramp by half a step: integral off by b h t/2 (0.1 h at t = 2
     # for b = 2), far above.
     assert results[False] > 0.05 * h, results
+
+
+@pytest.mark.filterwarnings("ignore")
+def test_plant_path1_with_slopes_meets_the_inverse_dynamics_reference():
+    # Truth independent of any FMU: tests/references/Pss3Plant/path1, theta of a
+    # quintic path and the forces that drive it, from the library's inverse dynamics
+    # (`robofmu pss3 plant-reference`). Its forces are tabulated every 1 ms, on the
+    # communication grid, so FMPy sends the slope of the segment ending at each point.
+    # Measured (rad, 2 ms / 1 ms / 0.5 ms): held 1.9e-5 / 9.4e-6 / 4.7e-6, slopes
+    # 3.5e-8 / 7.7e-9 / 2.6e-9 (below 1 ms the 1 ms table's own interpolation error
+    # shows); accepted at 1 ms: slopes below 3e-8 and 100 times below held.
+    path1 = REFERENCES / "Pss3Plant" / "path1"
+    case = json.loads((path1 / "case.json").read_text())
+    forces = read_csv(path1 / "Pss3Plant_input.csv")
+    reference = read_csv(path1 / "Pss3Plant_ref.csv")
+    rows = np.zeros(len(forces), dtype=[("time", float)] + [(n, float) for n in PLANT_INPUTS])
+    rows["time"] = forces["time"]
+    for name in PLANT_INPUTS[:3]:
+        rows[name] = forces[name]
+    errors = {}
+    for slopes in (False, True):
+        r = simulate_fmu(fmu_path("Pss3Plant"), fmi_type="CoSimulation",
+                         start_values=dict(case["start_values"], tolerance=1e-12), input=rows,
+                         output=THETA, output_interval=1e-3, stop_time=reference["time"][-1],
+                         set_input_derivatives=slopes)
+        errors[slopes] = max(np.abs(np.interp(reference["time"], r["time"], r[n])
+                                    - reference[n]).max() for n in THETA)
+    print(f"\npath1 at 1 ms: held {errors[False]:.3g} rad, slopes {errors[True]:.3g} rad")
+    assert errors[True] < 3e-8
+    assert errors[True] < errors[False] / 100
