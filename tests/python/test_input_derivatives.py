@@ -52,10 +52,10 @@ PLANT_TABLE = table(PLANT_INPUTS, {PLANT_INPUTS[i]: force(i) for i in range(3)},
 TIMES = np.arange(0.0, 2.0 + 1e-9, 4e-3)  # on every grid below
 
 
-def plant_theta(h, slopes, interface="CoSimulation", tolerance=None):
-    result = simulate_fmu(fmu_path("Pss3Plant"), fmi_type=interface, start_values=PLANT_START,
-                          input=PLANT_TABLE, output=THETA, output_interval=h, stop_time=2.0,
-                          set_input_derivatives=slopes, relative_tolerance=tolerance)
+def plant_theta(h, slopes):
+    result = simulate_fmu(fmu_path("Pss3Plant"), fmi_type="CoSimulation",
+                          start_values=PLANT_START, input=PLANT_TABLE, output=THETA,
+                          output_interval=h, stop_time=2.0, set_input_derivatives=slopes)
     return np.stack([np.interp(TIMES, result["time"], result[n]) for n in THETA], axis=1)
 
 
@@ -69,29 +69,27 @@ def test_the_fmi2_fmus_declare_can_interpolate_inputs():
 def test_plant_coupling_error_falls_as_h_with_held_inputs_and_h2_with_slopes(capsys):
     # Reference: the same co-simulation with slopes at h = 1/16 ms (its own error is
     # 1/256 of the 1 ms figure if the order is 2; halving it again moved theta by
-    # 4.6e-8 rad). Independent check of the reference: Model Exchange (CVode, FMPy
-    # interpolating the table at every right-hand side) converges to it as its
-    # tolerance tightens: 1.8e-4, 9.7e-5, 5.6e-5 rad at rtol 1e-8, 3e-9, 1e-9 (measured);
-    # the 1e-8 run is checked here, within 3e-4 rad.
+    # 4.6e-8 rad). Independent check of the reference (measured, not run here: 8 to 27
+    # s): Model Exchange (CVode, FMPy interpolating the table at every right-hand side)
+    # converges to it as its tolerance tightens: 1.8e-4, 9.7e-5, 5.6e-5 rad at rtol
+    # 1e-8, 3e-9, 1e-9; the test below checks against a reference no FMU computed.
     reference = plant_theta(6.25e-5, True)
     errors = {}
     for slopes in (False, True):
         for h in (4e-3, 2e-3, 1e-3):
             errors[slopes, h] = np.abs(plant_theta(h, slopes) - reference).max()
-    model_exchange = np.abs(plant_theta(1e-3, False, "ModelExchange", 1e-8) - reference).max()
     with capsys.disabled():
-        print("\nmax |theta - reference|, rad:", {k: f"{v:.3g}" for k, v in errors.items()},
-              f"Model Exchange (rtol 1e-8): {model_exchange:.3g}")
-    assert model_exchange < 3e-4
+        print("\nmax |theta - reference|, rad:", {k: f"{v:.4g}" for k, v in errors.items()})
     # Held inputs: first order, error = c h + O(h^2): ratio per halving 2 (1 + O(h));
-    # measured 2.03 and 2.05; accepted 1.8 .. 2.3.
+    # measured 2.008 and 2.002 (1.38e-2, 6.88e-3, 3.44e-3 rad); accepted 1.8 .. 2.3.
     for h in (4e-3, 2e-3):
         assert 1.8 < errors[False, h] / errors[False, h / 2] < 2.3, h
     # Slopes (FMPy sends first derivatives): the input error per step is u'' s^2/2, a
-    # second-order method: ratio 4 (1 + O(h)); accepted 3.4 .. 4.6.
+    # second-order method: ratio 4 (1 + O(h)); measured 3.96 and 4.00 (8.6e-5, 2.2e-5,
+    # 5.4e-6 rad); accepted 3.4 .. 4.6.
     for h in (4e-3, 2e-3):
         assert 3.4 < errors[True, h] / errors[True, h / 2] < 4.6, h
-    # And far below the held error at the same step.
+    # And far below the held error at the same step (measured 632 times at 1 ms).
     assert errors[True, 1e-3] < errors[False, 1e-3] / 50
 
 
