@@ -84,7 +84,7 @@ pub trait Model: Clone + Send + Sized + 'static {
 
     /// Co-simulation step from `time` to `time + step`: each continuous Real input
     /// follows u(s) = u + u' s + u'' s^2/2 + ... (s the time since `time`) with the
-    /// derivatives last given by [`Model::set_input_derivative`], i.e. it is held
+    /// derivatives last written to [`Model::input_derivative_mut`], i.e. it is held
     /// when none were given.
     fn do_step(&mut self, time: f64, step: f64, log: &dyn Log) -> StepOutcome;
 
