@@ -97,7 +97,7 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// the start of the next step; None: it keeps none. The layer checks the value
     /// reference, the order and the value (finite) before writing, and reads it to
     /// serialize FMU states. A derivative holds for every later step until it is set
-    /// again (a field of the model: clones, FMU states and resets carry it); it does
+    /// again (a field of the model: clones and FMU states carry it, a reset clears it); it does
     /// not change the input's value or any output read before the step.
     fn input_derivative_mut(&mut self, _vr: u32, _order: u32) -> Option<&mut f64> {
         None
