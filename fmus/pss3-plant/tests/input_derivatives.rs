@@ -140,6 +140,11 @@ fn the_calls_are_legal_where_fmi2_set_real_is_and_only_in_co_simulation() {
         h.set_input_derivative("actuatorForce[1]", 1, 2.0),
         Fmi2Status::Ok
     );
+    // Not after fmi2Terminate (nor in StepFailed, Error: the mode table's rule).
+    assert_eq!(unsafe { api::terminate::<Pss3Plant>(h.c) }, Fmi2Status::Ok);
+    let late = h.set_input_derivative("actuatorForce[1]", 1, 3.0);
+    assert_eq!(late, Fmi2Status::Error);
+    assert!(h.last_message().contains("not allowed in mode Terminated"));
     let me = moving(FMI2_MODEL_EXCHANGE);
     assert_eq!(
         me.set_input_derivative("actuatorForce[1]", 1, 1.0),
