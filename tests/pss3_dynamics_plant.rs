@@ -3,8 +3,8 @@
 
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 use robofmu::pss3::dynamics::{
-    DynamicsError, EndStops, Friction, Inertia, Method, Plant, PlantInputs, PlantParamError,
-    PlantParams, PlantState, StateVector, StepSettings, StopContact,
+    DynamicsError, EndStops, Friction, Inertia, InputRamp, Method, Plant, PlantInputs,
+    PlantParamError, PlantParams, PlantState, StateVector, StepSettings, StopContact,
 };
 use robofmu::pss3::rotation::euler_from_rotation;
 use robofmu::pss3::{KinematicsError, ParamError, assemble, jacobian};
@@ -202,6 +202,47 @@ fn communication_steps_land_on_their_end_and_compose() {
     );
     assert!(gap(&one, &two) < 1e-10 && gap(&one, &dopri) < 1e-9);
     assert!(gap(&one, &state) > 1e-3, "the state must move");
+}
+
+#[test]
+fn steps_with_an_input_ramp_compose_and_differ_from_held_inputs() {
+    // Truth: the flow property of the time-varying system: one step of 20 ms along the
+    // ramp equals two steps of 10 ms, the second starting from the ramp's value and
+    // derivatives at 10 ms (u(10 ms), u' + u'' 10 ms, u''); both at tolerance 1e-12.
+    let plant = rough_plant();
+    let (state, inputs) = (tilted_state(), loads());
+    let mut ramp = InputRamp::default();
+    ramp.rate.forces = Vector3::new(300.0, -120.0, 50.0);
+    ramp.acceleration.forces = Vector3::new(-2e4, 0.0, 8e3);
+    ramp.rate.disturbance_torque = Vector3::new(0.0, 4.0, 0.0);
+    ramp.rate.commanded_torque = Vector3::new(-10.0, 0.0, 5.0);
+    ramp.acceleration.generalized_force = Vector3::new(0.0, 300.0, 0.0);
+    let tight = StepSettings {
+        method: Method::Dop853,
+        tolerance: 1e-12,
+        max_step: 1e-3,
+        max_internal_steps: 100_000,
+    };
+    let step = |s: &PlantState, u: &PlantInputs, r: &InputRamp, h: f64| {
+        plant.advance_with_ramp(s, u, r, h, &tight).unwrap()
+    };
+    let one = step(&state, &inputs, &ramp, 0.02);
+    let half = step(&state, &inputs, &ramp, 0.01);
+    let mut later = ramp;
+    later.rate.forces += ramp.acceleration.forces * 0.01;
+    later.rate.generalized_force += ramp.acceleration.generalized_force * 0.01;
+    let two = step(&half, &ramp.inputs_at(&inputs, 0.01), &later, 0.01);
+    let held = step(&state, &inputs, &InputRamp::default(), 0.02);
+    let gap = |a: &PlantState, b: &PlantState| (a.to_vector() - b.to_vector()).amax();
+    println!(
+        "one vs two ramp steps {:.1e}, ramp vs held {:.1e}",
+        gap(&one, &two),
+        gap(&one, &held)
+    );
+    assert!(gap(&one, &two) < 1e-10);
+    assert!(gap(&one, &held) > 1e-4);
+    // A held ramp is `advance` itself, bit for bit.
+    assert_eq!(held, plant.advance(&state, &inputs, 0.02, &tight).unwrap());
 }
 
 #[test]

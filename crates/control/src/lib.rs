@@ -2,4 +2,5 @@
 //! discretisation. The planner and PID FMU bindings (fmus/planner, fmus/pid) translate variables to these calls.
 
 pub mod pid;
+pub mod pid_ramp;
 pub mod trajectory;

@@ -16,6 +16,7 @@
 //! hold). Under that assumption the filter update x(t+h) = w + (x - w) exp(-h/Tf) and the
 //! integral update I(t+h) = I + e h are exact. The anti-windup decision is taken once
 //! at the start of the step from the values there, and holds for the whole step.
+//! Inputs that follow a quadratic over the step: `pid_ramp`.
 
 /// Gains and options of one channel.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -134,7 +135,8 @@ impl PidGains {
         Ok(())
     }
 
-    fn filter_active(&self) -> bool {
+    /// Whether the derivative filter has a state that moves.
+    pub(crate) fn filter_active(&self) -> bool {
         self.tf > 0.0 && (self.use_rate_inputs || self.kd != 0.0)
     }
 }
@@ -150,7 +152,8 @@ pub struct PidOutput {
     pub derivative_term: f64,
 }
 
-fn filter_input(g: &PidGains, i: &PidInputs) -> f64 {
+/// The input w of the derivative filter (the error, or the rate error).
+pub(crate) fn filter_input(g: &PidGains, i: &PidInputs) -> f64 {
     if g.use_rate_inputs {
         i.setpoint_rate - i.measured_rate
     } else {

@@ -373,3 +373,19 @@ fn an_array_with_a_missing_element_is_rejected_by_the_table_check() {
         "{message}"
     );
 }
+
+#[test]
+fn a_model_that_takes_no_input_derivatives_refuses_them_naming_itself() {
+    // Doubler keeps the default MAX_INPUT_DERIVATIVE_ORDER = 0 (canInterpolateInputs
+    // absent from its description): any order of its continuous input is an error.
+    let h: Host<Doubler> = Host::with_logging(FMI2_CO_SIMULATION, false);
+    assert_eq!(h.initialize(), Fmi2Status::Ok);
+    assert_eq!(h.set_input_derivative("u", 1, 0.5), Fmi2Status::Error);
+    assert_eq!(
+        h.last_message(),
+        "fmi2SetRealInputDerivatives: Doubler takes no input derivatives (its inputs are \
+         held over a step)"
+    );
+    let xml = robofmu_fmi::fmi2::description::model_description::<Doubler>().unwrap();
+    assert!(!xml.contains("canInterpolateInputs"), "{xml}");
+}

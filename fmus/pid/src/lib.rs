@@ -1,10 +1,13 @@
 //! Binding of the PID law (`robofmu_control::pid`) as the FMU "PID": three independent
 //! channels; gains, filter time constant and limits per channel and tunable; the
 //! integral and the derivative-filter state are the continuous states (Model
-//! Exchange) and are stepped exactly under a zero-order hold of the inputs
-//! (Co-Simulation). Signals carry no unit: the controller is generic.
+//! Exchange) and are stepped exactly under a zero-order hold of the inputs, or for
+//! inputs following their first and second derivatives over the step when the master
+//! gives them (Co-Simulation, fmi2SetRealInputDerivatives). Signals carry no unit: the
+//! controller is generic.
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
+use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
 use robofmu_fmi::core::variables::{Array, BooleanArray, ElementType, RealArray};
 use robofmu_fmi::core::{
     DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
@@ -42,6 +45,8 @@ pub struct Pid {
     limits: [(f64, f64); CHANNELS],
     limited: [bool; CHANNELS],
     inputs: [PidInputs; CHANNELS],
+    /// Derivatives of the inputs at the start of a step (zero: held).
+    ramps: [PidInputRamp; CHANNELS],
     states: [PidState; CHANNELS],
 }
 
@@ -86,6 +91,18 @@ fn vr(group: u32, c: usize) -> u32 {
 /// (group, channel) of a value reference.
 fn split(vr: u32) -> (u32, usize) {
     (vr - (vr - 1) % 10 - 1, ((vr - 1) % 10) as usize)
+}
+
+/// The field of `inputs` that the input group `group` sets.
+fn input_field(inputs: &mut PidInputs, group: u32) -> Option<&mut f64> {
+    match group {
+        SETPOINT => Some(&mut inputs.setpoint),
+        MEASUREMENT => Some(&mut inputs.measurement),
+        SETPOINT_RATE => Some(&mut inputs.setpoint_rate),
+        MEASURED_RATE => Some(&mut inputs.measured_rate),
+        FEEDFORWARD => Some(&mut inputs.feedforward),
+        _ => None,
+    }
 }
 
 /// Read and write access to one field of channel c (reading needs no copy of the
@@ -389,6 +406,7 @@ impl Model for Pid {
             limits: [(-1.0, 1.0); CHANNELS],
             limited: [false; CHANNELS],
             inputs: [PidInputs::default(); CHANNELS],
+            ramps: [PidInputRamp::default(); CHANNELS],
             states: [PidState::default(); CHANNELS],
         }
     }
@@ -420,9 +438,23 @@ impl Model for Pid {
             }
         }
         for c in 0..CHANNELS {
-            self.states[c] = pid::step(&self.gains[c], &self.states[c], &self.inputs[c], step);
+            let (g, s, i) = (&self.gains[c], &self.states[c], &self.inputs[c]);
+            self.states[c] = step_with_ramp(g, s, i, &self.ramps[c], step);
         }
         StepOutcome::Completed
+    }
+
+    const MAX_INPUT_DERIVATIVE_ORDER: u32 = 2;
+
+    fn input_derivative_mut(&mut self, vr: u32, order: u32) -> Option<&mut f64> {
+        let (group, c) = split(vr);
+        let ramp = self.ramps.get_mut(c)?;
+        let part = match order {
+            1 => &mut ramp.rate,
+            2 => &mut ramp.acceleration,
+            _ => return None,
+        };
+        input_field(part, group)
     }
 
     fn continuous_states(&self, x: &mut [f64]) {

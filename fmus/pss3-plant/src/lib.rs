@@ -5,8 +5,10 @@
 //! omega in {A}, in that order. Euler angles because they are the thesis's and the
 //! controller's coordinates and minimal; the workspace (|thy| < 12 deg) stays far from
 //! their singularity at thy = +-90 deg. Inputs are held over a co-simulation step
-//! (`Plant::advance`, adaptive Dormand-Prince 5(4)); a commanded generalized force
-//! is held in Euler-angle coordinates and mapped at the current orientation.
+//! (`Plant::advance`, adaptive Dormand-Prince 5(4)), or follow u + u' s + u'' s^2/2
+//! when the master gave their first and second derivatives (`InputRamp`,
+//! fmi2SetRealInputDerivatives); a commanded generalized force is held (or ramped)
+//! in Euler-angle coordinates and mapped at the current orientation.
 //!
 //! Parameters are fixed: the plant is validated once at fmi2ExitInitializationMode and
 //! an invalid value is refused with a message that names the FMU parameter.
@@ -17,8 +19,8 @@ mod variables;
 
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{
-    DynamicsError, Plant, PlantInputs, PlantOutputs, PlantParams, PlantState, StepSettings,
-    StopContact,
+    DynamicsError, InputRamp, Plant, PlantInputs, PlantOutputs, PlantParams, PlantState,
+    StepSettings, StopContact,
 };
 use robofmu::pss3::{FkOptions, assemble, forward_kinematics, start_pose};
 use robofmu_fmi::core::{
@@ -76,6 +78,8 @@ pub struct Pss3Plant {
     initial: InitialConditions,
     settings: StepSettings,
     inputs: PlantInputs,
+    /// Derivatives of the inputs at the start of a step (zero: held).
+    ramp: InputRamp,
     /// The plant of the current parameters, or why they are invalid.
     plant: Result<Plant, String>,
     /// The state; meaningful once `started` (after initialization).
@@ -304,6 +308,7 @@ impl Model for Pss3Plant {
                 ..StepSettings::default()
             },
             inputs: PlantInputs::default(),
+            ramp: InputRamp::default(),
             plant: Err("not built yet".to_string()),
             state: PlantState {
                 euler: Vector3::zeros(),
@@ -349,7 +354,8 @@ impl Model for Pss3Plant {
                 };
             }
         };
-        match plant.advance(&self.state, &self.inputs, step, &self.settings) {
+        let (inputs, ramp) = (&self.inputs, &self.ramp);
+        match plant.advance_with_ramp(&self.state, inputs, ramp, step, &self.settings) {
             Ok(state) => {
                 self.state = state;
                 self.refresh_contacts();
@@ -362,6 +368,17 @@ impl Model for Pss3Plant {
                 terminate: !matches!(e, DynamicsError::Solver { .. }),
             },
         }
+    }
+
+    const MAX_INPUT_DERIVATIVE_ORDER: u32 = 2;
+
+    fn input_derivative_mut(&mut self, vr: u32, order: u32) -> Option<&mut f64> {
+        let part = match order {
+            1 => &mut self.ramp.rate,
+            2 => &mut self.ramp.acceleration,
+            _ => return None,
+        };
+        variables::input_component(part, vr)
     }
 
     fn calculate_values(&mut self) -> Result<(), String> {

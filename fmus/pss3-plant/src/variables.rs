@@ -66,6 +66,14 @@ const INPUTS: [(u32, &str, &str, InputField); 4] = [
     ),
 ];
 
+/// The component of `inputs` that the input with value reference `vr` sets, if `vr`
+/// is an input.
+pub fn input_component(inputs: &mut PlantInputs, vr: u32) -> Option<&mut f64> {
+    let (group, c) = split(vr);
+    let (_, _, _, field) = INPUTS.iter().find(|input| input.0 == group)?;
+    field(inputs).get_mut(c)
+}
+
 type VectorOutput = fn(&PlantOutputs) -> Vector3<f64>;
 
 /// A vector output read from `PlantOutputs`.

@@ -1,5 +1,6 @@
 //! Co-simulation step: adaptive, error-controlled integration of the plant over one
-//! communication step with the inputs held constant, landing exactly on its end.
+//! communication step with the inputs held constant or following an [`InputRamp`],
+//! landing exactly on its end.
 //!
 //! A trial stage that the model cannot evaluate (assembly lost, end stop in mode
 //! `Error`, ...) returns NaN derivatives, which makes the solver reject the step and
@@ -9,6 +10,7 @@
 //! explicit steps still integrate it correctly.
 
 use super::error::DynamicsError;
+use super::input_ramp::InputRamp;
 use super::plant::{Plant, PlantInputs, PlantState};
 use nalgebra::{SVector, Vector3};
 use ode_solvers::{Dop853, Dopri5, OutputType, System};
@@ -87,15 +89,27 @@ impl PlantState {
     }
 }
 
-/// The plant under constant inputs, as an ODE system; remembers the last model error.
+/// The plant under its inputs, as an ODE system in the time since the step start;
+/// remembers the last model error.
 struct Flow<'a> {
     plant: &'a Plant,
+    /// The inputs at the start of the step.
     inputs: PlantInputs,
+    /// How they change over the step; None: held.
+    ramp: Option<InputRamp>,
     last_error: &'a RefCell<Option<DynamicsError>>,
 }
 
+impl Flow<'_> {
+    /// The inputs `s` seconds into the step.
+    fn inputs_at(&self, s: f64) -> PlantInputs {
+        self.ramp
+            .map_or(self.inputs, |ramp| ramp.inputs_at(&self.inputs, s))
+    }
+}
+
 impl System<f64, StateVector> for Flow<'_> {
-    fn system(&self, _t: f64, y: &StateVector, dy: &mut StateVector) {
+    fn system(&self, t: f64, y: &StateVector, dy: &mut StateVector) {
         if y.iter().any(|v| !v.is_finite()) {
             // A later stage of a step already spoiled by a model error: keep that error.
             dy.fill(f64::NAN);
@@ -103,7 +117,7 @@ impl System<f64, StateVector> for Flow<'_> {
         }
         match self
             .plant
-            .derivative(&PlantState::from_vector(y), &self.inputs)
+            .derivative(&PlantState::from_vector(y), &self.inputs_at(t))
         {
             Ok(d) => {
                 dy.fixed_rows_mut::<3>(0).copy_from(&d.euler_rates);
@@ -127,6 +141,19 @@ impl Plant {
         h: f64,
         settings: &StepSettings,
     ) -> Result<PlantState, DynamicsError> {
+        self.advance_with_ramp(state, inputs, &InputRamp::default(), h, settings)
+    }
+
+    /// As [`Plant::advance`], with the inputs starting at `inputs` and following
+    /// `ramp` over the step (a held ramp integrates exactly as `advance`).
+    pub fn advance_with_ramp(
+        &self,
+        state: &PlantState,
+        inputs: &PlantInputs,
+        ramp: &InputRamp,
+        h: f64,
+        settings: &StepSettings,
+    ) -> Result<PlantState, DynamicsError> {
         settings.validate()?;
         if !(h.is_finite() && h >= 0.0) {
             return Err(DynamicsError::InvalidSetting("communication step", h));
@@ -139,8 +166,10 @@ impl Plant {
         let flow = Flow {
             plant: self,
             inputs: *inputs,
+            ramp: (!ramp.is_held()).then_some(*ramp),
             last_error: &last_error,
         };
+        let end_inputs = flow.inputs_at(h);
         let end = match settings.method {
             Method::Dopri5 => {
                 let mut solver = Dopri5::from_param(
@@ -194,7 +223,7 @@ impl Plant {
         // The last accepted point must itself be a valid state (Dop853 evaluates it
         // only after accepting the step).
         let end = PlantState::from_vector(&end);
-        self.derivative(&end, inputs)?;
+        self.derivative(&end, &end_inputs)?;
         Ok(end)
     }
 }

@@ -13,6 +13,7 @@ pub mod fmu_state_calls;
 pub mod fmu_states;
 pub mod frontend;
 pub mod handles;
+pub mod input_derivatives;
 pub mod instance;
 pub mod logging;
 pub mod model;

@@ -7,6 +7,9 @@
 //! Payload: writing standard u8 (2: FMI 2.0, 3: FMI 3.0) | time f64 |
 //!   stop time defined u8 | stop time f64 | last successful time f64 | terminated u8 |
 //!   every writable variable in table order (Real f64, Integer i32, Boolean u8) |
+//!   per continuous Real input in table order, its derivatives of order
+//!   1 ..= `Model::MAX_INPUT_DERIVATIVE_ORDER` (f64 each; nothing for a model that
+//!   takes none) |
 //!   number of continuous states u32 | states f64... | extra length u64 | extra bytes.
 //!
 //! Deserialization rebuilds the model from start values and writes every value back
@@ -14,13 +17,14 @@
 //! model state. Foreign (other magic, version or model), truncated, padded or
 //! corrupted bytes are rejected with a message.
 
+use super::input_derivatives::interpolated_input;
 use super::instance::{Snapshot, Standard, model_with_start_values};
 use super::model::Model;
 use super::variables::{Kind, Variable};
 
 const MAGIC: &[u8; 8] = b"RBFMUST\0";
 /// Version of the layout above; bump it when the layout changes.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 
 fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
@@ -50,6 +54,16 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
             _ => {}
         }
     }
+    let slots = input_derivative_slots(table);
+    // The slots are reached through `&mut`: read them from a copy (only for a model
+    // that takes derivatives).
+    let mut model = (!slots.is_empty()).then(|| s.model.clone());
+    for (vr, order) in slots {
+        let value = model
+            .as_mut()
+            .and_then(|m| m.input_derivative_mut(vr, order).copied());
+        payload.extend_from_slice(&value.unwrap_or(0.0).to_le_bytes());
+    }
     let n = M::info().number_of_continuous_states;
     let mut x = vec![0.0; n];
     s.model.continuous_states(&mut x);
@@ -73,6 +87,15 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
     let checksum = fnv1a(&out);
     out.extend_from_slice(&checksum.to_le_bytes());
     out
+}
+
+/// (value reference, order) of every input derivative a state of M holds.
+fn input_derivative_slots<M: Model>(table: &[Variable<M>]) -> Vec<(u32, u32)> {
+    let orders = 1..=M::MAX_INPUT_DERIVATIVE_ORDER;
+    let inputs = table.iter().filter(|v| interpolated_input(v));
+    inputs
+        .flat_map(|v| orders.clone().map(|o| (v.value_reference, o)))
+        .collect()
 }
 
 /// Reads fixed-size pieces and fails cleanly at the end of the input.
@@ -176,6 +199,21 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
             _ => Ok(()),
         };
         result.map_err(|e| format!("FMU state value of \"{name}\" rejected: {e}"))?;
+    }
+    for (vr, order) in input_derivative_slots(table) {
+        let value = r.f64("an input derivative")?;
+        if value == 0.0 {
+            continue; // a fresh model holds zeros
+        }
+        match model.input_derivative_mut(vr, order) {
+            Some(slot) if value.is_finite() => *slot = value,
+            _ => {
+                return Err(format!(
+                    "corrupt FMU state: input derivative of order {order} of value \
+                     reference {vr} = {value}"
+                ));
+            }
+        }
     }
     let n = r.u32("number of states")? as usize;
     if n != M::info().number_of_continuous_states {

@@ -54,6 +54,13 @@ struct Interface {
         skip_serializing_if = "Option::is_none"
     )]
     variable_step: Option<bool>,
+    /// Co-Simulation only: the step uses the inputs' derivatives
+    /// (`Model::MAX_INPUT_DERIVATIVE_ORDER` > 0).
+    #[serde(
+        rename = "@canInterpolateInputs",
+        skip_serializing_if = "Option::is_none"
+    )]
+    interpolate_inputs: Option<bool>,
     #[serde(rename = "@canGetAndSetFMUstate")]
     get_set_state: bool,
     #[serde(rename = "@canSerializeFMUstate")]
@@ -262,6 +269,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
     let interface = |variable_step: Option<bool>| Interface {
         model_identifier: info.model_identifier,
         variable_step,
+        interpolate_inputs: None,
         get_set_state: true,
         serialize_state: true,
         directional_derivative: info.provides_directional_derivative,
@@ -275,7 +283,10 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         naming: "structured",
         event_indicators: info.number_of_event_indicators,
         model_exchange: interface(None),
-        co_simulation: interface(Some(true)),
+        co_simulation: Interface {
+            interpolate_inputs: (M::MAX_INPUT_DERIVATIVE_ORDER > 0).then_some(true),
+            ..interface(Some(true))
+        },
         unit_definitions: UnitDefinitions::of(table)?,
         log_categories: LogCategories::of(&log_categories::<Fmi2, M>()),
         default_experiment: DefaultExperiment::of(&info.default_experiment),

@@ -177,6 +177,12 @@ impl<M: Model> Host<M> {
         }
     }
 
+    /// fmi2SetRealInputDerivatives of one input: its derivative of `order`.
+    pub fn set_input_derivative(&self, name: &str, order: i32, v: f64) -> Fmi2Status {
+        let vr = vr::<M>(name);
+        unsafe { api::set_real_input_derivatives::<M>(self.c, &vr, 1, &order, &v) }
+    }
+
     pub fn set_integer(&self, name: &str, v: i32) -> Fmi2Status {
         let vr = vr::<M>(name);
         unsafe { api::set_integer::<M>(self.c, &vr, 1, &v) }

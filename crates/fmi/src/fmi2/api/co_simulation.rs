@@ -51,17 +51,14 @@ pub unsafe fn set_real_input_derivatives<M: Model>(
             c,
             "fmi2SetRealInputDerivatives",
             Call::SetRealInputDerivatives,
-            |_| {
-                input_slice(vr, nvr, "vr[]")?;
-                input_slice(order, nvr, "order[]")?;
-                input_slice(value, nvr, "value[]")?;
-                if nvr == 0 {
-                    return Ok(Fmi2Status::Ok);
+            |inst| {
+                let vrs = input_slice(vr, nvr, "vr[]")?;
+                let orders = input_slice(order, nvr, "order[]")?;
+                let values = input_slice(value, nvr, "value[]")?;
+                for ((&vr, &order), &value) in vrs.iter().zip(orders).zip(values) {
+                    inst.core.set_input_derivative(vr, order, value)?;
                 }
-                Err(
-                    "input derivatives are not supported (canInterpolateInputs=\"false\")"
-                        .to_string(),
-                )
+                Ok(Fmi2Status::Ok)
             },
         )
     }
