@@ -126,33 +126,30 @@ impl Polynomial {
 
     /// Position, velocity and acceleration at time t (held outside [t0, tf]).
     pub fn sample(&self, t: f64) -> Sample {
-        if t < self.t0 {
-            return self.held(self.t0);
-        }
-        if t > self.tf {
-            return self.held(self.tf);
-        }
-        self.polynomial_at(t)
-    }
-
-    fn held(&self, t_end: f64) -> Sample {
         Sample {
-            q: self.polynomial_at(t_end).q,
-            qdot: 0.0,
-            qddot: 0.0,
+            q: self.derivative(t, 0),
+            qdot: self.derivative(t, 1),
+            qddot: self.derivative(t, 2),
         }
     }
 
-    fn polynomial_at(&self, t: f64) -> Sample {
-        let tau = t - self.t0;
+    /// The n-th time derivative of q at time t (n = 0: q itself): the polynomial's on
+    /// [t0, tf], so at t0 the right-sided and at tf the left-sided derivative (from
+    /// inside the motion, as `sample` gives the rates there); outside [t0, tf] the
+    /// held position and zero for every n >= 1. Zero for n > 5 (jerk and snap of the
+    /// cubic are constant and zero on [t0, tf]).
+    pub fn derivative(&self, t: f64, n: usize) -> f64 {
+        let inside = t.clamp(self.t0, self.tf);
+        if n > 0 && inside != t {
+            return 0.0;
+        }
+        let tau = inside - self.t0;
         let c = &self.coefficients;
-        // Horner's scheme for the polynomial and its two derivatives.
-        let q = c.iter().rev().fold(0.0, |acc, &ck| acc * tau + ck);
-        let qdot = (1..6).rev().fold(0.0, |acc, k| acc * tau + k as f64 * c[k]);
-        let qddot = (2..6)
-            .rev()
-            .fold(0.0, |acc, k| acc * tau + (k * (k - 1)) as f64 * c[k]);
-        Sample { q, qdot, qddot }
+        // Horner's scheme on the coefficients k!/(k-n)! c_k of the n-th derivative.
+        (n..6).rev().fold(0.0, |acc, k| {
+            let falling: usize = (k + 1 - n..=k).product();
+            acc * tau + falling as f64 * c[k]
+        })
     }
 }
 

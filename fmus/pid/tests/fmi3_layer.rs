@@ -93,6 +93,7 @@ static PANICKY_INFO: ModelInfo = ModelInfo {
     number_of_continuous_states: 0,
     number_of_event_indicators: 0,
     provides_directional_derivative: false,
+    max_output_derivative_order: 0,
     log_categories: &[],
 };
 

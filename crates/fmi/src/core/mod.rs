@@ -12,11 +12,14 @@ pub mod handles;
 pub mod instance;
 pub mod logging;
 pub mod model;
+pub mod output_derivatives;
 pub mod serialize;
 pub mod units;
 pub mod variables;
 
 pub use instance::{Instance, Snapshot, Standard};
 pub use logging::{Log, LogCategory};
-pub use model::{DefaultExperiment, EventUpdate, Model, ModelInfo, StepOutcome};
+pub use model::{
+    DefaultExperiment, EventUpdate, Model, ModelInfo, OutputDerivativeError, StepOutcome,
+};
 pub use variables::{Variability, Variable};

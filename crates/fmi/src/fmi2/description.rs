@@ -59,6 +59,12 @@ struct Interface {
     serialize_state: bool,
     #[serde(rename = "@providesDirectionalDerivative")]
     directional_derivative: bool,
+    /// Co-Simulation only, and only when the model provides output derivatives.
+    #[serde(
+        rename = "@maxOutputDerivativeOrder",
+        skip_serializing_if = "Option::is_none"
+    )]
+    max_output_derivative_order: Option<u32>,
 }
 
 #[derive(Serialize)]
@@ -264,6 +270,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         get_set_state: true,
         serialize_state: true,
         directional_derivative: info.provides_directional_derivative,
+        max_output_derivative_order: None,
     };
     let description = ModelDescription {
         fmi_version: "2.0",
@@ -274,7 +281,10 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         naming: "structured",
         event_indicators: info.number_of_event_indicators,
         model_exchange: interface(None),
-        co_simulation: interface(Some(true)),
+        co_simulation: Interface {
+            max_output_derivative_order: description::max_output_derivative_order(info),
+            ..interface(Some(true))
+        },
         unit_definitions: UnitDefinitions::of(table)?,
         log_categories: LogCategories::of(&log_categories::<M>()),
         default_experiment: DefaultExperiment::of(&info.default_experiment),
