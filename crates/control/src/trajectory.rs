@@ -308,6 +308,55 @@ mod tests {
     }
 
     #[test]
+    fn higher_derivatives_match_the_absolute_time_polynomial() {
+        // Expected values: the n-th derivative of sum c_k t^k (the LU solution in
+        // absolute time), term by term c_k k!/(k-n)! t^(k-n).
+        let b = boundary();
+        let (t0, tf) = (1.0, 2.5);
+        for order in [Order::Cubic, Order::Quintic] {
+            let p = Polynomial::new(order, t0, tf, &b).unwrap();
+            let c = absolute_time_solution(order, t0, tf, &b);
+            for i in 0..=30 {
+                let t = t0 + (tf - t0) * i as f64 / 30.0;
+                for n in 0..=5 {
+                    let want: f64 = (n..c.len())
+                        .map(|k| {
+                            let falling: f64 = (k + 1 - n..=k).map(|j| j as f64).product();
+                            c[k] * falling * t.powi((k - n) as i32)
+                        })
+                        .sum();
+                    let got = p.derivative(t, n);
+                    assert!(
+                        (got - want).abs() < 1e-8 * (1.0 + want.abs()),
+                        "{order:?} n={n} t={t}: {got} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn cubic_jerk_is_constant_snap_zero_and_rates_vanish_while_held() {
+        // Expected values: q''' = 6 c3 for a cubic (closed form), q'''' = 0; the hold.
+        let b = boundary();
+        let p = Polynomial::new(Order::Cubic, 0.5, 2.0, &b).unwrap();
+        let jerk = 6.0 * p.shifted_coefficients()[3];
+        for t in [0.5, 0.9, 1.7, 2.0] {
+            assert!((p.derivative(t, 3) - jerk).abs() < 1e-12 * jerk.abs());
+            assert_eq!(p.derivative(t, 4), 0.0);
+        }
+        let q = Polynomial::new(Order::Quintic, 0.5, 2.0, &b).unwrap();
+        for t in [0.2, 2.0 + 1e-9, 9.0] {
+            for n in 1..=4 {
+                assert_eq!((p.derivative(t, n), q.derivative(t, n)), (0.0, 0.0));
+            }
+        }
+        // At tf the left-sided derivative (inside the motion): qdot(tf) = qdotf.
+        assert!((q.derivative(2.0, 1) - b.qdotf).abs() < 1e-12);
+        assert!((q.derivative(2.0, 2) - b.qddotf).abs() < 1e-12);
+    }
+
+    #[test]
     fn holds_still_outside_the_interval() {
         // Expected values: the documented hold (q0 / qf, zero rates).
         let b = boundary();
