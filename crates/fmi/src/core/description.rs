@@ -200,7 +200,7 @@ pub fn check_checked_in(path: &std::path::Path, generated: &str) -> Result<(), S
     Ok(())
 }
 
-/// The maxOutputDerivativeOrder attribute of <CoSimulation>: left out (default 0) when
+/// The maxOutputDerivativeOrder attribute of `<CoSimulation>`: left out (default 0) when
 /// the model provides no output derivatives.
 pub fn max_output_derivative_order(info: &crate::core::model::ModelInfo) -> Option<u32> {
     (info.max_output_derivative_order > 0).then_some(info.max_output_derivative_order)

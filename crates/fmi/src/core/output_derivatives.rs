@@ -7,15 +7,6 @@ use super::instance::{Instance, variable};
 use super::model::{Model, OutputDerivativeError};
 use super::variables::{Causality, VariableType};
 
-/// Why no derivatives were returned: an importer error (fmi2Error/fmi3Error) or a
-/// point where the model cannot be evaluated (Discard). Each message names the
-/// variable and the order.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Refusal {
-    Error(String),
-    Discard(String),
-}
-
 /// The derivative of order `order` of the table element `vr` (FMI 2.0 value reference).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Request {
@@ -51,11 +42,34 @@ fn check<M: Model>(inst: &Instance<M>, r: Request) -> Result<(&str, u32), String
     }
 }
 
-/// The derivatives of `requests`, in order, at the instance's current time and state.
+/// Writes the derivatives of `requests` into `out` (same length) at the instance's
+/// current time and state. Err: a request the FMU does not serve (the front-end
+/// returns Error); Ok(Some(reason)): the model cannot be evaluated here (Discard, with
+/// the time in the reason); Ok(None): done. Each message names the variable and the
+/// order; `out` is written only when every value is finite.
 pub fn output_derivatives<M: Model>(
     inst: &mut Instance<M>,
     requests: &[Request],
-) -> Result<Vec<f64>, Refusal> {
+    out: &mut [f64],
+) -> Result<Option<String>, String> {
+    match evaluate(inst, requests) {
+        Ok(values) => {
+            out.copy_from_slice(&values);
+            Ok(None)
+        }
+        Err(Refusal::Error(message)) => Err(message),
+        Err(Refusal::Discard(reason)) => Ok(Some(format!("at t = {} s: {reason}", inst.time))),
+    }
+}
+
+/// Why `evaluate` gave no values.
+enum Refusal {
+    Error(String),
+    Discard(String),
+}
+
+/// The derivatives of `requests`, in order.
+fn evaluate<M: Model>(inst: &mut Instance<M>, requests: &[Request]) -> Result<Vec<f64>, Refusal> {
     for &r in requests {
         check(inst, r).map_err(Refusal::Error)?;
     }

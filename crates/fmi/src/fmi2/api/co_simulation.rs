@@ -2,7 +2,7 @@
 
 use super::{input_slice, output_ref, output_slice, with_instance};
 use crate::core::model::{Model, StepOutcome};
-use crate::core::output_derivatives::{Refusal, Request, output_derivatives};
+use crate::core::output_derivatives::{Request, output_derivatives};
 use crate::fmi2::mode::{Call, Mode};
 use crate::fmi2::types::*;
 use std::ffi::c_int;
@@ -68,8 +68,8 @@ pub unsafe fn set_real_input_derivatives<M: Model>(
     }
 }
 
-/// fmi2GetRealOutputDerivatives: value[i] is the order[i]-th time derivative of the
-/// output vr[i] at the current communication point (`core::output_derivatives`).
+/// fmi2GetRealOutputDerivatives: `value[i]` is the `order[i]`-th time derivative of the
+/// output `vr[i]` at the current communication point (`core::output_derivatives`).
 pub unsafe fn get_real_output_derivatives<M: Model>(
     c: Fmi2Component,
     vr: *const Fmi2ValueReference,
@@ -91,20 +91,11 @@ pub unsafe fn get_real_output_derivatives<M: Model>(
                     .zip(orders)
                     .map(|(&vr, &order)| Request { vr, order })
                     .collect();
-                match output_derivatives(&mut inst.core, &requests) {
-                    Ok(values) => {
-                        out.copy_from_slice(&values);
-                        Ok(Fmi2Status::Ok)
-                    }
-                    Err(Refusal::Error(message)) => Err(message),
-                    Err(Refusal::Discard(message)) => {
-                        inst.log.status(
-                            Fmi2Status::Discard,
-                            &format!(
-                                "fmi2GetRealOutputDerivatives: at t = {} s: {message}",
-                                inst.core.time
-                            ),
-                        );
+                match output_derivatives(&mut inst.core, &requests, out)? {
+                    None => Ok(Fmi2Status::Ok),
+                    Some(reason) => {
+                        let message = format!("fmi2GetRealOutputDerivatives: {reason}");
+                        inst.log.status(Fmi2Status::Discard, &message);
                         Ok(Fmi2Status::Discard)
                     }
                 }

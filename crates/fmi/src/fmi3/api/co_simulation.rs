@@ -14,7 +14,7 @@
 use super::{input_slice, output_ref, output_slice, with_instance};
 use crate::core::instance::{Snapshot, Standard};
 use crate::core::model::{Model, StepOutcome};
-use crate::core::output_derivatives::{Refusal, Request, output_derivatives};
+use crate::core::output_derivatives::{Request, output_derivatives};
 use crate::core::variables::{Causality, VariableType};
 use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::{Call, Interface, Mode};
@@ -154,7 +154,7 @@ pub unsafe fn enter_step_mode<M: Model>(c: Fmi3Instance) -> Fmi3Status {
     }
 }
 
-/// The core's requests for the FMI 3.0 pairs (valueReferences[i], orders[i]): every
+/// The core's requests for the FMI 3.0 pairs `(valueReferences[i], orders[i])`: every
 /// element of an array variable with the order of its pair, in the order of the
 /// values[] serialization; Err unless the elements number `n_values`.
 fn element_requests<M: Model>(
@@ -184,8 +184,8 @@ fn element_requests<M: Model>(
     Ok(requests)
 }
 
-/// fmi3GetOutputDerivatives: for each pair (valueReferences[i], orders[i]) the
-/// orders[i]-th time derivative of every element of that output, at the current
+/// fmi3GetOutputDerivatives: for each pair `(valueReferences[i], orders[i])` the
+/// `orders[i]`-th time derivative of every element of that output, at the current
 /// communication point (`core::output_derivatives`).
 pub unsafe fn get_output_derivatives<M: Model>(
     c: Fmi3Instance,
@@ -205,20 +205,11 @@ pub unsafe fn get_output_derivatives<M: Model>(
                 let orders = input_slice(orders, nvr, "orders[]")?;
                 let requests = element_requests(inst, vrs, orders, n_values)?;
                 let out = output_slice(values, n_values, "values[]")?;
-                match output_derivatives(&mut inst.core, &requests) {
-                    Ok(derivatives) => {
-                        out.copy_from_slice(&derivatives);
-                        Ok(Fmi3Status::Ok)
-                    }
-                    Err(Refusal::Error(message)) => Err(message),
-                    Err(Refusal::Discard(message)) => {
-                        inst.log.status(
-                            Fmi3Status::Discard,
-                            &format!(
-                                "fmi3GetOutputDerivatives: at t = {} s: {message}",
-                                inst.core.time
-                            ),
-                        );
+                match output_derivatives(&mut inst.core, &requests, out)? {
+                    None => Ok(Fmi3Status::Ok),
+                    Some(reason) => {
+                        let message = format!("fmi3GetOutputDerivatives: {reason}");
+                        inst.log.status(Fmi3Status::Discard, &message);
                         Ok(Fmi3Status::Discard)
                     }
                 }
