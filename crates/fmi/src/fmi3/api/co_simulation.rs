@@ -203,8 +203,8 @@ pub unsafe fn get_output_derivatives<M: Model>(
             |inst| {
                 let vrs = input_slice(vr, nvr, "valueReferences[]")?;
                 let orders = input_slice(orders, nvr, "orders[]")?;
-                let requests = element_requests(inst, vrs, orders, n_values)?;
                 let out = output_slice(values, n_values, "values[]")?;
+                let requests = element_requests(inst, vrs, orders, n_values)?;
                 match output_derivatives(&mut inst.core, &requests, out)? {
                     None => Ok(Fmi3Status::Ok),
                     Some(reason) => {
