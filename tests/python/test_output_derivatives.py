@@ -55,7 +55,7 @@ def refs(description):
 
 def test_descriptions_declare_the_orders():
     # Expected: Planner and Pss3Plant provide order 2 (planner: every output; plant:
-    # theta, yaw, pitch, roll), the PID none (the attribute left out: default 0).
+    # theta, yaw, pitch, roll, l), the PID none (the attribute left out: default 0).
     for model, order in [("Planner", 2), ("Pss3Plant", 2), ("PID", 0)]:
         for path in (fmu_path(model), fmu3_path(model)):
             assert read_model_description(path).coSimulation.maxOutputDerivativeOrder == order
@@ -133,9 +133,10 @@ def test_fmi2_plant_derivatives_match_central_differences(tmp_path, delta, order
     fmu, description, directory = open_slave(tmp_path, "Pss3Plant")
     vr = refs(description)
     start_moving_plant(fmu, vr, fmi3=False)
-    names = ["theta[1]", "theta[2]", "theta[3]", "yaw", "pitch", "roll"]
+    names = ["theta[1]", "theta[2]", "theta[3]", "yaw", "pitch", "roll", "l[1]", "l[2]",
+             "l[3]"]
     if order == 1:
-        names += ["omega[1]", "omega[2]", "omega[3]", "l[1]", "l[2]", "l[3]",
+        names += ["omega[1]", "omega[2]", "omega[3]", "lDot[1]", "lDot[2]", "lDot[3]",
                   "thetaDot[1]", "thetaDot[2]", "thetaDot[3]"]
     pairs = [(n, order) for n in names]
     errors = plant_trajectory_errors(
