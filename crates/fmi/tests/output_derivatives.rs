@@ -1,8 +1,9 @@
-//! fmi2GetRealOutputDerivatives through the FMI 2.0 front-end with a small test model
-//! (the FMI 3.0 front-end shares the core's checks; its own argument checks and array
-//! serialization are tested on the real FMUs in tests/python/test_output_derivatives.py):
+//! fmi2GetRealOutputDerivatives through the FMI 2.0 front-end with a small test model:
 //! values, every refused argument (fmi2Error with a log line naming the variable and
-//! order), and points where the model cannot be evaluated (fmi2Discard, nothing written).
+//! order), and points where the model cannot be evaluated (fmi2Discard, nothing
+//! written); fmi3GetOutputDerivatives on the same model (it shares the core's checks;
+//! its argument checks and array serialization are tested on the real FMUs in
+//! tests/python/test_output_derivatives.py).
 
 use robofmu_fmi::core::{
     DefaultExperiment, Log, Model, ModelInfo, OutputDerivativeError, StepOutcome, Variability,
@@ -11,6 +12,9 @@ use robofmu_fmi::core::{
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::host::{Host, vr};
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi::fmi3::api as api3;
+use robofmu_fmi::fmi3::mode::Interface;
+use robofmu_fmi::fmi3::types::{FMI3_FALSE, FMI3_TRUE, Fmi3Instance, Fmi3Status};
 
 /// y = a t (derivatives a, 0); w = y^2, whose derivatives it declines to give; an
 /// input u that the outputs cannot be evaluated with beyond 100.
@@ -242,4 +246,90 @@ fn points_the_model_cannot_evaluate_are_discarded_without_writing() {
             (Fmi2Status::Ok, vec![slope])
         );
     }
+}
+
+/// The FMI 3.0 front-end on the same model: a Co-Simulation instance (no logger)
+/// stepped to t = 0.5 s.
+fn stepped_fmi3() -> Fmi3Instance {
+    let c = unsafe {
+        api3::instantiate::<Ramp>(api3::Instantiation {
+            function: "fmi3InstantiateCoSimulation",
+            instance_name: c"test".as_ptr(),
+            token: c"{ramp}".as_ptr(),
+            logging_on: FMI3_FALSE,
+            environment: std::ptr::null_mut(),
+            log_message: None,
+            interface: Interface::CoSimulation {
+                event_mode_used: false,
+                early_return_allowed: false,
+            },
+        })
+    };
+    assert!(!c.is_null());
+    let (mut event, mut terminate, mut early, mut last) = (0, 0, 0, 0.0);
+    unsafe {
+        assert_eq!(
+            api3::enter_initialization_mode::<Ramp>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi3Status::Ok
+        );
+        assert_eq!(api3::exit_initialization_mode::<Ramp>(c), Fmi3Status::Ok);
+        let result = api3::StepResult {
+            event_handling_needed: &mut event,
+            terminate_simulation: &mut terminate,
+            early_return: &mut early,
+            last_successful_time: &mut last,
+        };
+        assert_eq!(
+            api3::do_step::<Ramp>(c, 0.0, 0.5, FMI3_TRUE, result),
+            Fmi3Status::Ok
+        );
+    }
+    c
+}
+
+/// fmi3GetOutputDerivatives of the pairs (vrs[i], orders[i]) into n_values values
+/// (NaN where nothing was written).
+fn fmi3_derivatives(
+    c: Fmi3Instance,
+    vrs: &[u32],
+    orders: &[i32],
+    n_values: usize,
+) -> (Fmi3Status, Vec<f64>) {
+    let mut values = vec![f64::NAN; n_values];
+    let status = unsafe {
+        api3::get_output_derivatives::<Ramp>(
+            c,
+            vrs.as_ptr(),
+            vrs.len(),
+            orders.as_ptr(),
+            values.as_mut_ptr(),
+            n_values,
+        )
+    };
+    (status, values)
+}
+
+#[test]
+fn fmi3_serves_the_same_values_and_discards_alike() {
+    // Expected: dy/dt = a = 2, d2y/dt2 = 0 (closed form); a slope above 10 cannot be
+    // evaluated (Discard, nothing written); nValues must count the values.
+    let y = vr::<Ramp>("y");
+    let c = stepped_fmi3();
+    assert_eq!(
+        fmi3_derivatives(c, &[y, y], &[1, 2], 2),
+        (Fmi3Status::Ok, vec![2.0, 0.0])
+    );
+    let a = vr::<Ramp>("a");
+    assert_eq!(
+        unsafe { api3::set_float64::<Ramp>(c, &a, 1, &20.0, 1) },
+        Fmi3Status::Ok
+    );
+    let (status, values) = fmi3_derivatives(c, &[y], &[1], 1);
+    assert_eq!(status, Fmi3Status::Discard);
+    assert!(
+        values[0].is_nan(),
+        "written despite the Discard: {values:?}"
+    );
+    assert_eq!(fmi3_derivatives(c, &[y], &[1], 2).0, Fmi3Status::Error);
+    unsafe { api3::free_instance::<Ramp>(c) };
 }
