@@ -70,6 +70,16 @@ class Fmi3Library:
         return self.call("fmi3SetFloat64", instance, vrs, c_size_t(len(names)),
                          array, c_size_t(len(values)))
 
+    def output_derivatives(self, instance, names, orders, n_values):
+        """fmi3GetOutputDerivatives of the variables `names` with `orders`: status and
+        the n_values values (arrays serialized element by element, pair by pair)."""
+        vrs = (c_uint32 * len(names))(*[self.vr[n] for n in names])
+        order_array = (c_int * len(orders))(*orders)
+        values = (c_double * n_values)()
+        status = self.call("fmi3GetOutputDerivatives", instance, vrs, c_size_t(len(names)),
+                           order_array, values, c_size_t(n_values))
+        return status, list(values)
+
     def do_step(self, instance, t, h):
         event, terminate, early = c_bool(), c_bool(), c_bool()
         last = c_double()

@@ -126,33 +126,30 @@ impl Polynomial {
 
     /// Position, velocity and acceleration at time t (held outside [t0, tf]).
     pub fn sample(&self, t: f64) -> Sample {
-        if t < self.t0 {
-            return self.held(self.t0);
-        }
-        if t > self.tf {
-            return self.held(self.tf);
-        }
-        self.polynomial_at(t)
-    }
-
-    fn held(&self, t_end: f64) -> Sample {
         Sample {
-            q: self.polynomial_at(t_end).q,
-            qdot: 0.0,
-            qddot: 0.0,
+            q: self.derivative(t, 0),
+            qdot: self.derivative(t, 1),
+            qddot: self.derivative(t, 2),
         }
     }
 
-    fn polynomial_at(&self, t: f64) -> Sample {
-        let tau = t - self.t0;
+    /// The n-th time derivative of q at time t (n = 0: q itself): the polynomial's on
+    /// [t0, tf], so at t0 the right-sided and at tf the left-sided derivative (from
+    /// inside the motion, as `sample` gives the rates there); outside [t0, tf] the
+    /// held position and zero for every n >= 1. Zero for n > 5 (jerk and snap of the
+    /// cubic are constant and zero on [t0, tf]).
+    pub fn derivative(&self, t: f64, n: usize) -> f64 {
+        let inside = t.clamp(self.t0, self.tf);
+        if n > 0 && inside != t {
+            return 0.0;
+        }
+        let tau = inside - self.t0;
         let c = &self.coefficients;
-        // Horner's scheme for the polynomial and its two derivatives.
-        let q = c.iter().rev().fold(0.0, |acc, &ck| acc * tau + ck);
-        let qdot = (1..6).rev().fold(0.0, |acc, k| acc * tau + k as f64 * c[k]);
-        let qddot = (2..6)
-            .rev()
-            .fold(0.0, |acc, k| acc * tau + (k * (k - 1)) as f64 * c[k]);
-        Sample { q, qdot, qddot }
+        // Horner's scheme on the coefficients k!/(k-n)! c_k of the n-th derivative.
+        (n..6).rev().fold(0.0, |acc, k| {
+            let falling: usize = (k + 1 - n..=k).product();
+            acc * tau + falling as f64 * c[k]
+        })
     }
 }
 
@@ -265,22 +262,6 @@ mod tests {
     }
 
     #[test]
-    fn closed_form_matches_the_boundary_condition_system_in_absolute_time() {
-        // Expected values: LU solution of the 4x4 / 6x6 system of the spec.
-        let b = boundary();
-        let (t0, tf) = (1.0, 2.5);
-        for order in [Order::Cubic, Order::Quintic] {
-            let p = Polynomial::new(order, t0, tf, &b).unwrap();
-            let c = absolute_time_solution(order, t0, tf, &b);
-            for i in 0..=30 {
-                let t = t0 + (tf - t0) * i as f64 / 30.0;
-                let want = eval_absolute(&c, t);
-                assert!((p.sample(t).q - want).abs() < 1e-10, "{order:?} t={t}");
-            }
-        }
-    }
-
-    #[test]
     fn rest_to_rest_cubic_on_unit_interval_is_the_textbook_shortcut() {
         // Expected values: q0 + 3 dq t^2 - 2 dq t^3 (the thesis's special case).
         let b = Boundary {
@@ -308,6 +289,56 @@ mod tests {
             assert!((p.sample(t).qdot - fd_v).abs() < 1e-7);
             assert!((p.sample(t).qddot - fd_a).abs() < 1e-7);
         }
+    }
+
+    #[test]
+    fn closed_form_and_its_derivatives_match_the_boundary_condition_system_in_absolute_time() {
+        // Expected values: sum c_k t^k (the LU solution of the 4x4 / 6x6 system of the
+        // spec in absolute time) and its n-th derivatives, term by term
+        // c_k k!/(k-n)! t^(k-n).
+        let b = boundary();
+        let (t0, tf) = (1.0, 2.5);
+        for order in [Order::Cubic, Order::Quintic] {
+            let p = Polynomial::new(order, t0, tf, &b).unwrap();
+            let c = absolute_time_solution(order, t0, tf, &b);
+            for i in 0..=30 {
+                let t = t0 + (tf - t0) * i as f64 / 30.0;
+                for n in 0..=5 {
+                    let want: f64 = (n..c.len())
+                        .map(|k| {
+                            let falling: f64 = (k + 1 - n..=k).map(|j| j as f64).product();
+                            c[k] * falling * t.powi((k - n) as i32)
+                        })
+                        .sum();
+                    let got = p.derivative(t, n);
+                    assert!(
+                        (got - want).abs() < 1e-10 * (1.0 + want.abs()),
+                        "{order:?} n={n} t={t}: {got} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn cubic_jerk_is_constant_snap_zero_and_rates_vanish_while_held() {
+        // Expected values: q''' = 6 c3 for a cubic (closed form), q'''' = 0; the hold.
+        let b = boundary();
+        let p = Polynomial::new(Order::Cubic, 0.5, 2.0, &b).unwrap();
+        let jerk = 6.0 * p.shifted_coefficients()[3];
+        for t in [0.5, 0.9, 1.7, 2.0] {
+            assert!((p.derivative(t, 3) - jerk).abs() < 1e-12 * jerk.abs());
+            assert_eq!(p.derivative(t, 4), 0.0);
+        }
+        let q = Polynomial::new(Order::Quintic, 0.5, 2.0, &b).unwrap();
+        for t in [0.2, 2.0 + 1e-9, 9.0] {
+            for n in 1..=4 {
+                assert_eq!((p.derivative(t, n), q.derivative(t, n)), (0.0, 0.0));
+            }
+        }
+        // At tf the left-sided derivative (inside the motion): qdot(tf) = qdotf.
+        assert!((q.derivative(2.0, 1) - b.qdotf).abs() < 1e-12);
+        assert!((q.derivative(2.0, 2) - b.qddotf).abs() < 1e-12);
     }
 
     #[test]

@@ -33,6 +33,7 @@ static DOUBLER: ModelInfo = ModelInfo {
     number_of_continuous_states: 0,
     number_of_event_indicators: 0,
     provides_directional_derivative: false,
+    max_output_derivative_order: 0,
     log_categories: &[],
 };
 
@@ -143,6 +144,7 @@ static SAWTOOTH: ModelInfo = ModelInfo {
     number_of_continuous_states: 1,
     number_of_event_indicators: 1,
     provides_directional_derivative: false,
+    max_output_derivative_order: 0,
     log_categories: &[],
 };
 

@@ -31,6 +31,7 @@ static INFO: ModelInfo = ModelInfo {
     number_of_continuous_states: 2 * CHANNELS,
     number_of_event_indicators: 0,
     provides_directional_derivative: true,
+    max_output_derivative_order: 0,
     log_categories: &[LogCategory {
         name: "logController",
         description: "Gains and options of each channel at initialization",

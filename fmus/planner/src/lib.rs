@@ -6,7 +6,8 @@
 use robofmu_control::trajectory::{Boundary, Order, Polynomial};
 use robofmu_fmi::core::variables::RealArray;
 use robofmu_fmi::core::{
-    DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
+    DefaultExperiment, Log, LogCategory, Model, ModelInfo, OutputDerivativeError, StepOutcome,
+    Variability, Variable,
 };
 
 pub const AXES: usize = 3;
@@ -26,6 +27,7 @@ static INFO: ModelInfo = ModelInfo {
     number_of_continuous_states: 0,
     number_of_event_indicators: 0,
     provides_directional_derivative: false,
+    max_output_derivative_order: 2,
     log_categories: &[LogCategory {
         name: "logTrajectory",
         description: "Polynomial coefficients computed at initialization",
@@ -99,6 +101,13 @@ fn output_vr(axis: usize, k: usize) -> u32 {
 
 /// Step of the value references from one axis to the next.
 const AXIS_STRIDE: u32 = 10;
+
+/// (axis, k) of the output value reference `output_vr(axis, k)`.
+fn output_of(vr: u32) -> Option<(usize, usize)> {
+    let offset = vr.checked_sub(100)?;
+    let (axis, k) = ((offset / AXIS_STRIDE) as usize, (offset % AXIS_STRIDE) as usize);
+    (axis < AXES && k < OUTPUTS.len()).then_some((axis, k))
+}
 
 /// Name, unit, description and default per axis of the boundary values, in the order
 /// of `boundary_field`.
@@ -278,6 +287,21 @@ impl Model for Planner {
     fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
         // Outputs are explicit functions of time: nothing to integrate.
         StepOutcome::Completed
+    }
+
+    /// Exact: order n of q, qdot, qddot is the derivative of order n, n + 1, n + 2 of
+    /// the axis's polynomial (`Polynomial::derivative`: one-sided from inside the
+    /// motion at t0 and tf, zero while held), so the first derivative of q equals the
+    /// output qdot and that of qdot the output qddot at every time.
+    fn output_derivative(&self, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
+        let (axis, k) = output_of(vr).ok_or_else(|| {
+            OutputDerivativeError::NotProvided(format!("value reference {vr} is no planner output"))
+        })?;
+        let axes = self
+            .axes
+            .as_ref()
+            .map_err(|e| OutputDerivativeError::CannotEvaluate(e.clone()))?;
+        Ok(axes[axis].derivative(self.time, k + order as usize))
     }
 
     fn next_time_event(&self, time: f64) -> Option<f64> {

@@ -13,6 +13,7 @@
 //! Parameters are fixed: the plant is validated once at fmi2ExitInitializationMode and
 //! an invalid value is refused with a message that names the FMU parameter.
 
+mod output_rates;
 mod parameters;
 mod partials;
 mod variables;
@@ -24,7 +25,8 @@ use robofmu::pss3::dynamics::{
 };
 use robofmu::pss3::{FkOptions, assemble, forward_kinematics, start_pose};
 use robofmu_fmi::core::{
-    DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo, StepOutcome, Variable,
+    DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo, OutputDerivativeError,
+    StepOutcome, Variable,
 };
 
 /// The geometry parameters that decide, with the start pose, whether the robot assembles.
@@ -46,6 +48,7 @@ static INFO: ModelInfo = ModelInfo {
     number_of_continuous_states: 6,
     number_of_event_indicators: 6,
     provides_directional_derivative: true,
+    max_output_derivative_order: 2,
     log_categories: &[LogCategory {
         name: "logPlant",
         description: "Initial state and integration settings at initialization",
@@ -432,6 +435,10 @@ impl Model for Pss3Plant {
         out: &mut [f64],
     ) -> Result<(), String> {
         partials::directional_derivative(self, table, unknowns, knowns, seed, out)
+    }
+
+    fn output_derivative(&self, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
+        output_rates::output_derivative(self, vr, order)
     }
 
     fn write_extra_state(&self, out: &mut Vec<u8>) {

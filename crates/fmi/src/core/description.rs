@@ -200,3 +200,9 @@ pub fn check_checked_in<M: Model>(dir: &std::path::Path, generated: &str) -> Res
     }
     Ok(())
 }
+
+/// The maxOutputDerivativeOrder attribute of `<CoSimulation>`: left out (default 0) when
+/// the model provides no output derivatives.
+pub fn max_output_derivative_order(info: &crate::core::model::ModelInfo) -> Option<u32> {
+    (info.max_output_derivative_order > 0).then_some(info.max_output_derivative_order)
+}

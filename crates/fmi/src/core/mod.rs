@@ -18,11 +18,14 @@ pub mod instance;
 pub mod logging;
 pub mod model;
 pub mod model_exchange_calls;
+pub mod output_derivatives;
 pub mod serialize;
 pub mod units;
 pub mod variables;
 
 pub use instance::{Instance, Snapshot, Standard};
 pub use logging::{Log, LogCategory};
-pub use model::{DefaultExperiment, EventUpdate, Model, ModelInfo, StepOutcome};
+pub use model::{
+    DefaultExperiment, EventUpdate, Model, ModelInfo, OutputDerivativeError, StepOutcome,
+};
 pub use variables::{Variability, Variable};

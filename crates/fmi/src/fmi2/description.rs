@@ -67,6 +67,12 @@ struct Interface {
     serialize_state: bool,
     #[serde(rename = "@providesDirectionalDerivative")]
     directional_derivative: bool,
+    /// Co-Simulation only, and only when the model provides output derivatives.
+    #[serde(
+        rename = "@maxOutputDerivativeOrder",
+        skip_serializing_if = "Option::is_none"
+    )]
+    max_output_derivative_order: Option<u32>,
 }
 
 #[derive(Serialize)]
@@ -273,6 +279,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         get_set_state: true,
         serialize_state: true,
         directional_derivative: info.provides_directional_derivative,
+        max_output_derivative_order: None,
     };
     let description = ModelDescription {
         fmi_version: "2.0",
@@ -285,6 +292,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         model_exchange: interface(None),
         co_simulation: Interface {
             interpolate_inputs: (M::MAX_INPUT_DERIVATIVE_ORDER > 0).then_some(true),
+            max_output_derivative_order: description::max_output_derivative_order(info),
             ..interface(Some(true))
         },
         unit_definitions: UnitDefinitions::of(table)?,

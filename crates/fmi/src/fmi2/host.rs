@@ -257,6 +257,24 @@ impl<M: Model> Host<M> {
         out
     }
 
+    /// fmi2GetRealOutputDerivatives of the named outputs with their orders: the status
+    /// and the values (still NaN where the layer wrote nothing).
+    pub fn output_derivatives(&self, names: &[&str], orders: &[i32]) -> (Fmi2Status, Vec<f64>) {
+        assert_eq!(names.len(), orders.len());
+        let vrs: Vec<u32> = names.iter().map(|n| vr::<M>(n)).collect();
+        let mut values = vec![f64::NAN; names.len()];
+        let s = unsafe {
+            api::get_real_output_derivatives::<M>(
+                self.c,
+                vrs.as_ptr(),
+                vrs.len(),
+                orders.as_ptr(),
+                values.as_mut_ptr(),
+            )
+        };
+        (s, values)
+    }
+
     /// Serialized bytes of the current FMU state.
     pub fn serialize(&self) -> Vec<u8> {
         unsafe {

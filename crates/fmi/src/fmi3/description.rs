@@ -78,6 +78,12 @@ struct Interface {
         skip_serializing_if = "Option::is_none"
     )]
     might_return_early: Option<bool>,
+    /// Co-Simulation only, and only when the model provides output derivatives.
+    #[serde(
+        rename = "@maxOutputDerivativeOrder",
+        skip_serializing_if = "Option::is_none"
+    )]
+    max_output_derivative_order: Option<u32>,
 }
 
 #[derive(Serialize)]
@@ -272,6 +278,7 @@ fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
         variable_step: None,
         has_event_mode: None,
         might_return_early: None,
+        max_output_derivative_order: None,
     };
     let model_exchange = Interface {
         needs_completed_integrator_step: Some(false),
@@ -282,6 +289,7 @@ fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
         has_event_mode: Some(true),
         // Steps end early at events (sign changes of the event indicators).
         might_return_early: (info.number_of_event_indicators > 0).then_some(true),
+        max_output_derivative_order: description::max_output_derivative_order(info),
         ..common()
     };
     (model_exchange, co_simulation)

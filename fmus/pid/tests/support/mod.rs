@@ -23,6 +23,7 @@ pub const fn test_info(
         number_of_continuous_states: 0,
         number_of_event_indicators: 0,
         provides_directional_derivative: false,
+        max_output_derivative_order: 0,
         log_categories: &[],
     }
 }

@@ -1,7 +1,8 @@
 //! Functions of FMI 2.0 Co-Simulation.
 
-use super::{input_slice, output_ref, with_instance};
+use super::{input_slice, output_ref, output_slice, with_instance};
 use crate::core::model::{Model, StepOutcome};
+use crate::core::output_derivatives::{Request, output_derivatives};
 use crate::fmi2::mode::{Call, Mode};
 use crate::fmi2::types::*;
 use std::ffi::c_int;
@@ -64,6 +65,8 @@ pub unsafe fn set_real_input_derivatives<M: Model>(
     }
 }
 
+/// fmi2GetRealOutputDerivatives: `value[i]` is the `order[i]`-th time derivative of the
+/// output `vr[i]` at the current communication point (`core::output_derivatives`).
 pub unsafe fn get_real_output_derivatives<M: Model>(
     c: Fmi2Component,
     vr: *const Fmi2ValueReference,
@@ -76,19 +79,23 @@ pub unsafe fn get_real_output_derivatives<M: Model>(
             c,
             "fmi2GetRealOutputDerivatives",
             Call::GetRealOutputDerivatives,
-            |_| {
-                input_slice(vr, nvr, "vr[]")?;
-                input_slice(order, nvr, "order[]")?;
-                if nvr > 0 && value.is_null() {
-                    return Err("value[] is a null pointer".to_string());
+            |inst| {
+                let vrs = input_slice(vr, nvr, "vr[]")?;
+                let orders = input_slice(order, nvr, "order[]")?;
+                let out = output_slice(value, nvr, "value[]")?;
+                let requests: Vec<Request> = vrs
+                    .iter()
+                    .zip(orders)
+                    .map(|(&vr, &order)| Request { vr, order })
+                    .collect();
+                match output_derivatives(&mut inst.core, &requests, out)? {
+                    None => Ok(Fmi2Status::Ok),
+                    Some(reason) => {
+                        let message = format!("fmi2GetRealOutputDerivatives: {reason}");
+                        inst.log.status(Fmi2Status::Discard, &message);
+                        Ok(Fmi2Status::Discard)
+                    }
                 }
-                if nvr == 0 {
-                    return Ok(Fmi2Status::Ok);
-                }
-                Err(
-                    "output derivatives are not provided (maxOutputDerivativeOrder=\"0\")"
-                        .to_string(),
-                )
             },
         )
     }

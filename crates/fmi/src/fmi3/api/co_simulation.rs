@@ -11,9 +11,11 @@
 //! The core checks the step (communication point, positive size, stopTime) and
 //! restores the state of a discarded step.
 
-use super::{input_slice, output_ref, with_instance};
+use super::{input_slice, output_ref, output_slice, with_instance};
 use crate::core::instance::{Snapshot, Standard};
 use crate::core::model::{Model, StepOutcome};
+use crate::core::output_derivatives::{Request, output_derivatives};
+use crate::core::variables::{Causality, VariableType};
 use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::{Call, Interface, Mode};
 use crate::fmi3::types::*;
@@ -152,6 +154,39 @@ pub unsafe fn enter_step_mode<M: Model>(c: Fmi3Instance) -> Fmi3Status {
     }
 }
 
+/// The core's requests for the FMI 3.0 pairs `(valueReferences[i], orders[i])`: every
+/// element of an array variable with the order of its pair, in the order of the
+/// values[] serialization; Err unless the elements number `n_values`.
+fn element_requests<M: Model>(
+    inst: &Instance<M>,
+    vrs: &[u32],
+    orders: &[i32],
+    n_values: usize,
+) -> Result<Vec<Request>, String> {
+    let mut requests = Vec::with_capacity(n_values);
+    for (&vr, &order) in vrs.iter().zip(orders) {
+        let v = inst.table.typed(vr, VariableType::Real)?;
+        if v.causality != Causality::Output {
+            return Err(format!(
+                "\"{}\" (value reference {vr}) is not an output: only outputs have output \
+                 derivatives",
+                v.name
+            ));
+        }
+        requests.extend(v.elements().iter().map(|&vr| Request { vr, order }));
+    }
+    if requests.len() != n_values {
+        return Err(format!(
+            "nValues = {n_values}, but the variables have {} elements",
+            requests.len()
+        ));
+    }
+    Ok(requests)
+}
+
+/// fmi3GetOutputDerivatives: for each pair `(valueReferences[i], orders[i])` the
+/// `orders[i]`-th time derivative of every element of that output, at the current
+/// communication point (`core::output_derivatives`).
 pub unsafe fn get_output_derivatives<M: Model>(
     c: Fmi3Instance,
     vr: *const Fmi3ValueReference,
@@ -165,19 +200,19 @@ pub unsafe fn get_output_derivatives<M: Model>(
             c,
             "fmi3GetOutputDerivatives",
             Call::GetOutputDerivatives,
-            |_| {
-                input_slice(vr, nvr, "valueReferences[]")?;
-                input_slice(orders, nvr, "orders[]")?;
-                if n_values > 0 && values.is_null() {
-                    return Err("values[] is a null pointer".to_string());
+            |inst| {
+                let vrs = input_slice(vr, nvr, "valueReferences[]")?;
+                let orders = input_slice(orders, nvr, "orders[]")?;
+                let out = output_slice(values, n_values, "values[]")?;
+                let requests = element_requests(inst, vrs, orders, n_values)?;
+                match output_derivatives(&mut inst.core, &requests, out)? {
+                    None => Ok(Fmi3Status::Ok),
+                    Some(reason) => {
+                        let message = format!("fmi3GetOutputDerivatives: {reason}");
+                        inst.log.status(Fmi3Status::Discard, &message);
+                        Ok(Fmi3Status::Discard)
+                    }
                 }
-                if nvr == 0 {
-                    return Ok(Fmi3Status::Ok);
-                }
-                Err(
-                    "output derivatives are not provided (maxOutputDerivativeOrder=\"0\")"
-                        .to_string(),
-                )
             },
         )
     }
