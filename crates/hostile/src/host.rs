@@ -25,16 +25,21 @@ impl Interface {
 }
 
 /// Log lines received, as "status category: message"; only messages of status
-/// fmi2Warning and above are kept (debug lines such as logCalls are dropped).
+/// Warning and above are kept (debug lines such as logCalls are dropped).
 pub type Log = Mutex<Vec<String>>;
 
-extern "C" fn capture(
-    env: *mut c_void,
-    _instance: *const c_char,
-    status: c_int,
-    category: *const c_char,
-    message: *const c_char,
-) {
+/// The log received so far, one line per message, and clears it.
+pub fn take(log: &Log) -> String {
+    let mut lines = log.lock().unwrap_or_else(|e| e.into_inner());
+    let text = lines.join(" | ");
+    lines.clear();
+    text
+}
+
+/// Keeps a log message of status Warning and above as "status category: message"
+/// in `env`, the &Log given to the FMU as its environment (shared by the FMI 2.0
+/// and FMI 3.0 loggers).
+pub(crate) fn record(env: *mut c_void, status: c_int, category: *const c_char, message: *const c_char) {
     let text = |p: *const c_char| {
         if p.is_null() {
             "(null)".to_string()
@@ -45,14 +50,24 @@ extern "C" fn capture(
                 .replace("%%", "%")
         }
     };
-    if status == 0 {
+    if status == 0 || env.is_null() {
         return;
     }
-    // SAFETY: env is the &Log this module passed as componentEnvironment.
+    // SAFETY: env is the &Log this crate passed as environment.
     let log = unsafe { &*(env as *const Log) };
     if let Ok(mut lines) = log.lock() {
         lines.push(format!("{status} {}: {}", text(category), text(message)));
     }
+}
+
+extern "C" fn capture(
+    env: *mut c_void,
+    _instance: *const c_char,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+) {
+    record(env, status, category, message);
 }
 
 extern "C" fn allocate(n: usize, size: usize) -> *mut c_void {
@@ -117,10 +132,7 @@ impl Environment {
 
     /// The log received so far, one line per message, and clears it.
     pub fn take_log(&self) -> String {
-        let mut lines = self.log.lock().unwrap_or_else(|e| e.into_inner());
-        let text = lines.join(" | ");
-        lines.clear();
-        text
+        take(&self.log)
     }
 }
 

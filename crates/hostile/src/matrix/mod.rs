@@ -104,7 +104,8 @@ pub type Probe = Box<dyn Fn(&Loaded) -> Observed>;
 pub struct Case {
     pub class: &'static str,
     pub model: usize,
-    pub interface: Option<Interface>,
+    /// The interface's short name ("ME", "CS", "CS+events"), None for instantiation.
+    pub interface: Option<&'static str>,
     pub name: String,
     pub expect: Expect,
     pub why: &'static str,
@@ -199,7 +200,7 @@ fn shorten(log: &str) -> String {
 
 /// "class / model / interface / name", the key of the known-failure list.
 pub fn full_name(case: &Case) -> String {
-    let interface = case.interface.map_or("--", Interface::short);
+    let interface = case.interface.unwrap_or("--");
     format!(
         "{} / {} / {} / {}",
         case.class,
@@ -219,8 +220,15 @@ pub fn run(loaded: &Loaded, cases: &[Case]) -> Vec<Verdict> {
         .collect()
 }
 
-/// Every case of the matrix.
+/// Every case of the matrix, FMI 2.0 then FMI 3.0.
 pub fn all_cases(loaded: &Loaded) -> Vec<Case> {
+    let mut cases = fmi2_cases(loaded);
+    cases.extend(crate::fmi3::matrix::all_cases(loaded));
+    cases
+}
+
+/// The FMI 2.0 cases.
+pub fn fmi2_cases(loaded: &Loaded) -> Vec<Case> {
     let mut cases = Vec::new();
     for m in 0..loaded.fmus.len() {
         cases.extend(pointers::cases(loaded, m));
