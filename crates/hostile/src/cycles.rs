@@ -44,7 +44,11 @@ fn cycle3(fmu: &Fmu) -> Result<(), String> {
         inst.reach(State3::StepMode)?;
         let s = inst.do_step(0.0, 1e-3).status;
         if s != OK {
-            return Err(format!("fmi3DoStep returned {}: {}", status_name(s), inst.take_log()));
+            return Err(format!(
+                "fmi3DoStep returned {}: {}",
+                status_name(s),
+                inst.take_log()
+            ));
         }
     }
     drop(binary);

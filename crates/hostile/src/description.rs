@@ -47,6 +47,8 @@ pub struct Description {
     pub number_of_states: usize,
     pub provides_directional_derivative: bool,
     pub variables: Vec<Variable>,
+    /// FMI 3.0: unknowns of the ModelStructure with a non-empty dependency list.
+    pub dependents: Vec<u32>,
 }
 
 impl Description {
@@ -78,7 +80,12 @@ impl Description {
     /// Elements behind value references `vrs` (nValues of an FMI 3.0 call).
     pub fn elements(&self, vrs: &[u32]) -> usize {
         vrs.iter()
-            .map(|vr| self.variables.iter().find(|v| v.vr == *vr).map_or(1, |v| v.size))
+            .map(|vr| {
+                self.variables
+                    .iter()
+                    .find(|v| v.vr == *vr)
+                    .map_or(1, |v| v.size)
+            })
             .sum()
     }
 
@@ -110,6 +117,7 @@ pub fn parse(xml: &str) -> Result<Description, String> {
         number_of_states: 0,
         provides_directional_derivative: false,
         variables: Vec::new(),
+        dependents: Vec::new(),
     };
     let mut pending: Option<Variable> = None;
     let mut in_derivatives = false;
@@ -130,9 +138,7 @@ pub fn parse(xml: &str) -> Result<Description, String> {
             }
             Event::End(e) => match e.name().as_ref() {
                 "ScalarVariable" => d.variables.extend(pending.take()),
-                name if d.is_fmi3() && is_fmi3_variable(name) => {
-                    d.variables.extend(pending.take())
-                }
+                name if d.is_fmi3() && is_fmi3_variable(name) => d.variables.extend(pending.take()),
                 "Derivatives" => in_derivatives = false,
                 _ => {}
             },
@@ -252,6 +258,10 @@ fn read_fmi3_element(
         ("EventIndicator", _) => d.number_of_event_indicators += size_of(d, vr),
         _ => {}
     }
+    let listed = get("dependencies").is_some_and(|l| !l.trim().is_empty());
+    if let Some(vr) = vr.filter(|vr| listed && !d.dependents.contains(vr)) {
+        d.dependents.push(vr);
+    }
     Ok(())
 }
 
@@ -307,6 +317,8 @@ mod tests {
         assert_eq!(d.elements(&[1, 11, 1041]), 7);
         assert_eq!(d.by_name("endStopMode").var_type, VarType::Integer);
         assert!(d.provides_directional_derivative);
+        // <Output valueReference="121" dependencies="101 111"/>
+        assert!(d.dependents.contains(&121));
     }
 
     #[test]

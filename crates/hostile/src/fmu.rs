@@ -91,9 +91,11 @@ impl Fmu {
             standard.platform(),
             description.model_identifier
         );
-        let folder = workspace_root()
-            .join("target/hostile")
-            .join(format!("{}-{model}{}", std::process::id(), standard.folder()));
+        let folder = workspace_root().join("target/hostile").join(format!(
+            "{}-{model}{}",
+            std::process::id(),
+            standard.folder()
+        ));
         std::fs::create_dir_all(&folder).map_err(|e| e.to_string())?;
         let library = folder.join(format!("{}.so", description.model_identifier));
         std::fs::write(&library, entry(&mut zip, &binary)?).map_err(|e| e.to_string())?;

@@ -39,7 +39,12 @@ pub fn take(log: &Log) -> String {
 /// Keeps a log message of status Warning and above as "status category: message"
 /// in `env`, the &Log given to the FMU as its environment (shared by the FMI 2.0
 /// and FMI 3.0 loggers).
-pub(crate) fn record(env: *mut c_void, status: c_int, category: *const c_char, message: *const c_char) {
+pub(crate) fn record(
+    env: *mut c_void,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+) {
     let text = |p: *const c_char| {
         if p.is_null() {
             "(null)".to_string()

@@ -123,15 +123,9 @@ pub fn instantiate(
     // SAFETY: valid strings, a logger and an environment that outlive the instance.
     unsafe {
         match interface {
-            Interface3::ModelExchange => (binary.instantiate_me)(
-                name.as_ptr(),
-                token.as_ptr(),
-                null,
-                0,
-                1,
-                env,
-                logger(),
-            ),
+            Interface3::ModelExchange => {
+                (binary.instantiate_me)(name.as_ptr(), token.as_ptr(), null, 0, 1, env, logger())
+            }
             _ => (binary.instantiate_cs)(
                 name.as_ptr(),
                 token.as_ptr(),
@@ -262,7 +256,10 @@ impl<'a> Instance<'a> {
             .ok_or("the model has no force input to fail a step with")?;
         let mut values = vec![0.0; force.size];
         values[0] = 1e100;
-        self.ok("fmi3SetFloat64(actuatorForce)", self.set_float64(&[force.vr], &values))?;
+        self.ok(
+            "fmi3SetFloat64(actuatorForce)",
+            self.set_float64(&[force.vr], &values),
+        )?;
         let step = self.do_step(0.0, 1e-3);
         self.take_log();
         if step.status == DISCARD {
@@ -278,7 +275,13 @@ impl<'a> Instance<'a> {
     pub fn set_float64(&self, vrs: &[Vr], values: &[f64]) -> Status {
         // SAFETY: slices of the given lengths.
         unsafe {
-            (self.binary.set_float64)(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr(), values.len())
+            (self.binary.set_float64)(
+                self.c,
+                vrs.as_ptr(),
+                vrs.len(),
+                values.as_ptr(),
+                values.len(),
+            )
         }
     }
 
@@ -308,7 +311,9 @@ impl<'a> Instance<'a> {
         let mut last = f64::NAN;
         // SAFETY: four outputs to fill.
         let status = unsafe {
-            (self.binary.do_step)(self.c, t, h, 1, &mut event, &mut stop, &mut early, &mut last)
+            (self.binary.do_step)(
+                self.c, t, h, 1, &mut event, &mut stop, &mut early, &mut last,
+            )
         };
         StepOutcome {
             status,
@@ -347,9 +352,8 @@ impl<'a> Instance<'a> {
     pub fn deserialize(&self, bytes: &[u8]) -> (Status, FmuState) {
         let mut state: FmuState = std::ptr::null_mut();
         // SAFETY: a buffer of the given length and a null slot for a new state.
-        let s = unsafe {
-            (self.binary.deserialize)(self.c, bytes.as_ptr(), bytes.len(), &mut state)
-        };
+        let s =
+            unsafe { (self.binary.deserialize)(self.c, bytes.as_ptr(), bytes.len(), &mut state) };
         (s, state)
     }
 

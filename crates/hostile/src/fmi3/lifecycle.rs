@@ -13,7 +13,11 @@ fn ok(inst: &Instance, what: &str, s: Status) -> Result<(), String> {
     if s == OK {
         Ok(())
     } else {
-        Err(format!("{what} returned {}: {}", status_name(s), inst.take_log()))
+        Err(format!(
+            "{what} returned {}: {}",
+            status_name(s),
+            inst.take_log()
+        ))
     }
 }
 
@@ -25,7 +29,9 @@ pub fn event_iteration(inst: &Instance) -> Result<(), String> {
         let [need, stop, nominals, values, defined] = &mut flags;
         // SAFETY: six outputs to fill.
         let s = unsafe {
-            (inst.binary.update_discrete_states)(inst.c, need, stop, nominals, values, defined, &mut next)
+            (inst.binary.update_discrete_states)(
+                inst.c, need, stop, nominals, values, defined, &mut next,
+            )
         };
         ok(inst, "fmi3UpdateDiscreteStates", s)?;
         if flags[0] == 0 {
@@ -42,9 +48,17 @@ pub fn co_simulation_step(inst: &Instance, t: f64, h: f64) -> Result<(), String>
     if inst.interface == Interface3::CoSimulationEvents && step.event_handling_needed {
         // SAFETY: legal calls in Step Mode and Event Mode.
         unsafe {
-            ok(inst, "fmi3EnterEventMode", (inst.binary.enter_event_mode)(inst.c))?;
+            ok(
+                inst,
+                "fmi3EnterEventMode",
+                (inst.binary.enter_event_mode)(inst.c),
+            )?;
             event_iteration(inst)?;
-            ok(inst, "fmi3EnterStepMode", (inst.binary.enter_step_mode)(inst.c))?;
+            ok(
+                inst,
+                "fmi3EnterStepMode",
+                (inst.binary.enter_step_mode)(inst.c),
+            )?;
         }
     }
     Ok(())
@@ -57,7 +71,11 @@ pub fn euler_step(inst: &Instance, t: f64, h: f64) -> Result<(), String> {
     let (mut x, mut dx) = (vec![0.0; n], vec![0.0; n]);
     // SAFETY: arrays of the state count.
     unsafe {
-        ok(inst, "fmi3GetContinuousStates", (b.get_continuous_states)(inst.c, x.as_mut_ptr(), n))?;
+        ok(
+            inst,
+            "fmi3GetContinuousStates",
+            (b.get_continuous_states)(inst.c, x.as_mut_ptr(), n),
+        )?;
         ok(
             inst,
             "fmi3GetContinuousStateDerivatives",
@@ -65,7 +83,11 @@ pub fn euler_step(inst: &Instance, t: f64, h: f64) -> Result<(), String> {
         )?;
         ok(inst, "fmi3SetTime", (b.set_time)(inst.c, t + h))?;
         let next: Vec<f64> = x.iter().zip(&dx).map(|(a, d)| a + h * d).collect();
-        ok(inst, "fmi3SetContinuousStates", (b.set_continuous_states)(inst.c, next.as_ptr(), n))?;
+        ok(
+            inst,
+            "fmi3SetContinuousStates",
+            (b.set_continuous_states)(inst.c, next.as_ptr(), n),
+        )?;
         let (mut enter, mut stop) = (0u8, 0u8);
         ok(
             inst,
@@ -108,9 +130,21 @@ fn structure(inst: &Instance) -> Result<(), String> {
         let mut n = 0usize;
         // SAFETY: a count, then arrays of that count.
         unsafe {
-            ok(inst, "fmi3GetNumberOfVariableDependencies", (b.get_number_of_variable_dependencies)(inst.c, vr, &mut n))?;
+            ok(
+                inst,
+                "fmi3GetNumberOfVariableDependencies",
+                (b.get_number_of_variable_dependencies)(inst.c, vr, &mut n),
+            )?;
             let (mut e, mut v, mut ei, mut k) = (vec![0; n], vec![0; n], vec![0; n], vec![0; n]);
-            let s = (b.get_variable_dependencies)(inst.c, vr, e.as_mut_ptr(), v.as_mut_ptr(), ei.as_mut_ptr(), k.as_mut_ptr(), n);
+            let s = (b.get_variable_dependencies)(
+                inst.c,
+                vr,
+                e.as_mut_ptr(),
+                v.as_mut_ptr(),
+                ei.as_mut_ptr(),
+                k.as_mut_ptr(),
+                n,
+            );
             ok(inst, "fmi3GetVariableDependencies", s)?;
         }
     }
@@ -125,10 +159,18 @@ fn states(inst: &Instance) -> Result<(), String> {
     ok(inst, "fmi3DeserializeFMUState", s)?;
     // SAFETY: the instance's own states.
     unsafe {
-        ok(inst, "fmi3SetFMUState", (inst.binary.set_fmu_state)(inst.c, copy))?;
+        ok(
+            inst,
+            "fmi3SetFMUState",
+            (inst.binary.set_fmu_state)(inst.c, copy),
+        )?;
         // Overwrite an existing state, as the standard allows.
         let mut again: FmuState = state;
-        ok(inst, "fmi3GetFMUState(overwrite)", (inst.binary.get_fmu_state)(inst.c, &mut again))?;
+        ok(
+            inst,
+            "fmi3GetFMUState(overwrite)",
+            (inst.binary.get_fmu_state)(inst.c, &mut again),
+        )?;
         ok(inst, "fmi3FreeFMUState", inst.free_state(copy))?;
         ok(inst, "fmi3FreeFMUState", inst.free_state(again))?;
     }

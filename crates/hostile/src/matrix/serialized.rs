@@ -142,7 +142,10 @@ pub(crate) fn damaged(bytes: &[u8]) -> Vec<(String, Vec<u8>)> {
         variants.push((format!("byte {i} of {n} flipped"), flipped));
     }
     for len in 0..n {
-        variants.push((format!("truncated to {len} of {n} bytes"), bytes[..len].to_vec()));
+        variants.push((
+            format!("truncated to {len} of {n} bytes"),
+            bytes[..len].to_vec(),
+        ));
     }
     let mut longer = bytes.to_vec();
     longer.push(0);

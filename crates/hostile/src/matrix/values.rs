@@ -91,7 +91,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
 }
 
 /// Whether the log names the variable, or its array (\"theta0\" for \"theta0[2]\").
-fn names(log: &str, variable: &str) -> bool {
+pub(crate) fn names(log: &str, variable: &str) -> bool {
     let array = variable.split('[').next().unwrap_or(variable);
     log.contains(variable) || log.contains(array)
 }

@@ -83,12 +83,33 @@ fn reference_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case
     for (functions, state, settable) in groups {
         for (function, own, call) in functions {
             let mut probes = vec![
-                (format!("unused vr {}", unused(d)), unused(d), 1, unused(d).to_string(), WHY_UNKNOWN),
-                ("vr 4294967295".into(), Vr::MAX, 1, "4294967295".into(), WHY_UNKNOWN),
+                (
+                    format!("unused vr {}", unused(d)),
+                    unused(d),
+                    1,
+                    unused(d).to_string(),
+                    WHY_UNKNOWN,
+                ),
+                (
+                    "vr 4294967295".into(),
+                    Vr::MAX,
+                    1,
+                    "4294967295".into(),
+                    WHY_UNKNOWN,
+                ),
             ];
             for t in [VarType::Real, VarType::Integer, VarType::Boolean] {
-                if let Some(v) = d.of_type(t).find(|v| t != own && v.causality != "independent") {
-                    probes.push((format!("{t:?} variable {}", v.name), v.vr, v.size, v.name.clone(), WHY_TYPE));
+                if let Some(v) = d
+                    .of_type(t)
+                    .find(|v| t != own && v.causality != "independent")
+                {
+                    probes.push((
+                        format!("{t:?} variable {}", v.name),
+                        v.vr,
+                        v.size,
+                        v.name.clone(),
+                        WHY_TYPE,
+                    ));
                 }
             }
             let own_var = d
@@ -96,7 +117,13 @@ fn reference_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case
                 .find(|v| v.causality != "independent" && (!settable || v.is_settable()));
             if let Some(v) = own_var {
                 for n in wrong_counts(v.size) {
-                    probes.push((format!("{} with nValues = {n}", v.name), v.vr, n, "nValues".into(), WHY_COUNT));
+                    probes.push((
+                        format!("{} with nValues = {n}", v.name),
+                        v.vr,
+                        n,
+                        "nValues".into(),
+                        WHY_COUNT,
+                    ));
                 }
             }
             for (label, vr, n, log, why) in probes {
@@ -107,7 +134,9 @@ fn reference_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case
                     name: format!("{function}({label})"),
                     expect: Expect::error(&log),
                     why,
-                    probe: Box::new(move |l| on_instance(l, m, interface, state, |i| call(i, vr, n))),
+                    probe: Box::new(move |l| {
+                        on_instance(l, m, interface, state, |i| call(i, vr, n))
+                    }),
                 });
             }
         }
@@ -126,7 +155,9 @@ fn reference_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case
             expect: Expect::error(&output.name),
             why: WHY_NOT_SETTABLE,
             probe: Box::new(move |l| {
-                on_instance(l, m, interface, State3::Instantiated, |i| (setters()[0].2)(i, vr, n))
+                on_instance(l, m, interface, State3::Instantiated, |i| {
+                    (setters()[0].2)(i, vr, n)
+                })
             }),
         });
     }
@@ -180,7 +211,13 @@ fn count_cases(d: &Description, m: usize) -> Vec<Case> {
                 expect: Expect::error("length"),
                 why: WHY_COUNT,
                 probe: Box::new(move |l| {
-                    on_instance(l, m, Interface3::ModelExchange, State3::ContinuousTimeMode, |i| call(i, n))
+                    on_instance(
+                        l,
+                        m,
+                        Interface3::ModelExchange,
+                        State3::ContinuousTimeMode,
+                        |i| call(i, n),
+                    )
                 }),
             });
         }
@@ -189,7 +226,13 @@ fn count_cases(d: &Description, m: usize) -> Vec<Case> {
 }
 
 /// Directional (adjoint = false) or adjoint derivative with nSeed or nSensitivity off.
-fn derivative(i: &Instance, partial: &(Target, Target), adjoint: bool, n_seed: usize, n_out: usize) -> Status {
+fn derivative(
+    i: &Instance,
+    partial: &(Target, Target),
+    adjoint: bool,
+    n_seed: usize,
+    n_out: usize,
+) -> Status {
     let (u, x) = partial;
     let seed = vec![1.0; n_seed.min(64)];
     let mut out = vec![0.0; n_out.min(64)];
@@ -199,7 +242,19 @@ fn derivative(i: &Instance, partial: &(Target, Target), adjoint: bool, n_seed: u
         i.binary.get_directional_derivative
     };
     // SAFETY: arrays of at most the announced sizes (the point of the probe).
-    unsafe { f(i.c, &u.vr, 1, &x.vr, 1, seed.as_ptr(), n_seed, out.as_mut_ptr(), n_out) }
+    unsafe {
+        f(
+            i.c,
+            &u.vr,
+            1,
+            &x.vr,
+            1,
+            seed.as_ptr(),
+            n_seed,
+            out.as_mut_ptr(),
+            n_out,
+        )
+    }
 }
 
 fn derivative_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case> {
@@ -211,8 +266,14 @@ fn derivative_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
         return cases;
     };
     let partial = (
-        Target { vr: dx, size: d.elements(&[dx]) },
-        Target { vr: x, size: d.elements(&[x]) },
+        Target {
+            vr: dx,
+            size: d.elements(&[dx]),
+        },
+        Target {
+            vr: x,
+            size: d.elements(&[x]),
+        },
     );
     for adjoint in [false, true] {
         let function = if adjoint {
@@ -225,7 +286,8 @@ fn derivative_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
         } else {
             (partial.1.size, partial.0.size)
         };
-        let mut wrong: Vec<(usize, usize)> = wrong_counts(seed).into_iter().map(|n| (n, out)).collect();
+        let mut wrong: Vec<(usize, usize)> =
+            wrong_counts(seed).into_iter().map(|n| (n, out)).collect();
         wrong.extend(wrong_counts(out).into_iter().map(|n| (seed, n)));
         for (n_seed, n_out) in wrong {
             let p = partial.clone();
@@ -233,7 +295,9 @@ fn derivative_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
                 class: "fmi3 element count",
                 model: m,
                 interface: Some(interface.short()),
-                name: format!("{function}(nSeed = {n_seed}, nSensitivity = {n_out}; needs {seed}, {out})"),
+                name: format!(
+                    "{function}(nSeed = {n_seed}, nSensitivity = {n_out}; needs {seed}, {out})"
+                ),
                 expect: Expect::error("nSeed"),
                 why: WHY_COUNT,
                 probe: Box::new(move |l| {
@@ -255,7 +319,13 @@ fn derivative_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
             probe: Box::new(move |l| {
                 on_instance(l, m, interface, State3::InitializationMode, |i| {
                     let q = (Target { vr: bad, size: 1 }, p.1.clone());
-                    derivative(i, &q, adjoint, if adjoint { 1 } else { q.1.size }, if adjoint { q.1.size } else { 1 })
+                    derivative(
+                        i,
+                        &q,
+                        adjoint,
+                        if adjoint { 1 } else { q.1.size },
+                        if adjoint { q.1.size } else { 1 },
+                    )
                 })
             }),
         });

@@ -38,6 +38,8 @@ pub struct Args {
     pub nz: usize,
     /// (derivative, state) for the directional and adjoint derivatives.
     pub partial: (Target, Target),
+    /// A variable with a non-empty dependency list (or `float`).
+    pub dependent: Vr,
     /// A valid FMU state of the instance (or null when none was taken).
     pub state: FmuState,
 }
@@ -75,6 +77,7 @@ impl Args {
                 .first()
                 .map(|&(x, dx)| (target(dx), target(x)))
                 .unwrap_or((float.clone(), input.clone())),
+            dependent: d.dependents.first().copied().unwrap_or(float.vr),
             float,
             input,
             state,
@@ -256,22 +259,26 @@ fn add_states_and_derivatives(add: &mut impl FnMut(&'static str, Legal, Invoke))
             InitializationMode | EventMode | ContinuousTimeMode | StepMode | Terminated
         )
     };
-    add("fmi3GetDirectionalDerivative", derivable, |b, c, a| unsafe {
-        let (u, k) = &a.partial;
-        let seed = vec![1.0; k.size];
-        let mut out = vec![0.0; u.size];
-        (b.get_directional_derivative)(
-            c,
-            &u.vr,
-            1,
-            &k.vr,
-            1,
-            seed.as_ptr(),
-            seed.len(),
-            out.as_mut_ptr(),
-            out.len(),
-        )
-    });
+    add(
+        "fmi3GetDirectionalDerivative",
+        derivable,
+        |b, c, a| unsafe {
+            let (u, k) = &a.partial;
+            let seed = vec![1.0; k.size];
+            let mut out = vec![0.0; u.size];
+            (b.get_directional_derivative)(
+                c,
+                &u.vr,
+                1,
+                &k.vr,
+                1,
+                seed.as_ptr(),
+                seed.len(),
+                out.as_mut_ptr(),
+                out.len(),
+            )
+        },
+    );
     add("fmi3GetAdjointDerivative", derivable, |b, c, a| unsafe {
         let (u, k) = &a.partial;
         let seed = vec![1.0; u.size];
@@ -305,7 +312,12 @@ fn add_model_exchange(add: &mut impl FnMut(&'static str, Legal, Invoke)) {
         me_only(
             i,
             s,
-            &[InitializationMode, EventMode, ContinuousTimeMode, Terminated],
+            &[
+                InitializationMode,
+                EventMode,
+                ContinuousTimeMode,
+                Terminated,
+            ],
         )
     };
     add(
@@ -335,10 +347,14 @@ fn add_model_exchange(add: &mut impl FnMut(&'static str, Legal, Invoke)) {
             (b.set_continuous_states)(c, x.as_ptr(), a.nx)
         },
     );
-    add("fmi3GetContinuousStateDerivatives", queryable, |b, c, a| unsafe {
-        let mut dx = vec![0.0; a.nx];
-        (b.get_continuous_state_derivatives)(c, dx.as_mut_ptr(), a.nx)
-    });
+    add(
+        "fmi3GetContinuousStateDerivatives",
+        queryable,
+        |b, c, a| unsafe {
+            let mut dx = vec![0.0; a.nx];
+            (b.get_continuous_state_derivatives)(c, dx.as_mut_ptr(), a.nx)
+        },
+    );
     add("fmi3GetEventIndicators", queryable, |b, c, a| unsafe {
         let mut z = vec![0.0; a.nz];
         (b.get_event_indicators)(c, z.as_mut_ptr(), a.nz)
@@ -347,10 +363,14 @@ fn add_model_exchange(add: &mut impl FnMut(&'static str, Legal, Invoke)) {
         let mut x = vec![0.0; a.nx];
         (b.get_continuous_states)(c, x.as_mut_ptr(), a.nx)
     });
-    add("fmi3GetNominalsOfContinuousStates", queryable, |b, c, a| unsafe {
-        let mut x = vec![0.0; a.nx];
-        (b.get_nominals)(c, x.as_mut_ptr(), a.nx)
-    });
+    add(
+        "fmi3GetNominalsOfContinuousStates",
+        queryable,
+        |b, c, a| unsafe {
+            let mut x = vec![0.0; a.nx];
+            (b.get_nominals)(c, x.as_mut_ptr(), a.nx)
+        },
+    );
     add(
         "fmi3GetNumberOfEventIndicators",
         |i, _| i.is_me(),
@@ -375,7 +395,14 @@ fn add_co_simulation(add: &mut impl FnMut(&'static str, Legal, Invoke)) {
         |b, c, a| unsafe {
             let orders = vec![1i32; 1];
             let mut out = vec![0.0; a.float.size];
-            (b.get_output_derivatives)(c, &a.float.vr, 1, orders.as_ptr(), out.as_mut_ptr(), out.len())
+            (b.get_output_derivatives)(
+                c,
+                &a.float.vr,
+                1,
+                orders.as_ptr(),
+                out.as_mut_ptr(),
+                out.len(),
+            )
         },
     );
     add(

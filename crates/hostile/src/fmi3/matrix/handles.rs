@@ -16,8 +16,7 @@ use crate::host::{Instance as Instance2, Interface};
 use crate::matrix::Expect;
 use crate::matrix::handles::block;
 
-const WHY_NULL: &str =
-    "null instance: undefined in FMI 3.0; fmi3Error (fmi3FreeInstance: ignored)";
+const WHY_NULL: &str = "null instance: undefined in FMI 3.0; fmi3Error (fmi3FreeInstance: ignored)";
 const WHY_FOREIGN: &str = "handle not issued by this FMU's FMI 3.0 interface, or freed: undefined in FMI 3.0; refused with fmi3Error after a registry check (fmi3FreeInstance: ignored)";
 
 #[derive(Clone, Copy, Debug)]

@@ -16,9 +16,11 @@ use crate::matrix::Expect;
 use std::ffi::c_void;
 use std::sync::Mutex;
 
-const WHY_ARGS: &str = "FMI 3.0 2.3.1: instanceName non-empty, instantiationToken of this FMU: NULL and a log line";
+const WHY_ARGS: &str =
+    "FMI 3.0 2.3.1: instanceName non-empty, instantiationToken of this FMU: NULL and a log line";
 const WHY_NO_LOGGER: &str = "logMessage = NULL: accepted (project choice), nothing can be logged; an illegal call is still refused with fmi3Error";
-const WHY_SCHEDULED: &str = "Scheduled Execution is not provided (no <ScheduledExecution> element): NULL and a log line";
+const WHY_SCHEDULED: &str =
+    "Scheduled Execution is not provided (no <ScheduledExecution> element): NULL and a log line";
 
 #[derive(Clone)]
 struct Args {
@@ -59,7 +61,18 @@ fn attempt(l: &Loaded, m: usize, a: &Args) -> Observed {
             ),
             None => {
                 let none = std::ptr::null();
-                (b.instantiate_se)(ptr(&name), ptr(&token), null, 0, 1, env, cb, none, none, none)
+                (b.instantiate_se)(
+                    ptr(&name),
+                    ptr(&token),
+                    null,
+                    0,
+                    1,
+                    env,
+                    cb,
+                    none,
+                    none,
+                    none,
+                )
             }
         }
     };
@@ -82,7 +95,10 @@ fn attempt(l: &Loaded, m: usize, a: &Args) -> Observed {
 pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
     let token = l.fmus3[m].description.guid.clone();
     let mut cases = Vec::new();
-    let interfaces = [Some(Interface3::ModelExchange), Some(Interface3::CoSimulation)];
+    let interfaces = [
+        Some(Interface3::ModelExchange),
+        Some(Interface3::CoSimulation),
+    ];
     for interface in interfaces {
         let ok = Args {
             interface,
@@ -96,10 +112,30 @@ pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
             a
         };
         let table: Vec<(&str, Args, Expect, &'static str)> = vec![
-            ("all arguments valid (control)", with(&|_| {}), Expect::ok(), WHY_ARGS),
-            ("instanceName = NULL", with(&|a| a.name = None), Expect::error("instanceName"), WHY_ARGS),
-            ("instanceName empty", with(&|a| a.name = Some("")), Expect::error("instanceName"), WHY_ARGS),
-            ("instantiationToken = NULL", with(&|a| a.token = None), Expect::error("instantiationToken"), WHY_ARGS),
+            (
+                "all arguments valid (control)",
+                with(&|_| {}),
+                Expect::ok(),
+                WHY_ARGS,
+            ),
+            (
+                "instanceName = NULL",
+                with(&|a| a.name = None),
+                Expect::error("instanceName"),
+                WHY_ARGS,
+            ),
+            (
+                "instanceName empty",
+                with(&|a| a.name = Some("")),
+                Expect::error("instanceName"),
+                WHY_ARGS,
+            ),
+            (
+                "instantiationToken = NULL",
+                with(&|a| a.token = None),
+                Expect::error("instantiationToken"),
+                WHY_ARGS,
+            ),
             (
                 "instantiationToken of another model",
                 with(&|a| a.token = Some("{00000000-0000-0000-0000-000000000000}".into())),

@@ -51,15 +51,13 @@ fn with_partials(d: &Description, _: Interface3) -> Option<State3> {
 
 /// A variable with dependencies and their count (for fmi3GetVariableDependencies).
 unsafe fn dependent(b: &Binary3, c: Instance3, a: &Args) -> (Vr, usize) {
-    for vr in [a.partial.0.vr, a.float.vr, a.input.vr] {
-        let mut n = 0usize;
-        // SAFETY: a live instance and a count to fill.
-        unsafe { (b.get_number_of_variable_dependencies)(c, vr, &mut n) };
-        if n > 0 {
-            return (vr, n);
-        }
-    }
-    (a.float.vr, 1)
+    let mut n = 0usize;
+    // SAFETY: a live instance and a count to fill.
+    unsafe { (b.get_number_of_variable_dependencies)(c, a.dependent, &mut n) };
+    (a.dependent, n)
+}
+fn with_dependencies(d: &Description, _: Interface3) -> Option<State3> {
+    (!d.dependents.is_empty()).then_some(State3::InitializationMode)
 }
 
 fn values_table() -> Vec<Row> {
@@ -94,23 +92,29 @@ fn values_table() -> Vec<Row> {
             let x = vec![0.0; a.input.size];
             (b.set_float64)(c, null(), 1, x.as_ptr(), x.len())
         }),
-        ("fmi3SetFloat64(values=null)", instantiated, |b, c, a| unsafe {
-            (b.set_float64)(c, &a.input.vr, 1, null(), a.input.size)
-        }),
+        (
+            "fmi3SetFloat64(values=null)",
+            instantiated,
+            |b, c, a| unsafe { (b.set_float64)(c, &a.input.vr, 1, null(), a.input.size) },
+        ),
         ("fmi3SetInt32(vr=null)", instantiated, |b, c, a| unsafe {
             let x = vec![1; a.int.size];
             (b.set_int32)(c, null(), 1, x.as_ptr(), x.len())
         }),
-        ("fmi3SetInt32(values=null)", instantiated, |b, c, a| unsafe {
-            (b.set_int32)(c, &a.int.vr, 1, null(), a.int.size)
-        }),
+        (
+            "fmi3SetInt32(values=null)",
+            instantiated,
+            |b, c, a| unsafe { (b.set_int32)(c, &a.int.vr, 1, null(), a.int.size) },
+        ),
         ("fmi3SetBoolean(vr=null)", instantiated, |b, c, a| unsafe {
             let x = vec![0; a.boolean.size];
             (b.set_boolean)(c, null(), 1, x.as_ptr(), x.len())
         }),
-        ("fmi3SetBoolean(values=null)", instantiated, |b, c, a| unsafe {
-            (b.set_boolean)(c, &a.boolean.vr, 1, null(), a.boolean.size)
-        }),
+        (
+            "fmi3SetBoolean(values=null)",
+            instantiated,
+            |b, c, a| unsafe { (b.set_boolean)(c, &a.boolean.vr, 1, null(), a.boolean.size) },
+        ),
         (
             "fmi3GetNumberOfVariableDependencies(nDependencies=null)",
             init,
@@ -133,7 +137,7 @@ fn dependencies_row(k: usize) -> Row {
         |b, c, a| unsafe { dependencies_with_null(b, c, a, 2) },
         |b, c, a| unsafe { dependencies_with_null(b, c, a, 3) },
     ];
-    (NAMES[k], init, invoke[k])
+    (NAMES[k], with_dependencies, invoke[k])
 }
 
 unsafe fn dependencies_with_null(b: &Binary3, c: Instance3, a: &Args, k: usize) -> Status {
@@ -145,7 +149,11 @@ unsafe fn dependencies_with_null(b: &Binary3, c: Instance3, a: &Args, k: usize) 
         let e = if k == 0 { null_mut() } else { e.as_mut_ptr() };
         let v = if k == 1 { null_mut() } else { v.as_mut_ptr() };
         let ei = if k == 2 { null_mut() } else { ei.as_mut_ptr() };
-        let kinds = if k == 3 { null_mut() } else { kinds.as_mut_ptr() };
+        let kinds = if k == 3 {
+            null_mut()
+        } else {
+            kinds.as_mut_ptr()
+        };
         (b.get_variable_dependencies)(c, vr, e, v, ei, kinds, n)
     }
 }
@@ -166,13 +174,19 @@ fn state_table() -> Vec<Row> {
             init,
             |b, c, _| unsafe { (b.serialized_size)(c, null_mut(), &mut 0) },
         ),
-        ("fmi3SerializedFMUStateSize(size=null)", init, |b, c, a| unsafe {
-            (b.serialized_size)(c, a.state, null_mut())
-        }),
-        ("fmi3SerializeFMUState(FMUState=null)", init, |b, c, _| unsafe {
-            let mut bytes = [0u8; 16];
-            (b.serialize)(c, null_mut(), bytes.as_mut_ptr(), 16)
-        }),
+        (
+            "fmi3SerializedFMUStateSize(size=null)",
+            init,
+            |b, c, a| unsafe { (b.serialized_size)(c, a.state, null_mut()) },
+        ),
+        (
+            "fmi3SerializeFMUState(FMUState=null)",
+            init,
+            |b, c, _| unsafe {
+                let mut bytes = [0u8; 16];
+                (b.serialize)(c, null_mut(), bytes.as_mut_ptr(), 16)
+            },
+        ),
         (
             "fmi3SerializeFMUState(serializedState=null)",
             init,
@@ -190,18 +204,28 @@ fn state_table() -> Vec<Row> {
                 (b.deserialize)(c, null(), 64, &mut s)
             },
         ),
-        ("fmi3DeserializeFMUState(FMUState=null)", init, |b, c, a| unsafe {
-            let mut n = 0usize;
-            (b.serialized_size)(c, a.state, &mut n);
-            let mut bytes = vec![0u8; n];
-            (b.serialize)(c, a.state, bytes.as_mut_ptr(), n);
-            (b.deserialize)(c, bytes.as_ptr(), n, null_mut())
-        }),
+        (
+            "fmi3DeserializeFMUState(FMUState=null)",
+            init,
+            |b, c, a| unsafe {
+                let mut n = 0usize;
+                (b.serialized_size)(c, a.state, &mut n);
+                let mut bytes = vec![0u8; n];
+                (b.serialize)(c, a.state, bytes.as_mut_ptr(), n);
+                (b.deserialize)(c, bytes.as_ptr(), n, null_mut())
+            },
+        ),
     ]
 }
 
 /// Directional (adjoint = false) or adjoint derivative with argument `k` null.
-unsafe fn derivative_with_null(b: &Binary3, c: Instance3, a: &Args, adjoint: bool, k: usize) -> Status {
+unsafe fn derivative_with_null(
+    b: &Binary3,
+    c: Instance3,
+    a: &Args,
+    adjoint: bool,
+    k: usize,
+) -> Status {
     let (u, x) = &a.partial;
     let (n_seed, n_out) = if adjoint {
         (u.size, x.size)
@@ -234,30 +258,46 @@ unsafe fn derivative_with_null(b: &Binary3, c: Instance3, a: &Args, adjoint: boo
 
 fn derivative_table() -> Vec<Row> {
     vec![
-        ("fmi3GetDirectionalDerivative(unknowns=null)", with_partials, |b, c, a| unsafe {
-            derivative_with_null(b, c, a, false, 0)
-        }),
-        ("fmi3GetDirectionalDerivative(knowns=null)", with_partials, |b, c, a| unsafe {
-            derivative_with_null(b, c, a, false, 1)
-        }),
-        ("fmi3GetDirectionalDerivative(seed=null)", with_partials, |b, c, a| unsafe {
-            derivative_with_null(b, c, a, false, 2)
-        }),
-        ("fmi3GetDirectionalDerivative(sensitivity=null)", with_partials, |b, c, a| unsafe {
-            derivative_with_null(b, c, a, false, 3)
-        }),
-        ("fmi3GetAdjointDerivative(unknowns=null)", with_partials, |b, c, a| unsafe {
-            derivative_with_null(b, c, a, true, 0)
-        }),
-        ("fmi3GetAdjointDerivative(knowns=null)", with_partials, |b, c, a| unsafe {
-            derivative_with_null(b, c, a, true, 1)
-        }),
-        ("fmi3GetAdjointDerivative(seed=null)", with_partials, |b, c, a| unsafe {
-            derivative_with_null(b, c, a, true, 2)
-        }),
-        ("fmi3GetAdjointDerivative(sensitivity=null)", with_partials, |b, c, a| unsafe {
-            derivative_with_null(b, c, a, true, 3)
-        }),
+        (
+            "fmi3GetDirectionalDerivative(unknowns=null)",
+            with_partials,
+            |b, c, a| unsafe { derivative_with_null(b, c, a, false, 0) },
+        ),
+        (
+            "fmi3GetDirectionalDerivative(knowns=null)",
+            with_partials,
+            |b, c, a| unsafe { derivative_with_null(b, c, a, false, 1) },
+        ),
+        (
+            "fmi3GetDirectionalDerivative(seed=null)",
+            with_partials,
+            |b, c, a| unsafe { derivative_with_null(b, c, a, false, 2) },
+        ),
+        (
+            "fmi3GetDirectionalDerivative(sensitivity=null)",
+            with_partials,
+            |b, c, a| unsafe { derivative_with_null(b, c, a, false, 3) },
+        ),
+        (
+            "fmi3GetAdjointDerivative(unknowns=null)",
+            with_partials,
+            |b, c, a| unsafe { derivative_with_null(b, c, a, true, 0) },
+        ),
+        (
+            "fmi3GetAdjointDerivative(knowns=null)",
+            with_partials,
+            |b, c, a| unsafe { derivative_with_null(b, c, a, true, 1) },
+        ),
+        (
+            "fmi3GetAdjointDerivative(seed=null)",
+            with_partials,
+            |b, c, a| unsafe { derivative_with_null(b, c, a, true, 2) },
+        ),
+        (
+            "fmi3GetAdjointDerivative(sensitivity=null)",
+            with_partials,
+            |b, c, a| unsafe { derivative_with_null(b, c, a, true, 3) },
+        ),
     ]
 }
 
@@ -266,9 +306,19 @@ unsafe fn update_with_null(b: &Binary3, c: Instance3, k: usize) -> Status {
     let mut flags = [0u8; 5];
     let mut time = 0.0;
     let p: Vec<*mut u8> = (0..5)
-        .map(|i| if i == k { null_mut() } else { &mut flags[i] as *mut u8 })
+        .map(|i| {
+            if i == k {
+                null_mut()
+            } else {
+                &mut flags[i] as *mut u8
+            }
+        })
         .collect();
-    let t = if k == 5 { null_mut() } else { &mut time as *mut f64 };
+    let t = if k == 5 {
+        null_mut()
+    } else {
+        &mut time as *mut f64
+    };
     // SAFETY: valid outputs except the one replaced by null.
     unsafe { (b.update_discrete_states)(c, p[0], p[1], p[2], p[3], p[4], t) }
 }
@@ -309,12 +359,16 @@ fn model_exchange_table() -> Vec<Row> {
             me_continuous,
             |b, c, _| unsafe { (b.completed_integrator_step)(c, 1, &mut 0, null_mut()) },
         ),
-        ("fmi3SetContinuousStates(x=null)", me_with_states, |b, c, a| unsafe {
-            (b.set_continuous_states)(c, null(), a.nx)
-        }),
-        ("fmi3GetContinuousStates(x=null)", me_with_states, |b, c, a| unsafe {
-            (b.get_continuous_states)(c, null_mut(), a.nx)
-        }),
+        (
+            "fmi3SetContinuousStates(x=null)",
+            me_with_states,
+            |b, c, a| unsafe { (b.set_continuous_states)(c, null(), a.nx) },
+        ),
+        (
+            "fmi3GetContinuousStates(x=null)",
+            me_with_states,
+            |b, c, a| unsafe { (b.get_continuous_states)(c, null_mut(), a.nx) },
+        ),
         (
             "fmi3GetContinuousStateDerivatives(derivatives=null)",
             me_with_states,
@@ -348,38 +402,66 @@ unsafe fn step_with_null(b: &Binary3, c: Instance3, k: usize) -> Status {
     let mut flags = [0u8; 3];
     let mut last = 0.0;
     let p: Vec<*mut u8> = (0..3)
-        .map(|i| if i == k { null_mut() } else { &mut flags[i] as *mut u8 })
+        .map(|i| {
+            if i == k {
+                null_mut()
+            } else {
+                &mut flags[i] as *mut u8
+            }
+        })
         .collect();
-    let t = if k == 3 { null_mut() } else { &mut last as *mut f64 };
+    let t = if k == 3 {
+        null_mut()
+    } else {
+        &mut last as *mut f64
+    };
     // SAFETY: valid outputs except the one replaced by null.
     unsafe { (b.do_step)(c, 0.0, 1e-3, 1, p[0], p[1], p[2], t) }
 }
 
 fn co_simulation_table() -> Vec<Row> {
     vec![
-        ("fmi3GetOutputDerivatives(vr=null)", cs_step, |b, c, a| unsafe {
-            let mut out = vec![0.0; a.float.size];
-            (b.get_output_derivatives)(c, null(), 1, &1, out.as_mut_ptr(), out.len())
-        }),
-        ("fmi3GetOutputDerivatives(order=null)", cs_step, |b, c, a| unsafe {
-            let mut out = vec![0.0; a.float.size];
-            (b.get_output_derivatives)(c, &a.float.vr, 1, null(), out.as_mut_ptr(), out.len())
-        }),
-        ("fmi3GetOutputDerivatives(values=null)", cs_step, |b, c, a| unsafe {
-            (b.get_output_derivatives)(c, &a.float.vr, 1, &1, null_mut(), a.float.size)
-        }),
-        ("fmi3DoStep(eventHandlingNeeded=null)", cs_step, |b, c, _| unsafe {
-            step_with_null(b, c, 0)
-        }),
-        ("fmi3DoStep(terminateSimulation=null)", cs_step, |b, c, _| unsafe {
-            step_with_null(b, c, 1)
-        }),
+        (
+            "fmi3GetOutputDerivatives(vr=null)",
+            cs_step,
+            |b, c, a| unsafe {
+                let mut out = vec![0.0; a.float.size];
+                (b.get_output_derivatives)(c, null(), 1, &1, out.as_mut_ptr(), out.len())
+            },
+        ),
+        (
+            "fmi3GetOutputDerivatives(order=null)",
+            cs_step,
+            |b, c, a| unsafe {
+                let mut out = vec![0.0; a.float.size];
+                (b.get_output_derivatives)(c, &a.float.vr, 1, null(), out.as_mut_ptr(), out.len())
+            },
+        ),
+        (
+            "fmi3GetOutputDerivatives(values=null)",
+            cs_step,
+            |b, c, a| unsafe {
+                (b.get_output_derivatives)(c, &a.float.vr, 1, &1, null_mut(), a.float.size)
+            },
+        ),
+        (
+            "fmi3DoStep(eventHandlingNeeded=null)",
+            cs_step,
+            |b, c, _| unsafe { step_with_null(b, c, 0) },
+        ),
+        (
+            "fmi3DoStep(terminateSimulation=null)",
+            cs_step,
+            |b, c, _| unsafe { step_with_null(b, c, 1) },
+        ),
         ("fmi3DoStep(earlyReturn=null)", cs_step, |b, c, _| unsafe {
             step_with_null(b, c, 2)
         }),
-        ("fmi3DoStep(lastSuccessfulTime=null)", cs_step, |b, c, _| unsafe {
-            step_with_null(b, c, 3)
-        }),
+        (
+            "fmi3DoStep(lastSuccessfulTime=null)",
+            cs_step,
+            |b, c, _| unsafe { step_with_null(b, c, 3) },
+        ),
     ]
 }
 

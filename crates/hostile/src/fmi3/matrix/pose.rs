@@ -28,8 +28,12 @@ fn evaluations() -> [(&'static str, Evaluate); 5] {
         ("fmi3GetFloat64(thetaDot)", |i| {
             i.get_float64(&[i.description.by_name("thetaDot").vr]).0
         }),
-        ("fmi3GetDirectionalDerivative(der(theta) by theta)", |i| partial(i, false)),
-        ("fmi3GetAdjointDerivative(der(theta) by theta)", |i| partial(i, true)),
+        ("fmi3GetDirectionalDerivative(der(theta) by theta)", |i| {
+            partial(i, false)
+        }),
+        ("fmi3GetAdjointDerivative(der(theta) by theta)", |i| {
+            partial(i, true)
+        }),
     ]
 }
 
@@ -77,14 +81,20 @@ pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
             expect: Expect::discard(),
             why: WHY,
             probe: Box::new(move |l| {
-                on_instance(l, m, Interface3::ModelExchange, State3::ContinuousTimeMode, |i| {
-                    let s = break_pose(i);
-                    if s != OK {
-                        return s;
-                    }
-                    i.take_log();
-                    evaluate(i)
-                })
+                on_instance(
+                    l,
+                    m,
+                    Interface3::ModelExchange,
+                    State3::ContinuousTimeMode,
+                    |i| {
+                        let s = break_pose(i);
+                        if s != OK {
+                            return s;
+                        }
+                        i.take_log();
+                        evaluate(i)
+                    },
+                )
             }),
         })
         .collect()

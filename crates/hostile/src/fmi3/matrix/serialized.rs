@@ -46,7 +46,13 @@ pub(crate) fn reference(l: &Loaded, m: usize, interface: Interface3) -> (Vec<u8>
 
 /// Deserializes `bytes` into a fresh instance in the reference state, sets the
 /// state and compares the outputs with `outputs` (bits).
-pub(crate) fn restore(l: &Loaded, m: usize, to: Interface3, bytes: &[u8], outputs: &[u64]) -> Observed {
+pub(crate) fn restore(
+    l: &Loaded,
+    m: usize,
+    to: Interface3,
+    bytes: &[u8],
+    outputs: &[u64],
+) -> Observed {
     let inst = Instance::new(&l.binaries3[m], &l.fmus3[m].description, to);
     if let Err(e) = inst.reach(reference_state(to)) {
         return Observed::broken(e);
@@ -59,7 +65,10 @@ pub(crate) fn restore(l: &Loaded, m: usize, to: Interface3, bytes: &[u8], output
     let s = unsafe { (inst.binary.set_fmu_state)(inst.c, state) };
     inst.free_state(state);
     let (g, values) = inst.get_all();
-    let same = values.iter().map(|x| x.to_bits()).eq(outputs.iter().copied());
+    let same = values
+        .iter()
+        .map(|x| x.to_bits())
+        .eq(outputs.iter().copied());
     if s != OK || g != OK || !same {
         return Observed::broken(format!(
             "set returned {}, get {}, outputs equal: {same} ({})",

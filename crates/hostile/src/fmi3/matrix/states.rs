@@ -1,23 +1,28 @@
-//! FMU states the instance never issued: a zeroed and a random block owned by the
-//! importer, a state already freed, another FMU's state, the instance handle
-//! itself and an FMI 2.0 state of the same FMU, passed to every FMI 3.0 function
-//! that takes a state. FMI 3.0 leaves this undefined; the layer checks a registry
-//! of live states and answers fmi3Error with a log line, and the instance recovers
-//! with fmi3Reset. Also: the serialized state of each interface restores an
-//! instance of each other interface of the same FMU (the model state is the same
-//! for all), outputs bit for bit.
+//! FMU states the FMU never issued: a zeroed and a random block owned by the
+//! importer, a state already freed, another FMU's state and the instance handle
+//! itself, passed to every FMI 3.0 function that takes a state. FMI 3.0 leaves
+//! this undefined; the layer checks a registry of live states and answers
+//! fmi3Error with a log line, and the instance recovers with fmi3Reset.
+//!
+//! A live state of another instance of the same FMU is accepted (the project's
+//! documented choice, fmus/pid/tests/handles.rs); so is one of an FMI 2.0 instance
+//! of the same FMU in the same binary (the model state is the same), and the
+//! outputs are then the FMI 2.0 instance's, bit for bit. Also: the serialized
+//! state of each interface restores an instance of each other interface of the
+//! same FMU, outputs bit for bit.
 
 use super::serialized::{reference, reference_state, restore};
 use super::{Case, Observed};
 use crate::Loaded;
-use crate::binary::{Binary, ERROR, Status};
+use crate::binary::{Binary, ERROR, OK, Status};
 use crate::fmi3::binary::FmuState;
 use crate::fmi3::host::{Instance, Interface3};
 use crate::host::{Instance as Instance2, Interface};
 use crate::matrix::Expect;
 use crate::rng::SplitMix64;
 
-const WHY_BAD: &str = "FMU state not issued by this FMU instance, freed, or of FMI 2.0: undefined in FMI 3.0; fmi3Error and a log line after a registry check; fmi3Reset recovers";
+const WHY_BAD: &str = "FMU state not issued by this FMU or already freed: undefined in FMI 3.0; fmi3Error and a log line after a registry check; fmi3Reset recovers";
+const WHY_FMI2: &str = "live FMU state of an FMI 2.0 instance of the same FMU: accepted like one of another instance (project choice, fmus/pid/tests/handles.rs); outputs those of the FMI 2.0 instance, bit for bit";
 const WHY_CROSS: &str = "the serialized state of one interface restores an instance of another interface of the same FMU (project choice: the model state is the same); outputs bit for bit";
 
 #[derive(Clone, Copy, Debug)]
@@ -27,7 +32,6 @@ enum BadState {
     Freed,
     OtherFmuState,
     InstanceHandle,
-    Fmi2StateOfThisFmu,
 }
 
 type Use = fn(&Instance, FmuState) -> Status;
@@ -63,11 +67,6 @@ fn probe(l: &Loaded, m: usize, interface: Interface3, bad: BadState, use_it: Use
         &l.fmus3[other_model].description,
         interface,
     );
-    let fmi2 = match Binary::open(&l.fmus3[m].library) {
-        Ok(b) => b,
-        Err(e) => return Observed::broken(e),
-    };
-    let fmi2_instance = Instance2::new(&fmi2, &l.fmus[m].description, Interface::CoSimulation);
     let mut owned_block = None;
     let state: FmuState = match bad {
         BadState::ZeroedBlock | BadState::RandomBlock => {
@@ -87,7 +86,6 @@ fn probe(l: &Loaded, m: usize, interface: Interface3, bad: BadState, use_it: Use
         }
         BadState::OtherFmuState => other.get_state().1,
         BadState::InstanceHandle => inst.c,
-        BadState::Fmi2StateOfThisFmu => fmi2_instance.get_state().1,
     };
     inst.take_log();
     let status = use_it(&inst, state);
@@ -96,19 +94,67 @@ fn probe(l: &Loaded, m: usize, interface: Interface3, bad: BadState, use_it: Use
         // SAFETY: our block; a crash here means the FMU freed it.
         unsafe { libc::free(p as *mut libc::c_void) };
     }
-    match bad {
-        BadState::OtherFmuState => {
-            other.free_state(state);
-        }
-        BadState::Fmi2StateOfThisFmu => {
-            fmi2_instance.free_state(state);
-        }
-        _ => {}
+    if matches!(bad, BadState::OtherFmuState) {
+        other.free_state(state);
     }
     if status == ERROR
         && let Err(e) = inst.recovers()
     {
         return Observed::broken(format!("not usable after the refusal: {e}"));
+    }
+    Observed::of(status, log)
+}
+
+/// An FMI 2.0 CS instance of model `m` in the FMU's own binary, one step taken;
+/// its state set into an FMI 3.0 instance; outputs compared by variable name
+/// (FMI 2.0 names elements "theta[1]", FMI 3.0 reads the array "theta").
+fn fmi2_state(l: &Loaded, m: usize, interface: Interface3) -> Observed {
+    let fmi2 = match Binary::open(&l.fmus3[m].library) {
+        Ok(b) => b,
+        Err(e) => return Observed::broken(e),
+    };
+    let d2 = &l.fmus[m].description;
+    let source = Instance2::new(&fmi2, d2, Interface::CoSimulation);
+    if let Err(e) = source.reach(crate::host::State::StepComplete) {
+        return Observed::broken(e);
+    }
+    if source.do_step(0.0, 1e-3) != OK {
+        return Observed::broken(format!("fmi2DoStep: {}", source.take_log()));
+    }
+    let (_, state) = source.get_state();
+    let inst = Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface);
+    if let Err(e) = inst.reach(super::State3::InitializationMode) {
+        return Observed::broken(e);
+    }
+    // SAFETY: a live state of the same model (the probe's point).
+    let status = unsafe { (inst.binary.set_fmu_state)(inst.c, state) };
+    let log = inst.take_log();
+    source.free_state(state);
+    if status != OK {
+        return Observed::of(status, log);
+    }
+    for v in inst.description.of_type(crate::description::VarType::Real) {
+        if v.causality == "independent" {
+            continue;
+        }
+        let (s, x) = inst.get_float64(&[v.vr]);
+        for (k, value) in x.iter().enumerate() {
+            let name = if v.size > 1 {
+                format!("{}[{}]", v.name, k + 1)
+            } else {
+                v.name.clone()
+            };
+            let Some(v2) = d2.variables.iter().find(|w| w.name == name) else {
+                continue;
+            };
+            let (_, y) = source.get_reals(&[v2.vr]);
+            if s != OK || value.to_bits() != y[0].to_bits() {
+                return Observed::broken(format!(
+                    "{name}: {value} after the restore, {} in the FMI 2.0 instance",
+                    y[0]
+                ));
+            }
+        }
     }
     Observed::of(status, log)
 }
@@ -122,7 +168,6 @@ pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
             BadState::Freed,
             BadState::OtherFmuState,
             BadState::InstanceHandle,
-            BadState::Fmi2StateOfThisFmu,
         ] {
             for (name, use_it) in uses() {
                 cases.push(Case {
@@ -136,6 +181,17 @@ pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
                 });
             }
         }
+    }
+    for interface in Interface3::ALL {
+        cases.push(Case {
+            class: "fmi3 cross-standard state",
+            model: m,
+            interface: Some(interface.short()),
+            name: "fmi3SetFMUState(live state of an FMI 2.0 instance of this FMU)".into(),
+            expect: Expect::ok(),
+            why: WHY_FMI2,
+            probe: Box::new(move |l| fmi2_state(l, m, interface)),
+        });
     }
     for from in Interface3::ALL {
         let (bytes, outputs) = reference(l, m, from);

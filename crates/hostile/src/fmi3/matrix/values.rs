@@ -12,7 +12,7 @@
 use super::{Case, Observed, on_instance};
 use crate::Loaded;
 use crate::binary::{DISCARD, ERROR, OK, Status, status_name};
-use crate::description::{VarType, Variable};
+use crate::description::{Description, VarType, Variable};
 use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::matrix::Expect;
 
@@ -29,7 +29,9 @@ enum Value {
 
 fn extremes(t: VarType) -> Vec<Value> {
     match t {
-        VarType::Real => [1e308, -1e308, 5e-324, -5e-324].map(Value::Float64).to_vec(),
+        VarType::Real => [1e308, -1e308, 5e-324, -5e-324]
+            .map(Value::Float64)
+            .to_vec(),
         VarType::Integer => [i32::MIN, -1, 0, i32::MAX].map(Value::Int32).to_vec(),
         VarType::Boolean => [2, 255].map(Value::Boolean).to_vec(),
     }
@@ -48,7 +50,9 @@ fn set(inst: &Instance, v: &Variable, value: Value) -> Status {
     unsafe {
         match value {
             Value::Float64(x) => {
-                let mut a: Vec<f64> = (0..v.size).map(|k| start(k).parse().unwrap_or(0.0)).collect();
+                let mut a: Vec<f64> = (0..v.size)
+                    .map(|k| start(k).parse().unwrap_or(0.0))
+                    .collect();
                 a[0] = x;
                 inst.set_float64(&[v.vr], &a)
             }
@@ -66,17 +70,12 @@ fn set(inst: &Instance, v: &Variable, value: Value) -> Status {
     }
 }
 
-/// Whether the log names the variable.
-fn names(log: &str, variable: &str) -> bool {
-    log.contains(variable)
-}
-
 /// Set, initialize, one step (CS) or derivatives and indicators (ME), read every
 /// Float64.
 fn scenario(inst: &Instance, v: &Variable, value: Value) -> Observed {
     let refused_naming = |what: &str, s: Status| {
         let log = inst.take_log();
-        if s == ERROR && names(&log, &v.name) {
+        if s == ERROR && crate::matrix::values::names(&log, &v.name) {
             Observed::of(ERROR, log)
         } else {
             Observed::broken(format!("{what} returned {} (log: {log})", status_name(s)))
@@ -121,13 +120,20 @@ fn evaluate(inst: &Instance) -> Result<bool, String> {
     let check = |what: &str, s: Status| match s {
         OK => Ok(false),
         DISCARD => Ok(true),
-        _ => Err(format!("{what} returned {} (log: {})", status_name(s), inst.take_log())),
+        _ => Err(format!(
+            "{what} returned {} (log: {})",
+            status_name(s),
+            inst.take_log()
+        )),
     };
     // SAFETY: as above; arrays of the declared sizes.
     unsafe {
         match inst.interface {
             Interface3::ModelExchange => {
-                check("fmi3EnterContinuousTimeMode", (b.enter_continuous_time_mode)(inst.c))?;
+                check(
+                    "fmi3EnterContinuousTimeMode",
+                    (b.enter_continuous_time_mode)(inst.c),
+                )?;
                 let mut dx = vec![0.0; d.number_of_states];
                 let a = check(
                     "fmi3GetContinuousStateDerivatives",
@@ -149,59 +155,146 @@ fn evaluate(inst: &Instance) -> Result<bool, String> {
     }
 }
 
-type Scalar = (&'static str, &'static str, State3, fn(Interface3) -> bool, fn(&Instance) -> Status);
+type Applies = fn(&Description, Interface3) -> bool;
+type Scalar = (
+    &'static str,
+    &'static str,
+    State3,
+    Applies,
+    fn(&Instance) -> Status,
+);
 
 fn scalar_arguments() -> Vec<Scalar> {
-    let any: fn(Interface3) -> bool = |_| true;
-    let me: fn(Interface3) -> bool = |i| i.is_me();
-    let cs: fn(Interface3) -> bool = |i| i == Interface3::CoSimulation;
+    let any: Applies = |_, _| true;
+    let me: Applies = |_, i| i.is_me();
+    let me_states: Applies = |d, i| i.is_me() && d.number_of_states > 0;
+    let cs: Applies = |_, i| i == Interface3::CoSimulation;
+    let partials: Applies = |d, _| !d.state_derivative_pairs().is_empty();
     vec![
-        ("fmi3EnterInitializationMode", "startTime = NaN", State3::Instantiated, any, |i| unsafe {
-            (i.binary.enter_initialization_mode)(i.c, 0, 0.0, f64::NAN, 0, 0.0)
-        }),
-        ("fmi3EnterInitializationMode", "startTime = inf", State3::Instantiated, any, |i| unsafe {
-            (i.binary.enter_initialization_mode)(i.c, 0, 0.0, f64::INFINITY, 0, 0.0)
-        }),
-        ("fmi3EnterInitializationMode", "tolerance = -1", State3::Instantiated, any, |i| unsafe {
-            (i.binary.enter_initialization_mode)(i.c, 1, -1.0, 0.0, 0, 0.0)
-        }),
-        ("fmi3EnterInitializationMode", "tolerance = NaN", State3::Instantiated, any, |i| unsafe {
-            (i.binary.enter_initialization_mode)(i.c, 1, f64::NAN, 0.0, 0, 0.0)
-        }),
-        ("fmi3EnterInitializationMode", "stopTime = -1 < startTime", State3::Instantiated, any, |i| unsafe {
-            (i.binary.enter_initialization_mode)(i.c, 0, 0.0, 0.0, 1, -1.0)
-        }),
-        ("fmi3EnterInitializationMode", "stopTime = NaN", State3::Instantiated, any, |i| unsafe {
-            (i.binary.enter_initialization_mode)(i.c, 0, 0.0, 0.0, 1, f64::NAN)
-        }),
-        ("fmi3SetTime", "time = NaN", State3::ContinuousTimeMode, me, |i| unsafe {
-            (i.binary.set_time)(i.c, f64::NAN)
-        }),
-        ("fmi3SetTime", "time = inf", State3::ContinuousTimeMode, me, |i| unsafe {
-            (i.binary.set_time)(i.c, f64::INFINITY)
-        }),
-        ("fmi3SetContinuousStates", "x[0] = NaN", State3::ContinuousTimeMode, me, |i| unsafe {
-            let n = i.description.number_of_states;
-            let mut x = vec![0.0; n];
-            (i.binary.get_continuous_states)(i.c, x.as_mut_ptr(), n);
-            if let Some(first) = x.first_mut() {
-                *first = f64::NAN;
-            }
-            (i.binary.set_continuous_states)(i.c, x.as_ptr(), n)
-        }),
-        ("fmi3DoStep", "communicationStepSize = NaN", State3::StepMode, cs, |i| i.do_step(0.0, f64::NAN).status),
-        ("fmi3DoStep", "communicationStepSize = inf", State3::StepMode, cs, |i| i.do_step(0.0, f64::INFINITY).status),
-        ("fmi3DoStep", "communicationStepSize = -1 ms", State3::StepMode, cs, |i| i.do_step(0.0, -1e-3).status),
-        ("fmi3DoStep", "currentCommunicationPoint = NaN", State3::StepMode, cs, |i| i.do_step(f64::NAN, 1e-3).status),
-        ("fmi3GetDirectionalDerivative", "seed = NaN", State3::InitializationMode, any, |i| unsafe {
-            let d = i.description;
-            let Some(&(x, dx)) = d.state_derivative_pairs().first() else {
-                return ERROR;
-            };
-            let seed = vec![f64::NAN; d.elements(&[x])];
-            let mut out = vec![0.0; d.elements(&[dx])];
-            (i.binary.get_directional_derivative)(i.c, &dx, 1, &x, 1, seed.as_ptr(), seed.len(), out.as_mut_ptr(), out.len())
-        }),
+        (
+            "fmi3EnterInitializationMode",
+            "startTime = NaN",
+            State3::Instantiated,
+            any,
+            |i| unsafe { (i.binary.enter_initialization_mode)(i.c, 0, 0.0, f64::NAN, 0, 0.0) },
+        ),
+        (
+            "fmi3EnterInitializationMode",
+            "startTime = inf",
+            State3::Instantiated,
+            any,
+            |i| unsafe { (i.binary.enter_initialization_mode)(i.c, 0, 0.0, f64::INFINITY, 0, 0.0) },
+        ),
+        (
+            "fmi3EnterInitializationMode",
+            "tolerance = -1",
+            State3::Instantiated,
+            any,
+            |i| unsafe { (i.binary.enter_initialization_mode)(i.c, 1, -1.0, 0.0, 0, 0.0) },
+        ),
+        (
+            "fmi3EnterInitializationMode",
+            "tolerance = NaN",
+            State3::Instantiated,
+            any,
+            |i| unsafe { (i.binary.enter_initialization_mode)(i.c, 1, f64::NAN, 0.0, 0, 0.0) },
+        ),
+        (
+            "fmi3EnterInitializationMode",
+            "stopTime = -1 < startTime",
+            State3::Instantiated,
+            any,
+            |i| unsafe { (i.binary.enter_initialization_mode)(i.c, 0, 0.0, 0.0, 1, -1.0) },
+        ),
+        (
+            "fmi3EnterInitializationMode",
+            "stopTime = NaN",
+            State3::Instantiated,
+            any,
+            |i| unsafe { (i.binary.enter_initialization_mode)(i.c, 0, 0.0, 0.0, 1, f64::NAN) },
+        ),
+        (
+            "fmi3SetTime",
+            "time = NaN",
+            State3::ContinuousTimeMode,
+            me,
+            |i| unsafe { (i.binary.set_time)(i.c, f64::NAN) },
+        ),
+        (
+            "fmi3SetTime",
+            "time = inf",
+            State3::ContinuousTimeMode,
+            me,
+            |i| unsafe { (i.binary.set_time)(i.c, f64::INFINITY) },
+        ),
+        (
+            "fmi3SetContinuousStates",
+            "x[0] = NaN",
+            State3::ContinuousTimeMode,
+            me_states,
+            |i| unsafe {
+                let n = i.description.number_of_states;
+                let mut x = vec![0.0; n];
+                (i.binary.get_continuous_states)(i.c, x.as_mut_ptr(), n);
+                if let Some(first) = x.first_mut() {
+                    *first = f64::NAN;
+                }
+                (i.binary.set_continuous_states)(i.c, x.as_ptr(), n)
+            },
+        ),
+        (
+            "fmi3DoStep",
+            "communicationStepSize = NaN",
+            State3::StepMode,
+            cs,
+            |i| i.do_step(0.0, f64::NAN).status,
+        ),
+        (
+            "fmi3DoStep",
+            "communicationStepSize = inf",
+            State3::StepMode,
+            cs,
+            |i| i.do_step(0.0, f64::INFINITY).status,
+        ),
+        (
+            "fmi3DoStep",
+            "communicationStepSize = -1 ms",
+            State3::StepMode,
+            cs,
+            |i| i.do_step(0.0, -1e-3).status,
+        ),
+        (
+            "fmi3DoStep",
+            "currentCommunicationPoint = NaN",
+            State3::StepMode,
+            cs,
+            |i| i.do_step(f64::NAN, 1e-3).status,
+        ),
+        (
+            "fmi3GetDirectionalDerivative",
+            "seed = NaN",
+            State3::InitializationMode,
+            partials,
+            |i| unsafe {
+                let d = i.description;
+                let Some(&(x, dx)) = d.state_derivative_pairs().first() else {
+                    return ERROR;
+                };
+                let seed = vec![f64::NAN; d.elements(&[x])];
+                let mut out = vec![0.0; d.elements(&[dx])];
+                (i.binary.get_directional_derivative)(
+                    i.c,
+                    &dx,
+                    1,
+                    &x,
+                    1,
+                    seed.as_ptr(),
+                    seed.len(),
+                    out.as_mut_ptr(),
+                    out.len(),
+                )
+            },
+        ),
     ]
 }
 
@@ -218,10 +311,13 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                         model: m,
                         interface: Some(interface.short()),
                         name: format!("fmi3SetFloat64({}[0] = {x})", v.name),
-                        expect: Expect::error(&format!("\"{}\"", v.name)),
+                        // The log names the element: "theta0[1]" for theta0[0].
+                        expect: Expect::error(&format!("\"{}", v.name)),
                         why: WHY_NON_FINITE,
                         probe: Box::new(move |l| {
-                            on_instance(l, m, interface, State3::Instantiated, |i| set(i, &var, Value::Float64(x)))
+                            on_instance(l, m, interface, State3::Instantiated, |i| {
+                                set(i, &var, Value::Float64(x))
+                            })
                         }),
                     });
                 }
@@ -239,16 +335,15 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                     },
                     why: WHY_EXTREME,
                     probe: Box::new(move |l| {
-                        let inst = Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface);
+                        let inst =
+                            Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface);
                         scenario(&inst, &var, value)
                     }),
                 });
             }
         }
         for (function, label, state, applies, call) in scalar_arguments() {
-            if !applies(interface)
-                || (function.contains("Directional") && d.state_derivative_pairs().is_empty())
-            {
+            if !applies(d, interface) {
                 continue;
             }
             cases.push(Case {
