@@ -32,7 +32,7 @@ struct Run<'a> {
 }
 
 /// Plausible magnitude of an input.
-fn input_scale(v: &Variable) -> f64 {
+pub(crate) fn input_scale(v: &Variable) -> f64 {
     match v.name.split('[').next().unwrap_or("") {
         "actuatorForce" => 100.0,
         "torqueCommand" | "generalizedForceCommand" | "disturbanceTorque" => 10.0,

@@ -41,27 +41,31 @@ pub fn event_iteration(inst: &Instance) -> Result<(), String> {
     Err("discrete states still need an update after 10 rounds".into())
 }
 
-/// One CS step of `h` from `t`; with event mode, an event iteration when asked.
+/// CS steps from `t` to `t + h`: a step that returns early (at an event, with
+/// event mode) is followed by the event iteration and a step over the rest.
 pub fn co_simulation_step(inst: &Instance, t: f64, h: f64) -> Result<(), String> {
-    let step = inst.do_step(t, h);
-    ok(inst, "fmi3DoStep", step.status)?;
-    if inst.interface == Interface3::CoSimulationEvents && step.event_handling_needed {
-        // SAFETY: legal calls in Step Mode and Event Mode.
-        unsafe {
-            ok(
-                inst,
-                "fmi3EnterEventMode",
-                (inst.binary.enter_event_mode)(inst.c),
-            )?;
-            event_iteration(inst)?;
-            ok(
-                inst,
-                "fmi3EnterStepMode",
-                (inst.binary.enter_step_mode)(inst.c),
-            )?;
+    let end = t + h;
+    let mut now = t;
+    for _ in 0..10 {
+        let step = inst.do_step(now, end - now);
+        ok(inst, "fmi3DoStep", step.status)?;
+        if inst.interface == Interface3::CoSimulationEvents && step.event_handling_needed {
+            // SAFETY: legal calls in Step Mode and Event Mode.
+            unsafe {
+                let b = inst.binary;
+                ok(inst, "fmi3EnterEventMode", (b.enter_event_mode)(inst.c))?;
+                event_iteration(inst)?;
+                ok(inst, "fmi3EnterStepMode", (b.enter_step_mode)(inst.c))?;
+            }
         }
+        if !step.early_return {
+            return Ok(());
+        }
+        now = step.last_successful_time;
     }
-    Ok(())
+    Err(format!(
+        "fmi3DoStep returned early 10 times before t = {end}"
+    ))
 }
 
 /// One explicit Euler step of `h` from `t` (ME, Continuous-Time Mode).

@@ -6,3 +6,4 @@ pub mod binary;
 pub mod host;
 pub mod lifecycle;
 pub mod matrix;
+pub mod sequences;
