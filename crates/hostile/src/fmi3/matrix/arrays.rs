@@ -20,6 +20,7 @@ const WHY_UNKNOWN: &str =
     "value reference not in the modelDescription (FMI 3.0 2.2.6): fmi3Error naming it";
 const WHY_TYPE: &str = "value reference of another type than the function's (FMI 3.0 2.2.6): fmi3Error naming the variable";
 const WHY_NOT_SETTABLE: &str = "calculated output set with fmi3SetFloat64 (FMI 3.0 2.2.6 allows setting only parameters, inputs and initial=exact/approx): fmi3Error naming it";
+const WHY_ORDER: &str = "FMI 3.0 4.2.1 fmi3GetOutputDerivatives: order from 1 to maxOutputDerivativeOrder; 0, -1 and 2^31-1 are refused with fmi3Error naming the order";
 const WHY_COUNT: &str = "count that does not match the arrays (FMI 3.0 2.2.6.2 nValues = total elements; 3.2 nx, nz; 2.2.11 nSeed, nSensitivity; 2.2.9 serialized size): fmi3Error naming the counts";
 
 /// A typed accessor: (name, type, call(instance, vr, nValues)).
@@ -365,6 +366,75 @@ fn serialized_size_cases(m: usize, interface: Interface3) -> Vec<Case> {
         .collect()
 }
 
+/// fmi3GetVariableDependencies of the first dependent with a wrong nDependencies.
+fn dependency_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case> {
+    let Some(&dependent) = d.dependents.first() else {
+        return Vec::new();
+    };
+    [1isize, -1, isize::MAX / 32]
+        .into_iter()
+        .map(|delta| Case {
+            class: "fmi3 element count",
+            model: m,
+            interface: Some(interface.short()),
+            name: format!(
+                "fmi3GetVariableDependencies(vr {dependent}, nDependencies = count {delta:+})"
+            ),
+            expect: Expect::error("nDependencies"),
+            why: WHY_COUNT,
+            probe: Box::new(move |l| {
+                on_instance(l, m, interface, State3::InitializationMode, |i| unsafe {
+                    let mut n = 0usize;
+                    (i.binary.get_number_of_variable_dependencies)(i.c, dependent, &mut n);
+                    let claimed = n.saturating_add_signed(delta);
+                    let room = (n + 1).min(claimed.max(1));
+                    let (mut e, mut v, mut ei, mut k) =
+                        (vec![0; room], vec![0; room], vec![0; room], vec![0; room]);
+                    (i.binary.get_variable_dependencies)(
+                        i.c,
+                        dependent,
+                        e.as_mut_ptr(),
+                        v.as_mut_ptr(),
+                        ei.as_mut_ptr(),
+                        k.as_mut_ptr(),
+                        claimed,
+                    )
+                })
+            }),
+        })
+        .collect()
+}
+
+/// fmi3GetOutputDerivatives of the first Float64 output with an order that no
+/// FMU can provide (orders start at 1; i32::MAX exceeds any maxOutputDerivativeOrder).
+fn order_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case> {
+    let Some(output) = d
+        .variables
+        .iter()
+        .find(|v| v.causality == "output" && v.var_type == VarType::Real)
+    else {
+        return Vec::new();
+    };
+    let (vr, size, name) = (output.vr, output.size, output.name.clone());
+    [0, -1, i32::MAX]
+        .into_iter()
+        .map(|order| Case {
+            class: "fmi3 value reference",
+            model: m,
+            interface: Some(interface.short()),
+            name: format!("fmi3GetOutputDerivatives({name}, order {order})"),
+            expect: Expect::error("order"),
+            why: WHY_ORDER,
+            probe: Box::new(move |l| {
+                on_instance(l, m, interface, State3::StepMode, |i| unsafe {
+                    let mut out = vec![0.0; size];
+                    (i.binary.get_output_derivatives)(i.c, &vr, 1, &order, out.as_mut_ptr(), size)
+                })
+            }),
+        })
+        .collect()
+}
+
 pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
     let d = &loaded.fmus3[m].description;
     let mut cases = Vec::new();
@@ -372,6 +442,10 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
         cases.extend(reference_cases(d, m, interface));
         cases.extend(derivative_cases(d, m, interface));
         cases.extend(serialized_size_cases(m, interface));
+        cases.extend(dependency_cases(d, m, interface));
+        if !interface.is_me() {
+            cases.extend(order_cases(d, m, interface));
+        }
     }
     if d.number_of_states > 0 {
         cases.extend(count_cases(d, m));

@@ -15,6 +15,7 @@ pub mod pose;
 pub mod serialized;
 pub mod states;
 pub mod values;
+pub mod variability;
 
 use crate::Loaded;
 use crate::binary::{ERROR, Status};
@@ -77,6 +78,7 @@ pub fn all_cases(loaded: &Loaded) -> Vec<Case> {
         cases.extend(pointers::cases(loaded, m));
         cases.extend(arrays::cases(loaded, m));
         cases.extend(values::cases(loaded, m));
+        cases.extend(variability::cases(loaded, m));
         cases.extend(serialized::cases(loaded, m));
         cases.extend(orders::cases(loaded, m));
         cases.extend(handles::cases(loaded, m));

@@ -67,6 +67,11 @@ fn values_table() -> Vec<Row> {
             instantiated,
             |b, c, _| unsafe { (b.set_debug_logging)(c, 1, 1, null()) },
         ),
+        (
+            "fmi3SetDebugLogging(categories[0]=null, n=1)",
+            instantiated,
+            |b, c, _| unsafe { (b.set_debug_logging)(c, 1, 1, &null()) },
+        ),
         ("fmi3GetFloat64(vr=null)", init, |b, c, a| unsafe {
             let mut x = vec![0.0; a.float.size];
             (b.get_float64)(c, null(), 1, x.as_mut_ptr(), x.len())
