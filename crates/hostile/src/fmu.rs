@@ -13,7 +13,7 @@ use std::time::SystemTime;
 /// The FMUs the project ships (each as FMI 2.0 and as FMI 3.0).
 pub const MODELS: [&str; 3] = ["Planner", "PID", "Pss3Plant"];
 
-/// The standard of a packaged FMU: dist/<Model>.fmu or dist/fmi3/<Model>.fmu.
+/// The standard of a packaged FMU: `dist/<Model>.fmu` or `dist/fmi3/<Model>.fmu`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Standard {
     Fmi2,

@@ -36,6 +36,41 @@ pub fn take(log: &Log) -> String {
     text
 }
 
+/// What the probes shared by both standards need of a live instance.
+pub trait Probed {
+    /// The instance's log.
+    fn log(&self) -> &Log;
+    /// A new FMU state of the instance: (status, state).
+    fn new_state(&self) -> (Status, *mut c_void);
+    /// Frees an FMU state through the instance.
+    fn release_state(&self, state: *mut c_void) -> Status;
+
+    /// Err with the status and the log unless `s` is OK.
+    fn expect_ok(&self, what: &str, s: Status) -> Result<(), String> {
+        if s == OK {
+            Ok(())
+        } else {
+            Err(format!(
+                "{what} returned {}: {}",
+                crate::binary::status_name(s),
+                take(self.log())
+            ))
+        }
+    }
+}
+
+/// Runs `f` on `inst` without adding its log lines to what was logged before.
+pub fn unlogged<P: Probed, T>(inst: &P, f: impl FnOnce() -> T) -> T {
+    let kept = take(inst.log());
+    let result = f();
+    let mut lines = inst.log().lock().unwrap_or_else(|e| e.into_inner());
+    lines.clear();
+    if !kept.is_empty() {
+        lines.push(kept);
+    }
+    result
+}
+
 /// Keeps a log message of status Warning and above as "status category: message"
 /// in `env`, the &Log given to the FMU as its environment (shared by the FMI 2.0
 /// and FMI 3.0 loggers).
@@ -225,13 +260,7 @@ impl<'a> Instance<'a> {
     /// Brings a fresh instance into `state` with legal calls.
     pub fn reach(&self, state: State) -> Result<(), String> {
         let b = self.binary;
-        let ok = |what: &str, s: Status| {
-            if s == OK {
-                Ok(())
-            } else {
-                Err(format!("{what} returned {s}: {}", self.env.take_log()))
-            }
-        };
+        let ok = |what: &str, s: Status| self.expect_ok(what, s);
         // SAFETY: a live component; every call below has well-formed arguments.
         unsafe {
             match state {
@@ -355,6 +384,18 @@ impl<'a> Instance<'a> {
 
     pub fn take_log(&self) -> String {
         self.env.take_log()
+    }
+}
+
+impl Probed for Instance<'_> {
+    fn log(&self) -> &Log {
+        &self.env.log
+    }
+    fn new_state(&self) -> (Status, *mut c_void) {
+        self.get_state()
+    }
+    fn release_state(&self, state: *mut c_void) -> Status {
+        self.free_state(state)
     }
 }
 

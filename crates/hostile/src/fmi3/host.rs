@@ -4,9 +4,9 @@
 //! 3.0 state machines (sections 3.3 and 4.3 of the standard).
 
 use super::binary::{Binary3, FmuState, Instance3 as Handle, Vr};
-use crate::binary::{DISCARD, ERROR, OK, Status, status_name};
+use crate::binary::{DISCARD, ERROR, Status, status_name};
 use crate::description::Description;
-use crate::host::{Log, c_string, record, take};
+use crate::host::{Log, Probed, c_string, record, take};
 use std::ffi::{c_char, c_int, c_void};
 use std::sync::Mutex;
 
@@ -177,18 +177,6 @@ impl<'a> Instance<'a> {
         take(&self.log)
     }
 
-    fn ok(&self, what: &str, s: Status) -> Result<(), String> {
-        if s == OK {
-            Ok(())
-        } else {
-            Err(format!(
-                "{what} returned {}: {}",
-                status_name(s),
-                self.take_log()
-            ))
-        }
-    }
-
     /// Brings a fresh instance into `state` with legal calls.
     pub fn reach(&self, state: State3) -> Result<(), String> {
         let b = self.binary;
@@ -211,21 +199,21 @@ impl<'a> Instance<'a> {
             if state == State3::InitializationMode {
                 return Ok(());
             }
-            self.ok(
+            self.expect_ok(
                 "fmi3ExitInitializationMode",
                 (b.exit_initialization_mode)(self.c),
             )?;
             let first = self.interface.after_initialization();
             match state {
-                State3::ContinuousTimeMode => self.ok(
+                State3::ContinuousTimeMode => self.expect_ok(
                     "fmi3EnterContinuousTimeMode",
                     (b.enter_continuous_time_mode)(self.c),
                 ),
                 State3::StepMode | State3::StepDiscarded if first == State3::EventMode => {
-                    self.ok("fmi3EnterStepMode", (b.enter_step_mode)(self.c))?;
+                    self.expect_ok("fmi3EnterStepMode", (b.enter_step_mode)(self.c))?;
                     self.discard_if(state)
                 }
-                State3::Terminated => self.ok("fmi3Terminate", (b.terminate)(self.c)),
+                State3::Terminated => self.expect_ok("fmi3Terminate", (b.terminate)(self.c)),
                 _ => self.discard_if(state),
             }
         }
@@ -234,7 +222,7 @@ impl<'a> Instance<'a> {
     fn initialize(&self) -> Result<(), String> {
         // SAFETY: a live instance, no tolerance, start time 0, no stop time.
         let s = unsafe { (self.binary.enter_initialization_mode)(self.c, 0, 0.0, 0.0, 0, 0.0) };
-        self.ok("fmi3EnterInitializationMode", s)
+        self.expect_ok("fmi3EnterInitializationMode", s)
     }
 
     fn discard_if(&self, state: State3) -> Result<(), String> {
@@ -256,7 +244,7 @@ impl<'a> Instance<'a> {
             .ok_or("the model has no force input to fail a step with")?;
         let mut values = vec![0.0; force.size];
         values[0] = 1e100;
-        self.ok(
+        self.expect_ok(
             "fmi3SetFloat64(actuatorForce)",
             self.set_float64(&[force.vr], &values),
         )?;
@@ -340,10 +328,10 @@ impl<'a> Instance<'a> {
         // SAFETY: a state issued by this instance, a buffer of the announced size.
         unsafe {
             let s = (self.binary.serialized_size)(self.c, state, &mut size);
-            self.ok("fmi3SerializedFMUStateSize", s)?;
+            self.expect_ok("fmi3SerializedFMUStateSize", s)?;
             let mut bytes = vec![0u8; size];
             let s = (self.binary.serialize)(self.c, state, bytes.as_mut_ptr(), size);
-            self.ok("fmi3SerializeFMUState", s)?;
+            self.expect_ok("fmi3SerializeFMUState", s)?;
             Ok(bytes)
         }
     }
@@ -368,17 +356,29 @@ impl<'a> Instance<'a> {
     pub fn recovers(&self) -> Result<(), String> {
         // SAFETY: a live instance.
         let s = unsafe { (self.binary.reset)(self.c) };
-        self.ok("fmi3Reset after the refusal", s)?;
+        self.expect_ok("fmi3Reset after the refusal", s)?;
         self.initialize()?;
         // SAFETY: as above.
         let s = unsafe { (self.binary.exit_initialization_mode)(self.c) };
-        self.ok("fmi3ExitInitializationMode after fmi3Reset", s)?;
+        self.expect_ok("fmi3ExitInitializationMode after fmi3Reset", s)?;
         let (s, x) = self.get_all();
-        self.ok("fmi3GetFloat64 after fmi3Reset", s)?;
+        self.expect_ok("fmi3GetFloat64 after fmi3Reset", s)?;
         match x.iter().position(|v| !v.is_finite()) {
             Some(i) => Err(format!("element {i} is {} after fmi3Reset", x[i])),
             None => Ok(()),
         }
+    }
+}
+
+impl Probed for Instance<'_> {
+    fn log(&self) -> &Log {
+        &self.log
+    }
+    fn new_state(&self) -> (Status, FmuState) {
+        self.get_state()
+    }
+    fn release_state(&self, state: FmuState) -> Status {
+        self.free_state(state)
     }
 }
 

@@ -6,20 +6,8 @@
 
 use super::binary::{Binary3, FmuState};
 use super::host::{Instance, Interface3, State3};
-use crate::binary::{OK, Status, status_name};
 use crate::fmu::Fmu;
-
-fn ok(inst: &Instance, what: &str, s: Status) -> Result<(), String> {
-    if s == OK {
-        Ok(())
-    } else {
-        Err(format!(
-            "{what} returned {}: {}",
-            status_name(s),
-            inst.take_log()
-        ))
-    }
-}
+use crate::host::Probed;
 
 /// fmi3UpdateDiscreteStates until no further update is needed (at most 10 rounds).
 pub fn event_iteration(inst: &Instance) -> Result<(), String> {
@@ -33,7 +21,7 @@ pub fn event_iteration(inst: &Instance) -> Result<(), String> {
                 inst.c, need, stop, nominals, values, defined, &mut next,
             )
         };
-        ok(inst, "fmi3UpdateDiscreteStates", s)?;
+        inst.expect_ok("fmi3UpdateDiscreteStates", s)?;
         if flags[0] == 0 {
             return Ok(());
         }
@@ -48,14 +36,14 @@ pub fn co_simulation_step(inst: &Instance, t: f64, h: f64) -> Result<(), String>
     let mut now = t;
     for _ in 0..10 {
         let step = inst.do_step(now, end - now);
-        ok(inst, "fmi3DoStep", step.status)?;
+        inst.expect_ok("fmi3DoStep", step.status)?;
         if inst.interface == Interface3::CoSimulationEvents && step.event_handling_needed {
             // SAFETY: legal calls in Step Mode and Event Mode.
             unsafe {
                 let b = inst.binary;
-                ok(inst, "fmi3EnterEventMode", (b.enter_event_mode)(inst.c))?;
+                inst.expect_ok("fmi3EnterEventMode", (b.enter_event_mode)(inst.c))?;
                 event_iteration(inst)?;
-                ok(inst, "fmi3EnterStepMode", (b.enter_step_mode)(inst.c))?;
+                inst.expect_ok("fmi3EnterStepMode", (b.enter_step_mode)(inst.c))?;
             }
         }
         if !step.early_return {
@@ -75,26 +63,22 @@ pub fn euler_step(inst: &Instance, t: f64, h: f64) -> Result<(), String> {
     let (mut x, mut dx) = (vec![0.0; n], vec![0.0; n]);
     // SAFETY: arrays of the state count.
     unsafe {
-        ok(
-            inst,
+        inst.expect_ok(
             "fmi3GetContinuousStates",
             (b.get_continuous_states)(inst.c, x.as_mut_ptr(), n),
         )?;
-        ok(
-            inst,
+        inst.expect_ok(
             "fmi3GetContinuousStateDerivatives",
             (b.get_continuous_state_derivatives)(inst.c, dx.as_mut_ptr(), n),
         )?;
-        ok(inst, "fmi3SetTime", (b.set_time)(inst.c, t + h))?;
+        inst.expect_ok("fmi3SetTime", (b.set_time)(inst.c, t + h))?;
         let next: Vec<f64> = x.iter().zip(&dx).map(|(a, d)| a + h * d).collect();
-        ok(
-            inst,
+        inst.expect_ok(
             "fmi3SetContinuousStates",
             (b.set_continuous_states)(inst.c, next.as_ptr(), n),
         )?;
         let (mut enter, mut stop) = (0u8, 0u8);
-        ok(
-            inst,
+        inst.expect_ok(
             "fmi3CompletedIntegratorStep",
             (b.completed_integrator_step)(inst.c, 1, &mut enter, &mut stop),
         )
@@ -109,7 +93,7 @@ fn advance(inst: &Instance) -> Result<(), String> {
         } else {
             co_simulation_step(inst, t, 1e-3)?;
         }
-        ok(inst, "fmi3GetFloat64", inst.get_all().0)?;
+        inst.expect_ok("fmi3GetFloat64", inst.get_all().0)?;
     }
     Ok(())
 }
@@ -127,15 +111,14 @@ fn structure(inst: &Instance) -> Result<(), String> {
         for f in [b.get_directional_derivative, b.get_adjoint_derivative] {
             // SAFETY: arrays of the variables' element counts.
             let s = unsafe { f(inst.c, &dx, 1, &x, 1, seed.as_ptr(), n, out.as_mut_ptr(), n) };
-            ok(inst, "partial derivative", s)?;
+            inst.expect_ok("partial derivative", s)?;
         }
     }
     for vr in d.real_vrs() {
         let mut n = 0usize;
         // SAFETY: a count, then arrays of that count.
         unsafe {
-            ok(
-                inst,
+            inst.expect_ok(
                 "fmi3GetNumberOfVariableDependencies",
                 (b.get_number_of_variable_dependencies)(inst.c, vr, &mut n),
             )?;
@@ -149,7 +132,7 @@ fn structure(inst: &Instance) -> Result<(), String> {
                 k.as_mut_ptr(),
                 n,
             );
-            ok(inst, "fmi3GetVariableDependencies", s)?;
+            inst.expect_ok("fmi3GetVariableDependencies", s)?;
         }
     }
     Ok(())
@@ -157,26 +140,21 @@ fn structure(inst: &Instance) -> Result<(), String> {
 
 fn states(inst: &Instance) -> Result<(), String> {
     let (s, state) = inst.get_state();
-    ok(inst, "fmi3GetFMUState", s)?;
+    inst.expect_ok("fmi3GetFMUState", s)?;
     let bytes = inst.serialize(state)?;
     let (s, copy) = inst.deserialize(&bytes);
-    ok(inst, "fmi3DeserializeFMUState", s)?;
+    inst.expect_ok("fmi3DeserializeFMUState", s)?;
     // SAFETY: the instance's own states.
     unsafe {
-        ok(
-            inst,
-            "fmi3SetFMUState",
-            (inst.binary.set_fmu_state)(inst.c, copy),
-        )?;
+        inst.expect_ok("fmi3SetFMUState", (inst.binary.set_fmu_state)(inst.c, copy))?;
         // Overwrite an existing state, as the standard allows.
         let mut again: FmuState = state;
-        ok(
-            inst,
+        inst.expect_ok(
             "fmi3GetFMUState(overwrite)",
             (inst.binary.get_fmu_state)(inst.c, &mut again),
         )?;
-        ok(inst, "fmi3FreeFMUState", inst.free_state(copy))?;
-        ok(inst, "fmi3FreeFMUState", inst.free_state(again))?;
+        inst.expect_ok("fmi3FreeFMUState", inst.free_state(copy))?;
+        inst.expect_ok("fmi3FreeFMUState", inst.free_state(again))?;
     }
     Ok(())
 }
@@ -203,11 +181,11 @@ pub fn run(fmu: &Fmu) -> Result<(), String> {
         // SAFETY: legal calls on a live instance.
         unsafe {
             if interface.is_me() {
-                ok(&inst, "fmi3EnterEventMode", (b.enter_event_mode)(inst.c))?;
+                inst.expect_ok("fmi3EnterEventMode", (b.enter_event_mode)(inst.c))?;
                 event_iteration(&inst)?;
             }
-            ok(&inst, "fmi3Terminate", (b.terminate)(inst.c))?;
-            ok(&inst, "fmi3Reset", (b.reset)(inst.c))?;
+            inst.expect_ok("fmi3Terminate", (b.terminate)(inst.c))?;
+            inst.expect_ok("fmi3Reset", (b.reset)(inst.c))?;
         }
         inst.reach(running(interface))?;
         advance(&inst)?;

@@ -16,7 +16,7 @@ pub mod values;
 
 use crate::Loaded;
 use crate::binary::{DISCARD, ERROR, OK, Status, status_name};
-use crate::host::{Instance, Interface, State};
+use crate::host::{Instance, Interface, State, unlogged};
 use crate::isolate;
 
 /// What a case expects: one of `statuses`, and `log` (when given) contained in the
@@ -254,14 +254,9 @@ pub fn with_args(
     call: impl Fn(&Instance, &calls::Args) -> Status,
 ) -> Observed {
     on_instance(loaded, m, interface, state, |inst| {
-        let (_, fmu_state) = inst.get_state();
-        let args = calls::Args::new(inst.description, fmu_state);
-        inst.take_log();
-        let status = call(inst, &args);
-        let log = inst.take_log();
-        inst.free_state(fmu_state);
-        inst.take_log();
-        inst.env.log.lock().unwrap().push(log);
+        let (_, fmu_state) = unlogged(inst, || inst.get_state());
+        let status = call(inst, &calls::Args::new(inst.description, fmu_state));
+        unlogged(inst, || inst.free_state(fmu_state));
         status
     })
 }

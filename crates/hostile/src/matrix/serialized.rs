@@ -8,7 +8,7 @@
 use super::{Case, Expect, Observed, on_instance};
 use crate::Loaded;
 use crate::binary::{FmuState, OK, status_name};
-use crate::host::{Instance, Interface, State};
+use crate::host::{Instance, Interface, State, unlogged};
 use crate::isolate;
 use std::ffi::c_char;
 
@@ -84,10 +84,7 @@ fn damaged_case(m: usize, interface: Interface, name: String, bytes: Vec<u8>) ->
             on_instance(l, m, interface, reference_state(interface), |inst| {
                 let (s, state) = deserialize(inst, &bytes);
                 if !state.is_null() && s == OK {
-                    let log = inst.take_log();
-                    inst.free_state(state);
-                    inst.take_log();
-                    inst.env.log.lock().unwrap().push(log);
+                    unlogged(inst, || inst.free_state(state));
                 }
                 s
             })

@@ -14,6 +14,7 @@ use crate::binary::Status;
 use crate::description::{Description, VarType};
 use crate::fmi3::binary::Vr;
 use crate::fmi3::host::{Instance, Interface3, State3};
+use crate::host::unlogged;
 use crate::matrix::Expect;
 
 const WHY_UNKNOWN: &str =
@@ -355,10 +356,7 @@ fn serialized_size_cases(m: usize, interface: Interface3) -> Vec<Case> {
                         let mut bytes = vec![0u8; n + 1];
                         (i.binary.serialize)(i.c, state, bytes.as_mut_ptr(), size)
                     };
-                    let log = i.take_log();
-                    i.free_state(state);
-                    i.take_log();
-                    i.log.lock().unwrap_or_else(|e| e.into_inner()).push(log);
+                    unlogged(i, || i.free_state(state));
                     s
                 })
             }),

@@ -393,7 +393,7 @@ fn add_co_simulation(add: &mut impl FnMut(&'static str, Legal, Invoke)) {
         "fmi3GetOutputDerivatives",
         |i, s| cs_only(i, s, &[StepMode, StepDiscarded, Terminated]),
         |b, c, a| unsafe {
-            let orders = vec![1i32; 1];
+            let orders = [1i32];
             let mut out = vec![0.0; a.float.size];
             (b.get_output_derivatives)(
                 c,

@@ -20,6 +20,7 @@ pub mod variability;
 use crate::Loaded;
 use crate::binary::{ERROR, Status};
 use crate::fmi3::host::{Instance, Interface3, State3};
+use crate::host::unlogged;
 use crate::matrix::{Case, Observed};
 
 /// A fresh instance of model `m` brought into `state`, then `call` on it; after a
@@ -59,14 +60,9 @@ pub fn with_args(
     call: impl Fn(&Instance, &calls::Args) -> Status,
 ) -> Observed {
     on_instance(loaded, m, interface, state, |inst| {
-        let (_, fmu_state) = inst.get_state();
-        let args = calls::Args::new(inst.description, fmu_state);
-        inst.take_log();
-        let status = call(inst, &args);
-        let log = inst.take_log();
-        inst.free_state(fmu_state);
-        inst.take_log();
-        inst.log.lock().unwrap_or_else(|e| e.into_inner()).push(log);
+        let (_, fmu_state) = unlogged(inst, || inst.get_state());
+        let status = call(inst, &calls::Args::new(inst.description, fmu_state));
+        unlogged(inst, || inst.free_state(fmu_state));
         status
     })
 }

@@ -11,6 +11,7 @@ use super::{Case, Observed, on_instance};
 use crate::Loaded;
 use crate::binary::{OK, status_name};
 use crate::fmi3::host::{Instance, Interface3, State3};
+use crate::host::unlogged;
 use crate::matrix::Expect;
 use crate::matrix::serialized::{damaged, in_child};
 
@@ -92,10 +93,7 @@ fn damaged_case(m: usize, interface: Interface3, name: String, bytes: Vec<u8>) -
             on_instance(l, m, interface, reference_state(interface), |inst| {
                 let (s, state) = inst.deserialize(&bytes);
                 if !state.is_null() && s == OK {
-                    let log = inst.take_log();
-                    inst.free_state(state);
-                    inst.take_log();
-                    inst.log.lock().unwrap_or_else(|e| e.into_inner()).push(log);
+                    unlogged(inst, || inst.free_state(state));
                 }
                 s
             })
