@@ -1,7 +1,8 @@
 //! Random legal call sequences (fixed seeds) against the packaged FMUs, FMI 2.0
 //! then FMI 3.0: see `robofmu_hostile::sequences` and
 //! `robofmu_hostile::fmi3::sequences`. ROBOFMU_HOSTILE_SEQUENCES sets the count of
-//! each (default `DEFAULT_SEQUENCES`; the issue-12 probe ran 240000).
+//! each (default: `DEFAULT_SEQUENCES` of each module; the issue-12 probe ran
+//! 240000).
 
 use robofmu_hostile::sequences::{BASE_SEED, count_from_env};
 use robofmu_hostile::{Loaded, fmi3, isolate, sequences};
@@ -35,9 +36,10 @@ fn run(loaded: &Loaded, standard: &str, n: usize, sequence: Sequence) -> bool {
 
 fn main() {
     let loaded = Loaded::all();
-    let n = count_from_env();
-    let fmi2 = run(&loaded, "FMI 2.0", n, sequences::run_sequence);
-    let fmi3 = run(&loaded, "FMI 3.0", n, fmi3::sequences::run_sequence);
+    let n2 = count_from_env(sequences::DEFAULT_SEQUENCES);
+    let n3 = count_from_env(fmi3::sequences::DEFAULT_SEQUENCES);
+    let fmi2 = run(&loaded, "FMI 2.0", n2, sequences::run_sequence);
+    let fmi3 = run(&loaded, "FMI 3.0", n3, fmi3::sequences::run_sequence);
     if !(fmi2 && fmi3) {
         std::process::exit(1);
     }
