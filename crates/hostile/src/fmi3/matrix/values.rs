@@ -214,6 +214,13 @@ fn scalar_arguments() -> Vec<Scalar> {
             |i| unsafe { (i.binary.enter_initialization_mode)(i.c, 0, 0.0, 0.0, 1, f64::NAN) },
         ),
         (
+            "fmi3SetDebugLogging",
+            "categories = [\"noSuchCategory\"]",
+            State3::Instantiated,
+            any,
+            |i| unsafe { (i.binary.set_debug_logging)(i.c, 1, 1, &c"noSuchCategory".as_ptr()) },
+        ),
+        (
             "fmi3SetTime",
             "time = NaN",
             State3::ContinuousTimeMode,
