@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# valgrind memcheck over the lifecycle of every packaged FMU (dist/*.fmu, built by
-# scripts/build-fmus.sh): load, instantiate, initialize, steps, FMU states, reset,
-# free, unload, for Model Exchange and Co-Simulation. Fails on any memcheck error
-# and on any definite leak. Installs valgrind from Debian when it is missing and
+# valgrind memcheck over the lifecycle of every packaged FMU (dist/*.fmu and
+# dist/fmi3/*.fmu, built by scripts/build-fmus.sh): load, instantiate, initialize,
+# steps, FMU states, reset, free, unload, through the FMI 2.0 interface (Model
+# Exchange, Co-Simulation) and the FMI 3.0 interface (Model Exchange,
+# Co-Simulation with and without event mode, partial derivatives, variable
+# dependencies). Fails on any memcheck error and on any definite leak. Installs valgrind from Debian when it is missing and
 # this runs as root (CI); otherwise asks for it.
 set -euo pipefail
 cd "$(dirname "$0")/.."

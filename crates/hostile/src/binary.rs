@@ -16,15 +16,16 @@ pub const DISCARD: Status = 2;
 pub const ERROR: Status = 3;
 pub const FATAL: Status = 4;
 
-/// Name of a status as the standard spells it.
+/// Name of a status without the standard's prefix (the values are the same in
+/// FMI 2.0 and FMI 3.0; 5 is fmi2Pending).
 pub fn status_name(status: Status) -> String {
     match status {
-        OK => "fmi2OK".into(),
-        WARNING => "fmi2Warning".into(),
-        DISCARD => "fmi2Discard".into(),
-        ERROR => "fmi2Error".into(),
-        FATAL => "fmi2Fatal".into(),
-        5 => "fmi2Pending".into(),
+        OK => "OK".into(),
+        WARNING => "Warning".into(),
+        DISCARD => "Discard".into(),
+        ERROR => "Error".into(),
+        FATAL => "Fatal".into(),
+        5 => "Pending".into(),
         other => format!("status {other}"),
     }
 }
@@ -53,36 +54,51 @@ pub struct EventInfo {
 
 type Str = *const c_char;
 
+/// Declares `$name`: a loaded binary with one function pointer per symbol, each
+/// looked up with dlsym (a missing symbol refuses the whole binary). Shared by the
+/// FMI 2.0 and FMI 3.0 binaries.
 macro_rules! functions {
-    ($($field:ident = $symbol:literal : fn($($arg:ty),*) $(-> $ret:ty)?;)*) => {
-        /// The FMI 2.0 functions of one loaded binary.
+    ($(#[$doc:meta])* $name:ident { $($field:ident = $symbol:literal : fn($($arg:ty),*) $(-> $ret:ty)?;)* }) => {
+        $(#[$doc])*
         #[allow(clippy::type_complexity)]
-        pub struct Binary {
-            handle: *mut c_void,
+        pub struct $name {
+            _library: $crate::binary::Library,
             $(pub $field: unsafe extern "C" fn($($arg),*) $(-> $ret)?,)*
         }
 
-        impl Binary {
-            fn look_up(handle: *mut c_void) -> Result<Binary, String> {
-                Ok(Binary {
-                    handle,
+        impl $name {
+            /// dlopen (RTLD_NOW | RTLD_LOCAL) and dlsym of every function.
+            pub fn open(path: &std::path::Path) -> Result<$name, String> {
+                let library = $crate::binary::Library::open(path)?;
+                let handle = library.handle();
+                Ok($name {
+                    _library: library,
                     $($field: {
                         let name = concat!($symbol, "\0");
                         // SAFETY: a live handle and a NUL-terminated name.
-                        let p = unsafe { libc::dlsym(handle, name.as_ptr() as *const c_char) };
+                        let p = unsafe { libc::dlsym(handle, name.as_ptr() as *const std::ffi::c_char) };
                         if p.is_null() {
                             return Err(format!("symbol {} is missing", $symbol));
                         }
-                        // SAFETY: the symbol has this C signature in FMI 2.0.
-                        unsafe { std::mem::transmute::<*mut c_void, unsafe extern "C" fn($($arg),*) $(-> $ret)?>(p) }
+                        // SAFETY: the symbol has this C signature in the standard.
+                        unsafe { std::mem::transmute::<*mut std::ffi::c_void, unsafe extern "C" fn($($arg),*) $(-> $ret)?>(p) }
                     },)*
                 })
             }
         }
+
+        // The function pointers are plain code addresses; the standards let instances
+        // of one binary be used from different threads (one thread per instance at a
+        // time).
+        unsafe impl Send for $name {}
+        unsafe impl Sync for $name {}
     };
 }
+pub(crate) use functions;
 
 functions! {
+    /// The FMI 2.0 functions of one loaded binary (44).
+    Binary {
     get_types_platform = "fmi2GetTypesPlatform": fn() -> Str;
     get_version = "fmi2GetVersion": fn() -> Str;
     set_debug_logging = "fmi2SetDebugLogging": fn(Component, c_int, usize, *const Str) -> Status;
@@ -127,16 +143,15 @@ functions! {
     get_integer_status = "fmi2GetIntegerStatus": fn(Component, c_int, *mut c_int) -> Status;
     get_boolean_status = "fmi2GetBooleanStatus": fn(Component, c_int, *mut c_int) -> Status;
     get_string_status = "fmi2GetStringStatus": fn(Component, c_int, *mut Str) -> Status;
+    }
 }
 
-// The function pointers are plain code addresses; FMI 2.0 lets instances of one
-// binary be used from different threads (one thread per instance at a time).
-unsafe impl Send for Binary {}
-unsafe impl Sync for Binary {}
+/// A dlopen handle, closed on drop (after every instance was freed by its owner).
+pub struct Library(*mut c_void);
 
-impl Binary {
-    /// dlopen (RTLD_NOW | RTLD_LOCAL) and dlsym of all 44 functions.
-    pub fn open(path: &Path) -> Result<Binary, String> {
+impl Library {
+    /// dlopen with RTLD_NOW | RTLD_LOCAL.
+    pub fn open(path: &Path) -> Result<Library, String> {
         let c_path = CString::new(path.as_os_str().as_encoded_bytes())
             .map_err(|_| format!("{} contains a NUL byte", path.display()))?;
         // SAFETY: a NUL-terminated path.
@@ -144,17 +159,18 @@ impl Binary {
         if handle.is_null() {
             return Err(format!("dlopen {}: {}", path.display(), dl_error()));
         }
-        Binary::look_up(handle).inspect_err(|_| {
-            // SAFETY: the handle was just opened and nothing from it is in use.
-            unsafe { libc::dlclose(handle) };
-        })
+        Ok(Library(handle))
+    }
+
+    pub fn handle(&self) -> *mut c_void {
+        self.0
     }
 }
 
-impl Drop for Binary {
+impl Drop for Library {
     fn drop(&mut self) {
-        // SAFETY: the handle came from dlopen; every instance was freed by its owner.
-        unsafe { libc::dlclose(self.handle) };
+        // SAFETY: the handle came from dlopen; nothing from it is in use any more.
+        unsafe { libc::dlclose(self.0) };
     }
 }
 

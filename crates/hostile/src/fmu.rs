@@ -1,16 +1,52 @@
 //! The packaged FMUs under dist/: found, checked to be newer than the sources,
-//! unpacked (modelDescription.xml and `binaries/linux64/<id>.so`) into
+//! unpacked (modelDescription.xml and `binaries/<platform>/<id>.so`) into
 //! `target/hostile/<pid>-<model>` (removed when the `Fmu` is dropped) and opened
 //! with dlopen.
 
 use crate::binary::Binary;
 use crate::description::{self, Description};
+use crate::fmi3::binary::Binary3;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
-/// The FMUs the project ships.
+/// The FMUs the project ships (each as FMI 2.0 and as FMI 3.0).
 pub const MODELS: [&str; 3] = ["Planner", "PID", "Pss3Plant"];
+
+/// The standard of a packaged FMU: `dist/<Model>.fmu` or `dist/fmi3/<Model>.fmu`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Standard {
+    Fmi2,
+    Fmi3,
+}
+
+impl Standard {
+    pub const BOTH: [Standard; 2] = [Standard::Fmi2, Standard::Fmi3];
+
+    /// The folder of its archives under dist/.
+    fn folder(self) -> &'static str {
+        match self {
+            Standard::Fmi2 => "",
+            Standard::Fmi3 => "fmi3",
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Standard::Fmi2 => "FMI 2.0",
+            Standard::Fmi3 => "FMI 3.0",
+        }
+    }
+
+    /// The platform folder of the Linux x86-64 binary (FMI 2.0 section 2.4, FMI
+    /// 3.0 section 2.5.1.1).
+    fn platform(self) -> &'static str {
+        match self {
+            Standard::Fmi2 => "linux64",
+            Standard::Fmi3 => "x86_64-linux",
+        }
+    }
+}
 
 /// The workspace root (two levels above this crate).
 pub fn workspace_root() -> PathBuf {
@@ -32,9 +68,12 @@ pub struct Fmu {
 }
 
 impl Fmu {
-    /// Unpacks `dist/<model>.fmu`; an error says how to build it.
-    pub fn unpack(model: &str) -> Result<Fmu, String> {
-        let archive = dist_dir().join(format!("{model}.fmu"));
+    /// Unpacks `dist/<model>.fmu` (FMI 2.0) or `dist/fmi3/<model>.fmu` (FMI 3.0);
+    /// an error says how to build it.
+    pub fn unpack(model: &str, standard: Standard) -> Result<Fmu, String> {
+        let archive = dist_dir()
+            .join(standard.folder())
+            .join(format!("{model}.fmu"));
         if !archive.is_file() {
             return Err(format!(
                 "{} is missing: run `bash scripts/build-fmus.sh` first",
@@ -47,10 +86,16 @@ impl Fmu {
         let xml = String::from_utf8(entry(&mut zip, "modelDescription.xml")?)
             .map_err(|_| "modelDescription.xml is not UTF-8")?;
         let description = description::parse(&xml)?;
-        let binary = format!("binaries/linux64/{}.so", description.model_identifier);
-        let folder = workspace_root()
-            .join("target/hostile")
-            .join(format!("{}-{model}", std::process::id()));
+        let binary = format!(
+            "binaries/{}/{}.so",
+            standard.platform(),
+            description.model_identifier
+        );
+        let folder = workspace_root().join("target/hostile").join(format!(
+            "{}-{model}{}",
+            std::process::id(),
+            standard.folder()
+        ));
         std::fs::create_dir_all(&folder).map_err(|e| e.to_string())?;
         let library = folder.join(format!("{}.so", description.model_identifier));
         std::fs::write(&library, entry(&mut zip, &binary)?).map_err(|e| e.to_string())?;
@@ -60,9 +105,14 @@ impl Fmu {
         })
     }
 
-    /// dlopen of the unpacked binary.
+    /// dlopen of the unpacked binary, its FMI 2.0 functions.
     pub fn open(&self) -> Binary {
         Binary::open(&self.library).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// dlopen of the unpacked binary, its FMI 3.0 functions.
+    pub fn open3(&self) -> Binary3 {
+        Binary3::open(&self.library).unwrap_or_else(|e| panic!("{e}"))
     }
 
     pub fn name(&self) -> &str {

@@ -25,12 +25,57 @@ impl Interface {
 }
 
 /// Log lines received, as "status category: message"; only messages of status
-/// fmi2Warning and above are kept (debug lines such as logCalls are dropped).
+/// Warning and above are kept (debug lines such as logCalls are dropped).
 pub type Log = Mutex<Vec<String>>;
 
-extern "C" fn capture(
+/// The log received so far, one line per message, and clears it.
+pub fn take(log: &Log) -> String {
+    let mut lines = log.lock().unwrap_or_else(|e| e.into_inner());
+    let text = lines.join(" | ");
+    lines.clear();
+    text
+}
+
+/// What the probes shared by both standards need of a live instance.
+pub trait Probed {
+    /// The instance's log.
+    fn log(&self) -> &Log;
+    /// A new FMU state of the instance: (status, state).
+    fn new_state(&self) -> (Status, *mut c_void);
+    /// Frees an FMU state through the instance.
+    fn release_state(&self, state: *mut c_void) -> Status;
+
+    /// Err with the status and the log unless `s` is OK.
+    fn expect_ok(&self, what: &str, s: Status) -> Result<(), String> {
+        if s == OK {
+            Ok(())
+        } else {
+            Err(format!(
+                "{what} returned {}: {}",
+                crate::binary::status_name(s),
+                take(self.log())
+            ))
+        }
+    }
+}
+
+/// Runs `f` on `inst` without adding its log lines to what was logged before.
+pub fn unlogged<P: Probed, T>(inst: &P, f: impl FnOnce() -> T) -> T {
+    let kept = take(inst.log());
+    let result = f();
+    let mut lines = inst.log().lock().unwrap_or_else(|e| e.into_inner());
+    lines.clear();
+    if !kept.is_empty() {
+        lines.push(kept);
+    }
+    result
+}
+
+/// Keeps a log message of status Warning and above as "status category: message"
+/// in `env`, the &Log given to the FMU as its environment (shared by the FMI 2.0
+/// and FMI 3.0 loggers).
+pub(crate) fn record(
     env: *mut c_void,
-    _instance: *const c_char,
     status: c_int,
     category: *const c_char,
     message: *const c_char,
@@ -45,14 +90,24 @@ extern "C" fn capture(
                 .replace("%%", "%")
         }
     };
-    if status == 0 {
+    if status == 0 || env.is_null() {
         return;
     }
-    // SAFETY: env is the &Log this module passed as componentEnvironment.
+    // SAFETY: env is the &Log this crate passed as environment.
     let log = unsafe { &*(env as *const Log) };
     if let Ok(mut lines) = log.lock() {
         lines.push(format!("{status} {}: {}", text(category), text(message)));
     }
+}
+
+extern "C" fn capture(
+    env: *mut c_void,
+    _instance: *const c_char,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+) {
+    record(env, status, category, message);
 }
 
 extern "C" fn allocate(n: usize, size: usize) -> *mut c_void {
@@ -117,10 +172,7 @@ impl Environment {
 
     /// The log received so far, one line per message, and clears it.
     pub fn take_log(&self) -> String {
-        let mut lines = self.log.lock().unwrap_or_else(|e| e.into_inner());
-        let text = lines.join(" | ");
-        lines.clear();
-        text
+        take(&self.log)
     }
 }
 
@@ -208,13 +260,7 @@ impl<'a> Instance<'a> {
     /// Brings a fresh instance into `state` with legal calls.
     pub fn reach(&self, state: State) -> Result<(), String> {
         let b = self.binary;
-        let ok = |what: &str, s: Status| {
-            if s == OK {
-                Ok(())
-            } else {
-                Err(format!("{what} returned {s}: {}", self.env.take_log()))
-            }
-        };
+        let ok = |what: &str, s: Status| self.expect_ok(what, s);
         // SAFETY: a live component; every call below has well-formed arguments.
         unsafe {
             match state {
@@ -338,6 +384,18 @@ impl<'a> Instance<'a> {
 
     pub fn take_log(&self) -> String {
         self.env.take_log()
+    }
+}
+
+impl Probed for Instance<'_> {
+    fn log(&self) -> &Log {
+        &self.env.log
+    }
+    fn new_state(&self) -> (Status, *mut c_void) {
+        self.get_state()
+    }
+    fn release_state(&self, state: *mut c_void) -> Status {
+        self.free_state(state)
     }
 }
 

@@ -1,4 +1,4 @@
-//! A hostile FMI 2.0 importer for the project's FMUs.
+//! A hostile FMI 2.0 and FMI 3.0 importer for the project's FMUs.
 //!
 //! It unpacks the packaged `dist/<Model>.fmu` files, opens their binaries with
 //! dlopen and calls them through dlsym'd function pointers exactly as a C importer
@@ -8,11 +8,15 @@
 //! calls (`sequences`), load/unload cycles with an RSS bound (`rss`), threads
 //! against a serial run (`threads`) and the plant driven into its stops
 //! (`plant_hard`). Every probe runs in a forked child (`isolate`), so a crash of an
-//! FMU is reported as a failed case with its signal.
+//! FMU is reported as a failed case with its signal. The machinery (isolation,
+//! generator, description reader, case tables and their judge) serves both
+//! standards; what is per standard lives in the FMI 2.0 modules (`binary`, `host`,
+//! `matrix/*`) and in `fmi3`.
 
 pub mod binary;
 pub mod cycles;
 pub mod description;
+pub mod fmi3;
 pub mod fmu;
 pub mod host;
 pub mod isolate;
@@ -24,22 +28,39 @@ pub mod sequences;
 pub mod threads;
 
 use binary::Binary;
-use fmu::Fmu;
+use fmi3::binary::Binary3;
+use fmu::{Fmu, Standard};
 
-/// Every FMU unpacked and loaded (in the parent, before forking).
+/// Every FMU unpacked and loaded (in the parent, before forking): the FMI 2.0
+/// archives with their fmi2 functions, the FMI 3.0 archives with their fmi3 ones,
+/// both in the order of `fmu::MODELS`.
 pub struct Loaded {
     pub fmus: Vec<Fmu>,
     pub binaries: Vec<Binary>,
+    pub fmus3: Vec<Fmu>,
+    pub binaries3: Vec<Binary3>,
+}
+
+fn unpack_all(standard: Standard) -> Vec<Fmu> {
+    fmu::MODELS
+        .iter()
+        .map(|m| Fmu::unpack(m, standard).unwrap_or_else(|e| panic!("{e}")))
+        .collect()
 }
 
 impl Loaded {
-    /// Unpacks and opens every FMU of `fmu::MODELS`; panics with the reason.
+    /// Unpacks and opens every FMU of `fmu::MODELS`, both standards; panics with
+    /// the reason.
     pub fn all() -> Loaded {
-        let fmus: Vec<Fmu> = fmu::MODELS
-            .iter()
-            .map(|m| Fmu::unpack(m).unwrap_or_else(|e| panic!("{e}")))
-            .collect();
+        let fmus = unpack_all(Standard::Fmi2);
         let binaries = fmus.iter().map(Fmu::open).collect();
-        Loaded { fmus, binaries }
+        let fmus3 = unpack_all(Standard::Fmi3);
+        let binaries3 = fmus3.iter().map(Fmu::open3).collect();
+        Loaded {
+            fmus,
+            binaries,
+            fmus3,
+            binaries3,
+        }
     }
 }

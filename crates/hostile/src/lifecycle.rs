@@ -2,22 +2,11 @@
 //! instantiate, initialize, steps (CS) or integration steps and an event (ME),
 //! get/set/serialize/deserialize/free FMU states, reset, terminate, free, unload.
 
-use crate::binary::{Binary, EventInfo, FmuState, OK, Status, status_name};
+use crate::binary::{Binary, EventInfo, FmuState};
 use crate::fmu::Fmu;
+use crate::host::Probed;
 use crate::host::{Instance, Interface, State};
 use std::ffi::c_char;
-
-fn ok(inst: &Instance, what: &str, s: Status) -> Result<(), String> {
-    if s == OK {
-        Ok(())
-    } else {
-        Err(format!(
-            "{what} returned {}: {}",
-            status_name(s),
-            inst.take_log()
-        ))
-    }
-}
 
 fn advance(inst: &Instance) -> Result<(), String> {
     let b = inst.binary;
@@ -28,28 +17,24 @@ fn advance(inst: &Instance) -> Result<(), String> {
         // SAFETY: arrays of the state count, legal calls in the reached states.
         unsafe {
             match inst.interface {
-                Interface::CoSimulation => ok(inst, "fmi2DoStep", inst.do_step(t, 1e-3))?,
+                Interface::CoSimulation => inst.expect_ok("fmi2DoStep", inst.do_step(t, 1e-3))?,
                 Interface::ModelExchange => {
-                    ok(
-                        inst,
+                    inst.expect_ok(
                         "fmi2GetContinuousStates",
                         (b.get_continuous_states)(inst.c, x.as_mut_ptr(), n),
                     )?;
-                    ok(
-                        inst,
+                    inst.expect_ok(
                         "fmi2GetDerivatives",
                         (b.get_derivatives)(inst.c, dx.as_mut_ptr(), n),
                     )?;
-                    ok(inst, "fmi2SetTime", (b.set_time)(inst.c, t + 1e-3))?;
+                    inst.expect_ok("fmi2SetTime", (b.set_time)(inst.c, t + 1e-3))?;
                     let next: Vec<f64> = x.iter().zip(&dx).map(|(a, d)| a + 1e-3 * d).collect();
-                    ok(
-                        inst,
+                    inst.expect_ok(
                         "fmi2SetContinuousStates",
                         (b.set_continuous_states)(inst.c, next.as_ptr(), n),
                     )?;
                     let (mut enter, mut stop) = (0, 0);
-                    ok(
-                        inst,
+                    inst.expect_ok(
                         "fmi2CompletedIntegratorStep",
                         (b.completed_integrator_step)(inst.c, 1, &mut enter, &mut stop),
                     )?;
@@ -57,20 +42,19 @@ fn advance(inst: &Instance) -> Result<(), String> {
             }
         }
         let (s, _) = inst.get_reals(&inst.description.real_vrs());
-        ok(inst, "fmi2GetReal", s)?;
+        inst.expect_ok("fmi2GetReal", s)?;
     }
     Ok(())
 }
 
 fn states(inst: &Instance) -> Result<(), String> {
     let (s, state) = inst.get_state();
-    ok(inst, "fmi2GetFMUstate", s)?;
+    inst.expect_ok("fmi2GetFMUstate", s)?;
     let bytes = inst.serialize(state)?;
     let mut copy: FmuState = std::ptr::null_mut();
     // SAFETY: the instance's own bytes and states.
     unsafe {
-        ok(
-            inst,
+        inst.expect_ok(
             "fmi2DeSerializeFMUstate",
             (inst.binary.deserialize)(
                 inst.c,
@@ -79,20 +63,15 @@ fn states(inst: &Instance) -> Result<(), String> {
                 &mut copy,
             ),
         )?;
-        ok(
-            inst,
-            "fmi2SetFMUstate",
-            (inst.binary.set_fmu_state)(inst.c, copy),
-        )?;
+        inst.expect_ok("fmi2SetFMUstate", (inst.binary.set_fmu_state)(inst.c, copy))?;
         // Overwrite an existing state, as the standard allows.
         let mut again = state;
-        ok(
-            inst,
+        inst.expect_ok(
             "fmi2GetFMUstate(overwrite)",
             (inst.binary.get_fmu_state)(inst.c, &mut again),
         )?;
-        ok(inst, "fmi2FreeFMUstate", inst.free_state(copy))?;
-        ok(inst, "fmi2FreeFMUstate", inst.free_state(again))?;
+        inst.expect_ok("fmi2FreeFMUstate", inst.free_state(copy))?;
+        inst.expect_ok("fmi2FreeFMUstate", inst.free_state(again))?;
     }
     Ok(())
 }
@@ -113,16 +92,15 @@ pub fn run(fmu: &Fmu) -> Result<(), String> {
         // SAFETY: legal calls on a live instance.
         unsafe {
             if interface == Interface::ModelExchange {
-                ok(&inst, "fmi2EnterEventMode", (b.enter_event_mode)(inst.c))?;
+                inst.expect_ok("fmi2EnterEventMode", (b.enter_event_mode)(inst.c))?;
                 let mut info = EventInfo::default();
-                ok(
-                    &inst,
+                inst.expect_ok(
                     "fmi2NewDiscreteStates",
                     (b.new_discrete_states)(inst.c, &mut info),
                 )?;
             }
-            ok(&inst, "fmi2Terminate", (b.terminate)(inst.c))?;
-            ok(&inst, "fmi2Reset", (b.reset)(inst.c))?;
+            inst.expect_ok("fmi2Terminate", (b.terminate)(inst.c))?;
+            inst.expect_ok("fmi2Reset", (b.reset)(inst.c))?;
         }
         inst.reach(running)?;
         advance(&inst)?;

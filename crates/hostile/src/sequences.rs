@@ -11,16 +11,17 @@ use crate::description::{VarType, Variable};
 use crate::host::{Instance, Interface, State};
 use crate::rng::SplitMix64;
 
-/// Sequences run by default; ROBOFMU_HOSTILE_SEQUENCES overrides.
+/// FMI 2.0 sequences run by default; ROBOFMU_HOSTILE_SEQUENCES overrides.
 pub const DEFAULT_SEQUENCES: usize = 30_000;
 /// The seed of sequence i is BASE_SEED + i.
 pub const BASE_SEED: u64 = 0x5EED_F0F0;
 
-pub fn count_from_env() -> usize {
+/// ROBOFMU_HOSTILE_SEQUENCES when set (for both standards), else `default`.
+pub fn count_from_env(default: usize) -> usize {
     std::env::var("ROBOFMU_HOSTILE_SEQUENCES")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(DEFAULT_SEQUENCES)
+        .unwrap_or(default)
 }
 
 struct Run<'a> {
@@ -32,7 +33,7 @@ struct Run<'a> {
 }
 
 /// Plausible magnitude of an input.
-fn input_scale(v: &Variable) -> f64 {
+pub(crate) fn input_scale(v: &Variable) -> f64 {
     match v.name.split('[').next().unwrap_or("") {
         "actuatorForce" => 100.0,
         "torqueCommand" | "generalizedForceCommand" | "disturbanceTorque" => 10.0,

@@ -3,14 +3,18 @@
 //! model is measured in a fresh forked child.
 
 use robofmu_hostile::cycles::{CYCLES, RSS_BOUND, measure};
-use robofmu_hostile::fmu::{Fmu, MODELS};
+use robofmu_hostile::fmu::{Fmu, MODELS, Standard};
 use robofmu_hostile::isolate;
 
 fn main() {
     let mut failed = false;
-    for model in MODELS {
-        let fmu = Fmu::unpack(model).unwrap_or_else(|e| panic!("{e}"));
-        let result = isolate::run_one(&|| match measure(&fmu) {
+    for (standard, model) in Standard::BOTH
+        .into_iter()
+        .flat_map(|s| MODELS.map(|m| (s, m)))
+    {
+        let fmu = Fmu::unpack(model, standard).unwrap_or_else(|e| panic!("{e}"));
+        let model = format!("{model} ({})", standard.name());
+        let result = isolate::run_one(&|| match measure(&fmu, standard) {
             Ok((before, after)) => format!("{before} {after}"),
             Err(e) => format!("error {e}"),
         });

@@ -1,9 +1,9 @@
 //! The lifecycle of every packaged FMU (or of the models named as arguments)
-//! through dlopen, without forking: the program scripts/test.sh runs under
-//! valgrind memcheck. Exits 1 if a call fails.
+//! through dlopen, without forking, FMI 2.0 and FMI 3.0: the program
+//! scripts/memcheck.sh runs under valgrind memcheck. Exits 1 if a call fails.
 
-use robofmu_hostile::fmu::{Fmu, MODELS};
-use robofmu_hostile::lifecycle;
+use robofmu_hostile::fmu::{Fmu, MODELS, Standard};
+use robofmu_hostile::{fmi3, lifecycle};
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -13,13 +13,18 @@ fn main() {
         args.iter().map(String::as_str).collect()
     };
     let mut failed = false;
-    for model in models {
-        let result = Fmu::unpack(model).and_then(|fmu| lifecycle::run(&fmu));
-        match result {
-            Ok(()) => println!("{model}: lifecycle ok"),
-            Err(e) => {
-                println!("{model}: {e}");
-                failed = true;
+    for standard in Standard::BOTH {
+        for &model in &models {
+            let result = Fmu::unpack(model, standard).and_then(|fmu| match standard {
+                Standard::Fmi2 => lifecycle::run(&fmu),
+                Standard::Fmi3 => fmi3::lifecycle::run(&fmu),
+            });
+            match result {
+                Ok(()) => println!("{model} ({}): lifecycle ok", standard.name()),
+                Err(e) => {
+                    println!("{model} ({}): {e}", standard.name());
+                    failed = true;
+                }
             }
         }
     }

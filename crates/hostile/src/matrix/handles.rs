@@ -27,8 +27,8 @@ enum Handle {
 
 const BLOCK: usize = 4096;
 
-/// A heap block owned by the importer.
-fn block(random: bool) -> *mut c_void {
+/// A heap block owned by the importer (the FMI 3.0 probes use it too).
+pub(crate) fn block(random: bool) -> *mut c_void {
     // SAFETY: calloc of a fixed size.
     let p = unsafe { libc::calloc(1, BLOCK) } as *mut u8;
     if random {
@@ -117,7 +117,7 @@ pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
                 cases.push(Case {
                     class: "bad instance handle",
                     model: m,
-                    interface: Some(interface),
+                    interface: Some(interface.short()),
                     name: format!("{name}({handle:?})"),
                     expect: if invoke.is_some() {
                         Expect::silent_error()

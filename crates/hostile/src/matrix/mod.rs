@@ -16,7 +16,7 @@ pub mod values;
 
 use crate::Loaded;
 use crate::binary::{DISCARD, ERROR, OK, Status, status_name};
-use crate::host::{Instance, Interface, State};
+use crate::host::{Instance, Interface, State, unlogged};
 use crate::isolate;
 
 /// What a case expects: one of `statuses`, and `log` (when given) contained in the
@@ -104,7 +104,8 @@ pub type Probe = Box<dyn Fn(&Loaded) -> Observed>;
 pub struct Case {
     pub class: &'static str,
     pub model: usize,
-    pub interface: Option<Interface>,
+    /// The interface's short name ("ME", "CS", "CS+events"), None for instantiation.
+    pub interface: Option<&'static str>,
     pub name: String,
     pub expect: Expect,
     pub why: &'static str,
@@ -199,7 +200,7 @@ fn shorten(log: &str) -> String {
 
 /// "class / model / interface / name", the key of the known-failure list.
 pub fn full_name(case: &Case) -> String {
-    let interface = case.interface.map_or("--", Interface::short);
+    let interface = case.interface.unwrap_or("--");
     format!(
         "{} / {} / {} / {}",
         case.class,
@@ -219,8 +220,15 @@ pub fn run(loaded: &Loaded, cases: &[Case]) -> Vec<Verdict> {
         .collect()
 }
 
-/// Every case of the matrix.
+/// Every case of the matrix, FMI 2.0 then FMI 3.0.
 pub fn all_cases(loaded: &Loaded) -> Vec<Case> {
+    let mut cases = fmi2_cases(loaded);
+    cases.extend(crate::fmi3::matrix::all_cases(loaded));
+    cases
+}
+
+/// The FMI 2.0 cases.
+pub fn fmi2_cases(loaded: &Loaded) -> Vec<Case> {
     let mut cases = Vec::new();
     for m in 0..loaded.fmus.len() {
         cases.extend(pointers::cases(loaded, m));
@@ -246,14 +254,9 @@ pub fn with_args(
     call: impl Fn(&Instance, &calls::Args) -> Status,
 ) -> Observed {
     on_instance(loaded, m, interface, state, |inst| {
-        let (_, fmu_state) = inst.get_state();
-        let args = calls::Args::new(inst.description, fmu_state);
-        inst.take_log();
-        let status = call(inst, &args);
-        let log = inst.take_log();
-        inst.free_state(fmu_state);
-        inst.take_log();
-        inst.env.log.lock().unwrap().push(log);
+        let (_, fmu_state) = unlogged(inst, || inst.get_state());
+        let status = call(inst, &calls::Args::new(inst.description, fmu_state));
+        unlogged(inst, || inst.free_state(fmu_state));
         status
     })
 }

@@ -35,7 +35,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 cases.push(Case {
                     class: "illegal call order",
                     model: m,
-                    interface: Some(interface),
+                    interface: Some(interface.short()),
                     name: format!("{} in {state:?}", call.name),
                     expect: Expect::error("illegal call sequence"),
                     why: WHY,

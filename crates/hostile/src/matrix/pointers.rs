@@ -348,7 +348,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             cases.push(Case {
                 class: "null pointer",
                 model: m,
-                interface: Some(interface),
+                interface: Some(interface.short()),
                 name: name.to_string(),
                 expect: Expect::error("null"),
                 why: WHY,

@@ -66,7 +66,7 @@ pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
         .map(|(name, evaluate)| Case {
             class: "unassemblable pose",
             model: m,
-            interface: Some(Interface::ModelExchange),
+            interface: Some(Interface::ModelExchange.short()),
             name: format!("{name} at theta[2] = {UNASSEMBLABLE_THETA2}"),
             expect: Expect::discard(),
             why: WHY,

@@ -104,7 +104,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                     cases.push(Case {
                         class: "value reference",
                         model: m,
-                        interface: Some(interface),
+                        interface: Some(interface.short()),
                         name: format!("{function}({label})"),
                         expect: Expect::error(&log),
                         why,
@@ -124,7 +124,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             cases.push(Case {
                 class: "value reference",
                 model: m,
-                interface: Some(interface),
+                interface: Some(interface.short()),
                 name: format!("fmi2SetReal(output {})", output.name),
                 expect: Expect::error(&output.name),
                 why: WHY_NOT_SETTABLE,
@@ -140,7 +140,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             cases.push(Case {
                 class: "value reference",
                 model: m,
-                interface: Some(interface),
+                interface: Some(interface.short()),
                 name: format!("fmi2GetDirectionalDerivative(unknown vr {bad})"),
                 expect: Expect::error(&bad.to_string()),
                 why: WHY_UNKNOWN,

@@ -8,7 +8,7 @@
 use super::{Case, Expect, Observed, on_instance};
 use crate::Loaded;
 use crate::binary::{FmuState, OK, status_name};
-use crate::host::{Instance, Interface, State};
+use crate::host::{Instance, Interface, State, unlogged};
 use crate::isolate;
 use std::ffi::c_char;
 
@@ -25,7 +25,7 @@ pub(crate) fn reference_state(interface: Interface) -> State {
 
 /// Reference bytes and outputs, computed in a child (the parent never calls an FMU).
 pub(crate) fn reference(loaded: &Loaded, m: usize, interface: Interface) -> (Vec<u8>, Vec<u64>) {
-    let text = isolate::run_one(&|| {
+    in_child(m, &|| {
         let inst = Instance::new(&loaded.binaries[m], &loaded.fmus[m].description, interface);
         inst.reach(reference_state(interface))
             .unwrap_or_else(|e| panic!("{e}"));
@@ -36,6 +36,15 @@ pub(crate) fn reference(loaded: &Loaded, m: usize, interface: Interface) -> (Vec
         let bytes = inst.serialize(state).unwrap_or_else(|e| panic!("{e}"));
         let (_, outputs) = inst.get_reals(&inst.description.real_vrs());
         inst.free_state(state);
+        (bytes, outputs)
+    })
+}
+
+/// Runs `make` (serialized bytes and outputs of a reference instance) in a forked
+/// child and returns the bytes and the outputs' bits (shared with FMI 3.0).
+pub(crate) fn in_child(m: usize, make: &dyn Fn() -> (Vec<u8>, Vec<f64>)) -> (Vec<u8>, Vec<u64>) {
+    let text = isolate::run_one(&|| {
+        let (bytes, outputs) = make();
         let hex: String = bytes.iter().map(|b| format!("{b:02x}")).collect();
         let bits: Vec<String> = outputs.iter().map(|x| x.to_bits().to_string()).collect();
         format!("{hex} {}", bits.join(","))
@@ -67,7 +76,7 @@ fn damaged_case(m: usize, interface: Interface, name: String, bytes: Vec<u8>) ->
     Case {
         class: "serialized state",
         model: m,
-        interface: Some(interface),
+        interface: Some(interface.short()),
         name,
         expect: Expect::error("FMU state"),
         why: WHY_DAMAGED,
@@ -75,10 +84,7 @@ fn damaged_case(m: usize, interface: Interface, name: String, bytes: Vec<u8>) ->
             on_instance(l, m, interface, reference_state(interface), |inst| {
                 let (s, state) = deserialize(inst, &bytes);
                 if !state.is_null() && s == OK {
-                    let log = inst.take_log();
-                    inst.free_state(state);
-                    inst.take_log();
-                    inst.env.log.lock().unwrap().push(log);
+                    unlogged(inst, || inst.free_state(state));
                 }
                 s
             })
@@ -90,7 +96,7 @@ fn control_case(m: usize, interface: Interface, bytes: Vec<u8>, outputs: Vec<u64
     Case {
         class: "serialized state",
         model: m,
-        interface: Some(interface),
+        interface: Some(interface.short()),
         name: "unmodified bytes restore the outputs bit for bit".into(),
         expect: Expect::ok(),
         why: WHY_CONTROL,
@@ -122,38 +128,37 @@ fn control_case(m: usize, interface: Interface, bytes: Vec<u8>, outputs: Vec<u64
     }
 }
 
+/// The damaged variants of serialized bytes: every byte flipped, every truncation
+/// and one byte appended, each with its name (shared with the FMI 3.0 matrix).
+pub(crate) fn damaged(bytes: &[u8]) -> Vec<(String, Vec<u8>)> {
+    let n = bytes.len();
+    let mut variants = Vec::with_capacity(2 * n + 1);
+    for i in 0..n {
+        let mut flipped = bytes.to_vec();
+        flipped[i] ^= 0xff;
+        variants.push((format!("byte {i} of {n} flipped"), flipped));
+    }
+    for len in 0..n {
+        variants.push((
+            format!("truncated to {len} of {n} bytes"),
+            bytes[..len].to_vec(),
+        ));
+    }
+    let mut longer = bytes.to_vec();
+    longer.push(0);
+    variants.push(("one byte appended".into(), longer));
+    variants
+}
+
 pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
     let mut cases = Vec::new();
     for interface in Interface::BOTH {
         let (bytes, outputs) = reference(loaded, m, interface);
         assert!(!bytes.is_empty(), "empty reference state");
         cases.push(control_case(m, interface, bytes.clone(), outputs));
-        for i in 0..bytes.len() {
-            let mut flipped = bytes.clone();
-            flipped[i] ^= 0xff;
-            cases.push(damaged_case(
-                m,
-                interface,
-                format!("byte {i} of {} flipped", bytes.len()),
-                flipped,
-            ));
+        for (name, variant) in damaged(&bytes) {
+            cases.push(damaged_case(m, interface, name, variant));
         }
-        for len in 0..bytes.len() {
-            cases.push(damaged_case(
-                m,
-                interface,
-                format!("truncated to {len} of {} bytes", bytes.len()),
-                bytes[..len].to_vec(),
-            ));
-        }
-        let mut longer = bytes.clone();
-        longer.push(0);
-        cases.push(damaged_case(
-            m,
-            interface,
-            "one byte appended".into(),
-            longer,
-        ));
     }
     cases
 }

@@ -106,7 +106,7 @@ fn cross_case(l: &Loaded, m: usize, from: Interface, to: Interface) -> Case {
     Case {
         class: "cross-interface state",
         model: m,
-        interface: Some(to),
+        interface: Some(to.short()),
         name: format!("state serialized by a {} instance", from.short()),
         expect: Expect::ok(),
         why: WHY_CROSS,
@@ -146,7 +146,7 @@ pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
                 cases.push(Case {
                     class: "bad FMU state",
                     model: m,
-                    interface: Some(interface),
+                    interface: Some(interface.short()),
                     name: format!("{name}({bad:?})"),
                     expect: Expect::error("not a live FMU state"),
                     why: WHY_BAD,

@@ -55,7 +55,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                     cases.push(Case {
                         class: "non-finite value",
                         model: m,
-                        interface: Some(interface),
+                        interface: Some(interface.short()),
                         name: format!("fmi2SetReal({} = {x})", v.name),
                         expect: Expect::error(&format!("\"{}\"", v.name)),
                         why: WHY_NON_FINITE,
@@ -72,7 +72,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 cases.push(Case {
                     class: "extreme value",
                     model: m,
-                    interface: Some(interface),
+                    interface: Some(interface.short()),
                     name: format!("{} = {value:?}", v.name),
                     expect: Expect {
                         statuses: &[OK, DISCARD, ERROR],
@@ -91,7 +91,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
 }
 
 /// Whether the log names the variable, or its array (\"theta0\" for \"theta0[2]\").
-fn names(log: &str, variable: &str) -> bool {
+pub(crate) fn names(log: &str, variable: &str) -> bool {
     let array = variable.split('[').next().unwrap_or(variable);
     log.contains(variable) || log.contains(array)
 }

@@ -1,0 +1,9 @@
+//! The FMI 3.0 side of the hostile importer: the binary's fmi3 functions, the
+//! importer's instance and state machine, and the FMI 3.0 matrix, sequences and
+//! lifecycle (the cycles and threads tests take the FMI 3.0 simulations from here).
+
+pub mod binary;
+pub mod host;
+pub mod lifecycle;
+pub mod matrix;
+pub mod sequences;

@@ -1,0 +1,391 @@
+//! Random sequences of legal FMI 3.0 calls with legal arguments, from a fixed seed
+//! (the FMI 2.0 rules of `crate::sequences`, on the FMI 3.0 state machines). The
+//! importer tracks the state itself and picks one of the calls the standard allows
+//! there, for Model Exchange, Co-Simulation and Co-Simulation with event mode
+//! (where a step that meets an event, such as the plant reaching an end stop,
+//! returns early and the importer iterates the event in Event Mode). It follows the
+//! FMU's requests: enter Event Mode when fmi3CompletedIntegratorStep or fmi3DoStep
+//! asks for it, update discrete states until no update is needed, terminate when
+//! asked to. A legal sequence never produces fmi3Error or fmi3Fatal; fmi3Discard
+//! is accepted for a step and for Model Exchange evaluations at states the
+//! integrator chose; a call that returns fmi3OK never delivers NaN or inf.
+
+use super::host::{Instance, Interface3, State3};
+use crate::Loaded;
+use crate::binary::{DISCARD, OK, Status, status_name};
+use crate::description::{VarType, Variable};
+use crate::rng::SplitMix64;
+use crate::sequences::input_scale;
+
+/// FMI 3.0 sequences run by default: two thirds of the FMI 2.0 count, so that
+/// they add about 18 s of CPU time to CI; ROBOFMU_HOSTILE_SEQUENCES overrides.
+pub const DEFAULT_SEQUENCES: usize = 20_000;
+
+struct Run<'a> {
+    inst: Instance<'a>,
+    rng: SplitMix64,
+    state: State3,
+    time: f64,
+    calls: usize,
+    /// fmi3UpdateDiscreteStates asked to be called again.
+    update_needed: bool,
+}
+
+/// The legal values of the Int32 parameters the sequences set (their min and max
+/// in the modelDescription).
+fn legal_integers(v: &Variable) -> &'static [i32] {
+    match v.name.as_str() {
+        "endStopMode" => &[1, 2],
+        "order" => &[3, 5],
+        _ => &[],
+    }
+}
+
+impl Run<'_> {
+    /// Records a call; Err when its status is not acceptable.
+    fn check(&mut self, what: &str, s: Status, may_discard: bool) -> Result<Status, String> {
+        self.calls += 1;
+        if s == OK || (s == DISCARD && may_discard) {
+            Ok(s)
+        } else {
+            Err(format!(
+                "call {} {what} in {:?} returned {} (log: {})",
+                self.calls,
+                self.state,
+                status_name(s),
+                self.inst.take_log()
+            ))
+        }
+    }
+
+    fn finite(&self, what: &str, s: Status, x: &[f64]) -> Result<(), String> {
+        match x.iter().position(|v| !v.is_finite()) {
+            Some(i) if s == OK => Err(format!("{what} returned OK with element {i} = {}", x[i])),
+            _ => Ok(()),
+        }
+    }
+
+    fn me(&self) -> bool {
+        self.inst.interface.is_me()
+    }
+
+    fn set_input(&mut self) -> Result<(), String> {
+        let d = self.inst.description;
+        let inputs: Vec<&Variable> = d
+            .variables
+            .iter()
+            .filter(|v| v.causality == "input" && v.var_type == VarType::Real)
+            .collect();
+        if inputs.is_empty() {
+            return Ok(());
+        }
+        let v = inputs[self.rng.below(inputs.len())];
+        // Now and then a force far beyond what the plant's stops hold back.
+        let scale = input_scale(v) * if self.rng.below(8) == 0 { 100.0 } else { 1.0 };
+        let x: Vec<f64> = (0..v.size)
+            .map(|_| self.rng.uniform(-scale, scale))
+            .collect();
+        let s = self.inst.set_float64(&[v.vr], &x);
+        self.check(&format!("fmi3SetFloat64({} = {x:?})", v.name), s, false)?;
+        Ok(())
+    }
+
+    fn set_parameter(&mut self) -> Result<(), String> {
+        let d = self.inst.description;
+        let Some(v) = d
+            .of_type(VarType::Integer)
+            .find(|v| !legal_integers(v).is_empty())
+        else {
+            return self.set_input();
+        };
+        let values = legal_integers(v);
+        let n = values[self.rng.below(values.len())];
+        // SAFETY: one scalar Int32 and its value.
+        let s = unsafe { (self.inst.binary.set_int32)(self.inst.c, &v.vr, 1, &n, 1) };
+        self.check(&format!("fmi3SetInt32({} = {n})", v.name), s, false)?;
+        Ok(())
+    }
+
+    fn get_all(&mut self) -> Result<(), String> {
+        let (s, x) = self.inst.get_all();
+        let may_discard = self.me() || self.state == State3::StepDiscarded;
+        let s = self.check("fmi3GetFloat64(all)", s, may_discard)?;
+        self.finite("fmi3GetFloat64(all)", s, &x)
+    }
+
+    /// Get, serialize, deserialize and set back the state: nothing changes.
+    fn state_round_trip(&mut self) -> Result<(), String> {
+        let (s, state) = self.inst.get_state();
+        self.check("fmi3GetFMUState", s, false)?;
+        let bytes = self.inst.serialize(state)?;
+        self.calls += 2;
+        let (s, copy) = self.inst.deserialize(&bytes);
+        self.check("fmi3DeserializeFMUState", s, false)?;
+        // SAFETY: a state of this instance.
+        let s = unsafe { (self.inst.binary.set_fmu_state)(self.inst.c, copy) };
+        self.check("fmi3SetFMUState", s, false)?;
+        let s = self.inst.free_state(copy);
+        self.check("fmi3FreeFMUState", s, false)?;
+        let s = self.inst.free_state(state);
+        self.check("fmi3FreeFMUState", s, false)?;
+        Ok(())
+    }
+
+    /// Derivatives, event indicators and a random partial derivative (ME).
+    fn evaluate(&mut self) -> Result<(), String> {
+        let d = self.inst.description;
+        let b = self.inst.binary;
+        let mut dx = vec![0.0; d.number_of_states];
+        let mut z = vec![0.0; d.number_of_event_indicators];
+        // SAFETY: arrays of the declared sizes.
+        let s =
+            unsafe { (b.get_continuous_state_derivatives)(self.inst.c, dx.as_mut_ptr(), dx.len()) };
+        let s = self.check("fmi3GetContinuousStateDerivatives", s, true)?;
+        self.finite("fmi3GetContinuousStateDerivatives", s, &dx)?;
+        let s = unsafe { (b.get_event_indicators)(self.inst.c, z.as_mut_ptr(), z.len()) };
+        let s = self.check("fmi3GetEventIndicators", s, true)?;
+        self.finite("fmi3GetEventIndicators", s, &z)?;
+        let pairs = d.state_derivative_pairs();
+        if d.provides_directional_derivative && !pairs.is_empty() {
+            let (x, der) = pairs[self.rng.below(pairs.len())];
+            let n = d.elements(&[x]);
+            let seed: Vec<f64> = (0..n).map(|_| self.rng.uniform(-1.0, 1.0)).collect();
+            let mut out = vec![0.0; n];
+            let adjoint = self.rng.below(2) == 0;
+            let (f, name) = if adjoint {
+                (b.get_adjoint_derivative, "fmi3GetAdjointDerivative")
+            } else {
+                (b.get_directional_derivative, "fmi3GetDirectionalDerivative")
+            };
+            // SAFETY: arrays of the variables' element counts.
+            let s = unsafe {
+                f(
+                    self.inst.c,
+                    &der,
+                    1,
+                    &x,
+                    1,
+                    seed.as_ptr(),
+                    n,
+                    out.as_mut_ptr(),
+                    n,
+                )
+            };
+            let s = self.check(name, s, true)?;
+            self.finite(name, s, &out)?;
+        }
+        Ok(())
+    }
+
+    fn perturb_states(&mut self) -> Result<(), String> {
+        let n = self.inst.description.number_of_states;
+        let mut x = vec![0.0; n];
+        let b = self.inst.binary;
+        // SAFETY: arrays of the state count.
+        let s = unsafe { (b.get_continuous_states)(self.inst.c, x.as_mut_ptr(), n) };
+        self.check("fmi3GetContinuousStates", s, false)?;
+        // Small trial steps mostly, sometimes a large one (a rejected trial).
+        let reach = if self.rng.below(4) == 0 { 0.5 } else { 0.05 };
+        for xi in &mut x {
+            *xi += self.rng.uniform(-reach, reach);
+        }
+        let s = unsafe { (b.set_continuous_states)(self.inst.c, x.as_ptr(), n) };
+        self.check("fmi3SetContinuousStates", s, false)?;
+        Ok(())
+    }
+
+    fn advance_time(&mut self) -> Result<(), String> {
+        self.time += self.rng.uniform(1e-4, 1e-2);
+        // SAFETY: a finite time.
+        let s = unsafe { (self.inst.binary.set_time)(self.inst.c, self.time) };
+        self.check("fmi3SetTime", s, false)?;
+        Ok(())
+    }
+
+    fn transition(
+        &mut self,
+        what: &str,
+        f: unsafe extern "C" fn(super::binary::Instance3) -> Status,
+        to: State3,
+    ) -> Result<(), String> {
+        // SAFETY: a live instance.
+        let s = unsafe { f(self.inst.c) };
+        self.check(what, s, false)?;
+        self.state = to;
+        Ok(())
+    }
+
+    fn terminate(&mut self) -> Result<(), String> {
+        let b = self.inst.binary;
+        self.transition("fmi3Terminate", b.terminate, State3::Terminated)
+    }
+
+    fn reset(&mut self) -> Result<(), String> {
+        self.transition("fmi3Reset", self.inst.binary.reset, State3::Instantiated)?;
+        self.time = 0.0;
+        self.update_needed = false;
+        Ok(())
+    }
+
+    fn update_discrete_states(&mut self) -> Result<(), String> {
+        let mut flags = [0u8; 5];
+        let mut next = 0.0;
+        let [need, stop, nominals, values, defined] = &mut flags;
+        // SAFETY: six outputs to fill.
+        let s = unsafe {
+            (self.inst.binary.update_discrete_states)(
+                self.inst.c,
+                need,
+                stop,
+                nominals,
+                values,
+                defined,
+                &mut next,
+            )
+        };
+        self.check("fmi3UpdateDiscreteStates", s, false)?;
+        self.update_needed = flags[0] != 0;
+        if flags[1] != 0 {
+            return self.terminate();
+        }
+        Ok(())
+    }
+
+    fn completed_integrator_step(&mut self) -> Result<(), String> {
+        let (mut enter, mut stop) = (0u8, 0u8);
+        let b = self.inst.binary;
+        // SAFETY: two flags to fill.
+        let s = unsafe { (b.completed_integrator_step)(self.inst.c, 1, &mut enter, &mut stop) };
+        self.check("fmi3CompletedIntegratorStep", s, false)?;
+        if stop != 0 {
+            self.terminate()
+        } else if enter != 0 {
+            self.transition("fmi3EnterEventMode", b.enter_event_mode, State3::EventMode)
+        } else {
+            Ok(())
+        }
+    }
+
+    fn do_step(&mut self) -> Result<(), String> {
+        let h = self.rng.uniform(1e-4, 1e-2);
+        let step = self.inst.do_step(self.time, h);
+        let what = format!("fmi3DoStep(t = {}, h = {h})", self.time);
+        if self.check(&what, step.status, true)? == DISCARD {
+            self.state = State3::StepDiscarded;
+            return Ok(());
+        }
+        if step.early_return && !step.last_successful_time.is_finite() {
+            return Err(format!(
+                "{what}: early return at t = {}",
+                step.last_successful_time
+            ));
+        }
+        self.time = if step.early_return {
+            step.last_successful_time
+        } else {
+            self.time + h
+        };
+        if step.terminate {
+            self.terminate()
+        } else if step.event_handling_needed
+            && self.inst.interface == Interface3::CoSimulationEvents
+        {
+            let b = self.inst.binary;
+            self.transition("fmi3EnterEventMode", b.enter_event_mode, State3::EventMode)
+        } else {
+            Ok(())
+        }
+    }
+
+    fn leave_event_mode(&mut self) -> Result<(), String> {
+        let b = self.inst.binary;
+        match self.inst.interface {
+            Interface3::ModelExchange => self.transition(
+                "fmi3EnterContinuousTimeMode",
+                b.enter_continuous_time_mode,
+                State3::ContinuousTimeMode,
+            ),
+            _ => self.transition("fmi3EnterStepMode", b.enter_step_mode, State3::StepMode),
+        }
+    }
+
+    /// One random call that is legal in the current state.
+    fn step(&mut self) -> Result<(), String> {
+        let b = self.inst.binary;
+        let choice = self.rng.below(8);
+        match (self.state, choice) {
+            (State3::Instantiated, 0..=1) => self.set_input(),
+            (State3::Instantiated, 2) => self.set_parameter(),
+            (State3::Instantiated, 3) => self.state_round_trip(),
+            (State3::Instantiated, _) => {
+                // SAFETY: a live instance; no tolerance, start 0, no stop time.
+                let s = unsafe { (b.enter_initialization_mode)(self.inst.c, 0, 0.0, 0.0, 0, 0.0) };
+                self.check("fmi3EnterInitializationMode", s, false)?;
+                self.state = State3::InitializationMode;
+                Ok(())
+            }
+            (State3::InitializationMode, 0..=1) => self.set_input(),
+            (State3::InitializationMode, 2) => self.get_all(),
+            (State3::InitializationMode, 3) => self.state_round_trip(),
+            (State3::InitializationMode, _) => {
+                let to = self.inst.interface.after_initialization();
+                self.transition("fmi3ExitInitializationMode", b.exit_initialization_mode, to)
+            }
+            (State3::EventMode, _) if self.update_needed => self.update_discrete_states(),
+            (State3::EventMode, 0) => self.set_input(),
+            (State3::EventMode, 1) => self.get_all(),
+            (State3::EventMode, 2) => self.update_discrete_states(),
+            (State3::EventMode, 3) if self.me() => self.evaluate(),
+            (State3::EventMode, 4) => self.state_round_trip(),
+            (State3::EventMode, 5) if self.rng.below(8) == 0 => self.terminate(),
+            (State3::EventMode, _) => self.leave_event_mode(),
+            (State3::ContinuousTimeMode, 0) => self.set_input(),
+            (State3::ContinuousTimeMode, 1) => self.get_all(),
+            (State3::ContinuousTimeMode, 2) => self.advance_time(),
+            (State3::ContinuousTimeMode, 3) => self.perturb_states(),
+            (State3::ContinuousTimeMode, 4) => self.evaluate(),
+            (State3::ContinuousTimeMode, 5) => self.state_round_trip(),
+            (State3::ContinuousTimeMode, 6) => self.completed_integrator_step(),
+            (State3::ContinuousTimeMode, _) => {
+                self.transition("fmi3EnterEventMode", b.enter_event_mode, State3::EventMode)
+            }
+            (State3::StepMode, 0..=1) => self.set_input(),
+            (State3::StepMode, 2) => self.get_all(),
+            (State3::StepMode, 3) => self.state_round_trip(),
+            (State3::StepMode, 4) if self.rng.below(8) == 0 => self.terminate(),
+            (State3::StepMode, _) => self.do_step(),
+            (State3::StepDiscarded, 0..=2) => self.get_all(),
+            (State3::StepDiscarded, 3) => self.terminate(),
+            (State3::StepDiscarded, _) => self.reset(),
+            (State3::Terminated, 0..=3) => self.get_all(),
+            (State3::Terminated, _) => self.reset(),
+            (State3::Error, _) => Err("reached the Error state".into()),
+        }
+    }
+}
+
+/// Runs FMI 3.0 sequence `seed`: the number of calls, or what went wrong.
+pub fn run_sequence(l: &Loaded, seed: u64) -> Result<usize, String> {
+    let mut rng = SplitMix64::new(seed);
+    let m = rng.below(l.fmus3.len());
+    let interface = Interface3::ALL[rng.below(Interface3::ALL.len())];
+    let length = 10 + rng.below(30);
+    let mut run = Run {
+        inst: Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface),
+        rng,
+        state: State3::Instantiated,
+        time: 0.0,
+        calls: 1,
+        update_needed: false,
+    };
+    for _ in 0..length {
+        run.step().map_err(|e| {
+            format!(
+                "FMI 3.0 seed {seed:#x} ({} {}): {e}",
+                l.fmus3[m].name(),
+                interface.short()
+            )
+        })?;
+    }
+    Ok(run.calls + 1)
+}
