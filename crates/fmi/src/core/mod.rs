@@ -3,8 +3,14 @@
 //!
 //! A model implements [`Model`] with a table of [`Variable`]s in safe Rust, without any
 //! FFI or front-end type; [`Instance`] holds one model with its time and stop time,
-//! [`Snapshot`] is an FMU state ([`fmu_states`] keeps it behind the host's pointer) and [`serialize`] its checked byte format; [`handles`]
-//! registers the live instances and states so that every handle is checked before use.
+//! [`Snapshot`] is an FMU state ([`fmu_states`] keeps it behind the host's pointer) and
+//! [`serialize`] its checked byte format; [`handles`] registers the live instances and
+//! states so that every handle is checked before use.
+//!
+//! A front-end is a [`frontend::Frontend`] (its status codes, state machine and logger
+//! callback) with a [`frontend::FrontendInstance`]; [`entry`] wraps every C entry point
+//! of both standards (handle, mode, logCalls, errors and panics) and holds the bodies
+//! they share, with [`fmu_state_calls`] and [`model_exchange_calls`].
 
 pub mod arrays;
 pub mod description;
