@@ -224,13 +224,6 @@ mod tests {
         x.iter().copied().collect()
     }
 
-    fn eval_absolute(c: &[f64], t: f64) -> f64 {
-        c.iter()
-            .enumerate()
-            .map(|(k, ck)| ck * t.powi(k as i32))
-            .sum()
-    }
-
     #[test]
     fn boundary_conditions_hold_at_both_ends_for_any_t0() {
         // Expected values: the boundary conditions themselves.
