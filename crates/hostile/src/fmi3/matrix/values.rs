@@ -17,7 +17,7 @@ use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::matrix::Expect;
 
 const WHY_NON_FINITE: &str = "NaN/inf set: refused by fmi3SetFloat64 with fmi3Error naming the variable (project choice; Float64 values of a model are finite)";
-const WHY_ARGUMENT: &str = "non-finite or out-of-range scalar argument (FMI 3.0: times finite, step size > 0, tolerance > 0, stopTime >= startTime): fmi3Error and a log line naming the function";
+const WHY_ARGUMENT: &str = "non-finite or out-of-range scalar argument (FMI 3.0: times finite, step size > 0, a step starts at the FMU's time (4.2.1), tolerance > 0, stopTime >= startTime): fmi3Error and a log line naming the function";
 const WHY_EXTREME: &str = "extreme finite value: refused at set or fmi3ExitInitializationMode naming the variable, or a step/evaluation Discard; never first noticed by a getter (issue 12 item 3 for FMI 3.0)";
 
 #[derive(Clone, Copy, Debug)]
@@ -276,6 +276,13 @@ fn scalar_arguments() -> Vec<Scalar> {
             State3::StepMode,
             cs,
             |i| i.do_step(f64::NAN, 1e-3).status,
+        ),
+        (
+            "fmi3DoStep",
+            "currentCommunicationPoint = 1 s, the FMU is at 0 s",
+            State3::StepMode,
+            cs,
+            |i| i.do_step(1.0, 1e-3).status,
         ),
         (
             "fmi3GetDirectionalDerivative",
