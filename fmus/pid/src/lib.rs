@@ -5,7 +5,7 @@
 //! (Co-Simulation). Signals carry no unit: the controller is generic.
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
-use robofmu_fmi::core::variables::{Array, BooleanArray, ElementType, RealArray};
+use robofmu_fmi::core::variables::{Array, ElementType, RealArray, Role};
 use robofmu_fmi::core::{
     DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
@@ -196,7 +196,7 @@ fn channels<T: ElementType>(
     base: &'static str,
     description: &'static str,
     get: impl Fn(&Pid, usize) -> T + Clone + Send + Sync + 'static,
-) -> Array<Pid, T> {
+) -> Array<Pid, T, impl Role<Pid>> {
     Array::new(vr(group, 0), base, CHANNELS, description, get).label("Channel")
 }
 
@@ -206,7 +206,7 @@ fn settable<T: ElementType>(
     base: &'static str,
     description: &'static str,
     field: Field<T>,
-) -> Array<Pid, T> {
+) -> Array<Pid, T, impl Role<Pid>> {
     channels(group, base, description, field.read).set(move |m, c, v| {
         *(field.write)(m, c) = v;
         m.sync_limits(c);
@@ -221,7 +221,7 @@ fn switches(
     description: &'static str,
     variability: Variability,
     field: Field<bool>,
-) -> BooleanArray<Pid> {
+) -> Array<Pid, bool, impl Role<Pid>> {
     settable(group, base, description, field)
         .each(move |v, _| v.parameter(variability).start_boolean(false))
 }
