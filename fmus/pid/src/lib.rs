@@ -8,7 +8,7 @@
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
 use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
-use robofmu_fmi::core::variables::{Array, BooleanArray, ElementType, RealArray};
+use robofmu_fmi::core::variables::{Array, ElementType, RealArray, Role};
 use robofmu_fmi::core::{
     DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
@@ -214,7 +214,7 @@ fn channels<T: ElementType>(
     base: &'static str,
     description: &'static str,
     get: impl Fn(&Pid, usize) -> T + Clone + Send + Sync + 'static,
-) -> Array<Pid, T> {
+) -> Array<Pid, T, impl Role<Pid>> {
     Array::new(vr(group, 0), base, CHANNELS, description, get).label("Channel")
 }
 
@@ -224,7 +224,7 @@ fn settable<T: ElementType>(
     base: &'static str,
     description: &'static str,
     field: Field<T>,
-) -> Array<Pid, T> {
+) -> Array<Pid, T, impl Role<Pid>> {
     channels(group, base, description, field.read).set(move |m, c, v| {
         *(field.write)(m, c) = v;
         m.sync_limits(c);
@@ -239,7 +239,7 @@ fn switches(
     description: &'static str,
     variability: Variability,
     field: Field<bool>,
-) -> BooleanArray<Pid> {
+) -> Array<Pid, bool, impl Role<Pid>> {
     settable(group, base, description, field)
         .each(move |v, _| v.parameter(variability).start_boolean(false))
 }

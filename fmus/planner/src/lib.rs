@@ -4,7 +4,7 @@
 //! the planner itself is unit-agnostic.
 
 use robofmu_control::trajectory::{Boundary, Order, Polynomial};
-use robofmu_fmi::core::variables::RealArray;
+use robofmu_fmi::core::variables::{Array, Role};
 use robofmu_fmi::core::{
     DefaultExperiment, Log, LogCategory, Model, ModelInfo, OutputDerivativeError, StepOutcome,
     Variability, Variable,
@@ -154,8 +154,8 @@ fn axes(
     base: &'static str,
     what: &'static str,
     get: impl Fn(&Planner, usize) -> f64 + Clone + Send + Sync + 'static,
-) -> RealArray<Planner> {
-    RealArray::new(first_vr, base, AXES, what, get)
+) -> Array<Planner, f64, impl Role<Planner>> {
+    Array::new(first_vr, base, AXES, what, get)
         .stride(AXIS_STRIDE)
         .label("Axis")
 }

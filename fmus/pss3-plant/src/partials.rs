@@ -14,7 +14,7 @@
 use super::Pss3Plant;
 use super::variables::*;
 use nalgebra::Vector3;
-use robofmu::pss3::dynamics::{Linearization, PlantState};
+use robofmu::pss3::dynamics::{Linearization, PlantInputs, PlantState};
 use robofmu::pss3::rotation::moment_from_generalized_force;
 use robofmu_fmi::core::variables::{Kind, find};
 use robofmu_fmi::core::{Model, Variable};
@@ -155,25 +155,34 @@ fn rate_partial(
     })
 }
 
+/// The value of the known `k` in `state` and `inputs`.
+fn known_value<'a>(
+    state: &'a mut PlantState,
+    inputs: &'a mut PlantInputs,
+    k: Known,
+) -> &'a mut f64 {
+    match k {
+        Known::State(j) if j < 3 => &mut state.euler[j],
+        Known::State(j) => &mut state.omega[j - 3],
+        Known::Input(j) => {
+            let field = match j / 3 {
+                0 => &mut inputs.forces,
+                1 => &mut inputs.disturbance_torque,
+                2 => &mut inputs.commanded_torque,
+                _ => &mut inputs.generalized_force,
+            };
+            &mut field[j % 3]
+        }
+    }
+}
+
 /// The model with the known variable moved by `delta`.
 fn moved(m: &Pss3Plant, k: Known, delta: f64) -> Result<Pss3Plant, String> {
     let mut copy = m.clone();
     copy.state = m.current_state()?;
     copy.started = true;
     copy.contacts = m.contacts;
-    match k {
-        Known::State(j) if j < 3 => copy.state.euler[j] += delta,
-        Known::State(j) => copy.state.omega[j - 3] += delta,
-        Known::Input(j) => {
-            let field = match j / 3 {
-                0 => &mut copy.inputs.forces,
-                1 => &mut copy.inputs.disturbance_torque,
-                2 => &mut copy.inputs.commanded_torque,
-                _ => &mut copy.inputs.generalized_force,
-            };
-            field[j % 3] += delta;
-        }
-    }
+    *known_value(&mut copy.state, &mut copy.inputs, k) += delta;
     Ok(copy)
 }
 
@@ -199,18 +208,7 @@ fn output_partials(
             .map_err(|e| format!("the plant cannot be evaluated near this point: {e}"))?;
         Ok(getters.iter().map(|get| get(&copy)).collect())
     };
-    let current = match k {
-        Known::State(j) => m.current_state()?.to_vector()[j],
-        Known::Input(j) => {
-            let inputs = &m.inputs;
-            [
-                inputs.forces,
-                inputs.disturbance_torque,
-                inputs.commanded_torque,
-                inputs.generalized_force,
-            ][j / 3][j % 3]
-        }
-    };
+    let current = *known_value(&mut m.current_state()?, &mut m.inputs.clone(), k);
     let h = match k {
         Known::State(_) => STATE_STEP,
         Known::Input(_) => INPUT_STEP,

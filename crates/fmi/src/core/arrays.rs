@@ -5,6 +5,7 @@
 
 use super::variables::{Variable, find};
 use std::borrow::Cow;
+use std::marker::PhantomData;
 
 /// Position of a scalar in an array variable `base[1..length]`: the FMI 2.0 name is
 /// `base[index + 1]` (`der(base[index + 1])` for the derivative of an array state);
@@ -26,9 +27,9 @@ impl ArrayElement {
     /// The FMI 2.0 name of element `index`.
     pub fn name(&self, index: usize) -> String {
         if self.derivative {
-            format!("der({}[{}])", self.base, index + 1)
+            numbered(&["der(", self.base, "["], index + 1, "])")
         } else {
-            format!("{}[{}]", self.base, index + 1)
+            numbered(&[self.base, "["], index + 1, "]")
         }
     }
 
@@ -37,6 +38,24 @@ impl ArrayElement {
     pub fn value_reference(&self, vr: u32, index: usize) -> u32 {
         vr - self.index as u32 * self.stride + index as u32 * self.stride
     }
+}
+
+/// `prefix` (its parts joined), `number` and `suffix` in one allocation, without the
+/// formatting machinery: every element name is built so at instantiation.
+fn numbered(prefix: &[&str], number: usize, suffix: &str) -> String {
+    let length: usize = prefix.iter().map(|p| p.len()).sum::<usize>() + 20 + suffix.len();
+    let mut out = String::with_capacity(length);
+    prefix.iter().for_each(|p| out.push_str(p));
+    push_number(&mut out, number);
+    out.push_str(suffix);
+    out
+}
+
+fn push_number(out: &mut String, n: usize) {
+    if n >= 10 {
+        push_number(out, n / 10);
+    }
+    out.push(char::from(b'0' + (n % 10) as u8));
 }
 
 /// The FMI types an array element can have, with their variable constructors.
@@ -108,13 +127,21 @@ impl ElementType for bool {
     }
 }
 
+/// What a declaration does to element i (causality, unit, start value, writer, ...).
+pub trait Role<M>: Fn(Variable<M>, usize) -> Variable<M> {}
+
+impl<M, F: Fn(Variable<M>, usize) -> Variable<M>> Role<M> for F {}
+
 /// One declaration of an array `base[1..length]` of element type T (see the module
-/// documentation). The elements are built at once and each call refines them, so a
-/// declaration allocates nothing beyond its scalars.
-pub struct Array<M, T: ElementType> {
+/// documentation). The elements are built at once; the roles given by
+/// [`Array::each`], [`Array::set`] and [`Array::label`] are composed (no boxing) and
+/// applied in one pass by [`Array::variables`], so a declaration allocates nothing
+/// beyond its scalars.
+pub struct Array<M, T: ElementType, R = fn(Variable<M>, usize) -> Variable<M>> {
     elements: Vec<Variable<M>>,
     first_vr: u32,
-    marker: std::marker::PhantomData<T>,
+    role: R,
+    marker: PhantomData<T>,
 }
 
 pub type RealArray<M> = Array<M, f64>;
@@ -156,7 +183,7 @@ impl<M: 'static, T: ElementType> Array<M, T> {
                 let mut v =
                     T::variable(vr, element.name(i), description.clone(), move |m| get(m, i));
                 if derivative {
-                    v = v.derivative_of(format!("{base}[{}]", i + 1));
+                    v = v.derivative_of(numbered(&[base, "["], i + 1, "]"));
                 }
                 v.array = Some(element);
                 v
@@ -165,10 +192,13 @@ impl<M: 'static, T: ElementType> Array<M, T> {
         Array {
             elements,
             first_vr,
-            marker: std::marker::PhantomData,
+            role: |v, _| v,
+            marker: PhantomData,
         }
     }
+}
 
+impl<M: 'static, T: ElementType, R: Role<M>> Array<M, T, R> {
     /// Value references `first_vr + i * stride` instead of consecutive ones (arrays
     /// whose elements interleave with other arrays' by index).
     pub fn stride(mut self, stride: u32) -> Self {
@@ -182,9 +212,9 @@ impl<M: 'static, T: ElementType> Array<M, T> {
     }
 
     /// Describes element i as "`label` i: description" (e.g. "Axis 2: position").
-    pub fn label(self, label: &'static str) -> Self {
+    pub fn label(self, label: &'static str) -> Array<M, T, impl Role<M>> {
         self.each(move |v, i| {
-            let description = format!("{label} {}: {}", i + 1, v.description);
+            let description = numbered(&[label, " "], i + 1, ": ") + &v.description;
             v.describe(description)
         })
     }
@@ -193,27 +223,33 @@ impl<M: 'static, T: ElementType> Array<M, T> {
     pub fn set(
         self,
         set: impl Fn(&mut M, usize, T) -> Result<(), String> + Clone + Send + Sync + 'static,
-    ) -> Self {
+    ) -> Array<M, T, impl Role<M>> {
         self.each(move |v, i| {
             let set = set.clone();
             T::with_setter(v, move |m, x| set(m, i, x))
         })
     }
 
-    /// Applies `role` (causality, unit, start value, description, ...) to element `i`.
-    pub fn each(mut self, role: impl Fn(Variable<M>, usize) -> Variable<M>) -> Self {
-        self.elements = self
-            .elements
-            .into_iter()
-            .enumerate()
-            .map(|(i, v)| role(v, i))
-            .collect();
-        self
+    /// Applies `role` (causality, unit, start value, description, ...) to element `i`
+    /// after the roles given before.
+    pub fn each(self, role: impl Role<M>) -> Array<M, T, impl Role<M>> {
+        let previous = self.role;
+        Array {
+            elements: self.elements,
+            first_vr: self.first_vr,
+            role: move |v, i| role(previous(v, i), i),
+            marker: PhantomData,
+        }
     }
 
     /// The scalar variables, element 0 first.
     pub fn variables(self) -> Vec<Variable<M>> {
+        let role = self.role;
         self.elements
+            .into_iter()
+            .enumerate()
+            .map(|(i, v)| role(v, i))
+            .collect()
     }
 }
 
@@ -265,4 +301,17 @@ pub(super) fn check_arrays<M>(table: &[Variable<M>]) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::numbered;
+
+    #[test]
+    fn numbers_are_written_in_decimal() {
+        assert_eq!(numbered(&["x", "["], 1, "]"), "x[1]");
+        assert_eq!(numbered(&["der(", "x", "["], 10, "])"), "der(x[10])");
+        assert_eq!(numbered(&["Axis "], 1234, ": "), "Axis 1234: ");
+        assert_eq!(numbered(&[], 0, ""), "0");
+    }
 }

@@ -94,8 +94,7 @@ pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, Str
 /// references (all the runtime relies on; the full `check_table` runs where the
 /// modelDescription is written, in every FMU crate's drift test).
 pub fn sorted_table<M: Model>() -> Result<Vec<Variable<M>>, String> {
-    let mut table = M::variables();
-    table.sort_by_key(|v| v.value_reference);
+    let table = by_value_reference(M::variables());
     if let Some(pair) = table
         .windows(2)
         .find(|p| p[0].value_reference == p[1].value_reference)
@@ -106,6 +105,23 @@ pub fn sorted_table<M: Model>() -> Result<Vec<Variable<M>>, String> {
         ));
     }
     Ok(table)
+}
+
+/// `table` sorted by value reference, each variable moved once (a variable is a few
+/// hundred bytes: an in-place sort of a table declared array by array, whose value
+/// references interleave, would move each several times).
+fn by_value_reference<M>(table: Vec<Variable<M>>) -> Vec<Variable<M>> {
+    if table.is_sorted_by_key(|v| v.value_reference) {
+        return table;
+    }
+    let mut order: Vec<(u32, usize)> = table
+        .iter()
+        .enumerate()
+        .map(|(i, v)| (v.value_reference, i))
+        .collect();
+    order.sort_unstable();
+    let mut slots: Vec<Option<Variable<M>>> = table.into_iter().map(Some).collect();
+    order.iter().filter_map(|&(_, i)| slots[i].take()).collect()
 }
 
 /// The variable with value reference `vr` in a sorted table.

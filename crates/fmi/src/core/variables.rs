@@ -7,7 +7,9 @@
 //! cheap: names, descriptions and dependency lists are static strings wherever the
 //! declaration allows (`Cow<'static, str>`), and only array elements format theirs.
 
-pub use super::arrays::{Array, ArrayElement, BooleanArray, ElementType, IntegerArray, RealArray};
+pub use super::arrays::{
+    Array, ArrayElement, BooleanArray, ElementType, IntegerArray, RealArray, Role,
+};
 use std::borrow::Cow;
 
 pub type Getter<M, T> = Box<dyn Fn(&M) -> T + Send + Sync>;
