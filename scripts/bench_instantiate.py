@@ -27,15 +27,20 @@ from fmpy.fmi3 import (FMU3Slave, fmi3Boolean, fmi3InstanceEnvironment,
 MODELS = ["Planner", "PID", "Pss3Plant"]
 
 
+def load(path, slave_class):
+    """The model description, the unzipped directory and the loaded Co-Simulation FMU."""
+    md = read_model_description(path)
+    unzipped = extract(path)
+    fmu = slave_class(guid=md.guid, unzipDirectory=unzipped,
+                      modelIdentifier=md.coSimulation.modelIdentifier, instanceName="bench")
+    return md, unzipped, fmu
+
+
 class Fmi2Pair:
     """fmi2Instantiate + fmi2FreeInstance of one FMI 2.0 FMU."""
 
     def __init__(self, path):
-        md = read_model_description(path)
-        unzipped = extract(path)
-        self.fmu = FMU2Slave(guid=md.guid, unzipDirectory=unzipped,
-                             modelIdentifier=md.coSimulation.modelIdentifier,
-                             instanceName="bench")
+        md, unzipped, self.fmu = load(path, FMU2Slave)
         resources = Path(unzipped, "resources").as_uri().encode()
         self.args = (b"bench", fmi2CoSimulation, md.guid.encode(), resources,
                      ctypes.byref(defaultCallbacks), 0, 0)
@@ -51,11 +56,7 @@ class Fmi3Pair:
     """fmi3InstantiateCoSimulation + fmi3FreeInstance of one FMI 3.0 FMU."""
 
     def __init__(self, path):
-        md = read_model_description(path)
-        unzipped = extract(path)
-        self.fmu = FMU3Slave(guid=md.guid, unzipDirectory=unzipped,
-                             modelIdentifier=md.coSimulation.modelIdentifier,
-                             instanceName="bench")
+        md, unzipped, self.fmu = load(path, FMU3Slave)
         self.log = fmi3LogMessageCallback(lambda *args: None)
         self.update = fmi3IntermediateUpdateCallback()
         no_variables = (fmi3ValueReference * 0)()

@@ -281,45 +281,36 @@ fn variables() -> Vec<Variable<Pid>> {
     }
     let u = channels(U, "u", "control output", |m, c| m.output(c).u).each(|v, _| v.output());
     table.extend(u.variables());
-    let states = [
+    /// Group, name, description, field of a state; group, description, value of its
+    /// derivative.
+    type Derivative = fn(&Pid, usize) -> f64;
+    let states: [(u32, &str, &str, RealField, u32, &str, Derivative); 2] = [
         (
             INTEGRAL,
             "integral",
             "integral of the error (state)",
             field!(states.integral),
+            DER_INTEGRAL,
+            "Time derivative of the error integral",
+            |m, c| m.derivative(c).integral,
         ),
         (
             FILTER,
             "filter",
             "derivative filter state (state)",
             field!(states.filter),
+            DER_FILTER,
+            "Time derivative of the derivative filter state",
+            |m, c| m.derivative(c).filter,
         ),
     ];
-    for (group, name, description, field) in states {
-        let array =
+    for (group, name, description, field, der_group, der_description, der) in states {
+        let state =
             settable(group, name, description, field).each(|v, _| v.state().start_real(0.0));
-        table.extend(array.variables());
+        let derivative =
+            RealArray::derivatives(vr(der_group, 0), name, CHANNELS, der_description, der);
+        table.extend(state.variables().into_iter().chain(derivative.variables()));
     }
-    let der_integral = RealArray::derivatives(
-        vr(DER_INTEGRAL, 0),
-        "integral",
-        CHANNELS,
-        "Time derivative of the error integral",
-        |m: &Pid, c| m.derivative(c).integral,
-    );
-    let der_filter = RealArray::derivatives(
-        vr(DER_FILTER, 0),
-        "filter",
-        CHANNELS,
-        "Time derivative of the derivative filter state",
-        |m: &Pid, c| m.derivative(c).filter,
-    );
-    table.extend(
-        der_integral
-            .variables()
-            .into_iter()
-            .chain(der_filter.variables()),
-    );
     table
 }
 

@@ -73,59 +73,32 @@ pub trait ElementType: Copy + Send + Sync + 'static {
     ) -> Variable<M>;
 }
 
-impl ElementType for f64 {
-    fn variable<M>(
-        vr: u32,
-        name: String,
-        description: Cow<'static, str>,
-        get: impl Fn(&M) -> f64 + Send + Sync + 'static,
-    ) -> Variable<M> {
-        Variable::real(vr, name, description, get)
-    }
+/// `ElementType` for `$t` through the `Variable` constructor `$new` and writer `$set`.
+macro_rules! element_type {
+    ($t:ty, $new:ident, $set:ident) => {
+        impl ElementType for $t {
+            fn variable<M>(
+                vr: u32,
+                name: String,
+                description: Cow<'static, str>,
+                get: impl Fn(&M) -> $t + Send + Sync + 'static,
+            ) -> Variable<M> {
+                Variable::$new(vr, name, description, get)
+            }
 
-    fn with_setter<M>(
-        v: Variable<M>,
-        set: impl Fn(&mut M, f64) -> Result<(), String> + Send + Sync + 'static,
-    ) -> Variable<M> {
-        v.set_real(set)
-    }
+            fn with_setter<M>(
+                v: Variable<M>,
+                set: impl Fn(&mut M, $t) -> Result<(), String> + Send + Sync + 'static,
+            ) -> Variable<M> {
+                v.$set(set)
+            }
+        }
+    };
 }
 
-impl ElementType for i32 {
-    fn variable<M>(
-        vr: u32,
-        name: String,
-        description: Cow<'static, str>,
-        get: impl Fn(&M) -> i32 + Send + Sync + 'static,
-    ) -> Variable<M> {
-        Variable::integer(vr, name, description, get)
-    }
-
-    fn with_setter<M>(
-        v: Variable<M>,
-        set: impl Fn(&mut M, i32) -> Result<(), String> + Send + Sync + 'static,
-    ) -> Variable<M> {
-        v.set_integer(set)
-    }
-}
-
-impl ElementType for bool {
-    fn variable<M>(
-        vr: u32,
-        name: String,
-        description: Cow<'static, str>,
-        get: impl Fn(&M) -> bool + Send + Sync + 'static,
-    ) -> Variable<M> {
-        Variable::boolean(vr, name, description, get)
-    }
-
-    fn with_setter<M>(
-        v: Variable<M>,
-        set: impl Fn(&mut M, bool) -> Result<(), String> + Send + Sync + 'static,
-    ) -> Variable<M> {
-        v.set_boolean(set)
-    }
-}
+element_type!(f64, real, set_real);
+element_type!(i32, integer, set_integer);
+element_type!(bool, boolean, set_boolean);
 
 /// What a declaration does to element i (causality, unit, start value, writer, ...).
 pub trait Role<M>: Fn(Variable<M>, usize) -> Variable<M> {}

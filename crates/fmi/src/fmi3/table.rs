@@ -420,7 +420,7 @@ fn fmi3_reference<M>(table: &[Variable<M>], groups: &[Group], name: &str) -> Opt
 }
 
 /// The description of the FMI 3.0 variable `v` (for modelDescription.xml): an array's
-/// elements' common text ([`array_description`]).
+/// elements' common text without the "Axis i: " labels naming each element.
 pub fn description<M>(table: &[Variable<M>], v: &Variable3) -> String {
     match &v.source {
         Source::Time => "Simulation time".to_string(),
