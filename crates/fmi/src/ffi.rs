@@ -24,6 +24,10 @@ pub unsafe fn input_slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Result<
         Ok(&[])
     } else if ptr.is_null() {
         Err(format!("{what} is a null pointer (length {n})"))
+    } else if !fits_in_memory::<T>(n) {
+        Err(format!(
+            "{what}: a length of {n} elements exceeds the address space"
+        ))
     } else {
         // SAFETY: non-null and, by the caller's contract, valid for n elements.
         Ok(unsafe { std::slice::from_raw_parts(ptr, n) })
@@ -44,6 +48,10 @@ pub unsafe fn output_slice<'a, T>(
         Ok(&mut [])
     } else if ptr.is_null() {
         Err(format!("{what} is a null pointer (length {n})"))
+    } else if !fits_in_memory::<T>(n) {
+        Err(format!(
+            "{what}: a length of {n} elements exceeds the address space"
+        ))
     } else {
         // SAFETY: non-null and, by the caller's contract, valid for n elements.
         Ok(unsafe { std::slice::from_raw_parts_mut(ptr, n) })
@@ -87,4 +95,35 @@ pub unsafe fn text<'a>(ptr: *const c_char, what: &str) -> Result<&'a str, String
 /// `message` as a C string, NUL bytes (which would cut it short) replaced by spaces.
 pub fn c_string(message: &str) -> CString {
     CString::new(message.replace('\0', " ")).unwrap_or_default()
+}
+
+/// Whether `n` elements of `T` can exist at all (a slice may span at most isize::MAX
+/// bytes): a larger count from the host is refused before any slice is formed.
+fn fits_in_memory<T>(n: usize) -> bool {
+    n.checked_mul(std::mem::size_of::<T>())
+        .is_some_and(|bytes| bytes <= isize::MAX as usize)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_length_beyond_the_address_space_is_refused_before_a_slice_is_formed() {
+        // Expected: from_raw_parts requires n * size_of::<T>() <= isize::MAX (std docs);
+        // 2^60 f64 are 2^63 bytes, one byte more than isize::MAX allows.
+        let x = [1.0_f64; 3];
+        let huge = 1_usize << 60;
+        let err = unsafe { input_slice(x.as_ptr(), huge, "values[]") }.unwrap_err();
+        assert!(err.contains("exceeds the address space"), "{err}");
+        let mut y = [0.0_f64; 3];
+        let err = unsafe { output_slice(y.as_mut_ptr(), huge, "values[]") }.unwrap_err();
+        assert!(err.contains("exceeds the address space"), "{err}");
+        assert_eq!(
+            unsafe { input_slice(x.as_ptr(), 3, "values[]") }.unwrap(),
+            &x
+        );
+        assert!(fits_in_memory::<f64>((isize::MAX as usize) / 8));
+        assert!(!fits_in_memory::<f64>((isize::MAX as usize) / 8 + 1));
+    }
 }

@@ -105,7 +105,10 @@ const AXIS_STRIDE: u32 = 10;
 /// (axis, k) of the output value reference `output_vr(axis, k)`.
 fn output_of(vr: u32) -> Option<(usize, usize)> {
     let offset = vr.checked_sub(100)?;
-    let (axis, k) = ((offset / AXIS_STRIDE) as usize, (offset % AXIS_STRIDE) as usize);
+    let (axis, k) = (
+        (offset / AXIS_STRIDE) as usize,
+        (offset % AXIS_STRIDE) as usize,
+    );
     (axis < AXES && k < OUTPUTS.len()).then_some((axis, k))
 }
 

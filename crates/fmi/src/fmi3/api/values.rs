@@ -19,11 +19,15 @@ fn read<M: Model, T: Default + Clone>(
     function: &str,
     vrs: &[Fmi3ValueReference],
     wanted: VariableType,
-    out: &mut [T],
+    (values, n_values): (*mut T, usize),
     read: impl Fn(&Instance<M>, &Variable3, &mut [T]) -> Result<(), String>,
 ) -> Result<Fmi3Status, String> {
     let table = Arc::clone(&inst.table);
-    let variables = table.typed_all(vrs, wanted, out.len())?;
+    // nValues is checked against the declared sizes before a slice of that length
+    // is formed over the host's buffer.
+    let variables = table.typed_all(vrs, wanted, n_values)?;
+    // SAFETY: the host's buffer holds nValues elements, which match the variables.
+    let out = unsafe { output_slice(values, n_values, "values[]") }?;
     if let Some(reason) = inst.prepare_read(&variables)? {
         return Ok(entry::discard(inst, function, &reason));
     }
@@ -40,12 +44,15 @@ fn write<M: Model, T>(
     inst: &mut Instance<M>,
     vrs: &[Fmi3ValueReference],
     wanted: VariableType,
-    values: &[T],
+    (values, n_values): (*const T, usize),
     write: impl Fn(&mut Instance<M>, &Variable3, &[T]) -> Result<(), String>,
 ) -> Result<Fmi3Status, String> {
     let table = Arc::clone(&inst.table);
+    let variables = table.typed_all(vrs, wanted, n_values)?;
+    // SAFETY: as in `read`, the length was checked against the variables first.
+    let values = unsafe { input_slice(values, n_values, "values[]") }?;
     let mut at = 0;
-    for v in table.typed_all(vrs, wanted, values.len())? {
+    for v in variables {
         write(inst, v, &values[at..at + v.size()])?;
         at += v.size();
     }
@@ -62,13 +69,12 @@ pub unsafe fn get_float64<M: Model>(
     unsafe {
         with_instance::<M>(c, "fmi3GetFloat64", Call::GetValues, |inst| {
             let vrs = input_slice(vr, nvr, "valueReferences[]")?;
-            let out = output_slice(values, n_values, "values[]")?;
             read(
                 inst,
                 "fmi3GetFloat64",
                 vrs,
                 VariableType::Real,
-                out,
+                (values, n_values),
                 |i, v, o| i.get_float64(v, o),
             )
         })
@@ -85,13 +91,12 @@ pub unsafe fn get_int32<M: Model>(
     unsafe {
         with_instance::<M>(c, "fmi3GetInt32", Call::GetValues, |inst| {
             let vrs = input_slice(vr, nvr, "valueReferences[]")?;
-            let out = output_slice(values, n_values, "values[]")?;
             read(
                 inst,
                 "fmi3GetInt32",
                 vrs,
                 VariableType::Integer,
-                out,
+                (values, n_values),
                 |i, v, o| i.get_int32(v, o),
             )
         })
@@ -108,13 +113,12 @@ pub unsafe fn get_boolean<M: Model>(
     unsafe {
         with_instance::<M>(c, "fmi3GetBoolean", Call::GetValues, |inst| {
             let vrs = input_slice(vr, nvr, "valueReferences[]")?;
-            let out = output_slice(values, n_values, "values[]")?;
             read(
                 inst,
                 "fmi3GetBoolean",
                 vrs,
                 VariableType::Boolean,
-                out,
+                (values, n_values),
                 |i, v, o| {
                     let mut flags = vec![false; o.len()];
                     i.get_boolean(v, &mut flags)?;
@@ -138,10 +142,13 @@ pub unsafe fn set_float64<M: Model>(
     unsafe {
         with_instance::<M>(c, "fmi3SetFloat64", Call::SetFloat64, |inst| {
             let vrs = input_slice(vr, nvr, "valueReferences[]")?;
-            let given = input_slice(values, n_values, "values[]")?;
-            write(inst, vrs, VariableType::Real, given, |i, v, x| {
-                i.set_float64(v, x)
-            })
+            write(
+                inst,
+                vrs,
+                VariableType::Real,
+                (values, n_values),
+                |i, v, x| i.set_float64(v, x),
+            )
         })
     }
 }
@@ -156,10 +163,13 @@ pub unsafe fn set_int32<M: Model>(
     unsafe {
         with_instance::<M>(c, "fmi3SetInt32", Call::SetDiscrete, |inst| {
             let vrs = input_slice(vr, nvr, "valueReferences[]")?;
-            let given = input_slice(values, n_values, "values[]")?;
-            write(inst, vrs, VariableType::Integer, given, |i, v, x| {
-                i.set_int32(v, x)
-            })
+            write(
+                inst,
+                vrs,
+                VariableType::Integer,
+                (values, n_values),
+                |i, v, x| i.set_int32(v, x),
+            )
         })
     }
 }
@@ -174,11 +184,16 @@ pub unsafe fn set_boolean<M: Model>(
     unsafe {
         with_instance::<M>(c, "fmi3SetBoolean", Call::SetDiscrete, |inst| {
             let vrs = input_slice(vr, nvr, "valueReferences[]")?;
-            let given = input_slice(values, n_values, "values[]")?;
-            write(inst, vrs, VariableType::Boolean, given, |i, v, x| {
-                let flags: Vec<bool> = x.iter().map(|&b| b != FMI3_FALSE).collect();
-                i.set_boolean(v, &flags)
-            })
+            write(
+                inst,
+                vrs,
+                VariableType::Boolean,
+                (values, n_values),
+                |i, v, x| {
+                    let flags: Vec<bool> = x.iter().map(|&b| b != FMI3_FALSE).collect();
+                    i.set_boolean(v, &flags)
+                },
+            )
         })
     }
 }
