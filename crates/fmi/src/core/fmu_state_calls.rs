@@ -23,17 +23,15 @@ pub unsafe fn get<I: FrontendInstance>(inst: &mut I, state: *mut *mut c_void) ->
     let owner = inst as *mut I as *mut c_void;
     let slot = unsafe { output_ref(state, noun::<I>()) }?;
     let snapshot = inst.snapshot();
-    unsafe { fmu_states::store(slot, snapshot, owner, noun::<I>()) }?;
+    fmu_states::store(slot, snapshot, owner, noun::<I>())?;
     Ok(StatusCode::OK)
 }
 
 /// SetFMUState.
 ///
-/// # Safety
-/// A live `state` must not be freed during the call.
-pub unsafe fn set<I: FrontendInstance>(inst: &mut I, state: *mut c_void) -> Result<I> {
-    let s = unsafe { fmu_states::snapshot::<I::Model>(state, noun::<I>()) }?;
-    inst.restore(s);
+pub fn set<I: FrontendInstance>(inst: &mut I, state: *mut c_void) -> Result<I> {
+    let s = fmu_states::snapshot::<I::Model>(state, noun::<I>())?;
+    inst.restore(&s);
     Ok(StatusCode::OK)
 }
 
@@ -43,37 +41,36 @@ pub unsafe fn set<I: FrontendInstance>(inst: &mut I, state: *mut c_void) -> Resu
 /// `state` must be null or valid; a non-null `*state` must not be borrowed.
 pub unsafe fn free<I: FrontendInstance>(_inst: &mut I, state: *mut *mut c_void) -> Result<I> {
     let slot = unsafe { output_ref(state, noun::<I>()) }?;
-    unsafe { fmu_states::free::<I::Model>(slot, noun::<I>()) }?;
+    fmu_states::free::<I::Model>(slot, noun::<I>())?;
     Ok(StatusCode::OK)
 }
 
 /// SerializedFMUStateSize.
 ///
 /// # Safety
-/// `size` must be null or valid; a live `state` must not be freed during the call.
+/// `size` must be null or valid.
 pub unsafe fn serialized_size<I: FrontendInstance>(
     inst: &mut I,
     state: *mut c_void,
     size: *mut usize,
 ) -> Result<I> {
-    let s = unsafe { fmu_states::snapshot::<I::Model>(state, noun::<I>()) }?;
-    *unsafe { output_ref(size, "size") }? = serialize(inst.parts().core.table(), s).len();
+    let s = fmu_states::snapshot::<I::Model>(state, noun::<I>())?;
+    *unsafe { output_ref(size, "size") }? = serialize(inst.parts().core.table(), &s).len();
     Ok(StatusCode::OK)
 }
 
 /// SerializeFMUState into `bytes` of the length SerializedFMUStateSize gave.
 ///
 /// # Safety
-/// `bytes` must be null or valid for `size` bytes; a live `state` must not be freed
-/// during the call.
+/// `bytes` must be null or valid for `size` bytes.
 pub unsafe fn serialize_into<I: FrontendInstance>(
     inst: &mut I,
     state: *mut c_void,
     bytes: *mut u8,
     size: usize,
 ) -> Result<I> {
-    let s = unsafe { fmu_states::snapshot::<I::Model>(state, noun::<I>()) }?;
-    let data = serialize(inst.parts().core.table(), s);
+    let s = fmu_states::snapshot::<I::Model>(state, noun::<I>())?;
+    let data = serialize(inst.parts().core.table(), &s);
     if size != data.len() {
         return Err(format!(
             "size {size} differs from fmi{}Serialized{}Size = {}",
@@ -102,6 +99,6 @@ pub unsafe fn deserialize_from<I: FrontendInstance>(
     let data = unsafe { input_slice(bytes, size, "serializedState[]") }?;
     let slot = unsafe { output_ref(state, noun::<I>()) }?;
     let s = deserialize::<I::Model>(inst.parts().core.table(), data)?;
-    unsafe { fmu_states::store(slot, s, owner, noun::<I>()) }?;
+    fmu_states::store(slot, s, owner, noun::<I>())?;
     Ok(StatusCode::OK)
 }

@@ -8,41 +8,39 @@ use super::instance::Snapshot;
 use super::model::Model;
 use std::ffi::c_void;
 
-/// Checks that `state` is a live FMU state of model M (looked up, not dereferenced).
-fn check<M: Model>(state: *mut c_void, noun: &str) -> Result<(), String> {
+/// The refusal of a pointer that is not a live FMU state of model M.
+fn not_live<M: Model>(state: *mut c_void, noun: &str) -> String {
+    format!(
+        "{noun} {state:p} is not a live FMU state of {}: never issued, already \
+         freed, or another FMU's",
+        M::info().model_name
+    )
+}
+
+fn null(state: *mut c_void, noun: &str) -> Result<(), String> {
     if state.is_null() {
         return Err(format!("{noun} is a null pointer"));
-    }
-    if !handles::is_live::<M>(state as usize, HandleKind::State) {
-        return Err(format!(
-            "{noun} {state:p} is not a live FMU state of {}: never issued, already \
-             freed, or another FMU's",
-            M::info().model_name
-        ));
     }
     Ok(())
 }
 
-/// The snapshot behind an FMU state pointer.
-///
-/// # Safety
-/// A live state of M must not be freed while the returned reference is used.
-pub unsafe fn snapshot<'a, M: Model>(
-    state: *mut c_void,
-    noun: &str,
-) -> Result<&'a Snapshot<M>, String> {
-    check::<M>(state, noun)?;
-    // SAFETY: registered as a live state of M, created by `store` below.
-    Ok(unsafe { &*(state as *const Snapshot<M>) })
+/// A copy of the snapshot behind an FMU state pointer, taken with the registry locked
+/// so that no other thread (another instance the state was passed to) can free it
+/// during the copy.
+pub fn snapshot<M: Model>(state: *mut c_void, noun: &str) -> Result<Snapshot<M>, String> {
+    null(state, noun)?;
+    handles::while_live::<M, _>(state as usize, HandleKind::State, || {
+        // SAFETY: registered as a live state of M (created by `store` below) and
+        // not freeable while the registry is locked.
+        unsafe { (*(state as *const Snapshot<M>)).clone() }
+    })
+    .ok_or_else(|| not_live::<M>(state, noun))
 }
 
 /// Stores `s` in `*slot`, reusing the state already there (the standard lets the
 /// host pass a previously obtained state to be overwritten). A new state belongs to
 /// the instance `owner` and is freed with it at the latest.
-///
-/// # Safety
-/// No reference to the snapshot in a non-null `*slot` may be alive.
-pub unsafe fn store<M: Model>(
+pub fn store<M: Model>(
     slot: &mut *mut c_void,
     s: Snapshot<M>,
     owner: *mut c_void,
@@ -52,25 +50,29 @@ pub unsafe fn store<M: Model>(
         let state = Box::into_raw(Box::new(s)) as *mut c_void;
         handles::register::<M>(state as usize, HandleKind::State, owner as usize);
         *slot = state;
-    } else {
-        check::<M>(*slot, noun)?;
-        // SAFETY: registered as a live state of M.
-        unsafe { *(*slot as *mut Snapshot<M>) = s };
+        return Ok(());
     }
-    Ok(())
+    let state = *slot;
+    handles::while_live::<M, _>(state as usize, HandleKind::State, || {
+        // SAFETY: a live state of M, not freeable while the registry is locked.
+        unsafe { *(state as *mut Snapshot<M>) = s };
+    })
+    .ok_or_else(|| not_live::<M>(state, noun))
 }
 
-/// Frees the state in `*slot` (nothing if null) and sets `*slot` to null.
-///
-/// # Safety
-/// No reference to the snapshot in `*slot` may be alive.
-pub unsafe fn free<M: Model>(slot: &mut *mut c_void, noun: &str) -> Result<(), String> {
-    if !slot.is_null() {
-        check::<M>(*slot, noun)?;
-        handles::unregister::<M>(*slot as usize, HandleKind::State);
-        // SAFETY: was a live state of M, now unregistered: freed exactly once.
-        drop(unsafe { Box::from_raw(*slot as *mut Snapshot<M>) });
-        *slot = std::ptr::null_mut();
+/// Frees the state in `*slot` (nothing if null) and sets `*slot` to null. Only the
+/// call that unregisters the state frees it, so two threads freeing the same state
+/// cannot both drop it.
+pub fn free<M: Model>(slot: &mut *mut c_void, noun: &str) -> Result<(), String> {
+    let state = *slot;
+    if state.is_null() {
+        return Ok(());
     }
+    if !handles::unregister::<M>(state as usize, HandleKind::State) {
+        return Err(not_live::<M>(state, noun));
+    }
+    // SAFETY: was a live state of M, and this call unregistered it: freed once.
+    drop(unsafe { Box::from_raw(state as *mut Snapshot<M>) });
+    *slot = std::ptr::null_mut();
     Ok(())
 }

@@ -51,6 +51,23 @@ pub fn is_live<M: 'static>(address: usize, kind: HandleKind) -> bool {
         .any(|e| e.address == address && e.kind == kind && e.model == TypeId::of::<M>())
 }
 
+/// Runs `f` if `address` is a live handle of `kind` for model `M` (None if not), with
+/// the registry locked throughout: no other thread can unregister and free the handle
+/// while `f` reads or writes what it points to.
+pub fn while_live<M: 'static, R>(
+    address: usize,
+    kind: HandleKind,
+    f: impl FnOnce() -> R,
+) -> Option<R> {
+    let list = live();
+    let found = list
+        .iter()
+        .any(|e| e.address == address && e.kind == kind && e.model == TypeId::of::<M>());
+    let result = found.then(f);
+    drop(list);
+    result
+}
+
 /// Forgets a handle of model `M`; false if it was not live. The list gives its memory
 /// back when it becomes empty.
 pub fn unregister<M: 'static>(address: usize, kind: HandleKind) -> bool {
@@ -126,5 +143,31 @@ mod tests {
         assert!(!is_live::<A>(0x2000, HandleKind::State));
         assert!(unregister::<A>(0x1000, HandleKind::Instance));
         assert!(!unregister::<A>(0x1000, HandleKind::Instance));
+    }
+
+    #[test]
+    fn a_handle_cannot_be_unregistered_while_another_thread_uses_it() {
+        // Expected order: the reader holds the registry while it uses the handle, so
+        // the other thread's unregister (the first step of freeing) comes after it.
+        struct C;
+        use std::sync::mpsc;
+        register::<C>(0x5000, HandleKind::State, 0x4000);
+        let order = Mutex::new(Vec::new());
+        let (inside, entered) = mpsc::channel();
+        std::thread::scope(|scope| {
+            scope.spawn(|| {
+                while_live::<C, _>(0x5000, HandleKind::State, || {
+                    inside.send(()).unwrap();
+                    std::thread::sleep(std::time::Duration::from_millis(50));
+                    order.lock().unwrap().push("read");
+                })
+                .expect("live");
+            });
+            entered.recv().unwrap();
+            assert!(unregister::<C>(0x5000, HandleKind::State));
+            order.lock().unwrap().push("unregistered");
+        });
+        assert_eq!(*order.lock().unwrap(), ["read", "unregistered"]);
+        assert_eq!(while_live::<C, _>(0x5000, HandleKind::State, || ()), None);
     }
 }
