@@ -15,6 +15,20 @@ pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
     }
 }
 
+/// Refuses a C array of `n` > 0 elements that is null or longer than memory can
+/// hold, without forming a slice (so a caller can check this before other arguments).
+pub fn check_array<T>(ptr: *const T, n: usize, what: &str) -> Result<(), String> {
+    if n > 0 && ptr.is_null() {
+        Err(format!("{what} is a null pointer (length {n})"))
+    } else if !fits_in_memory::<T>(n) {
+        Err(format!(
+            "{what}: a length of {n} elements exceeds the address space"
+        ))
+    } else {
+        Ok(())
+    }
+}
+
 /// A slice from a C array; null is accepted only for an empty array.
 ///
 /// # Safety
@@ -22,13 +36,8 @@ pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
 pub unsafe fn input_slice<'a, T>(ptr: *const T, n: usize, what: &str) -> Result<&'a [T], String> {
     if n == 0 {
         Ok(&[])
-    } else if ptr.is_null() {
-        Err(format!("{what} is a null pointer (length {n})"))
-    } else if !fits_in_memory::<T>(n) {
-        Err(format!(
-            "{what}: a length of {n} elements exceeds the address space"
-        ))
     } else {
+        check_array(ptr, n, what)?;
         // SAFETY: non-null and, by the caller's contract, valid for n elements.
         Ok(unsafe { std::slice::from_raw_parts(ptr, n) })
     }
@@ -46,13 +55,8 @@ pub unsafe fn output_slice<'a, T>(
 ) -> Result<&'a mut [T], String> {
     if n == 0 {
         Ok(&mut [])
-    } else if ptr.is_null() {
-        Err(format!("{what} is a null pointer (length {n})"))
-    } else if !fits_in_memory::<T>(n) {
-        Err(format!(
-            "{what}: a length of {n} elements exceeds the address space"
-        ))
     } else {
+        check_array(ptr, n, what)?;
         // SAFETY: non-null and, by the caller's contract, valid for n elements.
         Ok(unsafe { std::slice::from_raw_parts_mut(ptr, n) })
     }

@@ -6,6 +6,7 @@ use super::{input_slice, output_slice, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::variables::VariableType;
+use crate::ffi::check_array;
 use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::Call;
 use crate::fmi3::table::Variable3;
@@ -22,6 +23,7 @@ fn read<M: Model, T: Default + Clone>(
     (values, n_values): (*mut T, usize),
     read: impl Fn(&Instance<M>, &Variable3, &mut [T]) -> Result<(), String>,
 ) -> Result<Fmi3Status, String> {
+    check_array(values, n_values, "values[]")?;
     let table = Arc::clone(&inst.table);
     // nValues is checked against the declared sizes before a slice of that length
     // is formed over the host's buffer.
@@ -47,6 +49,7 @@ fn write<M: Model, T>(
     (values, n_values): (*const T, usize),
     write: impl Fn(&mut Instance<M>, &Variable3, &[T]) -> Result<(), String>,
 ) -> Result<Fmi3Status, String> {
+    check_array(values, n_values, "values[]")?;
     let table = Arc::clone(&inst.table);
     let variables = table.typed_all(vrs, wanted, n_values)?;
     // SAFETY: as in `read`, the length was checked against the variables first.
