@@ -25,6 +25,7 @@ pub mod matrix;
 pub mod plant_hard;
 pub mod rng;
 pub mod sequences;
+pub mod standard_interface;
 pub mod threads;
 
 use binary::Binary;

@@ -58,7 +58,7 @@ fn uses() -> [(&'static str, Use); 5] {
 
 fn probe(l: &Loaded, m: usize, interface: Interface3, bad: BadState, use_it: Use) -> Observed {
     let inst = Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface);
-    if let Err(e) = inst.reach(super::State3::InitializationMode) {
+    if let Err(e) = inst.reach(crate::fmi3::host::State3::InitializationMode) {
         return Observed::broken(e);
     }
     let other_model = (m + 1) % l.fmus3.len();
@@ -123,7 +123,7 @@ fn fmi2_state(l: &Loaded, m: usize, interface: Interface3) -> Observed {
     }
     let (_, state) = source.get_state();
     let inst = Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface);
-    if let Err(e) = inst.reach(super::State3::InitializationMode) {
+    if let Err(e) = inst.reach(crate::fmi3::host::State3::InitializationMode) {
         return Observed::broken(e);
     }
     // SAFETY: a live state of the same model (the probe's point).

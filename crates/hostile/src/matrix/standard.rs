@@ -1,0 +1,50 @@
+//! FMI 2.0 as a `StandardInterface`: its two interfaces, eight states, fmi2
+//! instances and call arguments.
+
+use super::calls::Args;
+use crate::Loaded;
+use crate::binary::{Binary, Component, Status};
+use crate::host::{Instance, Interface, State};
+use crate::standard_interface::StandardInterface;
+use std::ffi::c_void;
+
+impl StandardInterface for Interface {
+    type State = State;
+    type Instance<'a> = Instance<'a>;
+    type Binary = Binary;
+    type Handle = Component;
+    type Args = Args;
+
+    const INTERFACES: &'static [Interface] = &Interface::BOTH;
+    const STATES: &'static [State] = &State::ALL;
+
+    fn short(self) -> &'static str {
+        Interface::short(self)
+    }
+    fn instance(self, loaded: &Loaded, m: usize) -> Instance<'_> {
+        Instance::new(&loaded.binaries[m], &loaded.fmus[m].description, self)
+    }
+    /// StepFailed is reached with a discarded step, which needs a force input.
+    fn reachable(self, loaded: &Loaded, m: usize, state: State) -> bool {
+        state.exists_for(self)
+            && (state != State::StepFailed
+                || loaded.fmus[m]
+                    .description
+                    .variables
+                    .iter()
+                    .any(|v| v.name == "actuatorForce[1]"))
+    }
+    fn reach(inst: &Instance<'_>, state: State) -> Result<(), String> {
+        inst.reach(state)
+    }
+    /// An FMI 2.0 instance in Error can only be freed: nothing to check.
+    fn usable_after(_: &Instance<'_>, _: Status) -> Result<(), String> {
+        Ok(())
+    }
+    fn raw<'i>(inst: &'i Instance<'_>) -> (&'i Binary, Component) {
+        (inst.binary, inst.c)
+    }
+    fn args(inst: &Instance<'_>, state: *mut c_void) -> Args {
+        Args::new(inst.description, state)
+    }
+}
