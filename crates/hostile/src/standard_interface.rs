@@ -21,7 +21,7 @@ pub trait StandardInterface: Copy + Send + Sync + 'static {
     /// The loaded function table.
     type Binary;
     /// The C handle of an instance.
-    type Handle: Copy;
+    type Handle: Copy + Into<*mut c_void>;
     /// Well-formed arguments of the call table.
     type Args;
 
@@ -29,6 +29,8 @@ pub trait StandardInterface: Copy + Send + Sync + 'static {
     const INTERFACES: &'static [Self];
     /// Every state of the standard's state machines.
     const STATES: &'static [Self::State];
+    /// Initialization Mode, where FMU states can be taken and set.
+    const INITIALIZATION_MODE: Self::State;
 
     /// The interface's short name in case names ("ME", "CS", ...).
     fn short(self) -> &'static str;

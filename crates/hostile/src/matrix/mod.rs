@@ -3,6 +3,7 @@
 //! choice). Cases run in forked children, grouped per model; a crash fails only
 //! the case that caused it.
 
+pub mod bad_states;
 pub mod calls;
 pub mod handles;
 pub mod instantiate;

@@ -3,7 +3,7 @@
 
 use super::calls::Args;
 use crate::Loaded;
-use crate::binary::{Binary, Component, Status};
+use crate::binary::{Binary, Component, ERROR, OK, Status};
 use crate::host::{Instance, Interface, State};
 use crate::standard_interface::StandardInterface;
 use std::ffi::c_void;
@@ -17,6 +17,7 @@ impl StandardInterface for Interface {
 
     const INTERFACES: &'static [Interface] = &Interface::BOTH;
     const STATES: &'static [State] = &State::ALL;
+    const INITIALIZATION_MODE: State = State::InitializationMode;
 
     fn short(self) -> &'static str {
         Interface::short(self)
@@ -37,8 +38,17 @@ impl StandardInterface for Interface {
     fn reach(inst: &Instance<'_>, state: State) -> Result<(), String> {
         inst.reach(state)
     }
-    /// An FMI 2.0 instance in Error can only be freed: nothing to check.
-    fn usable_after(_: &Instance<'_>, _: Status) -> Result<(), String> {
+    /// An FMI 2.0 instance in Error can only be freed; what it still reports
+    /// must not be a silent NaN: after fmi2Error, outputs read with fmi2OK are
+    /// finite.
+    fn usable_after(inst: &Instance<'_>, status: Status) -> Result<(), String> {
+        if status != ERROR {
+            return Ok(());
+        }
+        let (s, x) = inst.get_reals(&inst.description.real_vrs());
+        if s == OK && x.iter().any(|v| !v.is_finite()) {
+            return Err("outputs not finite after the refusal".into());
+        }
         Ok(())
     }
     fn raw<'i>(inst: &'i Instance<'_>) -> (&'i Binary, Component) {

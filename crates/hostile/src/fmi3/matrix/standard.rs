@@ -18,6 +18,7 @@ impl StandardInterface for Interface3 {
 
     const INTERFACES: &'static [Interface3] = &Interface3::ALL;
     const STATES: &'static [State3] = &State3::ALL;
+    const INITIALIZATION_MODE: State3 = State3::InitializationMode;
 
     fn short(self) -> &'static str {
         Interface3::short(self)
