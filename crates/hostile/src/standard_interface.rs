@@ -31,6 +31,10 @@ pub trait StandardInterface: Copy + Send + Sync + 'static {
     const STATES: &'static [Self::State];
     /// Initialization Mode, where FMU states can be taken and set.
     const INITIALIZATION_MODE: Self::State;
+    /// Model Exchange.
+    const MODEL_EXCHANGE: Self;
+    /// Continuous-Time Mode of Model Exchange.
+    const CONTINUOUS_TIME_MODE: Self::State;
 
     /// The interface's short name in case names ("ME", "CS", ...).
     fn short(self) -> &'static str;
@@ -46,10 +50,17 @@ pub trait StandardInterface: Copy + Send + Sync + 'static {
     fn usable_after(inst: &Self::Instance<'_>, status: Status) -> Result<(), String>;
     /// The loaded function table and the C handle of an instance.
     fn raw<'i>(inst: &'i Self::Instance<'_>) -> (&'i Self::Binary, Self::Handle);
+    /// fmiXGetContinuousStates and fmiXSetContinuousStates of the loaded binary.
+    fn continuous_states(binary: &Self::Binary) -> (GetStates, SetStates);
     /// Well-formed arguments for the calls on the instance's model, with `state`
     /// a valid FMU state of the instance.
     fn args(inst: &Self::Instance<'_>, state: *mut c_void) -> Self::Args;
 }
+
+/// fmi2GetContinuousStates / fmi3GetContinuousStates (the same C signature).
+pub type GetStates = unsafe extern "C" fn(*mut c_void, *mut f64, usize) -> Status;
+/// fmi2SetContinuousStates / fmi3SetContinuousStates (the same C signature).
+pub type SetStates = unsafe extern "C" fn(*mut c_void, *const f64, usize) -> Status;
 
 /// Whether the standard allows a call in a state of an interface.
 pub type Legal<I> = fn(I, <I as StandardInterface>::State) -> bool;

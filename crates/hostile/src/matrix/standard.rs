@@ -5,7 +5,7 @@ use super::calls::Args;
 use crate::Loaded;
 use crate::binary::{Binary, Component, ERROR, OK, Status};
 use crate::host::{Instance, Interface, State};
-use crate::standard_interface::StandardInterface;
+use crate::standard_interface::{GetStates, SetStates, StandardInterface};
 use std::ffi::c_void;
 
 impl StandardInterface for Interface {
@@ -18,6 +18,8 @@ impl StandardInterface for Interface {
     const INTERFACES: &'static [Interface] = &Interface::BOTH;
     const STATES: &'static [State] = &State::ALL;
     const INITIALIZATION_MODE: State = State::InitializationMode;
+    const MODEL_EXCHANGE: Interface = Interface::ModelExchange;
+    const CONTINUOUS_TIME_MODE: State = State::ContinuousTimeMode;
 
     fn short(self) -> &'static str {
         Interface::short(self)
@@ -53,6 +55,9 @@ impl StandardInterface for Interface {
     }
     fn raw<'i>(inst: &'i Instance<'_>) -> (&'i Binary, Component) {
         (inst.binary, inst.c)
+    }
+    fn continuous_states(b: &Binary) -> (GetStates, SetStates) {
+        (b.get_continuous_states, b.set_continuous_states)
     }
     fn args(inst: &Instance<'_>, state: *mut c_void) -> Args {
         Args::new(inst.description, state)

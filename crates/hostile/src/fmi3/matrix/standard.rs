@@ -6,7 +6,7 @@ use crate::Loaded;
 use crate::binary::{ERROR, Status};
 use crate::fmi3::binary::{Binary3, Instance3};
 use crate::fmi3::host::{Instance, Interface3, State3};
-use crate::standard_interface::StandardInterface;
+use crate::standard_interface::{GetStates, SetStates, StandardInterface};
 use std::ffi::c_void;
 
 impl StandardInterface for Interface3 {
@@ -19,6 +19,8 @@ impl StandardInterface for Interface3 {
     const INTERFACES: &'static [Interface3] = &Interface3::ALL;
     const STATES: &'static [State3] = &State3::ALL;
     const INITIALIZATION_MODE: State3 = State3::InitializationMode;
+    const MODEL_EXCHANGE: Interface3 = Interface3::ModelExchange;
+    const CONTINUOUS_TIME_MODE: State3 = State3::ContinuousTimeMode;
 
     fn short(self) -> &'static str {
         Interface3::short(self)
@@ -51,6 +53,9 @@ impl StandardInterface for Interface3 {
     }
     fn raw<'i>(inst: &'i Instance<'_>) -> (&'i Binary3, Instance3) {
         (inst.binary, inst.c)
+    }
+    fn continuous_states(b: &Binary3) -> (GetStates, SetStates) {
+        (b.get_continuous_states, b.set_continuous_states)
     }
     fn args(inst: &Instance<'_>, state: *mut c_void) -> Args {
         Args::new(inst.description, state)
