@@ -4,21 +4,21 @@
 //! (the standard leaves null arguments undefined; the project refuses them, see
 //! docs/reliability.md), and the instance recovers with fmi3Reset.
 
+use super::Case;
 use super::calls::Args;
-use super::{Case, with_args};
 use crate::Loaded;
 use crate::binary::Status;
 use crate::description::Description;
 use crate::fmi3::binary::{Binary3, FmuState, Instance3, Vr};
 use crate::fmi3::host::{Interface3, State3};
-use crate::matrix::Expect;
+use crate::matrix::pointers::{self, null_pointer_cases};
 use std::ptr::{null, null_mut};
 
 const WHY: &str = "null argument with a non-zero length: undefined in FMI 3.0; refused with fmi3Error and a log line (project choice); fmi3Reset recovers";
 
-type Applies = fn(&Description, Interface3) -> Option<State3>;
-type Invoke = unsafe fn(&Binary3, Instance3, &Args) -> Status;
-type Row = (&'static str, Applies, Invoke);
+type Applies = pointers::Applies<Interface3>;
+type Invoke = crate::standard_interface::Invoke<Interface3>;
+type Row = pointers::Row<Interface3>;
 
 fn init(_: &Description, _: Interface3) -> Option<State3> {
     Some(State3::InitializationMode)
@@ -483,26 +483,5 @@ fn table() -> Vec<Row> {
 
 pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
     let d = &loaded.fmus3[m].description;
-    let mut cases = Vec::new();
-    for interface in Interface3::ALL {
-        for (name, applies, invoke) in table() {
-            let Some(state) = applies(d, interface) else {
-                continue;
-            };
-            cases.push(Case {
-                class: "fmi3 null pointer",
-                model: m,
-                interface: Some(interface.short()),
-                name: name.to_string(),
-                expect: Expect::error("null"),
-                why: WHY,
-                probe: Box::new(move |l| {
-                    with_args(l, m, interface, state, |inst, a| unsafe {
-                        invoke(inst.binary, inst.c, a)
-                    })
-                }),
-            });
-        }
-    }
-    cases
+    null_pointer_cases::<Interface3>((d, m), ("fmi3 null pointer", WHY), table)
 }
