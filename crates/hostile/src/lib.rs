@@ -24,6 +24,7 @@ pub mod lifecycle;
 pub mod matrix;
 pub mod plant_hard;
 pub mod rng;
+pub mod sequence_run;
 pub mod sequences;
 pub mod standard_interface;
 pub mod threads;

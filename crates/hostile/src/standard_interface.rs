@@ -13,7 +13,7 @@ use std::fmt::Debug;
 
 /// One standard's interfaces (Model Exchange, Co-Simulation, ...) and what differs
 /// per standard for the probes written on them.
-pub trait StandardInterface: Copy + Send + Sync + 'static {
+pub trait StandardInterface: Copy + PartialEq + Send + Sync + 'static {
     /// The states an instance can be brought into.
     type State: Copy + Debug + PartialEq + Send + Sync + 'static;
     /// A live instance, freed on drop.
@@ -29,6 +29,10 @@ pub trait StandardInterface: Copy + Send + Sync + 'static {
     const INTERFACES: &'static [Self];
     /// Every state of the standard's state machines.
     const STATES: &'static [Self::State];
+    /// The prefix of the standard's function names ("fmi2", "fmi3").
+    const PREFIX: &'static str;
+    /// The state of a fresh instance.
+    const INSTANTIATED: Self::State;
     /// Initialization Mode, where FMU states can be taken and set.
     const INITIALIZATION_MODE: Self::State;
     /// Model Exchange.
@@ -52,6 +56,8 @@ pub trait StandardInterface: Copy + Send + Sync + 'static {
     fn raw<'i>(inst: &'i Self::Instance<'_>) -> (&'i Self::Binary, Self::Handle);
     /// fmiXGetContinuousStates and fmiXSetContinuousStates of the loaded binary.
     fn continuous_states(binary: &Self::Binary) -> (GetStates, SetStates);
+    /// fmiXSetTime of the loaded binary.
+    fn set_time(binary: &Self::Binary) -> SetTime;
     /// Well-formed arguments for the calls on the instance's model, with `state`
     /// a valid FMU state of the instance.
     fn args(inst: &Self::Instance<'_>, state: *mut c_void) -> Self::Args;
@@ -61,6 +67,12 @@ pub trait StandardInterface: Copy + Send + Sync + 'static {
 pub type GetStates = unsafe extern "C" fn(*mut c_void, *mut f64, usize) -> Status;
 /// fmi2SetContinuousStates / fmi3SetContinuousStates (the same C signature).
 pub type SetStates = unsafe extern "C" fn(*mut c_void, *const f64, usize) -> Status;
+
+/// fmi2SetTime / fmi3SetTime (the same C signature).
+pub type SetTime = unsafe extern "C" fn(*mut c_void, f64) -> Status;
+/// A function that takes only the instance (fmiXTerminate, fmiXReset, the mode
+/// transitions; the same C signature in both standards).
+pub type Transition = unsafe extern "C" fn(*mut c_void) -> Status;
 
 /// Whether the standard allows a call in a state of an interface.
 pub type Legal<I> = fn(I, <I as StandardInterface>::State) -> bool;

@@ -5,7 +5,7 @@ use super::calls::Args;
 use crate::Loaded;
 use crate::binary::{Binary, Component, ERROR, OK, Status};
 use crate::host::{Instance, Interface, State};
-use crate::standard_interface::{GetStates, SetStates, StandardInterface};
+use crate::standard_interface::{GetStates, SetStates, SetTime, StandardInterface};
 use std::ffi::c_void;
 
 impl StandardInterface for Interface {
@@ -17,6 +17,8 @@ impl StandardInterface for Interface {
 
     const INTERFACES: &'static [Interface] = &Interface::BOTH;
     const STATES: &'static [State] = &State::ALL;
+    const PREFIX: &'static str = "fmi2";
+    const INSTANTIATED: State = State::Instantiated;
     const INITIALIZATION_MODE: State = State::InitializationMode;
     const MODEL_EXCHANGE: Interface = Interface::ModelExchange;
     const CONTINUOUS_TIME_MODE: State = State::ContinuousTimeMode;
@@ -58,6 +60,9 @@ impl StandardInterface for Interface {
     }
     fn continuous_states(b: &Binary) -> (GetStates, SetStates) {
         (b.get_continuous_states, b.set_continuous_states)
+    }
+    fn set_time(b: &Binary) -> SetTime {
+        b.set_time
     }
     fn args(inst: &Instance<'_>, state: *mut c_void) -> Args {
         Args::new(inst.description, state)

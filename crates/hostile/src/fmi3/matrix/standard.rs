@@ -6,7 +6,7 @@ use crate::Loaded;
 use crate::binary::{ERROR, Status};
 use crate::fmi3::binary::{Binary3, Instance3};
 use crate::fmi3::host::{Instance, Interface3, State3};
-use crate::standard_interface::{GetStates, SetStates, StandardInterface};
+use crate::standard_interface::{GetStates, SetStates, SetTime, StandardInterface};
 use std::ffi::c_void;
 
 impl StandardInterface for Interface3 {
@@ -18,6 +18,8 @@ impl StandardInterface for Interface3 {
 
     const INTERFACES: &'static [Interface3] = &Interface3::ALL;
     const STATES: &'static [State3] = &State3::ALL;
+    const PREFIX: &'static str = "fmi3";
+    const INSTANTIATED: State3 = State3::Instantiated;
     const INITIALIZATION_MODE: State3 = State3::InitializationMode;
     const MODEL_EXCHANGE: Interface3 = Interface3::ModelExchange;
     const CONTINUOUS_TIME_MODE: State3 = State3::ContinuousTimeMode;
@@ -56,6 +58,9 @@ impl StandardInterface for Interface3 {
     }
     fn continuous_states(b: &Binary3) -> (GetStates, SetStates) {
         (b.get_continuous_states, b.set_continuous_states)
+    }
+    fn set_time(b: &Binary3) -> SetTime {
+        b.set_time
     }
     fn args(inst: &Instance<'_>, state: *mut c_void) -> Args {
         Args::new(inst.description, state)
