@@ -77,6 +77,25 @@ impl<I: StandardInterface> Run<'_, I> {
         Ok(())
     }
 
+    /// Get, serialize, deserialize and set back the state: nothing changes.
+    pub fn state_round_trip(&mut self) -> Result<(), String> {
+        let name = |verb: &str| format!("{}{verb}{}", I::PREFIX, I::FMU_STATE);
+        let (s, state) = self.inst.new_state();
+        self.check(&name("Get"), s, false)?;
+        let bytes = I::serialize(&self.inst, state)?;
+        self.calls += 2;
+        let (s, copy) = I::deserialize(&self.inst, &bytes);
+        self.check(I::DESERIALIZE, s, false)?;
+        // SAFETY: a state this instance just deserialized.
+        let s = unsafe { I::set_state(&self.inst, copy) };
+        self.check(&name("Set"), s, false)?;
+        let s = self.inst.release_state(copy);
+        self.check(&name("Free"), s, false)?;
+        let s = self.inst.release_state(state);
+        self.check(&name("Free"), s, false)?;
+        Ok(())
+    }
+
     /// Advances the time of Model Exchange by a random step.
     pub fn advance_time(&mut self) -> Result<(), String> {
         self.time += self.rng.uniform(1e-4, 1e-2);

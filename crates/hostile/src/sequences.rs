@@ -6,7 +6,7 @@
 //! integrator chose); a getter that returns fmi2OK never delivers NaN or inf.
 
 use crate::Loaded;
-use crate::binary::{EventInfo, FmuState, OK};
+use crate::binary::{EventInfo, OK};
 use crate::description::{VarType, Variable};
 use crate::host::{Interface, State};
 use crate::sequence_run;
@@ -73,33 +73,6 @@ impl Run<'_> {
                 x[i]
             ));
         }
-        Ok(())
-    }
-
-    /// Get, serialize, deserialize and set back the state: nothing changes.
-    fn state_round_trip(&mut self) -> Result<(), String> {
-        let (s, state) = self.inst.get_state();
-        self.check("fmi2GetFMUstate", s, false)?;
-        let bytes = self.inst.serialize(state)?;
-        self.calls += 2;
-        let mut copy: FmuState = std::ptr::null_mut();
-        // SAFETY: the instance's own serialized bytes and a null slot.
-        let s = unsafe {
-            (self.inst.binary.deserialize)(
-                self.inst.c,
-                bytes.as_ptr() as *const std::ffi::c_char,
-                bytes.len(),
-                &mut copy,
-            )
-        };
-        self.check("fmi2DeSerializeFMUstate", s, false)?;
-        // SAFETY: a state of this instance.
-        let s = unsafe { (self.inst.binary.set_fmu_state)(self.inst.c, copy) };
-        self.check("fmi2SetFMUstate", s, false)?;
-        let s = self.inst.free_state(copy);
-        self.check("fmi2FreeFMUstate", s, false)?;
-        let s = self.inst.free_state(state);
-        self.check("fmi2FreeFMUstate", s, false)?;
         Ok(())
     }
 

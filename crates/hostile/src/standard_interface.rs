@@ -31,6 +31,11 @@ pub trait StandardInterface: Copy + PartialEq + Send + Sync + 'static {
     const STATES: &'static [Self::State];
     /// The prefix of the standard's function names ("fmi2", "fmi3").
     const PREFIX: &'static str;
+    /// How the standard spells "FMU state" in function names ("FMUstate",
+    /// "FMUState").
+    const FMU_STATE: &'static str;
+    /// The name of the function that deserializes an FMU state.
+    const DESERIALIZE: &'static str;
     /// The state of a fresh instance.
     const INSTANTIATED: Self::State;
     /// Initialization Mode, where FMU states can be taken and set.
@@ -56,6 +61,15 @@ pub trait StandardInterface: Copy + PartialEq + Send + Sync + 'static {
     fn raw<'i>(inst: &'i Self::Instance<'_>) -> (&'i Self::Binary, Self::Handle);
     /// fmiXGetContinuousStates and fmiXSetContinuousStates of the loaded binary.
     fn continuous_states(binary: &Self::Binary) -> (GetStates, SetStates);
+    /// The serialized bytes of an FMU state of the instance.
+    fn serialize(inst: &Self::Instance<'_>, state: *mut c_void) -> Result<Vec<u8>, String>;
+    /// Deserializes `bytes` into a new FMU state: (status, state).
+    fn deserialize(inst: &Self::Instance<'_>, bytes: &[u8]) -> (Status, *mut c_void);
+    /// Sets an FMU state into the instance.
+    ///
+    /// # Safety
+    /// `state` is a state the FMU issued (or what a probe means to test).
+    unsafe fn set_state(inst: &Self::Instance<'_>, state: *mut c_void) -> Status;
     /// fmiXSetTime of the loaded binary.
     fn set_time(binary: &Self::Binary) -> SetTime;
     /// Well-formed arguments for the calls on the instance's model, with `state`

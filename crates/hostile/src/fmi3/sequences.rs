@@ -87,24 +87,6 @@ impl Run<'_> {
         self.finite("fmi3GetFloat64(all)", s, &x)
     }
 
-    /// Get, serialize, deserialize and set back the state: nothing changes.
-    fn state_round_trip(&mut self) -> Result<(), String> {
-        let (s, state) = self.inst.get_state();
-        self.check("fmi3GetFMUState", s, false)?;
-        let bytes = self.inst.serialize(state)?;
-        self.calls += 2;
-        let (s, copy) = self.inst.deserialize(&bytes);
-        self.check("fmi3DeserializeFMUState", s, false)?;
-        // SAFETY: a state of this instance.
-        let s = unsafe { (self.inst.binary.set_fmu_state)(self.inst.c, copy) };
-        self.check("fmi3SetFMUState", s, false)?;
-        let s = self.inst.free_state(copy);
-        self.check("fmi3FreeFMUState", s, false)?;
-        let s = self.inst.free_state(state);
-        self.check("fmi3FreeFMUState", s, false)?;
-        Ok(())
-    }
-
     /// Derivatives, event indicators and a random partial derivative (ME).
     fn evaluate(&mut self) -> Result<(), String> {
         let d = self.inst.description;

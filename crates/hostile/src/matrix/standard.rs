@@ -18,6 +18,8 @@ impl StandardInterface for Interface {
     const INTERFACES: &'static [Interface] = &Interface::BOTH;
     const STATES: &'static [State] = &State::ALL;
     const PREFIX: &'static str = "fmi2";
+    const FMU_STATE: &'static str = "FMUstate";
+    const DESERIALIZE: &'static str = "fmi2DeSerializeFMUstate";
     const INSTANTIATED: State = State::Instantiated;
     const INITIALIZATION_MODE: State = State::InitializationMode;
     const MODEL_EXCHANGE: Interface = Interface::ModelExchange;
@@ -60,6 +62,16 @@ impl StandardInterface for Interface {
     }
     fn continuous_states(b: &Binary) -> (GetStates, SetStates) {
         (b.get_continuous_states, b.set_continuous_states)
+    }
+    fn serialize(inst: &Instance<'_>, state: *mut c_void) -> Result<Vec<u8>, String> {
+        inst.serialize(state)
+    }
+    fn deserialize(inst: &Instance<'_>, bytes: &[u8]) -> (Status, *mut c_void) {
+        super::serialized::deserialize(inst, bytes)
+    }
+    unsafe fn set_state(inst: &Instance<'_>, state: *mut c_void) -> Status {
+        // SAFETY: a live instance; the caller vouches for the state.
+        unsafe { (inst.binary.set_fmu_state)(inst.c, state) }
     }
     fn set_time(b: &Binary) -> SetTime {
         b.set_time

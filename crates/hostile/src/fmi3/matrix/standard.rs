@@ -19,6 +19,8 @@ impl StandardInterface for Interface3 {
     const INTERFACES: &'static [Interface3] = &Interface3::ALL;
     const STATES: &'static [State3] = &State3::ALL;
     const PREFIX: &'static str = "fmi3";
+    const FMU_STATE: &'static str = "FMUState";
+    const DESERIALIZE: &'static str = "fmi3DeserializeFMUState";
     const INSTANTIATED: State3 = State3::Instantiated;
     const INITIALIZATION_MODE: State3 = State3::InitializationMode;
     const MODEL_EXCHANGE: Interface3 = Interface3::ModelExchange;
@@ -58,6 +60,16 @@ impl StandardInterface for Interface3 {
     }
     fn continuous_states(b: &Binary3) -> (GetStates, SetStates) {
         (b.get_continuous_states, b.set_continuous_states)
+    }
+    fn serialize(inst: &Instance<'_>, state: *mut c_void) -> Result<Vec<u8>, String> {
+        inst.serialize(state)
+    }
+    fn deserialize(inst: &Instance<'_>, bytes: &[u8]) -> (Status, *mut c_void) {
+        inst.deserialize(bytes)
+    }
+    unsafe fn set_state(inst: &Instance<'_>, state: *mut c_void) -> Status {
+        // SAFETY: a live instance; the caller vouches for the state.
+        unsafe { (inst.binary.set_fmu_state)(inst.c, state) }
     }
     fn set_time(b: &Binary3) -> SetTime {
         b.set_time
