@@ -236,21 +236,32 @@ pub fn all_cases(loaded: &Loaded) -> Vec<Case> {
     cases
 }
 
+/// A builder of the cases of one class for model `m`.
+pub type Cases = fn(&Loaded, usize) -> Vec<Case>;
+
+/// The cases of every builder of `classes` for each of the models, model by model.
+pub fn per_model(loaded: &Loaded, classes: &[Cases]) -> Vec<Case> {
+    (0..crate::fmu::MODELS.len())
+        .flat_map(|m| classes.iter().flat_map(move |class| class(loaded, m)))
+        .collect()
+}
+
 /// The FMI 2.0 cases.
 pub fn fmi2_cases(loaded: &Loaded) -> Vec<Case> {
-    let mut cases = Vec::new();
-    for m in 0..loaded.fmus.len() {
-        cases.extend(pointers::cases(loaded, m));
-        cases.extend(references::cases(loaded, m));
-        cases.extend(values::cases(loaded, m));
-        cases.extend(serialized::cases(loaded, m));
-        cases.extend(orders::cases(loaded, m));
-        cases.extend(handles::cases(loaded, m));
-        cases.extend(states::cases(loaded, m));
-        cases.extend(pose::cases(loaded, m));
-        cases.extend(instantiate::cases(loaded, m));
-    }
-    cases
+    per_model(
+        loaded,
+        &[
+            pointers::cases,
+            references::cases,
+            values::cases,
+            serialized::cases,
+            orders::cases,
+            handles::cases,
+            states::cases,
+            pose::cases,
+            instantiate::cases,
+        ],
+    )
 }
 
 /// Like `on_instance`, with well-formed arguments that include a valid FMU state

@@ -23,18 +23,19 @@ pub use crate::matrix::{Case, Observed, on_instance, with_args};
 
 /// Every FMI 3.0 case of the matrix.
 pub fn all_cases(loaded: &Loaded) -> Vec<Case> {
-    let mut cases = Vec::new();
-    for m in 0..loaded.fmus3.len() {
-        cases.extend(pointers::cases(loaded, m));
-        cases.extend(arrays::cases(loaded, m));
-        cases.extend(values::cases(loaded, m));
-        cases.extend(variability::cases(loaded, m));
-        cases.extend(serialized::cases(loaded, m));
-        cases.extend(orders::cases(loaded, m));
-        cases.extend(handles::cases(loaded, m));
-        cases.extend(states::cases(loaded, m));
-        cases.extend(pose::cases(loaded, m));
-        cases.extend(instantiate::cases(loaded, m));
-    }
-    cases
+    crate::matrix::per_model(
+        loaded,
+        &[
+            pointers::cases,
+            arrays::cases,
+            values::cases,
+            variability::cases,
+            serialized::cases,
+            orders::cases,
+            handles::cases,
+            states::cases,
+            pose::cases,
+            instantiate::cases,
+        ],
+    )
 }
