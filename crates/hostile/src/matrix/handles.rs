@@ -9,9 +9,10 @@
 use super::calls::{Args, calls};
 use super::{Case, Expect, Observed};
 use crate::Loaded;
-use crate::binary::{Component, OK, Status, status_name};
+use crate::binary::{OK, status_name};
 use crate::host::{Instance, Interface, State};
 use crate::rng::SplitMix64;
+use crate::standard_interface::{Invoke, StandardInterface};
 use std::ffi::c_void;
 
 const WHY_NULL: &str = "null instance: undefined in FMI 2.0; fmi2Error (fmi2FreeInstance: ignored)";
@@ -24,6 +25,13 @@ enum Handle {
     RandomBlock,
     OtherFmuInstance,
 }
+
+const HANDLES: [Handle; 4] = [
+    Handle::Null,
+    Handle::ZeroedBlock,
+    Handle::RandomBlock,
+    Handle::OtherFmuInstance,
+];
 
 const BLOCK: usize = 4096;
 
@@ -41,14 +49,14 @@ pub(crate) fn block(random: bool) -> *mut c_void {
     p as *mut c_void
 }
 
-type Invoke = unsafe fn(&crate::binary::Binary, Component, &Args) -> Status;
+type Invoke2 = Invoke<Interface>;
 
 fn probe(
     l: &Loaded,
     m: usize,
     interface: Interface,
     handle: Handle,
-    invoke: Option<Invoke>,
+    invoke: Option<Invoke2>,
 ) -> Observed {
     let own = Instance::new(&l.binaries[m], &l.fmus[m].description, interface);
     let (_, state) = own.get_state();
@@ -94,28 +102,28 @@ fn probe(
     Observed::of(status, log)
 }
 
-pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
+/// A probe of one bad handle passed to one call (None: to fmiXFreeInstance).
+pub type HandleProbe<I, H> = fn(&Loaded, usize, I, H, Option<Invoke<I>>) -> Observed;
+
+/// Every handle of `handles` passed to every call of `calls` and to
+/// `free_instance` (named so), on every interface: an error without a log
+/// requirement, fmiXFreeInstance ignoring it (both standards).
+pub fn bad_handle_cases<I: StandardInterface, H: Copy + std::fmt::Debug + 'static>(
+    m: usize,
+    (class, free_instance): (&'static str, &'static str),
+    (handles, why): (&[H], fn(H) -> &'static str),
+    calls: Vec<(&'static str, Invoke<I>)>,
+    probe: HandleProbe<I, H>,
+) -> Vec<Case> {
+    let mut all: Vec<(&'static str, Option<Invoke<I>>)> =
+        calls.into_iter().map(|(n, f)| (n, Some(f))).collect();
+    all.push((free_instance, None));
     let mut cases = Vec::new();
-    for interface in Interface::BOTH {
-        for handle in [
-            Handle::Null,
-            Handle::ZeroedBlock,
-            Handle::RandomBlock,
-            Handle::OtherFmuInstance,
-        ] {
-            let why = if matches!(handle, Handle::Null) {
-                WHY_NULL
-            } else {
-                WHY_FOREIGN
-            };
-            let mut all: Vec<(&'static str, Option<Invoke>)> = calls()
-                .into_iter()
-                .map(|c| (c.name, Some(c.invoke)))
-                .collect();
-            all.push(("fmi2FreeInstance", None));
-            for (name, invoke) in all {
+    for &interface in I::INTERFACES {
+        for &handle in handles {
+            for &(name, invoke) in &all {
                 cases.push(Case {
-                    class: "bad instance handle",
+                    class,
                     model: m,
                     interface: Some(interface.short()),
                     name: format!("{name}({handle:?})"),
@@ -124,11 +132,27 @@ pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
                     } else {
                         Expect::ok()
                     },
-                    why,
+                    why: why(handle),
                     probe: Box::new(move |l| probe(l, m, interface, handle, invoke)),
                 });
             }
         }
     }
     cases
+}
+
+pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
+    bad_handle_cases::<Interface, Handle>(
+        m,
+        ("bad instance handle", "fmi2FreeInstance"),
+        (&HANDLES, |h| {
+            if matches!(h, Handle::Null) {
+                WHY_NULL
+            } else {
+                WHY_FOREIGN
+            }
+        }),
+        calls().into_iter().map(|c| (c.name, c.invoke)).collect(),
+        probe,
+    )
 }

@@ -13,8 +13,7 @@ use crate::Loaded;
 use crate::binary::{Binary, OK, status_name};
 use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::host::{Instance as Instance2, Interface};
-use crate::matrix::Expect;
-use crate::matrix::handles::block;
+use crate::matrix::handles::{bad_handle_cases, block};
 
 const WHY_NULL: &str = "null instance: undefined in FMI 3.0; fmi3Error (fmi3FreeInstance: ignored)";
 const WHY_FOREIGN: &str = "handle not issued by this FMU's FMI 3.0 interface, or freed: undefined in FMI 3.0; refused with fmi3Error after a registry check (fmi3FreeInstance: ignored)";
@@ -111,36 +110,21 @@ fn probe(
 }
 
 pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
-    let mut cases = Vec::new();
-    for interface in Interface3::ALL {
-        for handle in HANDLES {
-            let why = if matches!(handle, Handle::Null) {
+    bad_handle_cases::<Interface3, Handle>(
+        m,
+        ("fmi3 bad instance handle", "fmi3FreeInstance"),
+        (&HANDLES, |h| {
+            if matches!(h, Handle::Null) {
                 WHY_NULL
             } else {
                 WHY_FOREIGN
-            };
-            let mut all: Vec<(&'static str, Option<Invoke>)> = calls()
-                .into_iter()
-                .map(|c| (c.name, Some(c.invoke)))
-                .chain(unsupported().into_iter().map(|(n, f)| (n, Some(f))))
-                .collect();
-            all.push(("fmi3FreeInstance", None));
-            for (name, invoke) in all {
-                cases.push(Case {
-                    class: "fmi3 bad instance handle",
-                    model: m,
-                    interface: Some(interface.short()),
-                    name: format!("{name}({handle:?})"),
-                    expect: if invoke.is_some() {
-                        Expect::silent_error()
-                    } else {
-                        Expect::ok()
-                    },
-                    why,
-                    probe: Box::new(move |l| probe(l, m, interface, handle, invoke)),
-                });
             }
-        }
-    }
-    cases
+        }),
+        calls()
+            .into_iter()
+            .map(|c| (c.name, c.invoke))
+            .chain(unsupported())
+            .collect(),
+        probe,
+    )
 }
