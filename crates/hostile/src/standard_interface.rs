@@ -36,6 +36,8 @@ pub trait StandardInterface: Copy + PartialEq + Send + Sync + 'static {
     const FMU_STATE: &'static str;
     /// The name of the function that deserializes an FMU state.
     const DESERIALIZE: &'static str;
+    /// The name of the getter of the state derivatives.
+    const DERIVATIVES: &'static str;
     /// The state of a fresh instance.
     const INSTANTIATED: Self::State;
     /// Initialization Mode, where FMU states can be taken and set.
@@ -60,7 +62,7 @@ pub trait StandardInterface: Copy + PartialEq + Send + Sync + 'static {
     /// The loaded function table and the C handle of an instance.
     fn raw<'i>(inst: &'i Self::Instance<'_>) -> (&'i Self::Binary, Self::Handle);
     /// fmiXGetContinuousStates and fmiXSetContinuousStates of the loaded binary.
-    fn continuous_states(binary: &Self::Binary) -> (GetStates, SetStates);
+    fn continuous_states(binary: &Self::Binary) -> (GetArray, SetStates);
     /// The serialized bytes of an FMU state of the instance.
     fn serialize(inst: &Self::Instance<'_>, state: *mut c_void) -> Result<Vec<u8>, String>;
     /// Deserializes `bytes` into a new FMU state: (status, state).
@@ -70,6 +72,9 @@ pub trait StandardInterface: Copy + PartialEq + Send + Sync + 'static {
     /// # Safety
     /// `state` is a state the FMU issued (or what a probe means to test).
     unsafe fn set_state(inst: &Self::Instance<'_>, state: *mut c_void) -> Status;
+    /// The Model Exchange evaluation: fmiXEnterContinuousTimeMode, the getters of
+    /// the derivatives and of the event indicators.
+    fn me_evaluation(binary: &Self::Binary) -> (Transition, GetArray, GetArray);
     /// fmiXSetTime of the loaded binary.
     fn set_time(binary: &Self::Binary) -> SetTime;
     /// Well-formed arguments for the calls on the instance's model, with `state`
@@ -77,8 +82,9 @@ pub trait StandardInterface: Copy + PartialEq + Send + Sync + 'static {
     fn args(inst: &Self::Instance<'_>, state: *mut c_void) -> Self::Args;
 }
 
-/// fmi2GetContinuousStates / fmi3GetContinuousStates (the same C signature).
-pub type GetStates = unsafe extern "C" fn(*mut c_void, *mut f64, usize) -> Status;
+/// A getter of a Float64 array: fmiXGetContinuousStates, the derivatives, the
+/// event indicators (the same C signature in both standards).
+pub type GetArray = unsafe extern "C" fn(*mut c_void, *mut f64, usize) -> Status;
 /// fmi2SetContinuousStates / fmi3SetContinuousStates (the same C signature).
 pub type SetStates = unsafe extern "C" fn(*mut c_void, *const f64, usize) -> Status;
 

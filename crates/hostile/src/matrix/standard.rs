@@ -5,7 +5,7 @@ use super::calls::Args;
 use crate::Loaded;
 use crate::binary::{Binary, Component, ERROR, OK, Status};
 use crate::host::{Instance, Interface, State};
-use crate::standard_interface::{GetStates, SetStates, SetTime, StandardInterface};
+use crate::standard_interface::{GetArray, SetStates, SetTime, StandardInterface, Transition};
 use std::ffi::c_void;
 
 impl StandardInterface for Interface {
@@ -20,6 +20,7 @@ impl StandardInterface for Interface {
     const PREFIX: &'static str = "fmi2";
     const FMU_STATE: &'static str = "FMUstate";
     const DESERIALIZE: &'static str = "fmi2DeSerializeFMUstate";
+    const DERIVATIVES: &'static str = "fmi2GetDerivatives";
     const INSTANTIATED: State = State::Instantiated;
     const INITIALIZATION_MODE: State = State::InitializationMode;
     const MODEL_EXCHANGE: Interface = Interface::ModelExchange;
@@ -60,7 +61,7 @@ impl StandardInterface for Interface {
     fn raw<'i>(inst: &'i Instance<'_>) -> (&'i Binary, Component) {
         (inst.binary, inst.c)
     }
-    fn continuous_states(b: &Binary) -> (GetStates, SetStates) {
+    fn continuous_states(b: &Binary) -> (GetArray, SetStates) {
         (b.get_continuous_states, b.set_continuous_states)
     }
     fn serialize(inst: &Instance<'_>, state: *mut c_void) -> Result<Vec<u8>, String> {
@@ -72,6 +73,13 @@ impl StandardInterface for Interface {
     unsafe fn set_state(inst: &Instance<'_>, state: *mut c_void) -> Status {
         // SAFETY: a live instance; the caller vouches for the state.
         unsafe { (inst.binary.set_fmu_state)(inst.c, state) }
+    }
+    fn me_evaluation(b: &Binary) -> (Transition, GetArray, GetArray) {
+        (
+            b.enter_continuous_time_mode,
+            b.get_derivatives,
+            b.get_event_indicators,
+        )
     }
     fn set_time(b: &Binary) -> SetTime {
         b.set_time

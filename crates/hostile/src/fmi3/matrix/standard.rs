@@ -6,7 +6,7 @@ use crate::Loaded;
 use crate::binary::{ERROR, Status};
 use crate::fmi3::binary::{Binary3, Instance3};
 use crate::fmi3::host::{Instance, Interface3, State3};
-use crate::standard_interface::{GetStates, SetStates, SetTime, StandardInterface};
+use crate::standard_interface::{GetArray, SetStates, SetTime, StandardInterface, Transition};
 use std::ffi::c_void;
 
 impl StandardInterface for Interface3 {
@@ -21,6 +21,7 @@ impl StandardInterface for Interface3 {
     const PREFIX: &'static str = "fmi3";
     const FMU_STATE: &'static str = "FMUState";
     const DESERIALIZE: &'static str = "fmi3DeserializeFMUState";
+    const DERIVATIVES: &'static str = "fmi3GetContinuousStateDerivatives";
     const INSTANTIATED: State3 = State3::Instantiated;
     const INITIALIZATION_MODE: State3 = State3::InitializationMode;
     const MODEL_EXCHANGE: Interface3 = Interface3::ModelExchange;
@@ -58,7 +59,7 @@ impl StandardInterface for Interface3 {
     fn raw<'i>(inst: &'i Instance<'_>) -> (&'i Binary3, Instance3) {
         (inst.binary, inst.c)
     }
-    fn continuous_states(b: &Binary3) -> (GetStates, SetStates) {
+    fn continuous_states(b: &Binary3) -> (GetArray, SetStates) {
         (b.get_continuous_states, b.set_continuous_states)
     }
     fn serialize(inst: &Instance<'_>, state: *mut c_void) -> Result<Vec<u8>, String> {
@@ -70,6 +71,13 @@ impl StandardInterface for Interface3 {
     unsafe fn set_state(inst: &Instance<'_>, state: *mut c_void) -> Status {
         // SAFETY: a live instance; the caller vouches for the state.
         unsafe { (inst.binary.set_fmu_state)(inst.c, state) }
+    }
+    fn me_evaluation(b: &Binary3) -> (Transition, GetArray, GetArray) {
+        (
+            b.enter_continuous_time_mode,
+            b.get_continuous_state_derivatives,
+            b.get_event_indicators,
+        )
     }
     fn set_time(b: &Binary3) -> SetTime {
         b.set_time
