@@ -21,7 +21,7 @@ pub trait StandardInterface: Copy + PartialEq + Send + Sync + 'static {
     /// The loaded function table.
     type Binary;
     /// The C handle of an instance.
-    type Handle: Copy + Into<*mut c_void>;
+    type Handle: Copy + Into<*mut c_void> + From<*mut c_void>;
     /// Well-formed arguments of the call table.
     type Args;
 
@@ -75,6 +75,8 @@ pub trait StandardInterface: Copy + PartialEq + Send + Sync + 'static {
     /// The Model Exchange evaluation: fmiXEnterContinuousTimeMode, the getters of
     /// the derivatives and of the event indicators.
     fn me_evaluation(binary: &Self::Binary) -> (Transition, GetArray, GetArray);
+    /// fmiXFreeInstance of the loaded binary.
+    fn free_instance(binary: &Self::Binary) -> FreeInstance;
     /// fmiXSetTime of the loaded binary.
     fn set_time(binary: &Self::Binary) -> SetTime;
     /// Well-formed arguments for the calls on the instance's model, with `state`
@@ -88,6 +90,8 @@ pub type GetArray = unsafe extern "C" fn(*mut c_void, *mut f64, usize) -> Status
 /// fmi2SetContinuousStates / fmi3SetContinuousStates (the same C signature).
 pub type SetStates = unsafe extern "C" fn(*mut c_void, *const f64, usize) -> Status;
 
+/// fmi2FreeInstance / fmi3FreeInstance (the same C signature).
+pub type FreeInstance = unsafe extern "C" fn(*mut c_void);
 /// fmi2SetTime / fmi3SetTime (the same C signature).
 pub type SetTime = unsafe extern "C" fn(*mut c_void, f64) -> Status;
 /// A function that takes only the instance (fmiXTerminate, fmiXReset, the mode

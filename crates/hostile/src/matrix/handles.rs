@@ -9,7 +9,7 @@
 use super::calls::{Args, calls};
 use super::{Case, Expect, Observed};
 use crate::Loaded;
-use crate::binary::{OK, status_name};
+use crate::binary::{OK, Status, status_name};
 use crate::host::{Instance, Interface, State};
 use crate::rng::SplitMix64;
 use crate::standard_interface::{Invoke, StandardInterface};
@@ -76,19 +76,9 @@ fn probe(
         Handle::RandomBlock => block(true),
         Handle::OtherFmuInstance => other.c,
     };
-    let binary = own.binary;
-    // SAFETY: the point of the probe: a handle this binary never issued.
-    let status = match invoke {
-        Some(f) => unsafe { f(binary, c, &args) },
-        None => {
-            unsafe { (binary.free_instance)(c) };
-            OK
-        }
-    };
-    if matches!(handle, Handle::ZeroedBlock | Handle::RandomBlock) {
-        // SAFETY: our own block; a crash here means the FMU freed it.
-        unsafe { libc::free(c) };
-    }
+    let owned = matches!(handle, Handle::ZeroedBlock | Handle::RandomBlock);
+    // SAFETY: null, our block or another FMU's live instance.
+    let status = unsafe { call_with_bad_handle::<Interface>((&own, &args), c, owned, invoke) };
     let (s, values) = other.get_reals(&[other.description.real_vrs()[0]]);
     if s != OK || !values[0].is_finite() {
         return Observed::broken(format!(
@@ -100,6 +90,35 @@ fn probe(
     own.free_state(state);
     let log = format!("{} {}", own.take_log(), other.take_log());
     Observed::of(status, log)
+}
+
+/// `invoke` (None: fmiXFreeInstance) through the function table of `own`, with
+/// the bad handle `c`; then frees `c` when it is a block of the importer (`owned`):
+/// a crash there means the FMU freed it. The status (OK for fmiXFreeInstance).
+///
+/// # Safety
+/// `c` is null, a block of the importer (`owned`: freed here) or a live instance;
+/// the call is the probe's point: the FMU must recognize it as foreign.
+pub unsafe fn call_with_bad_handle<I: StandardInterface>(
+    (own, args): (&I::Instance<'_>, &I::Args),
+    c: *mut c_void,
+    owned: bool,
+    invoke: Option<Invoke<I>>,
+) -> Status {
+    let (binary, _) = I::raw(own);
+    // SAFETY: the point of the probe: a handle this binary never issued.
+    let status = match invoke {
+        Some(f) => unsafe { f(binary, c.into(), args) },
+        None => {
+            unsafe { I::free_instance(binary)(c) };
+            OK
+        }
+    };
+    if owned {
+        // SAFETY: our own block; a crash here means the FMU freed it.
+        unsafe { libc::free(c) };
+    }
+    status
 }
 
 /// A probe of one bad handle passed to one call (None: to fmiXFreeInstance).

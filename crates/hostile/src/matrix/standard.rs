@@ -5,7 +5,9 @@ use super::calls::Args;
 use crate::Loaded;
 use crate::binary::{Binary, Component, ERROR, OK, Status};
 use crate::host::{Instance, Interface, State};
-use crate::standard_interface::{GetArray, SetStates, SetTime, StandardInterface, Transition};
+use crate::standard_interface::{
+    FreeInstance, GetArray, SetStates, SetTime, StandardInterface, Transition,
+};
 use std::ffi::c_void;
 
 impl StandardInterface for Interface {
@@ -80,6 +82,9 @@ impl StandardInterface for Interface {
             b.get_derivatives,
             b.get_event_indicators,
         )
+    }
+    fn free_instance(b: &Binary) -> FreeInstance {
+        b.free_instance
     }
     fn set_time(b: &Binary) -> SetTime {
         b.set_time

@@ -13,7 +13,7 @@ use crate::Loaded;
 use crate::binary::{Binary, OK, status_name};
 use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::host::{Instance as Instance2, Interface};
-use crate::matrix::handles::{bad_handle_cases, block};
+use crate::matrix::handles::{bad_handle_cases, block, call_with_bad_handle};
 
 const WHY_NULL: &str = "null instance: undefined in FMI 3.0; fmi3Error (fmi3FreeInstance: ignored)";
 const WHY_FOREIGN: &str = "handle not issued by this FMU's FMI 3.0 interface, or freed: undefined in FMI 3.0; refused with fmi3Error after a registry check (fmi3FreeInstance: ignored)";
@@ -80,19 +80,9 @@ fn probe(
         }
         Handle::Fmi2InstanceOfThisFmu => fmi2_instance.c,
     };
-    let binary = own.binary;
-    // SAFETY: the point of the probe: a handle this interface never issued.
-    let status = match invoke {
-        Some(f) => unsafe { f(binary, c, &args) },
-        None => {
-            unsafe { (binary.free_instance)(c) };
-            OK
-        }
-    };
-    if matches!(handle, Handle::ZeroedBlock | Handle::RandomBlock) {
-        // SAFETY: our own block; a crash here means the FMU freed it.
-        unsafe { libc::free(c) };
-    }
+    let owned = matches!(handle, Handle::ZeroedBlock | Handle::RandomBlock);
+    // SAFETY: null, our block, or a live (or just freed) instance.
+    let status = unsafe { call_with_bad_handle::<Interface3>((&own, &args), c, owned, invoke) };
     let (s, values) = other.get_float64(&[other.description.real_vrs()[1]]);
     if s != OK || values.iter().any(|v| !v.is_finite()) {
         return Observed::broken(format!(

@@ -6,7 +6,9 @@ use crate::Loaded;
 use crate::binary::{ERROR, Status};
 use crate::fmi3::binary::{Binary3, Instance3};
 use crate::fmi3::host::{Instance, Interface3, State3};
-use crate::standard_interface::{GetArray, SetStates, SetTime, StandardInterface, Transition};
+use crate::standard_interface::{
+    FreeInstance, GetArray, SetStates, SetTime, StandardInterface, Transition,
+};
 use std::ffi::c_void;
 
 impl StandardInterface for Interface3 {
@@ -78,6 +80,9 @@ impl StandardInterface for Interface3 {
             b.get_continuous_state_derivatives,
             b.get_event_indicators,
         )
+    }
+    fn free_instance(b: &Binary3) -> FreeInstance {
+        b.free_instance
     }
     fn set_time(b: &Binary3) -> SetTime {
         b.set_time
