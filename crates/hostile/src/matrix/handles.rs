@@ -6,11 +6,11 @@
 //! block must be intact (the importer frees it: a double free would crash) and the
 //! other FMU's instance must still answer.
 
-use super::calls::{Args, calls};
+use super::calls::calls;
 use super::{Case, Expect, Observed};
 use crate::Loaded;
 use crate::binary::{OK, Status, status_name};
-use crate::host::{Instance, Interface, State};
+use crate::host::{Interface, Probed};
 use crate::rng::SplitMix64;
 use crate::standard_interface::{Invoke, StandardInterface};
 use std::ffi::c_void;
@@ -58,18 +58,15 @@ fn probe(
     handle: Handle,
     invoke: Option<Invoke2>,
 ) -> Observed {
-    let own = Instance::new(&l.binaries[m], &l.fmus[m].description, interface);
-    let (_, state) = own.get_state();
-    let args = Args::new(own.description, state);
-    let other_model = (m + 1) % l.fmus.len();
-    let other = Instance::new(
-        &l.binaries[other_model],
-        &l.fmus[other_model].description,
-        interface,
-    );
-    if let Err(e) = other.reach(State::InitializationMode) {
-        return Observed::broken(e);
-    }
+    let Scene {
+        own,
+        state,
+        args,
+        other,
+    } = match Scene::new(l, m, interface) {
+        Ok(scene) => scene,
+        Err(e) => return Observed::broken(e),
+    };
     let c = match handle {
         Handle::Null => std::ptr::null_mut(),
         Handle::ZeroedBlock => block(false),
@@ -90,6 +87,32 @@ fn probe(
     own.free_state(state);
     let log = format!("{} {}", own.take_log(), other.take_log());
     Observed::of(status, log)
+}
+
+/// What a bad-handle probe works with: an instance of the model (whose function
+/// table makes the call), one of its FMU states and the call arguments, and an
+/// instance of the next model in Initialization Mode (which must still answer).
+pub struct Scene<'a, I: StandardInterface> {
+    pub own: I::Instance<'a>,
+    pub state: *mut c_void,
+    pub args: I::Args,
+    pub other: I::Instance<'a>,
+}
+
+impl<'a, I: StandardInterface> Scene<'a, I> {
+    pub fn new(l: &'a Loaded, m: usize, interface: I) -> Result<Scene<'a, I>, String> {
+        let own = interface.instance(l, m);
+        let (_, state) = own.new_state();
+        let args = I::args(&own, state);
+        let other = interface.instance(l, (m + 1) % crate::fmu::MODELS.len());
+        I::reach(&other, I::INITIALIZATION_MODE)?;
+        Ok(Scene {
+            own,
+            state,
+            args,
+            other,
+        })
+    }
 }
 
 /// `invoke` (None: fmiXFreeInstance) through the function table of `own`, with

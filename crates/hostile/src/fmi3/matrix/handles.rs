@@ -7,13 +7,13 @@
 //! required (there is no logger the FMU could trust). Afterwards the block is
 //! intact, and the other instances still answer.
 
-use super::calls::{Args, Invoke, calls, unsupported};
+use super::calls::{Invoke, calls, unsupported};
 use super::{Case, Observed};
 use crate::Loaded;
 use crate::binary::{Binary, OK, status_name};
-use crate::fmi3::host::{Instance, Interface3, State3};
+use crate::fmi3::host::{Instance, Interface3};
 use crate::host::{Instance as Instance2, Interface};
-use crate::matrix::handles::{bad_handle_cases, block, call_with_bad_handle};
+use crate::matrix::handles::{Scene, bad_handle_cases, block, call_with_bad_handle};
 
 const WHY_NULL: &str = "null instance: undefined in FMI 3.0; fmi3Error (fmi3FreeInstance: ignored)";
 const WHY_FOREIGN: &str = "handle not issued by this FMU's FMI 3.0 interface, or freed: undefined in FMI 3.0; refused with fmi3Error after a registry check (fmi3FreeInstance: ignored)";
@@ -44,18 +44,15 @@ fn probe(
     handle: Handle,
     invoke: Option<Invoke>,
 ) -> Observed {
-    let own = Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface);
-    let (_, state) = own.get_state();
-    let args = Args::new(own.description, state);
-    let other_model = (m + 1) % l.fmus3.len();
-    let other = Instance::new(
-        &l.binaries3[other_model],
-        &l.fmus3[other_model].description,
-        interface,
-    );
-    if let Err(e) = other.reach(State3::InitializationMode) {
-        return Observed::broken(e);
-    }
+    let Scene {
+        own,
+        state,
+        args,
+        other,
+    } = match Scene::new(l, m, interface) {
+        Ok(scene) => scene,
+        Err(e) => return Observed::broken(e),
+    };
     // The FMI 2.0 view of the very binary `own` lives in (same path: same handle).
     let fmi2 = match Binary::open(&l.fmus3[m].library) {
         Ok(b) => b,
