@@ -10,8 +10,12 @@
 //! (`plant_hard`). Every probe runs in a forked child (`isolate`), so a crash of an
 //! FMU is reported as a failed case with its signal. The machinery (isolation,
 //! generator, description reader, case tables and their judge) serves both
-//! standards; what is per standard lives in the FMI 2.0 modules (`binary`, `host`,
-//! `matrix/*`) and in `fmi3`.
+//! standards. The probes whose logic is the same in both (case loops, the generic
+//! `matrix::on_instance` and `matrix::with_args`, bad FMU states and handles,
+//! damaged serialized states, the sequence bookkeeping in `sequence_run`) are
+//! written once on the `standard_interface::StandardInterface` trait; what is per
+//! standard (C signatures, state machines, call tables) lives in the FMI 2.0
+//! modules (`binary`, `host`, `matrix/*`) and in `fmi3`.
 
 pub mod binary;
 pub mod cycles;
@@ -24,7 +28,9 @@ pub mod lifecycle;
 pub mod matrix;
 pub mod plant_hard;
 pub mod rng;
+pub mod sequence_run;
 pub mod sequences;
+pub mod standard_interface;
 pub mod threads;
 
 use binary::Binary;

@@ -6,10 +6,10 @@
 //! integrator chose); a getter that returns fmi2OK never delivers NaN or inf.
 
 use crate::Loaded;
-use crate::binary::{DISCARD, EventInfo, FmuState, OK, Status, status_name};
+use crate::binary::{EventInfo, OK};
 use crate::description::{VarType, Variable};
-use crate::host::{Instance, Interface, State};
-use crate::rng::SplitMix64;
+use crate::host::{Interface, State};
+use crate::sequence_run;
 
 /// FMI 2.0 sequences run by default; ROBOFMU_HOSTILE_SEQUENCES overrides.
 pub const DEFAULT_SEQUENCES: usize = 30_000;
@@ -24,14 +24,6 @@ pub fn count_from_env(default: usize) -> usize {
         .unwrap_or(default)
 }
 
-struct Run<'a> {
-    inst: Instance<'a>,
-    rng: SplitMix64,
-    state: State,
-    time: f64,
-    calls: usize,
-}
-
 /// Plausible magnitude of an input.
 pub(crate) fn input_scale(v: &Variable) -> f64 {
     match v.name.split('[').next().unwrap_or("") {
@@ -41,27 +33,9 @@ pub(crate) fn input_scale(v: &Variable) -> f64 {
     }
 }
 
+type Run<'a> = sequence_run::Run<'a, Interface>;
+
 impl Run<'_> {
-    /// Records a call; Err when its status is not acceptable.
-    fn check(&mut self, what: &str, s: Status, may_discard: bool) -> Result<Status, String> {
-        self.calls += 1;
-        if s == OK || (s == DISCARD && may_discard) {
-            Ok(s)
-        } else {
-            Err(format!(
-                "call {} {what} in {:?} returned {} (log: {})",
-                self.calls,
-                self.state,
-                status_name(s),
-                self.inst.take_log()
-            ))
-        }
-    }
-
-    fn me(&self) -> bool {
-        self.inst.interface == Interface::ModelExchange
-    }
-
     fn set_input(&mut self) -> Result<(), String> {
         let inputs: Vec<&Variable> = self
             .inst
@@ -102,33 +76,6 @@ impl Run<'_> {
         Ok(())
     }
 
-    /// Get, serialize, deserialize and set back the state: nothing changes.
-    fn state_round_trip(&mut self) -> Result<(), String> {
-        let (s, state) = self.inst.get_state();
-        self.check("fmi2GetFMUstate", s, false)?;
-        let bytes = self.inst.serialize(state)?;
-        self.calls += 2;
-        let mut copy: FmuState = std::ptr::null_mut();
-        // SAFETY: the instance's own serialized bytes and a null slot.
-        let s = unsafe {
-            (self.inst.binary.deserialize)(
-                self.inst.c,
-                bytes.as_ptr() as *const std::ffi::c_char,
-                bytes.len(),
-                &mut copy,
-            )
-        };
-        self.check("fmi2DeSerializeFMUstate", s, false)?;
-        // SAFETY: a state of this instance.
-        let s = unsafe { (self.inst.binary.set_fmu_state)(self.inst.c, copy) };
-        self.check("fmi2SetFMUstate", s, false)?;
-        let s = self.inst.free_state(copy);
-        self.check("fmi2FreeFMUstate", s, false)?;
-        let s = self.inst.free_state(state);
-        self.check("fmi2FreeFMUstate", s, false)?;
-        Ok(())
-    }
-
     fn evaluate(&mut self) -> Result<(), String> {
         let d = self.inst.description;
         let b = self.inst.binary;
@@ -153,45 +100,6 @@ impl Run<'_> {
                 );
             }
         }
-        Ok(())
-    }
-
-    fn perturb_states(&mut self) -> Result<(), String> {
-        let n = self.inst.description.number_of_states;
-        let mut x = vec![0.0; n];
-        let b = self.inst.binary;
-        // SAFETY: arrays of the state count.
-        let s = unsafe { (b.get_continuous_states)(self.inst.c, x.as_mut_ptr(), n) };
-        self.check("fmi2GetContinuousStates", s, false)?;
-        // Small trial steps mostly, sometimes a large one (an integrator's
-        // rejected trial): both may leave the region where the model evaluates.
-        let reach = if self.rng.below(4) == 0 { 0.5 } else { 0.05 };
-        for xi in &mut x {
-            *xi += self.rng.uniform(-reach, reach);
-        }
-        let s = unsafe { (b.set_continuous_states)(self.inst.c, x.as_ptr(), n) };
-        self.check("fmi2SetContinuousStates", s, false)?;
-        Ok(())
-    }
-
-    fn advance_time(&mut self) -> Result<(), String> {
-        self.time += self.rng.uniform(1e-4, 1e-2);
-        // SAFETY: a finite time.
-        let s = unsafe { (self.inst.binary.set_time)(self.inst.c, self.time) };
-        self.check("fmi2SetTime", s, false)?;
-        Ok(())
-    }
-
-    fn transition(
-        &mut self,
-        what: &str,
-        f: unsafe extern "C" fn(crate::binary::Component) -> Status,
-        to: State,
-    ) -> Result<(), String> {
-        // SAFETY: a live instance.
-        let s = unsafe { f(self.inst.c) };
-        self.check(what, s, false)?;
-        self.state = to;
         Ok(())
     }
 
@@ -250,7 +158,9 @@ impl Run<'_> {
             (State::ContinuousTimeMode, 0) => self.set_input(),
             (State::ContinuousTimeMode, 1) => self.get_all(),
             (State::ContinuousTimeMode, 2) => self.advance_time(),
-            (State::ContinuousTimeMode, 3) => self.perturb_states(),
+            (State::ContinuousTimeMode, 3) => {
+                self.perturb_states(self.inst.description.number_of_states)
+            }
             (State::ContinuousTimeMode, 4) => self.evaluate(),
             (State::ContinuousTimeMode, 5) => self.state_round_trip(),
             (State::ContinuousTimeMode, 6) => {
@@ -291,25 +201,5 @@ impl Run<'_> {
 
 /// Runs sequence `seed`: the number of calls, or what went wrong.
 pub fn run_sequence(l: &Loaded, seed: u64) -> Result<usize, String> {
-    let mut rng = SplitMix64::new(seed);
-    let m = rng.below(l.fmus.len());
-    let interface = Interface::BOTH[rng.below(2)];
-    let length = 10 + rng.below(30);
-    let mut run = Run {
-        inst: Instance::new(&l.binaries[m], &l.fmus[m].description, interface),
-        rng,
-        state: State::Instantiated,
-        time: 0.0,
-        calls: 1,
-    };
-    for _ in 0..length {
-        run.step().map_err(|e| {
-            format!(
-                "seed {seed:#x} ({} {}): {e}",
-                l.fmus[m].name(),
-                interface.short()
-            )
-        })?;
-    }
-    Ok(run.calls + 1)
+    sequence_run::run_sequence::<Interface>(l, (seed, ""), |run| run.step())
 }

@@ -10,11 +10,11 @@
 //! is accepted for a step and for Model Exchange evaluations at states the
 //! integrator chose; a call that returns fmi3OK never delivers NaN or inf.
 
-use super::host::{Instance, Interface3, State3};
+use super::host::{Interface3, State3};
 use crate::Loaded;
-use crate::binary::{DISCARD, OK, Status, status_name};
+use crate::binary::{DISCARD, OK, Status};
 use crate::description::{VarType, Variable};
-use crate::rng::SplitMix64;
+use crate::sequence_run;
 use crate::sequences::input_scale;
 
 /// FMI 3.0 sequences run by default: a third of the FMI 2.0 count, because one
@@ -22,16 +22,6 @@ use crate::sequences::input_scale;
 /// 28 s, 30,000 FMI 2.0 ones 10.5 s); 10,000 add about 14 s to CI.
 /// ROBOFMU_HOSTILE_SEQUENCES overrides.
 pub const DEFAULT_SEQUENCES: usize = 10_000;
-
-struct Run<'a> {
-    inst: Instance<'a>,
-    rng: SplitMix64,
-    state: State3,
-    time: f64,
-    calls: usize,
-    /// fmi3UpdateDiscreteStates asked to be called again.
-    update_needed: bool,
-}
 
 /// The legal values of the Int32 parameters the sequences set (their min and max
 /// in the modelDescription).
@@ -43,32 +33,14 @@ fn legal_integers(v: &Variable) -> &'static [i32] {
     }
 }
 
-impl Run<'_> {
-    /// Records a call; Err when its status is not acceptable.
-    fn check(&mut self, what: &str, s: Status, may_discard: bool) -> Result<Status, String> {
-        self.calls += 1;
-        if s == OK || (s == DISCARD && may_discard) {
-            Ok(s)
-        } else {
-            Err(format!(
-                "call {} {what} in {:?} returned {} (log: {})",
-                self.calls,
-                self.state,
-                status_name(s),
-                self.inst.take_log()
-            ))
-        }
-    }
+type Run<'a> = sequence_run::Run<'a, Interface3>;
 
+impl Run<'_> {
     fn finite(&self, what: &str, s: Status, x: &[f64]) -> Result<(), String> {
         match x.iter().position(|v| !v.is_finite()) {
             Some(i) if s == OK => Err(format!("{what} returned OK with element {i} = {}", x[i])),
             _ => Ok(()),
         }
-    }
-
-    fn me(&self) -> bool {
-        self.inst.interface.is_me()
     }
 
     fn set_input(&mut self) -> Result<(), String> {
@@ -115,24 +87,6 @@ impl Run<'_> {
         self.finite("fmi3GetFloat64(all)", s, &x)
     }
 
-    /// Get, serialize, deserialize and set back the state: nothing changes.
-    fn state_round_trip(&mut self) -> Result<(), String> {
-        let (s, state) = self.inst.get_state();
-        self.check("fmi3GetFMUState", s, false)?;
-        let bytes = self.inst.serialize(state)?;
-        self.calls += 2;
-        let (s, copy) = self.inst.deserialize(&bytes);
-        self.check("fmi3DeserializeFMUState", s, false)?;
-        // SAFETY: a state of this instance.
-        let s = unsafe { (self.inst.binary.set_fmu_state)(self.inst.c, copy) };
-        self.check("fmi3SetFMUState", s, false)?;
-        let s = self.inst.free_state(copy);
-        self.check("fmi3FreeFMUState", s, false)?;
-        let s = self.inst.free_state(state);
-        self.check("fmi3FreeFMUState", s, false)?;
-        Ok(())
-    }
-
     /// Derivatives, event indicators and a random partial derivative (ME).
     fn evaluate(&mut self) -> Result<(), String> {
         let d = self.inst.description;
@@ -176,44 +130,6 @@ impl Run<'_> {
             let s = self.check(name, s, true)?;
             self.finite(name, s, &out)?;
         }
-        Ok(())
-    }
-
-    fn perturb_states(&mut self) -> Result<(), String> {
-        let n = self.inst.description.number_of_states;
-        let mut x = vec![0.0; n];
-        let b = self.inst.binary;
-        // SAFETY: arrays of the state count.
-        let s = unsafe { (b.get_continuous_states)(self.inst.c, x.as_mut_ptr(), n) };
-        self.check("fmi3GetContinuousStates", s, false)?;
-        // Small trial steps mostly, sometimes a large one (a rejected trial).
-        let reach = if self.rng.below(4) == 0 { 0.5 } else { 0.05 };
-        for xi in &mut x {
-            *xi += self.rng.uniform(-reach, reach);
-        }
-        let s = unsafe { (b.set_continuous_states)(self.inst.c, x.as_ptr(), n) };
-        self.check("fmi3SetContinuousStates", s, false)?;
-        Ok(())
-    }
-
-    fn advance_time(&mut self) -> Result<(), String> {
-        self.time += self.rng.uniform(1e-4, 1e-2);
-        // SAFETY: a finite time.
-        let s = unsafe { (self.inst.binary.set_time)(self.inst.c, self.time) };
-        self.check("fmi3SetTime", s, false)?;
-        Ok(())
-    }
-
-    fn transition(
-        &mut self,
-        what: &str,
-        f: unsafe extern "C" fn(super::binary::Instance3) -> Status,
-        to: State3,
-    ) -> Result<(), String> {
-        // SAFETY: a live instance.
-        let s = unsafe { f(self.inst.c) };
-        self.check(what, s, false)?;
-        self.state = to;
         Ok(())
     }
 
@@ -344,7 +260,9 @@ impl Run<'_> {
             (State3::ContinuousTimeMode, 0) => self.set_input(),
             (State3::ContinuousTimeMode, 1) => self.get_all(),
             (State3::ContinuousTimeMode, 2) => self.advance_time(),
-            (State3::ContinuousTimeMode, 3) => self.perturb_states(),
+            (State3::ContinuousTimeMode, 3) => {
+                self.perturb_states(self.inst.description.number_of_states)
+            }
             (State3::ContinuousTimeMode, 4) => self.evaluate(),
             (State3::ContinuousTimeMode, 5) => self.state_round_trip(),
             (State3::ContinuousTimeMode, 6) => self.completed_integrator_step(),
@@ -368,26 +286,5 @@ impl Run<'_> {
 
 /// Runs FMI 3.0 sequence `seed`: the number of calls, or what went wrong.
 pub fn run_sequence(l: &Loaded, seed: u64) -> Result<usize, String> {
-    let mut rng = SplitMix64::new(seed);
-    let m = rng.below(l.fmus3.len());
-    let interface = Interface3::ALL[rng.below(Interface3::ALL.len())];
-    let length = 10 + rng.below(30);
-    let mut run = Run {
-        inst: Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface),
-        rng,
-        state: State3::Instantiated,
-        time: 0.0,
-        calls: 1,
-        update_needed: false,
-    };
-    for _ in 0..length {
-        run.step().map_err(|e| {
-            format!(
-                "FMI 3.0 seed {seed:#x} ({} {}): {e}",
-                l.fmus3[m].name(),
-                interface.short()
-            )
-        })?;
-    }
-    Ok(run.calls + 1)
+    sequence_run::run_sequence::<Interface3>(l, (seed, "FMI 3.0 "), |run| run.step())
 }

@@ -4,7 +4,7 @@
 //! Co-Simulation). The probes call them with a bad handle or in a state where they
 //! are not allowed.
 
-use crate::binary::{Binary, Component, EventInfo, FmuState, Status, Vr};
+use crate::binary::{EventInfo, FmuState, Vr};
 use crate::description::{Description, VarType};
 use crate::host::{Interface, State};
 use std::ffi::c_int;
@@ -55,14 +55,9 @@ impl Args {
     }
 }
 
-type Legal = fn(Interface, State) -> bool;
-type Invoke = unsafe fn(&Binary, Component, &Args) -> Status;
-
-pub struct Call {
-    pub name: &'static str,
-    pub legal: Legal,
-    pub invoke: Invoke,
-}
+type Legal = crate::standard_interface::Legal<Interface>;
+type Invoke = crate::standard_interface::Invoke<Interface>;
+pub type Call = crate::standard_interface::Call<Interface>;
 
 use Interface::{CoSimulation as Cs, ModelExchange as Me};
 use State::*;

@@ -6,12 +6,13 @@
 //! block must be intact (the importer frees it: a double free would crash) and the
 //! other FMU's instance must still answer.
 
-use super::calls::{Args, calls};
+use super::calls::calls;
 use super::{Case, Expect, Observed};
 use crate::Loaded;
-use crate::binary::{Component, OK, Status, status_name};
-use crate::host::{Instance, Interface, State};
+use crate::binary::{OK, Status, status_name};
+use crate::host::{Interface, Probed};
 use crate::rng::SplitMix64;
+use crate::standard_interface::{Invoke, StandardInterface};
 use std::ffi::c_void;
 
 const WHY_NULL: &str = "null instance: undefined in FMI 2.0; fmi2Error (fmi2FreeInstance: ignored)";
@@ -24,6 +25,13 @@ enum Handle {
     RandomBlock,
     OtherFmuInstance,
 }
+
+const HANDLES: [Handle; 4] = [
+    Handle::Null,
+    Handle::ZeroedBlock,
+    Handle::RandomBlock,
+    Handle::OtherFmuInstance,
+];
 
 const BLOCK: usize = 4096;
 
@@ -41,46 +49,33 @@ pub(crate) fn block(random: bool) -> *mut c_void {
     p as *mut c_void
 }
 
-type Invoke = unsafe fn(&crate::binary::Binary, Component, &Args) -> Status;
+type Invoke2 = Invoke<Interface>;
 
 fn probe(
     l: &Loaded,
     m: usize,
     interface: Interface,
     handle: Handle,
-    invoke: Option<Invoke>,
+    invoke: Option<Invoke2>,
 ) -> Observed {
-    let own = Instance::new(&l.binaries[m], &l.fmus[m].description, interface);
-    let (_, state) = own.get_state();
-    let args = Args::new(own.description, state);
-    let other_model = (m + 1) % l.fmus.len();
-    let other = Instance::new(
-        &l.binaries[other_model],
-        &l.fmus[other_model].description,
-        interface,
-    );
-    if let Err(e) = other.reach(State::InitializationMode) {
-        return Observed::broken(e);
-    }
+    let Scene {
+        own,
+        state,
+        args,
+        other,
+    } = match Scene::new(l, m, interface) {
+        Ok(scene) => scene,
+        Err(e) => return Observed::broken(e),
+    };
     let c = match handle {
         Handle::Null => std::ptr::null_mut(),
         Handle::ZeroedBlock => block(false),
         Handle::RandomBlock => block(true),
         Handle::OtherFmuInstance => other.c,
     };
-    let binary = own.binary;
-    // SAFETY: the point of the probe: a handle this binary never issued.
-    let status = match invoke {
-        Some(f) => unsafe { f(binary, c, &args) },
-        None => {
-            unsafe { (binary.free_instance)(c) };
-            OK
-        }
-    };
-    if matches!(handle, Handle::ZeroedBlock | Handle::RandomBlock) {
-        // SAFETY: our own block; a crash here means the FMU freed it.
-        unsafe { libc::free(c) };
-    }
+    let owned = matches!(handle, Handle::ZeroedBlock | Handle::RandomBlock);
+    // SAFETY: null, our block or another FMU's live instance.
+    let status = unsafe { call_with_bad_handle::<Interface>((&own, &args), c, owned, invoke) };
     let (s, values) = other.get_reals(&[other.description.real_vrs()[0]]);
     if s != OK || !values[0].is_finite() {
         return Observed::broken(format!(
@@ -94,28 +89,83 @@ fn probe(
     Observed::of(status, log)
 }
 
-pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
+/// What a bad-handle probe works with: an instance of the model (whose function
+/// table makes the call), one of its FMU states and the call arguments, and an
+/// instance of the next model in Initialization Mode (which must still answer).
+pub struct Scene<'a, I: StandardInterface> {
+    pub own: I::Instance<'a>,
+    pub state: *mut c_void,
+    pub args: I::Args,
+    pub other: I::Instance<'a>,
+}
+
+impl<'a, I: StandardInterface> Scene<'a, I> {
+    pub fn new(l: &'a Loaded, m: usize, interface: I) -> Result<Scene<'a, I>, String> {
+        let own = interface.instance(l, m);
+        let (_, state) = own.new_state();
+        let args = I::args(&own, state);
+        let other = interface.instance(l, (m + 1) % crate::fmu::MODELS.len());
+        I::reach(&other, I::INITIALIZATION_MODE)?;
+        Ok(Scene {
+            own,
+            state,
+            args,
+            other,
+        })
+    }
+}
+
+/// `invoke` (None: fmiXFreeInstance) through the function table of `own`, with
+/// the bad handle `c`; then frees `c` when it is a block of the importer (`owned`):
+/// a crash there means the FMU freed it. The status (OK for fmiXFreeInstance).
+///
+/// # Safety
+/// `c` is null, a block of the importer (`owned`: freed here) or a live instance;
+/// the call is the probe's point: the FMU must recognize it as foreign.
+pub unsafe fn call_with_bad_handle<I: StandardInterface>(
+    (own, args): (&I::Instance<'_>, &I::Args),
+    c: *mut c_void,
+    owned: bool,
+    invoke: Option<Invoke<I>>,
+) -> Status {
+    let (binary, _) = I::raw(own);
+    // SAFETY: the point of the probe: a handle this binary never issued.
+    let status = match invoke {
+        Some(f) => unsafe { f(binary, c.into(), args) },
+        None => {
+            unsafe { I::free_instance(binary)(c) };
+            OK
+        }
+    };
+    if owned {
+        // SAFETY: our own block; a crash here means the FMU freed it.
+        unsafe { libc::free(c) };
+    }
+    status
+}
+
+/// A probe of one bad handle passed to one call (None: to fmiXFreeInstance).
+pub type HandleProbe<I, H> = fn(&Loaded, usize, I, H, Option<Invoke<I>>) -> Observed;
+
+/// Every handle of `handles` passed to every call of `calls` and to
+/// `free_instance` (named so), on every interface: an error without a log
+/// requirement, fmiXFreeInstance ignoring it (both standards).
+pub fn bad_handle_cases<I: StandardInterface, H: Copy + std::fmt::Debug + 'static>(
+    m: usize,
+    (class, free_instance): (&'static str, &'static str),
+    (handles, why): (&[H], fn(H) -> &'static str),
+    calls: Vec<(&'static str, Invoke<I>)>,
+    probe: HandleProbe<I, H>,
+) -> Vec<Case> {
+    let mut all: Vec<(&'static str, Option<Invoke<I>>)> =
+        calls.into_iter().map(|(n, f)| (n, Some(f))).collect();
+    all.push((free_instance, None));
     let mut cases = Vec::new();
-    for interface in Interface::BOTH {
-        for handle in [
-            Handle::Null,
-            Handle::ZeroedBlock,
-            Handle::RandomBlock,
-            Handle::OtherFmuInstance,
-        ] {
-            let why = if matches!(handle, Handle::Null) {
-                WHY_NULL
-            } else {
-                WHY_FOREIGN
-            };
-            let mut all: Vec<(&'static str, Option<Invoke>)> = calls()
-                .into_iter()
-                .map(|c| (c.name, Some(c.invoke)))
-                .collect();
-            all.push(("fmi2FreeInstance", None));
-            for (name, invoke) in all {
+    for &interface in I::INTERFACES {
+        for &handle in handles {
+            for &(name, invoke) in &all {
                 cases.push(Case {
-                    class: "bad instance handle",
+                    class,
                     model: m,
                     interface: Some(interface.short()),
                     name: format!("{name}({handle:?})"),
@@ -124,11 +174,27 @@ pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
                     } else {
                         Expect::ok()
                     },
-                    why,
+                    why: why(handle),
                     probe: Box::new(move |l| probe(l, m, interface, handle, invoke)),
                 });
             }
         }
     }
     cases
+}
+
+pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
+    bad_handle_cases::<Interface, Handle>(
+        m,
+        ("bad instance handle", "fmi2FreeInstance"),
+        (&HANDLES, |h| {
+            if matches!(h, Handle::Null) {
+                WHY_NULL
+            } else {
+                WHY_FOREIGN
+            }
+        }),
+        calls().into_iter().map(|c| (c.name, c.invoke)).collect(),
+        probe,
+    )
 }

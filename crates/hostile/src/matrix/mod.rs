@@ -3,6 +3,7 @@
 //! choice). Cases run in forked children, grouped per model; a crash fails only
 //! the case that caused it.
 
+pub mod bad_states;
 pub mod calls;
 pub mod handles;
 pub mod instantiate;
@@ -11,13 +12,15 @@ pub mod pointers;
 pub mod pose;
 pub mod references;
 pub mod serialized;
+pub mod standard;
 pub mod states;
 pub mod values;
 
 use crate::Loaded;
 use crate::binary::{DISCARD, ERROR, OK, Status, status_name};
-use crate::host::{Instance, Interface, State, unlogged};
+use crate::host::{Probed, take, unlogged};
 use crate::isolate;
+use crate::standard_interface::StandardInterface;
 
 /// What a case expects: one of `statuses`, and `log` (when given) contained in the
 /// log lines of the call, compared without case.
@@ -112,20 +115,26 @@ pub struct Case {
     pub probe: Probe,
 }
 
-/// A fresh instance of model `m` brought into `state`, then `call` on it.
-pub fn on_instance(
+/// A fresh instance of model `m` brought into `state`, then `call` on it; after
+/// the call, the instance must be usable as its standard requires
+/// (`StandardInterface::usable_after`).
+pub fn on_instance<I: StandardInterface>(
     loaded: &Loaded,
     m: usize,
-    interface: Interface,
-    state: State,
-    call: impl Fn(&Instance) -> Status,
+    interface: I,
+    state: I::State,
+    call: impl Fn(&I::Instance<'_>) -> Status,
 ) -> Observed {
-    let inst = Instance::new(&loaded.binaries[m], &loaded.fmus[m].description, interface);
-    if let Err(e) = inst.reach(state) {
+    let inst = interface.instance(loaded, m);
+    if let Err(e) = I::reach(&inst, state) {
         return Observed::broken(format!("could not reach {state:?}: {e}"));
     }
     let status = call(&inst);
-    Observed::of(status, inst.take_log())
+    let log = take(inst.log());
+    if let Err(e) = I::usable_after(&inst, status) {
+        return Observed::broken(e);
+    }
+    Observed::of(status, log)
 }
 
 /// Cases known to fail on the FMI layer this suite runs against, by full name
@@ -227,36 +236,47 @@ pub fn all_cases(loaded: &Loaded) -> Vec<Case> {
     cases
 }
 
+/// A builder of the cases of one class for model `m`.
+pub type Cases = fn(&Loaded, usize) -> Vec<Case>;
+
+/// The cases of every builder of `classes` for each of the models, model by model.
+pub fn per_model(loaded: &Loaded, classes: &[Cases]) -> Vec<Case> {
+    (0..crate::fmu::MODELS.len())
+        .flat_map(|m| classes.iter().flat_map(move |class| class(loaded, m)))
+        .collect()
+}
+
 /// The FMI 2.0 cases.
 pub fn fmi2_cases(loaded: &Loaded) -> Vec<Case> {
-    let mut cases = Vec::new();
-    for m in 0..loaded.fmus.len() {
-        cases.extend(pointers::cases(loaded, m));
-        cases.extend(references::cases(loaded, m));
-        cases.extend(values::cases(loaded, m));
-        cases.extend(serialized::cases(loaded, m));
-        cases.extend(orders::cases(loaded, m));
-        cases.extend(handles::cases(loaded, m));
-        cases.extend(states::cases(loaded, m));
-        cases.extend(pose::cases(loaded, m));
-        cases.extend(instantiate::cases(loaded, m));
-    }
-    cases
+    per_model(
+        loaded,
+        &[
+            pointers::cases,
+            references::cases,
+            values::cases,
+            serialized::cases,
+            orders::cases,
+            handles::cases,
+            states::cases,
+            pose::cases,
+            instantiate::cases,
+        ],
+    )
 }
 
 /// Like `on_instance`, with well-formed arguments that include a valid FMU state
 /// of the instance (taken after reaching `state`, freed after the call).
-pub fn with_args(
+pub fn with_args<I: StandardInterface>(
     loaded: &Loaded,
     m: usize,
-    interface: Interface,
-    state: State,
-    call: impl Fn(&Instance, &calls::Args) -> Status,
+    interface: I,
+    state: I::State,
+    call: impl Fn(&I::Instance<'_>, &I::Args) -> Status,
 ) -> Observed {
     on_instance(loaded, m, interface, state, |inst| {
-        let (_, fmu_state) = unlogged(inst, || inst.get_state());
-        let status = call(inst, &calls::Args::new(inst.description, fmu_state));
-        unlogged(inst, || inst.free_state(fmu_state));
+        let (_, fmu_state) = unlogged(inst, || inst.new_state());
+        let status = call(inst, &I::args(inst, fmu_state));
+        unlogged(inst, || inst.release_state(fmu_state));
         status
     })
 }

@@ -3,18 +3,21 @@
 //! standard leaves null arguments undefined; the project's documented choice is to
 //! refuse them, see docs/reliability.md).
 
-use super::calls::Args;
-use super::{Case, Expect, with_args};
+use super::orders::invoke_probe;
+use super::{Case, Expect};
 use crate::Loaded;
-use crate::binary::{Binary, Component, FmuState, Status};
+use crate::binary::FmuState;
 use crate::description::Description;
 use crate::host::{Interface, State};
+use crate::standard_interface::{Invoke, StandardInterface};
 use std::ptr::{null, null_mut};
 
 const WHY: &str = "null argument with a non-zero length: undefined in FMI 2.0; refused with fmi2Error and a log line (project choice)";
 
-type Applies = fn(&Description, Interface) -> Option<State>;
-type Invoke = unsafe fn(&Binary, Component, &Args) -> Status;
+/// The state in which a row's call applies to a model and interface, if any.
+pub type Applies<I> = fn(&Description, I) -> Option<<I as StandardInterface>::State>;
+/// A call with a null pointer: its name, where it applies, how to make it.
+pub type Row<I> = (&'static str, Applies<I>, Invoke<I>);
 
 fn both_init(_: &Description, _: Interface) -> Option<State> {
     Some(State::InitializationMode)
@@ -42,8 +45,8 @@ fn with_partials(d: &Description, _: Interface) -> Option<State> {
         .then_some(State::InitializationMode)
 }
 
-fn table() -> Vec<(&'static str, Applies, Invoke)> {
-    let mut t: Vec<(&'static str, Applies, Invoke)> = vec![
+fn table() -> Vec<Row<Interface>> {
+    let mut t: Vec<Row<Interface>> = vec![
         (
             "fmi2SetDebugLogging(categories=null, n=1)",
             both_instantiated,
@@ -120,7 +123,7 @@ fn table() -> Vec<(&'static str, Applies, Invoke)> {
     t
 }
 
-fn state_table() -> Vec<(&'static str, Applies, Invoke)> {
+fn state_table() -> Vec<Row<Interface>> {
     vec![
         (
             "fmi2GetFMUstate(FMUstate=null)",
@@ -230,7 +233,7 @@ fn state_table() -> Vec<(&'static str, Applies, Invoke)> {
     ]
 }
 
-fn model_exchange_table() -> Vec<(&'static str, Applies, Invoke)> {
+fn model_exchange_table() -> Vec<Row<Interface>> {
     vec![
         (
             "fmi2NewDiscreteStates(eventInfo=null)",
@@ -275,7 +278,7 @@ fn model_exchange_table() -> Vec<(&'static str, Applies, Invoke)> {
     ]
 }
 
-fn co_simulation_table() -> Vec<(&'static str, Applies, Invoke)> {
+fn co_simulation_table() -> Vec<Row<Interface>> {
     vec![
         (
             "fmi2SetRealInputDerivatives(vr=null)",
@@ -337,28 +340,35 @@ fn co_simulation_table() -> Vec<(&'static str, Applies, Invoke)> {
     ]
 }
 
-pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
-    let d = &loaded.fmus[m].description;
+/// One case per row of `table` that applies to the model and interface: the call
+/// with a null pointer in the state the row names, refused with an error and a
+/// log line saying "null" (both standards).
+pub fn null_pointer_cases<I: StandardInterface>(
+    (d, m): (&Description, usize),
+    (class, why): (&'static str, &'static str),
+    table: impl Fn() -> Vec<Row<I>>,
+) -> Vec<Case> {
     let mut cases = Vec::new();
-    for interface in Interface::BOTH {
+    for &interface in I::INTERFACES {
         for (name, applies, invoke) in table() {
             let Some(state) = applies(d, interface) else {
                 continue;
             };
             cases.push(Case {
-                class: "null pointer",
+                class,
                 model: m,
                 interface: Some(interface.short()),
                 name: name.to_string(),
                 expect: Expect::error("null"),
-                why: WHY,
-                probe: Box::new(move |l| {
-                    with_args(l, m, interface, state, |inst, a| unsafe {
-                        invoke(inst.binary, inst.c, a)
-                    })
-                }),
+                why,
+                probe: invoke_probe(m, interface, state, invoke),
             });
         }
     }
     cases
+}
+
+pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
+    let d = &loaded.fmus[m].description;
+    null_pointer_cases::<Interface>((d, m), ("null pointer", WHY), table)
 }

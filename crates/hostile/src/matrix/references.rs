@@ -53,26 +53,30 @@ fn setters() -> [(&'static str, Option<VarType>, Getter); 4] {
 }
 
 /// An unused value reference: above every one the model declares.
-fn unused(d: &Description) -> Vr {
+pub(crate) fn unused(d: &Description) -> Vr {
     d.variables.iter().map(|v| v.vr).max().unwrap_or(0) + 1
 }
 
-/// (label, value reference, expected log text, why) for a function of `own` type.
-fn probes(d: &Description, own: Option<VarType>) -> Vec<(String, Vr, String, &'static str)> {
-    let mut p = vec![
+/// The value references no variable has (one above the largest, and the largest
+/// representable), as (label, value reference, expected log text); shared with
+/// the FMI 3.0 matrix.
+pub(crate) fn unknown_references(d: &Description) -> [(String, Vr, String); 2] {
+    [
         (
             format!("unused vr {}", unused(d)),
             unused(d),
             unused(d).to_string(),
-            WHY_UNKNOWN,
         ),
-        (
-            "vr 4294967295".into(),
-            Vr::MAX,
-            "4294967295".into(),
-            WHY_UNKNOWN,
-        ),
-    ];
+        ("vr 4294967295".into(), Vr::MAX, "4294967295".into()),
+    ]
+}
+
+/// (label, value reference, expected log text, why) for a function of `own` type.
+fn probes(d: &Description, own: Option<VarType>) -> Vec<(String, Vr, String, &'static str)> {
+    let mut p: Vec<_> = unknown_references(d)
+        .into_iter()
+        .map(|(label, vr, log)| (label, vr, log, WHY_UNKNOWN))
+        .collect();
     for t in [VarType::Real, VarType::Integer, VarType::Boolean] {
         if Some(t) == own {
             continue;

@@ -8,8 +8,9 @@
 use super::{Case, Expect, Observed, on_instance};
 use crate::Loaded;
 use crate::binary::{FmuState, OK, status_name};
-use crate::host::{Instance, Interface, State, unlogged};
+use crate::host::{Instance, Interface, Probed, State, unlogged};
 use crate::isolate;
+use crate::standard_interface::StandardInterface;
 use std::ffi::c_char;
 
 const WHY_DAMAGED: &str = "damaged serialized state: refused with fmi2Error and a log line (project format with magic, version, GUID, lengths and checksum)";
@@ -72,19 +73,27 @@ pub(crate) fn deserialize(inst: &Instance, bytes: &[u8]) -> (crate::binary::Stat
     (s, state)
 }
 
-fn damaged_case(m: usize, interface: Interface, name: String, bytes: Vec<u8>) -> Case {
+/// A damaged serialized state deserialized into an instance of `interface` in
+/// `state`: refused with an error and a log line about the FMU state (both
+/// standards).
+pub(crate) fn damaged_case<I: StandardInterface>(
+    (m, interface, state): (usize, I, I::State),
+    (class, why): (&'static str, &'static str),
+    name: String,
+    bytes: Vec<u8>,
+) -> Case {
     Case {
-        class: "serialized state",
+        class,
         model: m,
         interface: Some(interface.short()),
         name,
         expect: Expect::error("FMU state"),
-        why: WHY_DAMAGED,
+        why,
         probe: Box::new(move |l| {
-            on_instance(l, m, interface, reference_state(interface), |inst| {
-                let (s, state) = deserialize(inst, &bytes);
+            on_instance(l, m, interface, state, |inst| {
+                let (s, state) = I::deserialize(inst, &bytes);
                 if !state.is_null() && s == OK {
-                    unlogged(inst, || inst.free_state(state));
+                    unlogged(inst, || inst.release_state(state));
                 }
                 s
             })
@@ -157,7 +166,12 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
         assert!(!bytes.is_empty(), "empty reference state");
         cases.push(control_case(m, interface, bytes.clone(), outputs));
         for (name, variant) in damaged(&bytes) {
-            cases.push(damaged_case(m, interface, name, variant));
+            cases.push(damaged_case(
+                (m, interface, reference_state(interface)),
+                ("serialized state", WHY_DAMAGED),
+                name,
+                variant,
+            ));
         }
     }
     cases

@@ -13,7 +13,8 @@ use super::{Case, Expect, Observed};
 use crate::Loaded;
 use crate::binary::{DISCARD, ERROR, OK, Status, status_name};
 use crate::description::{VarType, Variable};
-use crate::host::{Instance, Interface, State};
+use crate::host::{Instance, Interface, Probed, State, take};
+use crate::standard_interface::StandardInterface;
 
 const WHY_NON_FINITE: &str = "NaN/inf set: refused by fmi2SetReal with fmi2Error naming the variable (project choice; FMI 2.0 Reals of a model are finite)";
 const WHY_EXTREME: &str = "extreme finite value: refused at set or exitInitializationMode naming the variable, or a step Discard; never first noticed by a getter (issue 12 item 3)";
@@ -96,16 +97,63 @@ pub(crate) fn names(log: &str, variable: &str) -> bool {
     log.contains(variable) || log.contains(array)
 }
 
+/// After `what` returned `s` for a value of `variable`: a refusal whose log names
+/// the variable is what the case expects; anything else is broken (both standards).
+pub(crate) fn refused_naming<P: Probed>(
+    inst: &P,
+    variable: &str,
+    what: &str,
+    s: Status,
+) -> Observed {
+    let log = take(inst.log());
+    if s == ERROR && names(&log, variable) {
+        Observed::of(ERROR, log)
+    } else {
+        Observed::broken(format!("{what} returned {} (log: {log})", status_name(s)))
+    }
+}
+
+/// Ok(false) when `s` is OK, Ok(true) when Discard, else Err with the log.
+pub(crate) fn discarded<P: Probed>(inst: &P, what: &str, s: Status) -> Result<bool, String> {
+    match s {
+        OK => Ok(false),
+        DISCARD => Ok(true),
+        _ => Err(format!(
+            "{what} returned {} (log: {})",
+            status_name(s),
+            take(inst.log())
+        )),
+    }
+}
+
+/// Model Exchange from Event Mode: enter Continuous-Time Mode, get the
+/// derivatives and the event indicators; Ok(true) when one was discarded (both
+/// standards).
+pub(crate) fn me_evaluate<I: StandardInterface>(
+    inst: &I::Instance<'_>,
+    (nx, nz): (usize, usize),
+) -> Result<bool, String> {
+    let (binary, handle) = I::raw(inst);
+    let (enter, derivatives, indicators) = I::me_evaluation(binary);
+    let c = handle.into();
+    let (mut dx, mut z) = (vec![0.0; nx], vec![0.0; nz]);
+    let name = |what: &str| format!("{}{what}", I::PREFIX);
+    // SAFETY: a live instance in Event Mode; arrays of the declared sizes.
+    unsafe {
+        discarded(inst, &name("EnterContinuousTimeMode"), enter(c))?;
+        let a = discarded(inst, I::DERIVATIVES, derivatives(c, dx.as_mut_ptr(), nx))?;
+        let e = discarded(
+            inst,
+            &name("GetEventIndicators"),
+            indicators(c, z.as_mut_ptr(), nz),
+        )?;
+        Ok(a || e)
+    }
+}
+
 /// Set, initialize, one step (CS) or derivatives (ME), read every Real.
 fn scenario(inst: &Instance, v: &Variable, value: Value) -> Observed {
-    let refused_naming = |what: &str, s: Status| {
-        let log = inst.take_log();
-        if s == ERROR && names(&log, &v.name) {
-            Observed::of(ERROR, log)
-        } else {
-            Observed::broken(format!("{what} returned {} (log: {log})", status_name(s)))
-        }
-    };
+    let refused_naming = |what: &str, s: Status| refused_naming(inst, &v.name, what, s);
     let s = set(inst, v.vr, value);
     if s != OK {
         return refused_naming("the set", s);
@@ -129,38 +177,11 @@ fn scenario(inst: &Instance, v: &Variable, value: Value) -> Observed {
 
 /// One step or one evaluation; Ok(true) when it was discarded.
 fn evaluate(inst: &Instance) -> Result<bool, String> {
-    let b = inst.binary;
     let d = inst.description;
-    let check = |what: &str, s: Status| match s {
-        OK => Ok(false),
-        DISCARD => Ok(true),
-        _ => Err(format!(
-            "{what} returned {} (log: {})",
-            status_name(s),
-            inst.take_log()
-        )),
-    };
-    // SAFETY: as above; arrays of the declared sizes.
-    unsafe {
-        match inst.interface {
-            Interface::CoSimulation => check("fmi2DoStep", inst.do_step(0.0, 1e-3)),
-            Interface::ModelExchange => {
-                check(
-                    "fmi2EnterContinuousTimeMode",
-                    (b.enter_continuous_time_mode)(inst.c),
-                )?;
-                let mut dx = vec![0.0; d.number_of_states];
-                let a = check(
-                    "fmi2GetDerivatives",
-                    (b.get_derivatives)(inst.c, dx.as_mut_ptr(), dx.len()),
-                )?;
-                let mut z = vec![0.0; d.number_of_event_indicators];
-                let e = check(
-                    "fmi2GetEventIndicators",
-                    (b.get_event_indicators)(inst.c, z.as_mut_ptr(), z.len()),
-                )?;
-                Ok(a || e)
-            }
+    match inst.interface {
+        Interface::CoSimulation => discarded(inst, "fmi2DoStep", inst.do_step(0.0, 1e-3)),
+        Interface::ModelExchange => {
+            me_evaluate::<Interface>(inst, (d.number_of_states, d.number_of_event_indicators))
         }
     }
 }

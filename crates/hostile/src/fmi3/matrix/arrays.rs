@@ -16,6 +16,7 @@ use crate::fmi3::binary::Vr;
 use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::host::unlogged;
 use crate::matrix::Expect;
+use crate::matrix::references::{unknown_references, unused};
 
 const WHY_UNKNOWN: &str =
     "value reference not in the modelDescription (FMI 3.0 2.2.6): fmi3Error naming it";
@@ -61,11 +62,6 @@ fn setters() -> [Access; 3] {
     ]
 }
 
-/// An unused value reference: above every one the model declares.
-fn unused(d: &Description) -> Vr {
-    d.variables.iter().map(|v| v.vr).max().unwrap_or(0) + 1
-}
-
 /// Counts that do not match `size` elements: one less, one more, none, huge. A huge
 /// count is given with an array of at most 64 elements (the FMU must not use it).
 fn wrong_counts(size: usize) -> Vec<usize> {
@@ -84,22 +80,10 @@ fn reference_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case
     ];
     for (functions, state, settable) in groups {
         for (function, own, call) in functions {
-            let mut probes = vec![
-                (
-                    format!("unused vr {}", unused(d)),
-                    unused(d),
-                    1,
-                    unused(d).to_string(),
-                    WHY_UNKNOWN,
-                ),
-                (
-                    "vr 4294967295".into(),
-                    Vr::MAX,
-                    1,
-                    "4294967295".into(),
-                    WHY_UNKNOWN,
-                ),
-            ];
+            let mut probes: Vec<_> = unknown_references(d)
+                .into_iter()
+                .map(|(label, vr, log)| (label, vr, 1, log, WHY_UNKNOWN))
+                .collect();
             for t in [VarType::Real, VarType::Integer, VarType::Boolean] {
                 if let Some(v) = d
                     .of_type(t)

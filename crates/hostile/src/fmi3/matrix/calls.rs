@@ -7,9 +7,8 @@
 //! structural parameters, Scheduled Execution) are in `unsupported`: they are
 //! refused in every state.
 
-use crate::binary::Status;
 use crate::description::{Description, VarType, Variable};
-use crate::fmi3::binary::{Binary3, FmuState, Instance3, Vr};
+use crate::fmi3::binary::{FmuState, Vr};
 use crate::fmi3::host::{Interface3, State3};
 
 /// A variable's reference and well-formed values for all its elements.
@@ -85,14 +84,9 @@ impl Args {
     }
 }
 
-pub type Legal = fn(Interface3, State3) -> bool;
-pub type Invoke = unsafe fn(&Binary3, Instance3, &Args) -> Status;
-
-pub struct Call {
-    pub name: &'static str,
-    pub legal: Legal,
-    pub invoke: Invoke,
-}
+pub type Legal = crate::standard_interface::Legal<Interface3>;
+pub type Invoke = crate::standard_interface::Invoke<Interface3>;
+pub type Call = crate::standard_interface::Call<Interface3>;
 
 use State3::*;
 

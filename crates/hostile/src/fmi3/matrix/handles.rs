@@ -7,14 +7,13 @@
 //! required (there is no logger the FMU could trust). Afterwards the block is
 //! intact, and the other instances still answer.
 
-use super::calls::{Args, Invoke, calls, unsupported};
+use super::calls::{Invoke, calls, unsupported};
 use super::{Case, Observed};
 use crate::Loaded;
 use crate::binary::{Binary, OK, status_name};
-use crate::fmi3::host::{Instance, Interface3, State3};
+use crate::fmi3::host::{Instance, Interface3};
 use crate::host::{Instance as Instance2, Interface};
-use crate::matrix::Expect;
-use crate::matrix::handles::block;
+use crate::matrix::handles::{Scene, bad_handle_cases, block, call_with_bad_handle};
 
 const WHY_NULL: &str = "null instance: undefined in FMI 3.0; fmi3Error (fmi3FreeInstance: ignored)";
 const WHY_FOREIGN: &str = "handle not issued by this FMU's FMI 3.0 interface, or freed: undefined in FMI 3.0; refused with fmi3Error after a registry check (fmi3FreeInstance: ignored)";
@@ -45,18 +44,15 @@ fn probe(
     handle: Handle,
     invoke: Option<Invoke>,
 ) -> Observed {
-    let own = Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface);
-    let (_, state) = own.get_state();
-    let args = Args::new(own.description, state);
-    let other_model = (m + 1) % l.fmus3.len();
-    let other = Instance::new(
-        &l.binaries3[other_model],
-        &l.fmus3[other_model].description,
-        interface,
-    );
-    if let Err(e) = other.reach(State3::InitializationMode) {
-        return Observed::broken(e);
-    }
+    let Scene {
+        own,
+        state,
+        args,
+        other,
+    } = match Scene::new(l, m, interface) {
+        Ok(scene) => scene,
+        Err(e) => return Observed::broken(e),
+    };
     // The FMI 2.0 view of the very binary `own` lives in (same path: same handle).
     let fmi2 = match Binary::open(&l.fmus3[m].library) {
         Ok(b) => b,
@@ -81,19 +77,9 @@ fn probe(
         }
         Handle::Fmi2InstanceOfThisFmu => fmi2_instance.c,
     };
-    let binary = own.binary;
-    // SAFETY: the point of the probe: a handle this interface never issued.
-    let status = match invoke {
-        Some(f) => unsafe { f(binary, c, &args) },
-        None => {
-            unsafe { (binary.free_instance)(c) };
-            OK
-        }
-    };
-    if matches!(handle, Handle::ZeroedBlock | Handle::RandomBlock) {
-        // SAFETY: our own block; a crash here means the FMU freed it.
-        unsafe { libc::free(c) };
-    }
+    let owned = matches!(handle, Handle::ZeroedBlock | Handle::RandomBlock);
+    // SAFETY: null, our block, or a live (or just freed) instance.
+    let status = unsafe { call_with_bad_handle::<Interface3>((&own, &args), c, owned, invoke) };
     let (s, values) = other.get_float64(&[other.description.real_vrs()[1]]);
     if s != OK || values.iter().any(|v| !v.is_finite()) {
         return Observed::broken(format!(
@@ -111,36 +97,21 @@ fn probe(
 }
 
 pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
-    let mut cases = Vec::new();
-    for interface in Interface3::ALL {
-        for handle in HANDLES {
-            let why = if matches!(handle, Handle::Null) {
+    bad_handle_cases::<Interface3, Handle>(
+        m,
+        ("fmi3 bad instance handle", "fmi3FreeInstance"),
+        (&HANDLES, |h| {
+            if matches!(h, Handle::Null) {
                 WHY_NULL
             } else {
                 WHY_FOREIGN
-            };
-            let mut all: Vec<(&'static str, Option<Invoke>)> = calls()
-                .into_iter()
-                .map(|c| (c.name, Some(c.invoke)))
-                .chain(unsupported().into_iter().map(|(n, f)| (n, Some(f))))
-                .collect();
-            all.push(("fmi3FreeInstance", None));
-            for (name, invoke) in all {
-                cases.push(Case {
-                    class: "fmi3 bad instance handle",
-                    model: m,
-                    interface: Some(interface.short()),
-                    name: format!("{name}({handle:?})"),
-                    expect: if invoke.is_some() {
-                        Expect::silent_error()
-                    } else {
-                        Expect::ok()
-                    },
-                    why,
-                    probe: Box::new(move |l| probe(l, m, interface, handle, invoke)),
-                });
             }
-        }
-    }
-    cases
+        }),
+        calls()
+            .into_iter()
+            .map(|c| (c.name, c.invoke))
+            .chain(unsupported())
+            .collect(),
+        probe,
+    )
 }

@@ -4,27 +4,46 @@
 //! (the standard leaves null arguments undefined; the project refuses them, see
 //! docs/reliability.md), and the instance recovers with fmi3Reset.
 
+use super::Case;
 use super::calls::Args;
-use super::{Case, with_args};
 use crate::Loaded;
 use crate::binary::Status;
-use crate::description::Description;
+use crate::description::{Description, VarType};
 use crate::fmi3::binary::{Binary3, FmuState, Instance3, Vr};
 use crate::fmi3::host::{Interface3, State3};
-use crate::matrix::Expect;
+use crate::matrix::pointers::{self, null_pointer_cases};
 use std::ptr::{null, null_mut};
 
 const WHY: &str = "null argument with a non-zero length: undefined in FMI 3.0; refused with fmi3Error and a log line (project choice); fmi3Reset recovers";
 
-type Applies = fn(&Description, Interface3) -> Option<State3>;
-type Invoke = unsafe fn(&Binary3, Instance3, &Args) -> Status;
-type Row = (&'static str, Applies, Invoke);
+type Applies = pointers::Applies<Interface3>;
+type Invoke = crate::standard_interface::Invoke<Interface3>;
+type Row = pointers::Row<Interface3>;
 
 fn init(_: &Description, _: Interface3) -> Option<State3> {
     Some(State3::InitializationMode)
 }
 fn instantiated(_: &Description, _: Interface3) -> Option<State3> {
     Some(State3::Instantiated)
+}
+/// A null value buffer needs a settable variable of the function's own type (the
+/// one `Args` picks): given one of another type, the layer rightly answers with
+/// the type mismatch before it looks at the buffer (the value-reference cases
+/// cover that).
+fn has_settable(d: &Description, t: VarType) -> bool {
+    d.of_type(t).any(|v| v.is_settable())
+}
+fn init_int32(d: &Description, i: Interface3) -> Option<State3> {
+    has_settable(d, VarType::Integer).then_some(init(d, i)?)
+}
+fn init_boolean(d: &Description, i: Interface3) -> Option<State3> {
+    has_settable(d, VarType::Boolean).then_some(init(d, i)?)
+}
+fn instantiated_int32(d: &Description, i: Interface3) -> Option<State3> {
+    has_settable(d, VarType::Integer).then_some(instantiated(d, i)?)
+}
+fn instantiated_boolean(d: &Description, i: Interface3) -> Option<State3> {
+    has_settable(d, VarType::Boolean).then_some(instantiated(d, i)?)
 }
 fn event(_: &Description, i: Interface3) -> Option<State3> {
     (i != Interface3::CoSimulation).then_some(State3::EventMode)
@@ -83,16 +102,18 @@ fn values_table() -> Vec<Row> {
             let mut x = vec![0; a.int.size];
             (b.get_int32)(c, null(), 1, x.as_mut_ptr(), x.len())
         }),
-        ("fmi3GetInt32(values=null)", init, |b, c, a| unsafe {
+        ("fmi3GetInt32(values=null)", init_int32, |b, c, a| unsafe {
             (b.get_int32)(c, &a.int.vr, 1, null_mut(), a.int.size)
         }),
         ("fmi3GetBoolean(vr=null)", init, |b, c, a| unsafe {
             let mut x = vec![0; a.boolean.size];
             (b.get_boolean)(c, null(), 1, x.as_mut_ptr(), x.len())
         }),
-        ("fmi3GetBoolean(values=null)", init, |b, c, a| unsafe {
-            (b.get_boolean)(c, &a.boolean.vr, 1, null_mut(), a.boolean.size)
-        }),
+        (
+            "fmi3GetBoolean(values=null)",
+            init_boolean,
+            |b, c, a| unsafe { (b.get_boolean)(c, &a.boolean.vr, 1, null_mut(), a.boolean.size) },
+        ),
         ("fmi3SetFloat64(vr=null)", instantiated, |b, c, a| unsafe {
             let x = vec![0.0; a.input.size];
             (b.set_float64)(c, null(), 1, x.as_ptr(), x.len())
@@ -108,7 +129,7 @@ fn values_table() -> Vec<Row> {
         }),
         (
             "fmi3SetInt32(values=null)",
-            instantiated,
+            instantiated_int32,
             |b, c, a| unsafe { (b.set_int32)(c, &a.int.vr, 1, null(), a.int.size) },
         ),
         ("fmi3SetBoolean(vr=null)", instantiated, |b, c, a| unsafe {
@@ -117,7 +138,7 @@ fn values_table() -> Vec<Row> {
         }),
         (
             "fmi3SetBoolean(values=null)",
-            instantiated,
+            instantiated_boolean,
             |b, c, a| unsafe { (b.set_boolean)(c, &a.boolean.vr, 1, null(), a.boolean.size) },
         ),
         (
@@ -483,26 +504,5 @@ fn table() -> Vec<Row> {
 
 pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
     let d = &loaded.fmus3[m].description;
-    let mut cases = Vec::new();
-    for interface in Interface3::ALL {
-        for (name, applies, invoke) in table() {
-            let Some(state) = applies(d, interface) else {
-                continue;
-            };
-            cases.push(Case {
-                class: "fmi3 null pointer",
-                model: m,
-                interface: Some(interface.short()),
-                name: name.to_string(),
-                expect: Expect::error("null"),
-                why: WHY,
-                probe: Box::new(move |l| {
-                    with_args(l, m, interface, state, |inst, a| unsafe {
-                        invoke(inst.binary, inst.c, a)
-                    })
-                }),
-            });
-        }
-    }
-    cases
+    null_pointer_cases::<Interface3>((d, m), ("fmi3 null pointer", WHY), table)
 }

@@ -4,20 +4,17 @@
 //! evaluates the model return fmi3Discard there so that the integrator can retry
 //! with a smaller step; fmi3Error would end the instance.
 
-use super::{Case, on_instance};
+use super::Case;
 use crate::Loaded;
-use crate::binary::{OK, Status};
-use crate::fmi3::host::{Instance, Interface3, State3};
-use crate::matrix::Expect;
+use crate::binary::Status;
+use crate::fmi3::host::{Instance, Interface3};
+use crate::matrix::pose::{Evaluate, unassemblable_cases};
 
 const WHY: &str = "FMI 3.0 3.2.1: a model that cannot be evaluated at the current state returns fmi3Discard (integrator retries), not fmi3Error";
-const UNASSEMBLABLE_THETA2: f64 = 0.351832;
 
-type Evaluate = fn(&Instance) -> Status;
-
-fn evaluations() -> [(&'static str, Evaluate); 5] {
-    [
-        ("fmi3GetContinuousStateDerivatives", |i| unsafe {
+fn evaluations() -> Vec<(&'static str, Evaluate<Interface3>)> {
+    vec![
+        ("fmi3GetContinuousStateDerivatives", |i: &Instance| unsafe {
             let mut dx = vec![0.0; i.description.number_of_states];
             (i.binary.get_continuous_state_derivatives)(i.c, dx.as_mut_ptr(), dx.len())
         }),
@@ -52,18 +49,6 @@ fn partial(i: &Instance, adjoint: bool) -> Status {
     unsafe { f(i.c, &dx, 1, &x, 1, seed.as_ptr(), n, out.as_mut_ptr(), n) }
 }
 
-/// Moves the instance's state to the unassemblable pose; the status of the set.
-fn break_pose(i: &Instance) -> Status {
-    let n = i.description.number_of_states;
-    let mut x = vec![0.0; n];
-    // SAFETY: arrays of the model's state count.
-    unsafe {
-        (i.binary.get_continuous_states)(i.c, x.as_mut_ptr(), n);
-        x[1] = UNASSEMBLABLE_THETA2;
-        (i.binary.set_continuous_states)(i.c, x.as_ptr(), n)
-    }
-}
-
 pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
     let d = &l.fmus3[m].description;
     let theta = d.variables.iter().find(|v| v.name == "theta").map(|v| v.vr);
@@ -71,31 +56,9 @@ pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
     if pairs.is_empty() || theta != Some(pairs[0].0) {
         return Vec::new();
     }
-    evaluations()
-        .into_iter()
-        .map(|(name, evaluate)| Case {
-            class: "fmi3 unassemblable pose",
-            model: m,
-            interface: Some(Interface3::ModelExchange.short()),
-            name: format!("{name} at theta[2] = {UNASSEMBLABLE_THETA2}"),
-            expect: Expect::discard(),
-            why: WHY,
-            probe: Box::new(move |l| {
-                on_instance(
-                    l,
-                    m,
-                    Interface3::ModelExchange,
-                    State3::ContinuousTimeMode,
-                    |i| {
-                        let s = break_pose(i);
-                        if s != OK {
-                            return s;
-                        }
-                        i.take_log();
-                        evaluate(i)
-                    },
-                )
-            }),
-        })
-        .collect()
+    unassemblable_cases::<Interface3>(
+        (m, d.number_of_states),
+        ("fmi3 unassemblable pose", WHY),
+        evaluations(),
+    )
 }

@@ -7,13 +7,12 @@
 //! fmi3Reset. The unmodified bytes are the control: they restore the outputs bit
 //! for bit.
 
-use super::{Case, Observed, on_instance};
+use super::{Case, Observed};
 use crate::Loaded;
 use crate::binary::{OK, status_name};
 use crate::fmi3::host::{Instance, Interface3, State3};
-use crate::host::unlogged;
 use crate::matrix::Expect;
-use crate::matrix::serialized::{damaged, in_child};
+use crate::matrix::serialized::{damaged, damaged_case, in_child};
 
 const WHY_DAMAGED: &str = "damaged serialized state: refused with fmi3Error and a log line (project format with magic, version, token, lengths and checksum); fmi3Reset recovers";
 const WHY_CONTROL: &str = "FMI 3.0 2.2.9: an FMU reads back its own serialized state; restored outputs are bit for bit those at serialization";
@@ -81,26 +80,6 @@ pub(crate) fn restore(
     Observed::of(OK, inst.take_log())
 }
 
-fn damaged_case(m: usize, interface: Interface3, name: String, bytes: Vec<u8>) -> Case {
-    Case {
-        class: "fmi3 serialized state",
-        model: m,
-        interface: Some(interface.short()),
-        name,
-        expect: Expect::error("FMU state"),
-        why: WHY_DAMAGED,
-        probe: Box::new(move |l| {
-            on_instance(l, m, interface, reference_state(interface), |inst| {
-                let (s, state) = inst.deserialize(&bytes);
-                if !state.is_null() && s == OK {
-                    unlogged(inst, || inst.free_state(state));
-                }
-                s
-            })
-        }),
-    }
-}
-
 pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
     let mut cases = Vec::new();
     for interface in Interface3::ALL {
@@ -117,7 +96,12 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             probe: Box::new(move |l| restore(l, m, interface, &control, &expected)),
         });
         for (name, variant) in damaged(&bytes) {
-            cases.push(damaged_case(m, interface, name, variant));
+            cases.push(damaged_case(
+                (m, interface, reference_state(interface)),
+                ("fmi3 serialized state", WHY_DAMAGED),
+                name,
+                variant,
+            ));
         }
     }
     cases

@@ -14,27 +14,22 @@
 use super::serialized::{reference, reference_state, restore};
 use super::{Case, Observed};
 use crate::Loaded;
-use crate::binary::{Binary, ERROR, OK, Status};
-use crate::fmi3::binary::FmuState;
+use crate::binary::{Binary, OK};
 use crate::fmi3::host::{Instance, Interface3};
 use crate::host::{Instance as Instance2, Interface};
 use crate::matrix::Expect;
-use crate::rng::SplitMix64;
+use crate::matrix::bad_states::{self, BadStateClass};
 
 const WHY_BAD: &str = "FMU state not issued by this FMU or already freed: undefined in FMI 3.0; fmi3Error and a log line after a registry check; fmi3Reset recovers";
+const BAD: BadStateClass = BadStateClass {
+    class: "fmi3 bad FMU state",
+    why: WHY_BAD,
+    seed: 0xbad3,
+};
 const WHY_FMI2: &str = "live FMU state of an FMI 2.0 instance of the same FMU: accepted like one of another instance (project choice, fmus/pid/tests/handles.rs); outputs those of the FMI 2.0 instance, bit for bit";
 const WHY_CROSS: &str = "the serialized state of one interface restores an instance of another interface of the same FMU (project choice: the model state is the same); outputs bit for bit";
 
-#[derive(Clone, Copy, Debug)]
-enum BadState {
-    ZeroedBlock,
-    RandomBlock,
-    Freed,
-    OtherFmuState,
-    InstanceHandle,
-}
-
-type Use = fn(&Instance, FmuState) -> Status;
+type Use = bad_states::Use<Interface3>;
 
 fn uses() -> [(&'static str, Use); 5] {
     [
@@ -56,55 +51,6 @@ fn uses() -> [(&'static str, Use); 5] {
     ]
 }
 
-fn probe(l: &Loaded, m: usize, interface: Interface3, bad: BadState, use_it: Use) -> Observed {
-    let inst = Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface);
-    if let Err(e) = inst.reach(super::State3::InitializationMode) {
-        return Observed::broken(e);
-    }
-    let other_model = (m + 1) % l.fmus3.len();
-    let other = Instance::new(
-        &l.binaries3[other_model],
-        &l.fmus3[other_model].description,
-        interface,
-    );
-    let mut owned_block = None;
-    let state: FmuState = match bad {
-        BadState::ZeroedBlock | BadState::RandomBlock => {
-            // SAFETY: calloc of a fixed size; filled within bounds.
-            let p = unsafe { libc::calloc(1, 1024) } as *mut u8;
-            if matches!(bad, BadState::RandomBlock) {
-                let mut rng = SplitMix64::new(0xbad3);
-                (0..1024).for_each(|i| unsafe { *p.add(i) = rng.next_u64() as u8 });
-            }
-            owned_block = Some(p);
-            p as FmuState
-        }
-        BadState::Freed => {
-            let (_, s) = inst.get_state();
-            inst.free_state(s);
-            s
-        }
-        BadState::OtherFmuState => other.get_state().1,
-        BadState::InstanceHandle => inst.c,
-    };
-    inst.take_log();
-    let status = use_it(&inst, state);
-    let log = inst.take_log();
-    if let Some(p) = owned_block {
-        // SAFETY: our block; a crash here means the FMU freed it.
-        unsafe { libc::free(p as *mut libc::c_void) };
-    }
-    if matches!(bad, BadState::OtherFmuState) {
-        other.free_state(state);
-    }
-    if status == ERROR
-        && let Err(e) = inst.recovers()
-    {
-        return Observed::broken(format!("not usable after the refusal: {e}"));
-    }
-    Observed::of(status, log)
-}
-
 /// An FMI 2.0 CS instance of model `m` in the FMU's own binary, one step taken;
 /// its state set into an FMI 3.0 instance; outputs compared by variable name
 /// (FMI 2.0 names elements "theta[1]", FMI 3.0 reads the array "theta").
@@ -123,7 +69,7 @@ fn fmi2_state(l: &Loaded, m: usize, interface: Interface3) -> Observed {
     }
     let (_, state) = source.get_state();
     let inst = Instance::new(&l.binaries3[m], &l.fmus3[m].description, interface);
-    if let Err(e) = inst.reach(super::State3::InitializationMode) {
+    if let Err(e) = inst.reach(crate::fmi3::host::State3::InitializationMode) {
         return Observed::broken(e);
     }
     // SAFETY: a live state of the same model (the probe's point).
@@ -160,28 +106,7 @@ fn fmi2_state(l: &Loaded, m: usize, interface: Interface3) -> Observed {
 }
 
 pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
-    let mut cases = Vec::new();
-    for interface in Interface3::ALL {
-        for bad in [
-            BadState::ZeroedBlock,
-            BadState::RandomBlock,
-            BadState::Freed,
-            BadState::OtherFmuState,
-            BadState::InstanceHandle,
-        ] {
-            for (name, use_it) in uses() {
-                cases.push(Case {
-                    class: "fmi3 bad FMU state",
-                    model: m,
-                    interface: Some(interface.short()),
-                    name: format!("{name}({bad:?})"),
-                    expect: Expect::error("not a live FMU state"),
-                    why: WHY_BAD,
-                    probe: Box::new(move |l| probe(l, m, interface, bad, use_it)),
-                });
-            }
-        }
-    }
+    let mut cases = bad_states::cases::<Interface3>(m, &BAD, &uses());
     for interface in Interface3::ALL {
         cases.push(Case {
             class: "fmi3 cross-standard state",

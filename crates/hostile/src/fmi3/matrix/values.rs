@@ -15,6 +15,7 @@ use crate::binary::{DISCARD, ERROR, OK, Status, status_name};
 use crate::description::{Description, VarType, Variable};
 use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::matrix::Expect;
+use crate::matrix::values::{discarded, me_evaluate, refused_naming};
 
 const WHY_NON_FINITE: &str = "NaN/inf set: refused by fmi3SetFloat64 with fmi3Error naming the variable (project choice; Float64 values of a model are finite)";
 const WHY_ARGUMENT: &str = "non-finite or out-of-range scalar argument (FMI 3.0: times finite, step size > 0, a step starts at the FMU's time (4.2.1), tolerance > 0, stopTime >= startTime): fmi3Error and a log line naming the function";
@@ -73,14 +74,7 @@ fn set(inst: &Instance, v: &Variable, value: Value) -> Status {
 /// Set, initialize, one step (CS) or derivatives and indicators (ME), read every
 /// Float64.
 fn scenario(inst: &Instance, v: &Variable, value: Value) -> Observed {
-    let refused_naming = |what: &str, s: Status| {
-        let log = inst.take_log();
-        if s == ERROR && crate::matrix::values::names(&log, &v.name) {
-            Observed::of(ERROR, log)
-        } else {
-            Observed::broken(format!("{what} returned {} (log: {log})", status_name(s)))
-        }
-    };
+    let refused_naming = |what: &str, s: Status| refused_naming(inst, &v.name, what, s);
     let s = set(inst, v, value);
     if s != OK {
         return refused_naming("the set", s);
@@ -115,43 +109,19 @@ fn scenario(inst: &Instance, v: &Variable, value: Value) -> Observed {
 
 /// One step or one evaluation; Ok(true) when it was discarded.
 fn evaluate(inst: &Instance) -> Result<bool, String> {
-    let b = inst.binary;
     let d = inst.description;
-    let check = |what: &str, s: Status| match s {
-        OK => Ok(false),
-        DISCARD => Ok(true),
-        _ => Err(format!(
-            "{what} returned {} (log: {})",
-            status_name(s),
-            inst.take_log()
-        )),
-    };
-    // SAFETY: as above; arrays of the declared sizes.
-    unsafe {
-        match inst.interface {
-            Interface3::ModelExchange => {
-                check(
-                    "fmi3EnterContinuousTimeMode",
-                    (b.enter_continuous_time_mode)(inst.c),
-                )?;
-                let mut dx = vec![0.0; d.number_of_states];
-                let a = check(
-                    "fmi3GetContinuousStateDerivatives",
-                    (b.get_continuous_state_derivatives)(inst.c, dx.as_mut_ptr(), dx.len()),
-                )?;
-                let mut z = vec![0.0; d.number_of_event_indicators];
-                let e = check(
-                    "fmi3GetEventIndicators",
-                    (b.get_event_indicators)(inst.c, z.as_mut_ptr(), z.len()),
-                )?;
-                Ok(a || e)
-            }
-            Interface3::CoSimulationEvents => {
-                check("fmi3EnterStepMode", (b.enter_step_mode)(inst.c))?;
-                check("fmi3DoStep", inst.do_step(0.0, 1e-3).status)
-            }
-            Interface3::CoSimulation => check("fmi3DoStep", inst.do_step(0.0, 1e-3).status),
+    let step = || discarded(inst, "fmi3DoStep", inst.do_step(0.0, 1e-3).status);
+    match inst.interface {
+        Interface3::ModelExchange => {
+            me_evaluate::<Interface3>(inst, (d.number_of_states, d.number_of_event_indicators))
         }
+        Interface3::CoSimulationEvents => {
+            // SAFETY: a live instance in Event Mode.
+            let s = unsafe { (inst.binary.enter_step_mode)(inst.c) };
+            discarded(inst, "fmi3EnterStepMode", s)?;
+            step()
+        }
+        Interface3::CoSimulation => step(),
     }
 }
 
