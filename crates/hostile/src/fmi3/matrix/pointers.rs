@@ -8,7 +8,7 @@ use super::Case;
 use super::calls::Args;
 use crate::Loaded;
 use crate::binary::Status;
-use crate::description::{Description, VarType};
+use crate::description::Description;
 use crate::fmi3::binary::{Binary3, FmuState, Instance3, Vr};
 use crate::fmi3::host::{Interface3, State3};
 use crate::matrix::pointers::{self, null_pointer_cases};
@@ -25,25 +25,6 @@ fn init(_: &Description, _: Interface3) -> Option<State3> {
 }
 fn instantiated(_: &Description, _: Interface3) -> Option<State3> {
     Some(State3::Instantiated)
-}
-/// A null value buffer needs a settable variable of the function's own type (the
-/// one `Args` picks): given one of another type, the layer rightly answers with
-/// the type mismatch before it looks at the buffer (the value-reference cases
-/// cover that).
-fn has_settable(d: &Description, t: VarType) -> bool {
-    d.of_type(t).any(|v| v.is_settable())
-}
-fn init_int32(d: &Description, i: Interface3) -> Option<State3> {
-    has_settable(d, VarType::Integer).then_some(init(d, i)?)
-}
-fn init_boolean(d: &Description, i: Interface3) -> Option<State3> {
-    has_settable(d, VarType::Boolean).then_some(init(d, i)?)
-}
-fn instantiated_int32(d: &Description, i: Interface3) -> Option<State3> {
-    has_settable(d, VarType::Integer).then_some(instantiated(d, i)?)
-}
-fn instantiated_boolean(d: &Description, i: Interface3) -> Option<State3> {
-    has_settable(d, VarType::Boolean).then_some(instantiated(d, i)?)
 }
 fn event(_: &Description, i: Interface3) -> Option<State3> {
     (i != Interface3::CoSimulation).then_some(State3::EventMode)
@@ -102,18 +83,16 @@ fn values_table() -> Vec<Row> {
             let mut x = vec![0; a.int.size];
             (b.get_int32)(c, null(), 1, x.as_mut_ptr(), x.len())
         }),
-        ("fmi3GetInt32(values=null)", init_int32, |b, c, a| unsafe {
+        ("fmi3GetInt32(values=null)", init, |b, c, a| unsafe {
             (b.get_int32)(c, &a.int.vr, 1, null_mut(), a.int.size)
         }),
         ("fmi3GetBoolean(vr=null)", init, |b, c, a| unsafe {
             let mut x = vec![0; a.boolean.size];
             (b.get_boolean)(c, null(), 1, x.as_mut_ptr(), x.len())
         }),
-        (
-            "fmi3GetBoolean(values=null)",
-            init_boolean,
-            |b, c, a| unsafe { (b.get_boolean)(c, &a.boolean.vr, 1, null_mut(), a.boolean.size) },
-        ),
+        ("fmi3GetBoolean(values=null)", init, |b, c, a| unsafe {
+            (b.get_boolean)(c, &a.boolean.vr, 1, null_mut(), a.boolean.size)
+        }),
         ("fmi3SetFloat64(vr=null)", instantiated, |b, c, a| unsafe {
             let x = vec![0.0; a.input.size];
             (b.set_float64)(c, null(), 1, x.as_ptr(), x.len())
@@ -129,7 +108,7 @@ fn values_table() -> Vec<Row> {
         }),
         (
             "fmi3SetInt32(values=null)",
-            instantiated_int32,
+            instantiated,
             |b, c, a| unsafe { (b.set_int32)(c, &a.int.vr, 1, null(), a.int.size) },
         ),
         ("fmi3SetBoolean(vr=null)", instantiated, |b, c, a| unsafe {
@@ -138,7 +117,7 @@ fn values_table() -> Vec<Row> {
         }),
         (
             "fmi3SetBoolean(values=null)",
-            instantiated_boolean,
+            instantiated,
             |b, c, a| unsafe { (b.set_boolean)(c, &a.boolean.vr, 1, null(), a.boolean.size) },
         ),
         (
