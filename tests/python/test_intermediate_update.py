@@ -14,7 +14,7 @@ intermediate update enters the reference."""
 import shutil
 import zipfile
 from xml.etree import ElementTree
-from ctypes import CFUNCTYPE, POINTER, c_bool, c_double, c_void_p
+from ctypes import byref, c_void_p
 
 import numpy as np
 import pytest
@@ -148,3 +148,110 @@ def test_inputs_set_at_intermediate_points_cut_the_coupling_error(tmp_path, caps
         # The inputs are held over h / 10 instead of h: the error is ~10 times smaller
         # (measured 9.x; accepted 8 to 12).
         assert 8.0 < errors[False, h] / errors[True, h] < 12.0, h
+
+
+@pytest.fixture
+def plant3(tmp_path):
+    return Fmi3Library(fmu3_path("Pss3Plant"), tmp_path / "Pss3Plant3")
+
+
+# Per model: the input set before the step, its values, the output read.
+DRIVES = {"Pss3Plant": ("actuatorForce", [30.0, -20.0, 10.0], "theta"),
+          "PID": ("measurement", [0.1, 0.2, -0.3], "u")}
+
+
+def start(lib, callback, model="Pss3Plant", early_return_allowed=False):
+    """An initialized FMI 3.0 instance with `callback`, its input set (the plant:
+    gravity on, actuators pushing)."""
+    c = lib.instantiate_co_simulation(intermediate_update=callback,
+                                      early_return_allowed=early_return_allowed)
+    assert c
+    lib.initialize(c)
+    name, values, _ = DRIVES[model]
+    assert lib.set_float64(c, [name], values) == OK
+    return c
+
+
+@pytest.mark.parametrize("model", DRIVES)
+def test_reading_at_the_points_gives_the_plain_steps_of_h_over_10(tmp_path, model):
+    # Expected: a callback that only reads sees at each inner point what a run without
+    # callback sees after plain steps of h / 10 (the same sub-intervals), and the step
+    # ends where that run ends (to rounding of the sub-interval ends: 1e-12).
+    lib = Fmi3Library(fmu3_path(model), tmp_path / model)
+    output = DRIVES[model][2]
+    seen = []
+
+    def read(_env, time, *_):
+        seen.append((time, lib.get_float64(c, [output], 3)))
+
+    c = start(lib, read, model)
+    assert lib.do_step(c, 0.0, 5e-3)[0] == OK
+    _, end = lib.get_float64(c, [output], 3)
+    plain = start(lib, None, model)
+    h = 5e-4
+    for k in range(POINTS):
+        assert lib.do_step(plain, k * h, h)[0] == OK
+        status, value = lib.get_float64(plain, [output], 3)
+        if k < POINTS - 1:
+            assert seen[k][0] == pytest.approx((k + 1) * h, abs=1e-15)
+            assert seen[k][1][0] == OK
+            assert np.allclose(seen[k][1][1], value, rtol=0, atol=1e-12)
+    assert len(seen) == POINTS - 1
+    assert np.allclose(end, value, rtol=0, atol=1e-12)
+    assert not np.allclose(seen[0][1][1], value, rtol=0, atol=1e-9)  # it moved
+
+
+@pytest.mark.parametrize("illegal", ["set_parameter", "get_parameter", "do_step",
+                                     "terminate", "set_state"])
+def test_illegal_calls_from_the_callback_are_errors(plant3, illegal):
+    # Expected: Intermediate Update Mode allows only fmi3Get* of variables and fmi3Set*
+    # of inputs declared intermediateUpdate (FMI 3.0 section 4.2.4): anything else is
+    # fmi3Error with a log line, and the step then ends with fmi3Error too.
+    statuses = []
+
+    def misbehave(_env, time, *_):
+        if statuses:
+            return
+        if illegal == "set_parameter":
+            statuses.append(plant3.set_float64(c, ["g"], [1.0]))
+        elif illegal == "get_parameter":
+            statuses.append(plant3.get_float64(c, ["g"], 1)[0])
+        elif illegal == "do_step":
+            statuses.append(plant3.do_step(c, time, 1e-3)[0])
+        elif illegal == "terminate":
+            statuses.append(plant3.call("fmi3Terminate", c))
+        else:
+            statuses.append(plant3.call("fmi3GetFMUState", c, byref(c_void_p())))
+
+    c = start(plant3, misbehave)
+    assert plant3.do_step(c, 0.0, 1e-3)[0] == ERROR
+    assert statuses == [ERROR]
+    messages = [m for _, _, m in plant3.lines]
+    reason = {"set_parameter": "cannot be set in IntermediateUpdateMode",
+              "get_parameter": "not declared intermediateUpdate"}.get(
+                  illegal, "not allowed in state IntermediateUpdateMode")
+    assert any(reason in m for m in messages), messages
+    assert "fmi3DoStep" in plant3.last_message()
+    plant3.free(c)
+
+
+def test_an_early_return_is_honoured_only_when_allowed(plant3):
+    # Expected: with earlyReturnAllowed the step ends at the third inner point when
+    # the callback asks there (earlyReturn, lastSuccessfulTime = 3 h / 10) and the next
+    # step starts from it; without, canReturnEarly is false and the step is whole.
+    def ask(_env, time, _set, _get, _finished, can_return_early, requested, at):
+        offered.append(can_return_early)
+        if len(offered) == 3:
+            requested[0] = True
+            at[0] = time
+
+    for allowed in (True, False):
+        offered = []
+        c = start(plant3, ask, early_return_allowed=allowed)
+        status, _, last = plant3.do_step(c, 0.0, 1e-2)
+        assert status == OK
+        assert plant3.early_return is allowed
+        assert last == pytest.approx(3e-3 if allowed else 1e-2, abs=1e-15)
+        assert set(offered) == {allowed}
+        assert plant3.do_step(c, last, 1e-3)[0] == OK
+        plant3.free(c)

@@ -57,3 +57,56 @@ impl IntermediateUpdate {
         (can_return_early && requested != FMI3_FALSE).then_some(at.max(time))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    thread_local! {
+        /// What the test callback answers: (earlyReturnRequested, earlyReturnTime).
+        static ANSWER: Cell<(bool, f64)> = const { Cell::new((false, 0.0)) };
+        /// canReturnEarly as the callback received it.
+        static OFFERED: Cell<bool> = const { Cell::new(false) };
+    }
+
+    unsafe extern "C" fn answer(
+        _environment: Fmi3InstanceEnvironment,
+        _time: f64,
+        _set_requested: Fmi3Boolean,
+        _get_allowed: Fmi3Boolean,
+        _finished: Fmi3Boolean,
+        can_return_early: Fmi3Boolean,
+        requested: *mut Fmi3Boolean,
+        at: *mut f64,
+    ) {
+        let (ask, time) = ANSWER.get();
+        OFFERED.set(can_return_early != FMI3_FALSE);
+        // SAFETY: `call` passes two live outputs.
+        unsafe {
+            *requested = fmi3_bool(ask);
+            *at = time;
+        }
+    }
+
+    fn asked(ask: bool, at: f64, can_return_early: bool) -> Option<f64> {
+        ANSWER.set((ask, at));
+        let callback = IntermediateUpdate::new(Some(answer), std::ptr::null_mut()).unwrap();
+        // SAFETY: no instance is involved.
+        unsafe { callback.call(0.5, can_return_early) }
+    }
+
+    #[test]
+    fn an_early_return_counts_only_when_offered_and_never_before_the_point() {
+        // Expected values: section 4.2.4: earlyReturnRequested is meaningful only with
+        // canReturnEarly; a requested time not after the point (or NaN) means at once.
+        assert_eq!(asked(true, 0.7, true), Some(0.7));
+        assert!(OFFERED.get());
+        assert_eq!(asked(true, 0.2, true), Some(0.5));
+        assert_eq!(asked(true, f64::NAN, true), Some(0.5));
+        assert_eq!(asked(false, 0.7, true), None);
+        assert_eq!(asked(true, 0.7, false), None);
+        assert!(!OFFERED.get());
+        assert!(IntermediateUpdate::new(None, std::ptr::null_mut()).is_none());
+    }
+}

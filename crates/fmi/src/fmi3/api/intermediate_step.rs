@@ -12,7 +12,7 @@
 //! at or after the requested time. Any illegal call from the callback puts the
 //! instance in the Error state, and the step then ends with fmi3Error.
 
-use super::co_simulation::{StepResult, step};
+use super::co_simulation::{StepReport, StepResult, step};
 use super::with_instance;
 use crate::core::model::Model;
 use crate::fmi3::instance::Instance;
@@ -87,6 +87,18 @@ impl SplitStep {
     ) -> Result<Fmi3Status, String> {
         inst.mode = Mode::StepMode;
         let from = inst.core.time;
+        if self.return_at.is_some_and(|at| from >= at) {
+            // The importer asked to return at this point (or before).
+            let report = StepReport {
+                status: Fmi3Status::Ok,
+                event_handling_needed: self.event,
+                terminate_simulation: false,
+                early_return: true,
+                last_successful_time: from,
+            };
+            // SAFETY: the outputs were checked at the start of fmi3DoStep.
+            return Ok(unsafe { out.write(&report) });
+        }
         self.done += 1;
         let mut report = step(inst, from, self.end_of(self.done) - from)?;
         self.event |= report.event_handling_needed;
