@@ -27,6 +27,7 @@ class Fmi3Library:
         identifier = self.description.modelExchange.modelIdentifier
         self.dll = ctypes.CDLL(str(root / "binaries" / "x86_64-linux" / f"{identifier}.so"))
         self.lines = []
+        self._callbacks = []
 
         def log(_env, status, category, message):
             self.lines.append((status, category.decode(), message.decode()))
@@ -50,11 +51,11 @@ class Fmi3Library:
         f = self.dll.fmi3InstantiateCoSimulation
         f.restype = c_void_p
         token = (token or self.description.guid).encode()
-        self._intermediate_update = (INTERMEDIATE_UPDATE(intermediate_update)
-                                     if intermediate_update else None)
+        callback = INTERMEDIATE_UPDATE(intermediate_update) if intermediate_update else None
+        self._callbacks.append(callback)  # alive as long as the library
         return f(b"test", token, None, c_bool(False), c_bool(False),
                  c_bool(event_mode_used), c_bool(early_return_allowed), None,
-                 c_size_t(0), None, self._log, self._intermediate_update)
+                 c_size_t(0), None, self._log, callback)
 
     def instantiate_model_exchange(self):
         f = self.dll.fmi3InstantiateModelExchange

@@ -235,6 +235,17 @@ def test_illegal_calls_from_the_callback_are_errors(plant3, illegal):
     plant3.free(c)
 
 
+def test_an_instance_freed_by_its_callback_ends_the_step_with_error(plant3):
+    # Expected: fmi3FreeInstance has no status to refuse with; the step notices that
+    # the handle is gone and returns fmi3Error without touching it (no crash).
+    def free(_env, *_):
+        plant3.free(c)
+
+    c = start(plant3, free)
+    assert plant3.do_step(c, 0.0, 1e-3)[0] == ERROR
+    assert plant3.do_step(c, 1e-3, 1e-3)[0] == ERROR
+
+
 def test_an_early_return_is_honoured_only_when_allowed(plant3):
     # Expected: with earlyReturnAllowed the step ends at the third inner point when
     # the callback asks there (earlyReturn, lastSuccessfulTime = 3 h / 10) and the next
