@@ -178,7 +178,7 @@ pub(super) fn step<M: Model>(inst: &mut Instance<M>, t: f64, h: f64) -> Result<S
 
 /// fmi3DoStep: one step of the model, or, when the importer passed an
 /// intermediateUpdate callback and the model has intermediate points, a step split at
-/// them ([`SplitStep`]).
+/// them (module `intermediate_step`).
 pub unsafe fn do_step<M: Model>(
     c: Fmi3Instance,
     current_communication_point: Fmi3Float64,
