@@ -9,8 +9,10 @@
 //! instance alive: the importer reads outputs (current at that point) and sets the
 //! continuous inputs, which hold over the next sub-interval. An early return the
 //! callback requests (only with earlyReturnAllowed) ends the step at the first point
-//! at or after the requested time. Any illegal call from the callback puts the
-//! instance in the Error state, and the step then ends with fmi3Error.
+//! at or after the requested time. A sub-interval the model discards ends the step
+//! with fmi3Discard, the instance at the start of that sub-interval (lastSuccessfulTime).
+//! Any illegal call from the callback puts the instance in the Error state, and the
+//! step then ends with fmi3Error.
 
 use super::co_simulation::{StepReport, StepResult, step};
 use super::with_instance;
