@@ -2,7 +2,7 @@
 call-level tests: every function returns its status, the log lines are kept."""
 
 import ctypes
-from ctypes import (CFUNCTYPE, byref, c_bool, c_char_p, c_double, c_int, c_size_t,
+from ctypes import (CFUNCTYPE, POINTER, byref, c_bool, c_char_p, c_double, c_int, c_size_t,
                     c_uint8, c_uint32, c_void_p)
 from pathlib import Path
 
@@ -11,6 +11,11 @@ from fmpy import extract, read_model_description
 OK, WARNING, DISCARD, ERROR, FATAL = range(5)
 
 LOG_MESSAGE = CFUNCTYPE(None, c_void_p, c_int, c_char_p, c_char_p)
+# fmi3IntermediateUpdateCallback: environment, intermediateUpdateTime,
+# intermediateVariableSetRequested, intermediateVariableGetAllowed,
+# intermediateStepFinished, canReturnEarly, *earlyReturnRequested, *earlyReturnTime.
+INTERMEDIATE_UPDATE = CFUNCTYPE(None, c_void_p, c_double, c_bool, c_bool, c_bool, c_bool,
+                                POINTER(c_bool), POINTER(c_double))
 
 
 class Fmi3Library:
@@ -22,6 +27,7 @@ class Fmi3Library:
         identifier = self.description.modelExchange.modelIdentifier
         self.dll = ctypes.CDLL(str(root / "binaries" / "x86_64-linux" / f"{identifier}.so"))
         self.lines = []
+        self._callbacks = []
 
         def log(_env, status, category, message):
             self.lines.append((status, category.decode(), message.decode()))
@@ -38,13 +44,18 @@ class Fmi3Library:
         function.restype = c_int
         return function(c_void_p(instance), *args)
 
-    def instantiate_co_simulation(self, event_mode_used=False, token=None):
+    def instantiate_co_simulation(self, event_mode_used=False, token=None,
+                                  intermediate_update=None, early_return_allowed=False):
+        """`intermediate_update`: a Python function with the arguments of
+        INTERMEDIATE_UPDATE (kept alive with the library)."""
         f = self.dll.fmi3InstantiateCoSimulation
         f.restype = c_void_p
         token = (token or self.description.guid).encode()
+        callback = INTERMEDIATE_UPDATE(intermediate_update) if intermediate_update else None
+        self._callbacks.append(callback)  # alive as long as the library
         return f(b"test", token, None, c_bool(False), c_bool(False),
-                 c_bool(event_mode_used), c_bool(False), None, c_size_t(0), None,
-                 self._log, None)
+                 c_bool(event_mode_used), c_bool(early_return_allowed), None,
+                 c_size_t(0), None, self._log, callback)
 
     def instantiate_model_exchange(self):
         f = self.dll.fmi3InstantiateModelExchange
@@ -86,6 +97,7 @@ class Fmi3Library:
         status = self.call("fmi3DoStep", instance, c_double(t), c_double(h),
                            c_bool(True), byref(event), byref(terminate), byref(early),
                            byref(last))
+        self.early_return = early.value
         return status, event.value, last.value
 
     def get_state(self, instance):

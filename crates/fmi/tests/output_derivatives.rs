@@ -263,6 +263,7 @@ fn stepped_fmi3() -> Fmi3Instance {
                 event_mode_used: false,
                 early_return_allowed: false,
             },
+            intermediate_update: None,
         })
     };
     assert!(!c.is_null());

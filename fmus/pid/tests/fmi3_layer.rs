@@ -48,6 +48,7 @@ fn initialized<M: Model>(lines: &Lines) -> Fmi3Instance {
                 event_mode_used: false,
                 early_return_allowed: false,
             },
+            intermediate_update: None,
         })
     };
     assert!(!c.is_null());

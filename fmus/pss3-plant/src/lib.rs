@@ -375,6 +375,11 @@ impl Model for Pss3Plant {
 
     const MAX_INPUT_DERIVATIVE_ORDER: u32 = 2;
 
+    /// FMI 3.0 intermediate update: with a callback, each communication step is split
+    /// into 10 equal sub-intervals, and the importer may set the continuous inputs at
+    /// the 9 inner points (held over the next sub-interval).
+    const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
+
     fn input_derivative_mut(&mut self, vr: u32, order: u32) -> Option<&mut f64> {
         let part = match order {
             1 => &mut self.ramp.rate,

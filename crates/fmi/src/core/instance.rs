@@ -301,10 +301,9 @@ impl<M: Model> Instance<M> {
             .map_err(|e| format!("the model cannot be evaluated at the start: {e}"))
     }
 
-    /// A co-simulation step from `t` by `h` with the inputs held. Err: an illegal
-    /// call (non-finite or non-positive step, wrong time, past the stop time).
-    /// A discarded step leaves the instance as it was before the step.
-    pub fn do_step(&mut self, t: f64, h: f64, log: &dyn Log) -> Result<StepOutcome, String> {
+    /// Err unless a co-simulation step from `t` by `h` is legal: finite, positive
+    /// size, from the FMU's time, not past the stop time.
+    pub fn check_step(&self, t: f64, h: f64) -> Result<(), String> {
         for (value, what) in [
             (t, "currentCommunicationPoint"),
             (h, "communicationStepSize"),
@@ -329,6 +328,14 @@ impl<M: Model> Instance<M> {
                 "the step from t = {t} s by {h} s ends after stopTime = {stop} s"
             ));
         }
+        Ok(())
+    }
+
+    /// A co-simulation step from `t` by `h` with the inputs held. Err: an illegal
+    /// call ([`Instance::check_step`]).
+    /// A discarded step leaves the instance as it was before the step.
+    pub fn do_step(&mut self, t: f64, h: f64, log: &dyn Log) -> Result<StepOutcome, String> {
+        self.check_step(t, h)?;
         let before = self.model.clone();
         self.set_time(t);
         let mut outcome = self.model_mut().do_step(t, h, log);

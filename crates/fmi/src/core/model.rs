@@ -105,6 +105,13 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// canInterpolateInputs when above 0); 0: the inputs are held over a step.
     const MAX_INPUT_DERIVATIVE_ORDER: u32 = 0;
 
+    /// FMI 3.0 Co-Simulation intermediate update: the number of equal sub-intervals a
+    /// communication step is split into when the importer passed an intermediateUpdate
+    /// callback (each sub-interval one `do_step`; the callback is called at the inner
+    /// points, where the importer may read outputs and set continuous inputs, which
+    /// then hold until the next point). 0: no intermediate update (the default).
+    const INTERMEDIATE_UPDATE_POINTS: u32 = 0;
+
     /// Where the model keeps the `order`-th time derivative (1 ..=
     /// `MAX_INPUT_DERIVATIVE_ORDER`) of the continuous Real input `vr`, relative to
     /// the start of the next step; None: it keeps none. The layer checks the value

@@ -84,6 +84,12 @@ struct Interface {
         skip_serializing_if = "Option::is_none"
     )]
     max_output_derivative_order: Option<u32>,
+    /// Co-Simulation only, and only when the model has intermediate points.
+    #[serde(
+        rename = "@providesIntermediateUpdate",
+        skip_serializing_if = "Option::is_none"
+    )]
+    provides_intermediate_update: Option<bool>,
 }
 
 #[derive(Serialize)]
@@ -113,6 +119,11 @@ struct ModelVariable {
     causality: &'static str,
     #[serde(rename = "@variability")]
     variability: &'static str,
+    #[serde(
+        rename = "@intermediateUpdate",
+        skip_serializing_if = "Option::is_none"
+    )]
+    intermediate_update: Option<bool>,
     #[serde(rename = "@initial", skip_serializing_if = "Option::is_none")]
     initial: Option<&'static str>,
     #[serde(rename = "@unit", skip_serializing_if = "Option::is_none")]
@@ -174,13 +185,14 @@ fn joined<T: ToString>(values: impl IntoIterator<Item = T>) -> String {
 
 /// The type-specific attributes of `v`, read from its first element (shared by all)
 /// and the start values of every element.
-fn model_variable<M>(table: &[Variable<M>], v: &Variable3) -> Result<TypedVariable, String> {
+fn model_variable<M: Model>(table: &[Variable<M>], v: &Variable3) -> Result<TypedVariable, String> {
     let mut out = ModelVariable {
         name: v.name.to_string(),
         value_reference: v.value_reference,
         description: table::description(table, v),
         causality: v.causality.as_str(),
         variability: v.variability.as_str(),
+        intermediate_update: v.intermediate_update::<M>().then_some(true),
         initial: v.initial.map(Initial::as_str),
         unit: None,
         display_unit: None,
@@ -266,7 +278,8 @@ fn model_structure<M: Model>(table: &[Variable<M>], t: &Table3) -> Result<ModelS
     Ok(ModelStructure { unknowns })
 }
 
-fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
+fn interfaces<M: Model>() -> (Interface, Interface) {
+    let info = M::info();
     let common = || Interface {
         model_identifier: info.model_identifier,
         get_set_state: true,
@@ -279,6 +292,7 @@ fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
         has_event_mode: None,
         might_return_early: None,
         max_output_derivative_order: None,
+        provides_intermediate_update: None,
     };
     let model_exchange = Interface {
         needs_completed_integrator_step: Some(false),
@@ -290,6 +304,7 @@ fn interfaces(info: &crate::core::model::ModelInfo) -> (Interface, Interface) {
         // Steps end early at events (sign changes of the event indicators).
         might_return_early: (info.number_of_event_indicators > 0).then_some(true),
         max_output_derivative_order: description::max_output_derivative_order(info),
+        provides_intermediate_update: (M::INTERMEDIATE_UPDATE_POINTS > 0).then_some(true),
         ..common()
     };
     (model_exchange, co_simulation)
@@ -313,7 +328,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         .iter()
         .map(|v| model_variable(&table, v))
         .collect::<Result<Vec<_>, _>>()?;
-    let (model_exchange, co_simulation) = interfaces(info);
+    let (model_exchange, co_simulation) = interfaces::<M>();
     let description = ModelDescription {
         fmi_version: "3.0",
         model_name: info.model_name,

@@ -50,6 +50,7 @@ macro_rules! export_fmi3 {
                         environment,
                         log_message,
                         interface: $crate::fmi3::mode::Interface::ModelExchange,
+                        intermediate_update: None,
                     })
                 }
             }
@@ -66,7 +67,7 @@ macro_rules! export_fmi3 {
                 _n_required_intermediate_variables: usize,
                 environment: Fmi3InstanceEnvironment,
                 log_message: Option<Fmi3LogMessageCallback>,
-                _intermediate_update: Option<Fmi3IntermediateUpdateCallback>,
+                intermediate_update: Option<Fmi3IntermediateUpdateCallback>,
             ) -> Fmi3Instance {
                 unsafe {
                     api::instantiate::<M>(api::Instantiation {
@@ -80,6 +81,10 @@ macro_rules! export_fmi3 {
                             event_mode_used: event_mode_used != FMI3_FALSE,
                             early_return_allowed: early_return_allowed != FMI3_FALSE,
                         },
+                        intermediate_update: $crate::fmi3::intermediate::IntermediateUpdate::new(
+                            intermediate_update,
+                            environment,
+                        ),
                     })
                 }
             }

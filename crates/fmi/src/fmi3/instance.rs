@@ -3,6 +3,7 @@
 //! Values are read and written per FMI 3.0 variable (a scalar or an array) through the
 //! table's elements.
 
+use super::intermediate::IntermediateUpdate;
 use super::logging::Logger;
 use super::mode::{Fmi3, Interface, Mode};
 use super::table::{Source, Table3, Variable3, build};
@@ -23,12 +24,19 @@ pub struct Instance<M: Model> {
     /// The FMI 3.0 view of the core's table (shared, so that a call can hold it while
     /// it changes the instance).
     pub table: Arc<Table3>,
+    /// The importer's intermediateUpdate callback (Co-Simulation; None: steps are not
+    /// split).
+    pub intermediate_update: Option<IntermediateUpdate>,
 }
 
 frontend_instance!(Instance, Fmi3);
 
 impl<M: Model> Instance<M> {
-    pub fn new(interface: Interface, log: Logger) -> Result<Self, String> {
+    pub fn new(
+        interface: Interface,
+        log: Logger,
+        intermediate_update: Option<IntermediateUpdate>,
+    ) -> Result<Self, String> {
         let core = core_instance::Instance::new()?;
         let table = Arc::new(build(core.table())?);
         Ok(Instance {
@@ -37,12 +45,23 @@ impl<M: Model> Instance<M> {
             log,
             core,
             table,
+            intermediate_update,
         })
     }
 
     /// Makes the computed values current for reading `variables`; Ok(Some(reason))
-    /// when one of them is calculated and the model cannot be evaluated here.
+    /// when one of them is calculated and the model cannot be evaluated here. In
+    /// Intermediate Update Mode only variables declared intermediateUpdate are read.
     pub fn prepare_read(&mut self, variables: &[&Variable3]) -> Result<Option<String>, String> {
+        if self.mode == Mode::IntermediateUpdateMode
+            && let Some(v) = variables.iter().find(|v| !v.intermediate_update::<M>())
+        {
+            return Err(format!(
+                "\"{}\" is not declared intermediateUpdate: it cannot be read in \
+                 IntermediateUpdateMode",
+                v.name
+            ));
+        }
         let elements: Vec<u32> = variables
             .iter()
             .flat_map(|v| v.elements().iter().copied())
@@ -128,6 +147,9 @@ impl<M: Model> Instance<M> {
                 }
                 ContinuousTimeMode => {
                     v.causality == Causality::Input && v.variability == Variability::Continuous
+                }
+                IntermediateUpdateMode => {
+                    v.causality == Causality::Input && v.intermediate_update::<M>()
                 }
                 _ => false,
             };

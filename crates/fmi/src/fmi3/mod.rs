@@ -11,6 +11,7 @@ pub mod api;
 pub mod description;
 mod export;
 pub mod instance;
+pub mod intermediate;
 pub mod logging;
 pub mod mode;
 pub mod package;

@@ -1,9 +1,11 @@
 //! The state machine of FMI 3.0 (Model Exchange and Co-Simulation, sections 3.3 and
 //! 4.3 of the standard): the states an instance can be in and which call is legal in
-//! which state. Co-Simulation steps are never asynchronous and return early only at
-//! events, without intermediate updates, so Intermediate Update Mode is never
-//! entered; there are no structural parameters, so Configuration and Reconfiguration
-//! Mode are never entered either.
+//! which state. Co-Simulation steps are never asynchronous; a model with
+//! `INTERMEDIATE_UPDATE_POINTS` enters Intermediate Update Mode while fmi3DoStep calls
+//! the importer's intermediateUpdate callback (section 4.2.4: only fmi3Get* of
+//! variables and fmi3SetFloat64 of inputs declared intermediateUpdate are legal
+//! there); there are no structural parameters, so Configuration and Reconfiguration
+//! Mode are never entered.
 
 /// Interface an instance was created for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -28,6 +30,8 @@ pub enum Mode {
     ContinuousTimeMode,
     StepMode,
     StepDiscarded,
+    /// Inside fmi3DoStep, while the importer's intermediateUpdate callback runs.
+    IntermediateUpdateMode,
     Terminated,
     Error,
     Fatal,
@@ -62,6 +66,8 @@ pub enum Call {
     EnterStepMode,
     GetOutputDerivatives,
     DoStep,
+    /// fmi3DoStep going on after the intermediateUpdate callback returned.
+    ResumeStep,
 }
 
 use super::logging::{Callback, LAYER_CATEGORIES};
@@ -71,11 +77,13 @@ use crate::core::instance::Standard;
 use crate::core::logging::LogCategory;
 use Mode::*;
 
-/// Every state but Fatal (declared last): after Fatal only FreeInstance is allowed.
-const LIVE: u16 = modes!(Fatal) - 1;
+/// Every state but Fatal (declared last; after Fatal only FreeInstance is allowed) and
+/// Intermediate Update Mode (only the calls of section 4.2.4 there).
+const LIVE: u16 = (modes!(Fatal) - 1) & !modes!(IntermediateUpdateMode);
 /// States in which variables can be read (section 2.3.3; also Error, for diagnosis):
-/// all live ones after instantiation.
-const READABLE: u16 = LIVE & !modes!(Instantiated);
+/// all live ones after instantiation, and Intermediate Update Mode (the instance then
+/// restricts reads to variables declared intermediateUpdate).
+const READABLE: u16 = (LIVE & !modes!(Instantiated)) | modes!(IntermediateUpdateMode);
 
 impl Call {
     /// States in which the call is legal, for the given interface.
@@ -106,6 +114,7 @@ impl Call {
                 EventMode,
                 ContinuousTimeMode,
                 StepMode,
+                IntermediateUpdateMode,
             ),
             Call::SetDiscrete => modes!(Instantiated, InitializationMode, EventMode, StepMode),
             Call::Derivative => modes!(
@@ -131,6 +140,7 @@ impl Call {
             Call::EnterStepMode => only_cs(modes!(EventMode)),
             Call::GetOutputDerivatives => only_cs(modes!(StepMode, StepDiscarded, Terminated)),
             Call::DoStep => only_cs(modes!(StepMode)),
+            Call::ResumeStep => only_cs(modes!(IntermediateUpdateMode)),
         }
     }
 
@@ -245,6 +255,31 @@ mod tests {
         assert!(Call::Terminate.is_legal(StepDiscarded, CS));
         assert!(Call::GetValues.is_legal(StepDiscarded, CS));
         assert!(Call::FmuState.is_legal(StepDiscarded, CS));
+    }
+
+    #[test]
+    fn intermediate_update_mode_allows_only_get_and_set_of_values() {
+        // Expected values: section 4.2.4 of FMI 3.0 (Intermediate Update Mode): the
+        // importer's callback may get variables and set inputs; the step itself, the
+        // FMU state, reset, termination and events wait until fmi3DoStep returned.
+        let m = IntermediateUpdateMode;
+        assert!(Call::GetValues.is_legal(m, CS));
+        assert!(Call::SetFloat64.is_legal(m, CS));
+        assert!(Call::ResumeStep.is_legal(m, CS));
+        for call in [
+            Call::DoStep,
+            Call::SetDiscrete,
+            Call::FmuState,
+            Call::Reset,
+            Call::Terminate,
+            Call::EnterEventMode,
+            Call::SetDebugLogging,
+            Call::GetOutputDerivatives,
+            Call::Derivative,
+        ] {
+            assert!(!call.is_legal(m, CS_EVENTS), "{call:?}");
+        }
+        assert!(!Call::ResumeStep.is_legal(StepMode, CS));
     }
 
     #[test]

@@ -60,6 +60,17 @@ impl Variable3 {
         self.dimension.unwrap_or(1)
     }
 
+    /// Whether the variable carries intermediateUpdate="true" for model M: the
+    /// continuous Float64 inputs and outputs of a model with intermediate update
+    /// (they can be set / read in Intermediate Update Mode).
+    pub fn intermediate_update<M: Model>(&self) -> bool {
+        M::INTERMEDIATE_UPDATE_POINTS > 0
+            && self.variable_type == VariableType::Real
+            && self.variability == Variability::Continuous
+            && matches!(self.source, Source::Elements(_))
+            && matches!(self.causality, Causality::Input | Causality::Output)
+    }
+
     /// The table's elements, in order (empty for time and event indicators).
     pub fn elements(&self) -> &[u32] {
         match &self.source {

@@ -11,7 +11,8 @@
 //! The core checks the step (communication point, positive size, stopTime) and
 //! restores the state of a discarded step.
 
-use super::{input_slice, output_ref, output_slice, with_instance};
+use super::intermediate_step::SplitStep;
+use super::{input_slice, output_slice, with_instance};
 use crate::core::instance::{Snapshot, Standard};
 use crate::core::model::{Model, StepOutcome};
 use crate::core::output_derivatives::{Request, output_derivatives};
@@ -89,6 +90,95 @@ fn return_early<M: Model>(
     Ok(after < h)
 }
 
+/// What a step (or a sub-step of a split one) reports through fmi3DoStep's outputs.
+pub(super) struct StepReport {
+    pub status: Fmi3Status,
+    pub event_handling_needed: bool,
+    pub terminate_simulation: bool,
+    pub early_return: bool,
+    pub last_successful_time: f64,
+}
+
+impl StepResult {
+    /// Err unless every output pointer is non-null.
+    pub(super) fn check(&self) -> Result<(), String> {
+        for (null, what) in [
+            (self.event_handling_needed.is_null(), "eventHandlingNeeded"),
+            (self.terminate_simulation.is_null(), "terminateSimulation"),
+            (self.early_return.is_null(), "earlyReturn"),
+            (self.last_successful_time.is_null(), "lastSuccessfulTime"),
+        ] {
+            if null {
+                return Err(format!("{what} is a null pointer"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes `report` to the host's outputs (checked by [`StepResult::check`]).
+    pub(super) unsafe fn write(&self, report: &StepReport) -> Fmi3Status {
+        // SAFETY: non-null (checked) and, by fmi3DoStep's contract, valid.
+        unsafe {
+            *self.event_handling_needed = fmi3_bool(report.event_handling_needed);
+            *self.terminate_simulation = fmi3_bool(report.terminate_simulation);
+            *self.early_return = fmi3_bool(report.early_return);
+            *self.last_successful_time = report.last_successful_time;
+        }
+        report.status
+    }
+}
+
+/// One step of the model from `t` by `h`, with the event handling of the module
+/// documentation; the instance moves to StepDiscarded when the model discards it.
+pub(super) fn step<M: Model>(inst: &mut Instance<M>, t: f64, h: f64) -> Result<StepReport, String> {
+    let z_before = indicators(inst.core.model());
+    let (events_used, early_allowed) = match inst.interface {
+        Interface::CoSimulation {
+            event_mode_used,
+            early_return_allowed,
+        } => (event_mode_used, early_return_allowed),
+        Interface::ModelExchange => (false, false),
+    };
+    let start = (early_allowed && z_before.is_some()).then(|| inst.core.snapshot(Standard::Fmi3));
+    match inst.core.do_step(t, h, &inst.log)? {
+        StepOutcome::Completed => {
+            let z_after = indicators(inst.core.model());
+            let changed = sign_changed(&z_before, &z_after);
+            let early = match (changed, &start) {
+                (true, Some(start)) => return_early(inst, start, &z_before, h)?,
+                _ => false,
+            };
+            Ok(StepReport {
+                status: Fmi3Status::Ok,
+                event_handling_needed: events_used && changed,
+                terminate_simulation: false,
+                early_return: early,
+                last_successful_time: inst.core.last_successful_time,
+            })
+        }
+        StepOutcome::Discarded {
+            reason,
+            terminate: cannot_go_on,
+        } => {
+            inst.mode = Mode::StepDiscarded;
+            inst.log.status(
+                Fmi3Status::Discard,
+                &format!("fmi3DoStep: step from t = {t} s by {h} s rejected: {reason}"),
+            );
+            Ok(StepReport {
+                status: Fmi3Status::Discard,
+                event_handling_needed: false,
+                terminate_simulation: cannot_go_on,
+                early_return: false,
+                last_successful_time: inst.core.time,
+            })
+        }
+    }
+}
+
+/// fmi3DoStep: one step of the model, or, when the importer passed an
+/// intermediateUpdate callback and the model has intermediate points, a step split at
+/// them (module `intermediate_step`).
 pub unsafe fn do_step<M: Model>(
     c: Fmi3Instance,
     current_communication_point: Fmi3Float64,
@@ -96,52 +186,25 @@ pub unsafe fn do_step<M: Model>(
     _no_set_fmu_state_prior_to_current_point: Fmi3Boolean,
     out: StepResult,
 ) -> Fmi3Status {
-    unsafe {
+    let (t, h) = (current_communication_point, communication_step_size);
+    let mut split = None;
+    let status = unsafe {
         with_instance::<M>(c, "fmi3DoStep", Call::DoStep, |inst| {
-            let event = output_ref(out.event_handling_needed, "eventHandlingNeeded")?;
-            let terminate = output_ref(out.terminate_simulation, "terminateSimulation")?;
-            let early = output_ref(out.early_return, "earlyReturn")?;
-            let last = output_ref(out.last_successful_time, "lastSuccessfulTime")?;
-            let (t, h) = (current_communication_point, communication_step_size);
-            let z_before = indicators(inst.core.model());
-            let (events_used, early_allowed) = match inst.interface {
-                Interface::CoSimulation {
-                    event_mode_used,
-                    early_return_allowed,
-                } => (event_mode_used, early_return_allowed),
-                Interface::ModelExchange => (false, false),
-            };
-            let start =
-                (early_allowed && z_before.is_some()).then(|| inst.core.snapshot(Standard::Fmi3));
-            *early = FMI3_FALSE;
-            match inst.core.do_step(t, h, &inst.log)? {
-                StepOutcome::Completed => {
-                    let z_after = indicators(inst.core.model());
-                    let changed = sign_changed(&z_before, &z_after);
-                    if let (true, Some(start)) = (changed, &start) {
-                        *early = fmi3_bool(return_early(inst, start, &z_before, h)?);
-                    }
-                    *event = fmi3_bool(events_used && changed);
-                    *terminate = FMI3_FALSE;
-                    *last = inst.core.last_successful_time;
-                    Ok(Fmi3Status::Ok)
-                }
-                StepOutcome::Discarded {
-                    reason,
-                    terminate: cannot_go_on,
-                } => {
-                    inst.mode = Mode::StepDiscarded;
-                    *event = FMI3_FALSE;
-                    *terminate = fmi3_bool(cannot_go_on);
-                    *last = inst.core.time;
-                    inst.log.status(
-                        Fmi3Status::Discard,
-                        &format!("fmi3DoStep: step from t = {t} s by {h} s rejected: {reason}"),
-                    );
-                    Ok(Fmi3Status::Discard)
+            out.check()?;
+            match SplitStep::new(inst, t, h)? {
+                None => Ok(out.write(&step(inst, t, h)?)),
+                Some(mut s) => {
+                    let status = s.advance(inst, &out)?;
+                    split = Some(s);
+                    Ok(status)
                 }
             }
         })
+    };
+    match split {
+        // SAFETY: `c` and `out` as given to fmi3DoStep.
+        Some(s) => unsafe { s.run::<M>(c, &out, status) },
+        None => status,
     }
 }
 

@@ -8,6 +8,7 @@ use crate::core::model::Model;
 use crate::core::model_exchange_calls;
 use crate::ffi::text;
 use crate::fmi3::instance::Instance;
+use crate::fmi3::intermediate::IntermediateUpdate;
 use crate::fmi3::logging::{Callback, Logger};
 use crate::fmi3::mode::{Call, Fmi3, Interface, Mode};
 use crate::fmi3::types::*;
@@ -26,6 +27,8 @@ pub struct Instantiation {
     pub environment: Fmi3InstanceEnvironment,
     pub log_message: Option<Fmi3LogMessageCallback>,
     pub interface: Interface,
+    /// The intermediateUpdate callback (Co-Simulation; None for Model Exchange).
+    pub intermediate_update: Option<IntermediateUpdate>,
 }
 
 /// The logger of an instance of M.
@@ -63,7 +66,7 @@ pub unsafe fn instantiate<M: Model>(args: Instantiation) -> Fmi3Instance {
                     M::info().guid
                 ));
             }
-            Instance::<M>::new(args.interface, log)
+            Instance::<M>::new(args.interface, log, args.intermediate_update)
         },
     )
 }

@@ -17,6 +17,7 @@ mod common;
 mod dependencies;
 mod derivatives;
 mod fmu_state;
+mod intermediate_step;
 mod model_exchange;
 mod unsupported;
 mod values;
