@@ -47,9 +47,10 @@ impl Interface3 {
 
 /// States an instance can be brought into. `StepDiscarded` is Step Mode after a
 /// step returned fmi3Discard (section 4.2.1: then only terminate, FMU-state and
-/// get calls remain). Configuration, Reconfiguration and Intermediate Update Mode
-/// do not occur: the models have no structural parameters and no intermediate
-/// update callback.
+/// get calls remain). Configuration and Reconfiguration Mode do not occur (the
+/// models have no structural parameters); Intermediate Update Mode does not occur
+/// here because this importer passes no intermediate-update callback (that mode is
+/// tested through the ctypes host, tests/python/test_intermediate_update.py).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum State3 {
     Instantiated,
