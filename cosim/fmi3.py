@@ -14,10 +14,9 @@ import re
 from pathlib import Path
 
 from fmpy import extract, read_model_description
-from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave
 
-from .errors import FmuError, StepDiscarded
+from .errors import FmuError
 from .fmu import LoggedCalls
 
 _ELEMENT = re.compile(r"^(.*)\[(\d+)\]$")
@@ -39,6 +38,10 @@ def _start(variable) -> list:
 
 class Fmu3Instance(LoggedCalls):
     """A co-simulation instance of an FMI 3.0 FMU, addressed by FMI 2.0 scalar names."""
+
+    _PREFIX = "fmi3"
+    _DISCARD = _FMI3_DISCARD
+    _FMU_STATE = "FMUState"
 
     def __init__(self, alias: str, path: Path, start_time: float, stop_time: float):
         self.alias = alias
@@ -98,28 +101,10 @@ class Fmu3Instance(LoggedCalls):
                        lambda: setter([variable.valueReference], array))
             self._written[base] = array
 
-    def get_value(self, name: str) -> float:
-        return self.get_values((name,))[0]
-
-    def set_value(self, name: str, value) -> None:
-        self.set_values((name,), [value])
-
     def enter_initialization(self) -> None:
         self._call("fmi3EnterInitializationMode",
                    lambda: self._fmu.enterInitializationMode(startTime=self._start_time,
                                                              stopTime=self._stop_time))
-
-    def exit_initialization(self) -> None:
-        self._call("fmi3ExitInitializationMode", self._fmu.exitInitializationMode)
-
-    def do_step(self, time: float, step: float) -> None:
-        try:
-            self._fmu.doStep(currentCommunicationPoint=time, communicationStepSize=step)
-        except FMICallException as e:
-            if e.status == _FMI3_DISCARD:
-                raise StepDiscarded(self.alias, time, self._last_message()) from None
-            raise FmuError(f"{self.alias}: fmi3DoStep at t = {time:.9g} s failed with status "
-                           f"{e.status}: {self._last_message()}") from e
 
     def reset(self, start_time: float, stop_time: float) -> None:
         """fmi3Reset: back to the state after instantiation (start values of every
@@ -127,25 +112,6 @@ class Fmu3Instance(LoggedCalls):
         self._call("fmi3Reset", self._fmu.reset)
         self.messages.clear()
         self._start_time, self._stop_time = start_time, stop_time
-
-    def get_state(self):
-        if not self.can_get_state:
-            raise FmuError(f"{self.alias} cannot get and set its FMU state (no rollback)")
-        return self._call("fmi3GetFMUState", self._fmu.getFMUState)
-
-    def set_state(self, state) -> None:
-        self._call("fmi3SetFMUState", lambda: self._fmu.setFMUState(state))
-
-    def free_state(self, state) -> None:
-        self._call("fmi3FreeFMUState", lambda: self._fmu.freeFMUState(state))
-
-    def close(self) -> None:
-        """Terminates and frees the instance; safe to call after a failure."""
-        try:
-            self._fmu.terminate()
-        except FMICallException:
-            pass
-        self._fmu.freeInstance()
 
 
 def open_fmi3(alias, path, scenario):

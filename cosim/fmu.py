@@ -21,10 +21,17 @@ _CONVERT = {"Real": float, "Integer": int, "Boolean": bool}
 class LoggedCalls:
     """What both FMU adapters (FMI 2.0 here, FMI 3.0 in cosim.fmi3) share: the last log
     lines of the instance and FMPy calls turned into FmuError with the FMU's reason.
-    Subclasses set `alias` and `messages`."""
+    Subclasses set `alias`, `messages`, `can_get_state` and `_fmu` (an FMPy slave), and
+    define `get_values`/`set_values` and the standard's spelling below."""
 
     alias: str
     messages: list[str]
+    can_get_state: bool
+    #: Prefix of the C function names, status code of Discard, and the standard's
+    #: spelling of "FMU state" in function names.
+    _PREFIX = "fmi2"
+    _DISCARD = fmi2Discard
+    _FMU_STATE = "FMUstate"
 
     def _remember(self, category, message) -> None:
         text = message.decode("utf-8", "replace") if message else ""
@@ -42,6 +49,50 @@ class LoggedCalls:
                            f"{self._last_message()}") from e
         except Exception as e:  # instantiate raises a plain Exception on NULL
             raise FmuError(f"{self.alias}: {name} failed: {e}; {self._last_message()}") from e
+
+    def get_value(self, name: str) -> float:
+        return self.get_values((name,))[0]
+
+    def set_value(self, name: str, value) -> None:
+        self.set_values((name,), [value])
+
+    def exit_initialization(self) -> None:
+        self._call(f"{self._PREFIX}ExitInitializationMode", self._fmu.exitInitializationMode)
+
+    def do_step(self, time: float, step: float) -> None:
+        try:
+            self._fmu.doStep(currentCommunicationPoint=time, communicationStepSize=step)
+        except FMICallException as e:
+            if e.status == self._DISCARD:
+                raise StepDiscarded(self.alias, time, self._last_message()) from None
+            raise FmuError(f"{self.alias}: {self._PREFIX}DoStep at t = {time:.9g} s failed "
+                           f"with status {e.status}: {self._last_message()}") from e
+
+    def get_state(self):
+        if not self.can_get_state:
+            raise FmuError(f"{self.alias} cannot get and set its FMU state (no rollback)")
+        return self._state_call("get")()
+
+    def set_state(self, state) -> None:
+        self._state_call("set")(state)
+
+    def free_state(self, state) -> None:
+        self._state_call("free")(state)
+
+    def _state_call(self, verb: str):
+        """FMPy's get/set/free of FMU states, spelt as the standard spells them
+        (getFMUstate in FMI 2.0, getFMUState in FMI 3.0), logged as the C function."""
+        method = getattr(self._fmu, f"{verb}{self._FMU_STATE}")
+        name = f"{self._PREFIX}{verb.capitalize()}{self._FMU_STATE}"
+        return lambda *args: self._call(name, lambda: method(*args))
+
+    def close(self) -> None:
+        """Terminates and frees the instance; safe to call after a failure."""
+        try:
+            self._fmu.terminate()
+        except FMICallException:
+            pass
+        self._fmu.freeInstance()
 
 
 class FmuInstance(LoggedCalls):
@@ -112,37 +163,8 @@ class FmuInstance(LoggedCalls):
             self._call(f"fmi2Set{kind}({', '.join(names[k] for k in positions)})",
                        lambda: setter(refs, typed))
 
-    def get_value(self, name: str) -> float:
-        return self.get_values((name,))[0]
-
-    def set_value(self, name: str, value) -> None:
-        self.set_values((name,), [value])
-
     def enter_initialization(self) -> None:
         self._call("fmi2EnterInitializationMode", self._fmu.enterInitializationMode)
-
-    def exit_initialization(self) -> None:
-        self._call("fmi2ExitInitializationMode", self._fmu.exitInitializationMode)
-
-    def do_step(self, time: float, step: float) -> None:
-        try:
-            self._fmu.doStep(currentCommunicationPoint=time, communicationStepSize=step)
-        except FMICallException as e:
-            if e.status == fmi2Discard:
-                raise StepDiscarded(self.alias, time, self._last_message()) from None
-            raise FmuError(f"{self.alias}: fmi2DoStep at t = {time:.9g} s failed with status "
-                           f"{e.status}: {self._last_message()}") from e
-
-    def get_state(self):
-        if not self.can_get_state:
-            raise FmuError(f"{self.alias} cannot get and set its FMU state (no rollback)")
-        return self._call("fmi2GetFMUstate", self._fmu.getFMUstate)
-
-    def set_state(self, state) -> None:
-        self._call("fmi2SetFMUstate", lambda: self._fmu.setFMUstate(state))
-
-    def free_state(self, state) -> None:
-        self._call("fmi2FreeFMUstate", lambda: self._fmu.freeFMUstate(state))
 
     def reset(self, start_time: float, stop_time: float) -> None:
         """fmi2Reset: back to the state after instantiation (start values of every
@@ -151,11 +173,3 @@ class FmuInstance(LoggedCalls):
         self.messages.clear()
         self._call("fmi2SetupExperiment",
                    lambda: self._fmu.setupExperiment(startTime=start_time, stopTime=stop_time))
-
-    def close(self) -> None:
-        """Terminates and frees the instance; safe to call after a failure."""
-        try:
-            self._fmu.terminate()
-        except FMICallException:
-            pass
-        self._fmu.freeInstance()
