@@ -67,7 +67,18 @@ struct Grid<'a> {
     dt: f64,
 }
 
-impl Grid<'_> {
+impl<'a> Grid<'a> {
+    /// The grid of the uniform node times `times` (at least two).
+    fn new(chain: &'a Chain, path: &'a dyn Path, times: Vec<f64>) -> Self {
+        let dt = times[1] - times[0];
+        Grid {
+            chain,
+            path,
+            times,
+            dt,
+        }
+    }
+
     /// Node values for redundant joints `s`, solved joints taken nearest to `reference`.
     fn complete(
         &self,
@@ -225,14 +236,7 @@ pub(super) fn reduced_hessian(
     path: &dyn Path,
     trajectory: &Trajectory,
 ) -> Result<HessianBlocks, DualArmError> {
-    let times = trajectory.times.clone();
-    let dt = times[1] - times[0];
-    let grid = Grid {
-        chain,
-        path,
-        times,
-        dt,
-    };
+    let grid = Grid::new(chain, path, trajectory.times.clone());
     let (_, diag, upper) = grid.derivatives(&free_joints(chain, trajectory))?;
     Ok((diag, upper))
 }
@@ -245,13 +249,8 @@ fn minimise(
     mut q: Vec<DVector<f64>>,
     options: DirectOptions,
 ) -> Result<DirectSolution, DualArmError> {
-    let dt = times[1] - times[0];
-    let grid = Grid {
-        chain,
-        path,
-        times,
-        dt,
-    };
+    let grid = Grid::new(chain, path, times);
+    let dt = grid.dt;
     let mut s: Vec<DVector<f64>> = q
         .iter()
         .map(|q| DVector::from_vec(chain.redundant_values(q)))
