@@ -51,8 +51,11 @@ class Fmu3Instance(LoggedCalls):
             raise FmuError(f"{alias} ({path}) does not support co-simulation")
         self.variables = {v.name: v for v in md.modelVariables}
         self.can_get_state = bool(md.coSimulation.canGetAndSetFMUstate)
-        self._written = {v.name: _start(v) for v in md.modelVariables
-                         if v.type in _CONVERT and v.start is not None}
+        # What each array holds now (a write of one element sends the whole array):
+        # the start values, again after fmi3Reset.
+        self._starts = {v.name: _start(v) for v in md.modelVariables
+                        if v.type in _CONVERT and v.start is not None}
+        self._written = dict(self._starts)
         self._start_time, self._stop_time = start_time, stop_time
         self._unzip = extract(str(path))
         self._fmu = FMU3Slave(guid=md.guid, unzipDirectory=self._unzip,
@@ -110,6 +113,7 @@ class Fmu3Instance(LoggedCalls):
         """fmi3Reset: back to the state after instantiation (start values of every
         parameter); the next initialization starts the experiment at `start_time`."""
         self._call("fmi3Reset", self._fmu.reset)
+        self._written = dict(self._starts)
         self.messages.clear()
         self._start_time, self._stop_time = start_time, stop_time
 

@@ -35,3 +35,20 @@ def test_fmi3_closed_loop_matches_the_fmi2_run(name):
     print(f"{name}: {len(fmi2.names)} signals, {len(fmi2.time)} samples, "
           f"FMI 2.0 vs 3.0 max difference {worst:.3g}")
     assert worst <= AGREEMENT
+
+
+def test_after_reset_a_single_element_write_keeps_the_other_start_values():
+    # An FMI 3.0 array is written whole, so the adapter fills the elements not named
+    # from what it last wrote; after fmi3Reset that must be the start values again
+    # (Kp start = "1.0 1.0 1.0" in modelDescription/fmi3/PID.xml), not the last run's.
+    from cosim.fmi3 import Fmu3Instance
+    pid = Fmu3Instance("pid", ROOT / "dist" / "fmi3" / "PID.fmu", 0.0, 1.0)
+    try:
+        pid.set_values(("Kp[1]", "Kp[2]", "Kp[3]"), [5.0, 6.0, 7.0])
+        pid.reset(0.0, 1.0)
+        pid.set_value("Kp[1]", 2.0)
+        pid.enter_initialization()
+        pid.exit_initialization()
+        assert pid.get_values(("Kp[1]", "Kp[2]", "Kp[3]")) == [2.0, 1.0, 1.0]
+    finally:
+        pid.close()
