@@ -23,6 +23,7 @@ use robofmu::pss3::dynamics::{
     DynamicsError, InputRamp, Plant, PlantInputs, PlantOutputs, PlantParams, PlantState,
     StepSettings, StopContact,
 };
+use robofmu::pss3::rotation::euler_rates;
 use robofmu::pss3::{FkOptions, assemble, forward_kinematics, start_pose};
 use robofmu_fmi::core::{
     DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo, OutputDerivativeError,
@@ -207,10 +208,8 @@ impl Pss3Plant {
         let outputs = plant
             .outputs(&state, &self.inputs)
             .map_err(|e| e.to_string())?;
-        let euler_rates = plant
-            .derivative(&state, &self.inputs)
-            .map(|d| d.euler_rates)
-            .map_err(|e| e.to_string())?;
+        // The rates alone: E^-1 omega, not a second evaluation of the dynamics.
+        let euler_rates = euler_rates(&state.euler, &state.omega).map_err(|e| e.to_string())?;
         let gravity_compensation = plant
             .gravity_compensation(&state.euler)
             .map_err(|e| e.to_string())?;
