@@ -79,11 +79,19 @@ fn fmi2_state(l: &Loaded, m: usize, interface: Interface3) -> Observed {
     if status != OK {
         return Observed::of(status, log);
     }
+    let mut compared = 0;
     for v in inst.description.of_type(crate::description::VarType::Real) {
         if v.causality == "independent" {
             continue;
         }
         let (s, x) = inst.get_float64(&[v.vr]);
+        if s != OK {
+            return Observed::broken(format!(
+                "fmi3GetFloat64({}) after the restore: {}",
+                v.name,
+                crate::binary::status_name(s)
+            ));
+        }
         for (k, value) in x.iter().enumerate() {
             let name = if v.size > 1 {
                 format!("{}[{}]", v.name, k + 1)
@@ -94,13 +102,17 @@ fn fmi2_state(l: &Loaded, m: usize, interface: Interface3) -> Observed {
                 continue;
             };
             let (_, y) = source.get_reals(&[v2.vr]);
-            if s != OK || value.to_bits() != y[0].to_bits() {
+            compared += 1;
+            if value.to_bits() != y[0].to_bits() {
                 return Observed::broken(format!(
                     "{name}: {value} after the restore, {} in the FMI 2.0 instance",
                     y[0]
                 ));
             }
         }
+    }
+    if compared == 0 {
+        return Observed::broken("no Float64 element matched an FMI 2.0 variable by name".into());
     }
     Observed::of(status, log)
 }

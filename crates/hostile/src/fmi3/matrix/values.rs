@@ -82,7 +82,10 @@ fn scenario(inst: &Instance, v: &Variable, value: Value) -> Observed {
     let b = inst.binary;
     // SAFETY: a live instance, legal calls with well-formed arguments.
     unsafe {
-        (b.enter_initialization_mode)(inst.c, 0, 0.0, 0.0, 0, 0.0);
+        let s = (b.enter_initialization_mode)(inst.c, 0, 0.0, 0.0, 0, 0.0);
+        if s != OK {
+            return refused_naming("fmi3EnterInitializationMode", s);
+        }
         let s = (b.exit_initialization_mode)(inst.c);
         if s != OK {
             return refused_naming("fmi3ExitInitializationMode", s);
