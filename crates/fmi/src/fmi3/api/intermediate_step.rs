@@ -33,8 +33,10 @@ pub(super) struct SplitStep {
     event: bool,
     /// The importer asked to return early, at the first point from then on.
     return_at: Option<f64>,
-    /// The callback and the time of the intermediate point waiting for it.
-    pending: Option<(IntermediateUpdate, f64)>,
+    /// The importer's callback.
+    callback: IntermediateUpdate,
+    /// The time of the intermediate point waiting for the callback.
+    pending: Option<f64>,
     can_return_early: bool,
 }
 
@@ -46,7 +48,10 @@ impl SplitStep {
         t: f64,
         h: f64,
     ) -> Result<Option<Self>, String> {
-        if inst.intermediate_update.is_none() || M::INTERMEDIATE_UPDATE_POINTS == 0 {
+        let Some(callback) = inst.intermediate_update else {
+            return Ok(None);
+        };
+        if M::INTERMEDIATE_UPDATE_POINTS == 0 {
             return Ok(None);
         }
         inst.core.check_step(t, h)?;
@@ -64,6 +69,7 @@ impl SplitStep {
             done: 0,
             event: false,
             return_at: None,
+            callback,
             pending: None,
             can_return_early,
         }))
@@ -113,11 +119,8 @@ impl SplitStep {
             // SAFETY: the outputs were checked at the start of fmi3DoStep.
             return Ok(unsafe { out.write(&report) });
         }
-        let callback = inst
-            .intermediate_update
-            .ok_or("the intermediateUpdate callback vanished")?;
         inst.mode = Mode::IntermediateUpdateMode;
-        self.pending = Some((callback, now));
+        self.pending = Some(now);
         Ok(Fmi3Status::Ok)
     }
 
@@ -133,9 +136,9 @@ impl SplitStep {
         out: &StepResult,
         mut status: Fmi3Status,
     ) -> Fmi3Status {
-        while let Some((callback, time)) = self.pending.take() {
+        while let Some(time) = self.pending.take() {
             // SAFETY: no reference into the instance is live here.
-            if let Some(at) = unsafe { callback.call(time, self.can_return_early) } {
+            if let Some(at) = unsafe { self.callback.call(time, self.can_return_early) } {
                 self.return_at = Some(at);
             }
             // SAFETY: the instance is looked up again (the callback may have freed it).
