@@ -26,6 +26,13 @@ struct Entry {
     owner: usize,
 }
 
+impl Entry {
+    /// Whether this entry is the handle `address` of `kind` for model `M`.
+    fn is<M: 'static>(&self, address: usize, kind: HandleKind) -> bool {
+        self.address == address && self.kind == kind && self.model == TypeId::of::<M>()
+    }
+}
+
 static LIVE: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
 
 fn live() -> MutexGuard<'static, Vec<Entry>> {
@@ -46,9 +53,7 @@ pub fn register<M: 'static>(address: usize, kind: HandleKind, owner: usize) {
 
 /// Whether `address` is a live handle of `kind` for model `M`.
 pub fn is_live<M: 'static>(address: usize, kind: HandleKind) -> bool {
-    live()
-        .iter()
-        .any(|e| e.address == address && e.kind == kind && e.model == TypeId::of::<M>())
+    live().iter().any(|e| e.is::<M>(address, kind))
 }
 
 /// Runs `f` if `address` is a live handle of `kind` for model `M` (None if not), with
@@ -60,9 +65,7 @@ pub fn while_live<M: 'static, R>(
     f: impl FnOnce() -> R,
 ) -> Option<R> {
     let list = live();
-    let found = list
-        .iter()
-        .any(|e| e.address == address && e.kind == kind && e.model == TypeId::of::<M>());
+    let found = list.iter().any(|e| e.is::<M>(address, kind));
     let result = found.then(f);
     drop(list);
     result
@@ -72,9 +75,7 @@ pub fn while_live<M: 'static, R>(
 /// back when it becomes empty.
 pub fn unregister<M: 'static>(address: usize, kind: HandleKind) -> bool {
     let mut list = live();
-    let found = list
-        .iter()
-        .position(|e| e.address == address && e.kind == kind && e.model == TypeId::of::<M>());
+    let found = list.iter().position(|e| e.is::<M>(address, kind));
     if let Some(i) = found {
         list.swap_remove(i);
     }
