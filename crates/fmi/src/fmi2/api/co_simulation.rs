@@ -1,6 +1,7 @@
 //! Functions of FMI 2.0 Co-Simulation.
 
 use super::{input_slice, output_ref, output_slice, with_instance};
+use crate::core::entry;
 use crate::core::model::{Model, StepOutcome};
 use crate::core::output_derivatives::{Request, output_derivatives};
 use crate::fmi2::mode::{Call, Mode};
@@ -90,11 +91,11 @@ pub unsafe fn get_real_output_derivatives<M: Model>(
                     .collect();
                 match output_derivatives(&mut inst.core, &requests, out)? {
                     None => Ok(Fmi2Status::Ok),
-                    Some(reason) => {
-                        let message = format!("fmi2GetRealOutputDerivatives: {reason}");
-                        inst.log.status(Fmi2Status::Discard, &message);
-                        Ok(Fmi2Status::Discard)
-                    }
+                    Some(reason) => Ok(entry::discard(
+                        inst,
+                        "fmi2GetRealOutputDerivatives",
+                        &reason,
+                    )),
                 }
             },
         )

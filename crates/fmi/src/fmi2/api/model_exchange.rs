@@ -1,6 +1,7 @@
 //! Functions of FMI 2.0 Model Exchange.
 
 use super::{check_finite, output_ref, with_instance};
+use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::model_exchange_calls::{self as calls, indicators, states};
 use crate::fmi2::instance::Instance;
@@ -55,10 +56,7 @@ pub unsafe fn enter_continuous_time_mode<M: Model>(c: Fmi2Component) -> Fmi2Stat
             c,
             "fmi2EnterContinuousTimeMode",
             Call::EnterContinuousTimeMode,
-            |inst| {
-                inst.mode = Mode::ContinuousTimeMode;
-                Ok(Fmi2Status::Ok)
-            },
+            |inst| entry::enter(inst, Mode::ContinuousTimeMode),
         )
     }
 }

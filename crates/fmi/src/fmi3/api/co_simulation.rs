@@ -13,6 +13,7 @@
 
 use super::intermediate_step::SplitStep;
 use super::{input_slice, output_slice, with_instance};
+use crate::core::entry;
 use crate::core::instance::{Snapshot, Standard};
 use crate::core::model::{Model, StepOutcome};
 use crate::core::output_derivatives::{Request, output_derivatives};
@@ -211,8 +212,7 @@ pub unsafe fn do_step<M: Model>(
 pub unsafe fn enter_step_mode<M: Model>(c: Fmi3Instance) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, "fmi3EnterStepMode", Call::EnterStepMode, |inst| {
-            inst.mode = Mode::StepMode;
-            Ok(Fmi3Status::Ok)
+            entry::enter(inst, Mode::StepMode)
         })
     }
 }
@@ -270,11 +270,7 @@ pub unsafe fn get_output_derivatives<M: Model>(
                 let requests = element_requests(inst, vrs, orders, n_values)?;
                 match output_derivatives(&mut inst.core, &requests, out)? {
                     None => Ok(Fmi3Status::Ok),
-                    Some(reason) => {
-                        let message = format!("fmi3GetOutputDerivatives: {reason}");
-                        inst.log.status(Fmi3Status::Discard, &message);
-                        Ok(Fmi3Status::Discard)
-                    }
+                    Some(reason) => Ok(entry::discard(inst, "fmi3GetOutputDerivatives", &reason)),
                 }
             },
         )

@@ -2,6 +2,7 @@
 //! both interfaces).
 
 use super::{check_finite, output_ref, with_instance};
+use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::model_exchange_calls::{self as calls, indicators, states};
 use crate::fmi3::instance::Instance;
@@ -54,10 +55,7 @@ pub unsafe fn enter_continuous_time_mode<M: Model>(c: Fmi3Instance) -> Fmi3Statu
             c,
             "fmi3EnterContinuousTimeMode",
             Call::EnterContinuousTimeMode,
-            |inst| {
-                inst.mode = Mode::ContinuousTimeMode;
-                Ok(Fmi3Status::Ok)
-            },
+            |inst| entry::enter(inst, Mode::ContinuousTimeMode),
         )
     }
 }
