@@ -132,7 +132,6 @@ impl StepResult {
 /// One step of the model from `t` by `h`, with the event handling of the module
 /// documentation; the instance moves to StepDiscarded when the model discards it.
 pub(super) fn step<M: Model>(inst: &mut Instance<M>, t: f64, h: f64) -> Result<StepReport, String> {
-    let z_before = indicators(inst.core.model());
     let (events_used, early_allowed) = match inst.interface {
         Interface::CoSimulation {
             event_mode_used,
@@ -140,10 +139,18 @@ pub(super) fn step<M: Model>(inst: &mut Instance<M>, t: f64, h: f64) -> Result<S
         } => (event_mode_used, early_return_allowed),
         Interface::ModelExchange => (false, false),
     };
+    // The indicators matter only to an importer that handles events or returns
+    // early; for any other the step evaluates none (no sign change without them).
+    let watch_events = events_used || early_allowed;
+    let z_before = watch_events
+        .then(|| indicators(inst.core.model()))
+        .flatten();
     let start = (early_allowed && z_before.is_some()).then(|| inst.core.snapshot(Standard::Fmi3));
     match inst.core.do_step(t, h, &inst.log)? {
         StepOutcome::Completed => {
-            let z_after = indicators(inst.core.model());
+            let z_after = watch_events
+                .then(|| indicators(inst.core.model()))
+                .flatten();
             let changed = sign_changed(&z_before, &z_after);
             let early = match (changed, &start) {
                 (true, Some(start)) => return_early(inst, start, &z_before, h)?,
