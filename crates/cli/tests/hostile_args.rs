@@ -142,10 +142,18 @@ const FILE_CASES: &[(Case, &str, &[u8])] = &[
     (case(&["dual-arm", "solve", "--lock", "1", "--path", "nan.csv"], 2, "--path nan.csv"), "nan.csv", b"t,x,y\n0,NaN,0\n0.3,0,0\n0.6,0,0\n1,0,0\n"),
     (case(&["closed-loop", "reference", "--scenario", "bin.toml", "--out", "out/r.csv"], 2, "bin.toml"), "bin.toml", b"name = \"\xff\xfe\"\n"), (case(&["closed-loop", "reference", "--scenario", "junk.toml", "--out", "out/r.csv"], 2, "junk.toml"), "junk.toml", b"[[[[not toml"),
     (case(&["closed-loop", "reference", "--scenario", "deep.toml", "--out", "out/r.csv"], 2, "deep.toml"), "deep.toml", DEEP),
+    (case(&["closed-loop", "reference", "--scenario", "neg.toml", "--out", "out/r.csv"], 2, "step_size"), "neg.toml", NEGATIVE_STEP),
+    (case(&["closed-loop", "reference", "--scenario", "long.toml", "--out", "out/r.csv"], 2, "step_size"), "long.toml", LONG_RUN),
 ];
 
 /// Hundreds of nested arrays: a parser that recurses without a limit overflows its stack.
 const DEEP: &[u8] = b"x = [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[";
+
+/// A scenario stepping backwards in time.
+const NEGATIVE_STEP: &[u8] = b"name = \"neg\"\nstop_time = \"1 s\"\nstep_size = \"-1 ms\"\n[fmus]\nplanner = \"Planner.fmu\"\npid = \"PID.fmu\"\nplant = \"Pss3Plant.fmu\"\n[motion]\nprofile = \"quintic\"\n[[motion.waypoints]]\ntime = \"0 s\"\nangles = \"0, 0, 138 deg\"\n[[motion.waypoints]]\ntime = \"1 s\"\nangles = \"0, 0, 138 deg\"\n[gains]\nomega = \"30 rad/s\"\n";
+
+/// A scenario of 1e12 steps (1e9 s at 1 ms).
+const LONG_RUN: &[u8] = b"name = \"long\"\nstop_time = \"1e9 s\"\nstep_size = \"1 ms\"\n[fmus]\nplanner = \"Planner.fmu\"\npid = \"PID.fmu\"\nplant = \"Pss3Plant.fmu\"\n[motion]\nprofile = \"quintic\"\n[[motion.waypoints]]\ntime = \"0 s\"\nangles = \"0, 0, 138 deg\"\n[[motion.waypoints]]\ntime = \"1 s\"\nangles = \"0, 0, 138 deg\"\n[gains]\nomega = \"30 rad/s\"\n";
 
 static NEXT: AtomicUsize = AtomicUsize::new(0);
 

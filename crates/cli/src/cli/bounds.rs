@@ -101,6 +101,18 @@ pub fn samples(
     dt_option: &str,
     duration_option: &str,
 ) -> Result<(), CliError> {
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(usage(format!(
+            "{dt_option} {} s: a step greater than 0 is needed",
+            show(dt)
+        )));
+    }
+    if !(duration.is_finite() && duration > 0.0) {
+        return Err(usage(format!(
+            "{duration_option} {} s: a duration greater than 0 is needed",
+            show(duration)
+        )));
+    }
     if dt > duration {
         return Err(usage(format!(
             "{dt_option} {} s is longer than {duration_option} {} s; \
@@ -147,5 +159,10 @@ mod tests {
         assert!(samples(2.0, 1e-6, "--dt", "--duration").is_err());
         assert!(samples(2.0, 1e-300, "--dt", "--duration").is_err());
         assert!(samples(2.0, 3.0, "--dt", "--duration").is_err());
+        // A negative or zero step or duration gives no sample count at all.
+        assert!(samples(1.0, -1e-3, "--dt", "--duration").is_err());
+        assert!(samples(1.0, 0.0, "--dt", "--duration").is_err());
+        assert!(samples(-1.0, 1e-3, "--dt", "--duration").is_err());
+        assert!(samples(f64::NAN, 1e-3, "--dt", "--duration").is_err());
     }
 }
