@@ -64,7 +64,7 @@ pub struct ReferenceArgs {
     /// Output CSV; `<name>_ref.opt` is written beside it.
     #[arg(long)]
     out: PathBuf,
-    /// Relative and absolute tolerance of the Dop853 integration.
+    /// Relative and absolute tolerance of the Dop853 integration (1e-14 to 1e-2).
     #[arg(long, default_value_t = 1e-11, allow_hyphen_values = true,
           value_parser = ode_tolerance)]
     tolerance: f64,
@@ -75,7 +75,7 @@ pub struct ReferenceArgs {
 
 #[derive(Args)]
 pub struct DesignArgs {
-    /// Closed-loop bandwidth w, rad/s (triple pole at -w).
+    /// Closed-loop bandwidth w, rad/s (triple pole at -w; > 0, at most 1e4).
     #[arg(long, allow_hyphen_values = true, value_parser = bandwidth)]
     bandwidth: f64,
     /// Poses of the motion, thx,thy,thz in degrees (repeat the option per pose).

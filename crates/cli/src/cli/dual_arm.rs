@@ -46,7 +46,7 @@ struct ProblemArgs {
     /// Redundant joints at tf, rad, comma-separated (default: the paper's guess).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     guess: Option<Vec<f64>>,
-    /// Intervals of the output grid (and of the direct method's grid).
+    /// Intervals of the output grid (and of the direct method's grid), 10 to 1000.
     #[arg(long, default_value_t = 200, allow_hyphen_values = true,
           value_parser = crate::cli::bounds::count::<10, 1000>)]
     intervals: usize,

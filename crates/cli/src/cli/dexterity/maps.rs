@@ -33,7 +33,7 @@ pub struct MapArgs {
     /// Square of positions mapped.
     #[arg(long, value_enum, default_value = "paper")]
     square: Square,
-    /// Grid points per axis.
+    /// Grid points per axis (2 to 501).
     #[arg(long, default_value_t = 81, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 501>)]
     grid: usize,
     /// Output directory for the CSV and PNG files.
@@ -144,7 +144,7 @@ pub struct LoadMapArgs {
     /// default: the fixed mode of docs/dexterity.md (1rrr 0, 2rrr 3, 3rrr 7).
     #[arg(long, allow_hyphen_values = true, value_parser = parse_mode)]
     mode: Option<ModeChoice>,
-    /// Grid points per axis over the own workspace square.
+    /// Grid points per axis over the own workspace square (2 to 501).
     #[arg(long, default_value_t = 121, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 501>)]
     grid: usize,
     /// Output directory for the CSV and PNG files.
@@ -190,7 +190,7 @@ pub struct WorkspaceArgs {
     /// Orientation phi (deg).
     #[arg(long, default_value_t = 10.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     phi: f64,
-    /// Grid points per axis over a square holding every workspace.
+    /// Grid points per axis over a square holding every workspace (2 to 501).
     #[arg(long, default_value_t = 181, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 501>)]
     grid: usize,
     /// Output directory for the CSV and PNG files.

@@ -40,7 +40,7 @@ pub struct MaxLciArgs {
     /// Positions searched: the paper's square, the own or the common workspace.
     #[arg(long, value_enum, default_value = "paper")]
     workspace: Workspace,
-    /// Grid points per axis (161 over the paper's 40 cm square: 0.25 cm steps).
+    /// Grid points per axis (161 over the paper's 40 cm square: 0.25 cm steps; 2 to 1001).
     #[arg(long, default_value_t = 161, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 1001>)]
     grid: usize,
     #[arg(long, help = MODE_HELP, allow_hyphen_values = true, value_parser = parse_mode_option)]
@@ -85,10 +85,10 @@ pub struct GciArgs {
     /// Manipulator: 1rrr, 2rrr or 3rrr.
     #[arg(long)]
     robot: RobotKind,
-    /// Midpoint-rule cells along x and along y (over the reach square).
+    /// Midpoint-rule cells along x and along y (over the reach square), 1 to 400.
     #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<1, 400>)]
     cells: usize,
-    /// Midpoint-rule cells along phi.
+    /// Midpoint-rule cells along phi, 1 to 400.
     #[arg(long, default_value_t = 85, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<1, 400>)]
     phi_cells: usize,
     /// Lower end of the orientation range (deg).

@@ -23,10 +23,10 @@ pub struct SweepArgs {
     /// Last orientation (deg).
     #[arg(long, default_value_t = 180.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     to: f64,
-    /// Orientation step (deg).
+    /// Orientation step (deg, > 0; orientations x grid points^2 at most 2e8).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::positive)]
     step: f64,
-    /// Grid points per axis over each searched square.
+    /// Grid points per axis over each searched square (2 to 1001).
     #[arg(long, default_value_t = 161, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 1001>)]
     grid: usize,
     /// Working mode of the 1-RRR: a mode index (0, 1) or `best`; default 0.
@@ -239,7 +239,7 @@ pub struct ReadingsArgs {
     /// Orientation phi (deg).
     #[arg(long, default_value_t = 10.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     phi: f64,
-    /// Grid points per axis over the paper's square.
+    /// Grid points per axis over the paper's square (2 to 1001).
     #[arg(long, default_value_t = 161, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 1001>)]
     grid: usize,
 }

@@ -29,10 +29,10 @@ pub struct PathArgs {
         value_parser = finite
     )]
     lf: Vec<f64>,
-    /// Duration of the motion, s.
+    /// Duration of the motion, s (> 0).
     #[arg(long, allow_hyphen_values = true, value_parser = positive)]
     duration: f64,
-    /// Sampling step, s.
+    /// Sampling step, s (> 0, at most the duration, at most 1e6 samples).
     #[arg(long, allow_hyphen_values = true, value_parser = positive)]
     dt: f64,
     /// Output CSV file.

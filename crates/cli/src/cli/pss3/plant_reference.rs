@@ -46,7 +46,7 @@ const DEFAULT_POSE_MOVE_END: [f64; 3] = [0.11, 0.08, 0.05];
 
 #[derive(Args)]
 pub struct PlantReferenceArgs {
-    /// Sampling step of the reference and of the input forces, s.
+    /// Sampling step of the reference and of the input forces, s (> 0, at most 1e6 samples).
     #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true,
           value_parser = crate::cli::bounds::positive)]
     dt: f64,

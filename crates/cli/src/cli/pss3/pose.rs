@@ -38,11 +38,11 @@ pub struct FkArgs {
     /// Seed orientation thx,thy,thz in deg [default: the start pose 0,0,122.07].
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = finite)]
     seed: Option<Vec<f64>>,
-    /// Convergence tolerance on the actuator residual, m.
+    /// Convergence tolerance on the actuator residual, m (0 to 1).
     #[arg(long, default_value_t = FkOptions::default().tolerance,
           allow_hyphen_values = true, value_parser = fk_tolerance)]
     tol: f64,
-    /// Iteration limit of Newton's method.
+    /// Iteration limit of Newton's method (1 to 1000).
     #[arg(long, default_value_t = FkOptions::default().max_iterations,
           allow_hyphen_values = true, value_parser = count::<1, 1000>)]
     max_iter: usize,

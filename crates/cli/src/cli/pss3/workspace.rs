@@ -18,11 +18,11 @@ pub struct WorkspaceArgs {
     /// Directory for the CSV files and PNG plots (created if missing).
     #[arg(long)]
     out: PathBuf,
-    /// Grid points per actuator over the stroke box (FK scan).
+    /// Grid points per actuator over the stroke box (FK scan), 2 to 101.
     #[arg(long, default_value_t = 31, allow_hyphen_values = true,
           value_parser = count::<2, 101>)]
     steps: usize,
-    /// Spacing of the orientation grid (IK scan), deg.
+    /// Spacing of the orientation grid (IK scan), deg (0.25 to 10).
     #[arg(long, default_value_t = 0.5, allow_hyphen_values = true,
           value_parser = angle_step)]
     angle_step: f64,
