@@ -109,6 +109,8 @@ const CASES: &[Case] = &[
     case(&["dual-arm", "solve", "--lock", "1", "--path", "B", "--intervals", "4294967295"], 2, "--intervals"),
     case(&["dual-arm", "solve", "--lock", "1", "--path", "B", "--guess", "NaN,0"], 2, "--guess"),
     case(&["dual-arm", "solve", "--lock", "1", "--path", "B", "--guess", "1,2,3"], 2, "--guess"),
+    case(&["dual-arm", "solve", "--lock", "1", "--path", "B", "--guess", "1e7,1e7"], 2, "--guess"),
+    case(&["dual-arm", "compare", "--lock", "none", "--path", "A", "--guess", "0,0,0,-1e300"], 2, "--guess"),
     case(&["dual-arm", "solve", "--lock", "1", "--path", "B", "--elbows", "negative"], 2, "--elbows"),
     case(&["dual-arm", "solve", "--lock", "1", "--path", "B", "--elbows", "up,down"], 2, "--elbows"),
     case(&["dual-arm", "solve", "--lock", "1", "--path", "missing.csv"], 2, "--path missing.csv"),

@@ -80,6 +80,13 @@ pub fn bandwidth(text: &str) -> Result<f64, String> {
     }
 }
 
+/// A joint angle of an initial guess, rad: -100 to 100 (about 16 turns). Far beyond,
+/// sin and cos lose their digits and the shooting method's integrator creeps on
+/// without end (a guess of 1e7 rad ran for minutes).
+pub fn joint_angle(text: &str) -> Result<f64, String> {
+    within(text, -100.0, 100.0, "a joint angle in rad")
+}
+
 /// A spacing of the orientation grid of `pss3 workspace`, deg: 0.25 to 10.
 pub fn angle_step(text: &str) -> Result<f64, String> {
     within(text, 0.25, 10.0, "a spacing in deg")
@@ -147,6 +154,7 @@ mod tests {
         assert!(fk_tolerance("NaN").is_err() && fk_tolerance("2").is_err());
         assert!(ode_tolerance("1e-15").is_err() && ode_tolerance("1e-11").is_ok());
         assert!(bandwidth("1e200").is_err() && bandwidth("30").is_ok());
+        assert!(joint_angle("1e7").is_err() && joint_angle("-100").is_ok());
         assert_eq!(count::<2, 5>("5"), Ok(5));
         assert!(count::<2, 5>("6").is_err() && count::<2, 5>("-1").is_err());
         assert!(count::<2, 5>("4294967295").is_err() && count::<2, 5>("3.5").is_err());

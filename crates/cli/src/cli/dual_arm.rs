@@ -43,8 +43,9 @@ struct ProblemArgs {
     /// End-effector path: A, B (the paper's) or a CSV file of t, x, y (s, m).
     #[arg(long)]
     path: String,
-    /// Redundant joints at tf, rad, comma-separated (default: the paper's guess).
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
+    /// Redundant joints at tf, rad, comma-separated, each -100 to 100 (default: the
+    /// paper's guess).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = crate::cli::bounds::joint_angle)]
     guess: Option<Vec<f64>>,
     /// Intervals of the output grid (and of the direct method's grid), 10 to 1000.
     #[arg(long, default_value_t = 200, allow_hyphen_values = true,
