@@ -91,6 +91,8 @@ def main(argv=None) -> int:
         command = "run"
     try:
         args = build_parser(command if command in COMMANDS else None).parse_args(argv)
+    except SystemExit as e:  # --help (0) or an argument error (2), already printed
+        return e.code if isinstance(e.code, int) else USER_ERROR
     except ModuleNotFoundError as e:
         if debug:
             traceback.print_exc()

@@ -128,9 +128,13 @@ def _waypoint(raw, k: int) -> Waypoint:
                             f"{where}.omega", 3)
     omega_dot = quantity_vector(raw.get("omega_dot", "0, 0, 0 rad/s^2"),
                                 "angular acceleration", f"{where}.omega_dot", 3)
-    rates = euler_rates(angles, omega)
+    try:
+        rates = euler_rates(angles, omega)
+        accelerations = euler_accelerations(angles, rates, omega_dot)
+    except ScenarioError as e:
+        raise ScenarioError(f"field '{where}.angles': {e}; keep thy away from +-90 deg") from None
     return Waypoint(quantity(raw["time"], "time", f"{where}.time"), angles, omega, rates,
-                    euler_accelerations(angles, rates, omega_dot))
+                    accelerations)
 
 
 def waypoints(motion: dict) -> tuple[int, list[Waypoint]]:
