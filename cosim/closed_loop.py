@@ -188,15 +188,35 @@ def _gains(raw: dict, plant_fmu: Path, poses, plant: dict) -> list[tuple[float, 
             poses = [quantity_vector(p, "angle", f"gains.design_poses[{k}]", 3)
                      for k, p in enumerate(listed)]
         bandwidth = quantity(raw["omega"], "angular velocity", "gains.omega")
-        check_poses(plant_fmu, plant, [(f"gains.design_poses[{k}]", None, p)
-                                       for k, p in enumerate(poses)],
-                    "design the gains at poses inside the workspace")
+        if plant is not None:
+            check_poses(plant_fmu, plant, [(f"gains.design_poses[{k}]", None, p)
+                                           for k, p in enumerate(poses)],
+                        "design the gains at poses inside the workspace")
         return design_gains(plant_fmu, poses, bandwidth)
     if set(raw) != set(explicit):
         raise ScenarioError("field 'gains' needs either 'omega' (design rule) or all of "
                             "'Kp', 'Ki', 'Kd'")
     columns = [quantity_vector(raw[k], dim, f"gains.{k}", 3) for k, dim in explicit.items()]
     return list(zip(*columns))
+
+
+def _article(noun: str) -> str:
+    return ("an " if noun[0] in "aeiou" else "a ") + noun
+
+
+# A variable each role's FMU must have: a wrong FMU in a slot is named as such.
+ROLE_VARIABLES = {"planner": "qf[1]", "pid": "Kp[1]", "plant": "theta0[1]"}
+
+
+def _check_roles(fmus: dict, base_dir: Path) -> None:
+    for alias, f in fmus.items():
+        if not isinstance(f, str):
+            raise ScenarioError(f"field 'fmus.{alias}' must be a file name (a string)")
+        md = describe(base_dir / f, f"fmus.{alias}")
+        if ROLE_VARIABLES[alias] not in {v.name for v in md.modelVariables}:
+            raise ScenarioError(f"field 'fmus.{alias}': {Path(f).name} ({md.modelName}) is "
+                                f"not a {alias} FMU (no variable {ROLE_VARIABLES[alias]}); "
+                                f"name the {alias} FMU of dist/")
 
 
 def _plant_value(value, name: str, plant_fmu: Path):
@@ -217,15 +237,21 @@ def _plant_value(value, name: str, plant_fmu: Path):
             raise ScenarioError(f"field '{field}': plant.{name} declares no unit; write a "
                                 "plain number")
         if declared[1] != exponents(dimension) or declared[2] != 1.0 or declared[3] != 0.0:
-            raise ScenarioError(f"field '{field}': {value!r} is a {dimension}, but {name} is "
-                                f"declared in {declared[0]}; write it in {declared[0]} "
-                                "(e.g. a plain number in that unit)")
+            hint = [u for u, (f, d) in UNITS.items() if f == 1.0 and declared[1:] == (
+                exponents(d), 1.0, 0.0)]
+            form = f"\"VALUE {hint[0]}\" or " if hint else ""
+            raise ScenarioError(f"field '{field}': {value!r} is {_article(dimension)}, but "
+                                f"{name} is declared in {declared[0]}; write {form}a plain "
+                                f"number in {declared[0]}")
         value = quantity(value, dimension, field)
     return check_value(md, "plant", name, value, field)
 
 
-def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
-    """The plain scenario (as parse_scenario reads it) and the plan switches."""
+def resolve(data: dict, base_dir: Path,
+            preflight: bool = True) -> tuple[dict, list[PlanSwitch]]:
+    """The plain scenario (as parse_scenario reads it) and the plan switches. With
+    `preflight`, the plant's parameters, the start, the waypoints and the design poses
+    are checked with the plant FMU before the gain design."""
     unknown = sorted(set(data) - KNOWN)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'")
@@ -241,19 +267,17 @@ def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
               if "angles" in start_raw else points[0].angles)
     omega0 = (quantity_vector(start_raw["omega"], "angular velocity", "start.omega", 3)
               if "omega" in start_raw else points[0].omega)
-    for alias, f in fmus.items():
-        if not isinstance(f, str):
-            raise ScenarioError(f"field 'fmus.{alias}' must be a file name (a string)")
-        describe(base_dir / f, f"fmus.{alias}")
+    _check_roles(fmus, base_dir)
     plant_fmu = base_dir / str(fmus["plant"])
     plant_values = {k: _plant_value(v, k, plant_fmu) for k, v in _table(data, "plant").items()}
-    initialize_alone(plant_fmu, "plant", plant_values, "plant")
-    start_field = "start.angles" if "angles" in start_raw else "motion.waypoints[0].angles"
-    check_poses(plant_fmu, plant_values,
-                [(start_field, None, theta0)] + [(f"motion.waypoints[{k}].angles", p.time,
-                                                  p.angles) for k, p in enumerate(points)],
-                "move the waypoints (or the start) inside the workspace")
-    gains = _gains(_table(data, "gains"), plant_fmu, design_poses(theta0, points), plant_values)
+    if preflight:
+        initialize_alone(plant_fmu, "plant", plant_values, "plant")
+        start_field = "start.angles" if "angles" in start_raw else "motion.waypoints[0].angles"
+        check_poses(plant_fmu, plant_values, [(start_field, None, theta0)] + [
+            (f"motion.waypoints[{k}].angles", p.time, p.angles) for k, p in enumerate(points)],
+                    "move the waypoints (or the start) inside the workspace")
+    gains = _gains(_table(data, "gains"), plant_fmu, design_poses(theta0, points),
+                   plant_values if preflight else None)
     pid = {}
     for i, (kp, ki, kd) in enumerate(gains):
         n = i + 1

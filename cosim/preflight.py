@@ -38,9 +38,12 @@ def initialize_alone(path: Path, alias: str, parameters: dict, field: str) -> No
 
 
 def _reason(error: Exception) -> str:
-    """The FMU's log line of an FmuError (after the '[category] call: ' prefix)."""
+    """The FMU's log line of an FmuError, without the '[category] fmi2Call: ' prefix and
+    the plant's 'invalid parameters: ' preamble."""
     text = str(error).rsplit("] ", 1)[-1]
-    return text.split(": ", 1)[1] if text.startswith("fmi") and ": " in text else text
+    if text.startswith("fmi") and ": " in text:
+        text = text.split(": ", 1)[1]
+    return text.removeprefix("invalid parameters: ")
 
 
 def check(scenario: Scenario, fields: dict | None = None) -> None:

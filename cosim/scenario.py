@@ -219,17 +219,19 @@ def _find_fmus(data: dict, base_dir: Path, fmu_dir) -> dict:
 
 
 def parse_document(data: dict, base_dir: Path, fmu_dir: str | Path | None = None,
-                   preflight: bool = True) -> Scenario:
+                   preflight: bool = False) -> Scenario:
     """A plain or hand-written (closed-loop) scenario document, validated; with
-    `preflight`, also against its FMUs (cosim.preflight) and, for the closed loop, the
-    start pose and the whole plan against the workspace (cosim.workspace)."""
+    `preflight` (the default of load_scenario, not here: a sweep's runs report what the
+    FMUs refuse as failed runs), also against its FMUs (cosim.preflight) and, for the
+    closed loop, the start pose, the waypoints and the whole plan against the workspace
+    (cosim.workspace)."""
     data = _find_fmus(data, base_dir, fmu_dir)
     from .closed_loop import FIELDS, WHERE, is_closed_loop, resolve
     if not is_closed_loop(data):
         scenario = parse_scenario(data, base_dir)
         fields, where = {}, {"start": "parameters.plant", "plan": "parameters.planner"}
     else:
-        plain, schedule = resolve(data, base_dir)
+        plain, schedule = resolve(data, base_dir, preflight)
         scenario = parse_scenario(plain, base_dir)
         scenario.schedule = schedule
         fields, where = FIELDS, dict(WHERE, start="start.angles" if "angles" in data.get(

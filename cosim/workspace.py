@@ -59,8 +59,8 @@ class Workspace:
             lengths = fmu.get_values(LENGTHS)
             low, high = fmu.get_values(("strokeMin", "strokeMax"))
         except CosimError as e:
-            reason = str(e).rsplit("] ", 1)[-1]
-            return f"the plant refuses it: {reason}"
+            from .preflight import _reason
+            return f"the plant refuses it: {_reason(e)}"
         for i, x in enumerate(lengths):
             if not low - STROKE_TOLERANCE <= x <= high + STROKE_TOLERANCE:
                 return (f"actuator {i + 1} would need length {1000 * x:.4f} mm, outside its "
