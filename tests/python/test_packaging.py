@@ -20,7 +20,10 @@ def test_installed_console_command_runs_a_scenario_anywhere(tmp_path):
         shutil.copy(ROOT / name, source / name)
     prefix = tmp_path / "prefix"
     # --no-deps --no-build-isolation: the dependencies are this venv's (no download).
+    # --ignore-installed: pip would otherwise first uninstall the editable install of
+    # this venv (scripts/setup-venv.sh), the same distribution.
     subprocess.run([sys.executable, "-m", "pip", "install", "--quiet", "--no-deps",
+                    "--ignore-installed",
                     "--no-build-isolation", "--disable-pip-version-check", "--prefix",
                     str(prefix), str(source)], check=True, capture_output=True)
     command = prefix / "bin" / "cosim"
