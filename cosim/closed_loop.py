@@ -61,7 +61,7 @@ from pathlib import Path
 from .design import design_gains, euler_accelerations, euler_rates
 from .fmu_check import describe
 from .preflight import initialize_alone
-from .scenario import ScenarioError
+from .scenario import PlanSwitch, ScenarioError
 from .workspace import check_poses
 from .units import UNITS, exponents, quantity, quantity_vector, unit_in
 
@@ -91,15 +91,6 @@ class Waypoint:
     omega: list[float]  # base frame, rad/s
     rates: list[float]
     accelerations: list[float]
-
-
-@dataclass(frozen=True)
-class PlanSwitch:
-    """At communication step `step`, FMU `alias` is reset and given `parameters`."""
-
-    step: int
-    alias: str
-    parameters: dict
 
 
 def is_closed_loop(data: dict) -> bool:

@@ -69,6 +69,15 @@ class Connection:
     target: Signal
 
 
+@dataclass(frozen=True)
+class PlanSwitch:
+    """At communication step `step`, FMU `alias` is reset and given `parameters`."""
+
+    step: int
+    alias: str
+    parameters: dict
+
+
 @dataclass
 class Scenario:
     name: str
@@ -82,7 +91,7 @@ class Scenario:
     record: list[Signal] = field(default_factory=list)
     max_step_halvings: int = 0
     coupling: str = "sampled"
-    # Plan switches of a multi-segment motion (cosim.closed_loop.PlanSwitch), in order.
+    # Plan switches of a multi-segment motion (PlanSwitch), in order.
     schedule: list = field(default_factory=list)
     # Limits the run is judged against (cosim.limits), SI.
     limits: dict = field(default_factory=dict)
@@ -121,7 +130,7 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if not isinstance(data, dict):
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
-             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits"}
+             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits", "plan_switches"}
     unknown = sorted(set(data) - known, key=str)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
@@ -196,7 +205,37 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     return Scenario(name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
                     record=record, max_step_halvings=halvings, coupling=coupling,
-                    limits=parse_limits(data.get("limits", {})))
+                    limits=parse_limits(data.get("limits", {})),
+                    schedule=_plan_switches(data.get("plan_switches", []), fmus, round(steps)))
+
+
+def _plan_switches(raw, fmus, steps: int) -> list[PlanSwitch]:
+    """``[[plan_switches]]`` (step, alias, parameters): the expanded form of a
+    multi-segment motion, in increasing steps inside the run."""
+    if not isinstance(raw, list) or len(raw) > MAX_SIGNALS:
+        raise ScenarioError(f"field 'plan_switches' must be a list of at most {MAX_SIGNALS} "
+                            "{step, alias, parameters} tables")
+    switches, last = [], 0
+    for k, item in enumerate(raw):
+        where = f"plan_switches[{k}]"
+        if not isinstance(item, dict) or set(item) != {"step", "alias", "parameters"}:
+            raise ScenarioError(f"field '{where}' must have exactly the keys 'step', 'alias' "
+                                "and 'parameters'")
+        step = item["step"]
+        if not isinstance(step, int) or isinstance(step, bool) or not last < step < steps:
+            raise ScenarioError(f"field '{where}.step' must be an integer after the previous "
+                                f"switch's and before the last step ({steps}), got {step!r}")
+        if item["alias"] not in fmus:
+            raise ScenarioError(f"field '{where}.alias' names unknown FMU {item['alias']!r}")
+        values = item["parameters"]
+        if not isinstance(values, dict) or not all(
+                isinstance(v, (int, float, bool)) and not (
+                    isinstance(v, float) and not math.isfinite(v)) for v in values.values()):
+            raise ScenarioError(f"field '{where}.parameters' must be a table of finite "
+                                "numbers or booleans")
+        switches.append(PlanSwitch(step, item["alias"], dict(values)))
+        last = step
+    return switches
 
 
 def _find_fmus(data: dict, base_dir: Path, fmu_dir) -> dict:
