@@ -108,16 +108,18 @@ def main(argv=None) -> int:
     except Exception as e:  # noqa: BLE001 - every error becomes one line
         if debug:
             traceback.print_exc()
-        return _fail(*classify(e))
+        return _fail(*classify(e, getattr(args, "scenario", None)))
 
 
-def classify(error: Exception) -> tuple[str, int]:
-    """(one-line message, exit code) of an error a command raised."""
+def classify(error: Exception, scenario=None) -> tuple[str, int]:
+    """(one-line message, exit code) of an error a command raised; `scenario`: the
+    file the command ran, named in a simulation failure."""
     from .errors import CosimError
     if isinstance(error, user_error_types()):
         return str(error), USER_ERROR
     if isinstance(error, CosimError):
-        return f"the simulation failed: {error}", FAILED
+        where = f"{scenario}: " if scenario is not None else ""
+        return f"{where}the simulation failed: {error}", FAILED
     if isinstance(error, OSError):
         where = f"{error.filename}: " if error.filename else ""
         return f"{where}{error.strerror or error}; check the path and its permissions", \

@@ -1,6 +1,6 @@
 """The FMI 3.0 build of a scenario's FMUs behind the interface the master uses
 (`FmuInstance` in fmu.py): the same scalar names (`theta[1]`) on the FMI 3.0 arrays
-(`theta`, element 1). Choose it with ``python -m cosim SCENARIO --fmi3`` or
+(`theta`, element 1). Choose it with ``cosim run SCENARIO --fmi3`` or
 ``Master(scenario, open_fmu=open_fmi3)``; a scenario's ``dist/<Model>.fmu`` is then
 read as ``dist/fmi3/<Model>.fmu``.
 

@@ -136,3 +136,19 @@ def test_plots_do_not_magnify_round_off():
     plt.close(fig)
     assert "coincides" in coincide_note(signal, signal + 1e-6, "deg", 0.5)
     assert coincide_note(signal, signal + 0.01, "deg", 0.5) == ""
+
+
+def test_a_simulation_that_fails_is_exit_1_with_the_fmus_reason(tmp_path, capsys):
+    # Absurd gains from a small offset: the plant's integrator cannot follow and the
+    # plant discards the first step, saying why (its log line, category logStatusDiscard).
+    from cosim.cli import main
+    doc = edit(plain(), "parameters/plant/theta0[1]", 0.01)
+    for i in (1, 2, 3):
+        doc = edit(doc, f"parameters/pid/Kp[{i}]", 1e12)
+    path = tmp_path / "boom.json"
+    path.write_text(json.dumps(doc))
+    assert main(["run", str(path), "--out", str(tmp_path / "out"), "--quiet"]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"cosim: {path}: the simulation failed")
+    assert "plant discarded the step at t = 0 s" in err and "fmi2DoStep" in err
+    assert "logged no reason" not in err
