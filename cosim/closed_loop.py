@@ -49,8 +49,9 @@ The master runs them as a sequence of plans: at each interior waypoint it resets
 planner FMU (a stateless function of time) and loads the next segment's parameters.
 
 Default design poses: the plant start and, per segment, the poses at 0, 1/4, 1/2, 3/4
-and 1 of the segment (linear in the angles). The Rust reference
-(robofmu closed-loop reference) reads the same file with the same rules.
+and 1 of the segment (linear in the angles). These rules exist only here: the Rust
+reference (robofmu closed-loop reference) reads the expanded form that
+``cosim check SCENARIO --expanded FILE.toml`` writes (cosim.expand).
 """
 
 from __future__ import annotations
@@ -61,7 +62,8 @@ from pathlib import Path
 from .design import design_gains, euler_accelerations, euler_rates
 from .fmu_check import describe
 from .preflight import initialize_alone
-from .scenario import PlanSwitch, ScenarioError
+from .errors import ScenarioError
+from .schedule import PlanSwitch
 from .workspace import check_poses
 from .units import UNITS, exponents, quantity, quantity_vector, unit_in
 

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .scenario import ScenarioError
+from .errors import ScenarioError
 
 EULER_SINGULAR_COS = 1e-9
 

@@ -10,7 +10,7 @@ import zipfile
 from functools import lru_cache
 from pathlib import Path
 
-from .scenario import ScenarioError
+from .errors import ScenarioError
 
 BASE_UNITS = ("kg", "m", "s", "rad")
 OTHER_BASE_UNITS = ("A", "K", "mol", "cd")

@@ -9,7 +9,7 @@ A run that exceeds a declared limit ends with exit code 1 (`cosim run`)."""
 
 from __future__ import annotations
 
-from .scenario import ScenarioError
+from .errors import ScenarioError
 
 # limit -> (dimension, metric key in cosim.report.Metrics.si(), human unit, SI -> human)
 LIMITS = {

@@ -7,9 +7,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .errors import CosimError
+from typing import TYPE_CHECKING
+
+from .errors import CosimError, ScenarioError
 from .fmu_check import check_value, describe
-from .scenario import Scenario, ScenarioError
+
+if TYPE_CHECKING:
+    from .scenario import Scenario
 
 
 def initialize_alone(path: Path, alias: str, parameters: dict, field: str) -> None:

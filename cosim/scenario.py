@@ -38,6 +38,12 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .errors import ScenarioError
+from .schedule import PlanSwitch
+
+__all__ = ["PlanSwitch", "Scenario", "ScenarioError", "Signal", "Connection",
+           "load_scenario", "parse_document", "parse_scenario"]
+
 
 COUPLINGS = ("sampled", "gauss-seidel")
 DEFAULT_STEP = 0.001  # s
@@ -46,10 +52,6 @@ MAX_SIGNALS = 1000  # connections and recorded signals
 MAX_FILE_BYTES = 1_000_000
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
 REPOSITORY_DIST = Path(__file__).resolve().parent.parent / "dist"
-
-
-class ScenarioError(ValueError):
-    """A scenario file that cannot be run; the message names the field."""
 
 
 @dataclass(frozen=True)
@@ -67,15 +69,6 @@ class Signal:
 class Connection:
     source: Signal
     target: Signal
-
-
-@dataclass(frozen=True)
-class PlanSwitch:
-    """At communication step `step`, FMU `alias` is reset and given `parameters`."""
-
-    step: int
-    alias: str
-    parameters: dict
 
 
 @dataclass

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from .scenario import ScenarioError
+from .errors import ScenarioError
 
 DEG = math.pi / 180.0
 

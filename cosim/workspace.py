@@ -12,8 +12,12 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .errors import CosimError
-from .scenario import Scenario, ScenarioError
+from typing import TYPE_CHECKING
+
+from .errors import CosimError, ScenarioError
+
+if TYPE_CHECKING:
+    from .scenario import Scenario
 
 MAX_SAMPLES = 20000
 # Lengths within this of a stroke end count as inside: a path that runs exactly to the
