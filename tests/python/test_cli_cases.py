@@ -152,3 +152,13 @@ def test_a_simulation_that_fails_is_exit_1_with_the_fmus_reason(tmp_path, capsys
     assert err.count("\n") == 1 and err.startswith(f"cosim: {path}: the simulation failed")
     assert "plant discarded the step at t = 0 s" in err and "fmi2DoStep" in err
     assert "logged no reason" not in err
+
+
+def test_one_help_lists_every_command_and_each_command_has_its_own(capsys):
+    from cosim.cli import COMMANDS, main
+    assert main(["--help"]) == 0
+    text = capsys.readouterr().out
+    assert all(f"    {name}" in text for name in COMMANDS) and len(COMMANDS) == 8
+    for name in ("run", "check", "ssp", "container", "bench", "demo", "sweep"):
+        assert main([name, "--help"]) == 0
+        assert f"usage: cosim {name}" in capsys.readouterr().out
