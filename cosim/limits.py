@@ -36,6 +36,22 @@ def parse_limits(raw) -> dict[str, float]:
     return limits
 
 
+CLOSED_LOOP_COLUMNS = [f"{a}.{v}[{i}]" for a, v in (("planner", "q"), ("plant", "theta"),
+                                                     ("plant", "force"), ("planner", "qddot"),
+                                                     ("plant", "omegaDot")) for i in (1, 2, 3)]
+
+
+def check_measurable(scenario) -> None:
+    """Declared limits need the closed-loop signals recorded (connected or `record`)."""
+    recorded = ({str(c.source) for c in scenario.connections}
+                | {str(r) for r in scenario.record})
+    missing = sorted(set(CLOSED_LOOP_COLUMNS) - recorded)
+    if scenario.limits and missing:
+        raise ScenarioError(f"field 'limits': the limits need the closed-loop signals, and "
+                            f"{missing[0]} is not recorded; add it to 'record' or remove "
+                            "'limits'")
+
+
 def judge(limits: dict[str, float], measured: dict[str, float]) -> list[tuple]:
     """(limit, measured SI, limit SI, human unit, passed) per declared limit."""
     rows = []

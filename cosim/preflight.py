@@ -53,7 +53,9 @@ def _reason(error: Exception) -> str:
 def check(scenario: Scenario, fields: dict | None = None) -> None:
     """All checks above; `fields` maps an alias to the scenario field its parameters
     come from (default 'parameters.ALIAS')."""
+    from .limits import check_measurable
     fields = fields or {}
+    check_measurable(scenario)
     mds = {alias: describe(path, f"fmus.{alias}") for alias, path in scenario.fmus.items()}
     for alias, values in scenario.parameters.items():
         where = fields.get(alias, f"parameters.{alias}")

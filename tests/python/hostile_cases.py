@@ -190,6 +190,8 @@ DOCUMENTS = [
     ("limit unknown", edit(B(), "limits", {"max_speed": "1 m/s"}), 2, "'limits.max_speed'"),
     ("limit negative", edit(B(), "limits", {"max_force": "-1 N"}), 2, "'limits.max_force'"),
     ("limits a list", edit(B(), "limits", ["1 N"]), 2, "'limits'"),
+    ("limits without the closed-loop signals", edit(edit(B(), "record", []), "limits",
+                                                    {"max_force": "1 N"}), 2, "'limits'"),
     ("plain: order mismatch", edit(plain(), "order", ["planner", "pid"]), 2, "'order'"),
     ("plain: order of numbers", edit(plain(), "order", [1, 2, 3]), 2, "'order'"),
     ("plain: integer wraps in C", edit(plain(), "parameters/planner/order", 4294967301), 2,
