@@ -1,0 +1,234 @@
+"""The case: reference, inputs, experiment, start values, event times and tolerances,
+from a folder in the FMI cross-check layout (``<Model>_ref.csv``, ``<Model>_ref.opt``,
+optional ``<Model>_in.csv`` or ``<Model>_input.csv`` and ``case.json``) and the command
+line's options, which take precedence. The case file's format: docs/verify.md."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from . import tolerance
+from .errors import VerifyError
+from .table import Table, read_options, read_table
+
+CASE_FILE = "case.json"
+CASE_KEYS = ("start_values", "event_times", "tolerances")
+INTERFACES = ("CoSimulation", "ModelExchange")
+ANY = "*"  # the tolerance of every signal that has none of its own
+DEFAULT_REL_TOL = 1e-6
+
+
+@dataclass
+class Case:
+    """What to run and how to judge it; ``rules`` by interface, then by signal."""
+
+    name: str
+    reference: Table
+    inputs: Table | None
+    start: float
+    stop: float
+    step: float
+    rel_tol: float
+    start_values: dict[str, object] = field(default_factory=dict)
+    event_times: list[float] = field(default_factory=list)
+    rules: dict[str | None, dict[str, object]] = field(default_factory=dict)
+
+    def signals(self) -> list[str]:
+        return list(self.reference.columns)
+
+    def rule(self, interface: str, signal: str):
+        """The signal's rule: its own, else "*", else the FMI cross-check band rule; one
+        given for this interface before one for every interface."""
+        for name in (signal, ANY):
+            for key in (interface, None):
+                if name in self.rules.get(key, {}):
+                    return self.rules[key][name]
+        return tolerance.CrossCheckBand()
+
+
+def _model_files(folder: Path) -> tuple[str, Path]:
+    found = sorted(folder.glob("*_ref.csv"))
+    if len(found) != 1:
+        what = "no" if not found else f"{len(found)}"
+        raise VerifyError(folder, "<Model>_ref.csv", f"{what} reference files found",
+                          "put exactly one <Model>_ref.csv in the case folder or give "
+                          "--reference FILE")
+    return found[0].name[: -len("_ref.csv")], found[0]
+
+
+def _input_file(folder: Path, model: str) -> Path | None:
+    found = [p for p in (folder / f"{model}_in.csv", folder / f"{model}_input.csv")
+             if p.exists()]
+    if len(found) > 1:
+        raise VerifyError(folder, found[1].name, f"both {found[0].name} and {found[1].name} "
+                          "exist", "keep one input file")
+    return found[0] if found else None
+
+
+def _load_json(path: Path) -> dict:
+    try:
+        data = json.loads(path.read_text())
+    except OSError as e:
+        raise VerifyError(path, "", f"cannot be read ({e.strerror})", "check the path") from None
+    except (ValueError, UnicodeDecodeError) as e:
+        raise VerifyError(path, "", f"is not JSON ({e})", "fix the syntax") from None
+    if not isinstance(data, dict):
+        raise VerifyError(path, "", "is not a JSON object", "write {\"tolerances\": {...}}")
+    unknown = sorted(set(data) - set(CASE_KEYS))
+    if unknown:
+        raise VerifyError(path, unknown[0], "unknown key",
+                          f"use only {', '.join(CASE_KEYS)} (docs/verify.md)")
+    return data
+
+
+def _start_values(path: Path, data) -> dict[str, object]:
+    if not isinstance(data, dict):
+        raise VerifyError(path, "start_values", "is not an object",
+                          "write {\"NAME\": VALUE, ...}")
+    for name, value in data.items():
+        if not isinstance(value, (bool, int, float, str)) or (
+                isinstance(value, float) and not math.isfinite(value)):
+            raise VerifyError(path, f"start_values.{name}", f"{value!r} is not a value",
+                              "give a finite number, true/false or a string")
+    return dict(data)
+
+
+def _event_times(path: Path, data) -> list[float]:
+    if not isinstance(data, list) or not all(
+            isinstance(t, (int, float)) and not isinstance(t, bool) and math.isfinite(t)
+            for t in data):
+        raise VerifyError(path, "event_times", "is not a list of times",
+                          "write [t1, t2, ...] in seconds")
+    return [float(t) for t in data]
+
+
+def _rule_table(path: Path, where: str, data) -> dict[str, object]:
+    if not isinstance(data, dict):
+        raise VerifyError(path, where, "is not an object", "write {\"SIGNAL\": TOLERANCE}")
+    rules = {}
+    for signal, spec in data.items():
+        try:
+            rules[signal] = tolerance.from_json(spec)
+        except ValueError as e:
+            raise VerifyError(path, f"{where}.{signal}", str(e), "give a number (absolute), "
+                              "{\"abs\": A, \"rel\": R} or \"cross-check\"") from None
+    return rules
+
+
+def _tolerances(path: Path, data) -> dict[str | None, dict[str, object]]:
+    """{"SIGNAL": SPEC} for every interface, or {"CoSimulation": {...}, ...}."""
+    if isinstance(data, dict) and data and all(k in INTERFACES for k in data):
+        return {k: _rule_table(path, f"tolerances.{k}", v) for k, v in data.items()}
+    if isinstance(data, dict) and any(k in INTERFACES for k in data):
+        raise VerifyError(path, "tolerances", "mixes interface names and signal names",
+                          "key it by interface (CoSimulation, ModelExchange) or by signal")
+    return {None: _rule_table(path, "tolerances", data)}
+
+
+def _experiment(folder: Path | None, model: str, reference: Table, step: float | None):
+    if folder is None:
+        median = float(np.median(np.diff(reference.time)))
+        return reference.time[0], reference.time[-1], step or median, DEFAULT_REL_TOL
+    options_path = folder / f"{model}_ref.opt"
+    if not options_path.exists():
+        raise VerifyError(options_path, "", "is missing", "write StartTime, StopTime, "
+                          "StepSize and RelTol lines (FMI cross-check _ref.opt)")
+    o = read_options(options_path)
+    return o["StartTime"], o["StopTime"], step or o["StepSize"], o["RelTol"]
+
+
+def _check_coverage(case: Case) -> None:
+    t = case.reference.time
+    slack = 1e-9 * max(1.0, abs(case.start), abs(case.stop))
+    if t[0] > case.start + slack or t[-1] < case.stop - slack:
+        raise VerifyError(case.reference.path, "column 'time'",
+                          f"the reference covers {t[0]:g} to {t[-1]:g} s, the experiment "
+                          f"{case.start:g} to {case.stop:g} s",
+                          "extend the reference or shorten the experiment (StartTime, StopTime)")
+
+
+def _check_rule_names(case: Case, source: Path | str) -> None:
+    for rules in case.rules.values():
+        for signal in rules:
+            if signal != ANY and signal not in case.reference.columns:
+                raise VerifyError(source, f"tolerances.{signal}",
+                                  "the reference has no such column",
+                                  f"use one of {', '.join(case.signals())} or remove it")
+
+
+def load_case(folder: Path | None, options) -> Case:
+    """The case of `folder` (or None) with the command line's `options` applied:
+    reference, input, step, start (NAME=VALUE list), tolerance (NAME=SPEC list)."""
+    if folder is not None and not Path(folder).is_dir():
+        raise VerifyError(folder, "CASE", "is not a folder", "give the case folder "
+                          "(<Model>_ref.csv, <Model>_ref.opt, ...) or --reference FILE")
+    if folder is None and options.reference is None:
+        raise VerifyError("cosim verify", "CASE", "no case folder and no --reference",
+                          "give a case folder or --reference FILE")
+    folder = None if folder is None else Path(folder)
+    model, reference_path = (_model_files(folder) if folder is not None
+                             else (Path(options.reference).stem, None))
+    reference = read_table(options.reference or reference_path)
+    input_path = options.input or (_input_file(folder, model) if folder else None)
+    data = {}
+    case_path = folder / CASE_FILE if folder else None
+    if case_path is not None and case_path.exists():
+        data = _load_json(case_path)
+    start, stop, step, rel_tol = _experiment(folder, model, reference, options.step)
+    case = Case(
+        name=f"{folder.parent.name}/{folder.name}" if folder else model,
+        reference=reference, inputs=read_table(input_path) if input_path else None,
+        start=float(start), stop=float(stop), step=float(step), rel_tol=float(rel_tol),
+        start_values=_start_values(case_path, data.get("start_values", {})),
+        event_times=_event_times(case_path, data.get("event_times", [])),
+        rules=_tolerances(case_path, data.get("tolerances", {})))
+    _check_coverage(case)
+    _check_rule_names(case, case_path)
+    apply_options(case, options)
+    return case
+
+
+def _pair(text: str, option: str) -> tuple[str, str]:
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip():
+        raise VerifyError("cosim verify", option, f"'{text}' is not NAME=VALUE",
+                          f"write {option} NAME=VALUE")
+    return name.strip(), value.strip()
+
+
+def parse_value(text: str):
+    """A start value from the command line: true/false, an integer, a number or text."""
+    if text.lower() in ("true", "false"):
+        return text.lower() == "true"
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
+def apply_options(case: Case, options) -> None:
+    """--start NAME=VALUE and --tolerance NAME=SPEC (for every interface)."""
+    for text in options.start or []:
+        name, value = _pair(text, "--start")
+        case.start_values[name] = parse_value(value)
+    overrides = {}
+    for text in options.tolerance or []:
+        name, value = _pair(text, "--tolerance")
+        try:
+            overrides[name] = tolerance.from_text(value)
+        except ValueError as e:
+            raise VerifyError("cosim verify", f"--tolerance {name}", str(e),
+                              "write NAME=ABS, NAME=ABS,REL or NAME=cross-check") from None
+    probe = Case(case.name, case.reference, None, 0, 1, 1, 1, rules={None: overrides})
+    _check_rule_names(probe, "--tolerance")
+    for rules in case.rules.values():
+        for name in overrides:
+            rules.pop(name, None)
+    case.rules.setdefault(None, {}).update(overrides)
