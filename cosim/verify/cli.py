@@ -11,7 +11,7 @@ from pathlib import Path
 from .case import load_case
 from .compare import judge_all
 from .errors import RunFailed, VerifyError
-from .files import write_atomic
+from .files import write_all
 from .junit import junit_report
 from .plot import plot_name, plot_png
 from .report import json_report
@@ -73,12 +73,12 @@ def _verify(args) -> int:
     verdicts = judge_all(case, run_result, interface)
     files = _outputs(args, description, interface, case, verdicts,
                      time.perf_counter() - started)
-    for path, data in files.items():
-        try:
-            write_atomic(path, data)
-        except OSError as e:
-            raise VerifyError(path, "--out/--junit", f"cannot be written ({e.strerror})",
-                              "give a writable folder") from None
+    try:
+        write_all(files)
+    except OSError as e:
+        raise VerifyError(e.filename or args.out, "--out/--junit",
+                          f"cannot be written ({e.strerror})",
+                          "give a writable folder; nothing was written") from None
     for v in verdicts:
         print(v.line())
     failed = sum(not v.passed for v in verdicts)

@@ -4,6 +4,8 @@ against the FMU first (bad input, exit 2); an FMI call that fails is RunFailed."
 
 from __future__ import annotations
 
+import contextlib
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -78,12 +80,16 @@ def simulate(fmu: Path, description, case: Case, interface: str) -> Run:
     inputs = None if case.inputs is None else names.input_signals(case.inputs.time,
                                                                   case.inputs.columns)
     try:
-        result = simulate_fmu(
-            str(fmu), validate=False, fmi_type=interface, start_time=case.start,
-            stop_time=case.stop, output_interval=case.step,
-            step_size=case.step if interface == "CoSimulation" else None,
-            relative_tolerance=case.rel_tol, start_values=names.start_values(case.start_values),
-            input=inputs, output=names.outputs(case.signals()))
+        # FMPy prints its warnings (an input the file leaves out, ...): to stderr, so
+        # that stdout holds the verdicts only.
+        with contextlib.redirect_stdout(sys.stderr):
+            result = simulate_fmu(
+                str(fmu), validate=False, fmi_type=interface, start_time=case.start,
+                stop_time=case.stop, output_interval=case.step,
+                step_size=case.step if interface == "CoSimulation" else None,
+                relative_tolerance=case.rel_tol,
+                start_values=names.start_values(case.start_values),
+                input=inputs, output=names.outputs(case.signals()))
     except Exception as e:  # FMPy raises plain exceptions for a failed FMI call
         raise RunFailed(f"{fmu}: the {interface} run failed: {e}") from e
     return Run(np.asarray(result["time"], float),
