@@ -12,7 +12,7 @@ from .case import load_case
 from .compare import judge_all
 from .errors import RunFailed, VerifyError
 from .files import write_all
-from .junit import junit_report
+from .junit import junit_error, junit_report
 from .plot import plot_name, plot_png
 from .report import json_report
 from .simulate import choose_interface, read_description, simulate
@@ -45,20 +45,43 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--junit", type=Path, help="also write JUnit XML to this file")
 
 
+def _title(args, interface, case) -> str:
+    return f"{args.fmu.name} ({interface}) against {case.name}"
+
+
 def _outputs(args, description, interface, case, verdicts, seconds) -> dict[Path, bytes]:
     """Every file to write, by path, made before any is written."""
-    title = f"{args.fmu.name} ({interface}) against {case.name}"
     files, plots = {}, {}
     for v in verdicts:
         if not v.passed:
             path = args.out / plot_name(v.signal)
-            files[path], plots[v.signal] = plot_png(case, v, title), str(path)
+            files[path] = plot_png(case, v, _title(args, interface, case))
+            plots[v.signal] = str(path)
     files[args.out / REPORT] = json_report(str(args.fmu), description.fmiVersion, interface,
                                            case, verdicts, plots)
     if args.junit is not None:
-        classname = f"{args.fmu.stem}.{interface}"
-        files[args.junit] = junit_report(f"{title}", classname, verdicts, seconds)
+        files[args.junit] = junit_report(_title(args, interface, case),
+                                         f"{args.fmu.stem}.{interface}", verdicts, seconds)
     return files
+
+
+def _failure_outputs(args, description, interface, case, error: str) -> dict[Path, bytes]:
+    """The reports of a run that failed: the error, no verdicts."""
+    files = {args.out / REPORT: json_report(str(args.fmu), description.fmiVersion, interface,
+                                            case, [], {}, error)}
+    if args.junit is not None:
+        files[args.junit] = junit_error(_title(args, interface, case),
+                                        f"{args.fmu.stem}.{interface}", error)
+    return files
+
+
+def _write(files: dict[Path, bytes], out: Path) -> None:
+    try:
+        write_all(files)
+    except OSError as e:
+        raise VerifyError(e.filename or out, "--out/--junit",
+                          f"cannot be written ({e.strerror})",
+                          "give a writable folder; nothing was written") from None
 
 
 def _verify(args) -> int:
@@ -69,16 +92,13 @@ def _verify(args) -> int:
     interface = choose_interface(args.fmu, description, args.interface)
     case = load_case(args.case, args)
     started = time.perf_counter()
-    run_result = simulate(args.fmu, description, case, interface)
-    verdicts = judge_all(case, run_result, interface)
-    files = _outputs(args, description, interface, case, verdicts,
-                     time.perf_counter() - started)
     try:
-        write_all(files)
-    except OSError as e:
-        raise VerifyError(e.filename or args.out, "--out/--junit",
-                          f"cannot be written ({e.strerror})",
-                          "give a writable folder; nothing was written") from None
+        verdicts = judge_all(case, simulate(args.fmu, description, case, interface), interface)
+    except RunFailed as e:
+        _write(_failure_outputs(args, description, interface, case, str(e)), args.out)
+        raise
+    _write(_outputs(args, description, interface, case, verdicts,
+                    time.perf_counter() - started), args.out)
     for v in verdicts:
         print(v.line())
     failed = sum(not v.passed for v in verdicts)

@@ -73,6 +73,8 @@ def judge(case: Case, run: Run, interface: str, signal: str) -> Verdict:
 
 
 def judge_all(case: Case, run: Run, interface: str) -> list[Verdict]:
-    if not kept_samples(case, run.time).any():
-        raise RunFailed(f"the result has no samples from {case.start:g} to {case.stop:g} s")
+    scale = EVENT_SLACK * max(1.0, abs(case.start), abs(case.stop))
+    if run.time[0] > case.start + scale or run.time[-1] < case.stop - scale:
+        raise RunFailed(f"the result covers {run.time[0]:g} to {run.time[-1]:g} s, not the "
+                        f"experiment {case.start:g} to {case.stop:g} s")
     return [judge(case, run, interface, s) for s in case.signals()]

@@ -23,3 +23,14 @@ def junit_report(suite: str, classname: str, verdicts: list[Verdict], seconds: f
             ET.SubElement(case, "system-out").text = v.line()
     ET.indent(root)
     return ET.tostring(root, encoding="utf-8", xml_declaration=True) + b"\n"
+
+
+def junit_error(suite: str, classname: str, message: str) -> bytes:
+    """A run that failed before any signal could be judged: one test case in error."""
+    root = ET.Element("testsuites", name="cosim verify", tests="1", failures="0", errors="1")
+    node = ET.SubElement(root, "testsuite", name=suite, tests="1", failures="0", errors="1",
+                         skipped="0")
+    case = ET.SubElement(node, "testcase", name="simulation", classname=classname, time="0")
+    ET.SubElement(case, "error", message=message, type="run").text = message
+    ET.indent(root)
+    return ET.tostring(root, encoding="utf-8", xml_declaration=True) + b"\n"

@@ -29,7 +29,8 @@ def signal_entry(verdict: Verdict, plot: str | None) -> dict:
 
 
 def json_report(fmu: str, fmi_version: str, interface: str, case: Case,
-                verdicts: list[Verdict], plots: dict[str, str]) -> bytes:
+                verdicts: list[Verdict], plots: dict[str, str], error: str | None = None) -> bytes:
+    """The report; `error`: why the run failed (then no signal was judged)."""
     document = {
         "fmu": fmu,
         "fmi_version": fmi_version,
@@ -37,7 +38,8 @@ def json_report(fmu: str, fmi_version: str, interface: str, case: Case,
         "case": case.name,
         "experiment": {"start": case.start, "stop": case.stop, "step": case.step,
                        "relative_tolerance": case.rel_tol},
-        "passed": all(v.passed for v in verdicts),
+        "passed": error is None and all(v.passed for v in verdicts),
+        "error": error,
         "signals": [signal_entry(v, plots.get(v.signal)) for v in verdicts],
     }
     return (json.dumps(document, indent=2) + "\n").encode()

@@ -41,6 +41,9 @@ def _header(path: Path, rows: list[list[str]]) -> list[str]:
         raise VerifyError(path, "", "needs a header and at least two rows of samples",
                           "write the names on the first line and one row per time")
     names = [name.strip() for name in rows[0]]
+    if len(names) < 2:
+        raise VerifyError(path, "line 1", "has no signal column after time",
+                          "add one column per signal")
     if names[0] != "time":
         raise VerifyError(path, f"column 1 '{names[0]}'", "the first column must be time",
                           "name it time and put the sample times there")

@@ -78,6 +78,8 @@ MISTAKES = {
                       [CASE, "tolerances.ModelExchange.theta[1]", "not negative"]),
     "unknown start value": (CASE, lambda d: d["start_values"].update({"theta1": 0.1}),
                             ["Pss3Plant.fmu", "start value 'theta1'", "no such variable"]),
+    "no signal column": (REF, lambda x: [line.split(",")[0] for line in x],
+                         [REF, "line 1", "no signal column"]),
     "first column not time": (REF, rename_column("time", "t"), [REF, "column 1 't'", "time"]),
 }
 

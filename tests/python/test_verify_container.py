@@ -64,3 +64,8 @@ def test_container_fmu_verified_against_the_master(tmp_path):
         assert errors[f"force[{i}]"] == pytest.approx(measured["force"][i - 1], rel=1e-9)
     # Not trivially passing: the deviations are far above rounding.
     assert min(errors.values()) > 1e-9 and np.isfinite(list(errors.values())).all()
+    # The container is Co-Simulation only: Model Exchange is bad input.
+    refused = verify(fmu, "--reference", reference, "--interface", "me",
+                     "--out", tmp_path / "me")
+    assert refused.code == 2 and "does not support ModelExchange" in refused.err
+    assert not (tmp_path / "me").exists()

@@ -12,7 +12,7 @@ import shutil
 
 import numpy as np
 import pytest
-from junitparser import Failure, JUnitXml
+from junitparser import Error, Failure, JUnitXml
 
 from conftest import DIST, REFERENCES
 from verify_cli import verify, verify_process
@@ -104,3 +104,22 @@ def test_band_rule_from_the_command_line_rejects_a_halved_signal(tmp_path):
     assert [line.split(":")[0] for line in outcome.out.splitlines()
             if line.startswith("FAIL")] == ["FAIL q[3]"]
     assert "FMI cross-check band" in outcome.out
+
+
+def test_a_run_the_fmu_refuses_is_a_failure_with_reports(tmp_path):
+    # Truth: the PID refuses empty output limits (uMin >= uMax) when initialization ends
+    # (fmus/pid); saturation's uMax[1] is 3. A verification that cannot run fails
+    # (exit 1), and says so in JSON and as a JUnit error.
+    out, junit = tmp_path / "out", tmp_path / "junit.xml"
+    outcome = verify(DIST / "PID.fmu", REFERENCES / "PID" / "saturation", "--start", "uMin[1]=5",
+                     "--out", out, "--junit", junit)
+    assert outcome.code == 1
+    assert outcome.err.strip().splitlines()[-1].startswith("cosim: ")
+    assert "run failed" in outcome.err and "Traceback" not in outcome.err
+    report = json.loads((out / "verify.json").read_text())
+    assert report["passed"] is False and "fmi2ExitInitializationMode" in report["error"]
+    assert report["signals"] == []
+    suite, = list(JUnitXml.fromfile(str(junit)))
+    assert (suite.tests, suite.errors) == (1, 1)
+    case, = list(suite)
+    assert isinstance(case.result[0], Error)
