@@ -5,20 +5,16 @@ line's options, which take precedence. The case file's format: docs/verify.md.""
 
 from __future__ import annotations
 
-import json
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from . import tolerance
+from . import casefile, tolerance
 from .errors import VerifyError
 from .table import Table, read_options, read_table
 
 CASE_FILE = "case.json"
-CASE_KEYS = ("start_values", "event_times", "tolerances")
-INTERFACES = ("CoSimulation", "ModelExchange")
 ANY = "*"  # the tolerance of every signal that has none of its own
 DEFAULT_REL_TOL = 1e-6
 
@@ -70,66 +66,6 @@ def _input_file(folder: Path, model: str) -> Path | None:
     return found[0] if found else None
 
 
-def _load_json(path: Path) -> dict:
-    try:
-        data = json.loads(path.read_text())
-    except OSError as e:
-        raise VerifyError(path, "", f"cannot be read ({e.strerror})", "check the path") from None
-    except (ValueError, UnicodeDecodeError) as e:
-        raise VerifyError(path, "", f"is not JSON ({e})", "fix the syntax") from None
-    if not isinstance(data, dict):
-        raise VerifyError(path, "", "is not a JSON object", "write {\"tolerances\": {...}}")
-    unknown = sorted(set(data) - set(CASE_KEYS))
-    if unknown:
-        raise VerifyError(path, unknown[0], "unknown key",
-                          f"use only {', '.join(CASE_KEYS)} (docs/verify.md)")
-    return data
-
-
-def _start_values(path: Path, data) -> dict[str, object]:
-    if not isinstance(data, dict):
-        raise VerifyError(path, "start_values", "is not an object",
-                          "write {\"NAME\": VALUE, ...}")
-    for name, value in data.items():
-        if not isinstance(value, (bool, int, float, str)) or (
-                isinstance(value, float) and not math.isfinite(value)):
-            raise VerifyError(path, f"start_values.{name}", f"{value!r} is not a value",
-                              "give a finite number, true/false or a string")
-    return dict(data)
-
-
-def _event_times(path: Path, data) -> list[float]:
-    if not isinstance(data, list) or not all(
-            isinstance(t, (int, float)) and not isinstance(t, bool) and math.isfinite(t)
-            for t in data):
-        raise VerifyError(path, "event_times", "is not a list of times",
-                          "write [t1, t2, ...] in seconds")
-    return [float(t) for t in data]
-
-
-def _rule_table(path: Path, where: str, data) -> dict[str, object]:
-    if not isinstance(data, dict):
-        raise VerifyError(path, where, "is not an object", "write {\"SIGNAL\": TOLERANCE}")
-    rules = {}
-    for signal, spec in data.items():
-        try:
-            rules[signal] = tolerance.from_json(spec)
-        except ValueError as e:
-            raise VerifyError(path, f"{where}.{signal}", str(e), "give a number (absolute), "
-                              "{\"abs\": A, \"rel\": R} or \"cross-check\"") from None
-    return rules
-
-
-def _tolerances(path: Path, data) -> dict[str | None, dict[str, object]]:
-    """{"SIGNAL": SPEC} for every interface, or {"CoSimulation": {...}, ...}."""
-    if isinstance(data, dict) and data and all(k in INTERFACES for k in data):
-        return {k: _rule_table(path, f"tolerances.{k}", v) for k, v in data.items()}
-    if isinstance(data, dict) and any(k in INTERFACES for k in data):
-        raise VerifyError(path, "tolerances", "mixes interface names and signal names",
-                          "key it by interface (CoSimulation, ModelExchange) or by signal")
-    return {None: _rule_table(path, "tolerances", data)}
-
-
 def _experiment(folder: Path | None, model: str, reference: Table, step: float | None):
     if folder is None:
         median = float(np.median(np.diff(reference.time)))
@@ -178,15 +114,15 @@ def load_case(folder: Path | None, options) -> Case:
     data = {}
     case_path = folder / CASE_FILE if folder else None
     if case_path is not None and case_path.exists():
-        data = _load_json(case_path)
+        data = casefile.read_case_file(case_path)
     start, stop, step, rel_tol = _experiment(folder, model, reference, options.step)
     case = Case(
         name=f"{folder.parent.name}/{folder.name}" if folder else model,
         reference=reference, inputs=read_table(input_path) if input_path else None,
         start=float(start), stop=float(stop), step=float(step), rel_tol=float(rel_tol),
-        start_values=_start_values(case_path, data.get("start_values", {})),
-        event_times=_event_times(case_path, data.get("event_times", [])),
-        rules=_tolerances(case_path, data.get("tolerances", {})))
+        start_values=casefile.start_values(case_path, data.get("start_values", {})),
+        event_times=casefile.event_times(case_path, data.get("event_times", [])),
+        rules=casefile.tolerances(case_path, data.get("tolerances", {})))
     _check_coverage(case)
     _check_rule_names(case, case_path)
     apply_options(case, options)
