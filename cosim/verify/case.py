@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from . import casefile, tolerance
-from .errors import VerifyError
+from .errors import COMMAND_LINE, VerifyError
 from .table import Table, read_options, read_table
 
 CASE_FILE = "case.json"
@@ -88,11 +88,11 @@ def _check_coverage(case: Case) -> None:
                           "extend the reference or shorten the experiment (StartTime, StopTime)")
 
 
-def _check_rule_names(case: Case, source: Path | str) -> None:
+def _check_rule_names(case: Case, source: Path | str, field: str = "tolerances.") -> None:
     for rules in case.rules.values():
         for signal in rules:
             if signal != ANY and signal not in case.reference.columns:
-                raise VerifyError(source, f"tolerances.{signal}",
+                raise VerifyError(source, f"{field}{signal}",
                                   "the reference has no such column",
                                   f"use one of {', '.join(case.signals())} or remove it")
 
@@ -104,7 +104,7 @@ def load_case(folder: Path | None, options) -> Case:
         raise VerifyError(folder, "CASE", "is not a folder", "give the case folder "
                           "(<Model>_ref.csv, <Model>_ref.opt, ...) or --reference FILE")
     if folder is None and options.reference is None:
-        raise VerifyError("cosim verify", "CASE", "no case folder and no --reference",
+        raise VerifyError(COMMAND_LINE, "CASE", "no case folder and no --reference",
                           "give a case folder or --reference FILE")
     folder = None if folder is None else Path(folder)
     model, reference_path = (_model_files(folder) if folder is not None
@@ -132,7 +132,7 @@ def load_case(folder: Path | None, options) -> Case:
 def _pair(text: str, option: str) -> tuple[str, str]:
     name, sep, value = text.partition("=")
     if not sep or not name.strip():
-        raise VerifyError("cosim verify", option, f"'{text}' is not NAME=VALUE",
+        raise VerifyError(COMMAND_LINE, option, f"'{text}' is not NAME=VALUE",
                           f"write {option} NAME=VALUE")
     return name.strip(), value.strip()
 
@@ -160,10 +160,10 @@ def apply_options(case: Case, options) -> None:
         try:
             overrides[name] = tolerance.from_text(value)
         except ValueError as e:
-            raise VerifyError("cosim verify", f"--tolerance {name}", str(e),
+            raise VerifyError(COMMAND_LINE, f"--tolerance {name}", str(e),
                               "write NAME=ABS, NAME=ABS,REL or NAME=cross-check") from None
     probe = Case(case.name, case.reference, None, 0, 1, 1, 1, rules={None: overrides})
-    _check_rule_names(probe, "--tolerance")
+    _check_rule_names(probe, COMMAND_LINE, "--tolerance ")
     for rules in case.rules.values():
         for name in overrides:
             rules.pop(name, None)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from .case import load_case
 from .compare import judge_all
-from .errors import RunFailed, VerifyError
+from .errors import COMMAND_LINE, RunFailed, VerifyError
 from .files import write_all
 from .junit import junit_error, junit_report
 from .plot import plot_name, plot_png
@@ -86,7 +86,7 @@ def _write(files: dict[Path, bytes], out: Path) -> None:
 
 def _verify(args) -> int:
     if args.step is not None and not args.step > 0:
-        raise VerifyError("cosim verify", "--step", f"{args.step:g} is not positive",
+        raise VerifyError(COMMAND_LINE, "--step", f"{args.step:g} is not positive",
                           "give the step in seconds, e.g. --step 0.001")
     description = read_description(args.fmu)
     interface = choose_interface(args.fmu, description, args.interface)

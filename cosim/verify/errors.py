@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 
+COMMAND_LINE = "command line"  # the "file" of a mistake in the options
+
+
 class VerifyError(Exception):
     """Bad input: the message names the file, the field or column, and the fix."""
 

@@ -115,7 +115,7 @@ def test_bad_case_is_refused_with_one_line(name, tmp_path):
 
 @pytest.mark.parametrize("args,words", [
     (["--tolerance", "theta[1]=tight"], ["--tolerance theta[1]", "ABS,REL"]),
-    (["--tolerance", "psi=1e-3"], ["--tolerance", "tolerances.psi", "no such column"]),
+    (["--tolerance", "psi=1e-3"], ["command line: --tolerance psi", "no such column"]),
     (["--start", "theta0[1]"], ["--start", "NAME=VALUE"]),
     (["--start", "nothing=1"], ["start value 'nothing'"]),
     (["--step", "0"], ["--step", "not positive"]),
