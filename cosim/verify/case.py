@@ -47,14 +47,18 @@ class Case:
         return tolerance.CrossCheckBand()
 
 
-def _model_files(folder: Path) -> tuple[str, Path]:
-    found = sorted(folder.glob("*_ref.csv"))
+def _model_files(folder: Path | None, reference: Path | None) -> tuple[str, Path | None]:
+    """The model's name and its reference: the folder's one <Model>_ref.csv, or with
+    --reference, the folder's one <Model>_ref.opt (no folder: the file's name)."""
+    if folder is None:
+        return Path(reference).stem.removesuffix("_ref"), None
+    suffix = "_ref.csv" if reference is None else "_ref.opt"
+    found = sorted(folder.glob(f"*{suffix}"))
     if len(found) != 1:
         what = "no" if not found else f"{len(found)}"
-        raise VerifyError(folder, "<Model>_ref.csv", f"{what} reference files found",
-                          "put exactly one <Model>_ref.csv in the case folder or give "
-                          "--reference FILE")
-    return found[0].name[: -len("_ref.csv")], found[0]
+        raise VerifyError(folder, f"<Model>{suffix}", f"{what} such files found",
+                          f"put exactly one <Model>{suffix} in the case folder")
+    return found[0].name[: -len(suffix)], (found[0] if reference is None else None)
 
 
 def _input_file(folder: Path, model: str) -> Path | None:
@@ -107,8 +111,7 @@ def load_case(folder: Path | None, options) -> Case:
         raise VerifyError(COMMAND_LINE, "CASE", "no case folder and no --reference",
                           "give a case folder or --reference FILE")
     folder = None if folder is None else Path(folder)
-    model, reference_path = (_model_files(folder) if folder is not None
-                             else (Path(options.reference).stem, None))
+    model, reference_path = _model_files(folder, options.reference)
     reference = read_table(options.reference or reference_path)
     input_path = options.input or (_input_file(folder, model) if folder else None)
     data = {}

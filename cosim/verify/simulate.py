@@ -42,6 +42,9 @@ def choose_interface(fmu: Path, description, wanted: str | None) -> str:
     supported = [name for name, part in (("CoSimulation", description.coSimulation),
                                          ("ModelExchange", description.modelExchange))
                  if part is not None]
+    if not supported:
+        raise VerifyError(fmu, "modelDescription.xml", "the FMU has neither Co-Simulation "
+                          "nor Model Exchange", "give an FMU with one of them")
     if wanted is None:
         return supported[0]
     name = INTERFACE_NAMES[wanted]

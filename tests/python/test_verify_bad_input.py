@@ -128,7 +128,7 @@ def test_bad_option_is_refused_with_one_line(args, words, tmp_path):
     assert_user_error(outcome, words, out)
 
 
-def test_missing_fmu_and_missing_options_file(tmp_path):
+def test_missing_fmu_reference_and_options_file(tmp_path):
     out = tmp_path / "out"
     assert_user_error(verify(tmp_path / "X.fmu", REFERENCES / "PID" / "defaults", "--out", out),
                       ["X.fmu", "no such file"], out)
@@ -137,6 +137,9 @@ def test_missing_fmu_and_missing_options_file(tmp_path):
     (case / "PID_ref.opt").unlink()
     assert_user_error(verify(DIST / "PID.fmu", case, "--out", out), ["PID_ref.opt", "missing"],
                       out)
+    (case / "PID_ref.csv").unlink()
+    assert_user_error(verify(DIST / "PID.fmu", case, "--out", out),
+                      ["<Model>_ref.csv", "no such files"], out)
 
 
 def test_bad_input_as_a_process_has_no_traceback(tmp_path):

@@ -123,3 +123,14 @@ def test_a_run_the_fmu_refuses_is_a_failure_with_reports(tmp_path):
     assert (suite.tests, suite.errors) == (1, 1)
     case, = list(suite)
     assert isinstance(case.result[0], Error)
+
+
+def test_reference_option_replaces_the_folders(tmp_path):
+    # The folder's experiment, inputs and case file with the wrong reference given by
+    # --reference: theta[3] fails where it was changed.
+    wrong = wrong_case(tmp_path) / "Pss3Plant_ref.csv"
+    outcome = verify(DIST / "Pss3Plant.fmu", REFERENCES / "Pss3Plant" / "path1",
+                     "--reference", wrong, "--out", tmp_path / "out")
+    assert outcome.code == 1
+    assert [line.split(":")[0] for line in outcome.out.splitlines()
+            if line.startswith("FAIL")] == ["FAIL theta[3]"]
