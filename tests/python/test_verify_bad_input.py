@@ -146,3 +146,15 @@ def test_bad_input_as_a_process_has_no_traceback(tmp_path):
     out = tmp_path / "out"
     outcome = verify_process(DIST / "Pss3Plant.fmu", broken_case(tmp_path, "NaN"), "--out", out)
     assert_user_error(outcome, [REF, "not finite"], out)
+
+
+def test_outputs_are_written_all_or_nothing(tmp_path):
+    # The JUnit file cannot be made (its folder is a file): the run was right, but the
+    # report folder and its PNG/JSON must not appear half-made; exit 2 names the file.
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder\n")
+    out = tmp_path / "out" / "nested"
+    outcome = verify(DIST / "PID.fmu", REFERENCES / "PID" / "defaults", "--out", out,
+                     "--junit", blocker / "junit.xml")
+    assert outcome.code == 2 and "junit.xml" in outcome.err and "nothing was written" in outcome.err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
