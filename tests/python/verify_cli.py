@@ -1,5 +1,10 @@
 """Runs ``cosim verify`` for the tests: the one place that says how the command is
-invoked (in process, as the console script would, with its exit code and output)."""
+invoked (in process, as the console script would, with its exit code and output).
+
+Until the harness's dispatcher (cosim/cli.py) registers the subcommand, the command is
+the package's own entry, ``python -m cosim.verify``. After that, switch here only:
+``main(argv)`` -> the dispatcher's main with ``["verify", *argv]``, COMMAND ->
+``[sys.executable, "-m", "cosim", "verify"]``, and ``shell`` returns its argument."""
 
 from __future__ import annotations
 
