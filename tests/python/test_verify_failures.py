@@ -134,3 +134,36 @@ def test_reference_option_replaces_the_folders(tmp_path):
     assert outcome.code == 1
     assert [line.split(":")[0] for line in outcome.out.splitlines()
             if line.startswith("FAIL")] == ["FAIL theta[3]"]
+
+
+def test_event_times_leave_out_the_instant_of_a_jump(tmp_path):
+    # The planner's default move ends at tf = 2 s, where its acceleration jumps to 0;
+    # a reference may hold either side there. Its qddot[1] at exactly 2 s set to the
+    # other side's value (here 1.0 off) fails with no event declared (first exit 2 s),
+    # and passes with event_times [2.0], where that one sample is not judged.
+    case = tmp_path / "defaults"
+    shutil.copytree(REFERENCES / "Planner" / "defaults", case)
+    edit = case / "Planner_ref.csv"
+    lines = edit.read_text().splitlines()
+    column = lines[0].split(",").index('"qddot[1]"')
+    for k, line in enumerate(lines[1:], start=1):
+        fields = line.split(",")
+        if float(fields[0]) == 2.0:
+            fields[column] = repr(float(fields[column]) + 1.0)
+            lines[k] = ",".join(fields)
+    edit.write_text("\n".join(lines) + "\n")
+    spec = json.loads((case / "case.json").read_text())
+    results = {}
+    for events in ([], [2.0]):
+        spec["event_times"] = events
+        (case / "case.json").write_text(json.dumps(spec))
+        out = tmp_path / f"out{len(events)}"
+        results[len(events)] = (verify(DIST / "Planner.fmu", case, "--out", out),
+                                json.loads((out / "verify.json").read_text()))
+    (bare, bare_report), (declared, declared_report) = results[0], results[1]
+    assert bare.code == 1 and declared.code == 0
+    wrong = {s["signal"]: s for s in bare_report["signals"]}["qddot[1]"]
+    assert wrong["first_exit_time"] == 2.0 and wrong["samples_outside"] == 1
+    # 0 to 2.5 s every 10 ms: 251 samples, one left out.
+    assert [s["samples"] for s in bare_report["signals"]] == [251] * 9
+    assert [s["samples"] for s in declared_report["signals"]] == [250] * 9
