@@ -5,7 +5,8 @@ the PID's answer to inputs one step old.
 
 Two truths:
 - the same Jacobi loop on FMPy (tests/python/fmpy_loops.py, on the importer's time grid):
-  plant angles and rates equal to 1e-12 (same binaries, same calls; measured 0 to 7e-14);
+  plant angles and rates equal to 1e-12 (same binaries, same calls; measured 0, bit for
+  bit);
 - our master (cosim.master, sampled coupling), within a tolerance derived from the
   coupling: the Jacobi scheme's one-step delay is a first-order error, so its deviation
   from the master at step h is about twice the deviation at h/2 (measured ratios 2.05 to
