@@ -20,8 +20,7 @@ from xml.etree import ElementTree as ET
 
 from .scenario import Scenario, ScenarioError, load_scenario
 from .ssp_annotations import default_experiment, system_annotations
-
-from .ssp_annotations import NS, tag as _tag
+from .ssp_annotations import tag as _tag
 
 # The name of every component's parameter set: ecos applies a set only when the caller
 # names it (EcosSimulation.init(parameter_set=PARAMETER_SET)); libcosim takes a

@@ -80,21 +80,12 @@ def run_jacobi(scenario, signals: list[str], grid: list[tuple[float, float]]) ->
     Real outputs."""
     slaves = {alias: Slave(alias, path) for alias, path in scenario.fmus.items()}
     try:
-        for alias, slave in slaves.items():
-            slave.fmu.setupExperiment(startTime=scenario.start_time)
-            for name, value in scenario.parameters.get(alias, {}).items():
-                slave.set(name, value)
-            slave.fmu.enterInitializationMode()
         links = [(slaves[c.source.alias], slaves[c.source.alias].vr(c.source.variable),
                   slaves[c.target.alias], slaves[c.target.alias].vr(c.target.variable))
                  for c in scenario.connections]
-        by_target = {alias: [lk for lk in links if lk[2] is slaves[alias]] for alias in slaves}
-        for alias in scenario.order:
-            transfer(by_target[alias])
-        for slave in slaves.values():
-            slave.fmu.exitInitializationMode()
-        probes = [(slaves[s.split(".", 1)[0]], slaves[s.split(".", 1)[0]].vr(s.split(".", 1)[1]))
-                  for s in signals]
+        initialize(scenario, slaves, links)
+        probes = [(slaves[alias], slaves[alias].vr(name))
+                  for alias, name in (s.split(".", 1) for s in signals)]
         rows = np.empty((len(grid) + 1, len(signals) + 1))
         rows[0] = [scenario.start_time] + read(probes)
         for k, (t, h) in enumerate(grid):
@@ -106,6 +97,20 @@ def run_jacobi(scenario, signals: list[str], grid: list[tuple[float, float]]) ->
     finally:
         for slave in slaves.values():
             slave.free()
+
+
+def initialize(scenario, slaves: dict, links) -> None:
+    """Parameters set, initialization mode, connections propagated in the scenario's
+    order, initialization mode left."""
+    for alias, slave in slaves.items():
+        slave.fmu.setupExperiment(startTime=scenario.start_time)
+        for name, value in scenario.parameters.get(alias, {}).items():
+            slave.set(name, value)
+        slave.fmu.enterInitializationMode()
+    for alias in scenario.order:
+        transfer([link for link in links if link[2] is slaves[alias]])
+    for slave in slaves.values():
+        slave.fmu.exitInitializationMode()
 
 
 def transfer(links) -> None:
