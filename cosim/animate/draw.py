@@ -31,10 +31,12 @@ class Canvas:
             self.figure.subplots_adjust(left=0.0, right=0.92, bottom=0.04, top=0.9)
             self.figure.text(0.02, 0.98, "blue: platform\ngreen dashed: planned\n"
                              "red X: end stop", fontsize=6, va="top")
+        self._set_up_axes()
+        _draw_base(self.axes, rob)
+        self.static = (len(self.axes.lines), len(self.axes.collections))
 
-    def _frame_axes(self):
+    def _set_up_axes(self) -> None:
         ax, (reach, top) = self.axes, self.limits
-        ax.cla()
         ax.set_xlim(-reach, reach)
         ax.set_ylim(-reach, reach)
         ax.set_zlim(0.0, top)
@@ -47,12 +49,13 @@ class Canvas:
             ax.set_ylabel("y, m", fontsize=7)
             ax.set_zlabel("z, m", fontsize=7)
             ax.tick_params(labelsize=6)
-        return ax
 
     def render(self, frame: Frame) -> np.ndarray:
-        """The frame's pixels, (size, size, 3) uint8."""
-        ax = self._frame_axes()
-        _draw_base(ax, self.rob)
+        """The frame's pixels, (size, size, 3) uint8: the base stays, the rest is redrawn."""
+        ax = self.axes
+        lines, collections = self.static
+        for artist in [*ax.lines[lines:], *ax.collections[collections:]]:
+            artist.remove()
         _draw_robot(ax, self.rob, frame)
         if frame.ghost is not None:
             _draw_platform(ax, self.rob, frame.ghost, frame.ghost_rotation, ghost=True)
