@@ -28,7 +28,7 @@ class Canvas:
         top = rob.pivot[2] + rob.params["ld"]
         self.limits = (1.1 * reach, top)
         if size >= DETAILED_PX:
-            self.figure.subplots_adjust(left=0.0, right=0.92, bottom=0.04, top=0.9)
+            self.figure.subplots_adjust(left=0.0, right=0.92, bottom=0.04, top=0.88)
             self.figure.text(0.02, 0.98, "blue: platform\ngreen dashed: planned\n"
                              "red X: end stop", fontsize=6, va="top")
         self._set_up_axes()
@@ -70,8 +70,8 @@ class Canvas:
             legs = [str(i + 1) for i, s in enumerate(frame.stops) if s == side]
             if legs:
                 text += f"\nat {name}: leg {' '.join(legs)}"
-        self.axes.set_title(text if small else f"{self.title}\n{text}", fontsize=6 if small else 8,
-                            loc="center" if small else "right")
+        self.axes.set_title(text if small else f"{self.title}   {text}",
+                            fontsize=6 if small else 8, loc="center" if small else "right")
 
 
 def _segment(ax, a, b, **style):
@@ -85,8 +85,9 @@ def _draw_base(ax, rob: Robot) -> None:
         _segment(ax, origin, rob.h[i], color=BASE, lw=1.0)
     ring = np.vstack([rob.h, rob.h[:1]])  # the base's slider joints at l = 0
     ax.plot(*ring.T, color=BASE, lw=1.0)
-    for lo, hi in rails(rob):
+    for leg, (lo, hi) in enumerate(rails(rob)):
         _segment(ax, lo, hi, color=RAIL, lw=4.0, solid_capstyle="butt")
+        ax.text(*(hi + 0.04 * rob.u[leg]), str(leg + 1), fontsize=7, color=BASE)
 
 
 def _draw_robot(ax, rob: Robot, frame: Frame) -> None:
