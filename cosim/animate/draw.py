@@ -27,7 +27,9 @@ class Canvas:
         reach = np.max(np.linalg.norm(rails(rob)[:, :, :2], axis=2))
         top = rob.pivot[2] + rob.params["ld"]
         self.limits = (1.1 * reach, top)
-        if size >= DETAILED_PX:
+        if size < DETAILED_PX:
+            self.figure.subplots_adjust(left=0.0, right=1.0, bottom=0.0, top=0.86)
+        else:
             self.figure.subplots_adjust(left=0.0, right=0.92, bottom=0.04, top=0.88)
             self.figure.text(0.02, 0.98, "blue: platform\ngreen dashed: planned\n"
                              "red X: end stop", fontsize=6, va="top")
@@ -40,7 +42,9 @@ class Canvas:
         ax.set_xlim(-reach, reach)
         ax.set_ylim(-reach, reach)
         ax.set_zlim(0.0, top)
-        ax.set_box_aspect((1.0, 1.0, top / (2.0 * reach)))
+        # Without axes there is room to zoom in on the robot.
+        zoom = 1.3 if self.size < DETAILED_PX else 1.0
+        ax.set_box_aspect((1.0, 1.0, top / (2.0 * reach)), zoom=zoom)
         ax.view_init(elev=22, azim=-60)
         if self.size < DETAILED_PX:
             ax.set_axis_off()
