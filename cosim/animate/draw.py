@@ -13,7 +13,7 @@ from .geometry import Robot, rails
 BASE, RAIL, SLIDER, LEG = "0.35", "0.6", "navy", "tab:orange"
 PLATFORM, GHOST, STOP = "tab:blue", "tab:green", "red"
 # Pictures this wide or wider get tick labels and a caption.
-DETAILED_PX = 250
+DETAILED_PX = 300
 
 
 class Canvas:

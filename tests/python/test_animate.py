@@ -189,3 +189,30 @@ def test_mp4_pipes_every_frame_to_ffmpeg(runs, tmp_path, capsys, monkeypatch):
     count, arguments = (out / "path1_cubic.mp4").read_text().splitlines()
     assert int(count) == 3 * SIZE * SIZE * 3  # three RGB frames
     assert f"-s {SIZE}x{SIZE} -r 10 -i -" in arguments
+
+
+def test_without_l_columns_the_stops_come_from_the_kinematics(runs, rob):
+    # The same run with the plant's l left out: the flags from the animation's inverse
+    # kinematics of theta equal those from the FMU's l.
+    import dataclasses
+    motion = read_motion(runs["path1_cubic"])
+    with_l = [list(f.stops) for f in make_frames(rob, motion, 9)]
+    without = [list(f.stops) for f in make_frames(rob, dataclasses.replace(motion, l=None), 9)]
+    assert without == with_l and with_l[0] == [-1] * 3 and with_l[-1] == [1] * 3
+
+
+def test_param_moves_the_end_stop(runs, tmp_path, capsys):
+    # strokeMax = 0.1 m: the first frame whose interval reaches l = 0.1 m in the FMU's
+    # l output (path 1 moves the three actuators alike) is the first marked.
+    motion = read_motion(runs["path1_cubic"])
+    frames = make_frames(rob_with(strokeMax=0.1), motion, 11)
+    first = next(k for k, row in enumerate(f.row for f in frames) if motion.l[row, 0] >= 0.1)
+    expected = f"leg 1 upper at {frames[first].time:.3f} s"
+    assert main([str(runs["path1_cubic"]), "--out", str(tmp_path), "--frames", "11",
+                 "--size", str(SIZE), "--fmu", str(PLANT), "--param", "strokeMax=0.1"]) == 0
+    assert expected in capsys.readouterr().out
+    assert all(list(f.stops) == [1] * 3 for f in frames[first:])
+
+
+def rob_with(**overrides):
+    return robot(plant_parameters(PLANT, overrides))
