@@ -16,6 +16,7 @@ from .plant import plant_parameters
 from .render import render_run, write_outputs
 
 DEFAULT_FMU = Path("dist/Pss3Plant.fmu")
+MAX_PICTURE_BYTES = 1_000_000_000
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -54,6 +55,11 @@ def _check_options(args) -> None:
         raise AnimateError(COMMAND_LINE, "--fps", f"{args.fps}; give 0.1 to 100")
     if not 64 <= args.size <= 4000:
         raise AnimateError(COMMAND_LINE, "--size", f"{args.size} px; give 64 to 4000")
+    memory = args.frames * args.size**2 * 3  # the frames are kept as RGB until written
+    if memory > MAX_PICTURE_BYTES:
+        raise AnimateError(COMMAND_LINE, "--frames", f"{args.frames} frames of {args.size} "
+                           f"px need {memory / 1e9:.1f} GB; give fewer frames or a smaller "
+                           "--size")
 
 
 def _user_params(pairs: list[str]) -> dict[str, float]:
@@ -75,11 +81,13 @@ def _plant(args, alias: str):
     """The plant FMU and its parameter overrides: the scenario's, then --fmu, --param."""
     fmu, overrides = args.fmu, {}
     if args.scenario is not None:
+        from ..errors import CosimError
         from ..scenario import ScenarioError, load_scenario
         try:
             scenario = load_scenario(args.scenario)
-        except ScenarioError as e:
-            raise AnimateError(str(args.scenario), "scenario", f"{e}; fix it or leave "
+        except (ScenarioError, CosimError, OSError) as e:
+            why = str(e).removeprefix(f"{args.scenario}: ")
+            raise AnimateError(str(args.scenario), "scenario", f"{why}; fix it or leave "
                                "--scenario out") from None
         if alias not in scenario.fmus:
             raise AnimateError(str(args.scenario), f"fmus.{alias}", "no such FMU; name the "

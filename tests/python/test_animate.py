@@ -166,6 +166,7 @@ def test_user_mistakes_get_one_line_and_exit_2(runs, tmp_path, capsys, monkeypat
     bare.write_text('"time","x.y"\n0.0,1.0\n')
     assert "bare.csv: plant.theta[1]: no such columns" in user_error(capsys, [str(bare), *out])
     assert "--frames: 0 frames" in user_error(capsys, [csv, *out, "--frames", "0"])
+    assert "need 4.8 GB" in user_error(capsys, [csv, *out, "--frames", "100", "--size", "4000"])
     assert "--param lq=1" in user_error(capsys, [csv, *out, "--param", "lq=1"])
     assert "cannot reach" in user_error(capsys, [csv, *out, "--param", "a=0.3"])
     assert "Planner.fmu: lp: no such parameter" in user_error(
