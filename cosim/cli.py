@@ -24,6 +24,7 @@ COMMANDS = {
     "bench": ("cosim.bench", "time the master against a minimal FMPy loop"),
     "demo": ("cosim.demo", "run every bundled closed-loop scenario with plots and tables"),
     "verify": ("cosim.verify.cli", "verify the FMUs against independent references"),
+    "animate": ("cosim.animate.cli", "draw the robot of a run moving (GIF)"),
 }
 USER_ERROR, FAILED = 2, 1
 DESCRIPTION = """The co-simulation harness of the robofmu FMUs (also: python -m cosim).
@@ -64,16 +65,19 @@ def build_parser(command: str | None) -> Parser:
     return parser
 
 
+def _types(names) -> tuple[type, ...]:
+    """The exception classes (module, name) of the modules a command has imported."""
+    return tuple(getattr(sys.modules[m], n) for m, n in names
+                 if m in sys.modules and hasattr(sys.modules[m], n))
+
+
 def user_error_types() -> tuple[type, ...]:
     """The exceptions that are the user's mistake (exit 2)."""
-    from .scenario import ScenarioError
-    types: list[type] = [ScenarioError]
-    for module, name in (("cosim.sweep.spec", "SpecError"), ("cosim.container", "ContainerError")):
-        try:
-            types.append(getattr(importlib.import_module(module), name))
-        except (ImportError, AttributeError):
-            pass
-    return tuple(types)
+    from .errors import ScenarioError
+    return (ScenarioError,) + _types([("cosim.sweep.spec", "SpecError"),
+                                      ("cosim.container", "ContainerError"),
+                                      ("cosim.verify.errors", "VerifyError"),
+                                      ("cosim.animate.errors", "AnimateError")])
 
 
 def _fail(message: str, code: int) -> int:
@@ -98,6 +102,7 @@ def main(argv=None) -> int:
             traceback.print_exc()
         return _fail(f"{command}: this command is not part of this version ({e.name} is "
                      "missing)", USER_ERROR)
+    args.debug = debug  # commands that report their own errors re-raise them with it
     try:
         return int(importlib.import_module(args.module).run(args))
     except KeyboardInterrupt:
@@ -117,7 +122,8 @@ def classify(error: Exception, scenario=None) -> tuple[str, int]:
     from .errors import CosimError
     if isinstance(error, user_error_types()):
         return str(error), USER_ERROR
-    if isinstance(error, CosimError):
+    if isinstance(error, CosimError) or isinstance(error, _types([("cosim.verify.errors",
+                                                                  "RunFailed")])):
         where = f"{scenario}: " if scenario is not None else ""
         return f"{where}the simulation failed: {error}", FAILED
     if isinstance(error, OSError):

@@ -205,9 +205,12 @@ def test_ssp_structure_passes_the_ssp_schema(tmp_path):
     names = [(c.startElement, c.startConnector, c.endElement, c.endConnector)
              for c in ssd.system.connections]
     assert names == [("ramp", "y", "int", "u")]
-    params = ssd.system.parameterBindings[0].parameterValues[0].parameters
-    assert [(p.name, p.type, p.value) for p in params] == [("int.gain", "Real", "2.0"),
-                                                            ("int.n", "Integer", "3")]
+    assert ssd.system.parameterBindings == []  # bound per component (cosim.ssp)
+    ramp, integrator = ssd.system.elements
+    assert ramp.parameterBindings == []
+    params = integrator.parameterBindings[0].parameterValues[0].parameters
+    assert [(p.name, p.type, p.value) for p in params] == [("gain", "Real", "2.0"),
+                                                            ("n", "Integer", "3")]
     variables["int"]["u"] = Var(type="Real", causality="parameter")
     with pytest.raises(ScenarioError, match="int.u is a parameter, not an input"):
         system_structure(s, variables)
