@@ -50,7 +50,12 @@ def run(args: argparse.Namespace) -> int:
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
     options = {}
     if args.fmi3:
-        from .fmi3 import open_fmi3
+        from .fmi3 import fmi3_path, open_fmi3
+        for alias, path in scenario.fmus.items():
+            if not fmi3_path(path).is_file():
+                raise ScenarioError(f"--fmi3: {fmi3_path(path)} (the FMI 3.0 build of "
+                                    f"fmus.{alias}) does not exist; build it with bash "
+                                    "scripts/build-fmus.sh or run without --fmi3")
         options["open_fmu"] = open_fmi3
     progress = None if args.quiet else text_progress()
     started = time.perf_counter()

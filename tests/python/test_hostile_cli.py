@@ -89,6 +89,9 @@ def _arguments(work: Path) -> list[tuple]:
     (work / "file.txt").write_text("x")
     (work / "d.toml").mkdir()
     (work / "empty").mkdir()
+    (work / "fmi2").mkdir()
+    for model in ("Planner", "PID", "Pss3Plant"):
+        shutil.copy(DIST / f"{model}.fmu", work / "fmi2")
     waypoints = ROOT / "scenarios" / "three_axis_waypoints.toml"
     return [
         ("missing scenario", ["run", work / "no.toml"], 2, "does not exist"),
@@ -110,6 +113,8 @@ def _arguments(work: Path) -> list[tuple]:
         ("bench --runs -1", ["bench", "--runs", "-1"], 2, "--runs"),
         ("bench --runs abc", ["bench", "--runs", "abc"], 2, "--runs"),
         ("run without scenario", ["run"], 2, "scenario"),
+        ("--fmi3 without the FMI 3.0 builds", ["run", good, "--fmi3", "--fmu-dir", work / "fmi2"],
+         2, "--fmi3"),
     ]
 
 
