@@ -61,6 +61,11 @@ def check(scenario: Scenario, fields: dict | None = None) -> None:
         where = fields.get(alias, f"parameters.{alias}")
         for name, value in values.items():
             values[name] = check_value(mds[alias], alias, name, value, f"{where}.{name}")
+    for k, switch in enumerate(scenario.schedule):
+        for name, value in switch.parameters.items():
+            switch.parameters[name] = check_value(
+                mds[switch.alias], switch.alias, name, value,
+                f"plan_switches[{k}].parameters.{name}")
     names = {alias: {v.name: v for v in md.modelVariables} for alias, md in mds.items()}
     for k, c in enumerate(scenario.connections):
         for side, signal in (("from", c.source), ("to", c.target)):

@@ -192,6 +192,14 @@ DOCUMENTS = [
     ("limits a list", edit(B(), "limits", ["1 N"]), 2, "'limits'"),
     ("limits without the closed-loop signals", edit(edit(B(), "record", []), "limits",
                                                     {"max_force": "1 N"}), 2, "'limits'"),
+    ("plain: plan switch integer 3.7", edit(plain(), "plan_switches", [
+        {"step": 10, "alias": "planner", "parameters": {"order": 3.7}}]), 2,
+     "'plan_switches[0].parameters.order'"),
+    ("plain: plan switch after the end", edit(plain(), "plan_switches", [
+        {"step": 10 ** 9, "alias": "planner", "parameters": {}}]), 2,
+     "'plan_switches[0].step'"),
+    ("plain: plan switch of a string", edit(plain(), "plan_switches", ["x"]), 2,
+     "'plan_switches[0]'"),
     ("plain: order mismatch", edit(plain(), "order", ["planner", "pid"]), 2, "'order'"),
     ("plain: order of numbers", edit(plain(), "order", [1, 2, 3]), 2, "'order'"),
     ("plain: integer wraps in C", edit(plain(), "parameters/planner/order", 4294967301), 2,
