@@ -90,6 +90,8 @@ def _arguments(work: Path) -> list[tuple]:
     (work / "d.toml").mkdir()
     (work / "empty").mkdir()
     (work / "fmi2").mkdir()
+    os.mkfifo(work / "fifo.toml")  # reading it would block forever
+    (work / "loop.toml").symlink_to(work / "loop.toml")
     for model in ("Planner", "PID", "Pss3Plant"):
         shutil.copy(DIST / f"{model}.fmu", work / "fmi2")
     waypoints = ROOT / "scenarios" / "three_axis_waypoints.toml"
@@ -113,6 +115,9 @@ def _arguments(work: Path) -> list[tuple]:
         ("bench --runs -1", ["bench", "--runs", "-1"], 2, "--runs"),
         ("bench --runs abc", ["bench", "--runs", "abc"], 2, "--runs"),
         ("run without scenario", ["run"], 2, "scenario"),
+        ("scenario is a FIFO", ["run", work / "fifo.toml"], 2, "not a file"),
+        ("scenario is a symlink loop", ["check", work / "loop.toml"], 2, "loop.toml"),
+        ("--debug twice and a subcommand typo", ["--debug", "rnu", "x.toml"], 2, "rnu"),
         ("--fmi3 without the FMI 3.0 builds", ["run", good, "--fmi3", "--fmu-dir", work / "fmi2"],
          2, "--fmi3"),
     ]
