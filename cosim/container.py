@@ -1,7 +1,7 @@
 """A scenario as one container FMU, built and run by a second FMI implementation: the
 fmu-manipulation-toolbox (PyPI), whose compiled runtime loads and steps the embedded FMUs.
 
-``python -m cosim container SCENARIO --out X.fmu`` writes a co-simulation FMU 2.0 that
+``cosim container SCENARIO --out X.fmu`` writes a co-simulation FMU 2.0 that
 holds the scenario's FMUs, connections, start values (the scenario's parameters),
 communication step and start/stop time (its default experiment), so that
 ``fmpy simulate X.fmu`` with no options runs the closed loop.
