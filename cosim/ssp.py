@@ -130,20 +130,22 @@ def fmpy_parameter_set(path: Path):
     return merged
 
 
-def main(argv=None) -> int:
-    import argparse
-    parser = argparse.ArgumentParser(prog="python -m cosim.ssp", description=__doc__)
-    parser.add_argument("scenario", type=Path)
-    parser.add_argument("--out", type=Path, required=True, help="SSP file to write")
-    args = parser.parse_args(argv)
+def add_arguments(parser) -> None:
+    """``cosim ssp SCENARIO --out X.ssp``."""
+    parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
+    parser.add_argument("--out", type=Path, required=True, help="SSP file to write (.ssp)")
+    parser.add_argument("--fmu-dir", type=Path, help="find the FMUs by file name here")
+
+
+def run(args) -> int:
+    from .run import fmu_dir
+    if args.out.suffix != ".ssp" or args.out.is_dir():
+        raise ScenarioError(f"--out: {args.out}: the SSP archive is a file whose name ends "
+                            "with .ssp; name such a file")
+    scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
     try:
-        write_ssp(load_scenario(args.scenario), args.out)
+        write_ssp(scenario, args.out)
     except ScenarioError as e:
-        print(f"cosim.ssp: {e}", file=sys.stderr)
-        return 1
+        raise ScenarioError(f"{args.scenario}: field 'motion.waypoints': {e}") from None
     print(f"wrote {args.out}")
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

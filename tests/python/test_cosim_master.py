@@ -173,7 +173,7 @@ def test_scenario_files_load_from_toml_and_json(tmp_path):
     (tmp_path / "s.toml").write_text(
         'name = "x"\nstop_time = 1.0\nstep_size = 0.5\norder = ["a"]\n[fmus]\na = "a.fmu"\n')
     for name in ("s.json", "s.toml"):
-        s = load_scenario(tmp_path / name)
+        s = load_scenario(tmp_path / name, preflight=False)  # no FMU files here
         assert s.steps == 2 and s.fmus["a"] == tmp_path / "a.fmu"
     del data["step_size"]
     assert parse_scenario(data, tmp_path).step_size == 0.001  # the documented default

@@ -1,10 +1,8 @@
 """Runs ``cosim verify`` for the tests: the one place that says how the command is
 invoked (in process, as the console script would, with its exit code and output).
 
-Until the harness's dispatcher (cosim/cli.py) registers the subcommand, the command is
-the package's own entry, ``python -m cosim.verify``. After that, switch here only:
-``main(argv)`` -> the dispatcher's main with ``["verify", *argv]``, COMMAND ->
-``[sys.executable, "-m", "cosim", "verify"]``, and ``shell`` returns its argument."""
+The command runs through the harness's dispatcher (cosim/cli.py), in process and as
+``python -m cosim verify``."""
 
 from __future__ import annotations
 
@@ -19,10 +17,15 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.verify.__main__ import main  # noqa: E402
+from cosim.cli import main as dispatch  # noqa: E402
 
 # The same command in a child process (exit code and stderr as a user sees them).
-COMMAND = [sys.executable, "-m", "cosim.verify"]
+COMMAND = [sys.executable, "-m", "cosim", "verify"]
+
+
+def main(argv) -> int:
+    """``cosim verify ARGV...`` through the harness's dispatcher (cosim/cli.py)."""
+    return dispatch(["verify", *argv])
 
 
 @dataclass
@@ -54,7 +57,6 @@ def verify_process(*args, cwd=ROOT) -> Outcome:
 
 
 def shell(command: str) -> str:
-    """A documented command line as the tests run it. Until the harness's dispatcher
-    (cosim/cli.py) registers the verify subcommand, `cosim verify` is run as the
-    package's module; after that, return `command` unchanged."""
-    return command.replace("cosim verify", f"{sys.executable} -m cosim.verify")
+    """A documented command line as the tests run it: `cosim verify` through this
+    interpreter's dispatcher (`python -m cosim verify`, the console script's function)."""
+    return command.replace("cosim verify", f"{sys.executable} -m cosim verify")
