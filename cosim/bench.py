@@ -125,13 +125,32 @@ def _scenario_path(name: str) -> Path:
     return Path(name) if name.endswith(".toml") else ROOT / "scenarios" / f"{name}.toml"
 
 
+def _count(low: int):
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = -1
+        if not low <= value <= 1000:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number in {low}..1000")
+        return value
+    return parse
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("scenarios", nargs="*", default=["three_axis_quintic"])
+    parser.add_argument("--runs", type=_count(1), default=5)
+    parser.add_argument("--sweep-runs", type=_count(0), default=24,
+                        help="closed-loop runs per sweep throughput measurement (0: skip)")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m cosim.bench", description=__doc__)
-    parser.add_argument("scenarios", nargs="*", default=["three_axis_quintic"])
-    parser.add_argument("--runs", type=int, default=5)
-    parser.add_argument("--sweep-runs", type=int, default=24,
-                        help="closed-loop runs per sweep throughput measurement (0: skip)")
-    args = parser.parse_args(argv)
+    add_arguments(parser)
+    return run(parser.parse_args(argv))
+
+
+def run(args: argparse.Namespace) -> int:
     ratio = None
     for name in args.scenarios:
         scenario = load_scenario(_scenario_path(name))

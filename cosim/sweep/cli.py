@@ -12,6 +12,11 @@ from . import SpecError, load_spec, reachable_on, run_sweep
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m cosim sweep", description=__doc__)
+    add_arguments(parser)
+    return run(parser.parse_args(argv))
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("spec", type=Path, help="sweep specification (.toml)")
     parser.add_argument("--out", type=Path, default=Path("results"),
                         help="directory for the table and plots (default: results)")
@@ -26,7 +31,9 @@ def main(argv=None) -> int:
                         help="find the FMUs by file name here instead of relative to the "
                         "scenario")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
-    args = parser.parse_args(argv)
+
+
+def run(args: argparse.Namespace) -> int:
     try:
         spec = load_spec(args.spec, args.fmu_dir, reachable=_reachable(args))
         outcome = run_sweep(spec, args.out, scheduler=args.scheduler, workers=args.workers,
