@@ -16,6 +16,10 @@ pub struct Timing {
     pub dt: f64,
 }
 
+/// Most samples [`Timing::times`] gives (10 million, 80 MB of times alone): a smaller
+/// dt is refused rather than exhausting memory.
+pub const MAX_SAMPLES: f64 = 1e7;
+
 impl Timing {
     /// Sample times 0, dt, 2 dt, ... and always the end time `duration` (the last step
     /// is shorter when dt does not divide the duration).
@@ -27,6 +31,11 @@ impl Timing {
         if !(dt.is_finite() && dt > 0.0 && dt <= duration) {
             return Err(PathError::BadTiming(
                 "dt must be positive and at most the duration",
+            ));
+        }
+        if duration / dt > MAX_SAMPLES {
+            return Err(PathError::BadTiming(
+                "more than 1e7 samples: dt too small for the duration",
             ));
         }
         // Relative slack so that round-off in duration / dt does not add a tiny last step.
@@ -133,6 +142,18 @@ mod tests {
         assert!(matches!(bad(0.0, 0.1), PathError::BadTiming(_)));
         assert!(matches!(bad(1.0, f64::NAN), PathError::BadTiming(_)));
         assert!(matches!(bad(1.0, 2.0), PathError::BadTiming(_)));
+        // Truth: 2 s / 1e-300 s = 2e300 samples and 1 s / 0.99e-7 s = 1.01e7 samples
+        // exceed the 1e7 bound; 1 s / 2e-7 s = 5e6 is within it.
+        assert!(matches!(bad(2.0, 1e-300), PathError::BadTiming(_)));
+        assert!(matches!(bad(1.0, 0.99e-7), PathError::BadTiming(_)));
+        assert!(
+            Timing {
+                duration: 1.0,
+                dt: 2e-7
+            }
+            .times()
+            .is_ok()
+        );
         // The end displacement 0.2 m lies beyond the 152 mm stroke: the last sample fails.
         let timing = Timing {
             duration: 1.0,

@@ -30,7 +30,10 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return cli::report::parse_error(&e),
+    };
     let result: Result<(), cli::CliError> = match cli.command {
         Command::Pss3(command) => cli::pss3::run(command),
         Command::DualArm(args) => cli::dual_arm::run(args),
@@ -39,9 +42,6 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("robofmu: {e}");
-            ExitCode::FAILURE
-        }
+        Err(e) => cli::report::failure(e.as_ref()),
     }
 }

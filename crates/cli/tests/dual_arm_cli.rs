@@ -39,10 +39,11 @@ fn cli_prints_pi_last_and_fails_with_a_message() {
     let bad = run(&[
         "dual-arm", "solve", "--lock", "1", "--path", "B", "--guess", "0.5",
     ]);
-    assert!(!bad.status.success());
+    // Truth: lock 1 has two redundant joints (theta_R2, theta_L2); a usage error is exit 2.
+    assert_eq!(bad.status.code(), Some(2));
     assert!(
         String::from_utf8(bad.stderr)
             .unwrap()
-            .contains("2 finite redundant joint values needed")
+            .contains("--guess needs 2 values")
     );
 }

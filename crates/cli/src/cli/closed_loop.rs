@@ -1,8 +1,11 @@
 //! `robofmu closed-loop`: the Rust reference of the co-simulated loop, and the PID gain
 //! design on the linearised plant.
 
-use super::CliError;
 use super::args::{angles_deg, triple};
+use super::bounds::samples;
+use super::bounds::{bandwidth, finite, ode_tolerance};
+use super::report::usage;
+use super::{CliError, io_at};
 use clap::{Args, Subcommand};
 use robofmu::closed_loop::{LoopSample, LoopSpec, design_gains, parse_loop_scenario, simulate};
 use robofmu::pss3::dynamics::{Plant, PlantParams};
@@ -29,7 +32,8 @@ pub struct BoundaryArgs {
         long,
         required = true,
         value_delimiter = ',',
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = finite
     )]
     angles: Vec<f64>,
     /// Angular velocity wx,wy,wz in the base frame, rad/s.
@@ -37,7 +41,8 @@ pub struct BoundaryArgs {
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
-        default_value = "0,0,0"
+        default_value = "0,0,0",
+        value_parser = finite
     )]
     omega: Vec<f64>,
     /// Angular acceleration ax,ay,az in the base frame, rad/s^2.
@@ -45,7 +50,8 @@ pub struct BoundaryArgs {
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
-        default_value = "0,0,0"
+        default_value = "0,0,0",
+        value_parser = finite
     )]
     omega_dot: Vec<f64>,
 }
@@ -58,8 +64,9 @@ pub struct ReferenceArgs {
     /// Output CSV; `<name>_ref.opt` is written beside it.
     #[arg(long)]
     out: PathBuf,
-    /// Relative and absolute tolerance of the Dop853 integration.
-    #[arg(long, default_value_t = 1e-11)]
+    /// Relative and absolute tolerance of the Dop853 integration (1e-14 to 1e-2).
+    #[arg(long, default_value_t = 1e-11, allow_hyphen_values = true,
+          value_parser = ode_tolerance)]
     tolerance: f64,
     /// Write every N-th communication point only (the first and last always).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
@@ -68,15 +75,16 @@ pub struct ReferenceArgs {
 
 #[derive(Args)]
 pub struct DesignArgs {
-    /// Closed-loop bandwidth w, rad/s (triple pole at -w).
-    #[arg(long)]
+    /// Closed-loop bandwidth w, rad/s (triple pole at -w; > 0, at most 1e4).
+    #[arg(long, allow_hyphen_values = true, value_parser = bandwidth)]
     bandwidth: f64,
     /// Poses of the motion, thx,thy,thz in degrees (repeat the option per pose).
     #[arg(
         long,
         required = true,
         value_delimiter = ',',
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = finite
     )]
     angles: Vec<f64>,
 }
@@ -129,9 +137,22 @@ fn row(s: &LoopSample) -> impl Iterator<Item = f64> + '_ {
 }
 
 fn reference(args: ReferenceArgs) -> Result<(), CliError> {
-    let text = std::fs::read_to_string(&args.scenario)
-        .map_err(|e| format!("cannot read {}: {e}", args.scenario.display()))?;
-    let spec = parse_loop_scenario(&text)?;
+    let text = std::fs::read_to_string(&args.scenario).map_err(|e| {
+        usage(format!(
+            "{}: cannot read the scenario ({e})",
+            args.scenario.display()
+        ))
+    })?;
+    let spec = parse_loop_scenario(&text)
+        .map_err(|e| usage(format!("{}: {e}", args.scenario.display())))?;
+    let span = spec.stop_time - spec.start_time;
+    samples(
+        span,
+        spec.step_size,
+        "step_size",
+        "the run (stop_time - start_time)",
+    )
+    .map_err(|e| usage(format!("{}: {e}", args.scenario.display())))?;
     let samples = simulate(&spec, args.tolerance)?;
     let mut csv = String::from("\"time\"");
     for name in columns(&spec) {
@@ -150,13 +171,14 @@ fn reference(args: ReferenceArgs) -> Result<(), CliError> {
         }
         csv.push('\n');
     }
-    std::fs::write(&args.out, csv)?;
+    std::fs::write(&args.out, csv).map_err(io_at(&args.out))?;
     let options = format!(
         "StartTime, {}\nStopTime, {}\nStepSize, {}\nRelTol, {:e}\n",
         spec.start_time, spec.stop_time, spec.step_size, args.tolerance
     );
-    std::fs::write(args.out.with_extension("opt"), options)?;
-    println!(
+    let opt = args.out.with_extension("opt");
+    std::fs::write(&opt, options).map_err(io_at(&opt))?;
+    outln!(
         "{}: {} samples of the continuous-time loop -> {}",
         spec.name,
         samples.len(),
@@ -171,16 +193,29 @@ fn boundary(args: BoundaryArgs) -> Result<(), CliError> {
     let omega_dot = triple(&args.omega_dot, "omega-dot")?;
     let rates = euler_rates(&angles, &omega)?;
     let accelerations = euler_accelerations(&angles, &rates, &omega_dot)?;
-    println!("# Euler angles (rad), rates (rad/s) and accelerations (rad/s^2): q, qdot, qddot");
+    if !(rates
+        .iter()
+        .chain(accelerations.iter())
+        .all(|v| v.is_finite()))
+    {
+        return Err(usage(
+            "--angles, --omega and --omega-dot give non-finite Euler rates; \
+             give a pose away from thy = +-90 deg and smaller rates",
+        ));
+    }
+    outln!("# Euler angles (rad), rates (rad/s) and accelerations (rad/s^2): q, qdot, qddot");
     for (name, v) in [("q", angles), ("qdot", rates), ("qddot", accelerations)] {
-        println!("{name} = [{:.17e}, {:.17e}, {:.17e}]", v[0], v[1], v[2]);
+        outln!("{name} = [{:.17e}, {:.17e}, {:.17e}]", v[0], v[1], v[2]);
     }
     Ok(())
 }
 
 fn design(args: DesignArgs) -> Result<(), CliError> {
     if !args.angles.len().is_multiple_of(3) {
-        return Err("--angles takes thx,thy,thz (three numbers) per pose".into());
+        return Err(usage(format!(
+            "--angles takes thx,thy,thz (three numbers) per pose, {} given",
+            args.angles.len()
+        )));
     }
     let poses = args
         .angles
@@ -189,13 +224,20 @@ fn design(args: DesignArgs) -> Result<(), CliError> {
         .collect::<Result<Vec<_>, _>>()?;
     let plant = Plant::new(PlantParams::default())?;
     let d = design_gains(&plant, &poses, args.bandwidth)?;
-    println!(
+    let gains = d.gains.iter().flat_map(|g| [g.kp, g.ki, g.kd]);
+    if !gains.chain(d.inertia.iter().copied()).all(f64::is_finite) {
+        return Err(usage(format!(
+            "--bandwidth {} rad/s gives non-finite gains; give a smaller bandwidth",
+            args.bandwidth
+        )));
+    }
+    outln!(
         "triple pole at -{} rad/s; inertia per Euler axis (largest diagonal of M_x over {} poses):",
         args.bandwidth,
         poses.len()
     );
     for (i, g) in d.gains.iter().enumerate() {
-        println!(
+        outln!(
             "  axis {}: m = {:.6} kg m^2  Kp = {:.6} N m/rad  Ki = {:.6} N m/(rad s)  Kd = {:.6} N m s/rad",
             i + 1,
             d.inertia[i],

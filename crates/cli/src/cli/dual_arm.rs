@@ -3,7 +3,8 @@
 mod extremals;
 mod output;
 
-use super::CliError;
+use super::report::usage;
+use super::{CliError, io_at};
 use clap::{Args, Subcommand, ValueEnum};
 use robofmu::dual_arm::direct::{DirectOptions, DirectSolution, solve_direct};
 use robofmu::dual_arm::kinematics::{Elbow, LinkLengths, joint_name};
@@ -42,11 +43,13 @@ struct ProblemArgs {
     /// End-effector path: A, B (the paper's) or a CSV file of t, x, y (s, m).
     #[arg(long)]
     path: String,
-    /// Redundant joints at tf, rad, comma-separated (default: the paper's guess).
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    /// Redundant joints at tf, rad, comma-separated, each -100 to 100 (default: the
+    /// paper's guess).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = crate::cli::bounds::joint_angle)]
     guess: Option<Vec<f64>>,
-    /// Intervals of the output grid (and of the direct method's grid).
-    #[arg(long, default_value_t = 200)]
+    /// Intervals of the output grid (and of the direct method's grid), 10 to 1000.
+    #[arg(long, default_value_t = 200, allow_hyphen_values = true,
+          value_parser = crate::cli::bounds::count::<10, 1000>)]
     intervals: usize,
     /// Elbow branches of the right and left arm's inverse kinematics at tf (`negative`:
     /// clockwise bend, `positive`: counter-clockwise); the default makes the arms mirror
@@ -113,9 +116,14 @@ fn read_path(name: &str) -> Result<Box<dyn Path>, CliError> {
         "A" | "a" => Box::new(PaperPath::A),
         "B" | "b" => Box::new(PaperPath::B),
         file => {
-            let text = std::fs::read_to_string(file)
-                .map_err(|e| format!("cannot read path file {file}: {e}"))?;
-            Box::new(SampledPath::from_csv(&text)?)
+            let text = std::fs::read_to_string(file).map_err(|e| {
+                usage(format!(
+                    "--path {file}: cannot read it ({e}); give A, B or a CSV file of t, x, y"
+                ))
+            })?;
+            let path =
+                SampledPath::from_csv(&text).map_err(|e| usage(format!("--path {file}: {e}")))?;
+            Box::new(path)
         }
     })
 }
@@ -132,19 +140,27 @@ fn chain_of(lock: Lock, elbows: [Elbow; 2]) -> Result<Chain, CliError> {
 fn setup(p: &ProblemArgs) -> Result<Problem, CliError> {
     let path = read_path(&p.path)?;
     let elbows: [Elbow; 2] = p.elbows.as_slice().try_into().map_err(|_| {
-        format!(
+        usage(format!(
             "--elbows needs two values (right, left), {} given",
             p.elbows.len()
-        )
+        ))
     })?;
     let chain = chain_of(p.lock, elbows)?;
     let guess = p.guess.clone().unwrap_or_else(|| p.lock.paper_guess());
+    if guess.len() != chain.redundancy() {
+        return Err(usage(format!(
+            "--guess needs {} values (the redundant joints at tf, rad) for lock {}, {} given",
+            chain.redundancy(),
+            p.lock.name(),
+            guess.len()
+        )));
+    }
     let redundant: Vec<String> = chain
         .redundant_joints()
         .iter()
         .map(|&j| joint_name(j))
         .collect();
-    println!(
+    outln!(
         "lock {}: {} free joints, mobility {}, redundancy {} ({})",
         p.lock.name(),
         chain.free_count(),
@@ -152,7 +168,7 @@ fn setup(p: &ProblemArgs) -> Result<Problem, CliError> {
         chain.redundancy(),
         redundant.join(", ")
     );
-    println!(
+    outln!(
         "link lengths (both arms) {:?} m; path on [{}, {}] s; guess {:?} rad",
         robofmu::dual_arm::kinematics::CHOSEN_LENGTHS,
         path.start(),
@@ -178,7 +194,7 @@ fn direct_options(intervals: usize) -> DirectOptions {
 
 /// Prints the checks of a solution: path following and start condition.
 fn print_checks(trajectory: &Trajectory, chain: &Chain, path: &dyn Path) {
-    println!(
+    outln!(
         "max distance of the tips from the path {:.2e} m; at t0 {:.2e} m",
         trajectory.tracking_error(chain.lengths(), path),
         trajectory.start_error(chain.lengths(), path)
@@ -198,26 +214,26 @@ fn solve(args: SolveArgs) -> Result<(), CliError> {
             (s.trajectory, s.iterations, s.residual, Some(s.history))
         }
         Method::Pmp => {
-            println!(
+            outln!(
                 "one shooting run from the guess: an extremal of Pontryagin's conditions, \
                  not necessarily the minimum (the default --method best searches several starts)"
             );
             let s =
                 Shooting::new(&chain, path.as_ref(), shooting_options(intervals)).solve(&guess)?;
-            println!(
+            outln!(
                 "shooting: {} Newton iterations in {:.1} ms; redundant joints at tf {:?} rad",
                 s.iterations,
                 started.elapsed().as_secs_f64() * 1e3,
                 s.redundant_final
             );
             for (i, step) in s.history.iter().enumerate() {
-                println!("  iteration {i}: ||e|| = {:.3e}", step.residual);
+                outln!("  iteration {i}: ||e|| = {:.3e}", step.residual);
             }
             (s.trajectory, s.iterations, s.residual, Some(s.history))
         }
         Method::Direct => {
             let d = solve_direct(&chain, path.as_ref(), &guess, direct_options(intervals))?;
-            println!(
+            outln!(
                 "direct method on {intervals} intervals: {} Newton steps in {:.1} ms",
                 d.iterations,
                 started.elapsed().as_secs_f64() * 1e3
@@ -228,9 +244,9 @@ fn solve(args: SolveArgs) -> Result<(), CliError> {
     print_checks(&trajectory, &chain, path.as_ref());
     if let Some(dir) = &args.out {
         write_outputs(dir, &chain, path.as_ref(), &trajectory, history.as_deref())?;
-        println!("wrote CSV and PNG files to {}", dir.display());
+        outln!("wrote CSV and PNG files to {}", dir.display());
     }
-    println!(
+    outln!(
         "PI = {:.6} rad^2/s  iterations = {iterations}  residual = {residual:.1e}",
         trajectory.pi()
     );
@@ -244,11 +260,9 @@ fn write_outputs(
     trajectory: &Trajectory,
     history: Option<&[robofmu::dual_arm::shooting::NewtonStep]>,
 ) -> Result<(), CliError> {
-    std::fs::create_dir_all(dir)?;
-    std::fs::write(
-        dir.join("trajectory.csv"),
-        output::trajectory_csv(trajectory, path),
-    )?;
+    std::fs::create_dir_all(dir).map_err(io_at(dir))?;
+    let file = dir.join("trajectory.csv");
+    std::fs::write(&file, output::trajectory_csv(trajectory, path)).map_err(io_at(&file))?;
     output::joints_png(
         &dir.join("joints.png"),
         trajectory,
@@ -266,10 +280,8 @@ fn write_outputs(
     )?;
     if let Some(history) = history {
         let redundant = chain.redundant_joints();
-        std::fs::write(
-            dir.join("newton.csv"),
-            output::newton_csv(history, &redundant),
-        )?;
+        let file = dir.join("newton.csv");
+        std::fs::write(&file, output::newton_csv(history, &redundant)).map_err(io_at(&file))?;
         output::newton_png(&dir.join("newton.png"), history, "Newton residuals")?;
     }
     Ok(())
@@ -281,7 +293,7 @@ fn compare(p: ProblemArgs) -> Result<(), CliError> {
     let n = p.intervals;
     let shooting = Shooting::new(&chain, path, shooting_options(n));
     let report = |label: &str, s: &PmpSolution| {
-        println!(
+        outln!(
             "{label}: PI = {:.8} rad^2/s, {} iterations, ||e|| = {:.1e}, S_f = {:?}",
             s.pi(),
             s.iterations,
@@ -291,13 +303,13 @@ fn compare(p: ProblemArgs) -> Result<(), CliError> {
     };
     match shooting.solve(&guess) {
         Ok(s) => report("shooting from the guess", &s),
-        Err(e) => println!("shooting from the guess failed: {e}"),
+        Err(e) => outln!("shooting from the guess failed: {e}"),
     }
     let coarse = solve_direct(&chain, path, &guess, direct_options(n))?;
     let fine = solve_direct(&chain, path, &guess, direct_options(2 * n))?;
     let extrapolated = (4.0 * fine.pi() - coarse.pi()) / 3.0;
     let print_direct = |k: usize, d: &DirectSolution| {
-        println!(
+        outln!(
             "direct, {k} intervals: PI = {:.8} rad^2/s, {} Newton steps",
             d.pi(),
             d.iterations
@@ -305,7 +317,7 @@ fn compare(p: ProblemArgs) -> Result<(), CliError> {
     };
     print_direct(n, &coarse);
     print_direct(2 * n, &fine);
-    println!("direct, Richardson extrapolation: PI = {extrapolated:.8} rad^2/s");
+    outln!("direct, Richardson extrapolation: PI = {extrapolated:.8} rad^2/s");
     // The shooting started from the direct method's redundant joints at tf.
     let last = fine.trajectory.joints.last().ok_or("empty direct path")?;
     let final_guess: Vec<f64> = chain.redundant_joints().iter().map(|&j| last[j]).collect();
@@ -316,7 +328,7 @@ fn compare(p: ProblemArgs) -> Result<(), CliError> {
         .trajectory
         .max_joint_difference(&coarse.trajectory)
         .ok_or("the two methods' grids differ")?;
-    println!(
+    outln!(
         "PI pmp = {:.6}  direct = {:.6}  relative difference = {:.1e}  (extrapolated {:.1e})  max joint difference = {joint_gap:.1e} rad",
         pmp.pi(),
         coarse.pi(),

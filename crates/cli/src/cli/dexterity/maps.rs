@@ -28,13 +28,13 @@ pub struct MapArgs {
     #[arg(long)]
     robot: RobotKind,
     /// Orientation phi (deg).
-    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     phi: f64,
     /// Square of positions mapped.
     #[arg(long, value_enum, default_value = "paper")]
     square: Square,
-    /// Grid points per axis.
-    #[arg(long, default_value_t = 81)]
+    /// Grid points per axis (2 to 501).
+    #[arg(long, default_value_t = 81, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 501>)]
     grid: usize,
     /// Output directory for the CSV and PNG files.
     #[arg(long, default_value = "dexterity-out")]
@@ -127,7 +127,7 @@ pub fn lci_maps(a: &MapArgs) -> Result<(), CliError> {
     columns.push(column("best".into(), ModeChoice::Best));
     let stem = format!("lci-{}-phi{}", a.robot, a.phi);
     write_maps(&a.out, &stem, &grid, &columns, "LCI")?;
-    println!("wrote {}/{stem}.csv and its PNG maps", a.out.display());
+    outln!("wrote {}/{stem}.csv and its PNG maps", a.out.display());
     Ok(())
 }
 
@@ -138,14 +138,14 @@ pub struct LoadMapArgs {
     robot: RobotKind,
     /// Orientation phi (deg); default: where the largest LCI over the own workspace
     /// peaks (1 deg sweep from 10 to 180 deg on an 81-point grid).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     phi: Option<f64>,
     /// Working mode: a mode index or `best` (largest over the modes at each pose);
     /// default: the fixed mode of docs/dexterity.md (1rrr 0, 2rrr 3, 3rrr 7).
-    #[arg(long, value_parser = parse_mode)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_mode)]
     mode: Option<ModeChoice>,
-    /// Grid points per axis over the own workspace square.
-    #[arg(long, default_value_t = 121)]
+    /// Grid points per axis over the own workspace square (2 to 501).
+    #[arg(long, default_value_t = 121, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 501>)]
     grid: usize,
     /// Output directory for the CSV and PNG files.
     #[arg(long, default_value = "dexterity-out")]
@@ -177,7 +177,7 @@ pub fn load_maps(a: &LoadMapArgs) -> Result<(), CliError> {
     }];
     let stem = format!("load-{}-phi{phi_deg}", a.robot);
     write_maps(&a.out, &stem, &grid, &columns, "load index (1/m)")?;
-    println!(
+    outln!(
         "phi = {phi_deg} deg ({}, {label}); wrote {}/{stem}.csv and .png",
         a.robot,
         a.out.display()
@@ -188,10 +188,10 @@ pub fn load_maps(a: &LoadMapArgs) -> Result<(), CliError> {
 #[derive(Args)]
 pub struct WorkspaceArgs {
     /// Orientation phi (deg).
-    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     phi: f64,
-    /// Grid points per axis over a square holding every workspace.
-    #[arg(long, default_value_t = 181)]
+    /// Grid points per axis over a square holding every workspace (2 to 501).
+    #[arg(long, default_value_t = 181, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 501>)]
     grid: usize,
     /// Output directory for the CSV and PNG files.
     #[arg(long, default_value = "dexterity-out")]
@@ -215,10 +215,12 @@ pub fn workspaces(a: &WorkspaceArgs) -> Result<(), CliError> {
         .collect();
     maps.push(common_map(&robots, phi, &grid));
     let cell_area = cm(grid.step()).powi(2);
-    println!(
+    outln!(
         "# workspace areas at phi = {} deg ({} x {} grid), reachable in any working mode \
          (each mode of these manipulators reaches the same poses)",
-        a.phi, a.grid, a.grid
+        a.phi,
+        a.grid,
+        a.grid
     );
     let names: Vec<String> = RobotKind::ALL
         .iter()
@@ -227,7 +229,7 @@ pub fn workspaces(a: &WorkspaceArgs) -> Result<(), CliError> {
         .collect();
     for (name, map) in names.iter().zip(&maps) {
         let area = map.iter().filter(|&&b| b).count() as f64 * cell_area;
-        println!("{name:7} {area:8.1} cm^2");
+        outln!("{name:7} {area:8.1} cm^2");
     }
     let stem = format!("workspace-phi{}", a.phi);
     let mut header = vec!["x_cm", "y_cm"];
@@ -268,6 +270,6 @@ pub fn workspaces(a: &WorkspaceArgs) -> Result<(), CliError> {
         &map,
         "count",
     )?;
-    println!("wrote {}/{stem}.csv and .png", a.out.display());
+    outln!("wrote {}/{stem}.csv and .png", a.out.display());
     Ok(())
 }

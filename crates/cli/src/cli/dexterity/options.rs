@@ -164,13 +164,15 @@ pub fn mode_label(choice: ModeChoice, kind: RobotKind) -> String {
 }
 
 /// Rejects a working-mode index the manipulator does not have.
-pub fn check_mode(robot: &Robot, choice: ModeChoice) -> Result<(), String> {
+pub fn check_mode(robot: &Robot, choice: ModeChoice) -> Result<(), crate::cli::CliError> {
     match choice {
-        ModeChoice::Only(mode) if mode >= robot.working_modes() => Err(format!(
-            "{} has working modes 0 to {}, not {mode}",
-            robot.kind(),
-            robot.working_modes() - 1
-        )),
+        ModeChoice::Only(mode) if mode >= robot.working_modes() => {
+            Err(crate::cli::report::usage(format!(
+                "--mode: {} has working modes 0 to {}, not {mode}",
+                robot.kind(),
+                robot.working_modes() - 1
+            )))
+        }
         _ => Ok(()),
     }
 }

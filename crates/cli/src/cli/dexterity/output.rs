@@ -7,18 +7,19 @@ use std::path::{Path, PathBuf};
 
 /// Creates `dir` if needed and returns the path of `name` inside it.
 pub fn file_in(dir: &Path, name: &str) -> Result<PathBuf, CliError> {
-    fs::create_dir_all(dir)?;
+    fs::create_dir_all(dir).map_err(crate::cli::io_at(dir))?;
     Ok(dir.join(name))
 }
 
 /// Writes a CSV file: one header line, then one line per row.
 pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> Result<(), CliError> {
-    let mut w = BufWriter::new(File::create(path)?);
-    writeln!(w, "{}", header.join(","))?;
+    let fail = crate::cli::io_at(path);
+    let mut w = BufWriter::new(File::create(path).map_err(&fail)?);
+    writeln!(w, "{}", header.join(",")).map_err(&fail)?;
     for row in rows {
-        writeln!(w, "{}", row.join(","))?;
+        writeln!(w, "{}", row.join(",")).map_err(&fail)?;
     }
-    w.flush()?;
+    w.flush().map_err(&fail)?;
     Ok(())
 }
 

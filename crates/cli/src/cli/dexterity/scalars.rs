@@ -35,15 +35,15 @@ pub struct MaxLciArgs {
     #[arg(long)]
     robot: RobotKind,
     /// Orientation phi of the end effector (deg).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     phi: f64,
     /// Positions searched: the paper's square, the own or the common workspace.
     #[arg(long, value_enum, default_value = "paper")]
     workspace: Workspace,
-    /// Grid points per axis (161 over the paper's 40 cm square: 0.25 cm steps).
-    #[arg(long, default_value_t = 161)]
+    /// Grid points per axis (161 over the paper's 40 cm square: 0.25 cm steps; 2 to 1001).
+    #[arg(long, default_value_t = 161, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 1001>)]
     grid: usize,
-    #[arg(long, help = MODE_HELP, value_parser = parse_mode_option)]
+    #[arg(long, help = MODE_HELP, allow_hyphen_values = true, value_parser = parse_mode_option)]
     mode: Option<ModeOption>,
     #[command(flatten)]
     reading: ReadingArgs,
@@ -67,7 +67,7 @@ pub fn max_lci(a: &MaxLciArgs) -> Result<(), CliError> {
             ModeChoice::Best => format!(", attained in mode {}", found.mode),
             ModeChoice::Only(_) => String::new(),
         };
-        println!(
+        outln!(
             "{:.4}  ({}, {}{attained}; at x = {:.2} cm, y = {:.2} cm, phi = {} deg)",
             found.value,
             a.robot,
@@ -85,19 +85,19 @@ pub struct GciArgs {
     /// Manipulator: 1rrr, 2rrr or 3rrr.
     #[arg(long)]
     robot: RobotKind,
-    /// Midpoint-rule cells along x and along y (over the reach square).
-    #[arg(long, default_value_t = 100)]
+    /// Midpoint-rule cells along x and along y (over the reach square), 1 to 400.
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<1, 400>)]
     cells: usize,
-    /// Midpoint-rule cells along phi.
-    #[arg(long, default_value_t = 85)]
+    /// Midpoint-rule cells along phi, 1 to 400.
+    #[arg(long, default_value_t = 85, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<1, 400>)]
     phi_cells: usize,
     /// Lower end of the orientation range (deg).
-    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     phi_min: f64,
     /// Upper end of the orientation range (deg).
-    #[arg(long, default_value_t = 180.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 180.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     phi_max: f64,
-    #[arg(long, help = MODE_HELP, value_parser = parse_mode_option)]
+    #[arg(long, help = MODE_HELP, allow_hyphen_values = true, value_parser = parse_mode_option)]
     mode: Option<ModeOption>,
     #[command(flatten)]
     reading: ReadingArgs,
@@ -105,8 +105,11 @@ pub struct GciArgs {
 
 impl GciArgs {
     fn grid(&self) -> Result<GciGrid, CliError> {
-        if self.cells == 0 || self.phi_cells == 0 || self.phi_max <= self.phi_min {
-            return Err("need positive cell counts and phi-max > phi-min".into());
+        if self.phi_max <= self.phi_min {
+            return Err(crate::cli::report::usage(format!(
+                "--phi-max {} deg must be greater than --phi-min {} deg",
+                self.phi_max, self.phi_min
+            )));
         }
         Ok(GciGrid {
             xy_cells: self.cells,
@@ -123,7 +126,7 @@ pub fn gci(a: &GciArgs) -> Result<(), CliError> {
     let grid = a.grid()?;
     for choice in choices(a.mode, &robot)? {
         let value = global_index(&robot, &grid, choice).ok_or("empty workspace")?;
-        println!(
+        outln!(
             "{:.4}  ({}, {}; workspace volume {:.4} m^2 rad)",
             value.value,
             a.robot,
@@ -139,14 +142,14 @@ pub fn gci_convergence(a: &GciArgs) -> Result<(), CliError> {
     let robot = a.reading.robots()[index_of(a.robot)];
     let finest = a.grid()?;
     for choice in choices(a.mode, &robot)? {
-        println!(
+        outln!(
             "# GCI of {} ({}) over phi in [{}, {}] deg, midpoint rule",
             a.robot,
             mode_label(choice, a.robot),
             a.phi_min,
             a.phi_max
         );
-        println!("xy_cells  phi_cells  gci      change   volume_m2rad");
+        outln!("xy_cells  phi_cells  gci      change   volume_m2rad");
         let mut previous: Option<f64> = None;
         for divisor in [8, 4, 2, 1] {
             let grid = GciGrid {
@@ -156,9 +159,13 @@ pub fn gci_convergence(a: &GciArgs) -> Result<(), CliError> {
             };
             let g = global_index(&robot, &grid, choice).ok_or("empty workspace")?;
             let change = previous.map_or("-".to_string(), |p| format!("{:+.5}", g.value - p));
-            println!(
+            outln!(
                 "{:8}  {:9}  {:.5}  {:>8}  {:.5}",
-                grid.xy_cells, grid.phi_cells, g.value, change, g.volume
+                grid.xy_cells,
+                grid.phi_cells,
+                g.value,
+                change,
+                g.volume
             );
             previous = Some(g.value);
         }

@@ -4,6 +4,8 @@
 use super::options::{ReadingArgs, check_mode, mode_label, mode_or_default, parse_mode};
 use super::output::{cell, file_in, write_csv};
 use crate::cli::CliError;
+use crate::cli::bounds::show;
+use crate::cli::report::usage;
 use crate::plot::{Axes, Series, line_chart};
 use clap::Args;
 use robofmu::dexterity::layout::{ApexSide, BaseDirection, Origin, Reading};
@@ -16,25 +18,25 @@ use std::time::Instant;
 #[derive(Args)]
 pub struct SweepArgs {
     /// First orientation (deg).
-    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     from: f64,
     /// Last orientation (deg).
-    #[arg(long, default_value_t = 180.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 180.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     to: f64,
-    /// Orientation step (deg).
-    #[arg(long, default_value_t = 1.0)]
+    /// Orientation step (deg, > 0; orientations x grid points^2 at most 2e8).
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::positive)]
     step: f64,
-    /// Grid points per axis over each searched square.
-    #[arg(long, default_value_t = 161)]
+    /// Grid points per axis over each searched square (2 to 1001).
+    #[arg(long, default_value_t = 161, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 1001>)]
     grid: usize,
     /// Working mode of the 1-RRR: a mode index (0, 1) or `best`; default 0.
-    #[arg(long, value_parser = parse_mode)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_mode)]
     mode_1rrr: Option<ModeChoice>,
     /// Working mode of the 2-RRR: a mode index (0 to 3) or `best`; default 3.
-    #[arg(long, value_parser = parse_mode)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_mode)]
     mode_2rrr: Option<ModeChoice>,
     /// Working mode of the 3-RRR: a mode index (0 to 7) or `best`; default 7.
-    #[arg(long, value_parser = parse_mode)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_mode)]
     mode_3rrr: Option<ModeChoice>,
     /// Output directory for the CSV and PNG files.
     #[arg(long, default_value = "dexterity-out")]
@@ -94,15 +96,13 @@ pub fn peak_phi(robots: &[Robot], which: usize, choice: ModeChoice, points: usiz
 
 /// Largest LCI versus phi over the own and the common workspace, timed.
 pub fn phi_sweep(a: &SweepArgs) -> Result<(), CliError> {
-    if a.step <= 0.0 || a.to < a.from {
-        return Err("need step > 0 and to >= from".into());
-    }
+    check_sweep_size(a)?;
     let robots = a.reading.robots();
     let choices = a.choices();
     for (robot, &choice) in robots.iter().zip(&choices) {
-        check_mode(robot, choice)?;
+        check_mode(robot, choice).map_err(|e| usage(format!("{e} (--mode-{})", robot.kind())))?;
     }
-    println!("# working modes: {}", a.modes_label());
+    outln!("# working modes: {}", a.modes_label());
     let degrees = orientations(a.from, a.to, a.step);
     let phis: Vec<f64> = degrees.iter().map(|d| d.to_radians()).collect();
     let mut header = vec!["phi_deg".to_string()];
@@ -110,7 +110,7 @@ pub fn phi_sweep(a: &SweepArgs) -> Result<(), CliError> {
     for (region, name) in [(Region::Own, "own"), (Region::Common, "common")] {
         let start = Instant::now();
         let rows = sweep(&robots, &choices, &phis, region, a.grid);
-        println!(
+        outln!(
             "# {name} workspace: {} orientations x {} x {} grid in {:.2} s",
             phis.len(),
             a.grid,
@@ -125,7 +125,7 @@ pub fn phi_sweep(a: &SweepArgs) -> Result<(), CliError> {
                 .max_by(|x, y| x.0.total_cmp(&y.0));
             if let Some((v, d)) = peak {
                 let mode = mode_label(choices[k], *kind);
-                println!("{name:6} {kind} ({mode}): largest LCI {v:.4} at phi = {d:.1} deg");
+                outln!("{name:6} {kind} ({mode}): largest LCI {v:.4} at phi = {d:.1} deg");
             }
         }
         summarise_leaders(&rows, name);
@@ -143,10 +143,36 @@ pub fn phi_sweep(a: &SweepArgs) -> Result<(), CliError> {
         .collect();
     let header: Vec<&str> = header.iter().map(String::as_str).collect();
     write_csv(&file_in(&a.out, "phi-sweep.csv")?, &header, &rows)?;
-    println!(
+    outln!(
         "wrote {}/phi-sweep.csv and phi-sweep-{{own,common}}.png",
         a.out.display()
     );
+    Ok(())
+}
+
+/// Most grid evaluations of one phi sweep (orientations x grid points per region;
+/// the default 171 x 161^2 is 4.4e6).
+const MAX_SWEEP_POINTS: f64 = 2e8;
+
+/// Refuses an empty or reversed range and a sweep beyond [`MAX_SWEEP_POINTS`].
+fn check_sweep_size(a: &SweepArgs) -> Result<(), CliError> {
+    if a.to < a.from {
+        return Err(usage(format!(
+            "--to {} deg is below --from {} deg; give --to >= --from",
+            a.to, a.from
+        )));
+    }
+    let points = ((a.to - a.from) / a.step + 1.0) * (a.grid as f64).powi(2);
+    if points > MAX_SWEEP_POINTS {
+        return Err(usage(format!(
+            "--from {} --to {} --step {} deg on a --grid {} is {points:.2e} grid points; \
+             at most {MAX_SWEEP_POINTS:e} (raise --step or lower --grid)",
+            show(a.from),
+            show(a.to),
+            show(a.step),
+            a.grid
+        )));
+    }
     Ok(())
 }
 
@@ -165,9 +191,11 @@ fn summarise_leaders(rows: &[SweepRow], name: &str) {
                 wins[k] += 1;
             }
         }
-        println!(
+        outln!(
             "{name:6} {label}: orientations led by 1rrr {}, 2rrr {}, 3rrr {}",
-            wins[0], wins[1], wins[2]
+            wins[0],
+            wins[1],
+            wins[2]
         );
     }
 }
@@ -209,10 +237,10 @@ fn plot_sweep(a: &SweepArgs, rows: &[SweepRow], name: &str) -> Result<(), CliErr
 #[derive(Args)]
 pub struct ReadingsArgs {
     /// Orientation phi (deg).
-    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true, value_parser = crate::cli::bounds::finite)]
     phi: f64,
-    /// Grid points per axis over the paper's square.
-    #[arg(long, default_value_t = 161)]
+    /// Grid points per axis over the paper's square (2 to 1001).
+    #[arg(long, default_value_t = 161, allow_hyphen_values = true, value_parser = crate::cli::bounds::count::<2, 1001>)]
     grid: usize,
 }
 
@@ -249,9 +277,11 @@ fn all_readings(kind: RobotKind) -> Vec<Reading> {
 pub fn readings(a: &ReadingsArgs) -> Result<(), CliError> {
     let phi = a.phi.to_radians();
     let grid = XyGrid::paper(a.grid);
-    println!(
+    outln!(
         "# largest LCI at phi = {} deg over x, y in [-20, 20] cm, {} x {} grid",
-        a.phi, a.grid, a.grid
+        a.phi,
+        a.grid,
+        a.grid
     );
     for kind in [RobotKind::Parallel2Rrr, RobotKind::Parallel3Rrr] {
         for reading in all_readings(kind) {
@@ -266,7 +296,7 @@ pub fn readings(a: &ReadingsArgs) -> Result<(), CliError> {
                 .collect();
             let best =
                 max_lci(&robot, phi, &grid, ModeChoice::Best, |_: usize| true).map(|v| v.value);
-            println!(
+            outln!(
                 "{kind} base {:?} {:?} base-apex {:?} platform-apex {:?} frame {:?}: modes [{}] best over modes {}",
                 reading.base_direction,
                 reading.base_origin,

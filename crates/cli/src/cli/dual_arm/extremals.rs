@@ -26,7 +26,7 @@ pub fn options(intervals: usize) -> MultiStartOptions {
 /// Prints the starts, the distinct extremals and the check of the returned one.
 pub fn print_search(chain: &Chain, best: &BestPath, seconds: f64) {
     let search = &best.search;
-    println!(
+    outln!(
         "multi-start shooting: {} starts, {} distinct extremals, in {:.0} ms",
         search.starts.len(),
         search.extremals.len(),
@@ -34,12 +34,12 @@ pub fn print_search(chain: &Chain, best: &BestPath, seconds: f64) {
     );
     for (start, outcome) in &search.starts {
         match outcome {
-            Ok(k) => println!("  from {}: extremal {}", start.label, k + 1),
-            Err(e) => println!("  from {}: failed ({e})", start.label),
+            Ok(k) => outln!("  from {}: extremal {}", start.label, k + 1),
+            Err(e) => outln!("  from {}: failed ({e})", start.label),
         }
     }
     for (k, e) in search.extremals.iter().enumerate() {
-        println!(
+        outln!(
             "  extremal {}: PI = {:.6} rad^2/s  ||e|| = {:.1e}  redundant joints at tf {:?} rad",
             k + 1,
             e.solution.pi(),
@@ -47,7 +47,7 @@ pub fn print_search(chain: &Chain, best: &BestPath, seconds: f64) {
             e.solution.redundant_final
         );
     }
-    println!(
+    outln!(
         "returned: extremal 1 (lowest PI) of {} found; redundancy {}",
         search.extremals.len(),
         chain.redundancy()
@@ -59,9 +59,9 @@ pub fn print_search(chain: &Chain, best: &BestPath, seconds: f64) {
             } else {
                 "NOT established as a local minimum"
             };
-            println!("returned path is {verdict}: {}", check.describe());
+            outln!("returned path is {verdict}: {}", check.describe());
         }
-        Err(e) => println!("returned path NOT checked for a local minimum: {e}"),
+        Err(e) => outln!("returned path NOT checked for a local minimum: {e}"),
     }
 }
 
@@ -82,10 +82,13 @@ pub fn run(args: &ExtremalsArgs) -> Result<(), CliError> {
         .path
         .clone()
         .map_or(vec!["A".into(), "B".into()], |p| vec![p]);
-    println!(
+    for name in &paths {
+        read_path(name)?;
+    }
+    outln!(
         "| lock | path | extremal | PI [rad^2/s] | `||e||` | starts reaching it | joint move [rad] | direct PI (N=200) | reduced Hessian lambda_min [1/s] | local minimum | time [s] |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    outln!("|---|---|---|---|---|---|---|---|---|---|---|");
     for lock in &locks {
         for name in &paths {
             let chain = chain_of(*lock, MIRROR_ELBOWS)?;
@@ -103,7 +106,7 @@ fn print_configuration(chain: &Chain, lock: Lock, name: &str, path: &dyn Path) {
     let search = match multi_start(chain, path, &lock.paper_guess(), options) {
         Ok(s) => s,
         Err(e) => {
-            println!(
+            outln!(
                 "| {} | {name} | none | - | - | - | - | - | - | {e} | - |",
                 lock.name()
             );
@@ -138,7 +141,7 @@ fn print_configuration(chain: &Chain, lock: Lock, name: &str, path: &dyn Path) {
             }
             Err(e) => format!("- | - | - | not checked: {e}"),
         };
-        println!(
+        outln!(
             "| {} | {name} | {}{} | {:.6} | {:.1e} | {} of {} | {cells} | {} |",
             lock.name(),
             k + 1,
@@ -161,7 +164,7 @@ fn print_configuration(chain: &Chain, lock: Lock, name: &str, path: &dyn Path) {
 fn print_failures(search: &MultiStart, lock: Lock, name: &str) {
     let failed = search.starts.iter().filter(|(_, o)| o.is_err()).count();
     if failed > 0 {
-        println!(
+        outln!(
             "| {} | {name} | ({failed} of {} starts failed) | | | | | | | | |",
             lock.name(),
             search.starts.len()

@@ -3,6 +3,7 @@
 use super::csv::write_csv;
 use crate::cli::CliError;
 use crate::cli::args::triple;
+use crate::cli::bounds::{finite, positive, samples};
 use clap::Args;
 use robofmu::pss3::{FkOptions, Geometry, PathSample, Timing, linear_actuator_path};
 use std::path::PathBuf;
@@ -15,7 +16,8 @@ pub struct PathArgs {
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
-        required = true
+        required = true,
+        value_parser = finite
     )]
     l0: Vec<f64>,
     /// End displacements l1,l2,l3 in m.
@@ -23,14 +25,15 @@ pub struct PathArgs {
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
-        required = true
+        required = true,
+        value_parser = finite
     )]
     lf: Vec<f64>,
-    /// Duration of the motion, s.
-    #[arg(long)]
+    /// Duration of the motion, s (> 0).
+    #[arg(long, allow_hyphen_values = true, value_parser = positive)]
     duration: f64,
-    /// Sampling step, s.
-    #[arg(long)]
+    /// Sampling step, s (> 0, at most the duration, at most 1e6 samples).
+    #[arg(long, allow_hyphen_values = true, value_parser = positive)]
     dt: f64,
     /// Output CSV file.
     #[arg(long)]
@@ -64,10 +67,11 @@ pub fn run(args: &PathArgs) -> Result<(), CliError> {
         dt: args.dt,
     };
     let (l0, lf) = (triple(&args.l0, "l0")?, triple(&args.lf, "lf")?);
-    let samples = linear_actuator_path(&geometry, &l0, &lf, &timing, &FkOptions::default())?;
-    write_csv(&args.out, &COLUMNS, samples.iter().map(row))?;
-    println!("wrote {} samples to {}", samples.len(), args.out.display());
-    for s in [samples.first(), samples.last()].into_iter().flatten() {
+    samples(args.duration, args.dt, "--dt", "--duration")?;
+    let path = linear_actuator_path(&geometry, &l0, &lf, &timing, &FkOptions::default())?;
+    write_csv(&args.out, &COLUMNS, path.iter().map(row))?;
+    outln!("wrote {} samples to {}", path.len(), args.out.display());
+    for s in [path.first(), path.last()].into_iter().flatten() {
         print_sample(s);
     }
     Ok(())
@@ -92,9 +96,18 @@ fn print_sample(s: &PathSample) {
     let m = &s.motion;
     let deg = |v: nalgebra::Vector3<f64>| v.map(f64::to_degrees);
     let (th, w, wd) = (deg(m.assembly.euler), deg(m.omega), deg(m.omega_dot));
-    println!(
+    outln!(
         "t = {:.3} s: thx, thy, thz = {:.3}, {:.3}, {:.3} deg; omega = ({:.3}, {:.3}, {:.3}) deg/s; \
          omega_dot = ({:.3}, {:.3}, {:.3}) deg/s^2",
-        s.time, th[0], th[1], th[2], w[0], w[1], w[2], wd[0], wd[1], wd[2]
+        s.time,
+        th[0],
+        th[1],
+        th[2],
+        w[0],
+        w[1],
+        w[2],
+        wd[0],
+        wd[1],
+        wd[2]
     );
 }

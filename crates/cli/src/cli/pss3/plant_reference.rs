@@ -19,7 +19,7 @@
 //! (110, 80, 50) mm in 2 s on a quintic in time; inputs and reference as for path 1.
 
 use super::csv::write_csv;
-use crate::cli::CliError;
+use crate::cli::{CliError, io_at};
 use clap::Args;
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{Plant, PlantParams, PlantState};
@@ -46,8 +46,9 @@ const DEFAULT_POSE_MOVE_END: [f64; 3] = [0.11, 0.08, 0.05];
 
 #[derive(Args)]
 pub struct PlantReferenceArgs {
-    /// Sampling step of the reference and of the input forces, s.
-    #[arg(long, default_value_t = 1e-3)]
+    /// Sampling step of the reference and of the input forces, s (> 0, at most 1e6 samples).
+    #[arg(long, default_value_t = 1e-3, allow_hyphen_values = true,
+          value_parser = crate::cli::bounds::positive)]
     dt: f64,
     /// Output directory.
     #[arg(long, default_value = "tests/references/Pss3Plant/path1")]
@@ -114,6 +115,7 @@ fn rest_to_rest_path(
 }
 
 pub fn run(args: &PlantReferenceArgs) -> Result<(), CliError> {
+    crate::cli::bounds::samples(DURATION, args.dt, "--dt", "the path's duration")?;
     let case = Case::of(args);
     let params = PlantParams {
         geometry: Params {
@@ -154,7 +156,7 @@ pub fn run(args: &PlantReferenceArgs) -> Result<(), CliError> {
         reference.push(row);
         forces.push(vec![s.time, f[0], f[1], f[2]]);
     }
-    std::fs::create_dir_all(&args.out_dir)?;
+    std::fs::create_dir_all(&args.out_dir).map_err(io_at(&args.out_dir))?;
     let reference_columns = [
         "time", "theta[1]", "theta[2]", "theta[3]", "omega[1]", "omega[2]", "omega[3]",
     ];
@@ -174,21 +176,24 @@ pub fn run(args: &PlantReferenceArgs) -> Result<(), CliError> {
         &input_columns,
         forces.into_iter(),
     )?;
+    let opt = args.out_dir.join("Pss3Plant_ref.opt");
     std::fs::write(
-        args.out_dir.join("Pss3Plant_ref.opt"),
+        &opt,
         format!(
             "StartTime, 0.0\nStopTime, {DURATION:?}\nStepSize, {:?}\nRelTol, 1e-10\n",
             args.dt
         ),
-    )?;
+    )
+    .map_err(io_at(&opt))?;
     let first = &samples[0].motion;
     let start_values = if args.from_default_pose {
         Vec::new() // every parameter at the FMU's default
     } else {
         path1_start_values(&first.assembly.euler, &first.omega)
     };
-    std::fs::write(args.out_dir.join("case.json"), case_json(&start_values))?;
-    println!(
+    let case_file = args.out_dir.join("case.json");
+    std::fs::write(&case_file, case_json(&start_values)).map_err(io_at(&case_file))?;
+    outln!(
         "wrote {} samples of {} to {}",
         samples.len(),
         if args.from_default_pose {

@@ -2,6 +2,7 @@
 
 use crate::cli::CliError;
 use crate::cli::args::{angles_deg, triple};
+use crate::cli::bounds::{count, finite, fk_tolerance};
 use clap::Args;
 use robofmu::pss3::workspace::tilt;
 use robofmu::pss3::{
@@ -16,7 +17,8 @@ pub struct IkArgs {
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
-        required = true
+        required = true,
+        value_parser = finite
     )]
     angles: Vec<f64>,
 }
@@ -29,17 +31,20 @@ pub struct FkArgs {
         long,
         value_delimiter = ',',
         allow_hyphen_values = true,
-        required = true
+        required = true,
+        value_parser = finite
     )]
     l: Vec<f64>,
     /// Seed orientation thx,thy,thz in deg [default: the start pose 0,0,122.07].
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = finite)]
     seed: Option<Vec<f64>>,
-    /// Convergence tolerance on the actuator residual, m.
-    #[arg(long, default_value_t = FkOptions::default().tolerance)]
+    /// Convergence tolerance on the actuator residual, m (0 to 1).
+    #[arg(long, default_value_t = FkOptions::default().tolerance,
+          allow_hyphen_values = true, value_parser = fk_tolerance)]
     tol: f64,
-    /// Iteration limit of Newton's method.
-    #[arg(long, default_value_t = FkOptions::default().max_iterations)]
+    /// Iteration limit of Newton's method (1 to 1000).
+    #[arg(long, default_value_t = FkOptions::default().max_iterations,
+          allow_hyphen_values = true, value_parser = count::<1, 1000>)]
     max_iter: usize,
     /// Accept displacements outside the stroke [2, 152] mm.
     #[arg(long)]
@@ -66,9 +71,10 @@ pub fn run_fk(args: &FkArgs) -> Result<(), CliError> {
     };
     let solution = forward_kinematics(&geometry, &triple(&args.l, "l")?, &seed, &options)?;
     print_pose(&solution.assembly);
-    println!(
+    outln!(
         "Newton: {} iterations, residual {:.3e} m",
-        solution.iterations, solution.residual
+        solution.iterations,
+        solution.residual
     );
     Ok(())
 }
@@ -78,33 +84,37 @@ pub fn run_jacobian(args: &IkArgs) -> Result<(), CliError> {
     let assembly = inverse_kinematics(&geometry, &angles_deg(&args.angles, "angles")?)?;
     print_pose(&assembly);
     let j = jacobian(&geometry, &assembly)?;
-    println!("Jacobian J (l_dot = J omega, omega in the base frame), m/rad:");
+    outln!("Jacobian J (l_dot = J omega, omega in the base frame), m/rad:");
     for row in j.matrix.row_iter() {
-        println!("  [{:>10.6} {:>10.6} {:>10.6}]", row[0], row[1], row[2]);
+        outln!("  [{:>10.6} {:>10.6} {:>10.6}]", row[0], row[1], row[2]);
     }
-    println!("det J = {:.6e} m^3, cond J = {:.4}", j.det(), j.cond());
+    outln!("det J = {:.6e} m^3, cond J = {:.4}", j.det(), j.cond());
     let p = j.leg_projection;
-    println!(
+    outln!(
         "leg projections n_i.u_i (0 at a singularity): {:.5}, {:.5}, {:.5}",
-        p[0], p[1], p[2]
+        p[0],
+        p[1],
+        p[2]
     );
     Ok(())
 }
 
 fn print_pose(assembly: &Assembly) {
     let [thx, thy, thz] = assembly.euler.map(f64::to_degrees).into();
-    println!("orientation: thx = {thx:.4} deg, thy = {thy:.4} deg, thz (roll) = {thz:.4} deg");
-    println!(
+    outln!("orientation: thx = {thx:.4} deg, thy = {thy:.4} deg, thz (roll) = {thz:.4} deg");
+    outln!(
         "tilt of the platform normal from Z: {:.4} deg",
         tilt(&assembly.euler).to_degrees()
     );
     let l = assembly.l;
-    println!(
+    outln!(
         "actuators: l1 = {:.6} m, l2 = {:.6} m, l3 = {:.6} m",
-        l[0], l[1], l[2]
+        l[0],
+        l[1],
+        l[2]
     );
     for (i, n) in assembly.n.iter().enumerate() {
-        println!(
+        outln!(
             "leg {} direction n{} = ({:.5}, {:.5}, {:.5})",
             i + 1,
             i + 1,

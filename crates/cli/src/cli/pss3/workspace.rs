@@ -2,6 +2,7 @@
 
 use super::workspace_output::{ROLL_BAND_DEG, write_outputs};
 use crate::cli::CliError;
+use crate::cli::bounds::{angle_step, count};
 use clap::Args;
 use robofmu::pss3::workspace::{
     EnvelopeBin, OrientationGrid, Summary, scan_orientations, scan_stroke_box, summarize,
@@ -17,18 +18,17 @@ pub struct WorkspaceArgs {
     /// Directory for the CSV files and PNG plots (created if missing).
     #[arg(long)]
     out: PathBuf,
-    /// Grid points per actuator over the stroke box (FK scan).
-    #[arg(long, default_value_t = 31)]
+    /// Grid points per actuator over the stroke box (FK scan), 2 to 101.
+    #[arg(long, default_value_t = 31, allow_hyphen_values = true,
+          value_parser = count::<2, 101>)]
     steps: usize,
-    /// Spacing of the orientation grid (IK scan), deg.
-    #[arg(long, default_value_t = 0.5)]
+    /// Spacing of the orientation grid (IK scan), deg (0.25 to 10).
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true,
+          value_parser = angle_step)]
     angle_step: f64,
 }
 
 pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
-    if !(args.angle_step.is_finite() && args.angle_step > 0.0) || args.steps < 2 {
-        return Err("--angle-step must be positive and --steps at least 2".into());
-    }
     std::fs::create_dir_all(&args.out)
         .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
     let geometry = Geometry::default();
@@ -36,7 +36,7 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     let started = Instant::now();
     let stroke = scan_stroke_box(&geometry, args.steps, &FkOptions::default());
     let stroke_time = started.elapsed();
-    println!(
+    outln!(
         "stroke box: {}^3 = {} actuator positions, {} assembled, {} failed ({:.2} s, FK on {} threads)",
         stroke.steps,
         stroke.steps.pow(3),
@@ -46,9 +46,11 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
         rayon::current_num_threads()
     );
     for (l, e) in stroke.failures.iter().take(5) {
-        println!(
+        outln!(
             "  failed at l = ({:.4}, {:.4}, {:.4}) m: {e}",
-            l.x, l.y, l.z
+            l.x,
+            l.y,
+            l.z
         );
     }
     print_summary(summarize(&stroke.points).as_ref());
@@ -56,7 +58,7 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
     let grid = orientation_grid(args.angle_step);
     let started = Instant::now();
     let orientations = scan_orientations(&geometry, &grid);
-    println!(
+    outln!(
         "orientation grid: {} orientations, {} within the strokes, {} of them singular ({:.2} s, IK)",
         orientations.tried,
         orientations.reachable.len() + orientations.singular.len(),
@@ -75,7 +77,7 @@ pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
         &slices,
     )?;
     print_slices(&slices);
-    println!("wrote CSV files and plots to {}", args.out.display());
+    outln!("wrote CSV files and plots to {}", args.out.display());
     Ok(())
 }
 
@@ -92,7 +94,7 @@ fn orientation_grid(step_deg: f64) -> OrientationGrid {
 
 fn print_summary(summary: Option<&Summary>) {
     let Some(s) = summary else {
-        println!("  nothing reachable");
+        outln!("  nothing reachable");
         return;
     };
     let deg = |r: robofmu::pss3::workspace::Range| (r.min.to_degrees(), r.max.to_degrees());
@@ -103,23 +105,27 @@ fn print_summary(summary: Option<&Summary>) {
         ("tilt", s.tilt),
     ] {
         let (lo, hi) = deg(r);
-        println!("  {name}: {lo:.2} .. {hi:.2} deg");
+        outln!("  {name}: {lo:.2} .. {hi:.2} deg");
     }
-    println!(
+    outln!(
         "  det J: {:.4e} .. {:.4e} m^3; cond J: {:.3} .. {:.3}; min |n_i.u_i| = {:.4}",
-        s.det_j.min, s.det_j.max, s.cond_j.min, s.cond_j.max, s.min_leg_projection
+        s.det_j.min,
+        s.det_j.max,
+        s.cond_j.min,
+        s.cond_j.max,
+        s.min_leg_projection
     );
 }
 
 /// The largest tilt at whole-degree roll values of the orientation grid.
 fn print_slices(slices: &[EnvelopeBin]) {
-    println!("largest reachable tilt at fixed roll (orientation grid, whole degrees):");
+    outln!("largest reachable tilt at fixed roll (orientation grid, whole degrees):");
     let whole = |b: &&EnvelopeBin| {
         let d = b.roll.to_degrees();
         (d - d.round()).abs() < 1e-6
     };
     for bin in slices.iter().filter(whole) {
-        println!(
+        outln!(
             "  roll {:6.1} deg: tilt up to {:5.2} deg ({} grid orientations)",
             bin.roll.to_degrees(),
             bin.max_tilt.to_degrees(),
