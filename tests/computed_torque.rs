@@ -168,7 +168,11 @@ fn invalid_gains_and_models_are_refused_by_name() {
     let e = ComputedTorque::new(PlantParams::default(), bad).unwrap_err();
     assert_eq!(e, ControllerError::NonFinite(2, "Kd"));
     let e = ComputedTorque::new(PlantParams::default(), gains(Some((2.0, 2.0)))).unwrap_err();
-    assert!(e.to_string().contains("axis 1: the output limits are empty"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("axis 1: the output limits are empty"),
+        "{e}"
+    );
     let negative = PlantParams {
         inertia: Inertia {
             leg_mass: -1.0,

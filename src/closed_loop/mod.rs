@@ -19,9 +19,11 @@ mod error;
 mod gains;
 mod scenario;
 mod simulate;
+mod summary;
 
 pub use controller::{Controller, ControllerKind};
 pub use error::LoopError;
 pub use gains::{AxisDesign, design_gains, triple_pole_gains};
 pub use scenario::{LoopSpec, parse_loop_scenario};
 pub use simulate::{LoopSample, simulate};
+pub use summary::{Tracking, tracking};
