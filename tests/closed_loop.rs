@@ -2,7 +2,7 @@
 //! and the requirements of the scenarios.
 
 use nalgebra::Vector3;
-use robofmu::closed_loop::{LoopSpec, design_gains, parse_loop_scenario, simulate};
+use robofmu::closed_loop::{Controller, LoopSpec, design_gains, parse_loop_scenario, simulate};
 use robofmu::control::trajectory::{Boundary, Order, Polynomial};
 use robofmu::pss3::dynamics::{Plant, PlantParams};
 use std::path::Path;
@@ -32,7 +32,7 @@ fn regulation(target: Vector3<f64>, offset: Vector3<f64>) -> LoopSpec {
         step_size: 0.01,
         trajectories: hold(target, 0.4),
         later_segments: Vec::new(),
-        gains: design.gains,
+        controller: Controller::Pid(design.gains),
         plant: PlantParams::default(),
         theta0: target + offset,
         omega0: Vector3::zeros(),
@@ -147,7 +147,12 @@ fn hand_written_scenarios_resolve_to_the_plain_form() {
     let human = scenario("regulation.toml");
     assert_eq!((human.theta0 - plain.theta0).amax(), 0.0);
     assert_eq!((human.omega0 - plain.omega0).amax(), 0.0);
-    for (h, p) in human.gains.iter().zip(&plain.gains) {
+    let (Controller::Pid(human_gains), Controller::Pid(plain_gains)) =
+        (&human.controller, &plain.controller)
+    else {
+        panic!("both scenarios have a PID");
+    };
+    for (h, p) in human_gains.iter().zip(plain_gains) {
         for (a, b) in [(h.kp, p.kp), (h.ki, p.ki), (h.kd, p.kd)] {
             assert!((a - b).abs() < 1e-6 * b, "{a} vs {b}");
         }

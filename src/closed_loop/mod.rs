@@ -1,6 +1,8 @@
 //! The planner -> PID -> 3-PSS plant loop as one continuous-time system, without FMI:
 //! the independent reference for the co-simulation of the three FMUs, and the PID gain
-//! design on the linearised plant.
+//! design on the linearised plant. A scenario may choose the computed-torque law
+//! (`crate::computed_torque`) instead of the PID (`controller`): it takes the planned
+//! accelerations as well, no feedforward, and drives the same plant input u.
 //!
 //! Signals (the co-simulation scenarios connect the FMUs the same way):
 //! - PID setpoint and setpoint rate = planned Euler angles q and rates q_dot;
@@ -12,12 +14,16 @@
 //! State of the loop: (theta, omega, PID integral, PID filter), 12 values; the planner
 //! is a function of time.
 
+mod controller;
 mod error;
 mod gains;
 mod scenario;
 mod simulate;
+mod summary;
 
+pub use controller::{Controller, ControllerKind};
 pub use error::LoopError;
 pub use gains::{AxisDesign, design_gains, triple_pole_gains};
 pub use scenario::{LoopSpec, parse_loop_scenario};
 pub use simulate::{LoopSample, simulate};
+pub use summary::{Tracking, tracking};

@@ -1,12 +1,14 @@
 //! Reads a co-simulation scenario in its plain (expanded, SI) form, the TOML file that
-//! `cosim run` runs, into the loop it describes. Only the planner -> PID -> plant
-//! topology of this module is accepted; any other connection or an unmodelled plant
+//! `cosim run` runs, into the loop it describes. Only the planner -> controller ->
+//! plant topology of this module (controller: the PID or the computed-torque law, see
+//! `controller`) is accepted; any other connection or an unmodelled plant
 //! parameter is refused by name, so the reference can never silently describe a
 //! different loop than the FMUs run. The scenario rules of the hand-written form (units,
 //! base-frame rates, gain design, workspace) live in one place, the Python harness:
 //! `cosim check SCENARIO --expanded FILE.toml` writes the form read here, with the
 //! `[[plan_switches]]` of a multi-segment motion.
 
+use super::controller::{self, Controller, ControllerKind, Role};
 use super::error::LoopError;
 use crate::control::pid::PidGains;
 use crate::control::trajectory::{Boundary, Order, Polynomial};
@@ -19,7 +21,8 @@ use toml::{Table, Value};
 #[derive(Debug, Clone)]
 pub struct LoopSpec {
     pub name: String,
-    /// Scenario aliases of the planner, PID and plant FMUs.
+    /// Scenario aliases of the planner, controller (PID or computed torque) and plant
+    /// FMUs.
     pub aliases: [String; 3],
     pub start_time: f64,
     pub stop_time: f64,
@@ -30,7 +33,7 @@ pub struct LoopSpec {
     /// Further segments of a multi-segment motion, each with its start time (s), in
     /// order; each takes over from its start time on.
     pub later_segments: Vec<(f64, [Polynomial; 3])>,
-    pub gains: [PidGains; 3],
+    pub controller: Controller,
     pub plant: PlantParams,
     /// Initial Euler angles, rad.
     pub theta0: Vector3<f64>,
@@ -49,16 +52,16 @@ impl LoopSpec {
     }
 }
 
-/// The FMU roles, recognised by the FMU file names of the scenario.
+/// The FMU roles, recognised by the FMU file names of the scenario (the controller's
+/// by its kind).
 const PLANNER: &str = "Planner";
-const PID: &str = "PID";
 const PLANT: &str = "Pss3Plant";
 
-fn bad(message: String) -> LoopError {
+pub(super) fn bad(message: String) -> LoopError {
     LoopError::Scenario(message)
 }
 
-fn number(table: &Table, key: &str, place: &str) -> Result<Option<f64>, LoopError> {
+pub(super) fn number(table: &Table, key: &str, place: &str) -> Result<Option<f64>, LoopError> {
     match table.get(key) {
         None => Ok(None),
         Some(Value::Float(v)) if v.is_finite() => Ok(Some(*v)),
@@ -69,11 +72,11 @@ fn number(table: &Table, key: &str, place: &str) -> Result<Option<f64>, LoopErro
     }
 }
 
-fn required(table: &Table, key: &str, place: &str) -> Result<f64, LoopError> {
+pub(super) fn required(table: &Table, key: &str, place: &str) -> Result<f64, LoopError> {
     number(table, key, place)?.ok_or_else(|| bad(format!("missing '{place}{key}'")))
 }
 
-fn boolean(table: &Table, key: &str, place: &str) -> Result<bool, LoopError> {
+pub(super) fn boolean(table: &Table, key: &str, place: &str) -> Result<bool, LoopError> {
     match table.get(key) {
         None => Ok(false),
         Some(Value::Boolean(b)) => Ok(*b),
@@ -83,8 +86,8 @@ fn boolean(table: &Table, key: &str, place: &str) -> Result<bool, LoopError> {
     }
 }
 
-/// The aliases of the planner, PID and plant, from the FMU file names.
-fn roles(fmus: &Table) -> Result<[String; 3], LoopError> {
+/// The aliases of the planner, controller and plant, from the FMU file names.
+fn roles(fmus: &Table, kind: ControllerKind) -> Result<[String; 3], LoopError> {
     let find = |stem: &str| {
         let matching: Vec<&String> = fmus
             .iter()
@@ -102,24 +105,29 @@ fn roles(fmus: &Table) -> Result<[String; 3], LoopError> {
     };
     if fmus.len() != 3 {
         return Err(bad(
-            "'fmus' must name exactly the planner, PID and plant FMUs".into(),
+            "'fmus' must name exactly the planner, controller and plant FMUs".into(),
         ));
     }
-    Ok([find(PLANNER)?, find(PID)?, find(PLANT)?])
+    Ok([find(PLANNER)?, find(kind.fmu_stem())?, find(PLANT)?])
 }
 
-/// The connections of the loop described in the module documentation.
-fn expected_connections(planner: &str, pid: &str, plant: &str) -> BTreeSet<(String, String)> {
-    let pairs = [
-        (planner, "q", pid, "setpoint"),
-        (planner, "qdot", pid, "setpointRate"),
-        (plant, "theta", pid, "measurement"),
-        (plant, "thetaDot", pid, "measuredRate"),
-        (plant, "gravityCompensation", pid, "feedforward"),
-        (pid, "u", plant, "generalizedForceCommand"),
-    ];
+/// The connections of the loop of controller `kind` between the FMUs `aliases`
+/// (planner, controller, plant).
+fn expected_connections(kind: ControllerKind, aliases: &[String; 3]) -> BTreeSet<(String, String)> {
+    let alias = |role: Role| match role {
+        Role::Plan => &aliases[0],
+        Role::Control => &aliases[1],
+        Role::Robot => &aliases[2],
+    };
     (1..=3)
-        .flat_map(|i| pairs.map(|(a, x, b, y)| (format!("{a}.{x}[{i}]"), format!("{b}.{y}[{i}]"))))
+        .flat_map(|i| {
+            kind.connections().iter().map(move |(a, x, b, y)| {
+                (
+                    format!("{}.{x}[{i}]", alias(*a)),
+                    format!("{}.{y}[{i}]", alias(*b)),
+                )
+            })
+        })
         .collect()
 }
 
@@ -240,6 +248,16 @@ fn plan_switches(
     Ok(out)
 }
 
+fn controller_of(kind: ControllerKind, p: &Table, alias: &str) -> Result<Controller, LoopError> {
+    let place = format!("parameters.{alias}.");
+    Ok(match kind {
+        ControllerKind::Pid => Controller::Pid(gains(p, &place)?),
+        ControllerKind::ComputedTorque => {
+            Controller::ComputedTorque(Box::new(controller::computed_torque(p, &place)?))
+        }
+    })
+}
+
 /// Reads the loop of a scenario file's text.
 pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
     let doc: Table = text
@@ -250,7 +268,10 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
         .ok_or_else(|| bad("missing 'name'".into()))?
         .to_string();
     let fmus = doc.get("fmus").and_then(Value::as_table);
-    let [planner, pid, plant] = roles(fmus.ok_or_else(|| bad("missing 'fmus'".into()))?)?;
+    let kind = ControllerKind::of(&doc)?;
+    let fmus = fmus.ok_or_else(|| bad("missing 'fmus'".into()))?;
+    let aliases = roles(fmus, kind)?;
+    let [planner, control, plant] = aliases.clone();
     if doc.contains_key("motion") {
         return Err(bad(
             "a hand-written scenario (a [motion] table): the reference reads its expanded \
@@ -259,7 +280,7 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
         ));
     }
     let found = connections(&doc)?;
-    let expected = expected_connections(&planner, &pid, &plant);
+    let expected = expected_connections(kind, &aliases);
     if let Some((from, to)) = found.symmetric_difference(&expected).next() {
         let what = if found.contains(&(from.clone(), to.clone())) {
             "unexpected"
@@ -268,7 +289,8 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
         };
         return Err(bad(format!(
             "{what} connection {from} -> {to}: the reference models only the \
-             planner -> PID -> plant loop"
+             planner -> {} -> plant loop",
+            kind.fmu_stem()
         )));
     }
     let plant_params = parameters(&doc, &plant)?;
@@ -297,7 +319,7 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
     }
     Ok(LoopSpec {
         name,
-        aliases: [planner.clone(), pid.clone(), plant.clone()],
+        aliases,
         start_time,
         stop_time,
         step_size,
@@ -306,7 +328,7 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
             &format!("parameters.{planner}."),
         )?,
         later_segments: plan_switches(&doc, &planner, start_time, step_size)?,
-        gains: gains(parameters(&doc, &pid)?, &format!("parameters.{pid}."))?,
+        controller: controller_of(kind, parameters(&doc, &control)?, &control)?,
         plant: PlantParams::default(),
         theta0: initial(plant_params, "theta0", &format!("parameters.{plant}."))?,
         omega0: initial(plant_params, "omega0", &format!("parameters.{plant}."))?,

@@ -8,9 +8,11 @@
 //! and the kinks of the planner at t0 and tf, which lie on sample points, are never
 //! stepped across.
 
+use super::controller::Controller;
 use super::error::LoopError;
 use super::scenario::LoopSpec;
-use crate::control::pid::{self, PidInputs, PidState};
+use crate::computed_torque::{ComputedTorque, Inputs};
+use crate::control::pid::{self, PidGains, PidInputs, PidState};
 use crate::control::trajectory::Sample;
 use crate::pss3::dynamics::{DynamicsError, Plant, PlantInputs, PlantState};
 use crate::pss3::rotation::euler_rates;
@@ -18,7 +20,8 @@ use nalgebra::{SVector, Vector3};
 use ode_solvers::{Dop853, OutputType, System};
 use std::cell::RefCell;
 
-/// t, theta (3), omega (3), PID integrals (3), PID filter states (3).
+/// t, theta (3), omega (3), PID (or computed-torque) integrals (3), PID filter states
+/// (3).
 type LoopVector = SVector<f64, 13>;
 
 /// Every connected signal of the loop at one instant (SI).
@@ -36,7 +39,7 @@ pub struct LoopSample {
     pub omega_dot: Vector3<f64>,
     /// The plant's gravity compensation E^T g (PID feedforward), N m.
     pub gravity_compensation: Vector3<f64>,
-    /// PID output: generalized force in Euler-angle coordinates, N m.
+    /// Controller output: generalized force in Euler-angle coordinates, N m.
     pub u: Vector3<f64>,
     /// Actuator forces that realise u, N.
     pub force: Vector3<f64>,
@@ -49,7 +52,7 @@ struct Control {
     planned: [Sample; 3],
     theta_dot: Vector3<f64>,
     gravity_compensation: Vector3<f64>,
-    /// PID output, realised by the plant as tau = E^-T u about P (f = J^-T tau).
+    /// Controller output, realised by the plant as tau = E^-T u about P (f = J^-T tau).
     u: Vector3<f64>,
     pid_rates: [PidState; 3],
 }
@@ -74,6 +77,38 @@ fn control(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<Control, Lo
     let planned: [_; 3] = std::array::from_fn(|i| trajectories[i].sample(y[0]));
     let theta_dot = euler_rates(&state.euler, &state.omega).map_err(DynamicsError::from)?;
     let gravity_compensation = plant.gravity_compensation(&state.euler)?;
+    let (u, pid_rates) = match &spec.controller {
+        Controller::Pid(gains) => pid_control(
+            gains,
+            y,
+            &planned,
+            &state,
+            &theta_dot,
+            &gravity_compensation,
+        ),
+        Controller::ComputedTorque(law) => {
+            computed_torque_control(law, y, &planned, &state, &theta_dot)?
+        }
+    };
+    Ok(Control {
+        planned,
+        theta_dot,
+        gravity_compensation,
+        u,
+        pid_rates,
+    })
+}
+
+/// The PID's output and state rates (the feedforward is the plant's gravity
+/// compensation).
+fn pid_control(
+    gains: &[PidGains; 3],
+    y: &LoopVector,
+    planned: &[Sample; 3],
+    state: &PlantState,
+    theta_dot: &Vector3<f64>,
+    gravity_compensation: &Vector3<f64>,
+) -> (Vector3<f64>, [PidState; 3]) {
     let mut u = Vector3::zeros();
     let mut pid_rates = [PidState::default(); 3];
     for axis in 0..3 {
@@ -84,17 +119,38 @@ fn control(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<Control, Lo
             measured_rate: theta_dot[axis],
             feedforward: gravity_compensation[axis],
         };
-        let gains = &spec.gains[axis];
+        let gains = &gains[axis];
         u[axis] = pid::output(gains, &pid_state(y, axis), &inputs).u;
         pid_rates[axis] = pid::derivatives(gains, &pid_state(y, axis), &inputs);
     }
-    Ok(Control {
-        planned,
-        theta_dot,
-        gravity_compensation,
-        u,
-        pid_rates,
-    })
+    (u, pid_rates)
+}
+
+/// The computed-torque law's output and integral rates (its error integrals share the
+/// PID integrals' slots of the state; the filter slots stay at zero).
+fn computed_torque_control(
+    law: &ComputedTorque,
+    y: &LoopVector,
+    planned: &[Sample; 3],
+    state: &PlantState,
+    theta_dot: &Vector3<f64>,
+) -> Result<(Vector3<f64>, [PidState; 3]), LoopError> {
+    let planned_vector = |f: fn(&Sample) -> f64| Vector3::from_fn(|i, _| f(&planned[i]));
+    let inputs = Inputs {
+        setpoint: planned_vector(|s| s.q),
+        setpoint_rate: planned_vector(|s| s.qdot),
+        setpoint_acceleration: planned_vector(|s| s.qddot),
+        measurement: state.euler,
+        measured_rate: *theta_dot,
+    };
+    let integral = y.fixed_rows::<3>(7).into_owned();
+    let output = law.output(&integral, &inputs)?;
+    let integral_rate = law.integral_rate(&output);
+    let rates = std::array::from_fn(|i| PidState {
+        integral: integral_rate[i],
+        filter: 0.0,
+    });
+    Ok((output.u, rates))
 }
 
 fn plant_inputs(c: &Control) -> PlantInputs {

@@ -136,6 +136,11 @@ impl Plant {
         &self.model
     }
 
+    /// The viscous friction constants.
+    pub fn friction(&self) -> &Friction {
+        &self.friction
+    }
+
     /// The end-stop constants.
     pub fn end_stops(&self) -> &EndStops {
         &self.end_stops

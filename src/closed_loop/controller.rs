@@ -1,0 +1,168 @@
+//! The loop's controller: the PID of the thesis or the computed-torque law, and the
+//! scenario fields that choose and parameterise it.
+//!
+//! A scenario chooses with the top-level `controller = "pid" | "computed-torque"`
+//! (default "pid"). The computed-torque controller is the FMU `ComputedTorque.fmu`
+//! with inputs `setpoint`, `setpointRate`, `setpointAcceleration` (from the planner's
+//! q, qdot, qddot), `measurement`, `measuredRate` (the plant's theta, thetaDot) and
+//! output `u` (to the plant's generalizedForceCommand); its parameters are the gains
+//! `Kp[i]`, `Kd[i]`, `Ki[i]`, the limits `limitOutput[i]`, `uMin[i]`, `uMax[i]`, and
+//! its model of the robot under the plant FMU's parameter names (unset ones keep the
+//! spec's values): the model-mismatch study sets these apart from the plant's.
+
+use super::error::LoopError;
+use super::scenario::{bad, boolean, number, required};
+use crate::computed_torque::{AxisGains, ComputedTorque};
+use crate::control::pid::PidGains;
+use crate::pss3::dynamics::PlantParams;
+use nalgebra::Vector3;
+use toml::Table;
+
+/// The controller of a loop.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Controller {
+    /// Three PID channels with the plant's gravity compensation as feedforward.
+    Pid([PidGains; 3]),
+    /// The computed-torque law on its own model of the robot (boxed: the model is
+    /// larger than the PID gains).
+    ComputedTorque(Box<ComputedTorque>),
+}
+
+/// The value of a scenario's `controller` field.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ControllerKind {
+    Pid,
+    ComputedTorque,
+}
+
+impl ControllerKind {
+    /// Reads the top-level `controller` field (absent: the PID).
+    pub fn of(doc: &Table) -> Result<Self, LoopError> {
+        match doc.get("controller").map(|v| v.as_str()) {
+            None | Some(Some("pid")) => Ok(Self::Pid),
+            Some(Some("computed-torque")) => Ok(Self::ComputedTorque),
+            Some(other) => Err(bad(format!(
+                "'controller' must be \"pid\" or \"computed-torque\", got {}",
+                other.unwrap_or("a non-string")
+            ))),
+        }
+    }
+
+    /// The file stem of the controller's FMU.
+    pub fn fmu_stem(self) -> &'static str {
+        match self {
+            Self::Pid => "PID",
+            Self::ComputedTorque => "ComputedTorque",
+        }
+    }
+
+    /// The connections (output, input) that feed the controller and the plant.
+    pub fn connections(self) -> &'static [(Role, &'static str, Role, &'static str)] {
+        use Role::{Control, Plan, Robot};
+        match self {
+            Self::Pid => &[
+                (Plan, "q", Control, "setpoint"),
+                (Plan, "qdot", Control, "setpointRate"),
+                (Robot, "theta", Control, "measurement"),
+                (Robot, "thetaDot", Control, "measuredRate"),
+                (Robot, "gravityCompensation", Control, "feedforward"),
+                (Control, "u", Robot, "generalizedForceCommand"),
+            ],
+            Self::ComputedTorque => &[
+                (Plan, "q", Control, "setpoint"),
+                (Plan, "qdot", Control, "setpointRate"),
+                (Plan, "qddot", Control, "setpointAcceleration"),
+                (Robot, "theta", Control, "measurement"),
+                (Robot, "thetaDot", Control, "measuredRate"),
+                (Control, "u", Robot, "generalizedForceCommand"),
+            ],
+        }
+    }
+}
+
+/// The three FMUs of a loop.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    Plan,
+    Control,
+    Robot,
+}
+
+/// Where a model parameter lives in the plant parameters.
+type ModelField = fn(&mut PlantParams) -> &mut f64;
+
+/// Model parameters of the controller under the plant FMU's names (scalars but g, the
+/// magnitude of gravity along -Z).
+const MODEL_SCALARS: [(&str, ModelField); 7] = [
+    ("platformMass", |p| &mut p.inertia.platform_mass),
+    ("legMass", |p| &mut p.inertia.leg_mass),
+    ("legComFraction", |p| &mut p.inertia.leg_com_fraction),
+    ("legTransverseInertia", |p| {
+        &mut p.inertia.leg_transverse_inertia
+    }),
+    ("sliderMass", |p| &mut p.inertia.slider_mass),
+    ("sliderFriction", |p| &mut p.friction.slider),
+    ("pivotFriction", |p| &mut p.friction.pivot),
+];
+
+/// The controller's model: the spec's robot with the parameters the table sets.
+fn model(p: &Table, place: &str) -> Result<PlantParams, LoopError> {
+    let mut params = PlantParams::default();
+    for (name, field) in MODEL_SCALARS {
+        if let Some(v) = number(p, name, place)? {
+            *field(&mut params) = v;
+        }
+    }
+    if let Some(g) = number(p, "g", place)? {
+        params.gravity = Vector3::new(0.0, 0.0, -g);
+    }
+    for row in 0..3 {
+        for col in row..3 {
+            let name = format!("platformInertia[{},{}]", row + 1, col + 1);
+            if let Some(v) = number(p, &name, place)? {
+                params.inertia.platform_inertia[(row, col)] = v;
+                params.inertia.platform_inertia[(col, row)] = v;
+            }
+        }
+    }
+    Ok(params)
+}
+
+fn is_known(key: &str) -> bool {
+    let per_axis = ["Kp", "Kd", "Ki", "limitOutput", "uMin", "uMax"];
+    let axis_key = |name: &str| (1..=3).any(|i| key == format!("{name}[{i}]"));
+    per_axis.iter().any(|n| axis_key(n))
+        || key == "g"
+        || MODEL_SCALARS.iter().any(|(n, _)| *n == key)
+        || (1..=3).any(|r| (r..=3).any(|c| key == format!("platformInertia[{r},{c}]")))
+}
+
+/// Reads the computed-torque controller's parameter table.
+pub fn computed_torque(p: &Table, place: &str) -> Result<ComputedTorque, LoopError> {
+    if let Some(key) = p.keys().find(|k| !is_known(k)) {
+        return Err(bad(format!(
+            "'{place}{key}' is not a computed-torque parameter (gains Kp, Kd, Ki, limits \
+             limitOutput, uMin, uMax per axis, or a plant model parameter)"
+        )));
+    }
+    let mut gains = Vec::with_capacity(3);
+    for i in 1..=3 {
+        let key = |name: &str| format!("{name}[{i}]");
+        let limits = if boolean(p, &key("limitOutput"), place)? {
+            Some((
+                required(p, &key("uMin"), place)?,
+                required(p, &key("uMax"), place)?,
+            ))
+        } else {
+            None
+        };
+        gains.push(AxisGains {
+            kp: required(p, &key("Kp"), place)?,
+            kd: required(p, &key("Kd"), place)?,
+            ki: number(p, &key("Ki"), place)?.unwrap_or(0.0),
+            limits,
+        });
+    }
+    let gains = [gains[0], gains[1], gains[2]];
+    ComputedTorque::new(model(p, place)?, gains).map_err(|e| bad(format!("'{place}': {e}")))
+}
