@@ -137,11 +137,15 @@ fn entry(zip: &mut zip::ZipArchive<std::fs::File>, name: &str) -> Result<Vec<u8>
     Ok(bytes)
 }
 
-/// Refuses an FMU older than the FMI layer or FMU sources: it would test old code.
+/// Refuses an FMU older than the FMI layer (runtime and packager) or FMU sources: it
+/// would test old code.
 fn check_not_stale(archive: &Path) -> Result<(), String> {
     let built = modified(archive).unwrap_or(SystemTime::UNIX_EPOCH);
     let root = workspace_root();
-    let mut folders = vec![root.join("crates/fmi/src")];
+    let mut folders = vec![
+        root.join("crates/fmi/src"),
+        root.join("crates/fmi-build/src"),
+    ];
     if let Ok(fmus) = std::fs::read_dir(root.join("fmus")) {
         folders.extend(fmus.flatten().map(|e| e.path().join("src")));
     }

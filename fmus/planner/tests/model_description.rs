@@ -2,7 +2,7 @@
 //! variable table is the single source of truth). Regenerate with
 //! `UPDATE_MODEL_DESCRIPTION=1 cargo test --release -p robofmu-planner-fmu --test model_description`.
 
-use robofmu_fmi::fmi2::description::{
+use robofmu_fmi_build::fmi2::{
     check_checked_in, model_description, unknowns_in_section as unknowns,
 };
 use robofmu_planner_fmu::Planner;

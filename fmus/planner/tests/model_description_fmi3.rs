@@ -2,7 +2,7 @@
 //! generates from the variable table. Regenerate with
 //! `UPDATE_MODEL_DESCRIPTION=1 cargo test --release -p robofmu-planner-fmu --test model_description_fmi3`.
 
-use robofmu_fmi::fmi3::description::check_checked_in;
+use robofmu_fmi_build::fmi3::check_checked_in;
 use robofmu_planner_fmu::Planner;
 
 #[test]

@@ -6,8 +6,8 @@ use nalgebra::{Matrix3, Vector3};
 use robofmu::pss3::dynamics::{Plant, PlantInputs, PlantParams, PlantState};
 use robofmu::pss3::rotation::euler_rate_matrix;
 use robofmu::pss3::{assemble, jacobian};
-use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::Host;
 use robofmu_pss3_plant_fmu::Pss3Plant;
 
 type H = Host<Pss3Plant>;

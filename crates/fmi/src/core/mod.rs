@@ -13,7 +13,6 @@
 //! they share, with [`fmu_state_calls`] and [`model_exchange_calls`].
 
 pub mod arrays;
-pub mod description;
 pub mod entry;
 pub mod fmu_state_calls;
 pub mod fmu_states;
@@ -26,7 +25,6 @@ pub mod model;
 pub mod model_exchange_calls;
 pub mod output_derivatives;
 pub mod serialize;
-pub mod units;
 pub mod variables;
 
 pub use instance::{Instance, Snapshot, Standard};

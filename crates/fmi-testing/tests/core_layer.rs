@@ -6,8 +6,8 @@ use robofmu_fmi::core::{
     DefaultExperiment, EventUpdate, Log, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
 use robofmu_fmi::fmi2::api;
-use robofmu_fmi::fmi2::host::{Host, vr};
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::{Host, vr};
 
 const INFO: DefaultExperiment = DefaultExperiment {
     start_time: 0.0,
@@ -388,6 +388,6 @@ fn a_model_that_takes_no_input_derivatives_refuses_them_naming_itself() {
         "fmi2SetRealInputDerivatives: Doubler takes no input derivatives (its inputs are \
          held over a step)"
     );
-    let xml = robofmu_fmi::fmi2::description::model_description::<Doubler>().unwrap();
+    let xml = robofmu_fmi_build::fmi2::model_description::<Doubler>().unwrap();
     assert!(!xml.contains("canInterpolateInputs"), "{xml}");
 }
