@@ -3,11 +3,10 @@
 use crate::common::{
     self, DefaultExperiment, GENERATION_TOOL, LogCategories, UnitDefinitions, number,
 };
+use robofmu_fmi::core::check::check_table;
 use robofmu_fmi::core::frontend::log_categories;
 use robofmu_fmi::core::model::Model;
-use robofmu_fmi::core::variables::{
-    Causality, Initial, Kind, Variable, check_table, derivative_variables,
-};
+use robofmu_fmi::core::variables::{Causality, Initial, Kind, Variable, derivative_variables};
 use robofmu_fmi::fmi2::mode::Fmi2;
 use serde::Serialize;
 

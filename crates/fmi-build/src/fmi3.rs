@@ -7,10 +7,11 @@
 use crate::common::{
     self, DefaultExperiment, GENERATION_TOOL, LogCategories, UnitDefinitions, number,
 };
+use robofmu_fmi::core::check::check_table;
 use robofmu_fmi::core::frontend::log_categories;
 use robofmu_fmi::core::instance::sorted_table;
 use robofmu_fmi::core::model::Model;
-use robofmu_fmi::core::variables::{Causality, Initial, Kind, Variable, check_table, find};
+use robofmu_fmi::core::variables::{Causality, Initial, Kind, Variable, find};
 use robofmu_fmi::fmi3::mode::Fmi3;
 use robofmu_fmi::fmi3::table::{self, Table3, Variable3, build};
 use serde::Serialize;

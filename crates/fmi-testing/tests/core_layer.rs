@@ -315,7 +315,8 @@ fn a_step_ending_at_the_stop_time_despite_round_off_is_accepted() {
 
 #[test]
 fn one_array_declaration_gives_named_scalars_with_getters_setters_and_dimensions() {
-    use robofmu_fmi::core::variables::{ArrayElement, Kind, RealArray};
+    use robofmu_fmi::core::arrays::{ArrayElement, RealArray};
+    use robofmu_fmi::core::variables::Kind;
     // theta[1..3] at value references 101..103 over a plain [f64; 3].
     let array = RealArray::new(101, "theta", 3, "angle", |m: &[f64; 3], i| m[i])
         .set(|m, i, v| {
@@ -356,7 +357,8 @@ fn one_array_declaration_gives_named_scalars_with_getters_setters_and_dimensions
 
 #[test]
 fn an_array_with_a_missing_element_is_rejected_by_the_table_check() {
-    use robofmu_fmi::core::variables::{RealArray, check_table};
+    use robofmu_fmi::core::arrays::RealArray;
+    use robofmu_fmi::core::check::check_table;
     let array = || {
         RealArray::new(11, "u", 3, "input", |m: &[f64; 3], i| m[i])
             .set(|m, i, v| {

@@ -8,7 +8,7 @@
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
 use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
-use robofmu_fmi::core::variables::ElementType;
+use robofmu_fmi::core::arrays::ElementType;
 use robofmu_fmi::prelude::*;
 
 pub const CHANNELS: usize = 3;

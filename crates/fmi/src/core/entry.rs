@@ -6,7 +6,7 @@
 use super::frontend::{Frontend, FrontendInstance, LoggerOf, StatusCode, StatusOf};
 use super::handles::{self, HandleKind};
 use super::instance::Snapshot;
-use super::logging::Log;
+use super::log::Log;
 use super::model::Model;
 use super::variables::{Causality, Variability};
 use crate::ffi::{check_finite, input_slice, panic_message, text};

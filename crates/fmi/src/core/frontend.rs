@@ -6,18 +6,11 @@
 //! exported symbols and its modelDescription schema.
 
 use super::instance::{Instance, Snapshot, Standard};
-use super::logging::{LogCategory, LogSink, Logger};
+use super::log::LogCategory;
+use super::logging::{LogSink, Logger};
 use super::model::Model;
+pub use super::status::StatusCode;
 use std::fmt::Debug;
-
-/// The return status of a standard's functions, as far as the layer sets it.
-pub trait StatusCode: Copy + Eq + PartialOrd {
-    const OK: Self;
-    const WARNING: Self;
-    const DISCARD: Self;
-    const ERROR: Self;
-    const FATAL: Self;
-}
 
 /// One FMI standard's front-end: the types and rules in which FMI 2.0 and FMI 3.0
 /// differ.

@@ -13,6 +13,8 @@
 //! they share, with [`fmu_state_calls`] and [`model_exchange_calls`].
 
 pub mod arrays;
+pub mod check;
+pub mod element;
 pub mod entry;
 pub mod fmu_state_calls;
 pub mod fmu_states;
@@ -20,15 +22,17 @@ pub mod frontend;
 pub mod handles;
 pub mod input_derivatives;
 pub mod instance;
+pub mod log;
 pub mod logging;
 pub mod model;
 pub mod model_exchange_calls;
 pub mod output_derivatives;
 pub mod serialize;
+pub mod status;
 pub mod variables;
 
 pub use instance::{Instance, Snapshot, Standard};
-pub use logging::{Log, LogCategory};
+pub use log::{Log, LogCategory};
 pub use model::{
     DefaultExperiment, EventUpdate, Model, ModelInfo, OutputDerivativeError, StepOutcome,
 };
