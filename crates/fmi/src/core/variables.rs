@@ -131,7 +131,7 @@ pub struct Variable<M> {
     /// Names of the inputs and continuous states an output or state derivative
     /// depends on (ModelStructure `dependencies`); None: on all of them.
     pub dependencies: Option<&'static [&'static str]>,
-    /// Set for the elements declared by [`RealArray`].
+    /// Set for the elements declared by [`RealArray`](super::arrays::RealArray).
     pub array: Option<ArrayElement>,
 }
 
