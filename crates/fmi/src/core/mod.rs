@@ -7,8 +7,9 @@
 //! [`serialize`] its checked byte format; [`handles`] registers the live instances and
 //! states so that every handle is checked before use.
 //!
-//! A front-end is a [`frontend::Frontend`] (its status codes, state machine and logger
-//! callback) with a [`frontend::FrontendInstance`]; [`entry`] wraps every C entry point
+//! A front-end is a [`frontend::Frontend`] (its status codes, state machine, logger
+//! callback and extra instance state); an instance of either standard is one type,
+//! [`frontend::FmuInstance`]`<F, M>`; [`entry`] wraps every C entry point
 //! of both standards (handle, mode, logCalls, errors and panics) and holds the bodies
 //! they share, with [`fmu_state_calls`] and [`model_exchange_calls`].
 

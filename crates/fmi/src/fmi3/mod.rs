@@ -8,6 +8,7 @@
 
 pub mod api;
 mod export;
+pub mod extra;
 pub mod instance;
 pub mod intermediate;
 pub mod logging;
