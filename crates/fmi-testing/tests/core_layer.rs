@@ -379,33 +379,6 @@ fn an_array_with_a_missing_element_is_rejected_by_the_table_check() {
 }
 
 #[test]
-fn an_input_derivative_slot_is_refused_on_anything_but_a_continuous_real_input() {
-    // Expected: the rule of check_variables (only continuous Real inputs are
-    // interpolated over a step, FMI 2.0 section 4.2.1).
-    use robofmu_fmi::core::arrays::RealArray;
-    use robofmu_fmi::core::check::check_table;
-    fn slot(m: &mut [f64; 3], order: u32) -> Option<&mut f64> {
-        m.get_mut(order as usize)
-    }
-    let inputs = RealArray::new(11, "u", 3, "input", |m: &[f64; 3], i| m[i])
-        .set(|m, i, v| {
-            m[i] = v;
-            Ok(())
-        })
-        .each(move |v, _| v.input().start_real(0.0).input_derivative(slot))
-        .variables();
-    assert_eq!(check_table(&inputs), Ok(()));
-    let outputs = RealArray::new(21, "y", 3, "output", |m: &[f64; 3], i| m[i])
-        .each(move |v, _| v.output().input_derivative(slot))
-        .variables();
-    let message = check_table(&outputs).unwrap_err();
-    assert!(
-        message.contains("\"y[1]\": an input derivative is declared, but it is not a continuous"),
-        "{message}"
-    );
-}
-
-#[test]
 fn a_model_that_takes_no_input_derivatives_refuses_them_naming_itself() {
     // Doubler keeps the default MAX_INPUT_DERIVATIVE_ORDER = 0 (canInterpolateInputs
     // absent from its description): any order of its continuous input is an error.

@@ -273,11 +273,8 @@ fn variables() -> Vec<Variable<Pid>> {
     );
     table.extend(limited.variables().into_iter().chain(use_rates.variables()));
     for (group, name, description, defaults, field) in INPUTS {
-        let array = settable(group, name, description, field).each(move |v, c| {
-            v.input()
-                .start_real(defaults[c])
-                .input_derivative(move |m: &mut Pid, order| m.ramp_slot(group, c, order))
-        });
+        let array = settable(group, name, description, field)
+            .each(move |v, c| v.input().start_real(defaults[c]));
         table.extend(array.variables());
     }
     let u = channels(U, "u", "control output", |m, c| m.output(c).u).each(|v, _| v.output());
@@ -376,20 +373,6 @@ fn channel_partial(m: &Pid, c: usize, unknown: u32, known: u32) -> Result<f64, S
     })
 }
 
-impl Pid {
-    /// The input-derivative slot of input `group` of channel c: the rate (order 1) or
-    /// the acceleration (order 2) of its ramp over the next step.
-    fn ramp_slot(&mut self, group: u32, c: usize, order: u32) -> Option<&mut f64> {
-        let ramp = self.ramps.get_mut(c)?;
-        let part = match order {
-            1 => &mut ramp.rate,
-            2 => &mut ramp.acceleration,
-            _ => return None,
-        };
-        input_field(part, group)
-    }
-}
-
 impl Model for Pid {
     fn info() -> &'static ModelInfo {
         &INFO
@@ -457,6 +440,17 @@ impl Model for Pid {
     /// into 10 equal sub-intervals, and the importer may set the continuous inputs at
     /// the 9 inner points (held over the next sub-interval).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
+
+    fn input_derivative_mut(&mut self, vr: u32, order: u32) -> Option<&mut f64> {
+        let (group, c) = split(vr);
+        let ramp = self.ramps.get_mut(c)?;
+        let part = match order {
+            1 => &mut ramp.rate,
+            2 => &mut ramp.acceleration,
+            _ => return None,
+        };
+        input_field(part, group)
+    }
 
     fn continuous_states(&self, x: &mut [f64]) {
         for c in 0..CHANNELS {

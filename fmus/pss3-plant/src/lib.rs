@@ -156,16 +156,6 @@ pub fn default_start_pose() -> Vector3<f64> {
 }
 
 impl Pss3Plant {
-    /// The input derivatives of order `order`: the ramp's rates (1) or accelerations (2)
-    /// over the next step; None for another order.
-    fn ramp_slot(&mut self, order: u32) -> Option<&mut PlantInputs> {
-        match order {
-            1 => Some(&mut self.ramp.rate),
-            2 => Some(&mut self.ramp.acceleration),
-            _ => None,
-        }
-    }
-
     /// Rebuilds the plant after a parameter changed.
     fn rebuild(&mut self) {
         self.plant = Plant::new(self.params).map_err(|e| parameters::fmu_message(&e));
@@ -386,6 +376,15 @@ impl Model for Pss3Plant {
     /// into 10 equal sub-intervals, and the importer may set the continuous inputs at
     /// the 9 inner points (held over the next sub-interval).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
+
+    fn input_derivative_mut(&mut self, vr: u32, order: u32) -> Option<&mut f64> {
+        let part = match order {
+            1 => &mut self.ramp.rate,
+            2 => &mut self.ramp.acceleration,
+            _ => return None,
+        };
+        variables::input_component(part, vr)
+    }
 
     fn calculate_values(&mut self) -> Result<(), String> {
         self.computed = self.compute();

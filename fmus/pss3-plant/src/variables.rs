@@ -40,6 +40,14 @@ const INPUTS: [(u32, &str, &str, InputField); 4] = [
     ),
 ];
 
+/// The component of `inputs` that the input with value reference `vr` sets, if `vr`
+/// is an input.
+pub fn input_component(inputs: &mut PlantInputs, vr: u32) -> Option<&mut f64> {
+    let (group, c) = split(vr);
+    let (_, _, _, field) = INPUTS.iter().find(|input| input.0 == group)?;
+    field(inputs).get_mut(c)
+}
+
 type VectorOutput = fn(&PlantOutputs) -> Vector3<f64>;
 
 /// A vector output read from `PlantOutputs`.
@@ -223,13 +231,7 @@ fn inputs(table: &mut Vec<Variable<Pss3Plant>>) {
                 field(&mut m.inputs)[i] = v;
                 Ok(())
             })
-            .each(move |v, i| {
-                v.unit(unit, None).input().start_real(0.0).input_derivative(
-                    move |m: &mut Pss3Plant, order| {
-                        m.ramp_slot(order).map(|part| &mut field(part)[i])
-                    },
-                )
-            });
+            .each(move |v, _| v.unit(unit, None).input().start_real(0.0));
         table.extend(array.variables());
     }
 }

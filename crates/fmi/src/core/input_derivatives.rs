@@ -1,6 +1,6 @@
 //! Time derivatives of continuous inputs for the co-simulation step (FMI 2.0
 //! fmi2SetRealInputDerivatives), checked here for every front-end and stored by the
-//! model where its declaration says ([`Variable::input_derivative`]).
+//! model ([`Model::input_derivative_mut`]).
 //!
 //! Semantics (FMI 2.0, section 4.2.1: inputs and their derivatives are set with
 //! respect to the beginning of a communication step): over a step from t, an input u
@@ -67,7 +67,7 @@ impl<M: Model> Instance<M> {
                  of magnitude at most {MAX_MAGNITUDE:e}"
             ));
         }
-        let slot = self.input_derivative_slot(vr, order);
+        let slot = self.model_mut().input_derivative_mut(vr, order);
         *slot.ok_or_else(|| no_slot::<M>(&name, order))? = value;
         Ok(())
     }

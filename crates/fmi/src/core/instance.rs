@@ -219,15 +219,6 @@ impl<M: Model> Instance<M> {
     }
 
     /// The model for a change: the computed values become stale.
-    /// Where the model keeps the `order`-th derivative of the input `vr`, from the
-    /// input's declaration (`Variable::input_derivative`); the computed values become
-    /// stale as after any change of the model.
-    pub fn input_derivative_slot(&mut self, vr: u32, order: u32) -> Option<&mut f64> {
-        self.dirty = true;
-        let v = variable(&self.table, vr).ok()?;
-        v.input_derivative.as_ref()?(&mut self.model, order)
-    }
-
     pub fn model_mut(&mut self) -> &mut M {
         self.dirty = true;
         &mut self.model

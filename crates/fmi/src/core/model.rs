@@ -89,8 +89,8 @@ pub trait Model: Clone + Send + Sized + 'static {
 
     /// Co-simulation step from `time` to `time + step`: each continuous Real input
     /// follows u(s) = u + u' s + u'' s^2/2 + ... (s the time since `time`) with the
-    /// derivatives last written to its slot ([`Variable::input_derivative`]), i.e. it
-    /// is held when none were given.
+    /// derivatives last written to [`Model::input_derivative_mut`], i.e. it is held
+    /// when none were given.
     fn do_step(&mut self, time: f64, step: f64, log: &dyn Log) -> StepOutcome;
 
     /// Highest order of input time derivative that `do_step` uses (FMI 2.0
@@ -103,6 +103,17 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// points, where the importer may read outputs and set continuous inputs, which
     /// then hold until the next point). 0: no intermediate update (the default).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 0;
+
+    /// Where the model keeps the `order`-th time derivative (1 ..=
+    /// `MAX_INPUT_DERIVATIVE_ORDER`) of the continuous Real input `vr`, relative to
+    /// the start of the next step; None: it keeps none. The layer checks the value
+    /// reference, the order and the value (finite) before writing, and reads it to
+    /// serialize FMU states. A derivative holds for every later step until it is set
+    /// again (a field of the model: clones and FMU states carry it, a reset clears it); it does
+    /// not change the input's value or any output read before the step.
+    fn input_derivative_mut(&mut self, _vr: u32, _order: u32) -> Option<&mut f64> {
+        None
+    }
 
     /// Computes every calculated value (outputs, derivatives, ...) after a change of
     /// parameters, inputs, states or time, for the getters to read. The layer calls it

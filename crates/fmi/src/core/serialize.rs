@@ -58,12 +58,10 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
     // The slots are reached through `&mut`: read them from a copy (only for a model
     // that takes derivatives).
     let mut model = (!slots.is_empty()).then(|| s.model.clone());
-    for (v, order) in slots {
-        let slot = v.input_derivative.as_ref();
+    for (vr, order) in slots {
         let value = model
             .as_mut()
-            .zip(slot)
-            .and_then(|(m, slot)| slot(m, order).copied());
+            .and_then(|m| m.input_derivative_mut(vr, order).copied());
         payload.extend_from_slice(&value.unwrap_or(0.0).to_le_bytes());
     }
     let n = M::info().number_of_continuous_states;
@@ -91,12 +89,12 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
     out
 }
 
-/// (input, order) of every input derivative a state of M holds.
-fn input_derivative_slots<M: Model>(table: &[Variable<M>]) -> Vec<(&Variable<M>, u32)> {
+/// (value reference, order) of every input derivative a state of M holds.
+fn input_derivative_slots<M: Model>(table: &[Variable<M>]) -> Vec<(u32, u32)> {
     let orders = 1..=M::MAX_INPUT_DERIVATIVE_ORDER;
     let inputs = table.iter().filter(|v| interpolated_input(v));
     inputs
-        .flat_map(|v| orders.clone().map(move |o| (v, o)))
+        .flat_map(|v| orders.clone().map(|o| (v.value_reference, o)))
         .collect()
 }
 
@@ -202,17 +200,12 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
         };
         result.map_err(|e| format!("FMU state value of \"{name}\" rejected: {e}"))?;
     }
-    for (v, order) in input_derivative_slots(table) {
+    for (vr, order) in input_derivative_slots(table) {
         let value = r.f64("an input derivative")?;
         if value == 0.0 {
             continue; // a fresh model holds zeros
         }
-        let vr = v.value_reference;
-        match v
-            .input_derivative
-            .as_ref()
-            .and_then(|slot| slot(&mut model, order))
-        {
+        match model.input_derivative_mut(vr, order) {
             Some(slot) if value.is_finite() => *slot = value,
             _ => {
                 return Err(format!(

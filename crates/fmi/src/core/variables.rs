@@ -12,10 +12,6 @@ use std::borrow::Cow;
 
 pub type Getter<M, T> = Box<dyn Fn(&M) -> T + Send + Sync>;
 pub type Setter<M, T> = Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>;
-/// The input-derivative slot of a continuous Real input: `(model, order)` -> where the
-/// model keeps that derivative.
-pub type InputDerivative<M> =
-    Box<dyn for<'a> Fn(&'a mut M, u32) -> Option<&'a mut f64> + Send + Sync>;
 /// The output-derivative hook of a Real output: `(model, order)` -> the derivative.
 pub type OutputDerivative<M> =
     Box<dyn Fn(&M, u32) -> Result<f64, OutputDerivativeError> + Send + Sync>;
@@ -153,9 +149,6 @@ pub struct Variable<M> {
     /// The time derivatives of this Real output (fmi2GetRealOutputDerivatives,
     /// fmi3GetOutputDerivatives); None: not provided.
     pub output_derivative: Option<OutputDerivative<M>>,
-    /// Where the model keeps the time derivatives of this continuous Real input
-    /// (fmi2SetRealInputDerivatives); None: it keeps none.
-    pub input_derivative: Option<InputDerivative<M>>,
 }
 
 impl<M> Variable<M> {
@@ -180,7 +173,6 @@ impl<M> Variable<M> {
             dependencies: None,
             array: None,
             output_derivative: None,
-            input_derivative: None,
         }
     }
 
@@ -273,21 +265,6 @@ impl<M> Variable<M> {
         f: impl Fn(&M, u32) -> Result<f64, OutputDerivativeError> + Send + Sync + 'static,
     ) -> Self {
         self.output_derivative = Some(Box::new(f));
-        self
-    }
-
-    /// Hook of this continuous Real input: where the model keeps its `order`-th time
-    /// derivative (1 ..= `Model::MAX_INPUT_DERIVATIVE_ORDER`), relative to the start of
-    /// the next step; None: it keeps none for that order. The layer checks the order
-    /// and the value (finite) before writing, and reads it to serialize FMU states. A
-    /// derivative holds for every later step until it is set again (a field of the
-    /// model: clones and FMU states carry it, a reset clears it); it does not change
-    /// the input's value or any output read before the step.
-    pub fn input_derivative(
-        mut self,
-        f: impl for<'a> Fn(&'a mut M, u32) -> Option<&'a mut f64> + Send + Sync + 'static,
-    ) -> Self {
-        self.input_derivative = Some(Box::new(f));
         self
     }
 
@@ -521,16 +498,6 @@ pub fn check_variables<M>(table: &[Variable<M>]) -> Result<(), String> {
                     "\"{name}\": derivative of \"{state}\", which is not a continuous Real"
                 ));
             }
-        }
-        if v.input_derivative.is_some()
-            && (v.causality != C::Input
-                || v.variability != V::Continuous
-                || v.variable_type() != VariableType::Real)
-        {
-            return Err(format!(
-                "\"{name}\": an input derivative is declared, but it is not a continuous \
-                 Real input"
-            ));
         }
         if v.output_derivative.is_some()
             && (v.causality != C::Output || v.variable_type() != VariableType::Real)
