@@ -98,6 +98,16 @@ fn output_vr(axis: usize, k: usize) -> u32 {
 /// Step of the value references from one axis to the next.
 const AXIS_STRIDE: u32 = 10;
 
+/// (axis, k) of the output value reference `output_vr(axis, k)`.
+fn output_of(vr: u32) -> Option<(usize, usize)> {
+    let offset = vr.checked_sub(100)?;
+    let (axis, k) = (
+        (offset / AXIS_STRIDE) as usize,
+        (offset % AXIS_STRIDE) as usize,
+    );
+    (axis < AXES && k < OUTPUTS.len()).then_some((axis, k))
+}
+
 /// Name, unit, description and default per axis of the boundary values, in the order
 /// of `boundary_field`.
 const BOUNDARY_FIELDS: [(&str, &str, &str, [f64; AXES]); 6] = [
@@ -224,29 +234,11 @@ fn variables() -> Vec<Variable<Planner>> {
             Some(s) => [s.q, s.qdot, s.qddot][k],
             None => f64::NAN,
         };
-        let array = axes(output_vr(0, k), name, what, get).each(move |v, axis| {
-            v.output()
-                .unit(unit, display_unit(unit))
-                .output_derivative(move |m: &Planner, order| m.rate(axis, k, order))
-        });
+        let array = axes(output_vr(0, k), name, what, get)
+            .each(move |v, _| v.output().unit(unit, display_unit(unit)));
         table.extend(array.variables());
     }
     table
-}
-
-impl Planner {
-    /// The output-derivative hook of output k (q, qdot, qddot) of `axis`. Exact: order
-    /// n of q, qdot, qddot is the derivative of order n, n + 1, n + 2 of the axis's
-    /// polynomial (`Polynomial::derivative`: one-sided from inside the motion at t0 and
-    /// tf, zero while held), so the first derivative of q equals the output qdot and
-    /// that of qdot the output qddot at every time.
-    fn rate(&self, axis: usize, k: usize, order: u32) -> Result<f64, OutputDerivativeError> {
-        let axes = self
-            .axes
-            .as_ref()
-            .map_err(|e| OutputDerivativeError::CannotEvaluate(e.clone()))?;
-        Ok(axes[axis].derivative(self.time, k + order as usize))
-    }
 }
 
 impl Model for Planner {
@@ -294,6 +286,21 @@ impl Model for Planner {
     fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
         // Outputs are explicit functions of time: nothing to integrate.
         StepOutcome::Completed
+    }
+
+    /// Exact: order n of q, qdot, qddot is the derivative of order n, n + 1, n + 2 of
+    /// the axis's polynomial (`Polynomial::derivative`: one-sided from inside the
+    /// motion at t0 and tf, zero while held), so the first derivative of q equals the
+    /// output qdot and that of qdot the output qddot at every time.
+    fn output_derivative(&self, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
+        let (axis, k) = output_of(vr).ok_or_else(|| {
+            OutputDerivativeError::NotProvided(format!("value reference {vr} is no planner output"))
+        })?;
+        let axes = self
+            .axes
+            .as_ref()
+            .map_err(|e| OutputDerivativeError::CannotEvaluate(e.clone()))?;
+        Ok(axes[axis].derivative(self.time, k + order as usize))
     }
 
     fn next_time_event(&self, time: f64) -> Option<f64> {

@@ -16,7 +16,6 @@
 mod output_rates;
 mod parameters;
 mod partials;
-mod references;
 mod variables;
 
 use nalgebra::Vector3;
@@ -437,6 +436,10 @@ impl Model for Pss3Plant {
         out: &mut [f64],
     ) -> Result<(), String> {
         partials::directional_derivative(self, table, unknowns, knowns, seed, out)
+    }
+
+    fn output_derivative(&self, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
+        output_rates::output_derivative(self, vr, order)
     }
 
     fn write_extra_state(&self, out: &mut Vec<u8>) {

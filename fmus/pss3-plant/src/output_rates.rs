@@ -12,7 +12,7 @@
 //! finite differences: it is refused (NotProvided).
 
 use super::Pss3Plant;
-use super::references::*;
+use super::variables::*;
 use nalgebra::Vector3;
 use robofmu::pss3::rotation::euler_accelerations;
 use robofmu::pss3::{assemble, jacobian, velocity_product};
@@ -43,14 +43,9 @@ fn l_ddot(m: &Pss3Plant) -> Result<Vector3<f64>, String> {
     Ok(j.actuator_rates(&c.outputs.omega_dot) + product)
 }
 
-/// The output-derivative hook of component `i` of the output `group` (a scalar output:
-/// its value reference, component 0): the `order`-th time derivative (see the module
-/// doc).
-pub fn output_derivative(
-    m: &Pss3Plant,
-    (group, i): (u32, usize),
-    order: u32,
-) -> Result<f64, OutputDerivativeError> {
+/// The `order`-th time derivative of the output `vr` (see the module doc).
+pub fn output_derivative(m: &Pss3Plant, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
+    let (group, i) = split(vr);
     let c = m.computed.as_ref().map_err(|e| CannotEvaluate(e.clone()))?;
     let component = |f: fn(&Pss3Plant) -> Result<Vector3<f64>, String>| {
         f(m).map(|v| v[i]).map_err(CannotEvaluate)

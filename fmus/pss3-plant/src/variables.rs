@@ -1,14 +1,39 @@
 //! The variable table of Pss3Plant: inputs, outputs, state derivatives, parameters.
 //!
-//! Value references: a vector variable's group (`references`) plus i = 1..3.
+//! Value references: a vector variable's group below plus i = 1..3.
 
-use super::output_rates::output_derivative;
 use super::{Pss3Plant, parameters};
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{PlantInputs, PlantOutputs};
 use robofmu_fmi::prelude::*;
 
-pub use super::references::*;
+pub const ACTUATOR_FORCE: u32 = 0;
+pub const TORQUE_COMMAND: u32 = 10;
+pub const GENERALIZED_FORCE_COMMAND: u32 = 20;
+pub const DISTURBANCE_TORQUE: u32 = 30;
+pub const THETA: u32 = 100;
+pub const OMEGA: u32 = 110;
+pub const THETA_DOT: u32 = 120;
+pub const OMEGA_DOT: u32 = 130;
+pub const YAW_PITCH_ROLL: u32 = 140;
+pub const L: u32 = 150;
+pub const L_DOT: u32 = 160;
+pub const FORCE: u32 = 170;
+pub const STOP_FORCE: u32 = 180;
+pub const AT_STOP: u32 = 190;
+pub const DET_J: u32 = 201;
+pub const COND_J: u32 = 202;
+pub const KINETIC_ENERGY: u32 = 203;
+pub const POTENTIAL_ENERGY: u32 = 204;
+pub const GRAVITY_COMPENSATION: u32 = 210;
+pub const DER_THETA: u32 = 300;
+pub const DER_OMEGA: u32 = 310;
+
+/// Group and component (0..2) of a value reference of a vector variable.
+pub fn split(vr: u32) -> (u32, usize) {
+    let component = (vr + 9) % 10;
+    (vr - component - 1, component as usize)
+}
 
 type InputField = fn(&mut PlantInputs) -> &mut Vector3<f64>;
 
@@ -247,14 +272,7 @@ fn vector_output(
     depends: impl Fn(usize) -> &'static [&'static str] + 'static,
 ) -> Vec<Variable<Pss3Plant>> {
     RealArray::new(vr(group, 0), base, 3, description, get)
-        .each(move |v, i| {
-            v.unit(unit, display)
-                .output()
-                .depends_on(depends(i))
-                .output_derivative(move |m: &Pss3Plant, order| {
-                    output_derivative(m, (group, i), order)
-                })
-        })
+        .each(move |v, i| v.unit(unit, display).output().depends_on(depends(i)))
         .variables()
 }
 
@@ -306,10 +324,7 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
             )
             .unit("rad", Some("deg"))
             .output()
-            .depends_on(&THETA_NAMES[i..=i])
-            .output_derivative(move |m: &Pss3Plant, order| {
-                output_derivative(m, (YAW_PITCH_ROLL, i), order)
-            }),
+            .depends_on(&THETA_NAMES[i..=i]),
         );
     }
     for output in &PLANT_OUTPUTS[1..5] {
@@ -334,11 +349,7 @@ fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
         } else {
             Depends::Theta
         };
-        table.push(
-            v.output().depends_on(depends.names()).output_derivative(
-                move |m: &Pss3Plant, order| output_derivative(m, (vr, 0), order),
-            ),
-        );
+        table.push(v.output().depends_on(depends.names()));
     }
     table.extend(vector_output(
         GRAVITY_COMPENSATION,

@@ -3,7 +3,6 @@
 //! enforcement, logging and unwind catching.
 
 use super::log::{Log, LogCategory};
-pub use super::variables::OutputDerivativeError;
 use super::variables::Variable;
 
 /// DefaultExperiment of modelDescription.xml.
@@ -30,9 +29,8 @@ pub struct ModelInfo {
     pub number_of_event_indicators: usize,
     /// Whether `Model::partial_derivative` is implemented.
     pub provides_directional_derivative: bool,
-    /// maxOutputDerivativeOrder of Co-Simulation: the highest order `k` for which an
-    /// output-derivative hook ([`Variable::output_derivative`]) may answer (0: no output
-    /// derivatives).
+    /// maxOutputDerivativeOrder of Co-Simulation: the highest order `k` for which
+    /// `Model::output_derivative` may answer (0: no output derivatives).
     pub max_output_derivative_order: u32,
     /// Model-specific log categories (the layer's own come first).
     pub log_categories: &'static [LogCategory],
@@ -49,6 +47,16 @@ pub enum StepOutcome {
         reason: String,
         terminate: bool,
     },
+}
+
+/// Why `Model::output_derivative` gives no value.
+#[derive(Debug, Clone, PartialEq)]
+pub enum OutputDerivativeError {
+    /// The model does not provide this derivative (this output, or this order of it):
+    /// the importer asked for something the FMU does not offer (fmi2Error/fmi3Error).
+    NotProvided(String),
+    /// The model provides it but cannot evaluate it at this point (Discard).
+    CannotEvaluate(String),
 }
 
 /// What an event update (fmi2NewDiscreteStates, fmi3UpdateDiscreteStates) changed.
@@ -183,6 +191,18 @@ pub trait Model: Clone + Send + Sized + 'static {
             *o = sum;
         }
         Ok(())
+    }
+
+    /// The `order`-th time derivative (1 ..= `max_output_derivative_order`) of the Real
+    /// output with value reference `vr` at the current time and state, with the inputs
+    /// held (after a co-simulation step: at the end of the communication step). The
+    /// layer has checked `vr` (a Real output) and `order`, and the computed values are
+    /// current.
+    fn output_derivative(&self, _vr: u32, _order: u32) -> Result<f64, OutputDerivativeError> {
+        Err(OutputDerivativeError::NotProvided(format!(
+            "{} provides no output derivatives",
+            Self::info().model_name
+        )))
     }
 
     /// Internal state that is neither a settable variable nor a continuous state,

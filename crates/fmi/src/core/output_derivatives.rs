@@ -4,8 +4,8 @@
 //! is asked, and nothing is returned unless every value is finite.
 
 use super::instance::{Instance, variable};
-use super::model::Model;
-use super::variables::{Causality, OutputDerivativeError, VariableType};
+use super::model::{Model, OutputDerivativeError};
+use super::variables::{Causality, VariableType};
 
 /// The derivative of order `order` of the table element `vr` (FMI 2.0 value reference).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -82,25 +82,17 @@ fn evaluate<M: Model>(inst: &mut Instance<M>, requests: &[Request]) -> Result<Ve
     for &r in requests {
         let (name, order) = check(inst, r).map_err(Refusal::Error)?;
         let what = format!("derivative of order {order} of \"{name}\"");
-        let hook = variable(inst.table(), r.vr)
-            .map_err(Refusal::Error)?
-            .output_derivative
-            .as_ref();
-        let value = match hook {
-            Some(f) => f(inst.model(), order),
-            None => Err(OutputDerivativeError::NotProvided(format!(
-                "{} declares no output derivative of it",
-                M::info().model_name
-            ))),
-        };
-        let value = value.map_err(|e| match e {
-            OutputDerivativeError::NotProvided(why) => {
-                Refusal::Error(format!("{what} is not provided: {why}"))
-            }
-            OutputDerivativeError::CannotEvaluate(why) => {
-                Refusal::Discard(format!("{what} cannot be evaluated here: {why}"))
-            }
-        })?;
+        let value = inst
+            .model()
+            .output_derivative(r.vr, order)
+            .map_err(|e| match e {
+                OutputDerivativeError::NotProvided(why) => {
+                    Refusal::Error(format!("{what} is not provided: {why}"))
+                }
+                OutputDerivativeError::CannotEvaluate(why) => {
+                    Refusal::Discard(format!("{what} cannot be evaluated here: {why}"))
+                }
+            })?;
         if !value.is_finite() {
             return Err(Refusal::Discard(format!("{what} evaluates to {value}")));
         }

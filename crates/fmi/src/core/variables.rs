@@ -12,19 +12,6 @@ use std::borrow::Cow;
 
 pub type Getter<M, T> = Box<dyn Fn(&M) -> T + Send + Sync>;
 pub type Setter<M, T> = Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>;
-/// The output-derivative hook of a Real output: `(model, order)` -> the derivative.
-pub type OutputDerivative<M> =
-    Box<dyn Fn(&M, u32) -> Result<f64, OutputDerivativeError> + Send + Sync>;
-
-/// Why an output-derivative hook ([`Variable::output_derivative`]) gives no value.
-#[derive(Debug, Clone, PartialEq)]
-pub enum OutputDerivativeError {
-    /// The model does not provide this derivative (this output, or this order of it):
-    /// the importer asked for something the FMU does not offer (fmi2Error/fmi3Error).
-    NotProvided(String),
-    /// The model provides it but cannot evaluate it at this point (Discard).
-    CannotEvaluate(String),
-}
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Causality {
@@ -146,9 +133,6 @@ pub struct Variable<M> {
     pub dependencies: Option<&'static [&'static str]>,
     /// Set for the elements declared by [`RealArray`](super::arrays::RealArray).
     pub array: Option<ArrayElement>,
-    /// The time derivatives of this Real output (fmi2GetRealOutputDerivatives,
-    /// fmi3GetOutputDerivatives); None: not provided.
-    pub output_derivative: Option<OutputDerivative<M>>,
 }
 
 impl<M> Variable<M> {
@@ -172,7 +156,6 @@ impl<M> Variable<M> {
             kind,
             dependencies: None,
             array: None,
-            output_derivative: None,
         }
     }
 
@@ -252,19 +235,6 @@ impl<M> Variable<M> {
     pub fn output(mut self) -> Self {
         self.causality = Causality::Output;
         self.initial = Some(Initial::Calculated);
-        self
-    }
-
-    /// Hook of this Real output: its `order`-th time derivative (1 ..=
-    /// `max_output_derivative_order`) at the current time and state, with the inputs
-    /// held (after a co-simulation step: at the end of the communication step). The
-    /// layer calls it with the computed values current and the order checked; the model
-    /// never sees a value reference.
-    pub fn output_derivative(
-        mut self,
-        f: impl Fn(&M, u32) -> Result<f64, OutputDerivativeError> + Send + Sync + 'static,
-    ) -> Self {
-        self.output_derivative = Some(Box::new(f));
         self
     }
 
@@ -498,13 +468,6 @@ pub fn check_variables<M>(table: &[Variable<M>]) -> Result<(), String> {
                     "\"{name}\": derivative of \"{state}\", which is not a continuous Real"
                 ));
             }
-        }
-        if v.output_derivative.is_some()
-            && (v.causality != C::Output || v.variable_type() != VariableType::Real)
-        {
-            return Err(format!(
-                "\"{name}\": an output derivative is declared, but it is not a Real output"
-            ));
         }
         check_dependencies(v, table)?;
     }
