@@ -24,7 +24,9 @@ from fmpy.fmi3 import (FMU3Slave, fmi3Boolean, fmi3InstanceEnvironment,
                        fmi3IntermediateUpdateCallback, fmi3LogMessageCallback,
                        fmi3ValueReference)
 
-MODELS = ["Planner", "PID", "Pss3Plant"]
+# One FMU per checked-in modelDescription/<Model>.xml: adding an FMU changes no list here.
+DESCRIPTIONS = Path(__file__).resolve().parents[1] / "modelDescription"
+MODELS = sorted(path.stem for path in DESCRIPTIONS.glob("*.xml"))
 
 
 def load(path, slave_class):

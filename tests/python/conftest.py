@@ -7,7 +7,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 DIST = ROOT / "dist"
 REFERENCES = ROOT / "tests" / "references"
-MODELS = ["Planner", "PID", "Pss3Plant"]
+# One FMU per checked-in modelDescription/<Model>.xml (the packager writes one for every
+# FMU crate): adding an FMU changes no list here.
+MODELS = sorted(path.stem for path in (ROOT / "modelDescription").glob("*.xml"))
 INTERFACES = ["CoSimulation", "ModelExchange"]
 
 

@@ -1,10 +1,50 @@
-//! robofmu-fmi: the generic FMI layer, with no robot code.
+//! robofmu-fmi: the runtime FMI layer, with no robot code and nothing of packaging
+//! (no zip, XML or serde: modelDescription.xml and the archive are written by
+//! `robofmu-fmi-build`, the in-process test host lives in `robofmu-fmi-testing`).
 //!
-//! A model implements [`core::Model`] in safe Rust; an FMU crate calls
-//! [`export_fmi2!`] and [`export_fmi3!`] once each to get the exported FMI 2.0 and
-//! FMI 3.0 C functions from one cdylib.
+//! # Writing an FMU
+//! Everything a model author needs is in the [`prelude`]:
+//!
+//! 1. describe the FMU once in a `static` [`ModelInfo`](prelude::ModelInfo) (names,
+//!    instantiation token, default experiment, state and event-indicator counts,
+//!    capabilities, log categories);
+//! 2. implement [`Model`](prelude::Model) for the model type: `variables()` returns the
+//!    table, [`Variable`](prelude::Variable)s and [`Array`](prelude::Array)s naming
+//!    the getter/setter, causality, [`Variability`](prelude::Variability), unit, start
+//!    and bounds of each; the step returns a [`StepOutcome`](prelude::StepOutcome),
+//!    Model Exchange events an [`EventUpdate`](prelude::EventUpdate); messages go to
+//!    the [`Log`](prelude::Log) in one of the model's
+//!    [`LogCategory`](prelude::LogCategory)s;
+//! 3. end the crate with [`export_fmu!`]`(Type);` it exports the FMI 2.0 and the
+//!    FMI 3.0 C functions from the same cdylib.
+//!
+//! The modules below are the layer itself: [`core`] (the version-neutral core: model
+//! trait, variable table, instance, FMU states, handles, the entry wrapper),
+//! [`fmi2`] and [`fmi3`] (each standard's C types, state machine and C functions) and
+//! [`ffi`] (checked reads of the host's pointers).
 
 pub mod core;
 pub mod ffi;
 pub mod fmi2;
 pub mod fmi3;
+
+/// The names a model author uses: `use robofmu_fmi::prelude::*;`.
+pub mod prelude {
+    pub use crate::core::arrays::{Array, BooleanArray, IntegerArray, RealArray, Role};
+    pub use crate::core::{
+        DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo, OutputDerivativeError,
+        StepOutcome, Variability, Variable,
+    };
+    pub use crate::export_fmu;
+}
+
+/// Exports one model as an FMU of both standards: the FMI 2.0 functions
+/// ([`export_fmi2!`]) and the FMI 3.0 functions ([`export_fmi3!`]) from one cdylib.
+/// Call it once per FMU crate, at the crate root: `robofmu_fmi::export_fmu!(Planner);`.
+#[macro_export]
+macro_rules! export_fmu {
+    ($model:ty) => {
+        $crate::export_fmi2!($model);
+        $crate::export_fmi3!($model);
+    };
+}

@@ -4,7 +4,9 @@
 //! from the FMI 2.0 convention `base[i]` / `der(base[i])`.
 
 use robofmu_fmi::core::Variable;
-use robofmu_fmi::core::variables::{BooleanArray, Kind, RealArray, check_table, find};
+use robofmu_fmi::core::arrays::{BooleanArray, RealArray};
+use robofmu_fmi::core::check::check_table;
+use robofmu_fmi::core::variables::{Kind, find};
 
 /// Two axes' worth of boundary values interleaved by axis as the Planner declares
 /// them: q0[a] at 10 a, qf[a] at 10 a + 1.

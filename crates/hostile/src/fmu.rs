@@ -8,10 +8,28 @@ use crate::description::{self, Description};
 use crate::fmi3::binary::Binary3;
 use std::io::Read;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 use std::time::SystemTime;
 
-/// The FMUs the project ships (each as FMI 2.0 and as FMI 3.0).
-pub const MODELS: [&str; 3] = ["Planner", "PID", "Pss3Plant"];
+/// The FMUs the project ships (each as FMI 2.0 and as FMI 3.0), sorted by name: one per
+/// checked-in `modelDescription/<Model>.xml`, which the packager writes for every FMU
+/// crate, so that adding an FMU changes no list here.
+pub fn models() -> &'static [String] {
+    static MODELS: OnceLock<Vec<String>> = OnceLock::new();
+    MODELS.get_or_init(|| {
+        let dir = workspace_root().join("modelDescription");
+        let entries = std::fs::read_dir(&dir)
+            .unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display()));
+        let mut names: Vec<String> = entries
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| p.extension().is_some_and(|x| x == "xml"))
+            .filter_map(|p| Some(p.file_stem()?.to_str()?.to_string()))
+            .collect();
+        names.sort();
+        names
+    })
+}
 
 /// The standard of a packaged FMU: `dist/<Model>.fmu` or `dist/fmi3/<Model>.fmu`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -137,11 +155,15 @@ fn entry(zip: &mut zip::ZipArchive<std::fs::File>, name: &str) -> Result<Vec<u8>
     Ok(bytes)
 }
 
-/// Refuses an FMU older than the FMI layer or FMU sources: it would test old code.
+/// Refuses an FMU older than the FMI layer (runtime and packager) or FMU sources: it
+/// would test old code.
 fn check_not_stale(archive: &Path) -> Result<(), String> {
     let built = modified(archive).unwrap_or(SystemTime::UNIX_EPOCH);
     let root = workspace_root();
-    let mut folders = vec![root.join("crates/fmi/src")];
+    let mut folders = vec![
+        root.join("crates/fmi/src"),
+        root.join("crates/fmi-build/src"),
+    ];
     if let Ok(fmus) = std::fs::read_dir(root.join("fmus")) {
         folders.extend(fmus.flatten().map(|e| e.path().join("src")));
     }

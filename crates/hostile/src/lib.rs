@@ -39,7 +39,7 @@ use fmu::{Fmu, Standard};
 
 /// Every FMU unpacked and loaded (in the parent, before forking): the FMI 2.0
 /// archives with their fmi2 functions, the FMI 3.0 archives with their fmi3 ones,
-/// both in the order of `fmu::MODELS`.
+/// both in the order of `fmu::models()`.
 pub struct Loaded {
     pub fmus: Vec<Fmu>,
     pub binaries: Vec<Binary>,
@@ -48,14 +48,14 @@ pub struct Loaded {
 }
 
 fn unpack_all(standard: Standard) -> Vec<Fmu> {
-    fmu::MODELS
+    fmu::models()
         .iter()
         .map(|m| Fmu::unpack(m, standard).unwrap_or_else(|e| panic!("{e}")))
         .collect()
 }
 
 impl Loaded {
-    /// Unpacks and opens every FMU of `fmu::MODELS`, both standards; panics with
+    /// Unpacks and opens every FMU of `fmu::models()`, both standards; panics with
     /// the reason.
     pub fn all() -> Loaded {
         let fmus = unpack_all(Standard::Fmi2);

@@ -116,7 +116,7 @@ pub fn run_sequence<I: StandardInterface>(
     step: Step<I>,
 ) -> Result<usize, String> {
     let mut rng = SplitMix64::new(seed);
-    let m = rng.below(crate::fmu::MODELS.len());
+    let m = rng.below(crate::fmu::models().len());
     let interface = I::INTERFACES[rng.below(I::INTERFACES.len())];
     let length = 10 + rng.below(30);
     let mut run = Run {

@@ -3,14 +3,14 @@
 //! model is measured in a fresh forked child.
 
 use robofmu_hostile::cycles::{CYCLES, RSS_BOUND, measure};
-use robofmu_hostile::fmu::{Fmu, MODELS, Standard};
+use robofmu_hostile::fmu::{Fmu, Standard, models};
 use robofmu_hostile::isolate;
 
 fn main() {
     let mut failed = false;
     for (standard, model) in Standard::BOTH
         .into_iter()
-        .flat_map(|s| MODELS.map(|m| (s, m)))
+        .flat_map(|s| models().iter().map(move |m| (s, m.as_str())))
     {
         let fmu = Fmu::unpack(model, standard).unwrap_or_else(|e| panic!("{e}"));
         let model = format!("{model} ({})", standard.name());

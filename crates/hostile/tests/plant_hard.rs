@@ -6,9 +6,9 @@ use robofmu_hostile::{Loaded, fmu, isolate};
 
 fn main() {
     let loaded = Loaded::all();
-    let m = fmu::MODELS
+    let m = fmu::models()
         .iter()
-        .position(|&n| n == "Pss3Plant")
+        .position(|n| n == "Pss3Plant")
         .expect("Pss3Plant is shipped");
     let result = isolate::run_one(&|| {
         let (tally, failures) = drive(&loaded, m);

@@ -8,10 +8,8 @@
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
 use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
-use robofmu_fmi::core::variables::{Array, ElementType, RealArray, Role};
-use robofmu_fmi::core::{
-    DefaultExperiment, Log, LogCategory, Model, ModelInfo, StepOutcome, Variability, Variable,
-};
+use robofmu_fmi::core::arrays::ElementType;
+use robofmu_fmi::prelude::*;
 
 pub const CHANNELS: usize = 3;
 
@@ -490,5 +488,4 @@ impl Model for Pid {
 }
 
 // The exported fmi2* symbols of this FMU.
-robofmu_fmi::export_fmi2!(Pid);
-robofmu_fmi::export_fmi3!(Pid);
+export_fmu!(Pid);

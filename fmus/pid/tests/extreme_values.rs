@@ -1,7 +1,7 @@
 //! Extreme finite values (issue 12) are refused where they are set, naming them.
 
-use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::Host;
 use robofmu_pid_fmu::Pid;
 
 #[test]

@@ -9,8 +9,8 @@ mod support;
 use panicky::Panicky;
 use robofmu_fmi::core::Model;
 use robofmu_fmi::fmi2::api;
-use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::Host;
 use robofmu_pid_fmu::Pid;
 use std::ffi::c_char;
 

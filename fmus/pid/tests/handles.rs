@@ -8,8 +8,8 @@ mod support;
 
 use robofmu_fmi::core::{Log, Model, ModelInfo, StepOutcome, Variable};
 use robofmu_fmi::fmi2::api;
-use robofmu_fmi::fmi2::host::{Host, Lines};
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::{Host, Lines};
 use robofmu_pid_fmu::Pid;
 use std::ffi::{CString, c_void};
 use std::sync::Mutex;

@@ -3,8 +3,8 @@
 //! closed-form step of `control::pid_ramp`'s documentation; derivatives survive a
 //! serialized FMU state.
 
-use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::Host;
 use robofmu_pid_fmu::Pid;
 
 fn initialized() -> Host<Pid> {

@@ -4,11 +4,7 @@
 //! the planner itself is unit-agnostic.
 
 use robofmu_control::trajectory::{Boundary, Order, Polynomial};
-use robofmu_fmi::core::variables::{Array, Role};
-use robofmu_fmi::core::{
-    DefaultExperiment, Log, LogCategory, Model, ModelInfo, OutputDerivativeError, StepOutcome,
-    Variability, Variable,
-};
+use robofmu_fmi::prelude::*;
 
 pub const AXES: usize = 3;
 
@@ -314,5 +310,4 @@ impl Model for Planner {
 }
 
 // The exported fmi2* symbols of this FMU.
-robofmu_fmi::export_fmi2!(Planner);
-robofmu_fmi::export_fmi3!(Planner);
+export_fmu!(Planner);

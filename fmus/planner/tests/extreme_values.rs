@@ -1,8 +1,8 @@
 //! Extreme finite parameters (issue 12) are refused where they are set or at
 //! fmi2ExitInitializationMode, naming them; no getter is the first to notice.
 
-use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::Host;
 use robofmu_planner_fmu::Planner;
 
 fn planner() -> Host<Planner> {

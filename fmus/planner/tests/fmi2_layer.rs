@@ -3,8 +3,8 @@
 
 use robofmu_fmi::core::Model;
 use robofmu_fmi::fmi2::api;
-use robofmu_fmi::fmi2::host::{self as fmu_host, Host};
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::{self as fmu_host, Host};
 use robofmu_planner_fmu::Planner;
 use std::ffi::CString;
 

@@ -3,8 +3,8 @@
 //! rest-to-rest polynomials and against finite differences of the outputs themselves
 //! over small communication steps.
 
-use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::Host;
 use robofmu_planner_fmu::Planner;
 
 type H = Host<Planner>;

@@ -25,10 +25,7 @@ use robofmu::pss3::dynamics::{
 };
 use robofmu::pss3::rotation::euler_rates;
 use robofmu::pss3::{FkOptions, assemble, forward_kinematics, start_pose};
-use robofmu_fmi::core::{
-    DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo, OutputDerivativeError,
-    StepOutcome, Variable,
-};
+use robofmu_fmi::prelude::*;
 
 /// The geometry parameters that decide, with the start pose, whether the robot assembles.
 const GEOMETRY: &str = "the geometry lp, ld, gamma, lb, alpha, beta, a";
@@ -472,5 +469,4 @@ impl Model for Pss3Plant {
 }
 
 // The exported fmi2* symbols of this FMU.
-robofmu_fmi::export_fmi2!(Pss3Plant);
-robofmu_fmi::export_fmi3!(Pss3Plant);
+export_fmu!(Pss3Plant);

@@ -16,7 +16,7 @@ use super::variables::*;
 use nalgebra::Vector3;
 use robofmu::pss3::rotation::euler_accelerations;
 use robofmu::pss3::{assemble, jacobian, velocity_product};
-use robofmu_fmi::core::OutputDerivativeError::{self, CannotEvaluate, NotProvided};
+use robofmu_fmi::prelude::OutputDerivativeError::{self, CannotEvaluate, NotProvided};
 
 /// What the plant differentiates exactly, for the refusal message.
 const PROVIDED: &str = "Pss3Plant provides exact output derivatives only of theta, yaw, \

@@ -6,8 +6,7 @@ use super::Pss3Plant;
 use nalgebra::Vector3;
 use robofmu::pss3::ParamError;
 use robofmu::pss3::dynamics::{EndStopMode, PlantParamError};
-use robofmu_fmi::core::variables::RealArray;
-use robofmu_fmi::core::{Variability, Variable};
+use robofmu_fmi::prelude::*;
 
 /// First value reference of the parameters.
 pub const FIRST_VR: u32 = 1000;

@@ -17,7 +17,7 @@ use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{Linearization, PlantInputs, PlantState};
 use robofmu::pss3::rotation::moment_from_generalized_force;
 use robofmu_fmi::core::variables::{Kind, find};
-use robofmu_fmi::core::{Model, Variable};
+use robofmu_fmi::prelude::*;
 
 /// Finite-difference step for a state (rad, rad/s), scaled by 1 + |value|.
 const STATE_STEP: f64 = 1e-4;

@@ -5,8 +5,7 @@
 use super::{Pss3Plant, parameters};
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{PlantInputs, PlantOutputs};
-use robofmu_fmi::core::variables::{IntegerArray, RealArray};
-use robofmu_fmi::core::{Model, Variable};
+use robofmu_fmi::prelude::*;
 
 pub const ACTUATOR_FORCE: u32 = 0;
 pub const TORQUE_COMMAND: u32 = 10;

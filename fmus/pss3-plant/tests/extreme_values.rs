@@ -1,8 +1,8 @@
 //! Extreme finite values (issue 12): a parameter of 1e308 is refused where it is set,
 //! naming it; an input that makes a step overflow discards that step.
 
-use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::Host;
 use robofmu_pss3_plant_fmu::Pss3Plant;
 
 type H = Host<Pss3Plant>;

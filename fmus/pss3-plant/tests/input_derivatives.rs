@@ -4,8 +4,8 @@
 //! in tests/python/test_input_derivatives.py.
 
 use robofmu_fmi::fmi2::api;
-use robofmu_fmi::fmi2::host::{Host, vr};
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::{Host, vr};
 use robofmu_pss3_plant_fmu::Pss3Plant;
 use std::ptr::null;
 

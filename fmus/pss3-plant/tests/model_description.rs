@@ -1,16 +1,14 @@
-//! The checked-in modelDescription/Pss3Plant.xml must equal what the code generates (the
-//! variable table is the single source of truth). Regenerate with
+//! The checked-in modelDescription/Pss3Plant.xml and modelDescription/fmi3/Pss3Plant.xml must
+//! equal what the code generates (the variable table is the single source of truth).
+//! Regenerate both with
 //! `UPDATE_MODEL_DESCRIPTION=1 cargo test --release -p robofmu-pss3-plant-fmu --test model_description`.
 
-use robofmu_fmi::fmi2::description::{
-    check_checked_in, model_description, unknowns_in_section as unknowns,
-};
+use robofmu_fmi_build::fmi2::{model_description, unknowns_in_section as unknowns};
 use robofmu_pss3_plant_fmu::Pss3Plant;
 
 #[test]
-fn checked_in_model_description_matches_the_code() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../modelDescription");
-    check_checked_in::<Pss3Plant>(&dir).unwrap();
+fn checked_in_model_descriptions_match_the_code() {
+    robofmu_fmi_build::drift::check_checked_in::<Pss3Plant>(env!("CARGO_MANIFEST_DIR")).unwrap();
 }
 
 #[test]

@@ -8,8 +8,8 @@
 //! before the first instantiation.
 
 use robofmu_fmi::fmi2::api;
-use robofmu_fmi::fmi2::host::instantiate;
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::instantiate;
 use robofmu_pss3_plant_fmu::Pss3Plant;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

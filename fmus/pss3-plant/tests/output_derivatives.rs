@@ -2,8 +2,8 @@
 //! the exact ones against central differences of the outputs along a fine CS
 //! trajectory (the integrator's, an independent path), and the refusal of the others.
 
-use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::Host;
 use robofmu_pss3_plant_fmu::Pss3Plant;
 
 type H = Host<Pss3Plant>;

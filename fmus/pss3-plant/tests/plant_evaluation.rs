@@ -3,8 +3,8 @@
 //! for a whole seed vector in one call.
 
 use robofmu_fmi::fmi2::api;
-use robofmu_fmi::fmi2::host::{Host, vr};
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::{Host, vr};
 use robofmu_pss3_plant_fmu::Pss3Plant;
 
 type H = Host<Pss3Plant>;

@@ -6,8 +6,8 @@ use nalgebra::{Matrix3, Vector3};
 use robofmu::pss3::dynamics::{Plant, PlantInputs, PlantParams, PlantState};
 use robofmu::pss3::rotation::euler_rate_matrix;
 use robofmu::pss3::{assemble, jacobian};
-use robofmu_fmi::fmi2::host::Host;
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::Host;
 use robofmu_pss3_plant_fmu::Pss3Plant;
 
 type H = Host<Pss3Plant>;
@@ -384,7 +384,7 @@ fn bad_arguments_and_sequences_are_errors() {
 fn dependencies_name_only_inputs_and_states() {
     // Truth: FMI 2.0 ModelStructure, the knowns of outputs and derivatives are inputs
     // and continuous states; a dependency on a parameter is refused by the layer.
-    use robofmu_fmi::core::variables::check_table;
+    use robofmu_fmi::core::check::check_table;
     use robofmu_fmi::core::{Model, Variability, Variable};
     assert_eq!(check_table(&Pss3Plant::variables()), Ok(()));
     let table: Vec<Variable<()>> = vec![

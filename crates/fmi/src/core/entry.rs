@@ -3,82 +3,79 @@
 //! standard's status ([`with_instance`]); creating and freeing an instance; and the
 //! bodies of the functions that FMI 2.0 and FMI 3.0 define alike.
 
-use super::frontend::{Frontend, FrontendInstance, LoggerOf, StatusCode, StatusOf};
+use super::frontend::{FmuInstance, Frontend, LoggerOf, StatusCode};
 use super::handles::{self, HandleKind};
 use super::instance::Snapshot;
-use super::logging::Log;
+use super::log::Log;
 use super::model::Model;
 use super::variables::{Causality, Variability};
 use crate::ffi::{check_finite, input_slice, panic_message, text};
 use std::ffi::{c_char, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-type FrontendOf<I> = <I as FrontendInstance>::Frontend;
-type CallOf<I> = <FrontendOf<I> as Frontend>::Call;
-
 /// Runs `body` on the instance behind `handle` after checking that `call` is legal in
 /// its mode; turns errors into the Error status (+ Error mode) and panics into Fatal
 /// (+ Fatal mode), both with a log line naming `function`.
 ///
 /// # Safety
-/// `handle` is looked up in the registry before use; a live handle of type `I` must
-/// point to an `I` that nothing else borrows during the call.
-pub unsafe fn with_instance<I: FrontendInstance>(
+/// `handle` is looked up in the registry before use; a live handle of type
+/// `FmuInstance<F, M>` must point to one that nothing else borrows during the call.
+pub unsafe fn with_instance<F: Frontend, M: Model>(
     handle: *mut c_void,
     function: &str,
-    call: CallOf<I>,
-    body: impl FnOnce(&mut I) -> Result<StatusOf<FrontendOf<I>>, String>,
-) -> StatusOf<FrontendOf<I>> {
-    type S<I> = StatusOf<FrontendOf<I>>;
+    call: F::Call,
+    body: impl FnOnce(&mut FmuInstance<F, M>) -> Result<F::Status, String>,
+) -> F::Status {
     // Not a live instance of this front-end and FMU (null, garbage, freed, another
     // FMU's, the other standard's): there is no logger to report through.
-    if !handles::is_live::<I>(handle as usize, HandleKind::Instance) {
-        return S::<I>::ERROR;
+    if !handles::is_live::<FmuInstance<F, M>>(handle as usize, HandleKind::Instance) {
+        return F::Status::ERROR;
     }
-    let instance = handle as *mut I;
+    let instance = handle as *mut FmuInstance<F, M>;
     let outcome = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: by the contract above, `handle` points to a live I.
+        // SAFETY: by the contract above, `handle` points to a live instance.
         let inst = unsafe { &mut *instance };
         check_call(inst, call)?;
-        inst.parts().log.debug("logCalls", function);
+        inst.log.debug("logCalls", function);
         body(inst)
     }));
     // SAFETY: as above; the closure's borrow has ended.
-    let parts = unsafe { &mut *instance }.parts();
+    let inst = unsafe { &mut *instance };
     match outcome {
         Ok(Ok(status)) => status,
         Ok(Err(message)) => {
-            parts
-                .log
-                .status(S::<I>::ERROR, &format!("{function}: {message}"));
-            if *parts.mode != FrontendOf::<I>::FATAL {
-                *parts.mode = FrontendOf::<I>::ERROR;
+            inst.log
+                .status(F::Status::ERROR, &format!("{function}: {message}"));
+            if inst.mode != F::FATAL {
+                inst.mode = F::ERROR;
             }
-            S::<I>::ERROR
+            F::Status::ERROR
         }
         Err(payload) => {
             let message = panic_message(payload.as_ref());
-            *parts.mode = FrontendOf::<I>::FATAL;
-            parts.log.status(
-                S::<I>::FATAL,
+            inst.mode = F::FATAL;
+            inst.log.status(
+                F::Status::FATAL,
                 &format!("{function}: internal error (panic): {message}"),
             );
-            S::<I>::FATAL
+            F::Status::FATAL
         }
     }
 }
 
 /// Err when `call` is not legal in the instance's mode.
-fn check_call<I: FrontendInstance>(inst: &mut I, call: CallOf<I>) -> Result<(), String> {
-    let parts = inst.parts();
-    if FrontendOf::<I>::is_legal(call, *parts.mode, parts.interface) {
+fn check_call<F: Frontend, M: Model>(
+    inst: &FmuInstance<F, M>,
+    call: F::Call,
+) -> Result<(), String> {
+    if F::is_legal(call, inst.mode, inst.interface) {
         Ok(())
     } else {
         Err(format!(
             "illegal call sequence: not allowed in {} {:?} ({:?})",
-            FrontendOf::<I>::MODE_WORD,
-            parts.mode,
-            parts.interface
+            F::MODE_WORD,
+            inst.mode,
+            inst.interface
         ))
     }
 }
@@ -86,36 +83,34 @@ fn check_call<I: FrontendInstance>(inst: &mut I, call: CallOf<I>) -> Result<(), 
 /// Instantiation: `create` checks the standard's arguments and builds the instance,
 /// which is then logged, boxed and registered; on an error or a panic, null with a log
 /// line through a logger from `logger`.
-pub fn instantiate<I: FrontendInstance>(
+pub fn instantiate<F: Frontend, M: Model>(
     function: &str,
-    logger: impl Fn() -> LoggerOf<FrontendOf<I>>,
-    create: impl FnOnce(LoggerOf<FrontendOf<I>>) -> Result<I, String>,
+    logger: impl Fn() -> LoggerOf<F>,
+    create: impl FnOnce(LoggerOf<F>) -> Result<FmuInstance<F, M>, String>,
 ) -> *mut c_void {
-    type S<I> = StatusOf<FrontendOf<I>>;
     let created = catch_unwind(AssertUnwindSafe(|| match create(logger()) {
-        Ok(mut instance) => {
-            let parts = instance.parts();
-            parts.log.debug(
+        Ok(instance) => {
+            instance.log.debug(
                 "logEvents",
                 &format!(
                     "instantiated {} for {:?}",
-                    I::Model::info().model_name,
-                    parts.interface
+                    M::info().model_name,
+                    instance.interface
                 ),
             );
             let c = Box::into_raw(Box::new(instance)) as *mut c_void;
-            handles::register::<I>(c as usize, HandleKind::Instance, c as usize);
+            handles::register::<FmuInstance<F, M>>(c as usize, HandleKind::Instance, c as usize);
             c
         }
         Err(message) => {
-            logger().status(S::<I>::ERROR, &format!("{function}: {message}"));
+            logger().status(F::Status::ERROR, &format!("{function}: {message}"));
             std::ptr::null_mut()
         }
     }));
     created.unwrap_or_else(|payload| {
         let message = panic_message(payload.as_ref());
         logger().status(
-            S::<I>::FATAL,
+            F::Status::FATAL,
             &format!("{function}: internal error (panic): {message}"),
         );
         std::ptr::null_mut()
@@ -123,14 +118,15 @@ pub fn instantiate<I: FrontendInstance>(
 }
 
 /// Frees the instance and every FMU state it still owns. A handle that is not a live
-/// `I` is ignored (FreeInstance has no status to report with).
+/// `FmuInstance<F, M>` is ignored (FreeInstance has no status to report with).
 ///
 /// # Safety
-/// Every live handle of type `I` must come from [`instantiate`].
-pub unsafe fn free_instance<I: FrontendInstance>(handle: *mut c_void) {
-    // SAFETY: instantiate boxes an I and registers it under I; `fmu_states` boxes the
-    // states as Snapshot<I::Model>.
-    unsafe { handles::free_instance::<I, I, Snapshot<I::Model>>(handle as usize) }
+/// Every live handle of type `FmuInstance<F, M>` must come from [`instantiate`].
+pub unsafe fn free_instance<F: Frontend, M: Model>(handle: *mut c_void) {
+    type I<F, M> = FmuInstance<F, M>;
+    // SAFETY: instantiate boxes an instance and registers it under its type;
+    // `fmu_states` boxes the states as Snapshot<M>.
+    unsafe { handles::free_instance::<I<F, M>, I<F, M>, Snapshot<M>>(handle as usize) }
 }
 
 /// SetDebugLogging: logging on or off and the enabled categories (all for an empty
@@ -138,12 +134,12 @@ pub unsafe fn free_instance<I: FrontendInstance>(handle: *mut c_void) {
 ///
 /// # Safety
 /// `categories` must be null or valid for `n_categories` C strings.
-pub unsafe fn set_debug_logging<I: FrontendInstance>(
-    inst: &mut I,
+pub unsafe fn set_debug_logging<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
     logging_on: bool,
     n_categories: usize,
     categories: *const *const c_char,
-) -> Result<StatusOf<FrontendOf<I>>, String> {
+) -> Result<F::Status, String> {
     // SAFETY: by the contract above.
     let pointers = unsafe { input_slice(categories, n_categories, "categories[]") }?;
     let names = pointers
@@ -151,7 +147,7 @@ pub unsafe fn set_debug_logging<I: FrontendInstance>(
         // SAFETY: the host's category names are NUL-terminated strings or null.
         .map(|&p| unsafe { text(p, "a category name") }.map(str::to_string))
         .collect::<Result<Vec<_>, _>>()?;
-    inst.log_mut().configure(logging_on, &names)?;
+    inst.log.configure(logging_on, &names)?;
     Ok(StatusCode::OK)
 }
 
@@ -182,34 +178,31 @@ pub fn setup_experiment<M: Model>(
 }
 
 /// ExitInitializationMode: the model's checks, then the mode after initialization.
-pub fn exit_initialization_mode<I: FrontendInstance>(
-    inst: &mut I,
-) -> Result<StatusOf<FrontendOf<I>>, String> {
-    let parts = inst.parts();
-    parts
-        .core
-        .exit_initialization(parts.log)
+pub fn exit_initialization_mode<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
+) -> Result<F::Status, String> {
+    inst.core
+        .exit_initialization(&inst.log)
         .map_err(|e| format!("invalid parameters: {e}"))?;
-    *parts.mode = FrontendOf::<I>::after_initialization(parts.interface);
-    parts.log.debug(
+    inst.mode = F::after_initialization(inst.interface);
+    inst.log.debug(
         "logEvents",
-        &format!("initialized at t = {} s", parts.core.time),
+        &format!("initialized at t = {} s", inst.core.time),
     );
     Ok(StatusCode::OK)
 }
 
 /// Logs that `function` cannot evaluate the model at the instance's time (`reason`)
 /// and returns Discard: the instance stays usable.
-pub fn discard<I: FrontendInstance>(
-    inst: &mut I,
+pub fn discard<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
     function: &str,
     reason: &str,
-) -> StatusOf<FrontendOf<I>> {
-    let parts = inst.parts();
+) -> F::Status {
     let discard = StatusCode::DISCARD;
-    parts.log.status(
+    inst.log.status(
         discard,
-        &format!("{function}: at t = {} s: {reason}", parts.core.time),
+        &format!("{function}: at t = {} s: {reason}", inst.core.time),
     );
     discard
 }
@@ -234,10 +227,10 @@ pub fn settable(
 }
 
 /// Enters `mode` (a call whose only effect is the change of mode).
-pub fn enter<I: FrontendInstance>(
-    inst: &mut I,
-    mode: <FrontendOf<I> as Frontend>::Mode,
-) -> Result<StatusOf<FrontendOf<I>>, String> {
-    *inst.parts().mode = mode;
+pub fn enter<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
+    mode: F::Mode,
+) -> Result<F::Status, String> {
+    inst.mode = mode;
     Ok(StatusCode::OK)
 }

@@ -4,33 +4,37 @@
 //! ([`Frontend::FMU_STATE`]).
 
 use super::fmu_states;
-use super::frontend::{Frontend, FrontendInstance, StatusCode, StatusOf};
+use super::frontend::{FmuInstance, Frontend, StatusCode};
+use super::model::Model;
 use super::serialize::{deserialize, serialize};
 use crate::ffi::{input_slice, output_ref, output_slice};
 use std::ffi::c_void;
 
-type Result<I> = std::result::Result<StatusOf<<I as FrontendInstance>::Frontend>, String>;
+type Result<F> = std::result::Result<<F as Frontend>::Status, String>;
 
-fn noun<I: FrontendInstance>() -> &'static str {
-    I::Frontend::FMU_STATE
+fn noun<F: Frontend>() -> &'static str {
+    F::FMU_STATE
 }
 
 /// GetFMUState: a new state in `*state`, or the state already there overwritten.
 ///
 /// # Safety
 /// `state` must be null or valid; a non-null `*state` must not be borrowed.
-pub unsafe fn get<I: FrontendInstance>(inst: &mut I, state: *mut *mut c_void) -> Result<I> {
-    let owner = inst as *mut I as *mut c_void;
-    let slot = unsafe { output_ref(state, noun::<I>()) }?;
+pub unsafe fn get<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
+    state: *mut *mut c_void,
+) -> Result<F> {
+    let owner = inst as *mut FmuInstance<F, M> as *mut c_void;
+    let slot = unsafe { output_ref(state, noun::<F>()) }?;
     let snapshot = inst.snapshot();
-    fmu_states::store(slot, snapshot, owner, noun::<I>())?;
+    fmu_states::store(slot, snapshot, owner, noun::<F>())?;
     Ok(StatusCode::OK)
 }
 
 /// SetFMUState.
 ///
-pub fn set<I: FrontendInstance>(inst: &mut I, state: *mut c_void) -> Result<I> {
-    let s = fmu_states::snapshot::<I::Model>(state, noun::<I>())?;
+pub fn set<F: Frontend, M: Model>(inst: &mut FmuInstance<F, M>, state: *mut c_void) -> Result<F> {
+    let s = fmu_states::snapshot::<M>(state, noun::<F>())?;
     inst.restore(&s);
     Ok(StatusCode::OK)
 }
@@ -39,9 +43,12 @@ pub fn set<I: FrontendInstance>(inst: &mut I, state: *mut c_void) -> Result<I> {
 ///
 /// # Safety
 /// `state` must be null or valid; a non-null `*state` must not be borrowed.
-pub unsafe fn free<I: FrontendInstance>(_inst: &mut I, state: *mut *mut c_void) -> Result<I> {
-    let slot = unsafe { output_ref(state, noun::<I>()) }?;
-    fmu_states::free::<I::Model>(slot, noun::<I>())?;
+pub unsafe fn free<F: Frontend, M: Model>(
+    _inst: &mut FmuInstance<F, M>,
+    state: *mut *mut c_void,
+) -> Result<F> {
+    let slot = unsafe { output_ref(state, noun::<F>()) }?;
+    fmu_states::free::<M>(slot, noun::<F>())?;
     Ok(StatusCode::OK)
 }
 
@@ -49,13 +56,13 @@ pub unsafe fn free<I: FrontendInstance>(_inst: &mut I, state: *mut *mut c_void) 
 ///
 /// # Safety
 /// `size` must be null or valid.
-pub unsafe fn serialized_size<I: FrontendInstance>(
-    inst: &mut I,
+pub unsafe fn serialized_size<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
     state: *mut c_void,
     size: *mut usize,
-) -> Result<I> {
-    let s = fmu_states::snapshot::<I::Model>(state, noun::<I>())?;
-    *unsafe { output_ref(size, "size") }? = serialize(inst.parts().core.table(), &s).len();
+) -> Result<F> {
+    let s = fmu_states::snapshot::<M>(state, noun::<F>())?;
+    *unsafe { output_ref(size, "size") }? = serialize(inst.core.table(), &s).len();
     Ok(StatusCode::OK)
 }
 
@@ -63,19 +70,19 @@ pub unsafe fn serialized_size<I: FrontendInstance>(
 ///
 /// # Safety
 /// `bytes` must be null or valid for `size` bytes.
-pub unsafe fn serialize_into<I: FrontendInstance>(
-    inst: &mut I,
+pub unsafe fn serialize_into<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
     state: *mut c_void,
     bytes: *mut u8,
     size: usize,
-) -> Result<I> {
-    let s = fmu_states::snapshot::<I::Model>(state, noun::<I>())?;
-    let data = serialize(inst.parts().core.table(), &s);
+) -> Result<F> {
+    let s = fmu_states::snapshot::<M>(state, noun::<F>())?;
+    let data = serialize(inst.core.table(), &s);
     if size != data.len() {
         return Err(format!(
             "size {size} differs from fmi{}Serialized{}Size = {}",
-            I::Frontend::STANDARD.code(),
-            noun::<I>(),
+            F::STANDARD.code(),
+            noun::<F>(),
             data.len()
         ));
     }
@@ -89,16 +96,16 @@ pub unsafe fn serialize_into<I: FrontendInstance>(
 /// # Safety
 /// `bytes` must be null or valid for `size` bytes, `state` null or valid; a non-null
 /// `*state` must not be borrowed.
-pub unsafe fn deserialize_from<I: FrontendInstance>(
-    inst: &mut I,
+pub unsafe fn deserialize_from<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
     bytes: *const u8,
     size: usize,
     state: *mut *mut c_void,
-) -> Result<I> {
-    let owner = inst as *mut I as *mut c_void;
+) -> Result<F> {
+    let owner = inst as *mut FmuInstance<F, M> as *mut c_void;
     let data = unsafe { input_slice(bytes, size, "serializedState[]") }?;
-    let slot = unsafe { output_ref(state, noun::<I>()) }?;
-    let s = deserialize::<I::Model>(inst.parts().core.table(), data)?;
-    fmu_states::store(slot, s, owner, noun::<I>())?;
+    let slot = unsafe { output_ref(state, noun::<F>()) }?;
+    let s = deserialize::<M>(inst.core.table(), data)?;
+    fmu_states::store(slot, s, owner, noun::<F>())?;
     Ok(StatusCode::OK)
 }

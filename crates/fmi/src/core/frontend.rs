@@ -1,23 +1,16 @@
 //! What a front-end (FMI 2.0, FMI 3.0) is to the shared code: its status codes, its
 //! state machine and its logger ([`Frontend`]), and an instance of it
-//! ([`FrontendInstance`]: a core instance with that front-end's mode, interface and
-//! logger). [`entry`](super::entry) runs every C entry point of both standards through
-//! these traits; each front-end keeps only its C types, its state table, its
+//! ([`FmuInstance`]: a core instance with that front-end's mode, interface and
+//! logger). `entry` runs every C entry point of both standards through
+//! these types; each front-end keeps only its C types, its state table, its
 //! exported symbols and its modelDescription schema.
 
 use super::instance::{Instance, Snapshot, Standard};
-use super::logging::{LogCategory, LogSink, Logger};
+use super::log::LogCategory;
+use super::logging::{LogSink, Logger};
 use super::model::Model;
+pub use super::status::StatusCode;
 use std::fmt::Debug;
-
-/// The return status of a standard's functions, as far as the layer sets it.
-pub trait StatusCode: Copy + Eq + PartialOrd {
-    const OK: Self;
-    const WARNING: Self;
-    const DISCARD: Self;
-    const ERROR: Self;
-    const FATAL: Self;
-}
 
 /// One FMI standard's front-end: the types and rules in which FMI 2.0 and FMI 3.0
 /// differ.
@@ -31,6 +24,8 @@ pub trait Frontend: 'static {
     type Call: Copy;
     /// The host's logger callback of the standard.
     type Sink: LogSink<Status = Self::Status>;
+    /// What an instance of this standard keeps beyond mode, interface, logger and core.
+    type Extra: 'static;
     /// The standard that writes this front-end's FMU states.
     const STANDARD: Standard;
     /// The standard's word for a mode in messages: "mode" or "state".
@@ -75,33 +70,6 @@ macro_rules! status_code {
 }
 pub(crate) use status_code;
 
-/// Implements [`FrontendInstance`] for a front-end's `Instance<M>` (fields `mode`,
-/// `interface`, `log`, `core`) of front-end `$frontend`.
-macro_rules! frontend_instance {
-    ($instance:ident, $frontend:ty) => {
-        impl<M: $crate::core::model::Model> $crate::core::frontend::FrontendInstance
-            for $instance<M>
-        {
-            type Frontend = $frontend;
-            type Model = M;
-
-            fn parts(&mut self) -> $crate::core::frontend::Parts<'_, $frontend, M> {
-                $crate::core::frontend::Parts {
-                    mode: &mut self.mode,
-                    interface: self.interface,
-                    log: &self.log,
-                    core: &mut self.core,
-                }
-            }
-
-            fn log_mut(&mut self) -> &mut $crate::core::frontend::LoggerOf<$frontend> {
-                &mut self.log
-            }
-        }
-    };
-}
-pub(crate) use frontend_instance;
-
 /// The status type of front-end `F`.
 pub type StatusOf<F> = <F as Frontend>::Status;
 
@@ -115,43 +83,54 @@ pub fn log_categories<F: Frontend, M: Model>() -> Vec<LogCategory> {
     all
 }
 
-/// The parts of a front-end instance the shared code works on, borrowed apart.
-pub struct Parts<'a, F: Frontend, M: Model> {
-    pub mode: &'a mut F::Mode,
+/// One instance of model M under the standard of front-end F: the version-neutral
+/// core instance with the standard's mode, interface and logger, and what only that
+/// standard keeps ([`Frontend::Extra`]). FMI 2.0's and FMI 3.0's instance types are
+/// this type (`fmi2::instance::Instance<M>`, `fmi3::instance::Instance<M>`); the
+/// shared code in [`entry`](super::entry) and the `*_calls` modules takes it for
+/// either. Its handle is registered in [`handles`](super::handles) under its own
+/// type, so that an instance of another FMU or of the other standard is refused.
+pub struct FmuInstance<F: Frontend, M: Model> {
+    pub mode: F::Mode,
     pub interface: F::Interface,
-    pub log: &'a LoggerOf<F>,
-    pub core: &'a mut Instance<M>,
+    pub log: LoggerOf<F>,
+    /// Model, table, time, stop time.
+    pub core: Instance<M>,
+    pub extra: F::Extra,
 }
 
-/// An instance of a front-end. Its handle is registered in
-/// [`handles`](super::handles) under its own type, so that an instance of another FMU
-/// or of the other standard is refused.
-pub trait FrontendInstance: Sized + 'static {
-    type Frontend: Frontend;
-    type Model: Model;
-
-    fn parts(&mut self) -> Parts<'_, Self::Frontend, Self::Model>;
-
-    /// The logger, to change which categories reach the host.
-    fn log_mut(&mut self) -> &mut LoggerOf<Self::Frontend>;
+impl<F: Frontend, M: Model> FmuInstance<F, M> {
+    /// A new instance in the Instantiated mode.
+    pub fn with(
+        interface: F::Interface,
+        log: LoggerOf<F>,
+        extra: F::Extra,
+        core: Instance<M>,
+    ) -> Self {
+        FmuInstance {
+            mode: F::INSTANTIATED,
+            interface,
+            log,
+            core,
+            extra,
+        }
+    }
 
     /// Reset: back to the state right after instantiation.
-    fn reset(&mut self) -> Result<(), String> {
-        let parts = self.parts();
-        parts.core.reset()?;
-        *parts.mode = Self::Frontend::INSTANTIATED;
+    pub fn reset(&mut self) -> Result<(), String> {
+        self.core.reset()?;
+        self.mode = F::INSTANTIATED;
         Ok(())
     }
 
     /// The FMU state of the instance now.
-    fn snapshot(&mut self) -> Snapshot<Self::Model> {
-        self.parts().core.snapshot(Self::Frontend::STANDARD)
+    pub fn snapshot(&mut self) -> Snapshot<M> {
+        self.core.snapshot(F::STANDARD)
     }
 
     /// Sets the FMU state `s`.
-    fn restore(&mut self, s: &Snapshot<Self::Model>) {
-        let parts = self.parts();
-        parts.core.restore(s);
-        *parts.mode = Self::Frontend::after_restore(*parts.mode);
+    pub fn restore(&mut self, s: &Snapshot<M>) {
+        self.core.restore(s);
+        self.mode = F::after_restore(self.mode);
     }
 }

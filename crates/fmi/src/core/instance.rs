@@ -2,7 +2,7 @@
 //! time of the experiment, and typed, checked access to the variables. A front-end
 //! adds its mode, logger and C entry points around it.
 
-use super::logging::Log;
+use super::log::Log;
 use super::model::{Model, StepOutcome};
 use super::variables::{Initial, Kind, Variable, VariableType, find};
 

@@ -1,27 +1,15 @@
-//! Logging as a model sees it: a sink for debug messages under declared categories
-//! ([`Log`]; models never see a front-end type), and the [`Logger`] of an instance of
-//! either front-end: the category bookkeeping ([`CategoryFilter`]) and the policy
-//! around a [`LogSink`], the host's callback of one standard.
+//! The host side of logging: the [`Logger`] of an instance of either front-end, the
+//! category bookkeeping ([`CategoryFilter`]) and the policy around a [`LogSink`], the
+//! host's callback of one standard. What a model sees ([`Log`], [`LogCategory`]) is in
+//! [`log`](super::log).
 //!
 //! Policy: messages of status Error and Fatal always reach the host (it needs to know
 //! why a call failed); warnings, discards and debug messages only when logging is on
 //! and their category is enabled (loggingOn at instantiation and SetDebugLogging; an
 //! empty category list enables all categories).
 
-use super::frontend::StatusCode;
-
-/// A log category: name as declared in LogCategories, and its description.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct LogCategory {
-    pub name: &'static str,
-    pub description: &'static str,
-}
-
-/// Where a model writes its debug messages.
-pub trait Log {
-    /// Logs `message` under `category` (a declared category name) if the host enabled it.
-    fn debug(&self, category: &str, message: &str);
-}
+pub use super::log::{Log, LogCategory};
+use super::status::StatusCode;
 
 /// The log categories of one instance and which of them the host enabled: the state
 /// that fmi2SetDebugLogging and fmi3SetDebugLogging change.

@@ -7,13 +7,15 @@
 //! [`serialize`] its checked byte format; [`handles`] registers the live instances and
 //! states so that every handle is checked before use.
 //!
-//! A front-end is a [`frontend::Frontend`] (its status codes, state machine and logger
-//! callback) with a [`frontend::FrontendInstance`]; [`entry`] wraps every C entry point
+//! A front-end is a [`frontend::Frontend`] (its status codes, state machine, logger
+//! callback and extra instance state); an instance of either standard is one type,
+//! [`frontend::FmuInstance`]`<F, M>`; [`entry`] wraps every C entry point
 //! of both standards (handle, mode, logCalls, errors and panics) and holds the bodies
 //! they share, with [`fmu_state_calls`] and [`model_exchange_calls`].
 
 pub mod arrays;
-pub mod description;
+pub mod check;
+pub mod element;
 pub mod entry;
 pub mod fmu_state_calls;
 pub mod fmu_states;
@@ -21,16 +23,17 @@ pub mod frontend;
 pub mod handles;
 pub mod input_derivatives;
 pub mod instance;
+pub mod log;
 pub mod logging;
 pub mod model;
 pub mod model_exchange_calls;
 pub mod output_derivatives;
 pub mod serialize;
-pub mod units;
+pub mod status;
 pub mod variables;
 
 pub use instance::{Instance, Snapshot, Standard};
-pub use logging::{Log, LogCategory};
+pub use log::{Log, LogCategory};
 pub use model::{
     DefaultExperiment, EventUpdate, Model, ModelInfo, OutputDerivativeError, StepOutcome,
 };

@@ -2,7 +2,7 @@
 //! Rust with core types only; a front-end does all pointer handling, argument checking, state-machine
 //! enforcement, logging and unwind catching.
 
-use super::logging::{Log, LogCategory};
+use super::log::{Log, LogCategory};
 use super::variables::Variable;
 
 /// DefaultExperiment of modelDescription.xml.

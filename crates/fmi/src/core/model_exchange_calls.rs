@@ -4,12 +4,12 @@
 //! results into its own C types.
 
 use super::entry::discard;
-use super::frontend::{FrontendInstance, StatusCode, StatusOf};
+use super::frontend::{FmuInstance, Frontend, StatusCode};
 use super::logging::Log;
 use super::model::{EventUpdate, Model};
 use crate::ffi::{input_slice, output_ref, output_slice};
 
-type Result<I> = std::result::Result<StatusOf<<I as FrontendInstance>::Frontend>, String>;
+type Result<F> = std::result::Result<<F as Frontend>::Status, String>;
 
 /// Checks an array length against the model's count.
 pub fn check_len(n: usize, expected: usize, what: &str) -> std::result::Result<(), String> {
@@ -31,28 +31,27 @@ pub fn indicators<M: Model>() -> usize {
 }
 
 /// EnterEventMode: `event_mode` (the front-end's Event Mode) with a log line.
-pub fn enter_event_mode<I: FrontendInstance>(
-    inst: &mut I,
-    event_mode: <I::Frontend as super::frontend::Frontend>::Mode,
-) -> Result<I> {
-    let parts = inst.parts();
-    *parts.mode = event_mode;
-    parts.log.debug(
+pub fn enter_event_mode<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
+    event_mode: F::Mode,
+) -> Result<F> {
+    inst.mode = event_mode;
+    inst.log.debug(
         "logEvents",
-        &format!("event mode at t = {} s", parts.core.time),
+        &format!("event mode at t = {} s", inst.core.time),
     );
     Ok(StatusCode::OK)
 }
 
 /// NewDiscreteStates / UpdateDiscreteStates: the model's update and its next time
 /// event (logged), for the front-end to write out.
-pub fn update_discrete_states<I: FrontendInstance>(inst: &mut I) -> (EventUpdate, Option<f64>) {
-    let parts = inst.parts();
-    let update = parts.core.model_mut().update_discrete_states();
-    let next = parts.core.model().next_time_event(parts.core.time);
+pub fn update_discrete_states<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
+) -> (EventUpdate, Option<f64>) {
+    let update = inst.core.model_mut().update_discrete_states();
+    let next = inst.core.model().next_time_event(inst.core.time);
     if let Some(t) = next {
-        parts
-            .log
+        inst.log
             .debug("logEvents", &format!("next time event at t = {t} s"));
     }
     (update, next)
@@ -63,11 +62,11 @@ pub fn update_discrete_states<I: FrontendInstance>(inst: &mut I) -> (EventUpdate
 ///
 /// # Safety
 /// Both pointers must be null or valid.
-pub unsafe fn completed_integrator_step<I: FrontendInstance, B: From<bool>>(
-    _inst: &mut I,
+pub unsafe fn completed_integrator_step<F: Frontend, M: Model, B: From<bool>>(
+    _inst: &mut FmuInstance<F, M>,
     enter_event_mode: *mut B,
     terminate_simulation: *mut B,
-) -> Result<I> {
+) -> Result<F> {
     // SAFETY: by the contract above.
     let enter = unsafe { output_ref(enter_event_mode, "enterEventMode") }?;
     let stop = unsafe { output_ref(terminate_simulation, "terminateSimulation") }?;
@@ -80,19 +79,19 @@ pub unsafe fn completed_integrator_step<I: FrontendInstance, B: From<bool>>(
 ///
 /// # Safety
 /// `x` must be null or valid for `nx` values.
-pub unsafe fn set_continuous_states<I: FrontendInstance>(
-    inst: &mut I,
+pub unsafe fn set_continuous_states<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
     x: *const f64,
     nx: usize,
     what: &str,
-) -> Result<I> {
-    check_len(nx, states::<I::Model>(), what)?;
+) -> Result<F> {
+    check_len(nx, states::<M>(), what)?;
     // SAFETY: by the contract above.
     let x = unsafe { input_slice(x, nx, what) }?;
     if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
         return Err(format!("{what} contains {bad}"));
     }
-    inst.parts().core.model_mut().set_continuous_states(x);
+    inst.core.model_mut().set_continuous_states(x);
     Ok(StatusCode::OK)
 }
 
@@ -103,18 +102,18 @@ pub unsafe fn set_continuous_states<I: FrontendInstance>(
 ///
 /// # Safety
 /// `ptr` must be null or valid for `n` values.
-pub unsafe fn fill<I: FrontendInstance>(
-    inst: &mut I,
+pub unsafe fn fill<F: Frontend, M: Model>(
+    inst: &mut FmuInstance<F, M>,
     function: &str,
     ptr: *mut f64,
     n: usize,
     expected: usize,
-    f: impl FnOnce(&I::Model, &mut [f64]) -> std::result::Result<(), String>,
-) -> Result<I> {
+    f: impl FnOnce(&M, &mut [f64]) -> std::result::Result<(), String>,
+) -> Result<F> {
     check_len(n, expected, "the array")?;
     // SAFETY: by the contract above.
     let out = unsafe { output_slice(ptr, n, "the array") }?;
-    if let Err(reason) = f(inst.parts().core.model(), out) {
+    if let Err(reason) = f(inst.core.model(), out) {
         return Ok(discard(inst, function, &reason));
     }
     if let Some(bad) = out.iter().find(|v| !v.is_finite()) {

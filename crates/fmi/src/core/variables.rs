@@ -7,9 +7,7 @@
 //! cheap: names, descriptions and dependency lists are static strings wherever the
 //! declaration allows (`Cow<'static, str>`), and only array elements format theirs.
 
-pub use super::arrays::{
-    Array, ArrayElement, BooleanArray, ElementType, IntegerArray, RealArray, Role,
-};
+use super::element::ArrayElement;
 use std::borrow::Cow;
 
 pub type Getter<M, T> = Box<dyn Fn(&M) -> T + Send + Sync>;
@@ -133,7 +131,7 @@ pub struct Variable<M> {
     /// Names of the inputs and continuous states an output or state derivative
     /// depends on (ModelStructure `dependencies`); None: on all of them.
     pub dependencies: Option<&'static [&'static str]>,
-    /// Set for the elements declared by [`RealArray`].
+    /// Set for the elements declared by [`RealArray`](super::arrays::RealArray).
     pub array: Option<ArrayElement>,
 }
 
@@ -386,11 +384,12 @@ pub fn find<M>(table: &[Variable<M>], vr: u32) -> Option<&Variable<M>> {
         .map(|i| &table[i])
 }
 
-/// Checks a table against the rules of the standard that importers enforce: unique
-/// names, value references strictly increasing, legal (causality, variability,
-/// initial) combinations, start values exactly where required, a writer for every
-/// variable that may be set, derivatives that name an existing Real state.
-pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
+/// Checks every variable of a table against the rules of the standard that importers
+/// enforce: unique names, value references strictly increasing, legal (causality,
+/// variability, initial) combinations, start values exactly where required, a writer
+/// for every variable that may be set, derivatives that name an existing Real state.
+/// The whole check, arrays included, is [`check_table`](super::check::check_table).
+pub fn check_variables<M>(table: &[Variable<M>]) -> Result<(), String> {
     use Causality as C;
     use Variability as V;
     for pair in table.windows(2) {
@@ -472,7 +471,7 @@ pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
         }
         check_dependencies(v, table)?;
     }
-    super::arrays::check_arrays(table)
+    Ok(())
 }
 
 /// Dependencies only on outputs and derivatives, and only on inputs and states.

@@ -1,34 +1,23 @@
-//! One FMI 2.0 instance: the version-neutral [`core::Instance`](crate::core::Instance)
-//! plus the 2.0 mode, interface and logger. The C entry points in `api` only translate
-//! pointers into calls on this type.
+//! One FMI 2.0 instance: the layer's one instance type
+//! ([`FmuInstance`]) for the FMI 2.0 front-end, with the 2.0 rules for setting values.
+//! The C entry points in `api` only translate pointers into calls on this type.
 
 use super::logging::Logger;
 use super::mode::{Fmi2, Interface, Mode};
 use crate::core::entry;
-use crate::core::frontend::frontend_instance;
+use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
 use crate::core::variables::{Causality, Initial, Variability, Variable, VariableType};
 
-/// Everything an instance owns. Instances share no mutable state.
-pub struct Instance<M: Model> {
-    pub mode: Mode,
-    pub interface: Interface,
-    pub log: Logger,
-    /// Model, time, stop time.
-    pub core: core_instance::Instance<M>,
-}
+/// Everything an FMI 2.0 instance owns (nothing beyond the shared fields). Instances
+/// share no mutable state.
+pub type Instance<M> = FmuInstance<Fmi2, M>;
 
-frontend_instance!(Instance, Fmi2);
-
-impl<M: Model> Instance<M> {
+impl<M: Model> FmuInstance<Fmi2, M> {
     pub fn new(interface: Interface, log: Logger) -> Result<Self, String> {
-        Ok(Instance {
-            mode: Mode::Instantiated,
-            interface,
-            log,
-            core: core_instance::Instance::new()?,
-        })
+        let core = core_instance::Instance::new()?;
+        Ok(FmuInstance::with(interface, log, (), core))
     }
 
     /// Whether `v` may be written in the current mode (FMI 2.0 rules for fmi2Set*).

@@ -137,6 +137,7 @@ impl Frontend for Fmi2 {
     type Interface = Interface;
     type Call = Call;
     type Sink = Callback;
+    type Extra = ();
     const STANDARD: Standard = Standard::Fmi2;
     const FMU_STATE: &'static str = "FMUstate";
     const MODE_WORD: &'static str = "mode";

@@ -1,37 +1,25 @@
-//! One FMI 3.0 instance: the version-neutral [`core::Instance`](crate::core::Instance)
-//! plus the 3.0 mode, interface, logger and the FMI 3.0 view of the variable table.
+//! One FMI 3.0 instance: the layer's one instance type ([`FmuInstance`]) for the FMI
+//! 3.0 front-end, whose extra part ([`Fmi3Extra`]) is the FMI 3.0 view of the variable
+//! table and the intermediate-update callback.
 //! Values are read and written per FMI 3.0 variable (a scalar or an array) through the
 //! table's elements.
 
+use super::extra::Fmi3Extra;
 use super::intermediate::IntermediateUpdate;
 use super::logging::Logger;
 use super::mode::{Fmi3, Interface, Mode};
-use super::table::{Source, Table3, Variable3, build};
+use super::table::{Source, Variable3, build};
 use crate::core::entry;
-use crate::core::frontend::frontend_instance;
+use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
 use crate::core::variables::{Causality, Initial, Variability};
 use std::sync::Arc;
 
-/// Everything an instance owns. Instances share no mutable state.
-pub struct Instance<M: Model> {
-    pub mode: Mode,
-    pub interface: Interface,
-    pub log: Logger,
-    /// Model, time, stop time, the model's variable table.
-    pub core: core_instance::Instance<M>,
-    /// The FMI 3.0 view of the core's table (shared, so that a call can hold it while
-    /// it changes the instance).
-    pub table: Arc<Table3>,
-    /// The importer's intermediateUpdate callback (Co-Simulation; None: steps are not
-    /// split).
-    pub intermediate_update: Option<IntermediateUpdate>,
-}
+/// Everything an FMI 3.0 instance owns. Instances share no mutable state.
+pub type Instance<M> = FmuInstance<Fmi3, M>;
 
-frontend_instance!(Instance, Fmi3);
-
-impl<M: Model> Instance<M> {
+impl<M: Model> FmuInstance<Fmi3, M> {
     pub fn new(
         interface: Interface,
         log: Logger,
@@ -39,14 +27,11 @@ impl<M: Model> Instance<M> {
     ) -> Result<Self, String> {
         let core = core_instance::Instance::new()?;
         let table = Arc::new(build(core.table())?);
-        Ok(Instance {
-            mode: Mode::Instantiated,
-            interface,
-            log,
-            core,
+        let extra = Fmi3Extra {
             table,
             intermediate_update,
-        })
+        };
+        Ok(FmuInstance::with(interface, log, extra, core))
     }
 
     /// Makes the computed values current for reading `variables`; Ok(Some(reason))

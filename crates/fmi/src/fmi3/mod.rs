@@ -3,17 +3,15 @@
 //! A model implements [`core::Model`](crate::core::Model) once; an FMU crate calls
 //! [`export_fmi3!`](crate::export_fmi3) beside `export_fmi2!` to export the FMI 3.0
 //! functions of Model Exchange and Co-Simulation from the same cdylib.
-//! modelDescription.xml (FMI 3.0) is generated from the same table by
-//! [`description::model_description`], with the table's `x[1]`..`x[n]` scalars as one
-//! array `x` ([`table`]).
+//! The table's `x[1]`..`x[n]` scalars are one array `x` here ([`table`]); the build
+//! crate (`robofmu-fmi-build`) writes modelDescription.xml (FMI 3.0) from the same view.
 
 pub mod api;
-pub mod description;
 mod export;
+pub mod extra;
 pub mod instance;
 pub mod intermediate;
 pub mod logging;
 pub mod mode;
-pub mod package;
 pub mod table;
 pub mod types;

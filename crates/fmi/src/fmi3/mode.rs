@@ -159,6 +159,7 @@ impl Frontend for Fmi3 {
     type Interface = Interface;
     type Call = Call;
     type Sink = Callback;
+    type Extra = super::extra::Fmi3Extra;
     const STANDARD: Standard = Standard::Fmi3;
     const FMU_STATE: &'static str = "FMUState";
     const MODE_WORD: &'static str = "state";

@@ -2,13 +2,13 @@
 //! through dlopen, without forking, FMI 2.0 and FMI 3.0: the program
 //! scripts/memcheck.sh runs under valgrind memcheck. Exits 1 if a call fails.
 
-use robofmu_hostile::fmu::{Fmu, MODELS, Standard};
+use robofmu_hostile::fmu::{Fmu, Standard, models};
 use robofmu_hostile::{fmi3, lifecycle};
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let models: Vec<&str> = if args.is_empty() {
-        MODELS.to_vec()
+        models().iter().map(String::as_str).collect()
     } else {
         args.iter().map(String::as_str).collect()
     };

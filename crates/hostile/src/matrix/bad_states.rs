@@ -88,7 +88,7 @@ fn probe<I: StandardInterface>(
     if let Err(e) = I::reach(&inst, I::INITIALIZATION_MODE) {
         return Observed::broken(e);
     }
-    let other = interface.instance(l, (m + 1) % crate::fmu::MODELS.len());
+    let other = interface.instance(l, (m + 1) % crate::fmu::models().len());
     let mut owned_block = None;
     let state = match bad {
         BadState::ZeroedBlock | BadState::RandomBlock => {

@@ -104,7 +104,7 @@ impl<'a, I: StandardInterface> Scene<'a, I> {
         let own = interface.instance(l, m);
         let (_, state) = own.new_state();
         let args = I::args(&own, state);
-        let other = interface.instance(l, (m + 1) % crate::fmu::MODELS.len());
+        let other = interface.instance(l, (m + 1) % crate::fmu::models().len());
         I::reach(&other, I::INITIALIZATION_MODE)?;
         Ok(Scene {
             own,

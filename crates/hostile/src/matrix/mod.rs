@@ -213,7 +213,7 @@ pub fn full_name(case: &Case) -> String {
     format!(
         "{} / {} / {} / {}",
         case.class,
-        crate::fmu::MODELS[case.model],
+        crate::fmu::models()[case.model],
         interface,
         case.name
     )
@@ -241,7 +241,7 @@ pub type Cases = fn(&Loaded, usize) -> Vec<Case>;
 
 /// The cases of every builder of `classes` for each of the models, model by model.
 pub fn per_model(loaded: &Loaded, classes: &[Cases]) -> Vec<Case> {
-    (0..crate::fmu::MODELS.len())
+    (0..crate::fmu::models().len())
         .flat_map(|m| classes.iter().flat_map(move |class| class(loaded, m)))
         .collect()
 }
@@ -297,7 +297,7 @@ pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
         "pass",
         "fail",
         "known",
-        crate::fmu::MODELS.join("/")
+        crate::fmu::models().join("/")
     );
     let mut details = String::new();
     let mut failed = false;
@@ -329,7 +329,7 @@ pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
             }
         }
         failed |= fail > 0;
-        let per_model: Vec<String> = (0..crate::fmu::MODELS.len())
+        let per_model: Vec<String> = (0..crate::fmu::models().len())
             .map(|m| {
                 let count = cases
                     .iter()

@@ -3,7 +3,7 @@
 
 use super::with_instance;
 use crate::core::entry;
-use crate::core::frontend::{FrontendInstance, log_categories};
+use crate::core::frontend::log_categories;
 use crate::core::model::Model;
 use crate::ffi::text;
 use crate::fmi2::instance::Instance;
@@ -91,7 +91,7 @@ pub unsafe fn instantiate<M: Model>(
 /// Frees the instance and every FMU state it still owns. A handle that is not a live
 /// instance of this FMU is ignored (fmi2FreeInstance returns nothing to report with).
 pub unsafe fn free_instance<M: Model>(c: Fmi2Component) {
-    unsafe { entry::free_instance::<Instance<M>>(c) }
+    unsafe { entry::free_instance::<Fmi2, M>(c) }
 }
 
 pub unsafe fn set_debug_logging<M: Model>(

@@ -3,7 +3,7 @@
 
 use super::with_instance;
 use crate::core::entry;
-use crate::core::frontend::{FrontendInstance, log_categories};
+use crate::core::frontend::log_categories;
 use crate::core::model::Model;
 use crate::core::model_exchange_calls;
 use crate::ffi::text;
@@ -91,7 +91,7 @@ pub unsafe fn refuse_scheduled_execution<M: Model>(
 /// Frees the instance and every FMU state it still owns. A handle that is not a live
 /// FMI 3.0 instance of this FMU is ignored (fmi3FreeInstance reports nothing).
 pub unsafe fn free_instance<M: Model>(c: Fmi3Instance) {
-    unsafe { entry::free_instance::<Instance<M>>(c) }
+    unsafe { entry::free_instance::<Fmi3, M>(c) }
 }
 
 pub unsafe fn set_debug_logging<M: Model>(

@@ -97,10 +97,11 @@ pub unsafe fn get_number_of_variable_dependencies<M: Model>(
             |inst| {
                 let out = output_ref(n, "nDependencies")?;
                 let v = inst
+                    .extra
                     .table
                     .find(vr)
                     .ok_or_else(|| format!("unknown value reference {vr}"))?;
-                *out = dependencies(inst.core.table(), &inst.table, v)?.len();
+                *out = dependencies(inst.core.table(), &inst.extra.table, v)?.len();
                 Ok(Fmi3Status::Ok)
             },
         )
@@ -128,10 +129,11 @@ pub unsafe fn get_variable_dependencies<M: Model>(
             Call::VariableDependencies,
             |inst| {
                 let v = inst
+                    .extra
                     .table
                     .find(dependent)
                     .ok_or_else(|| format!("unknown value reference {dependent}"))?;
-                let list = dependencies(inst.core.table(), &inst.table, v)?;
+                let list = dependencies(inst.core.table(), &inst.extra.table, v)?;
                 let n = out.n_dependencies;
                 if n != list.len() {
                     return Err(format!(

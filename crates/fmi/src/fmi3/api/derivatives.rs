@@ -16,6 +16,7 @@ fn elements<M: Model>(inst: &Instance<M>, vrs: &[u32], what: &str) -> Result<Vec
     let mut out = Vec::new();
     for &vr in vrs {
         let v = inst
+            .extra
             .table
             .find(vr)
             .ok_or_else(|| format!("{what}: unknown value reference {vr}"))?;

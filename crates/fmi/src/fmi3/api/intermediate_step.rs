@@ -14,7 +14,7 @@
 //! Any illegal call from the callback puts the instance in the Error state, and the
 //! step then ends with fmi3Error.
 
-use super::co_simulation::{StepReport, StepResult, step};
+use super::step::{StepReport, StepResult, step};
 use super::with_instance;
 use crate::core::model::Model;
 use crate::fmi3::instance::Instance;
@@ -48,7 +48,7 @@ impl SplitStep {
         t: f64,
         h: f64,
     ) -> Result<Option<Self>, String> {
-        let Some(callback) = inst.intermediate_update else {
+        let Some(callback) = inst.extra.intermediate_update else {
             return Ok(None);
         };
         if M::INTERMEDIATE_UPDATE_POINTS == 0 {

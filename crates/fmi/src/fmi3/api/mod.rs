@@ -19,6 +19,7 @@ mod derivatives;
 mod fmu_state;
 mod intermediate_step;
 mod model_exchange;
+mod step;
 mod unsupported;
 mod values;
 
@@ -28,6 +29,7 @@ pub use dependencies::*;
 pub use derivatives::*;
 pub use fmu_state::*;
 pub use model_exchange::*;
+pub use step::StepResult;
 pub use unsupported::*;
 pub use values::*;
 

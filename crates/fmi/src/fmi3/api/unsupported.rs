@@ -16,7 +16,7 @@ fn no_variable_of_type<M: Model>(
     vr: u32,
     wanted: &str,
 ) -> String {
-    match inst.table.find(vr) {
+    match inst.extra.table.find(vr) {
         Some(v) => format!(
             "\"{}\" (value reference {vr}) is a {} variable, not {wanted}",
             v.name,

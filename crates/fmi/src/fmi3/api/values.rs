@@ -24,7 +24,7 @@ fn read<M: Model, T: Default + Clone>(
     read: impl Fn(&Instance<M>, &Variable3, &mut [T]) -> Result<(), String>,
 ) -> Result<Fmi3Status, String> {
     check_array(values, n_values, "values[]")?;
-    let table = Arc::clone(&inst.table);
+    let table = Arc::clone(&inst.extra.table);
     // nValues is checked against the declared sizes before a slice of that length
     // is formed over the host's buffer.
     let variables = table.typed_all(vrs, wanted, n_values)?;
@@ -50,7 +50,7 @@ fn write<M: Model, T>(
     write: impl Fn(&mut Instance<M>, &Variable3, &[T]) -> Result<(), String>,
 ) -> Result<Fmi3Status, String> {
     check_array(values, n_values, "values[]")?;
-    let table = Arc::clone(&inst.table);
+    let table = Arc::clone(&inst.extra.table);
     let variables = table.typed_all(vrs, wanted, n_values)?;
     // SAFETY: as in `read`, the length was checked against the variables first.
     let values = unsafe { input_slice(values, n_values, "values[]") }?;

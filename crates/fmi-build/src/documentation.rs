@@ -1,8 +1,8 @@
 //! documentation/index.html of an FMU: the model's description and a table of its
 //! variables, generated from the same table as modelDescription.xml.
 
-use crate::core::model::Model;
-use crate::core::variables::Kind;
+use robofmu_fmi::core::model::Model;
+use robofmu_fmi::core::variables::Kind;
 
 fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
@@ -15,7 +15,7 @@ fn escape(text: &str) -> String {
 pub fn documentation<M: Model>(standard: &str) -> Result<String, String> {
     let info = M::info();
     let mut rows = String::new();
-    for v in &crate::core::instance::sorted_table::<M>()? {
+    for v in &robofmu_fmi::core::instance::sorted_table::<M>()? {
         let (start, unit) = match &v.kind {
             Kind::Real { start, unit, .. } => {
                 (start.map(|s| format!("{s:?}")), unit.map(str::to_string))
@@ -45,7 +45,7 @@ pub fn documentation<M: Model>(standard: &str) -> Result<String, String> {
          <th>variability</th><th>start</th><th>unit</th><th>description</th></tr>\n{rows}</table>\n</body></html>\n",
         name = escape(info.model_name),
         description = escape(info.description),
-        tool = crate::core::description::GENERATION_TOOL,
+        tool = crate::common::GENERATION_TOOL,
         start = e.start_time,
         stop = e.stop_time,
         step = e.step_size,

@@ -2,7 +2,7 @@
 //! built beside this binary; `robofmu-pss3-plant-fmu model-description [--out DIR]` writes the XML.
 
 fn main() -> std::process::ExitCode {
-    robofmu_fmi::fmi2::package::packager_main::<robofmu_pss3_plant_fmu::Pss3Plant>(env!(
+    robofmu_fmi_build::package::packager_main::<robofmu_pss3_plant_fmu::Pss3Plant>(env!(
         "CARGO_PKG_NAME"
     ))
 }

@@ -6,8 +6,8 @@ use robofmu_fmi::core::{
     DefaultExperiment, EventUpdate, Log, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
 use robofmu_fmi::fmi2::api;
-use robofmu_fmi::fmi2::host::{Host, vr};
 use robofmu_fmi::fmi2::types::*;
+use robofmu_fmi_testing::{Host, vr};
 
 const INFO: DefaultExperiment = DefaultExperiment {
     start_time: 0.0,
@@ -315,7 +315,8 @@ fn a_step_ending_at_the_stop_time_despite_round_off_is_accepted() {
 
 #[test]
 fn one_array_declaration_gives_named_scalars_with_getters_setters_and_dimensions() {
-    use robofmu_fmi::core::variables::{ArrayElement, Kind, RealArray};
+    use robofmu_fmi::core::arrays::{ArrayElement, RealArray};
+    use robofmu_fmi::core::variables::Kind;
     // theta[1..3] at value references 101..103 over a plain [f64; 3].
     let array = RealArray::new(101, "theta", 3, "angle", |m: &[f64; 3], i| m[i])
         .set(|m, i, v| {
@@ -356,7 +357,8 @@ fn one_array_declaration_gives_named_scalars_with_getters_setters_and_dimensions
 
 #[test]
 fn an_array_with_a_missing_element_is_rejected_by_the_table_check() {
-    use robofmu_fmi::core::variables::{RealArray, check_table};
+    use robofmu_fmi::core::arrays::RealArray;
+    use robofmu_fmi::core::check::check_table;
     let array = || {
         RealArray::new(11, "u", 3, "input", |m: &[f64; 3], i| m[i])
             .set(|m, i, v| {
@@ -388,6 +390,6 @@ fn a_model_that_takes_no_input_derivatives_refuses_them_naming_itself() {
         "fmi2SetRealInputDerivatives: Doubler takes no input derivatives (its inputs are \
          held over a step)"
     );
-    let xml = robofmu_fmi::fmi2::description::model_description::<Doubler>().unwrap();
+    let xml = robofmu_fmi_build::fmi2::model_description::<Doubler>().unwrap();
     assert!(!xml.contains("canInterpolateInputs"), "{xml}");
 }

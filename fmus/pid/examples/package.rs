@@ -2,5 +2,5 @@
 //! built beside this binary; `robofmu-pid-fmu model-description [--out DIR]` writes the XML.
 
 fn main() -> std::process::ExitCode {
-    robofmu_fmi::fmi2::package::packager_main::<robofmu_pid_fmu::Pid>(env!("CARGO_PKG_NAME"))
+    robofmu_fmi_build::package::packager_main::<robofmu_pid_fmu::Pid>(env!("CARGO_PKG_NAME"))
 }

@@ -10,11 +10,11 @@ use robofmu_fmi::core::{
     Variable,
 };
 use robofmu_fmi::fmi2::api;
-use robofmu_fmi::fmi2::host::{Host, vr};
 use robofmu_fmi::fmi2::types::*;
 use robofmu_fmi::fmi3::api as api3;
 use robofmu_fmi::fmi3::mode::Interface;
 use robofmu_fmi::fmi3::types::{FMI3_FALSE, FMI3_TRUE, Fmi3Instance, Fmi3Status};
+use robofmu_fmi_testing::{Host, vr};
 
 /// y = a t (derivatives a, 0); w = y^2, whose derivatives it declines to give; an
 /// input u that the outputs cannot be evaluated with beyond 100.

@@ -3,10 +3,10 @@
 //! uses), `<LogCategories>`, `<DefaultExperiment>`, and the drift check of a
 //! checked-in description. The front-ends' writers embed these elements.
 
-use super::logging::LogCategory;
-use super::model::{DefaultExperiment as Experiment, Model};
-use super::units::{UNITS, UnitDefinition, unit};
-use super::variables::{Kind, Variable};
+use crate::units::{UNITS, UnitDefinition, unit};
+use robofmu_fmi::core::logging::LogCategory;
+use robofmu_fmi::core::model::{DefaultExperiment as Experiment, Model};
+use robofmu_fmi::core::variables::{Kind, Variable};
 use serde::Serialize;
 
 /// Name and version of the generating tool, as written into generationTool.
@@ -203,6 +203,6 @@ pub fn check_checked_in<M: Model>(dir: &std::path::Path, generated: &str) -> Res
 
 /// The maxOutputDerivativeOrder attribute of `<CoSimulation>`: left out (default 0) when
 /// the model provides no output derivatives.
-pub fn max_output_derivative_order(info: &crate::core::model::ModelInfo) -> Option<u32> {
+pub fn max_output_derivative_order(info: &robofmu_fmi::core::model::ModelInfo) -> Option<u32> {
     (info.max_output_derivative_order > 0).then_some(info.max_output_derivative_order)
 }

@@ -1,14 +1,13 @@
 //! modelDescription.xml generated from a model's `ModelInfo` and variable table.
 
-use super::mode::Fmi2;
-use crate::core::description::{
+use crate::common::{
     self, DefaultExperiment, GENERATION_TOOL, LogCategories, UnitDefinitions, number,
 };
-use crate::core::frontend::log_categories;
-use crate::core::model::Model;
-use crate::core::variables::{
-    Causality, Initial, Kind, Variable, check_table, derivative_variables,
-};
+use robofmu_fmi::core::check::check_table;
+use robofmu_fmi::core::frontend::log_categories;
+use robofmu_fmi::core::model::Model;
+use robofmu_fmi::core::variables::{Causality, Initial, Kind, Variable, derivative_variables};
+use robofmu_fmi::fmi2::mode::Fmi2;
 use serde::Serialize;
 
 #[derive(Serialize)]
@@ -237,7 +236,7 @@ fn scalar_variable<M>(v: &Variable<M>, table: &[Variable<M>]) -> ScalarVariable 
 /// The text of modelDescription.xml for model M.
 pub fn model_description<M: Model>() -> Result<String, String> {
     let info = M::info();
-    let sorted = crate::core::instance::sorted_table::<M>()?;
+    let sorted = robofmu_fmi::core::instance::sorted_table::<M>()?;
     let table = &sorted[..];
     check_table(table)?;
     let derivatives = derivative_variables(table);
@@ -292,7 +291,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         model_exchange: interface(None),
         co_simulation: Interface {
             interpolate_inputs: (M::MAX_INPUT_DERIVATIVE_ORDER > 0).then_some(true),
-            max_output_derivative_order: description::max_output_derivative_order(info),
+            max_output_derivative_order: common::max_output_derivative_order(info),
             ..interface(Some(true))
         },
         unit_definitions: UnitDefinitions::of(table)?,
@@ -312,14 +311,14 @@ pub fn model_description<M: Model>() -> Result<String, String> {
             initial_unknowns: unknown_list(initial_unknowns),
         },
     };
-    description::xml_document(&description)
+    common::xml_document(&description)
 }
 
 /// The drift check of an FMU crate: the checked-in `<dir>/<modelName>.xml` must equal
 /// what the code generates. With the environment variable UPDATE_MODEL_DESCRIPTION
 /// set, the file is rewritten first.
 pub fn check_checked_in<M: Model>(dir: &std::path::Path) -> Result<(), String> {
-    description::check_checked_in::<M>(dir, &model_description::<M>()?)
+    common::check_checked_in::<M>(dir, &model_description::<M>()?)
 }
 
 /// Number of `<Unknown>` entries in one ModelStructure section (`Outputs`,

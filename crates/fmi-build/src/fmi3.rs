@@ -4,15 +4,16 @@
 //! (`<Output>`, `<ContinuousStateDerivative>`, `<InitialUnknown>`, `<EventIndicator>`
 //! with their dependencies as value references).
 
-use super::mode::Fmi3;
-use super::table::{self, Table3, Variable3, build};
-use crate::core::description::{
+use crate::common::{
     self, DefaultExperiment, GENERATION_TOOL, LogCategories, UnitDefinitions, number,
 };
-use crate::core::frontend::log_categories;
-use crate::core::instance::sorted_table;
-use crate::core::model::Model;
-use crate::core::variables::{Causality, Initial, Kind, Variable, check_table, find};
+use robofmu_fmi::core::check::check_table;
+use robofmu_fmi::core::frontend::log_categories;
+use robofmu_fmi::core::instance::sorted_table;
+use robofmu_fmi::core::model::Model;
+use robofmu_fmi::core::variables::{Causality, Initial, Kind, Variable, find};
+use robofmu_fmi::fmi3::mode::Fmi3;
+use robofmu_fmi::fmi3::table::{self, Table3, Variable3, build};
 use serde::Serialize;
 
 #[derive(Serialize)]
@@ -303,7 +304,7 @@ fn interfaces<M: Model>() -> (Interface, Interface) {
         has_event_mode: Some(true),
         // Steps end early at events (sign changes of the event indicators).
         might_return_early: (info.number_of_event_indicators > 0).then_some(true),
-        max_output_derivative_order: description::max_output_derivative_order(info),
+        max_output_derivative_order: common::max_output_derivative_order(info),
         provides_intermediate_update: (M::INTERMEDIATE_UPDATE_POINTS > 0).then_some(true),
         ..common()
     };
@@ -344,12 +345,12 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         model_variables: ModelVariables { variables },
         model_structure: model_structure(&table, &t)?,
     };
-    description::xml_document(&description)
+    common::xml_document(&description)
 }
 
 /// The drift check of an FMU crate: the checked-in `<dir>/<modelName>.xml` (dir:
 /// `modelDescription/fmi3`) must equal what the code generates. With the environment
 /// variable UPDATE_MODEL_DESCRIPTION set, the file is rewritten first.
 pub fn check_checked_in<M: Model>(dir: &std::path::Path) -> Result<(), String> {
-    description::check_checked_in::<M>(dir, &model_description::<M>()?)
+    common::check_checked_in::<M>(dir, &model_description::<M>()?)
 }

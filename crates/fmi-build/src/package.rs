@@ -1,13 +1,13 @@
 //! Writes an FMU archive (modelDescription.xml, `binaries/<platform>/<modelIdentifier>`
 //! with the platform's library extension, documentation/index.html), and the small
-//! command-line packager that every FMU crate's binary runs.
+//! command-line packager that every FMU crate's `examples/package.rs` runs.
 
-use super::description::model_description;
-use super::documentation::documentation;
-use crate::core::instance::Standard;
-use crate::core::model::Model;
-use crate::fmi3::description::model_description as fmi3_description;
-use crate::fmi3::package::platform_tuple;
+use crate::documentation::documentation;
+use crate::fmi2::model_description;
+use crate::fmi3::model_description as fmi3_description;
+use crate::platform::platform_tuple;
+use robofmu_fmi::core::instance::Standard;
+use robofmu_fmi::core::model::Model;
 use std::fs::File;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -80,7 +80,7 @@ pub fn write_fmu(out: &Path, c: &FmuContents) -> Result<(), String> {
 
 const USAGE: &str = "usage: <packager> package [--out DIR] | model-description [--out DIR]";
 
-/// Entry point of an FMU crate's packager binary (`src/main.rs` calls it with
+/// Entry point of an FMU crate's packager (`examples/package.rs` calls it with
 /// `env!("CARGO_PKG_NAME")`): `package` writes the FMI 2.0 FMU `<DIR>/<modelName>.fmu`
 /// and the FMI 3.0 FMU `<DIR>/fmi3/<modelName>.fmu` (default `dist`) from the cdylib
 /// built beside the binary, which exports both; `model-description` writes
@@ -145,14 +145,18 @@ fn create_dir(dir: &Path) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))
 }
 
-/// Packages M for `standard` from the cdylib that cargo built beside the running
-/// binary.
-fn package<M: Model>(crate_name: &str, out: &Path, standard: Standard) -> Result<(), String> {
+/// The cdylib of `crate_name` that cargo built for the running packager: the packager
+/// is an example (`target/<profile>/examples/`), the cdylib is in `target/<profile>/`.
+fn built_library(crate_name: &str) -> Result<PathBuf, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot locate the packager: {e}"))?;
-    let library = exe
-        .parent()
-        .ok_or("the packager has no parent directory")?
-        .join(library_file_name(crate_name));
+    let examples = exe.parent().ok_or("the packager has no parent directory")?;
+    let profile = examples.parent().unwrap_or(examples);
+    Ok(profile.join(library_file_name(crate_name)))
+}
+
+/// Packages M for `standard` from the cdylib that cargo built for the running packager.
+fn package<M: Model>(crate_name: &str, out: &Path, standard: Standard) -> Result<(), String> {
+    let library = built_library(crate_name)?;
     let (model_description, documentation, platform) = match standard {
         Standard::Fmi2 => (
             model_description::<M>()?,

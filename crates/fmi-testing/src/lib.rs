@@ -2,9 +2,9 @@
 //! entry points (the functions the exported symbols forward to), addresses variables
 //! by name and keeps the log.
 
-use crate::core::Model;
-use crate::fmi2::api;
-use crate::fmi2::types::*;
+use robofmu_fmi::core::Model;
+use robofmu_fmi::fmi2::api;
+use robofmu_fmi::fmi2::types::*;
 use std::ffi::{CStr, CString, c_char, c_void};
 use std::sync::Mutex;
 

@@ -2,7 +2,7 @@
 //! built beside this binary; `robofmu-planner-fmu model-description [--out DIR]` writes the XML.
 
 fn main() -> std::process::ExitCode {
-    robofmu_fmi::fmi2::package::packager_main::<robofmu_planner_fmu::Planner>(env!(
+    robofmu_fmi_build::package::packager_main::<robofmu_planner_fmu::Planner>(env!(
         "CARGO_PKG_NAME"
     ))
 }
