@@ -87,7 +87,7 @@ def ctypes_loop(master: Master) -> None:
     kernel = Kernel(master.fmus, master.inputs, {}, s.order)
     h = s.step_size
     for k in range(s.steps):
-        kernel.step_all(s.start_time + k * h, h, True)
+        kernel.step_all(s.start_time + k * h, h, True, True)
 
 
 def _median_per_step(scenario, make, runs: int) -> float:

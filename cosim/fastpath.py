@@ -101,11 +101,16 @@ class Kernel:
         for transfer in self.transfers[alias]:
             transfer()
 
-    def step_all(self, t: float, h: float, sampled: bool) -> None:
-        if sampled:
-            for alias in self.order:
-                for transfer in self.transfers[alias]:
-                    transfer()
+    def propagate(self) -> None:
+        """Every FMU's inputs from its sources, in order (the sampled coupling)."""
+        for alias in self.order:
+            for transfer in self.transfers[alias]:
+                transfer()
+
+    def step_all(self, t: float, h: float, propagate: bool, sampled: bool) -> None:
+        """One step of every FMU; `propagate`: the sampled propagation first."""
+        if propagate:
+            self.propagate()
         for alias, do_step, component in self.steppers:
             if not sampled:
                 for transfer in self.transfers[alias]:

@@ -13,6 +13,14 @@ scenario's order, with two couplings:
   earlier in the order. A source that is a function of time (the planner) then leads
   by one step: the loop tracks q(t + h) instead of q(t), an O(h) artefact.
 
+Recorded moment: row k holds every recorded signal at t_k as it is exchanged over the
+step from t_k. With "sampled", that is after the inputs of t_k are set (row 0 after
+initialization, row k > 0 after step k - 1 and the propagation at t_k that step k uses),
+so a recorded output is the value its targets hold over [t_k, t_k + h] (pid.u is the
+control the plant receives); the propagation is the one the next step needs anyway, so
+recording costs no extra FMU calls. With "gauss-seidel", row k + 1 is read after every
+FMU has made step k: each output there is the value passed on during that step.
+
 Time is an integer step count, so t_k never accumulates rounding. A step that an FMU
 discards is retried as two half steps, down to the scenario's max_step_halvings, with
 every FMU rolled back to the start of the step.
@@ -108,19 +116,25 @@ class Master:
         for source, variables, inputs in self.inputs[alias]:
             self.fmus[alias].set_values(inputs, self.fmus[source].get_values(variables))
 
-    def _advance(self, numerator: int, denominator: int, halvings_left: int) -> None:
-        """Advances every FMU from t(numerator/denominator) by step_size/denominator."""
+    def _propagate(self) -> None:
+        """Sampled coupling: every FMU's inputs from its sources' current outputs, in order."""
+        for alias in self.scenario.order:
+            self._set_inputs(alias)
+
+    def _advance(self, numerator: int, denominator: int, halvings_left: int,
+                 inputs_set: bool = False) -> None:
+        """Advances every FMU from t(numerator/denominator) by step_size/denominator;
+        `inputs_set`: the sampled propagation at that time is done already."""
         t = self._time(numerator, denominator)
         h = self.scenario.step_size / denominator
         saved = ({a: f.get_state() for a, f in self.fmus.items()} if halvings_left > 0 else None)
         sampled = self.scenario.coupling == "sampled"
         try:
             if self.kernel is not None:
-                self.kernel.step_all(t, h, sampled)
+                self.kernel.step_all(t, h, sampled and not inputs_set, sampled)
             else:
-                if sampled:
-                    for alias in self.scenario.order:
-                        self._set_inputs(alias)
+                if sampled and not inputs_set:
+                    self._propagate()
                 for alias in self.scenario.order:
                     if not sampled:
                         self._set_inputs(alias)
@@ -190,11 +204,15 @@ class Master:
             for alias in s.order:
                 self.fmus[alias].exit_initialization()
             self._record(rows, 0)
+            sampled = s.coupling == "sampled"
             loop_started = time.perf_counter()
             for k in range(s.steps):
-                if k in switches:
+                switched = k in switches
+                if switched:
                     self._switch_plan(switches[k])
-                self._advance(k, 1, s.max_step_halvings)
+                self._advance(k, 1, s.max_step_halvings, inputs_set=not switched)
+                if sampled:  # the inputs at t_{k+1}: recorded now, used by step k + 1
+                    self._propagate()
                 self._record(rows, k + 1)
                 if self.progress is not None:
                     self.progress((k + 1) / s.steps)
