@@ -48,12 +48,11 @@ class Table:
         self.done: set[str] = set()
         path.parent.mkdir(parents=True, exist_ok=True)
         if resume and path.exists():
-            with open(path, newline="") as f:
-                rows = list(csv.reader(f))
+            rows = _complete_rows(path)
             if rows and rows[0] != header:
                 raise ValueError(f"{path}: written by another SPEC (columns differ); "
                                  "run without --resume or choose another --out")
-            self.done = {r[0] for r in rows[1:] if len(r) > 1 and r[1] == "ok"}
+            self.done = {r[0] for r in rows[1:] if len(r) == len(header) and r[1] == "ok"}
             self.file = open(path, "a", newline="")
             if not rows:
                 csv.writer(self.file).writerow(header)
@@ -71,6 +70,27 @@ class Table:
 
     def close(self) -> None:
         self.file.close()
+
+
+def _complete_rows(path: Path) -> list[list[str]]:
+    """The table's rows without a torn last line: a sweep killed while writing leaves
+    a line without its newline, which is cut off here (the file too, so that the next
+    row starts on a line of its own) and its run made again."""
+    with open(path, "rb+") as f:
+        data = f.read()
+        end = data.rfind(b"\n") + 1
+        if end < len(data):
+            f.truncate(end)
+    try:
+        text = data[:end].decode()
+    except UnicodeDecodeError:
+        raise ValueError(f"{path}: not a sweep table (not UTF-8 text); run without "
+                         "--resume or choose another --out") from None
+    try:
+        return list(csv.reader(text.splitlines(keepends=True)))
+    except csv.Error as e:
+        raise ValueError(f"{path}: not a sweep table ({e}); run without --resume or "
+                         "choose another --out") from None
 
 
 def read_table(path: Path) -> tuple[list[str], list[dict]]:

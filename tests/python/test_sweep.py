@@ -11,8 +11,6 @@ import csv
 import math
 import os
 import sys
-import threading
-import time
 from pathlib import Path
 
 import numpy as np
@@ -90,34 +88,61 @@ def test_two_worker_cluster_gives_the_serial_results(tmp_path):
     assert [p.name for p in dask.plots] == ["small_grid.png", "small_histogram.png"]
 
 
-def test_a_killed_workers_runs_are_retried(tmp_path):
+class KillOnce:
+    """A worker plugin that ends its worker process the moment a task starts executing
+    there, once per cluster (the marker file is created exclusively): a deterministic
+    kill -9 in the middle of a run, with no thread racing the sweep."""
+
+    name = "kill-once"
+
+    def __init__(self, marker: str):
+        self.marker = marker
+
+    def setup(self, worker):
+        pass
+
+    def teardown(self, worker):
+        pass
+
+    def transition(self, key, start, finish, **kwargs):
+        if finish == "executing" and str(key).startswith("cosim-runs-"):
+            try:
+                os.close(os.open(self.marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+            except FileExistsError:
+                return
+            os._exit(9)
+
+
+def test_a_killed_workers_runs_are_retried(tmp_path, monkeypatch):
+    # Truth: the serial runs. A worker dies in the middle of its first task; the
+    # scheduler gives the task to the restarted (or the other) worker and the table is
+    # the serial table. The sweep runs inside a `with Client(...)` of the caller's own,
+    # which once made as_completed track the sweep's futures on the caller's event loop
+    # (a result lost with the worker was then awaited on the sweep's loop: "bound to a
+    # different event loop", issue 19): the futures must be tracked on the sweep's loop.
+    import distributed
     from distributed import Client, LocalCluster
+    from distributed.diagnostics.plugin import WorkerPlugin
     spec = load_spec(write_spec(tmp_path, GRID_AND_DRAWS, samples=4, omegas="[10, 30]"))
-    serial = run_sweep(spec, tmp_path / "serial", workers=0, progress=False)
-    table = tmp_path / "dask" / "small.csv"
+    serial = run_sweep(spec, tmp_path / "serial", workers=0, progress=False, plots=False)
+    marker = tmp_path / "killed"
+    loops = []
+    original = distributed.as_completed
+
+    def tracked(futures, loop=None, **kwargs):
+        loops.append(loop)
+        return original(futures, loop=loop, **kwargs)
+
+    monkeypatch.setattr(distributed, "as_completed", tracked)
+    plugin = type("KillOncePlugin", (KillOnce, WorkerPlugin), {})(str(marker))
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster, Client(cluster) as client:
-        killed = []
-
-        def kill_a_busy_worker():
-            while not table.exists() or len(table.read_text().splitlines()) < 2:
-                time.sleep(0.02)
-            for _ in range(500):  # a worker with a run in progress, within 10 s
-                busy = [w for w, tasks in client.processing().items() if tasks]
-                if busy:
-                    pid = client.run(os.getpid, workers=busy[:1])[busy[0]]
-                    os.kill(pid, 9)
-                    killed.append(pid)
-                    return
-                time.sleep(0.02)
-
-        killer = threading.Thread(target=kill_a_busy_worker)
-        killer.start()
+        client.register_plugin(plugin)
         outcome = run_sweep(spec, tmp_path / "dask", scheduler=cluster.scheduler_address,
-                            progress=False)
-        killer.join()
-    assert killed and outcome.failed == 0 and outcome.runs == 8
-    assert rows(table) == rows(serial.table)
+                            progress=False, plots=False, batch=2)
+        assert loops and loops[0] is not None and loops[0] is not client.loop
+    assert marker.exists() and outcome.failed == 0 and outcome.runs == 8
+    assert rows(outcome.table) == rows(serial.table)
 
 
 def test_resume_runs_only_what_is_missing(tmp_path):
@@ -198,7 +223,7 @@ def test_the_command_refuses_a_malformed_spec_by_field(tmp_path):
     spec = write_spec(tmp_path, BASE + "[grid.'gains.omega']\nfrom = 10\nto = 60\n")
     run = subprocess.run([sys.executable, "-m", "cosim", "sweep", str(spec), "--out",
                           str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
-    assert run.returncode == 1
+    assert run.returncode == 2
     assert "field 'grid.gains.omega.steps' must be a positive integer" in run.stderr
     assert not (tmp_path / "small.csv").exists()
 
