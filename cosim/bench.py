@@ -126,6 +126,10 @@ def _scenario_path(name: str) -> Path:
 
 
 def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["sweep"]:  # cosim bench sweep: throughput per worker count
+        from .bench_sweep import main as bench_sweep
+        return bench_sweep(argv[1:])
     parser = argparse.ArgumentParser(prog="python -m cosim.bench", description=__doc__)
     parser.add_argument("scenarios", nargs="*", default=["three_axis_quintic"])
     parser.add_argument("--runs", type=int, default=5)

@@ -20,11 +20,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .plots import plot_sweep
-from .runner import FmuStore, execute, read_fmus, run_on_worker, warm, worker_plugin
+from .engine import auto_batch, run_dask, run_serial
+from .runner import read_fmus
 from .spec import Spec, SpecError, document_for, load_spec, run_id
 from .store import Progress, Table, columns, read_table, values_row
 
-__all__ = ["Spec", "SpecError", "SweepOutcome", "load_spec", "run_sweep", "reachable_on"]
+__all__ = ["Spec", "SpecError", "SweepOutcome", "auto_batch", "load_spec", "run_sweep",
+           "reachable_on"]
 
 
 @dataclass
@@ -40,13 +42,17 @@ class SweepOutcome:
     batch: int = 1  # runs per task
     ready_s: float = 0.0  # from the start to the workers being ready (cluster start-up)
     started_at: float = 0.0  # perf_counter() at the start of run_sweep
+    client_cpu_s: float = 0.0  # CPU time of this process (client, scheduler of a
+    # LocalCluster, table writer; the runs themselves when serial) after the workers
+    # were ready
 
     def throughput(self) -> float:
         """Runs per second from the workers being ready to the last completed run
         (leaves out the cluster's start-up and the workers' warm-up)."""
-        t = self.completed_at
-        span = t[-1] - self.started_at - self.ready_s if t else 0.0
-        return len(t) / span if span > 0 else 0.0
+        ready = self.started_at + self.ready_s
+        after = [t for t in self.completed_at if t >= ready]
+        span = after[-1] - ready if after else 0.0
+        return len(after) / span if span > 0 else 0.0
 
 
 def reachable_on(plant_fmu: Path):
@@ -54,85 +60,6 @@ def reachable_on(plant_fmu: Path):
     every actuator within its stroke."""
     from .reach import reachable
     return lambda pose: reachable(plant_fmu, pose)
-
-
-def _client(scheduler: str | None, workers: int | None):
-    from distributed import Client, LocalCluster
-    if scheduler is not None:
-        return Client(scheduler, set_as_default=False), None
-    cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
-                           processes=True, dashboard_address=None)
-    return Client(cluster, set_as_default=False), cluster
-
-
-def _run_serial(todo, fmus, blobs, record, ready):
-    store = FmuStore(blobs)
-    store.setup()
-    warm(store, fmus)
-    ready()
-    for rid, values, document in todo:
-        record(rid, values, execute(store, document, fmus))
-
-
-def _batches(todo: list, size: int) -> list[list]:
-    return [todo[i:i + size] for i in range(0, len(todo), size)]
-
-
-def _run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, ready):
-    from distributed import as_completed
-    client, cluster = _client(scheduler, workers)
-    try:
-        client.register_plugin(worker_plugin(blobs, fmus))  # every worker warm
-        count = max(1, len(client.scheduler_info()["workers"]))
-        size = batch or auto_batch(len(todo), count, _steps(todo))
-        ready(size)
-        values_of = {rid: values for rid, values, _ in todo}
-        futures = {client.submit(run_on_worker, [(rid, doc) for rid, _, doc in chunk], fmus,
-                                 key=f"cosim-runs-{chunk[0][0]}-{len(chunk)}", pure=False,
-                                 retries=retries): chunk
-                   for chunk in _batches(todo, size)}
-        # The sweep's own client and loop: never a client the caller made current (a
-        # `with Client(...)` around run_sweep); as_completed would otherwise track these
-        # futures on that client's event loop, and a result lost with a killed worker
-        # would be waited for again on this one ("bound to a different event loop").
-        for future in as_completed(futures, loop=client.loop):
-            try:
-                outcomes = future.result()
-            except Exception as e:  # worker lost too often (KilledWorker), or a bug
-                reason = f"{type(e).__name__}: {e}"
-                outcomes = [(rid, {"status": "failed", "reason": reason})
-                            for rid, _, _ in futures[future]]
-            for rid, outcome in outcomes:
-                record(rid, values_of[rid], outcome)
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
-
-
-RUN_STEP_S = 6e-5  # a closed-loop step of the three FMUs on the worker (cosim bench sweep)
-TASK_S = 0.5  # target length of one task: the scheduler's ~1 ms per task is then 0.2 %
-TASKS_PER_WORKER = 4  # at least, so that the last tasks balance over the workers
-
-
-def auto_batch(runs: int, workers: int, steps: int) -> int:
-    """Runs per task: as many as fit TASK_S, and few enough that every worker gets
-    TASKS_PER_WORKER tasks (the load balances at the end of the sweep)."""
-    by_length = int(TASK_S / max(steps * RUN_STEP_S, 1e-9))
-    by_balance = runs // (TASKS_PER_WORKER * max(workers, 1))
-    return max(1, min(by_length, by_balance))
-
-
-def _steps(todo) -> int:
-    """Communication steps of a run (of the first; the runs of a sweep differ in
-    parameters only, rarely in length)."""
-    from ..scenario import parse_document
-    if not todo:
-        return 1
-    try:
-        return parse_document(todo[0][2], Path(".")).steps
-    except Exception:  # noqa: BLE001 - an estimate only; the run reports the problem
-        return 1000
 
 
 def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
@@ -154,7 +81,7 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
     bar = Progress(len(todo), len(spec.runs) - len(todo), enabled=progress)
     completed_at: list[float] = []
     reasons: Counter = Counter()
-    setup = {"ready_s": 0.0, "batch": 1}
+    setup = {"ready_s": 0.0, "batch": 1, "cpu": time.process_time()}
 
     def record(rid, values, outcome):
         table.append(rid, values_row(spec, values), outcome)
@@ -165,14 +92,16 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
 
     def ready(size: int = 1) -> None:
         setup["ready_s"], setup["batch"] = time.perf_counter() - started, size
+        setup["cpu"] = time.process_time()
 
     try:
         if workers == 0 and scheduler is None:
-            _run_serial(todo, fmus, blobs, record, ready)
+            run_serial(todo, fmus, blobs, record, ready)
         elif todo:
-            _run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, ready)
+            run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, ready)
     finally:
         table.close()
+    client_cpu = time.process_time() - setup["cpu"]
     written = []
     if plots:
         header, rows = read_table(table.path)
@@ -181,7 +110,7 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
                              out, spec.name)
     return SweepOutcome(table.path, written, len(todo), len(spec.runs) - len(todo),
                         bar.failed, time.perf_counter() - started, completed_at, reasons,
-                        setup["batch"], setup["ready_s"], started)
+                        setup["batch"], setup["ready_s"], started, client_cpu)
 
 
 def _kinds(spec: Spec) -> list[str]:

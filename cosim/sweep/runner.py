@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import shutil
 import tempfile
 import time
 from pathlib import Path
@@ -58,6 +59,7 @@ class InstancePool:
     def discard(self, fmu) -> None:
         """An instance that failed is not reused."""
         fmu.close()
+        shutil.rmtree(fmu._unzip, ignore_errors=True)
 
 
 class FmuStore:
@@ -77,6 +79,17 @@ class FmuStore:
         if self.folder is None:
             self.setup()
         return self.folder / f"{digest}.fmu"
+
+    def close(self) -> None:
+        """Frees the idle instances and removes the FMU files."""
+        for fmus in self.pool.idle.values():
+            for fmu in fmus:
+                fmu.close()
+                shutil.rmtree(fmu._unzip, ignore_errors=True)
+        self.pool.idle.clear()
+        if self.folder is not None:
+            shutil.rmtree(self.folder, ignore_errors=True)
+            self.folder = None
 
 
 def read_fmus(document: dict, base: Path, fmu_dir: Path | None) -> tuple[dict, dict]:
@@ -186,9 +199,7 @@ def worker_plugin(blobs: dict[str, bytes], fmus: dict[str, str]):
             warm(self.store, self.fmus)
 
         def teardown(self, worker):
-            for fmus in self.store.pool.idle.values():
-                for fmu in fmus:
-                    fmu.close()
+            self.store.close()
 
     return FmuPlugin(blobs, fmus)
 

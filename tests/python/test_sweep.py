@@ -247,3 +247,14 @@ def test_random_draws_are_seeded_truncated_and_follow_their_distribution():
     assert abs(a.mean() - expected) < 5 * sd / np.sqrt(len(a))
     assert abs(b.mean() - 2.0) < 5 * np.sqrt(1 / 3 / len(b))
     assert abs(b.var() - 1 / 3) < 0.03
+
+
+def test_auto_batch_fits_the_task_length_and_keeps_every_worker_busy():
+    # Closed form: runs per task = min(TASK_S / (steps RUN_STEP_S), runs / (4 workers)),
+    # at least 1.
+    from cosim.sweep.engine import RUN_STEP_S, TASK_S, auto_batch
+    by_length = int(TASK_S / (1000 * RUN_STEP_S))
+    assert auto_batch(100000, 16, 1000) == by_length
+    assert auto_batch(64, 16, 1000) == 1  # 64 runs / (4 x 16 workers)
+    assert auto_batch(400, 2, 1000) == min(by_length, 50)
+    assert auto_batch(3, 8, 10 ** 9) == 1

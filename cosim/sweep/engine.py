@@ -1,0 +1,133 @@
+"""Where a sweep's runs execute: serially in this process, or as batches of runs on a
+Dask cluster (a LocalCluster started here, or an existing one by its scheduler's
+address).
+
+While the cluster starts (worker processes importing, FMUs unpacked and loaded by the
+worker plugin), this process makes runs itself, serially; the rest is submitted as
+tasks of `auto_batch` runs once the workers are ready, so the start-up is not lost time
+and one worker is not slower than serial. Results are written by the caller's `record`
+in this process as the tasks complete.
+"""
+
+from __future__ import annotations
+
+import os
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from .runner import FmuStore, execute, run_on_worker, warm, worker_plugin
+
+RUN_STEP_S = 2.5e-5  # a closed-loop step of the three FMUs (cosim bench sweep: ~25 ms/run)
+TASK_S = 0.25  # target length of a task: this process's ~10 ms per task is then 4 %
+TASKS_PER_WORKER = 4  # at least, so that the last tasks balance over the workers
+
+
+def auto_batch(runs: int, workers: int, steps: int) -> int:
+    """Runs per task: as many as fit TASK_S, and few enough that every worker gets
+    TASKS_PER_WORKER tasks (the load balances at the end of the sweep)."""
+    by_length = int(TASK_S / max(steps * RUN_STEP_S, 1e-9))
+    by_balance = runs // (TASKS_PER_WORKER * max(workers, 1))
+    return max(1, min(by_length, by_balance))
+
+
+def _steps(todo) -> int:
+    """Communication steps of a run (of the first: the runs of a sweep differ in
+    parameters, rarely in length); an estimate for auto_batch only."""
+    from ..scenario import parse_document
+    try:
+        return parse_document(todo[0][2], Path(".")).steps
+    except Exception:  # noqa: BLE001 - an estimate; the run itself reports a problem
+        return 1000
+
+
+def run_serial(todo, fmus, blobs, record, ready) -> None:
+    store = FmuStore(blobs)
+    store.setup()
+    warm(store, fmus)
+    ready()
+    try:
+        for rid, values, document in todo:
+            record(rid, values, execute(store, document, fmus))
+    finally:
+        store.close()
+
+
+def _client(scheduler: str | None, workers: int | None):
+    from distributed import Client, LocalCluster
+    if scheduler is not None:
+        return Client(scheduler, set_as_default=False), None
+    cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
+                           processes=True, dashboard_address=None)
+    return Client(cluster, set_as_default=False), cluster
+
+
+def _start(scheduler, workers, blobs, fmus):
+    """Client, cluster (or None) and worker count, every worker warm."""
+    client, cluster = _client(scheduler, workers)
+    try:
+        client.register_plugin(worker_plugin(blobs, fmus))
+        return client, cluster, max(1, len(client.scheduler_info()["workers"]))
+    except BaseException:
+        _close(client, cluster)
+        raise
+
+
+def _close(client, cluster) -> None:
+    client.close()
+    if cluster is not None:
+        cluster.close()
+
+
+def _meanwhile(todo, fmus, blobs, record, starting) -> int:
+    """Runs in this process until the cluster is ready; how many were made."""
+    store, made = FmuStore(blobs), 0
+    try:
+        while not starting.done() and made < len(todo):
+            if made == 0:
+                warm(store, fmus)
+            rid, values, document = todo[made]
+            record(rid, values, execute(store, document, fmus))
+            made += 1
+    finally:
+        store.close()
+    return made
+
+
+def run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, ready) -> None:
+    with ThreadPoolExecutor(1, thread_name_prefix="cosim-cluster-start") as pool:
+        starting = pool.submit(_start, scheduler, workers, blobs, fmus)
+        try:
+            made = _meanwhile(todo, fmus, blobs, record, starting)
+        finally:
+            client, cluster, count = starting.result()
+    try:
+        rest = todo[made:]
+        size = batch or auto_batch(len(rest), count, _steps(todo))
+        ready(size)
+        if rest:
+            _gather(client, rest, fmus, record, retries, size)
+    finally:
+        _close(client, cluster)
+
+
+def _gather(client, todo, fmus, record, retries, size) -> None:
+    from distributed import as_completed
+    values_of = {rid: values for rid, values, _ in todo}
+    chunks = [todo[i:i + size] for i in range(0, len(todo), size)]
+    futures = {client.submit(run_on_worker, [(rid, doc) for rid, _, doc in chunk], fmus,
+                             key=f"cosim-runs-{chunk[0][0]}-{len(chunk)}", pure=False,
+                             retries=retries): chunk
+               for chunk in chunks}
+    # The sweep's own client and loop: never a client the caller made current (a
+    # `with Client(...)` around run_sweep); as_completed would otherwise track these
+    # futures on that client's event loop, and a result lost with a killed worker
+    # would be waited for again on this one ("bound to a different event loop").
+    for future in as_completed(futures, loop=client.loop):
+        try:
+            outcomes = future.result()
+        except Exception as e:  # worker lost too often (KilledWorker), or a bug
+            reason = f"{type(e).__name__}: {e}"
+            outcomes = [(rid, {"status": "failed", "reason": reason})
+                        for rid, _, _ in futures[future]]
+        for rid, outcome in outcomes:
+            record(rid, values_of[rid], outcome)
