@@ -20,6 +20,7 @@ master's median time per step over the minimal loop's, of the first scenario.
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 import statistics
 import sys
 import time
@@ -138,15 +139,19 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     ratio = None
     for name in args.scenarios:
-        scenario = load_scenario(_scenario_path(name))
+        # Held inputs for the loops that compare with the minimal loop (which holds);
+        # the master with linear extrapolation (the default) on a line of its own.
+        scenario = replace(load_scenario(_scenario_path(name)), input_extrapolation="hold")
+        linear = replace(scenario, input_extrapolation="linear")
         cases = {
-            "minimal FMPy loop": lambda s: _Timed(s, minimal_loop),
-            "master": lambda s: Master(s),
-            "master (FMPy calls)": lambda s: Master(s, fast=False),
-            "ctypes loop (no recording)": lambda s: _Timed(s, ctypes_loop),
+            "minimal FMPy loop": (scenario, lambda s: _Timed(s, minimal_loop)),
+            "master": (scenario, Master),
+            "master (FMPy calls)": (scenario, lambda s: Master(s, fast=False)),
+            "ctypes loop (no recording)": (scenario, lambda s: _Timed(s, ctypes_loop)),
+            "master, linear extrapolation": (linear, Master),
         }
-        medians = {label: _median_per_step(scenario, make, args.runs)
-                   for label, make in cases.items()}
+        medians = {label: _median_per_step(s, make, args.runs)
+                   for label, (s, make) in cases.items()}
         print(f"{name}: {scenario.steps} steps of {scenario.step_size} s, median over "
               f"{args.runs} runs of the stepping loop, per step:")
         for label, median in medians.items():

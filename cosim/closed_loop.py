@@ -67,7 +67,8 @@ RECORD = ([f"plant.force[{i}]" for i in (1, 2, 3)] + [f"plant.l[{i}]" for i in (
           + [f"planner.qddot[{i}]" for i in (1, 2, 3)])
 PROFILES = {"cubic": 3, "quintic": 5}
 KNOWN = {"name", "description", "start_time", "stop_time", "step_size", "fmus", "motion",
-         "start", "gains", "plant", "record", "coupling", "max_step_halvings"}
+         "start", "gains", "plant", "record", "coupling", "max_step_halvings",
+         "input_extrapolation"}
 
 
 @dataclass(frozen=True)
@@ -224,7 +225,8 @@ def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
              "connections": [{"from": f"{a}.{x}[{i}]", "to": f"{b}.{y}[{i}]"}
                              for a, x, b, y in CONNECTIONS for i in (1, 2, 3)],
              "record": data.get("record", RECORD)}
-    for key in ("name", "coupling", "max_step_halvings", "description"):
+    for key in ("name", "coupling", "input_extrapolation", "max_step_halvings",
+                "description"):
         if key in data:
             plain[key] = data[key]
     switches = []

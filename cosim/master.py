@@ -39,6 +39,7 @@ import numpy as np
 
 from .errors import CosimError, StepDiscarded
 from .scenario import Scenario, Signal
+from .slopes import History, served
 
 
 @dataclass
@@ -116,10 +117,57 @@ class Master:
         for source, variables, inputs in self.inputs[alias]:
             self.fmus[alias].set_values(inputs, self.fmus[source].get_values(variables))
 
-    def _propagate(self) -> None:
-        """Sampled coupling: every FMU's inputs from its sources' current outputs, in order."""
+    def _set_slopes(self, alias: str, t: float) -> None:
+        for source, variables, inputs, history in self.slopes[alias]:
+            fmu = self.fmus[source]
+            if history is None:
+                slopes = fmu.get_output_slopes(variables)
+            else:
+                slopes = history.slopes(t, np.array(fmu.get_values(variables)))
+            self.fmus[alias].set_input_slopes(inputs, slopes)
+
+    def _propagate(self, t: float) -> None:
+        """Sampled coupling at time t: every FMU's inputs from its sources' current
+        outputs, in order, then (linear extrapolation) the slopes, from outputs that now
+        all answer for the inputs just set."""
+        if self.kernel is not None:
+            self.kernel.propagate(t)
+            return
         for alias in self.scenario.order:
             self._set_inputs(alias)
+        for alias in self.scenario.order:
+            self._set_slopes(alias, t)
+
+    def _slope_pairs(self) -> dict[str, list]:
+        """Per target FMU, the connections that pass slopes with input_extrapolation =
+        "linear", where the target interpolates inputs (canInterpolateInputs): the
+        source's output derivatives where it serves them (cosim.slopes), else the slope
+        through the outputs at the last two communication points (History)."""
+        pairs: dict[str, list] = {alias: [] for alias in self.scenario.order}
+        if self.scenario.input_extrapolation != "linear":
+            return pairs
+        for alias in self.scenario.order:
+            if not getattr(self.fmus[alias], "can_interpolate_inputs", False):
+                continue
+            for source, variables, inputs in self.inputs[alias]:
+                pairs[alias] += self._split(source, variables, inputs)
+        return pairs
+
+    def _split(self, source, variables, inputs) -> list:
+        """(source, variables, inputs, None) for the served slopes, (..., History) for
+        the rest of the Real variables of one connected pair."""
+        fmu = self.fmus[source]
+        table = getattr(fmu, "variables", None)  # test doubles have Real variables only
+        real = [k for k, v in enumerate(variables) if table is None or table[v].type == "Real"]
+        ok = (served(str(self.scenario.fmus[source]), tuple(variables[k] for k in real))
+              if getattr(fmu, "max_output_derivative_order", 0) >= 1 else frozenset())
+        parts = []
+        for keep, history in (([k for k in real if variables[k] in ok], None),
+                              ([k for k in real if variables[k] not in ok], History())):
+            if keep:
+                parts.append((source, tuple(variables[k] for k in keep),
+                              tuple(inputs[k] for k in keep), history))
+        return parts
 
     def _advance(self, numerator: int, denominator: int, halvings_left: int,
                  inputs_set: bool = False) -> None:
@@ -134,10 +182,11 @@ class Master:
                 self.kernel.step_all(t, h, sampled and not inputs_set, sampled)
             else:
                 if sampled and not inputs_set:
-                    self._propagate()
+                    self._propagate(t)
                 for alias in self.scenario.order:
                     if not sampled:
                         self._set_inputs(alias)
+                        self._set_slopes(alias, t)
                     self.fmus[alias].do_step(t, h)
         except StepDiscarded as d:
             if saved is None:
@@ -182,7 +231,8 @@ class Master:
         # instances (cosim.fmi3) and test doubles go through their own methods.
         if self.fast and all(type(f) is FmuInstance for f in self.fmus.values()):
             from .fastpath import Kernel
-            kernel = Kernel(self.fmus, self.inputs, self.recorded_by_fmu, self.scenario.order)
+            kernel = Kernel(self.fmus, self.inputs, self.recorded_by_fmu, self.scenario.order,
+                            self.slopes)
             self.kernel = kernel if kernel.ok else None
 
     def run(self) -> Result:
@@ -198,11 +248,14 @@ class Master:
                 self._initialize(alias, values)
             for alias in s.order:
                 self.fmus[alias].enter_initialization()
+            self.slopes = self._slope_pairs()
             self._build_kernel()
             for alias in s.order:  # consistent inputs at the start time, in order
                 self._set_inputs(alias)
             for alias in s.order:
                 self.fmus[alias].exit_initialization()
+            if s.coupling == "sampled":  # the slopes of the first step (values are set)
+                self._propagate(s.start_time)
             self._record(rows, 0)
             sampled = s.coupling == "sampled"
             loop_started = time.perf_counter()
@@ -212,7 +265,7 @@ class Master:
                     self._switch_plan(switches[k])
                 self._advance(k, 1, s.max_step_halvings, inputs_set=not switched)
                 if sampled:  # the inputs at t_{k+1}: recorded now, used by step k + 1
-                    self._propagate()
+                    self._propagate(self._time(k + 1, 1))
                 self._record(rows, k + 1)
                 if self.progress is not None:
                     self.progress((k + 1) / s.steps)

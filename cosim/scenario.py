@@ -9,6 +9,7 @@ Schema (TOML shown; JSON has the same structure)::
     order = ["planner", "pid", "plant"]  # Gauss-Seidel order; every FMU once
     max_step_halvings = 0              # Discard retries with h/2, h/4, ... (optional)
     coupling = "sampled"               # or "gauss-seidel" (optional, default "sampled")
+    input_extrapolation = "hold"       # or "linear": input slopes where the FMUs allow
 
     [fmus]                             # alias -> FMU path (relative to this file)
     planner = "../dist/Planner.fmu"
@@ -39,6 +40,7 @@ from pathlib import Path
 
 
 COUPLINGS = ("sampled", "gauss-seidel")
+EXTRAPOLATIONS = ("hold", "linear")
 DEFAULT_STEP = 0.001  # s
 
 
@@ -76,6 +78,7 @@ class Scenario:
     record: list[Signal] = field(default_factory=list)
     max_step_halvings: int = 0
     coupling: str = "sampled"
+    input_extrapolation: str = "linear"
     # Plan switches of a multi-segment motion (cosim.closed_loop.PlanSwitch), in order.
     schedule: list = field(default_factory=list)
 
@@ -113,7 +116,8 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if not isinstance(data, dict):
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
-             "parameters", "connections", "record", "max_step_halvings", "coupling"}
+             "parameters", "connections", "record", "max_step_halvings", "coupling",
+             "input_extrapolation"}
     unknown = sorted(set(data) - known)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'")
@@ -174,9 +178,14 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     coupling = data.get("coupling", "sampled")
     if coupling not in COUPLINGS:
         raise ScenarioError(f"field 'coupling' must be one of {COUPLINGS}, got {coupling!r}")
+    extrapolation = data.get("input_extrapolation", "linear")
+    if extrapolation not in EXTRAPOLATIONS:
+        raise ScenarioError(f"field 'input_extrapolation' must be one of {EXTRAPOLATIONS}, "
+                            f"got {extrapolation!r}")
     return Scenario(name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
-                    record=record, max_step_halvings=halvings, coupling=coupling)
+                    record=record, max_step_halvings=halvings, coupling=coupling,
+                    input_extrapolation=extrapolation)
 
 
 def parse_document(data: dict, base_dir: Path, fmu_dir: str | Path | None = None) -> Scenario:

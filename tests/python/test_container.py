@@ -73,6 +73,8 @@ def loop_gains() -> tuple[float, float]:
 
 
 def scenario(name: str, **changes):
+    """The scenario with held inputs, the coupling the container (the toolbox) uses."""
+    changes.setdefault("input_extrapolation", "hold")
     return dataclasses.replace(load_scenario(ROOT / "scenarios" / f"{name}.toml"), **changes)
 
 

@@ -73,9 +73,12 @@ def test_reset_instances_give_the_runs_of_fresh_instances():
     assert reused.columns == fresh.columns
 
 
-def test_fast_path_matches_fmpy_calls_bit_for_bit():
-    # Truth: the same master through FMPy's wrappers (FmuInstance.get/set_values).
+@pytest.mark.parametrize("extrapolation", ["hold", "linear"])
+def test_fast_path_matches_fmpy_calls_bit_for_bit(extrapolation):
+    # Truth: the same master through FMPy's wrappers (FmuInstance.get/set_values,
+    # get_output_slopes / set_input_slopes).
     scenario = load_scenario(ROOT / "scenarios" / "three_axis_quintic.toml")
+    scenario.input_extrapolation = extrapolation
     assert Master(scenario).run().columns == Master(scenario, fast=False).run().columns
 
 
