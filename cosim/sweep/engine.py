@@ -57,7 +57,7 @@ def _client(scheduler: str | None, workers: int | None):
     if scheduler is not None:
         return Client(scheduler, set_as_default=False), None
     cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
-                           processes=True, dashboard_address=None)
+                           processes=True, dashboard_address=":0")
     return Client(cluster, set_as_default=False), cluster
 
 

@@ -88,7 +88,7 @@ def test_two_worker_cluster_gives_the_serial_results(tmp_path):
     dask = run_sweep(spec, tmp_path / "dask", workers=2, progress=False)
     assert (serial.runs, serial.failed, dask.runs, dask.failed) == (4, 0, 4, 0)
     assert rows(serial.table) == rows(dask.table)
-    assert [p.name for p in dask.plots] == ["small_grid.png", "small_histogram.png"]
+    assert [p.name for p in dask.plots] == ["small_grid.png"]  # 2 draws: no histogram
 
 
 class KillOnce:
@@ -139,7 +139,7 @@ def test_a_killed_workers_runs_are_retried(tmp_path, monkeypatch):
     monkeypatch.setattr(distributed, "as_completed", tracked)
     plugin = type("KillOncePlugin", (KillOnce, WorkerPlugin), {})(str(marker))
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as cluster, Client(cluster) as client:
+                      dashboard_address=":0") as cluster, Client(cluster) as client:
         client.register_plugin(plugin)
         outcome = run_sweep(spec, tmp_path / "dask", scheduler=cluster.scheduler_address,
                             progress=False, plots=False, batch=2)
@@ -261,3 +261,20 @@ def test_auto_batch_fits_the_task_length_and_keeps_every_worker_busy():
     assert auto_batch(64, 16, 1000) == 1  # 64 runs / (4 x 16 workers)
     assert auto_batch(400, 2, 1000) == min(by_length, 50)
     assert auto_batch(3, 8, 10 ** 9) == 1
+
+
+def test_grid_plots_show_the_spread_of_the_draws(tmp_path):
+    # Truth: numpy's median and percentiles of each grid point's draws, computed here
+    # apart; below 10 draws the band is the range. No histogram of a few draws.
+    from cosim.sweep.plots import plot_sweep, spread
+    rng = np.random.default_rng(5)
+    rows = [{"status": "ok", "w": w, "rms_error_deg": float(w + rng.normal())}
+            for w in (1.0, 2.0) for _ in range(30)]
+    rows += [{"status": "ok", "w": 3.0, "rms_error_deg": v} for v in (1.0, 5.0, 2.0)]
+    stats = spread(rows, ["w"], "rms_error_deg")
+    for w in (1.0, 2.0):
+        x = np.array([r["rms_error_deg"] for r in rows if r["w"] == w])
+        assert stats[(w,)] == pytest.approx((np.median(x), *np.percentile(x, [10, 90]), 30))
+    assert stats[(3.0,)] == (2.0, 1.0, 5.0, 3)
+    written = plot_sweep(["run_id", "status", "reason", "w"], rows, ["w"], True, tmp_path, "s")
+    assert [p.name for p in written] == ["s_grid.png"]  # 3 draws at w = 3: no histogram
