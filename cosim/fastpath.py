@@ -93,7 +93,7 @@ class SlopeTransfer:
                          ctypes.addressof(self.orders), ctypes.addressof(self.buffer))
         self.names = (variables, inputs)
 
-    def __call__(self) -> None:
+    def __call__(self, _t: float = 0.0) -> None:
         if self.get(*self.args_get) > 1:
             raise FmuError(f"{self.source.alias}: fmi2GetRealOutputDerivatives("
                            f"{', '.join(self.names[0])}) failed: "
@@ -161,8 +161,7 @@ class Kernel:
 
     def _slope(self, alias, source, variables, targets, history):
         if history is None:
-            transfer = SlopeTransfer(self.fmus[source], variables, self.fmus[alias], targets)
-            return lambda t: transfer()
+            return SlopeTransfer(self.fmus[source], variables, self.fmus[alias], targets)
         # The values are those the pair's value Transfer moved just before in the same
         # propagation (a Transfer of the subset when the pair has other variables too).
         for values in self.transfers[alias]:

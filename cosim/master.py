@@ -79,12 +79,13 @@ class Master:
 
     def __init__(self, scenario: Scenario, open_fmu: Callable = _open_fmu,
                  progress: Callable[[float], None] | None = None,
-                 close_fmu: Callable = _close_fmu, fast: bool = True):
+                 close_fmu: Callable = _close_fmu, fast: bool = True, native: bool = True):
         self.scenario = scenario
         self.open_fmu = open_fmu
         self.close_fmu = close_fmu
         self.progress = progress
         self.fast = fast
+        self.native = native  # the native loop (cosim.native) where it applies
         self.kernel = None
         self.loop_seconds = float("nan")  # wall time of the stepping loop (recording included)
         # Per target FMU and source FMU: the source variables and the target inputs, so
@@ -231,9 +232,48 @@ class Master:
         # instances (cosim.fmi3) and test doubles go through their own methods.
         if self.fast and all(type(f) is FmuInstance for f in self.fmus.values()):
             from .fastpath import Kernel
-            kernel = Kernel(self.fmus, self.inputs, self.recorded_by_fmu, self.scenario.order,
-                            self.slopes)
+            from .native import NativeKernel, library
+            s = self.scenario
+            if self.native and self._native_applies() and library() is not None:
+                kernel = NativeKernel(self.fmus, self.inputs, self.recorded_by_fmu, s.order,
+                                      self.slopes, s.start_time, s.step_size)
+            else:
+                kernel = Kernel(self.fmus, self.inputs, self.recorded_by_fmu, s.order,
+                                self.slopes)
             self.kernel = kernel if kernel.ok else None
+
+    def _native_applies(self) -> bool:
+        """The native loop makes whole runs of steps: sampled coupling, no step retried
+        (a retry needs the state saved before every step)."""
+        return self.scenario.coupling == "sampled" and self.scenario.max_step_halvings == 0
+
+    def _run_python(self, rows: np.ndarray, switches: dict) -> None:
+        s = self.scenario
+        sampled = s.coupling == "sampled"
+        for k in range(s.steps):
+            switched = k in switches
+            if switched:
+                self._switch_plan(switches[k])
+            self._advance(k, 1, s.max_step_halvings, inputs_set=not switched)
+            if sampled:  # the inputs at t_{k+1}: recorded now, used by step k + 1
+                self._propagate(self._time(k + 1, 1))
+            self._record(rows, k + 1)
+            if self.progress is not None:
+                self.progress((k + 1) / s.steps)
+
+    def _run_native(self, rows: np.ndarray, switches: dict) -> None:
+        """The stepping loop in native calls, split at plan switches and for progress."""
+        s, k = self.scenario, 0
+        chunk = max(1, s.steps // 100) if self.progress is not None else s.steps
+        while k < s.steps:
+            switched = k in switches
+            if switched:
+                self._switch_plan(switches[k])
+            stop = min([b for b in switches if b > k] + [s.steps, k + chunk])
+            self.kernel.run_steps(k, stop, rows, propagate_first=switched)
+            k = stop
+            if self.progress is not None:
+                self.progress(k / s.steps)
 
     def run(self) -> Result:
         s = self.scenario
@@ -257,18 +297,11 @@ class Master:
             if s.coupling == "sampled":  # the slopes of the first step (values are set)
                 self._propagate(s.start_time)
             self._record(rows, 0)
-            sampled = s.coupling == "sampled"
             loop_started = time.perf_counter()
-            for k in range(s.steps):
-                switched = k in switches
-                if switched:
-                    self._switch_plan(switches[k])
-                self._advance(k, 1, s.max_step_halvings, inputs_set=not switched)
-                if sampled:  # the inputs at t_{k+1}: recorded now, used by step k + 1
-                    self._propagate(self._time(k + 1, 1))
-                self._record(rows, k + 1)
-                if self.progress is not None:
-                    self.progress((k + 1) / s.steps)
+            if hasattr(self.kernel, "run_steps"):
+                self._run_native(rows, switches)
+            else:
+                self._run_python(rows, switches)
             self.loop_seconds = time.perf_counter() - loop_started
         finally:
             self.kernel = None
