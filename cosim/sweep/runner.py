@@ -94,10 +94,16 @@ class FmuStore:
 
 def read_fmus(document: dict, base: Path, fmu_dir: Path | None) -> tuple[dict, dict]:
     """(alias -> digest, digest -> bytes) of a scenario document's FMUs."""
+    from .spec import SpecError
     by_alias, blobs = {}, {}
     for alias, name in document.get("fmus", {}).items():
-        path = (fmu_dir / Path(name).name) if fmu_dir is not None else base / name
-        data = Path(path).read_bytes()
+        path = (fmu_dir / Path(str(name)).name) if fmu_dir is not None else base / str(name)
+        try:
+            data = Path(path).read_bytes()
+        except OSError as e:
+            raise SpecError(f"field 'fmus.{alias}' of the scenario: cannot read {path} "
+                            f"({e.strerror or e}); build the FMUs (scripts/build-fmus.sh) "
+                            "or give --fmu-dir") from None
         digest = hashlib.sha256(data).hexdigest()[:20]
         by_alias[alias], blobs[digest] = digest, data
     return by_alias, blobs

@@ -262,6 +262,9 @@ def _check_size(axes: list[list], samples) -> None:
     expanded (an integer `samples` only: random_draws reports other values)."""
     total = math.prod(len(a) for a in axes)
     if isinstance(samples, int) and not isinstance(samples, bool) and samples > 0:
+        if samples > MAX_RUNS:
+            raise SpecError(f"field 'samples' = {samples} is above the {MAX_RUNS} runs a "
+                            "sweep may have; give fewer samples")
         total *= samples
     if total > MAX_RUNS:
         raise SpecError(f"fields 'grid'/'workspace'/'samples': {total} runs, above the "
@@ -300,6 +303,13 @@ def check_document(spec: Spec, values: dict) -> None:
     """Resolves one run's scenario on the client, so that a bad path or unit is refused
     before anything is sent to the cluster."""
     from ..scenario import parse_document
+    fmus = spec.document.get("fmus", {})
+    for alias, name in (fmus.items() if isinstance(fmus, dict) else []):
+        base = spec.fmu_dir if spec.fmu_dir is not None else spec.scenario.parent
+        path = base / (Path(str(name)).name if spec.fmu_dir is not None else str(name))
+        if not path.is_file():
+            raise SpecError(f"field 'fmus.{alias}' of the scenario: {path} is not a file; "
+                            "build the FMUs (scripts/build-fmus.sh) or give --fmu-dir")
     try:
         parse_document(document_for(spec, values), spec.scenario.parent, spec.fmu_dir)
     except ScenarioError as e:

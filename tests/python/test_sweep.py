@@ -154,11 +154,13 @@ def test_resume_runs_only_what_is_missing(tmp_path):
     partial = tmp_path / "partial" / "small.csv"
     partial.parent.mkdir()
     lines = full.table.read_text().splitlines(keepends=True)
-    partial.write_text("".join(lines[:2]))  # header and one run: a sweep cut short
+    # Header, one run and half of the next run's line: a sweep killed while writing.
+    partial.write_text("".join(lines[:2]) + lines[2][:len(lines[2]) // 2])
     again = run_sweep(spec, tmp_path / "partial", workers=0, resume=True, progress=False,
                       plots=False)
-    assert (again.runs, again.skipped) == (2, 1)
+    assert (again.runs, again.skipped) == (2, 1)  # the torn run is made again
     assert rows(partial) == rows(full.table)
+    assert len(partial.read_text().splitlines()) == 4  # the torn line is gone
 
 
 def test_a_failing_run_is_recorded_with_its_reason(tmp_path):
