@@ -307,3 +307,18 @@ def test_native_loop_reports_a_failure_as_the_python_loop_does():
         Master(scenario, native=False).run()
     assert str(native.value) == str(python.value)
     assert str(native.value).startswith("plant discarded the step at t = 0 s")
+
+
+def test_the_command_exits_1_with_the_reasons_of_failed_runs(tmp_path, capsys):
+    # A negative platform mass: the plant refuses it (its own reason in the table's
+    # 'reason' column); the command says how many runs failed and why, exit status 1.
+    from cosim.sweep.cli import main
+    text = BASE + "[grid.'plant.platformMass']\nvalues = [-1.0, 0.8]\nunit = \"kg\"\n"
+    spec = write_spec(tmp_path, text)
+    status = main([str(spec), "--out", str(tmp_path), "--workers", "0", "--quiet"])
+    err = capsys.readouterr().err.splitlines()
+    reason = next(r["reason"] for r in rows(tmp_path / "small.csv").values()
+                  if r["status"] == "failed")
+    assert status == 1
+    assert "1 of 2 runs failed" in err[0]
+    assert err[1] == f"  1 x {reason}" and reason.startswith("plant")
