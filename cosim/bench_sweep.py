@@ -14,6 +14,7 @@ predict the speed-up of a larger cluster (16 workers unless --predict says other
 from __future__ import annotations
 
 import argparse
+import math
 import statistics
 import sys
 import tempfile
@@ -74,11 +75,14 @@ def budget(rows: list[dict]) -> tuple[float, float, float]:
 
 def predict(runs: int, workers: int, t_run: float, per_task: float, startup: float,
             batch: int) -> float:
-    """Speed-up over serial with start-up, `workers` on as many free cores: the workers'
-    share of the runs plus the last task (the tail), unless this process's work per task
-    (serial, one process) takes longer."""
-    tasks = -(-runs // batch)
-    wall = startup + max(runs * t_run / workers + batch * t_run, tasks * per_task)
+    """Speed-up over serial with start-up, `workers` on as many free cores: this process
+    makes runs while the cluster starts (cosim.sweep.engine), then the workers share the
+    rest plus the last task (the tail), unless this process's work per task (one
+    process) takes longer."""
+    rest = max(0.0, runs - startup / t_run)
+    tasks = math.ceil(rest / batch)
+    work = max(rest * t_run / workers + min(batch, rest) * t_run, tasks * per_task)
+    wall = min(startup, runs * t_run) + work
     return runs * t_run / wall
 
 

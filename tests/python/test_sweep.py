@@ -255,13 +255,14 @@ def test_random_draws_are_seeded_truncated_and_follow_their_distribution():
 
 
 def test_auto_batch_fits_the_task_length_and_keeps_every_worker_busy():
-    # Closed form: runs per task = min(TASK_S / (steps RUN_STEP_S), runs / (4 workers)),
-    # at least 1.
-    from cosim.sweep.engine import RUN_STEP_S, TASK_S, auto_batch
-    by_length = int(TASK_S / (1000 * RUN_STEP_S))
-    assert auto_batch(100000, 16, 1000) == by_length
+    # Closed form: runs per task = min(T(W) / (steps RUN_STEP_S), runs / (4 W)), at
+    # least 1, with the task length T(W) = max(TASK_S, 4 W CLIENT_TASK_S).
+    from cosim.sweep.engine import CLIENT_TASK_S, RUN_STEP_S, TASK_S, auto_batch
+    run_s = 1000 * RUN_STEP_S
+    assert auto_batch(100000, 2, 1000) == int(TASK_S / run_s)
+    assert auto_batch(100000, 16, 1000) == int(4 * 16 * CLIENT_TASK_S / run_s)
     assert auto_batch(64, 16, 1000) == 1  # 64 runs / (4 x 16 workers)
-    assert auto_batch(400, 2, 1000) == min(by_length, 50)
+    assert auto_batch(400, 2, 1000) == min(int(TASK_S / run_s), 50)
     assert auto_batch(3, 8, 10 ** 9) == 1
 
 
