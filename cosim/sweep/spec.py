@@ -40,6 +40,7 @@ import json
 import math
 import re
 import tomllib
+import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -227,6 +228,7 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
         raise SpecError(f"field 'name' must be a file-name-safe string, got {name!r}")
     if fmu_dir is None and "fmu_dir" in data:
         fmu_dir = base / str(data["fmu_dir"])
+    check_fmus(document, scenario, fmu_dir)
     grid, randoms = _tables(data, "grid"), _tables(data, "random")
     varied, axes = [], []
     for p, table in grid.items():
@@ -271,6 +273,27 @@ def _check_size(axes: list[list], samples) -> None:
                         f"{MAX_RUNS} a sweep may have; vary fewer values")
 
 
+def check_fmus(document: dict, scenario: Path, fmu_dir) -> None:
+    """Each FMU of the base scenario is a file and an FMU (a zip archive holding
+    modelDescription.xml), before anything loads it."""
+    fmus = document.get("fmus", {})
+    for alias, name in (fmus.items() if isinstance(fmus, dict) else []):
+        if fmu_dir is not None:
+            path = Path(fmu_dir) / Path(str(name)).name
+        else:
+            path = scenario.parent / str(name)
+        fix = "build the FMUs (scripts/build-fmus.sh) or give --fmu-dir"
+        if not path.is_file():
+            raise SpecError(f"field 'fmus.{alias}' of the scenario: {path} is not a file; "
+                            f"{fix}")
+        try:
+            with zipfile.ZipFile(path) as archive:
+                archive.getinfo("modelDescription.xml")
+        except (zipfile.BadZipFile, KeyError, OSError):
+            raise SpecError(f"field 'fmus.{alias}' of the scenario: {path} is not an FMU "
+                            f"(a zip archive with modelDescription.xml); {fix}") from None
+
+
 def workspace_targets(table, reachable) -> list[list[float]] | None:
     if table is None:
         return None
@@ -303,13 +326,6 @@ def check_document(spec: Spec, values: dict) -> None:
     """Resolves one run's scenario on the client, so that a bad path or unit is refused
     before anything is sent to the cluster."""
     from ..scenario import parse_document
-    fmus = spec.document.get("fmus", {})
-    for alias, name in (fmus.items() if isinstance(fmus, dict) else []):
-        base = spec.fmu_dir if spec.fmu_dir is not None else spec.scenario.parent
-        path = base / (Path(str(name)).name if spec.fmu_dir is not None else str(name))
-        if not path.is_file():
-            raise SpecError(f"field 'fmus.{alias}' of the scenario: {path} is not a file; "
-                            "build the FMUs (scripts/build-fmus.sh) or give --fmu-dir")
     try:
         parse_document(document_for(spec, values), spec.scenario.parent, spec.fmu_dir)
     except ScenarioError as e:

@@ -6,6 +6,7 @@ outside --out (the tree around it is compared before and after)."""
 from __future__ import annotations
 
 import sys
+import zipfile
 from pathlib import Path
 
 import pytest
@@ -91,6 +92,12 @@ CASES = [
      "thx = {from = 0, to = 1, steps = 100}\nthy = {from = 0, to = 1, steps = 100}\n"
      "thz = {from = 0, to = 1, steps = 100}\n", [], "workspace"),
     ("fmu-dir-empty", HEAD + GRID, ["--fmu-dir", "{tmp}/nothing"], "fmus.planner"),
+    ("fmu-not-zip", HEAD + GRID, ["--fmu-dir", "{tmp}/text"], "fmus.planner"),
+    ("fmu-not-zip-workspace", HEAD + "[workspace]\npath = \"motion.waypoints[1].angles\"\n"
+     "thx = {values = [0]}\nthy = {values = [0]}\nthz = {values = [138]}\n",
+     ["--fmu-dir", "{tmp}/text"], "fmus.planner"),
+    ("fmu-zip-without-description", HEAD + GRID, ["--fmu-dir", "{tmp}/zips"],
+     "fmus.planner"),
     ("workers-negative", HEAD + GRID, ["--workers", "-1"], "--workers"),
     ("workers-huge", HEAD + GRID, ["--workers", "100000"], "--workers"),
     ("batch-zero", HEAD + GRID, ["--batch", "0"], "--batch"),
@@ -110,6 +117,12 @@ def tree(path: Path) -> dict:
 def prepared(tmp_path: Path, text, name="hostile") -> Path:
     (tmp_path / "garbage.toml").write_bytes(b"\x00\x01 not a scenario [[[")
     (tmp_path / "a-file").write_text("x")
+    for folder in ("text", "zips"):
+        (tmp_path / folder).mkdir()
+    for model in ("Planner", "PID", "Pss3Plant"):
+        (tmp_path / "text" / f"{model}.fmu").write_text("not a zip archive")
+        with zipfile.ZipFile(tmp_path / "zips" / f"{model}.fmu", "w") as archive:
+            archive.writestr("binaries/readme.txt", "no modelDescription.xml")
     spec = tmp_path / f"{name}.toml"
     spec.write_bytes(text if isinstance(text, bytes) else text.encode())
     return spec
