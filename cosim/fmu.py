@@ -168,6 +168,9 @@ class FmuInstance(LoggedCalls):
     def enter_initialization(self) -> None:
         self._call("fmi2EnterInitializationMode", self._fmu.enterInitializationMode)
 
+    def is_real(self, name: str) -> bool:
+        return self.variables[name].type == "Real"
+
     def get_output_slopes(self, names: tuple[str, ...]) -> list[float]:
         """First time derivatives of Real outputs (fmi2GetRealOutputDerivatives)."""
         refs = [self.variables[n].valueReference for n in names]
