@@ -126,17 +126,46 @@ def _scenario_path(name: str) -> Path:
     return Path(name) if name.endswith(".toml") else ROOT / "scenarios" / f"{name}.toml"
 
 
-def main(argv=None) -> int:
-    argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] == ["sweep"]:  # cosim bench sweep: throughput per worker count
-        from .bench_sweep import main as bench_sweep
-        return bench_sweep(argv[1:])
-    parser = argparse.ArgumentParser(prog="python -m cosim.bench", description=__doc__)
-    parser.add_argument("scenarios", nargs="*", default=["three_axis_quintic"])
-    parser.add_argument("--runs", type=int, default=5)
-    parser.add_argument("--sweep-runs", type=int, default=24,
+def _count(low: int):
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = -1
+        if not low <= value <= 1000:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number in {low}..1000")
+        return value
+    return parse
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    from .bench_sweep import add_sweep_options
+    parser.add_argument("scenarios", nargs="*", default=["three_axis_quintic"],
+                        help="scenario names or files; or 'sweep': the sweep throughput per "
+                        "worker count (cosim bench sweep --runs N --workers 0,1,2)")
+    parser.add_argument("--runs", type=int, default=None,
+                        help="runs per median (default 5); with 'sweep': runs per sweep "
+                        "(default 200)")
+    parser.add_argument("--sweep-runs", type=_count(0), default=24,
                         help="closed-loop runs per sweep throughput measurement (0: skip)")
-    args = parser.parse_args(argv)
+    add_sweep_options(parser)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m cosim.bench", description=__doc__)
+    add_arguments(parser)
+    return run(parser.parse_args(argv))
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.scenarios == ["sweep"]:  # cosim bench sweep: throughput per worker count
+        from .bench_sweep import run as bench_sweep
+        args.runs = 200 if args.runs is None else args.runs
+        return bench_sweep(args)
+    args.runs = 5 if args.runs is None else args.runs
+    if not 1 <= args.runs <= 1000:
+        print(f"cosim: --runs: {args.runs} is not a whole number in 1..1000", file=sys.stderr)
+        return 2
     ratio = None
     for name in args.scenarios:
         # Held inputs for the loops that compare with the minimal loop (which holds);

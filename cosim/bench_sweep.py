@@ -1,5 +1,6 @@
-"""``cosim bench sweep [--runs N] [--workers 0,1,2] [--batch N]``: sweep throughput per
-worker count, the cluster's start-up included and excluded.
+"""``cosim bench sweep [--runs N] [--workers 0,1,2] [--batch N] [--repeat N]``: sweep
+throughput per worker count, the cluster's start-up included and excluded (also
+``python -m cosim.bench sweep ...``).
 
 The sweep is the issue-22 case: the regulation scenario (1 s at 1 ms) with the leg mass
 drawn at random, N runs. For each worker count (0: serially in this process; N > 0: a
@@ -25,6 +26,11 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--runs", type=int, default=200, help="runs per sweep (default 200)")
+    add_sweep_options(parser)
+
+
+def add_sweep_options(parser: argparse.ArgumentParser) -> None:
+    """The options besides --runs (cosim bench takes them too, for `cosim bench sweep`)."""
     parser.add_argument("--workers", default="0,1,2",
                         help="comma-separated worker counts (0: serial; default 0,1,2)")
     parser.add_argument("--batch", type=int, default=None,

@@ -34,7 +34,13 @@ Example (every quantity states its unit; see cosim/units.py for the units)::
     # Kd = "... N m s/rad"
 
     [plant]                             # other plant parameters (FMU names, SI or units)
-    platformMass = "2.5 kg"
+    platformMass = "2.5 kg"             # a heavier platform needs its inertia too:
+    "platformInertia[1,1]" = "0.03 kg m^2"   # (the plant checks the triangle inequality)
+    "platformInertia[2,2]" = "0.03 kg m^2"
+    "platformInertia[3,3]" = "0.057 kg m^2"
+
+    [limits]                            # optional, see cosim/limits.py
+    max_tracking_error = "0.5 deg"
 
 Several waypoints make a multi-segment motion: one planner polynomial per segment,
 each starting with the angles, rates (and, quintic, accelerations) the previous one
@@ -43,8 +49,9 @@ The master runs them as a sequence of plans: at each interior waypoint it resets
 planner FMU (a stateless function of time) and loads the next segment's parameters.
 
 Default design poses: the plant start and, per segment, the poses at 0, 1/4, 1/2, 3/4
-and 1 of the segment (linear in the angles). The Rust reference
-(robofmu closed-loop reference) reads the same file with the same rules.
+and 1 of the segment (linear in the angles). These rules exist only here: the Rust
+reference (robofmu closed-loop reference) reads the expanded form that
+``cosim check SCENARIO --expanded FILE.toml`` writes (cosim.expand).
 """
 
 from __future__ import annotations
@@ -53,8 +60,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .design import design_gains, euler_accelerations, euler_rates
-from .scenario import ScenarioError
-from .units import UNITS, quantity, quantity_vector
+from .fmu_check import describe
+from .preflight import initialize_alone
+from .errors import ScenarioError
+from .schedule import PlanSwitch
+from .workspace import check_poses
+from .units import UNITS, exponents, quantity, quantity_vector, unit_in
 
 CONNECTIONS = [("planner", "q", "pid", "setpoint"),
                ("planner", "qdot", "pid", "setpointRate"),
@@ -67,8 +78,13 @@ RECORD = ([f"plant.force[{i}]" for i in (1, 2, 3)] + [f"plant.l[{i}]" for i in (
           + [f"planner.qddot[{i}]" for i in (1, 2, 3)])
 PROFILES = {"cubic": 3, "quintic": 5}
 KNOWN = {"name", "description", "start_time", "stop_time", "step_size", "fmus", "motion",
-         "start", "gains", "plant", "record", "coupling", "max_step_halvings",
+         "start", "gains", "plant", "record", "coupling", "max_step_halvings", "limits",
          "input_extrapolation"}
+# The scenario fields the FMUs' parameters come from, and the fields blamed for an
+# unreachable pose (cosim.workspace).
+FIELDS = {"planner": "motion", "pid": "gains", "plant": "plant"}
+WHERE = {"plan": "motion.waypoints"}
+MAX_WAYPOINTS = 1000
 
 
 @dataclass(frozen=True)
@@ -78,15 +94,6 @@ class Waypoint:
     omega: list[float]  # base frame, rad/s
     rates: list[float]
     accelerations: list[float]
-
-
-@dataclass(frozen=True)
-class PlanSwitch:
-    """At communication step `step`, FMU `alias` is reset and given `parameters`."""
-
-    step: int
-    alias: str
-    parameters: dict
 
 
 def is_closed_loop(data: dict) -> bool:
@@ -115,9 +122,13 @@ def _waypoint(raw, k: int) -> Waypoint:
                             f"{where}.omega", 3)
     omega_dot = quantity_vector(raw.get("omega_dot", "0, 0, 0 rad/s^2"),
                                 "angular acceleration", f"{where}.omega_dot", 3)
-    rates = euler_rates(angles, omega)
+    try:
+        rates = euler_rates(angles, omega)
+        accelerations = euler_accelerations(angles, rates, omega_dot)
+    except ScenarioError as e:
+        raise ScenarioError(f"field '{where}.angles': {e}; keep thy away from +-90 deg") from None
     return Waypoint(quantity(raw["time"], "time", f"{where}.time"), angles, omega, rates,
-                    euler_accelerations(angles, rates, omega_dot))
+                    accelerations)
 
 
 def waypoints(motion: dict) -> tuple[int, list[Waypoint]]:
@@ -126,8 +137,9 @@ def waypoints(motion: dict) -> tuple[int, list[Waypoint]]:
         raise ScenarioError(f"field 'motion.profile' must be one of {sorted(PROFILES)}, "
                             f"got {profile!r}")
     raw = motion.get("waypoints")
-    if not isinstance(raw, list) or len(raw) < 2:
-        raise ScenarioError("field 'motion.waypoints' must list at least two waypoints")
+    if not isinstance(raw, list) or not 2 <= len(raw) <= MAX_WAYPOINTS:
+        raise ScenarioError(f"field 'motion.waypoints' must list 2 to {MAX_WAYPOINTS} "
+                            "waypoints ([[motion.waypoints]] tables)")
     points = [_waypoint(p, k) for k, p in enumerate(raw)]
     for k in range(1, len(points)):
         if points[k].time <= points[k - 1].time:
@@ -155,7 +167,7 @@ def design_poses(start: list[float], points: list[Waypoint]) -> list[list[float]
     return poses
 
 
-def _gains(raw: dict, plant_fmu: Path, poses) -> list[tuple[float, float, float]]:
+def _gains(raw: dict, plant_fmu: Path, poses, plant: dict) -> list[tuple[float, float, float]]:
     explicit = {"Kp": "stiffness gain", "Ki": "integral gain", "Kd": "damping gain"}
     if "omega" in raw:
         unknown = sorted(set(raw) - {"omega", "design_poses"})
@@ -164,12 +176,17 @@ def _gains(raw: dict, plant_fmu: Path, poses) -> list[tuple[float, float, float]
                                 "design rule 'gains.omega'")
         if "design_poses" in raw:
             listed = raw["design_poses"]
-            if not isinstance(listed, list) or not listed:
-                raise ScenarioError("field 'gains.design_poses' must be a list of angles")
+            if not isinstance(listed, list) or not 1 <= len(listed) <= MAX_WAYPOINTS:
+                raise ScenarioError("field 'gains.design_poses' must be a list of 1 to "
+                                    f"{MAX_WAYPOINTS} angles (\"thx, thy, thz deg\")")
             poses = [quantity_vector(p, "angle", f"gains.design_poses[{k}]", 3)
                      for k, p in enumerate(listed)]
-        return design_gains(plant_fmu, poses,
-                            quantity(raw["omega"], "angular velocity", "gains.omega"))
+        bandwidth = quantity(raw["omega"], "angular velocity", "gains.omega")
+        if plant is not None:
+            check_poses(plant_fmu, plant, [(f"gains.design_poses[{k}]", None, p)
+                                           for k, p in enumerate(poses)],
+                        "design the gains at poses inside the workspace")
+        return design_gains(plant_fmu, poses, bandwidth)
     if set(raw) != set(explicit):
         raise ScenarioError("field 'gains' needs either 'omega' (design rule) or all of "
                             "'Kp', 'Ki', 'Kd'")
@@ -177,18 +194,58 @@ def _gains(raw: dict, plant_fmu: Path, poses) -> list[tuple[float, float, float]
     return list(zip(*columns))
 
 
-def _plant_value(value, name: str):
-    """A plant parameter: a number (SI, as the FMU states it) or "value unit"."""
-    if not isinstance(value, str):
-        return value
-    unit = value.strip().rsplit(" ", 1)[-1]
-    if unit not in UNITS:
-        raise ScenarioError(f"field 'plant.{name}': unknown unit in {value!r}")
-    return quantity(value, UNITS[unit][1], f"plant.{name}")
+def _article(noun: str) -> str:
+    return ("an " if noun[0] in "aeiou" else "a ") + noun
 
 
-def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
-    """The plain scenario (as parse_scenario reads it) and the plan switches."""
+# A variable each role's FMU must have: a wrong FMU in a slot is named as such.
+ROLE_VARIABLES = {"planner": "qf[1]", "pid": "Kp[1]", "plant": "theta0[1]"}
+
+
+def _check_roles(fmus: dict, base_dir: Path) -> None:
+    for alias, f in fmus.items():
+        if not isinstance(f, str):
+            raise ScenarioError(f"field 'fmus.{alias}' must be a file name (a string)")
+        md = describe(base_dir / f, f"fmus.{alias}")
+        if ROLE_VARIABLES[alias] not in {v.name for v in md.modelVariables}:
+            raise ScenarioError(f"field 'fmus.{alias}': {Path(f).name} ({md.modelName}) is "
+                                f"not a {alias} FMU (no variable {ROLE_VARIABLES[alias]}); "
+                                f"name the {alias} FMU of dist/")
+
+
+def _plant_value(value, name: str, plant_fmu: Path):
+    """A plant parameter: a number (SI, in the unit the FMU declares) or "value unit",
+    whose unit must have the dimension of the unit the FMU declares for `name`."""
+    from .fmu_check import check_value, describe, unit_of
+    field = f"plant.{name}"
+    md = describe(plant_fmu, "fmus.plant")
+    variable = {v.name: v for v in md.modelVariables}.get(name)
+    if isinstance(value, str) and variable is not None:
+        declared = unit_of(md, variable)
+        unit = unit_in(value)
+        if unit is None:
+            raise ScenarioError(f"field '{field}': no known unit at the end of {value!r}; "
+                                f"write \"value unit\" with one of: {', '.join(UNITS)}")
+        dimension = UNITS[unit][1]
+        if declared is None or declared[1] is None:
+            raise ScenarioError(f"field '{field}': plant.{name} declares no unit; write a "
+                                "plain number")
+        if declared[1] != exponents(dimension) or declared[2] != 1.0 or declared[3] != 0.0:
+            hint = [u for u, (f, d) in UNITS.items() if f == 1.0 and declared[1:] == (
+                exponents(d), 1.0, 0.0)]
+            form = f"\"VALUE {hint[0]}\" or " if hint else ""
+            raise ScenarioError(f"field '{field}': {value!r} is {_article(dimension)}, but "
+                                f"{name} is declared in {declared[0]}; write {form}a plain "
+                                f"number in {declared[0]}")
+        value = quantity(value, dimension, field)
+    return check_value(md, "plant", name, value, field)
+
+
+def resolve(data: dict, base_dir: Path,
+            preflight: bool = True) -> tuple[dict, list[PlanSwitch]]:
+    """The plain scenario (as parse_scenario reads it) and the plan switches. With
+    `preflight`, the plant's parameters, the start, the waypoints and the design poses
+    are checked with the plant FMU before the gain design."""
     unknown = sorted(set(data) - KNOWN)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'")
@@ -204,8 +261,17 @@ def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
               if "angles" in start_raw else points[0].angles)
     omega0 = (quantity_vector(start_raw["omega"], "angular velocity", "start.omega", 3)
               if "omega" in start_raw else points[0].omega)
+    _check_roles(fmus, base_dir)
     plant_fmu = base_dir / str(fmus["plant"])
-    gains = _gains(_table(data, "gains"), plant_fmu, design_poses(theta0, points))
+    plant_values = {k: _plant_value(v, k, plant_fmu) for k, v in _table(data, "plant").items()}
+    if preflight:
+        initialize_alone(plant_fmu, "plant", plant_values, "plant")
+        start_field = "start.angles" if "angles" in start_raw else "motion.waypoints[0].angles"
+        check_poses(plant_fmu, plant_values, [(start_field, None, theta0)] + [
+            (f"motion.waypoints[{k}].angles", p.time, p.angles) for k, p in enumerate(points)],
+                    "move the waypoints (or the start) inside the workspace")
+    gains = _gains(_table(data, "gains"), plant_fmu, design_poses(theta0, points),
+                   plant_values if preflight else None)
     pid = {}
     for i, (kp, ki, kd) in enumerate(gains):
         n = i + 1
@@ -213,7 +279,7 @@ def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
                 f"useRateInputs[{n}]": True}
     plant = {f"theta0[{i + 1}]": theta0[i] for i in range(3)}
     plant |= {f"omega0[{i + 1}]": omega0[i] for i in range(3)}
-    plant |= {k: _plant_value(v, k) for k, v in _table(data, "plant").items()}
+    plant |= plant_values
     start_time = (quantity(data["start_time"], "time", "start_time")
                   if "start_time" in data else 0.0)
     step = quantity(data["step_size"], "time", "step_size") if "step_size" in data else 1e-3
@@ -226,7 +292,7 @@ def resolve(data: dict, base_dir: Path) -> tuple[dict, list[PlanSwitch]]:
                              for a, x, b, y in CONNECTIONS for i in (1, 2, 3)],
              "record": data.get("record", RECORD)}
     for key in ("name", "coupling", "input_extrapolation", "max_step_halvings",
-                "description"):
+                "description", "limits"):
         if key in data:
             plain[key] = data[key]
     switches = []

@@ -1,7 +1,7 @@
 """A scenario as one container FMU, built and run by a second FMI implementation: the
 fmu-manipulation-toolbox (PyPI), whose compiled runtime loads and steps the embedded FMUs.
 
-``python -m cosim container SCENARIO --out X.fmu`` writes a co-simulation FMU 2.0 that
+``cosim container SCENARIO --out X.fmu`` writes a co-simulation FMU 2.0 that
 holds the scenario's FMUs, connections, start values (the scenario's parameters),
 communication step and start/stop time (its default experiment), so that
 ``fmpy simulate X.fmu`` with no options runs the closed loop.
@@ -157,20 +157,24 @@ def build_container(scenario: Scenario, out: Path) -> list[str]:
     return [r.getMessage() for r in collector.records if r.levelno < logging.ERROR]
 
 
-def main(argv=None) -> int:
-    """``python -m cosim container SCENARIO --out X.fmu``."""
-    parser = argparse.ArgumentParser(prog="python -m cosim container",
-                                     description="Writes a scenario as a container FMU "
-                                                 "(fmu-manipulation-toolbox).")
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """``cosim container SCENARIO --out X.fmu``."""
     parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
     parser.add_argument("--out", type=Path, required=True, help="container FMU to write (.fmu)")
-    args = parser.parse_args(argv)
-    try:
-        scenario = load_scenario(args.scenario)
-        warnings = build_container(scenario, args.out)
-    except (ScenarioError, ContainerError) as e:
-        print(f"cosim container: {e}", file=sys.stderr)
-        return 1
+    parser.add_argument("--fmu-dir", type=Path, help="find the FMUs by file name here")
+
+
+def run(args: argparse.Namespace) -> int:
+    from .run import fmu_dir
+    if args.out.suffix != ".fmu" or args.out.is_dir():
+        raise ContainerError(f"--out: {args.out}: the container is a file whose name ends "
+                             "with .fmu; name such a file")
+    scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
+    if scenario.schedule:
+        raise ScenarioError(f"{args.scenario}: field 'motion.waypoints': a multi-segment "
+                            "motion has no container form (the container has no plan "
+                            "switches); use two waypoints")
+    warnings = build_container(scenario, args.out)
     for line in warnings:
         print(f"fmu-manipulation-toolbox: {line}", file=sys.stderr)
     print(f"{args.out}: {scenario.name} as a container FMU ({', '.join(stepping_order(scenario))} "

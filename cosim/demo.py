@@ -11,13 +11,14 @@ from pathlib import Path
 
 from .errors import CosimError
 from .master import Master
+from .outputs import write_outputs
 from .report import (HEADER, format_table, metrics, plot_cubic_vs_quintic, plot_tracking,
                      read_csv)
 from .scenario import ScenarioError, load_scenario
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENARIOS = ["regulation", "path1_cubic", "path1_quintic", "three_axis_cubic",
-             "three_axis_quintic"]
+             "three_axis_quintic", "three_axis_waypoints"]
 
 
 def boundary_mismatch(cubic: dict, quintic_file: Path) -> float:
@@ -32,10 +33,19 @@ def boundary_mismatch(cubic: dict, quintic_file: Path) -> float:
     return worst
 
 
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--out", type=Path, default=ROOT / "results",
+                        help="directory for the CSVs and plots (default: results/ of the "
+                        "repository)")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m cosim.demo", description=__doc__)
-    parser.add_argument("--out", type=Path, default=ROOT / "results")
-    args = parser.parse_args(argv)
+    add_arguments(parser)
+    return run(parser.parse_args(argv))
+
+
+def run(args: argparse.Namespace) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     results, rows, walls = {}, [], {}
     for name in SCENARIOS:
@@ -49,7 +59,7 @@ def main(argv=None) -> int:
             print(f"demo: {e}", file=sys.stderr)
             return 1
         csv_path = args.out / f"{name}.csv"
-        result.write_csv(csv_path)
+        write_outputs(scenario, result, args.out, plots=False)  # CSV, units, summary
         results[name] = read_csv(csv_path)
         reference_path = ROOT / "tests" / "closed_loop_references" / name / f"{name}_ref.csv"
         reference = read_csv(reference_path) if reference_path.exists() else None

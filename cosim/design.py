@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .scenario import ScenarioError
+from .errors import ScenarioError
 
 EULER_SINGULAR_COS = 1e-9
 
@@ -44,7 +44,7 @@ def euler_rates(th, omega) -> list[float]:
     sy, cy = math.sin(th[1]), math.cos(th[1])
     sz, cz = math.sin(th[2]), math.cos(th[2])
     if abs(cy) < EULER_SINGULAR_COS:
-        raise ScenarioError(f"Euler angles {np.degrees(th)} deg are singular (thy = +-90 deg)")
+        raise ScenarioError(f"the Euler angles ({', '.join(f'{math.degrees(x):.6g}' for x in th)}) deg are singular (thy = +-90 deg)")
     thx_dot = (cz * omega[0] + sz * omega[1]) / cy
     return [thx_dot, -sz * omega[0] + cz * omega[1], omega[2] + sy * thx_dot]
 
@@ -73,37 +73,36 @@ def design_gains(plant_fmu: Path, poses, bandwidth: float) -> list[tuple[float, 
 
 @lru_cache(maxsize=256)
 def euler_inertia(plant_fmu: str, pose: tuple[float, float, float]) -> np.ndarray:
-    """Diagonal of M_x at `pose` (rad), from the plant FMU at rest (Model Exchange)."""
-    from fmpy import extract, read_model_description
-    from fmpy.fmi2 import FMU2Model
+    """Diagonal of M_x at `pose` (rad), from the plant FMU at rest (Model Exchange).
+    A pose the plant refuses raises ScenarioError with the plant's own reason."""
+    from .model_exchange import ModelExchangeInstance
+    with ModelExchangeInstance(plant_fmu, "design") as fmu:
+        try:
+            return _euler_inertia(fmu, pose)
+        except fmu.Failed as e:
+            deg = ", ".join(f"{math.degrees(x):.6g}" for x in pose)
+            raise ScenarioError(f"field 'gains': the plant cannot be linearised at the "
+                                f"design pose ({deg}) deg: {fmu.reason(e)}; choose design "
+                                "poses inside the workspace") from None
 
-    md = read_model_description(plant_fmu)
-    refs = {v.name: v.valueReference for v in md.modelVariables}
-    unzip = extract(plant_fmu)
-    fmu = FMU2Model(guid=md.guid, unzipDirectory=unzip,
-                    modelIdentifier=md.modelExchange.modelIdentifier, instanceName="design")
-    fmu.instantiate()
-    try:
-        fmu.setupExperiment(startTime=0.0)
-        fmu.setReal([refs[f"theta0[{i}]"] for i in (1, 2, 3)], list(pose))
-        fmu.setReal([refs[f"omega0[{i}]"] for i in (1, 2, 3)], [0.0, 0.0, 0.0])
-        fmu.enterInitializationMode()
-        fmu.exitInitializationMode()
-        fmu.newDiscreteStates()
-        fmu.enterContinuousTimeMode()
-        u_refs = [refs[f"generalizedForceCommand[{i}]"] for i in (1, 2, 3)]
-        gravity = fmu.getReal([refs[f"gravityCompensation[{i}]"] for i in (1, 2, 3)])
-        acc_refs = [refs[f"der(omega[{i}])"] for i in (1, 2, 3)]
 
-        def euler_acceleration(u) -> np.ndarray:
-            fmu.setReal(u_refs, list(u))
-            # At rest E_dot th_dot = 0, so th_ddot = E^-1 omega_dot.
-            return np.array(euler_rates(pose, fmu.getReal(acc_refs)))
+def _euler_inertia(fmu, pose) -> np.ndarray:
+    fmu.set_real([f"theta0[{i}]" for i in (1, 2, 3)], list(pose))
+    fmu.set_real([f"omega0[{i}]" for i in (1, 2, 3)], [0.0, 0.0, 0.0])
+    fmu.initialize()
+    u_refs = [f"generalizedForceCommand[{i}]" for i in (1, 2, 3)]
+    gravity = fmu.get_real([f"gravityCompensation[{i}]" for i in (1, 2, 3)])
+    acc_refs = [f"der(omega[{i}])" for i in (1, 2, 3)]
 
-        base = euler_acceleration(gravity)
-        inverse = np.column_stack([euler_acceleration(np.array(gravity) + e) - base
-                                   for e in np.eye(3)])
-    finally:
-        fmu.terminate()
-        fmu.freeInstance()
+    def euler_acceleration(u) -> np.ndarray:
+        fmu.set_real(u_refs, list(u))
+        # At rest E_dot th_dot = 0, so th_ddot = E^-1 omega_dot.
+        return np.array(euler_rates(pose, fmu.get_real(acc_refs)))
+
+    base = euler_acceleration(gravity)
+    inverse = np.column_stack([euler_acceleration(np.array(gravity) + e) - base
+                               for e in np.eye(3)])
+    if not np.all(np.isfinite(inverse)) or abs(np.linalg.det(inverse)) == 0.0:
+        raise ScenarioError("field 'gains': the plant's mass matrix is singular at a design "
+                            "pose; choose design poses inside the workspace")
     return np.diag(np.linalg.inv(inverse))

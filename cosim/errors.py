@@ -1,6 +1,10 @@
 """Errors of the co-simulation master (free of FMPy so the master logic stands alone)."""
 
 
+class ScenarioError(ValueError):
+    """A scenario file that cannot be run; the message names the field."""
+
+
 class CosimError(RuntimeError):
     """The co-simulation cannot go on; the message names the FMU, the call and the time."""
 

@@ -1,6 +1,6 @@
 """The FMI 3.0 build of a scenario's FMUs behind the interface the master uses
 (`FmuInstance` in fmu.py): the same scalar names (`theta[1]`) on the FMI 3.0 arrays
-(`theta`, element 1). Choose it with ``python -m cosim SCENARIO --fmi3`` or
+(`theta`, element 1). Choose it with ``cosim run SCENARIO --fmi3`` or
 ``Master(scenario, open_fmu=open_fmi3)``; a scenario's ``dist/<Model>.fmu`` is then
 read as ``dist/fmi3/<Model>.fmu``.
 
@@ -17,7 +17,7 @@ from fmpy import extract, read_model_description
 from fmpy.fmi3 import FMU3Slave
 
 from .errors import FmuError
-from .fmu import LoggedCalls
+from .fmu import LoggedCalls, status_categories
 from .intermediate import IntermediateInputs, flagged_inputs
 
 _ELEMENT = re.compile(r"^(.*)\[(\d+)\]$")
@@ -48,6 +48,7 @@ class Fmu3Instance(LoggedCalls):
                  extrapolate: bool = False):
         self.alias = alias
         self.messages: list[str] = []
+        self._fmu, self._unzip, self._initialized = None, None, False
         md = read_model_description(str(path))
         if md.coSimulation is None:
             raise FmuError(f"{alias} ({path}) does not support co-simulation")
@@ -60,22 +61,29 @@ class Fmu3Instance(LoggedCalls):
         self._written = dict(self._starts)
         self._start_time, self._stop_time = start_time, stop_time
         self._unzip = extract(str(path))
-        self._fmu = FMU3Slave(guid=md.guid, unzipDirectory=self._unzip,
-                              modelIdentifier=md.coSimulation.modelIdentifier,
-                              instanceName=alias)
         # Linear input extrapolation through the intermediate update (cosim.intermediate).
         self.intermediate = (IntermediateInputs(self, flagged_inputs(path))
                              if extrapolate and md.coSimulation.providesIntermediateUpdate
                              else None)
         self.can_interpolate_inputs = self.intermediate is not None
         update = self.intermediate.callback if self.intermediate is not None else None
-        self._call("fmi3InstantiateCoSimulation",
-                   lambda: self._fmu.instantiate(logMessage=self._log,
-                                                 intermediateUpdate=update))
+        try:
+            self._fmu = FMU3Slave(guid=md.guid, unzipDirectory=self._unzip,
+                                  modelIdentifier=md.coSimulation.modelIdentifier,
+                                  instanceName=alias)
+            self._call("fmi3InstantiateCoSimulation",
+                       lambda: self._fmu.instantiate(logMessage=self._log,
+                                                     intermediateUpdate=update))
+            categories = status_categories(md)
+            if categories:
+                self._call("fmi3SetDebugLogging",
+                           lambda: self._fmu.setDebugLogging(True, categories))
+        except BaseException:
+            self.close()
+            raise
 
     def _log(self, _env, status, category, message):
         self._remember(category, message)
-
 
     def _locate(self, name: str):
         """(FMI 3.0 variable, element index or None) of an FMI 2.0 scalar name."""
@@ -143,6 +151,7 @@ class Fmu3Instance(LoggedCalls):
         """fmi3Reset: back to the state after instantiation (start values of every
         parameter); the next initialization starts the experiment at `start_time`."""
         self._call("fmi3Reset", self._fmu.reset)
+        self._initialized = False
         self._written = dict(self._starts)
         self.messages.clear()
         self._start_time, self._stop_time = start_time, stop_time

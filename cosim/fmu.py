@@ -3,6 +3,7 @@ FMU and the FMI call, and the FMU's log messages kept for error reports."""
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 from fmpy import extract, read_model_description
@@ -12,6 +13,24 @@ from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFr
 from fmpy import calloc, free
 
 from .errors import FmuError, StepDiscarded
+
+# The log categories of the standard for non-OK statuses. An FMU may log a Discard or a
+# Warning only when its category is switched on (the plant does): without them, the
+# reason of a refused call is lost ("the FMU logged no reason").
+STATUS_CATEGORIES = ("logStatusWarning", "logStatusDiscard", "logStatusError",
+                     "logStatusFatal", "logStatusPending")
+
+
+def status_categories(md) -> list[str]:
+    """The standard's status log categories that the FMU declares."""
+    declared = {getattr(c, "name", c) for c in getattr(md, "logCategories", None) or []}
+    return [c for c in STATUS_CATEGORIES if c in declared]
+
+
+def remove_extracted(folder) -> None:
+    """Removes a folder that fmpy.extract made (None: nothing to do)."""
+    if folder:
+        shutil.rmtree(folder, ignore_errors=True)
 
 _GETTERS = {"Real": "getReal", "Integer": "getInteger", "Boolean": "getBoolean"}
 _SETTERS = {"Real": "setReal", "Integer": "setInteger", "Boolean": "setBoolean"}
@@ -58,6 +77,7 @@ class LoggedCalls:
 
     def exit_initialization(self) -> None:
         self._call(f"{self._PREFIX}ExitInitializationMode", self._fmu.exitInitializationMode)
+        self._initialized = True
 
     def do_step(self, time: float, step: float) -> None:
         try:
@@ -87,12 +107,25 @@ class LoggedCalls:
         return lambda *args: self._call(name, lambda: method(*args))
 
     def close(self) -> None:
-        """Terminates and frees the instance; safe to call after a failure."""
-        try:
-            self._fmu.terminate()
-        except FMICallException:
-            pass
-        self._fmu.freeInstance()
+        """Terminates (when initialised) and frees the instance and removes its extracted
+        folder; safe to call after any failure and more than once, and never raises: a
+        failure while cleaning up must not mask the error that led here."""
+        fmu, self._fmu = getattr(self, "_fmu", None), None
+        if fmu is not None:
+            if getattr(self, "_initialized", False):
+                try:
+                    fmu.terminate()
+                except Exception:  # noqa: BLE001 - cleanup after an earlier failure
+                    pass
+            try:
+                if getattr(fmu, "component", None) is not None:
+                    fmu.freeInstance()
+                else:
+                    fmu.freeLibrary()
+            except Exception:  # noqa: BLE001
+                pass
+        remove_extracted(getattr(self, "_unzip", None))
+        self._unzip = None
 
 
 class FmuInstance(LoggedCalls):
@@ -101,6 +134,7 @@ class FmuInstance(LoggedCalls):
     def __init__(self, alias: str, path: Path, start_time: float, stop_time: float):
         self.alias = alias
         self.messages: list[str] = []
+        self._fmu, self._unzip, self._initialized = None, None, False
         md = read_model_description(str(path))
         if md.coSimulation is None:
             raise FmuError(f"{alias} ({path}) does not support co-simulation")
@@ -110,6 +144,14 @@ class FmuInstance(LoggedCalls):
         self.can_interpolate_inputs = bool(md.coSimulation.canInterpolateInputs)
         self.max_output_derivative_order = int(md.coSimulation.maxOutputDerivativeOrder or 0)
         self._unzip = extract(str(path))
+        try:
+            self._open(md, start_time, stop_time)
+        except BaseException:
+            self.close()
+            raise
+
+    def _open(self, md, start_time: float, stop_time: float) -> None:
+        alias = self.alias
         self._fmu = FMU2Slave(guid=md.guid, unzipDirectory=self._unzip,
                               modelIdentifier=md.coSimulation.modelIdentifier, instanceName=alias)
         # Keep the ctypes callbacks alive as long as the instance.
@@ -118,12 +160,15 @@ class FmuInstance(LoggedCalls):
         self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
         self._call("fmi2Instantiate", lambda: self._fmu.instantiate(callbacks=self._callbacks))
+        categories = status_categories(md)
+        if categories:
+            self._call("fmi2SetDebugLogging",
+                       lambda: self._fmu.setDebugLogging(True, categories))
         self._call("fmi2SetupExperiment",
                    lambda: self._fmu.setupExperiment(startTime=start_time, stopTime=stop_time))
 
     def _log(self, _env, _name, status, category, message):
         self._remember(category, message)
-
 
     def _groups(self, names: tuple[str, ...]) -> list[tuple[str, list[int], list[int]]]:
         """(type, positions in `names`, value references) per variable type, cached."""
@@ -189,6 +234,7 @@ class FmuInstance(LoggedCalls):
         """fmi2Reset: back to the state after instantiation (start values of every
         parameter), then the experiment set up again; the instance is reused."""
         self._call("fmi2Reset", self._fmu.reset)
+        self._initialized = False
         self.messages.clear()
         self._call("fmi2SetupExperiment",
                    lambda: self._fmu.setupExperiment(startTime=start_time, stopTime=stop_time))

@@ -39,6 +39,14 @@ class Metrics:
     peak_planned_acceleration: float  # rad/s^2
     peak_angular_acceleration: float  # rad/s^2, plant omega_dot
 
+    def si(self) -> dict[str, float]:
+        """The metrics in SI (rad, N, rad/s^2), keyed as cosim.limits names them."""
+        return {"rms_error": math.radians(self.rms_error_deg),
+                "max_error": math.radians(self.max_error_deg),
+                "peak_force": self.peak_force_n,
+                "peak_planned_acceleration": self.peak_planned_acceleration,
+                "peak_angular_acceleration": self.peak_angular_acceleration}
+
     def row(self) -> list[str]:
         return [f"{self.rms_error_deg:.5f}", f"{self.max_error_deg:.5f}",
                 f"{self.peak_force_n:.3f}",
@@ -64,6 +72,35 @@ def metrics(result: dict) -> Metrics:
     )
 
 
+# The smallest span a panel shows, in the panel's unit: data that vary less (round-off,
+# 1e-14 deg) are drawn flat with a note instead of being magnified into a deviation.
+MIN_SPAN = {"deg": 1e-6, "N": 1e-6}
+
+
+def steady_axis(ax, values, unit: str) -> None:
+    """Keeps `ax` from autoscaling a spread below MIN_SPAN[unit] into a full panel."""
+    values = np.asarray(values, dtype=float)
+    finite = values[np.isfinite(values)]
+    if finite.size == 0:
+        return
+    low, high = float(finite.min()), float(finite.max())
+    floor = MIN_SPAN.get(unit, 0.0)
+    if high - low < floor:
+        centre = 0.5 * (low + high)
+        ax.set_ylim(centre - floor, centre + floor)
+        ax.ticklabel_format(axis="y", useOffset=False, style="plain")
+        ax.text(0.01, 0.04, f"constant to within {high - low:.1e} {unit} (round-off scale; "
+                f"panel spans {2 * floor:g} {unit})", transform=ax.transAxes, fontsize=7)
+
+
+def coincide_note(a, b, unit: str, span: float) -> str:
+    """A legend note when two plotted lines coincide to within 0.2 % of the panel."""
+    gap = float(np.nanmax(np.abs(np.asarray(a) - np.asarray(b))))
+    if gap <= 2e-3 * max(span, MIN_SPAN.get(unit, 0.0)):
+        return f" (coincides with planned: max |diff| = {gap:.1e} {unit})"
+    return ""
+
+
 def _figure(rows: int):
     import matplotlib
     matplotlib.use("Agg")
@@ -81,14 +118,17 @@ def plot_tracking(result: dict, name: str, out_dir: Path,
     written = []
     plt, fig, axes = _figure(3)
     for i, ax in enumerate(axes):
+        span = float(np.ptp(np.concatenate([q[:, i], theta[:, i]])))
         ax.plot(t, q[:, i], "--", color="gray", label="planned")
-        ax.plot(t, theta[:, i], label="plant (co-simulation)")
+        ax.plot(t, theta[:, i], label="plant (co-simulation)"
+                + coincide_note(q[:, i], theta[:, i], "deg", span))
+        steady_axis(ax, np.concatenate([q[:, i], theta[:, i]]), "deg")
         if reference is not None:
             ax.plot(reference["time"], np.degrees(reference[f"plant.theta[{i + 1}]"]), ".",
                     markersize=3, label="Rust reference (ODE)")
         ax.set_ylabel(f"{AXES[i]} (deg)")
         ax.grid(True)
-    axes[0].legend(loc="best", fontsize=8)
+        ax.legend(loc="best", fontsize=7)
     axes[0].set_title(f"{name}: orientation and planned motion")
     axes[-1].set_xlabel("time (s)")
     written.append(out_dir / f"{name}_orientation.png")
@@ -100,6 +140,8 @@ def plot_tracking(result: dict, name: str, out_dir: Path,
     for i in range(3):
         axes[0].plot(t, q[:, i] - theta[:, i], label=AXES[i])
         axes[1].plot(t, result[f"plant.force[{i + 1}]"], label=f"actuator {i + 1}")
+    steady_axis(axes[0], q - theta, "deg")
+    steady_axis(axes[1], vector(result, "plant", "force"), "N")
     axes[0].set_ylabel("tracking error (deg)")
     axes[0].set_title(f"{name}: tracking error and actuator forces")
     axes[1].set_ylabel("actuator force (N)")

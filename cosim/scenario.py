@@ -34,18 +34,26 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from .errors import ScenarioError
+from .schedule import PlanSwitch
+
+__all__ = ["PlanSwitch", "Scenario", "ScenarioError", "Signal", "Connection",
+           "load_scenario", "parse_document", "parse_scenario"]
 
 
 COUPLINGS = ("sampled", "gauss-seidel")
 EXTRAPOLATIONS = ("hold", "linear")
 DEFAULT_STEP = 0.001  # s
-
-
-class ScenarioError(ValueError):
-    """A scenario file that cannot be run; the message names the field."""
+MAX_STEPS = 1_000_000  # communication steps of one run (the results are held in memory)
+MAX_SIGNALS = 1000  # connections and recorded signals
+MAX_FILE_BYTES = 1_000_000
+NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
+REPOSITORY_DIST = Path(__file__).resolve().parent.parent / "dist"
 
 
 @dataclass(frozen=True)
@@ -79,8 +87,10 @@ class Scenario:
     max_step_halvings: int = 0
     coupling: str = "sampled"
     input_extrapolation: str = "linear"
-    # Plan switches of a multi-segment motion (cosim.closed_loop.PlanSwitch), in order.
+    # Plan switches of a multi-segment motion (PlanSwitch), in order.
     schedule: list = field(default_factory=list)
+    # Limits the run is judged against (cosim.limits), SI.
+    limits: dict = field(default_factory=dict)
 
     @property
     def steps(self) -> int:
@@ -116,18 +126,22 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if not isinstance(data, dict):
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
-             "parameters", "connections", "record", "max_step_halvings", "coupling",
+             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits", "plan_switches",
              "input_extrapolation"}
-    unknown = sorted(set(data) - known)
+    unknown = sorted(set(data) - known, key=str)
     if unknown:
-        raise ScenarioError(f"unknown field '{unknown[0]}'")
+        raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
     name = _require(data, "name", str)
+    if not NAME.fullmatch(name):
+        raise ScenarioError(f"field 'name' must be a plain file name (letters, digits, '_', "
+                            f"'-', '.'; at most 100; no '/'), got {name!r}; it names the "
+                            "output files under --out")
     fmus_raw = _require(data, "fmus", dict)
     if not fmus_raw:
         raise ScenarioError("field 'fmus' must name at least one FMU")
     fmus = {alias: base_dir / _require(fmus_raw, alias, str, "fmus.") for alias in fmus_raw}
     order = _require(data, "order", list)
-    if sorted(order) != sorted(fmus):
+    if not all(isinstance(a, str) for a in order) or sorted(order) != sorted(fmus):
         raise ScenarioError(f"field 'order' must list every FMU of 'fmus' exactly once, got {order}")
     start = _require(data, "start_time", float) if "start_time" in data else 0.0
     stop = _require(data, "stop_time", float)
@@ -137,6 +151,10 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if stop <= start:
         raise ScenarioError(f"field 'stop_time' ({stop}) must be after 'start_time' ({start})")
     steps = (stop - start) / step
+    if steps > MAX_STEPS:
+        raise ScenarioError(f"field 'step_size': {stop - start:g} s in steps of {step:g} s are "
+                            f"{steps:.3g} steps, more than the {MAX_STEPS:,} a run may have; "
+                            "use a larger step_size or a shorter run")
     if abs(steps - round(steps)) > 1e-9 * max(1.0, steps):
         raise ScenarioError(f"field 'step_size' ({step}) must divide stop - start ({stop - start})")
     params_raw = data.get("parameters", {})
@@ -156,8 +174,9 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
         parameters[alias] = dict(values)
     connections = []
     raw_connections = data.get("connections", [])
-    if not isinstance(raw_connections, list):
-        raise ScenarioError("field 'connections' must be a list of {from, to}")
+    if not isinstance(raw_connections, list) or len(raw_connections) > MAX_SIGNALS:
+        raise ScenarioError(f"field 'connections' must be a list of at most {MAX_SIGNALS} "
+                            "{from, to} tables")
     targets = set()
     for k, c in enumerate(raw_connections):
         where = f"connections[{k}]"
@@ -169,8 +188,9 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
         targets.add(conn.target)
         connections.append(conn)
     record_raw = data.get("record", [])
-    if not isinstance(record_raw, list):
-        raise ScenarioError("field 'record' must be a list of \"alias.variable\"")
+    if not isinstance(record_raw, list) or len(record_raw) > MAX_SIGNALS:
+        raise ScenarioError(f"field 'record' must be a list of at most {MAX_SIGNALS} "
+                            "\"alias.variable\"")
     record = [_signal(s, f"record[{k}]", fmus) for k, s in enumerate(record_raw)]
     halvings = data.get("max_step_halvings", 0)
     if not isinstance(halvings, int) or isinstance(halvings, bool) or not 0 <= halvings <= 20:
@@ -182,40 +202,123 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if extrapolation not in EXTRAPOLATIONS:
         raise ScenarioError(f"field 'input_extrapolation' must be one of {EXTRAPOLATIONS}, "
                             f"got {extrapolation!r}")
+    from .limits import parse_limits
     return Scenario(name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
                     record=record, max_step_halvings=halvings, coupling=coupling,
-                    input_extrapolation=extrapolation)
+                    input_extrapolation=extrapolation,
+                    limits=parse_limits(data.get("limits", {})),
+                    schedule=_plan_switches(data.get("plan_switches", []), fmus, round(steps)))
 
 
-def parse_document(data: dict, base_dir: Path, fmu_dir: str | Path | None = None) -> Scenario:
-    """A plain or hand-written (closed-loop) scenario document, validated."""
-    if fmu_dir is not None and isinstance(data, dict) and isinstance(data.get("fmus"), dict):
-        data = dict(data, fmus={alias: str(Path(fmu_dir).resolve() / Path(str(f)).name)
-                                for alias, f in data["fmus"].items()})
-    from .closed_loop import is_closed_loop, resolve
+def _plan_switches(raw, fmus, steps: int) -> list[PlanSwitch]:
+    """``[[plan_switches]]`` (step, alias, parameters): the expanded form of a
+    multi-segment motion, in increasing steps inside the run."""
+    if not isinstance(raw, list) or len(raw) > MAX_SIGNALS:
+        raise ScenarioError(f"field 'plan_switches' must be a list of at most {MAX_SIGNALS} "
+                            "{step, alias, parameters} tables")
+    switches, last = [], 0
+    for k, item in enumerate(raw):
+        where = f"plan_switches[{k}]"
+        if not isinstance(item, dict) or set(item) != {"step", "alias", "parameters"}:
+            raise ScenarioError(f"field '{where}' must have exactly the keys 'step', 'alias' "
+                                "and 'parameters'")
+        step = item["step"]
+        if not isinstance(step, int) or isinstance(step, bool) or not last < step < steps:
+            raise ScenarioError(f"field '{where}.step' must be an integer after the previous "
+                                f"switch's and before the last step ({steps}), got {step!r}")
+        if item["alias"] not in fmus:
+            raise ScenarioError(f"field '{where}.alias' names unknown FMU {item['alias']!r}")
+        values = item["parameters"]
+        if not isinstance(values, dict) or not all(
+                isinstance(v, (int, float, bool)) and not (
+                    isinstance(v, float) and not math.isfinite(v)) for v in values.values()):
+            raise ScenarioError(f"field '{where}.parameters' must be a table of finite "
+                                "numbers or booleans")
+        switches.append(PlanSwitch(step, item["alias"], dict(values)))
+        last = step
+    return switches
+
+
+def _find_fmus(data: dict, base_dir: Path, fmu_dir) -> dict:
+    """The document with its FMU paths found: by file name in `fmu_dir`, else relative
+    to the scenario, else (a file that is not there) by file name in the repository's
+    dist/ when this package runs from a checkout."""
+    if not isinstance(data, dict) or not isinstance(data.get("fmus"), dict):
+        return data
+    found = {}
+    for alias, f in data["fmus"].items():
+        if not isinstance(f, str) or not f:
+            found[alias] = f  # parse_scenario names the field
+            continue
+        path = (Path(fmu_dir) / Path(f).name if fmu_dir is not None else base_dir / f).absolute()
+        fallback = REPOSITORY_DIST / Path(f).name
+        if fmu_dir is None and not path.exists() and fallback.is_file():
+            path = fallback
+        found[alias] = str(path)
+    return dict(data, fmus=found)
+
+
+def parse_document(data: dict, base_dir: Path, fmu_dir: str | Path | None = None,
+                   preflight: bool = False) -> Scenario:
+    """A plain or hand-written (closed-loop) scenario document, validated; with
+    `preflight` (the default of load_scenario, not here: a sweep's runs report what the
+    FMUs refuse as failed runs), also against its FMUs (cosim.preflight) and, for the
+    closed loop, the start pose, the waypoints and the whole plan against the workspace
+    (cosim.workspace)."""
+    data = _find_fmus(data, base_dir, fmu_dir)
+    from .closed_loop import FIELDS, WHERE, is_closed_loop, resolve
     if not is_closed_loop(data):
-        return parse_scenario(data, base_dir)
-    plain, schedule = resolve(data, base_dir)
-    scenario = parse_scenario(plain, base_dir)
-    scenario.schedule = schedule
+        scenario = parse_scenario(data, base_dir)
+        fields, where = {}, {"start": "parameters.plant", "plan": "parameters.planner"}
+    else:
+        plain, schedule = resolve(data, base_dir, preflight)
+        scenario = parse_scenario(plain, base_dir)
+        scenario.schedule = schedule
+        fields, where = FIELDS, dict(WHERE, start="start.angles" if "angles" in data.get(
+            "start", {}) else "motion.waypoints[0].angles")
+    if preflight:
+        from . import preflight as checks
+        from .workspace import check_plan, is_closed_loop_plant
+        checks.check(scenario, fields)
+        if is_closed_loop_plant(scenario):
+            check_plan(scenario, where)
     return scenario
 
 
-def load_scenario(path: str | Path, fmu_dir: str | Path | None = None) -> Scenario:
+def read_document(path: Path) -> dict:
+    """The parsed TOML/JSON file; ScenarioError (naming the file) for anything unreadable."""
+    if path.suffix not in (".toml", ".json"):
+        raise ScenarioError("scenario files are .toml or .json; name such a file")
+    try:
+        if not path.is_file():
+            raise ScenarioError("is not a file" if path.exists() else "does not exist")
+        if path.stat().st_size > MAX_FILE_BYTES:
+            raise ScenarioError(f"is larger than {MAX_FILE_BYTES:,} bytes; a scenario is a "
+                                "short text file")
+        text = path.read_bytes().decode("utf-8")
+        if path.suffix == ".toml":
+            return tomllib.loads(text)
+        return json.loads(text)
+    except UnicodeDecodeError as e:
+        raise ScenarioError(f"is not UTF-8 text (byte {e.start}); save it as UTF-8") from None
+    except (tomllib.TOMLDecodeError, json.JSONDecodeError) as e:
+        raise ScenarioError(f"not valid {path.suffix[1:].upper()}: {e}") from None
+    except RecursionError:
+        raise ScenarioError("is nested too deeply to read") from None
+    except OSError as e:
+        raise ScenarioError(f"cannot be read: {e.strerror}") from None
+
+
+def load_scenario(path: str | Path, fmu_dir: str | Path | None = None,
+                  preflight: bool = True) -> Scenario:
     """Reads and validates a .toml or .json scenario file. FMU paths are relative to the
     file's folder, or, with `fmu_dir`, looked up by file name in `fmu_dir`."""
     path = Path(path)
     try:
-        if path.suffix == ".toml":
-            data = tomllib.loads(path.read_text())
-        elif path.suffix == ".json":
-            data = json.loads(path.read_text())
-        else:
-            raise ScenarioError(f"{path}: scenario files are .toml or .json")
-    except (tomllib.TOMLDecodeError, json.JSONDecodeError) as e:
-        raise ScenarioError(f"{path}: not valid {path.suffix[1:].upper()}: {e}") from e
-    try:
-        return parse_document(data, path.parent, fmu_dir)
+        data = read_document(path)
+        return parse_document(data, path.parent, fmu_dir, preflight)
     except ScenarioError as e:
-        raise ScenarioError(f"{path}: {e}") from e
+        raise ScenarioError(f"{path}: {e}") from None
+    except RecursionError:
+        raise ScenarioError(f"{path}: is nested too deeply to read") from None

@@ -1,10 +1,14 @@
 """Export a scenario as an SSP 1.0 archive (System Structure and Parameterization), so
 that other tools can run the closed loop without our master.
 
-The archive holds SystemStructure.ssd and the FMUs under resources/. Parameters are one
-system-level ParameterSet with names "component.variable" (the form FMPy's
-``simulate_ssp(parameter_set=...)`` applies); connector kinds and types come from each
-FMU's modelDescription.xml.
+The archive holds SystemStructure.ssd and the FMUs under resources/. Each component
+carries its own parameters: one ParameterBinding with an inline ParameterSet named
+"scenario" whose names are the FMU's variable names (the form libcosim, ecos and
+OMSimulator apply; a system-level set with names "component.variable" is not written:
+libcosim and ecos ignore it, and one copy of each value cannot disagree with another).
+The communication step size is written where the importers look for it
+(cosim.ssp_annotations). Connector kinds and types come from each FMU's
+modelDescription.xml. docs/interoperability.md says which tool reads what.
 """
 
 from __future__ import annotations
@@ -15,18 +19,13 @@ from pathlib import Path
 from xml.etree import ElementTree as ET
 
 from .scenario import Scenario, ScenarioError, load_scenario
+from .ssp_annotations import default_experiment, system_annotations
+from .ssp_annotations import tag as _tag
 
-NS = {
-    "ssd": "http://ssp-standard.org/SSP1/SystemStructureDescription",
-    "ssc": "http://ssp-standard.org/SSP1/SystemStructureCommon",
-    "ssv": "http://ssp-standard.org/SSP1/SystemStructureParameterValues",
-}
-for _prefix, _uri in NS.items():
-    ET.register_namespace(_prefix, _uri)
-
-
-def _tag(prefix: str, name: str) -> str:
-    return f"{{{NS[prefix]}}}{name}"
+# The name of every component's parameter set: ecos applies a set only when the caller
+# names it (EcosSimulation.init(parameter_set=PARAMETER_SET)); libcosim takes a
+# component's first set when none is named.
+PARAMETER_SET = "scenario"
 
 
 def _variables(path: Path) -> dict:
@@ -49,6 +48,19 @@ def _value_element(kind: str, value) -> ET.Element:
     if kind == "Boolean":
         return ET.Element(_tag("ssv", "Boolean"), value="true" if value else "false")
     raise ScenarioError(f"parameters of type {kind} cannot be exported")
+
+
+def _parameter_bindings(assignments: dict, variables: dict, alias: str) -> ET.Element:
+    """A component's ParameterBindings: one inline set, names relative to the FMU."""
+    bindings = ET.Element(_tag("ssd", "ParameterBindings"))
+    binding = ET.SubElement(bindings, _tag("ssd", "ParameterBinding"))
+    values = ET.SubElement(binding, _tag("ssd", "ParameterValues"))
+    pset = ET.SubElement(values, _tag("ssv", "ParameterSet"), version="1.0", name=PARAMETER_SET)
+    params = ET.SubElement(pset, _tag("ssv", "Parameters"))
+    for name, value in assignments.items():
+        p = ET.SubElement(params, _tag("ssv", "Parameter"), name=name)
+        p.append(_value_element(_type_of(variables, alias, name), value))
+    return bindings
 
 
 def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.ElementTree:
@@ -75,26 +87,15 @@ def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.Eleme
                 raise ScenarioError(f"{alias}.{name} is a {causality}, not an {kind}")
             connector = ET.SubElement(connectors, _tag("ssd", "Connector"), name=name, kind=kind)
             ET.SubElement(connector, _tag("ssc", _type_of(variables[alias], alias, name)))
+        if scenario.parameters.get(alias):
+            component.append(_parameter_bindings(scenario.parameters[alias], variables[alias], alias))
     connections = ET.SubElement(system, _tag("ssd", "Connections"))
     for c in scenario.connections:
         ET.SubElement(connections, _tag("ssd", "Connection"),
                       startElement=c.source.alias, startConnector=c.source.variable,
                       endElement=c.target.alias, endConnector=c.target.variable)
-    if scenario.parameters:
-        bindings = ET.SubElement(system, _tag("ssd", "ParameterBindings"))
-        binding = ET.SubElement(bindings, _tag("ssd", "ParameterBinding"))
-        values = ET.SubElement(binding, _tag("ssd", "ParameterValues"))
-        pset = ET.SubElement(values, _tag("ssv", "ParameterSet"), version="1.0", name="scenario")
-        params = ET.SubElement(pset, _tag("ssv", "Parameters"))
-        for alias, assignments in scenario.parameters.items():
-            for name, value in assignments.items():
-                p = ET.SubElement(params, _tag("ssv", "Parameter"), name=f"{alias}.{name}")
-                p.append(_value_element(_type_of(variables[alias], alias, name), value))
-    ET.SubElement(root, _tag("ssd", "DefaultExperiment"),
-                  startTime=repr(scenario.start_time), stopTime=repr(scenario.stop_time))
-    # The schema orders a System's children: ParameterBindings, Elements, Connections.
-    system[:] = sorted(system, key=lambda e: ["ParameterBindings", "Elements", "Connections"]
-                       .index(e.tag.split("}")[1]))
+    system.append(system_annotations(scenario.step_size))
+    root.append(default_experiment(scenario.start_time, scenario.stop_time, scenario.step_size))
     return ET.ElementTree(root)
 
 
@@ -114,20 +115,37 @@ def write_ssp(scenario: Scenario, path: Path) -> None:
             z.write(fmu, f"resources/{fmu.name}")
 
 
-def main(argv=None) -> int:
-    import argparse
-    parser = argparse.ArgumentParser(prog="python -m cosim.ssp", description=__doc__)
-    parser.add_argument("scenario", type=Path)
-    parser.add_argument("--out", type=Path, required=True, help="SSP file to write")
-    args = parser.parse_args(argv)
+def fmpy_parameter_set(path: Path):
+    """The bindings of an SSP written by write_ssp as the one FMPy ParameterSet that
+    FMPy's simulate_ssp(parameter_set=...) takes (it applies no binding of the SSD
+    itself), with names "component.variable"."""
+    from fmpy.ssp.ssd import ParameterSet, read_ssd
+    merged = ParameterSet(name=PARAMETER_SET)
+    for component in read_ssd(str(path)).system.elements:
+        for binding in component.parameterBindings:
+            for parameter_set in binding.parameterValues:
+                for p in parameter_set.parameters:
+                    p.name = f"{component.name}.{p.name}"
+                    merged.parameters.append(p)
+    return merged
+
+
+def add_arguments(parser) -> None:
+    """``cosim ssp SCENARIO --out X.ssp``."""
+    parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
+    parser.add_argument("--out", type=Path, required=True, help="SSP file to write (.ssp)")
+    parser.add_argument("--fmu-dir", type=Path, help="find the FMUs by file name here")
+
+
+def run(args) -> int:
+    from .run import fmu_dir
+    if args.out.suffix != ".ssp" or args.out.is_dir():
+        raise ScenarioError(f"--out: {args.out}: the SSP archive is a file whose name ends "
+                            "with .ssp; name such a file")
+    scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
     try:
-        write_ssp(load_scenario(args.scenario), args.out)
+        write_ssp(scenario, args.out)
     except ScenarioError as e:
-        print(f"cosim.ssp: {e}", file=sys.stderr)
-        return 1
+        raise ScenarioError(f"{args.scenario}: field 'motion.waypoints': {e}") from None
     print(f"wrote {args.out}")
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

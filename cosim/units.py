@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from .scenario import ScenarioError
+from .errors import ScenarioError
 
 DEG = math.pi / 180.0
 
@@ -23,7 +23,37 @@ UNITS: dict[str, tuple[float, str]] = {
     "N m/(rad s)": (1.0, "integral gain"), "N m s/rad": (1.0, "damping gain"),
     "kg": (1.0, "mass"), "g": (1e-3, "mass"), "kg m^2": (1.0, "inertia"),
     "m": (1.0, "length"), "mm": (1e-3, "length"), "N": (1.0, "force"),
+    "m/s": (1.0, "velocity"), "mm/s": (1e-3, "velocity"),
+    "m/s^2": (1.0, "acceleration"), "N m": (1.0, "torque"),
+    "N/m": (1.0, "translational stiffness"), "N s/m": (1.0, "translational damping"),
 }
+
+# dimension -> exponents of the SI base units (kg, m, s, rad, A, K, mol, cd), as FMI 2.0
+# unit definitions state them (<BaseUnit kg="1" m="2" .../>).
+DIMENSIONS: dict[str, tuple[int, ...]] = {
+    "time": (0, 0, 1, 0), "angle": (0, 0, 0, 1), "angular velocity": (0, 0, -1, 1),
+    "angular acceleration": (0, 0, -2, 1), "stiffness gain": (1, 2, -2, -1),
+    "integral gain": (1, 2, -3, -1), "damping gain": (1, 2, -1, -1), "mass": (1, 0, 0, 0),
+    "inertia": (1, 2, 0, 0), "length": (0, 1, 0, 0), "force": (1, 1, -2, 0),
+    "velocity": (0, 1, -1, 0), "acceleration": (0, 1, -2, 0), "torque": (1, 2, -2, 0),
+    "translational stiffness": (1, 0, -2, 0), "translational damping": (1, 0, -1, 0),
+}
+
+
+def exponents(dimension: str) -> tuple[int, ...]:
+    """SI base-unit exponents of `dimension`, padded to the eight FMI base units."""
+    return DIMENSIONS[dimension] + (0, 0, 0, 0)
+
+
+def unit_in(text) -> str | None:
+    """The unit a "value unit" string ends with (None: no known unit)."""
+    if not isinstance(text, str):
+        return None
+    text = text.strip()
+    for unit in sorted(UNITS, key=len, reverse=True):
+        if text.endswith(unit) and len(text) > len(unit) and text[-len(unit) - 1] == " ":
+            return unit
+    return None
 
 
 def quantity_vector(text, dimension: str, field: str, length: int | None = None) -> list[float]:

@@ -8,6 +8,12 @@
 # the _in.csv inputs only); they were computed without running any FMU (closed forms,
 # or the library's kinematics and inverse dynamics). OUT defaults to cross-check/
 # (generated, git-ignored). Needs dist/*.fmu (scripts/build-fmus.sh).
+# Then each FMU of the tree is verified in its folder as the cross-check does it
+# (cosim verify: defaults, the _ref.opt experiment, the _in.csv inputs, the FMI
+# cross-check band rule for every signal); the verdicts (verdict.txt), a JSON report and
+# JUnit XML per FMU go to OUT/verify/2.0/{cs,me}/<Model>/ (outside the tree FMPy's
+# validate_vendor_repo reads). Exit status 1 when an FMU fails its verdict.
+# Needs the Python environment (scripts/setup-venv.sh; PYTHON overrides .venv/bin/python).
 # Usage: bash scripts/cross-check.sh [OUT]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -52,3 +58,25 @@ EOF
     done
 done
 echo "cross-check: wrote $out/fmus/2.0/{cs,me}/linux64/robofmu/$version/{Planner,PID,Pss3Plant}"
+
+python=${PYTHON:-.venv/bin/python}
+failed=0
+for entry in "${cases[@]}"; do
+    read -r model _ <<<"$entry"
+    for kind in cs me; do
+        dir="$out/fmus/2.0/$kind/linux64/robofmu/$version/$model"
+        report="$out/verify/2.0/$kind/$model"
+        mkdir -p "$report"
+        if ! "$python" -m cosim.verify "$dir/$model.fmu" "$dir" --interface "$kind" \
+            --tolerance '*=cross-check' --out "$report" --junit "$report/junit.xml" \
+            >"$report/verdict.txt" 2>&1; then
+            echo "cross-check: $model ($kind) failed its verdict:" >&2
+            cat "$report/verdict.txt" >&2
+            failed=1
+        fi
+    done
+done
+if [[ $failed == 0 ]]; then
+    echo "cross-check: every FMU within the cross-check band; verdicts in $out/verify"
+fi
+exit $failed

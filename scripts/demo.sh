@@ -8,5 +8,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build-fmus.sh
 bash scripts/setup-venv.sh
-.venv/bin/python -m cosim.demo --out results "$@"
-.venv/bin/python -m cosim sweep sweeps/demo_gains.toml --out results
+.venv/bin/cosim demo --out results "$@"
+.venv/bin/cosim sweep sweeps/demo_gains.toml --out results

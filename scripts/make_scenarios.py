@@ -4,11 +4,13 @@
 (`robofmu closed-loop reference`, Dop853 at 1e-11, every 10 ms), to
 tests/closed_loop_references/<name>/<name>_ref.csv with its options file.
 
-The scenarios are written by hand in a person's units (cosim/closed_loop.py documents
-the form); the Rust reference and the Python harness both resolve them (Euler-rate
-boundary conditions, triple-pole gains) when they load them.
+The scenarios are written by hand in a person's units (docs/user-guide.md); the Python
+harness alone resolves them (units, Euler-rate boundary conditions, triple-pole gains,
+workspace) and writes their expanded SI form to tests/scenarios/expanded/<name>.toml
+(`cosim check --expanded`), which the Rust reference reads.
 
-Run after `cargo build --release`:  python3 scripts/make_scenarios.py [name ...]
+Run after `cargo build --release` and scripts/setup-venv.sh:
+    .venv/bin/python scripts/make_scenarios.py [name ...]
 """
 
 from __future__ import annotations
@@ -20,15 +22,22 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 ROBOFMU = ROOT / "target" / "release" / "robofmu"
 SCENARIOS = ROOT / "scenarios"
+EXPANDED = ROOT / "tests" / "scenarios" / "expanded"
 REFERENCES = ROOT / "tests" / "closed_loop_references"
+# Scenarios with plant parameters the reference does not model (it uses the default plant).
+HARNESS_ONLY = {"heavy_platform"}
 
 
 def main(names: list[str]) -> None:
-    for name in names or sorted(p.stem for p in SCENARIOS.glob("*.toml")):
+    for name in names or sorted(p.stem for p in SCENARIOS.glob("*.toml")
+                                if p.stem not in HARNESS_ONLY):
+        expanded = EXPANDED / f"{name}.toml"
+        subprocess.run([sys.executable, "-m", "cosim", "check", str(SCENARIOS / f"{name}.toml"),
+                        "--expanded", str(expanded)], check=True, cwd=ROOT)
         reference = REFERENCES / name / f"{name}_ref.csv"
         reference.parent.mkdir(parents=True, exist_ok=True)
         subprocess.run([str(ROBOFMU), "closed-loop", "reference", "--scenario",
-                        str(SCENARIOS / f"{name}.toml"), "--out", str(reference),
+                        str(expanded), "--out", str(reference),
                         "--every", "10", "--tolerance", "1e-11"], check=True)
 
 

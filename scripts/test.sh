@@ -11,6 +11,8 @@ bash scripts/build-fmus.sh
 cargo test --workspace --release
 # valgrind memcheck over each FMU's lifecycle (installs valgrind in CI).
 bash scripts/memcheck.sh
+# libtbb12 for ecospy (installed with apt-get in CI, as valgrind is).
+bash scripts/install-importer-libs.sh
 # FMUs through a real importer: create the pinned venv, run pytest
 # (pytest exits 5 when it collects nothing; that counts as a failure too).
 bash scripts/setup-venv.sh

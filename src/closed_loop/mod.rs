@@ -14,7 +14,6 @@
 
 mod error;
 mod gains;
-mod human;
 mod scenario;
 mod simulate;
 

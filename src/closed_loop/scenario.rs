@@ -1,11 +1,13 @@
-//! Reads a co-simulation scenario (the TOML file that `python -m cosim` runs) into the
-//! loop it describes. Only the planner -> PID -> plant topology of this module is
-//! accepted; any other connection or an unmodelled plant parameter is refused by name,
-//! so the reference can never silently describe a different loop than the FMUs run.
-//! A hand-written scenario (with a `[motion]` table) is read by `human`.
+//! Reads a co-simulation scenario in its plain (expanded, SI) form, the TOML file that
+//! `cosim run` runs, into the loop it describes. Only the planner -> PID -> plant
+//! topology of this module is accepted; any other connection or an unmodelled plant
+//! parameter is refused by name, so the reference can never silently describe a
+//! different loop than the FMUs run. The scenario rules of the hand-written form (units,
+//! base-frame rates, gain design, workspace) live in one place, the Python harness:
+//! `cosim check SCENARIO --expanded FILE.toml` writes the form read here, with the
+//! `[[plan_switches]]` of a multi-segment motion.
 
 use super::error::LoopError;
-use super::human::parse_human_scenario;
 use crate::control::pid::PidGains;
 use crate::control::trajectory::{Boundary, Order, Polynomial};
 use crate::pss3::dynamics::PlantParams;
@@ -202,6 +204,42 @@ fn parameters<'a>(doc: &'a Table, alias: &str) -> Result<&'a Table, LoopError> {
         .ok_or_else(|| bad(format!("missing table 'parameters.{alias}'")))
 }
 
+/// The later segments of a multi-segment motion: each `[[plan_switches]]` entry resets
+/// the planner at communication step `step` with its `parameters`.
+fn plan_switches(
+    doc: &Table,
+    planner: &str,
+    start_time: f64,
+    step_size: f64,
+) -> Result<Vec<(f64, [Polynomial; 3])>, LoopError> {
+    let Some(list) = doc.get("plan_switches") else {
+        return Ok(Vec::new());
+    };
+    let list = list
+        .as_array()
+        .ok_or_else(|| bad("'plan_switches' must be an array of tables".into()))?;
+    let mut out = Vec::with_capacity(list.len());
+    for (k, item) in list.iter().enumerate() {
+        let place = format!("plan_switches[{k}].");
+        let step = item.get("step").and_then(Value::as_integer);
+        let alias = item.get("alias").and_then(Value::as_str);
+        let params = item.get("parameters").and_then(Value::as_table);
+        let (Some(step), Some(alias), Some(params)) = (step, alias, params) else {
+            return Err(bad(format!(
+                "'{place}' needs an integer 'step', an 'alias' and a 'parameters' table"
+            )));
+        };
+        if alias != planner {
+            return Err(bad(format!(
+                "'{place}alias' is '{alias}': the reference switches only the planner"
+            )));
+        }
+        let time = start_time + step as f64 * step_size;
+        out.push((time, trajectories(params, &format!("{place}parameters."))?));
+    }
+    Ok(out)
+}
+
 /// Reads the loop of a scenario file's text.
 pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
     let doc: Table = text
@@ -214,7 +252,11 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
     let fmus = doc.get("fmus").and_then(Value::as_table);
     let [planner, pid, plant] = roles(fmus.ok_or_else(|| bad("missing 'fmus'".into()))?)?;
     if doc.contains_key("motion") {
-        return parse_human_scenario(&doc, name, [planner, pid, plant]);
+        return Err(bad(
+            "a hand-written scenario (a [motion] table): the reference reads its expanded \
+             form; write it with `cosim check SCENARIO --expanded FILE.toml`"
+                .into(),
+        ));
     }
     let found = connections(&doc)?;
     let expected = expected_connections(&planner, &pid, &plant);
@@ -263,7 +305,7 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
             parameters(&doc, &planner)?,
             &format!("parameters.{planner}."),
         )?,
-        later_segments: Vec::new(),
+        later_segments: plan_switches(&doc, &planner, start_time, step_size)?,
         gains: gains(parameters(&doc, &pid)?, &format!("parameters.{pid}."))?,
         plant: PlantParams::default(),
         theta0: initial(plant_params, "theta0", &format!("parameters.{plant}."))?,

@@ -112,13 +112,12 @@ def test_ssp_runs_in_fmpy_and_matches_the_master(tmp_path):
     # tolerance 3e-6 rad. FMPy labels each row with the time at the start of the step
     # that produced it, hence the shift by h.
     from fmpy.ssp.simulation import simulate_ssp
-    from fmpy.ssp.ssd import read_ssd
 
-    from cosim.ssp import write_ssp
+    from cosim.ssp import fmpy_parameter_set, write_ssp
     scenario = load_scenario(ROOT / "scenarios" / "three_axis_quintic.toml")
     ssp = tmp_path / "three_axis_quintic.ssp"
     write_ssp(scenario, ssp)
-    parameters = read_ssd(str(ssp)).system.parameterBindings[0].parameterValues[0]
+    parameters = fmpy_parameter_set(ssp)
     h = scenario.step_size
     jacobi = simulate_ssp(str(ssp), start_time=0.0, stop_time=scenario.stop_time,
                           step_size=h, parameter_set=parameters)

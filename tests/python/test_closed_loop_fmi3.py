@@ -1,5 +1,5 @@
 """The closed-loop scenarios through our master with the FMI 3.0 builds of the FMUs
-(cosim/fmi3.py, `python -m cosim SCENARIO --fmi3`) against the FMI 2.0 run: the same
+(cosim/fmi3.py, `cosim run SCENARIO --fmi3`) against the FMI 2.0 run: the same
 model code behind two front-ends, driven in the same order, so every recorded signal
 (angles, rates, forces, the PID output, the plan) must agree to 1e-9 (the issue's bound
 in rad; all signals are compared with it)."""

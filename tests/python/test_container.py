@@ -221,13 +221,12 @@ def test_toolbox_ssp_reader_ignores_parameter_bindings(tmp_path):
     # parameter as a ParameterBinding; the assembly read from it has no start value.
     # When a toolbox version reads them, this test fails and the README must change.
     from fmu_manipulation_toolbox.assembly import Assembly
-    from fmpy.ssp.ssd import read_ssd
 
-    from cosim.ssp import write_ssp
+    from cosim.ssp import fmpy_parameter_set, write_ssp
     s = scenario("three_axis_quintic")
     ssp = tmp_path / "loop.ssp"
     write_ssp(s, ssp)
-    bound = read_ssd(str(ssp)).system.parameterBindings[0].parameterValues[0].parameters
+    bound = fmpy_parameter_set(ssp).parameters
     assert len(bound) == sum(len(v) for v in s.parameters.values())
     assembly = Assembly(ssp.name, fmu_directory=tmp_path)
     assert len(assembly.root.fmu_names_list) == 3

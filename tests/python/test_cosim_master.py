@@ -220,7 +220,7 @@ def test_scenario_files_load_from_toml_and_json(tmp_path):
     (tmp_path / "s.toml").write_text(
         'name = "x"\nstop_time = 1.0\nstep_size = 0.5\norder = ["a"]\n[fmus]\na = "a.fmu"\n')
     for name in ("s.json", "s.toml"):
-        s = load_scenario(tmp_path / name)
+        s = load_scenario(tmp_path / name, preflight=False)  # no FMU files here
         assert s.steps == 2 and s.fmus["a"] == tmp_path / "a.fmu"
     del data["step_size"]
     assert parse_scenario(data, tmp_path).step_size == 0.001  # the documented default
@@ -252,9 +252,12 @@ def test_ssp_structure_passes_the_ssp_schema(tmp_path):
     names = [(c.startElement, c.startConnector, c.endElement, c.endConnector)
              for c in ssd.system.connections]
     assert names == [("ramp", "y", "int", "u")]
-    params = ssd.system.parameterBindings[0].parameterValues[0].parameters
-    assert [(p.name, p.type, p.value) for p in params] == [("int.gain", "Real", "2.0"),
-                                                            ("int.n", "Integer", "3")]
+    assert ssd.system.parameterBindings == []  # bound per component (cosim.ssp)
+    ramp, integrator = ssd.system.elements
+    assert ramp.parameterBindings == []
+    params = integrator.parameterBindings[0].parameterValues[0].parameters
+    assert [(p.name, p.type, p.value) for p in params] == [("gain", "Real", "2.0"),
+                                                            ("n", "Integer", "3")]
     variables["int"]["u"] = Var(type="Real", causality="parameter")
     with pytest.raises(ScenarioError, match="int.u is a parameter, not an input"):
         system_structure(s, variables)

@@ -5,8 +5,10 @@ result validated against the reference (fmpy.cross_check.validate_result: at mos
 of the samples outside a band of 10 % of the signal's range around the reference), the
 results filed as an importing tool files them, and the whole tree validated by FMPy's
 repository rules (validate_vendor_repo: layout, file sizes, modelDescription, options
-and CSV files naming existing variables)."""
+and CSV files naming existing variables). The script's own verdicts are cosim verify's
+with the same band rule (test_verify_rules.py checks that rule against FMPy's)."""
 
+import json
 import subprocess
 from pathlib import Path
 
@@ -15,6 +17,7 @@ import pytest
 from fmpy.cross_check import validate_result
 from fmpy.cross_check.validate_vendor_repo import read_csv, validate_repo
 from fmpy.util import read_ref_opt_file, write_csv
+from junitparser import JUnitXml
 
 from conftest import MODELS
 
@@ -94,3 +97,18 @@ def test_result_validation_rejects_a_wrong_result(tree):
     problem = validate_result(result=result, reference=reference,
                               t_start=options["StartTime"], t_stop=options["StopTime"])
     assert problem is not None and "q[3]" in problem
+
+
+def test_script_verdicts_are_cosim_verify_reports(tree):
+    # The script exited 0 (the fixture): every FMU passed; its reports say so per signal,
+    # for the reference's every column, under the cross-check band rule.
+    for model_dir in model_dirs(tree):
+        kind, model = model_dir.parts[-5], model_dir.name
+        report_dir = tree / "verify" / "2.0" / kind / model
+        report = json.loads((report_dir / "verify.json").read_text())
+        reference = read_csv(str(model_dir / f"{model}_ref.csv"))
+        assert report["passed"] and report["interface"] == INTERFACES[kind]
+        assert [s["signal"] for s in report["signals"]] == list(reference.dtype.names[1:])
+        assert all(s["rule"] == {"rule": "cross-check"} for s in report["signals"])
+        suite, = list(JUnitXml.fromfile(str(report_dir / "junit.xml")))
+        assert (suite.tests, suite.failures) == (len(report["signals"]), 0)

@@ -1,9 +1,9 @@
 """FMPy as the importer: validation, default experiments, reference results.
 
 The references under tests/references were computed by scripts/make_references.py
-from closed forms with numpy (never by running an FMU)."""
-
-import json
+from closed forms with numpy (never by running an FMU); every case is verified through
+`cosim verify` in test_verify_references.py. The readers below are shared with
+test_fmi3.py."""
 
 import numpy as np
 import pytest
@@ -66,40 +66,3 @@ def read_options(path):
         key, value = line.split(",")
         options[key.strip()] = float(value)
     return options
-
-
-@pytest.mark.parametrize("model,case_dir,interface", reference_cases())
-def test_matches_reference_within_stated_tolerance(model, case_dir, interface):
-    options = read_options(case_dir / f"{model}_ref.opt")
-    case = json.loads((case_dir / "case.json").read_text())
-    reference = np.genfromtxt(case_dir / f"{model}_ref.csv", delimiter=",", names=True,
-                              deletechars="")
-    names = list(reference.dtype.names)
-    signals = [n.strip('"') for n in names[1:]]
-    # Cases driven by inputs keep them beside the reference (time + input names).
-    inputs = case_dir / f"{model}_input.csv"
-    result = simulate_fmu(
-        fmu_path(model),
-        fmi_type=interface,
-        start_time=options["StartTime"],
-        stop_time=options["StopTime"],
-        output_interval=options["StepSize"],
-        step_size=options["StepSize"] if interface == "CoSimulation" else None,
-        relative_tolerance=options["RelTol"],
-        start_values=case["start_values"],
-        input=read_signals(inputs) if inputs.exists() else None,
-        output=signals,
-    )
-    time = result["time"]
-    # At event instants (the planner's t0 and tf) the rates legitimately jump; both
-    # sides are right, so those instants are left out; positions are continuous there.
-    keep = np.ones(len(time), dtype=bool)
-    for t_event in case["event_times"]:
-        keep &= np.abs(time - t_event) > 1e-9
-    assert keep.sum() > 0.9 * len(time)
-    ref_time = reference[names[0]]
-    for name, signal in zip(names[1:], signals):
-        expected = np.interp(time[keep], ref_time, reference[name])
-        error = np.max(np.abs(result[signal][keep] - expected))
-        tolerance = case["tolerances"][interface][signal]
-        assert error <= tolerance, f"{signal}: max error {error:.3g} > {tolerance:g}"

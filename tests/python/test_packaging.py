@@ -20,7 +20,10 @@ def test_installed_console_command_runs_a_scenario_anywhere(tmp_path):
         shutil.copy(ROOT / name, source / name)
     prefix = tmp_path / "prefix"
     # --no-deps --no-build-isolation: the dependencies are this venv's (no download).
+    # --ignore-installed: pip would otherwise first uninstall the editable install of
+    # this venv (scripts/setup-venv.sh), the same distribution.
     subprocess.run([sys.executable, "-m", "pip", "install", "--quiet", "--no-deps",
+                    "--ignore-installed",
                     "--no-build-isolation", "--disable-pip-version-check", "--prefix",
                     str(prefix), str(source)], check=True, capture_output=True)
     command = prefix / "bin" / "cosim"
@@ -30,13 +33,13 @@ def test_installed_console_command_runs_a_scenario_anywhere(tmp_path):
     work.mkdir()
     # A scenario away from the repository: FMUs by file name from --fmu-dir ...
     shutil.copy(ROOT / "scenarios" / "regulation.toml", work / "regulation.toml")
-    run = subprocess.run([str(command), "regulation.toml", "--out", "out", "--quiet",
+    run = subprocess.run([str(command), "run", "regulation.toml", "--out", "out", "--quiet",
                           "--fmu-dir", str(ROOT / "dist")], cwd=work, env=env,
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     assert "1000 steps" in run.stdout and (work / "out" / "regulation.csv").exists()
     # ... and relative to the scenario's own folder (scenarios/../dist) by default.
-    run = subprocess.run([str(command), str(ROOT / "scenarios" / "regulation.toml"),
+    run = subprocess.run([str(command), "run", str(ROOT / "scenarios" / "regulation.toml"),
                           "--out", "out2", "--quiet"], cwd=work, env=env,
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
@@ -44,7 +47,11 @@ def test_installed_console_command_runs_a_scenario_anywhere(tmp_path):
                                "import cosim, sys; print(cosim.__file__)"], cwd=work,
                               env=env, capture_output=True, text=True)
     assert imported.stdout.startswith(str(site)), imported.stdout
-    # Without --fmu-dir, a copied scenario finds no ../dist: refused with the path.
-    run = subprocess.run([str(command), "regulation.toml", "--quiet"], cwd=work, env=env,
-                         capture_output=True, text=True)
-    assert run.returncode != 0 and "Pss3Plant.fmu" in run.stderr
+    # Without --fmu-dir, a copied scenario finds no ../dist (and an installed copy has no
+    # repository dist/): a user error naming the field, the file and the build command.
+    run = subprocess.run([str(command), "run", "regulation.toml", "--quiet"], cwd=work,
+                         env=env, capture_output=True, text=True)
+    assert run.returncode == 2, run.stderr
+    assert ("field 'fmus.planner'" in run.stderr and "Planner.fmu" in run.stderr
+            and "scripts/build-fmus.sh" in run.stderr and "--fmu-dir" in run.stderr)
+    assert run.stderr.count("\n") == 1 and "Traceback" not in run.stderr

@@ -1,0 +1,138 @@
+"""``cosim COMMAND ...`` (also ``python -m cosim COMMAND ...``): the harness's one command
+line. Each command is a module with ``add_arguments(parser)`` and ``run(args) -> int``,
+imported only when it runs.
+
+Exit codes: 0 success; 1 the simulation or verification ran and failed (a declared limit
+exceeded, failed runs, a mismatch); 2 a user error (a bad file, field or argument), told
+in one line ``cosim: FILE: FIELD: problem; what to do``. ``--debug`` shows the traceback
+of an error."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+import traceback
+
+COMMANDS = {
+    "run": ("cosim.run", "simulate one scenario: CSV (SI, units sidecar), plots, metrics"),
+    "check": ("cosim.check", "validate a scenario against its FMUs and the workspace, "
+              "without simulating"),
+    "sweep": ("cosim.sweep.cli", "run a parameter sweep on Dask"),
+    "ssp": ("cosim.ssp", "write a scenario as an SSP archive"),
+    "container": ("cosim.container", "write a scenario as a container FMU"),
+    "bench": ("cosim.bench", "time the master against a minimal FMPy loop"),
+    "demo": ("cosim.demo", "run every bundled closed-loop scenario with plots and tables"),
+    "verify": ("cosim.verify.cli", "verify the FMUs against independent references"),
+    "animate": ("cosim.animate.cli", "draw the robot of a run moving (GIF)"),
+}
+USER_ERROR, FAILED = 2, 1
+DESCRIPTION = """The co-simulation harness of the robofmu FMUs (also: python -m cosim).
+'cosim COMMAND --help' describes a command; docs/user-guide.md the scenario files.
+
+exit codes: 0 success; 1 the run or verification failed (a declared limit exceeded,
+failed runs, a mismatch); 2 a user error (bad file, field or argument), told in one line
+'cosim: FILE: FIELD: problem; what to do'. --debug shows the traceback of an error."""
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line and exit code 2."""
+
+    def error(self, message: str):
+        self.exit(USER_ERROR, f"cosim: {self.prog}: {message}; see '{self.prog} --help'\n")
+
+
+def _command(argv: list[str]) -> str | None:
+    for token in argv:
+        if not token.startswith("-"):
+            return token
+    return None
+
+
+def build_parser(command: str | None) -> Parser:
+    parser = Parser(prog="cosim", description=DESCRIPTION,
+                    formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--debug", action="store_true",
+                        help="show the traceback of an error (for bug reports)")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
+                                parser_class=Parser)
+    for name, (module, text) in COMMANDS.items():
+        p = sub.add_parser(name, help=text, description=text)
+        if name == command:
+            add = importlib.import_module(module).add_arguments
+            add(p)
+            p.set_defaults(module=module)
+    return parser
+
+
+def _types(names) -> tuple[type, ...]:
+    """The exception classes (module, name) of the modules a command has imported."""
+    return tuple(getattr(sys.modules[m], n) for m, n in names
+                 if m in sys.modules and hasattr(sys.modules[m], n))
+
+
+def user_error_types() -> tuple[type, ...]:
+    """The exceptions that are the user's mistake (exit 2)."""
+    from .errors import ScenarioError
+    return (ScenarioError,) + _types([("cosim.sweep.spec", "SpecError"),
+                                      ("cosim.container", "ContainerError"),
+                                      ("cosim.verify.errors", "VerifyError"),
+                                      ("cosim.animate.errors", "AnimateError")])
+
+
+def _fail(message: str, code: int) -> int:
+    print("cosim: " + " ".join(str(message).split()), file=sys.stderr)
+    return code
+
+
+def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    debug = "--debug" in argv
+    argv = [a for a in argv if a != "--debug"]
+    command = _command(argv)
+    if command is not None and command not in COMMANDS and command.endswith((".toml", ".json")):
+        argv.insert(argv.index(command), "run")  # the former `python -m cosim SCENARIO`
+        command = "run"
+    try:
+        args = build_parser(command if command in COMMANDS else None).parse_args(argv)
+    except SystemExit as e:  # --help (0) or an argument error (2), already printed
+        return e.code if isinstance(e.code, int) else USER_ERROR
+    except ModuleNotFoundError as e:
+        if debug:
+            traceback.print_exc()
+        return _fail(f"{command}: this command is not part of this version ({e.name} is "
+                     "missing)", USER_ERROR)
+    args.debug = debug  # commands that report their own errors re-raise them with it
+    try:
+        return int(importlib.import_module(args.module).run(args))
+    except KeyboardInterrupt:
+        return _fail("interrupted", 130)
+    except BrokenPipeError:
+        sys.stderr.close()  # the reader went away: end quietly
+        return 0
+    except Exception as e:  # noqa: BLE001 - every error becomes one line
+        if debug:
+            traceback.print_exc()
+        return _fail(*classify(e, getattr(args, "scenario", None)))
+
+
+def classify(error: Exception, scenario=None) -> tuple[str, int]:
+    """(one-line message, exit code) of an error a command raised; `scenario`: the
+    file the command ran, named in a simulation failure."""
+    from .errors import CosimError
+    if isinstance(error, user_error_types()):
+        return str(error), USER_ERROR
+    if isinstance(error, CosimError) or isinstance(error, _types([("cosim.verify.errors",
+                                                                  "RunFailed")])):
+        where = f"{scenario}: " if scenario is not None else ""
+        return f"{where}the simulation failed: {error}", FAILED
+    if isinstance(error, OSError):
+        where = f"{error.filename}: " if error.filename else ""
+        return f"{where}{error.strerror or error}; check the path and its permissions", \
+            USER_ERROR
+    return (f"internal error ({type(error).__name__}: {error}); please report it with the "
+            "output of --debug", FAILED)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

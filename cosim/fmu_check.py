@@ -1,0 +1,137 @@
+"""What the scenario's FMUs declare, read once per file, with user errors that name the
+scenario field: the file (exists, a zip, FMI 2.0 co-simulation with a Linux x86-64
+binary), its variables, their units (as SI base-unit exponents) and ranges."""
+
+from __future__ import annotations
+
+import math
+import platform
+import zipfile
+from functools import lru_cache
+from pathlib import Path
+
+from .errors import ScenarioError
+
+BASE_UNITS = ("kg", "m", "s", "rad")
+OTHER_BASE_UNITS = ("A", "K", "mol", "cd")
+INT32 = (-2 ** 31, 2 ** 31 - 1)
+BINARY_DIR = {("Linux", "x86_64"): "linux64", ("Darwin", "x86_64"): "darwin64",
+              ("Darwin", "arm64"): "darwin64", ("Windows", "AMD64"): "win64"}
+
+
+@lru_cache(maxsize=32)
+def _describe(path: str, mtime: float):
+    from fmpy import read_model_description
+    if not zipfile.is_zipfile(path):
+        raise ValueError("is not an FMU (not a zip archive)")
+    with zipfile.ZipFile(path) as z:
+        names = set(z.namelist())
+    if "modelDescription.xml" not in names:
+        raise ValueError("is not an FMU (no modelDescription.xml in the archive)")
+    try:
+        md = read_model_description(path, validate=False)
+    except Exception as e:  # noqa: BLE001 - any malformed XML is the file's fault
+        raise ValueError(f"has an unreadable modelDescription.xml ({e})") from None
+    if md.fmiVersion != "2.0":
+        raise ValueError(f"is an FMI {md.fmiVersion} FMU where FMI 2.0 is needed (the FMI 3.0 "
+                         "builds are run with --fmi3 on the FMI 2.0 file names)")
+    if md.coSimulation is None:
+        raise ValueError("does not support co-simulation")
+    folder = BINARY_DIR.get((platform.system(), platform.machine()), "linux64")
+    wanted = f"binaries/{folder}/{md.coSimulation.modelIdentifier}"
+    if not any(n.startswith(wanted + ".") for n in names):
+        raise ValueError(f"has no binary for this platform ({wanted}.*)")
+    return md
+
+
+def describe(path: Path, field: str):
+    """The model description of the FMU at `path`, or ScenarioError naming `field`."""
+    path = Path(path)
+    if not path.exists():
+        raise ScenarioError(f"field '{field}': {path} does not exist; build the FMUs "
+                            "(bash scripts/build-fmus.sh) or pass --fmu-dir DIR")
+    if not path.is_file():
+        raise ScenarioError(f"field '{field}': {path} is not a file; name an .fmu file")
+    try:
+        return _describe(str(path.resolve()), path.stat().st_mtime)
+    except ValueError as e:
+        raise ScenarioError(f"field '{field}': {path} {e}; name an FMI 2.0 FMU "
+                            "(bash scripts/build-fmus.sh builds them in dist/)") from None
+    except OSError as e:
+        raise ScenarioError(f"field '{field}': cannot read {path}: {e.strerror}") from None
+
+
+def variables(path: Path) -> dict:
+    return {v.name: v for v in describe(path, "fmus").modelVariables}
+
+
+def start_value(path: Path, name: str) -> float:
+    return float(variables(path)[name].start)
+
+
+def unit_of(md, variable) -> tuple[str, tuple] | None:
+    """(unit name, exponents over BASE_UNITS + OTHER_BASE_UNITS, factor, offset) of a
+    variable's declared unit; None when it declares none."""
+    name = variable.unit or (variable.declaredType.unit if variable.declaredType else None)
+    if not name:
+        return None
+    for unit in md.unitDefinitions or []:
+        if unit.name == name and unit.baseUnit is not None:
+            b = unit.baseUnit
+            exps = tuple(int(getattr(b, k, 0) or 0) for k in BASE_UNITS + OTHER_BASE_UNITS)
+            return name, exps, float(getattr(b, "factor", 1.0) or 1.0), float(
+                getattr(b, "offset", 0.0) or 0.0)
+    return name, None, 1.0, 0.0
+
+
+def check_value(md, alias: str, name: str, value, field: str):
+    """`value` (SI, already converted) for variable `name`: declared, settable, of its
+    type, integer in range, within min/max. Returns the value to set."""
+    v = {x.name: x for x in md.modelVariables}.get(name)
+    if v is None:
+        raise ScenarioError(f"field '{field}': {alias} has no variable '{name}'; see the "
+                            "FMU reference (docs/fmu-reference.md) for the names")
+    if v.causality not in ("parameter", "input") or v.variability == "constant":
+        raise ScenarioError(f"field '{field}': {alias}.{name} is {v.causality} "
+                            f"({v.variability}) and cannot be set; set a parameter or input")
+    kind = v.type
+    if kind == "Boolean":
+        if not isinstance(value, bool):
+            raise ScenarioError(f"field '{field}': {alias}.{name} is a Boolean; write true "
+                                f"or false, not {value!r}")
+        return value
+    if isinstance(value, bool):
+        raise ScenarioError(f"field '{field}': {alias}.{name} is a {kind}; write a number, "
+                            f"not {value!r}")
+    if kind in ("Integer", "Enumeration"):
+        if not isinstance(value, int):
+            raise ScenarioError(f"field '{field}': {alias}.{name} is an integer; write a whole "
+                                f"number, not {value!r}")
+        low, high = INT32
+        if not low <= value <= high:
+            raise ScenarioError(f"field '{field}': {value} does not fit a 32-bit integer "
+                                f"[{low}, {high}]; write a value in range")
+    elif kind == "Real":
+        if not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise ScenarioError(f"field '{field}': {alias}.{name} must be a finite number, "
+                                f"got {value!r}")
+        value = float(value)
+    else:
+        raise ScenarioError(f"field '{field}': {alias}.{name} is of type {kind}, which "
+                            "scenarios cannot set")
+    low = _bound(v.min if v.min is not None else getattr(v.declaredType, "min", None))
+    high = _bound(v.max if v.max is not None else getattr(v.declaredType, "max", None))
+    if (low is not None and value < low) or (high is not None and value > high):
+        span = f"[{'-inf' if low is None else low:g}, {'inf' if high is None else high:g}]"
+        raise ScenarioError(f"field '{field}': {value!r} is outside the range {span} that "
+                            f"{alias}.{name} declares; write a value in range")
+    return value
+
+
+def _bound(text):
+    if text is None:
+        return None
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return None

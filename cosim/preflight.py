@@ -1,0 +1,85 @@
+"""Checks of a parsed scenario against its FMUs before any simulation: every parameter
+against the variable's type and range, every connection and recorded signal against the
+variables, and every FMU initialised alone with its parameters (a parameter set the FMU
+refuses is reported with the FMU's own reason, blamed on the scenario's field)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from typing import TYPE_CHECKING
+
+from .errors import CosimError, ScenarioError
+from .fmu_check import check_value, describe
+
+if TYPE_CHECKING:
+    from .scenario import Scenario
+
+
+def initialize_alone(path: Path, alias: str, parameters: dict, field: str) -> None:
+    """Instantiates the FMU, sets `parameters`, initialises it and reads its outputs;
+    ScenarioError with the FMU's reason when it refuses."""
+    from .fmu import FmuInstance
+    md = describe(path, f"fmus.{alias}")
+    outputs = tuple(v.name for v in md.modelVariables if v.causality == "output"
+                    and v.type in ("Real", "Integer", "Boolean"))
+    try:
+        fmu = FmuInstance(alias, Path(path), 0.0, 1.0)
+    except CosimError as e:
+        raise ScenarioError(f"field 'fmus.{alias}': the FMU cannot be instantiated: "
+                            f"{_reason(e)}; rebuild it (bash scripts/build-fmus.sh)") from None
+    try:
+        for name, value in parameters.items():
+            fmu.set_value(name, value)
+        fmu.enter_initialization()
+        fmu.exit_initialization()
+        fmu.get_values(outputs)
+    except CosimError as e:
+        raise ScenarioError(f"field '{field}': {alias} refuses these parameters: "
+                            f"{_reason(e)}; change them") from None
+    finally:
+        fmu.close()
+
+
+def _reason(error: Exception) -> str:
+    """The FMU's log line of an FmuError, without the '[category] fmi2Call: ' prefix and
+    the plant's 'invalid parameters: ' preamble."""
+    text = str(error).rsplit("] ", 1)[-1]
+    if text.startswith("fmi") and ": " in text:
+        text = text.split(": ", 1)[1]
+    return text.removeprefix("invalid parameters: ")
+
+
+def check(scenario: Scenario, fields: dict | None = None) -> None:
+    """All checks above; `fields` maps an alias to the scenario field its parameters
+    come from (default 'parameters.ALIAS')."""
+    from .limits import check_measurable
+    fields = fields or {}
+    check_measurable(scenario)
+    mds = {alias: describe(path, f"fmus.{alias}") for alias, path in scenario.fmus.items()}
+    for alias, values in scenario.parameters.items():
+        where = fields.get(alias, f"parameters.{alias}")
+        for name, value in values.items():
+            values[name] = check_value(mds[alias], alias, name, value, f"{where}.{name}")
+    for k, switch in enumerate(scenario.schedule):
+        for name, value in switch.parameters.items():
+            switch.parameters[name] = check_value(
+                mds[switch.alias], switch.alias, name, value,
+                f"plan_switches[{k}].parameters.{name}")
+    names = {alias: {v.name: v for v in md.modelVariables} for alias, md in mds.items()}
+    for k, c in enumerate(scenario.connections):
+        for side, signal in (("from", c.source), ("to", c.target)):
+            v = names[signal.alias].get(signal.variable)
+            if v is None:
+                raise ScenarioError(f"field 'connections[{k}].{side}': {signal.alias} has no "
+                                    f"variable '{signal.variable}'")
+            if side == "to" and v.causality != "input":
+                raise ScenarioError(f"field 'connections[{k}].to': {signal} is not an input "
+                                    f"({v.causality}); connect to an input")
+    for k, signal in enumerate(scenario.record):
+        if signal.variable not in names[signal.alias]:
+            raise ScenarioError(f"field 'record[{k}]': {signal.alias} has no variable "
+                                f"'{signal.variable}'")
+    for alias in scenario.order:
+        initialize_alone(scenario.fmus[alias], alias, scenario.parameters.get(alias, {}),
+                         fields.get(alias, f"parameters.{alias}"))

@@ -1,0 +1,99 @@
+"""The FMU run: FMPy's simulate_fmu with the case's experiment, start values and
+inputs, recording the variables behind the reference's columns. The case is checked
+against the FMU first (bad input, exit 2); an FMI call that fails is RunFailed."""
+
+from __future__ import annotations
+
+import contextlib
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .case import Case
+from .errors import RunFailed, VerifyError
+from .names import Names
+
+INTERFACE_NAMES = {"cs": "CoSimulation", "me": "ModelExchange"}
+
+
+@dataclass
+class Run:
+    """A simulation result: time and one series per reference column."""
+
+    time: np.ndarray
+    series: dict[str, np.ndarray]
+
+
+def read_description(fmu: Path):
+    from fmpy import read_model_description
+    if not Path(fmu).is_file():
+        raise VerifyError(fmu, "FMU", "no such file", "give the path of an .fmu file")
+    try:
+        return read_model_description(str(fmu), validate=False)
+    except Exception as e:  # FMPy raises plain exceptions for a broken archive or XML
+        raise VerifyError(fmu, "modelDescription.xml", f"cannot be read ({e})",
+                          "give an FMI 2.0 or 3.0 FMU") from None
+
+
+def choose_interface(fmu: Path, description, wanted: str | None) -> str:
+    """"CoSimulation" or "ModelExchange": `wanted` (cs/me) or the first supported."""
+    supported = [name for name, part in (("CoSimulation", description.coSimulation),
+                                         ("ModelExchange", description.modelExchange))
+                 if part is not None]
+    if not supported:
+        raise VerifyError(fmu, "modelDescription.xml", "the FMU has neither Co-Simulation "
+                          "nor Model Exchange", "give an FMU with one of them")
+    if wanted is None:
+        return supported[0]
+    name = INTERFACE_NAMES[wanted]
+    if name not in supported:
+        raise VerifyError(fmu, "--interface", f"the FMU does not support {name}",
+                          f"use --interface {'cs' if wanted == 'me' else 'me'}")
+    return name
+
+
+def _check(case: Case, names: Names, fmu: Path) -> None:
+    for signal in case.signals():
+        if names.locate(signal) is None:
+            raise VerifyError(case.reference.path, f"column '{signal}'",
+                              f"{fmu.name} has no such variable",
+                              "remove the column or name a variable of the FMU")
+    for name in case.start_values:
+        if names.locate(name) is None:
+            raise VerifyError(fmu, f"start value '{name}'", "the FMU has no such variable",
+                              "check the name in case.json start_values or --start")
+    if case.inputs is None:
+        return
+    for column in case.inputs.columns:
+        found = names.locate(column)
+        if found is None or found[0].causality != "input":
+            inputs = sorted(v.name for v in names.variables.values() if v.causality == "input")
+            raise VerifyError(case.inputs.path, f"column '{column}'",
+                              f"is not an input of {fmu.name}",
+                              f"use the FMU's inputs ({', '.join(inputs) or 'none'})")
+
+
+def simulate(fmu: Path, description, case: Case, interface: str) -> Run:
+    """Runs the FMU over the case's experiment through FMPy."""
+    from fmpy import simulate_fmu
+    names = Names(description)
+    _check(case, names, Path(fmu))
+    inputs = None if case.inputs is None else names.input_signals(case.inputs.time,
+                                                                  case.inputs.columns)
+    try:
+        # FMPy prints its warnings (an input the file leaves out, ...): to stderr, so
+        # that stdout holds the verdicts only.
+        with contextlib.redirect_stdout(sys.stderr):
+            result = simulate_fmu(
+                str(fmu), validate=False, fmi_type=interface, start_time=case.start,
+                stop_time=case.stop, output_interval=case.step,
+                step_size=case.step if interface == "CoSimulation" else None,
+                relative_tolerance=case.rel_tol,
+                start_values=names.start_values(case.start_values),
+                input=inputs, output=names.outputs(case.signals()))
+    except Exception as e:  # FMPy raises plain exceptions for a failed FMI call
+        raise RunFailed(f"{fmu}: the {interface} run failed: {e}") from e
+    return Run(np.asarray(result["time"], float),
+               {s: names.column(result, s) for s in case.signals()})
