@@ -126,16 +126,22 @@ def force_map_norm(s, thetas: np.ndarray) -> float:
     return float(np.abs(force_maps(s, thetas)).sum(axis=2).max())
 
 
-def deviations(master: dict, container, s) -> dict[str, np.ndarray]:
-    """Per-axis max |container - master| of theta, applied torque u and force."""
-    # The master's row k holds the values exchanged over step k (u applied over it, the
-    # force of that u); FMPy samples the container after its step k - 1, with the control
-    # of step k - 1 still applied: the master's force at that moment is
-    # M(theta_k) u_{k-1} = force_k + M(theta_k) (u_{k-1} - u_k).
+def force_after_step(master: dict, s) -> np.ndarray:
+    """The master's actuator forces at the moment FMPy samples the container: the
+    master's row k holds the values exchanged over step k (u applied over it, the force
+    of that u); FMPy samples after step k - 1, the control of step k - 1 still applied:
+    M(theta_k) u_{k-1} = force_k + M(theta_k) (u_{k-1} - u_k)."""
     u = columns(master, "pid.u")
     maps = force_maps(s, columns(master, "plant.theta")[1:])
     force = columns(master, "plant.force")
     force[1:] += np.einsum("kij,kj->ki", maps, u[:-1] - u[1:])
+    return force
+
+
+def deviations(master: dict, container, s) -> dict[str, np.ndarray]:
+    """Per-axis max |container - master| of theta, applied torque u and force."""
+    u = columns(master, "pid.u")
+    force = force_after_step(master, s)
     return {
         "theta": np.abs(columns(container, "plant.theta") - columns(master, "plant.theta")).max(0),
         "u": np.abs(columns(container, "pid.u")[:-1] - u[:-1]).max(0),
