@@ -2,10 +2,11 @@
 Dask cluster (a LocalCluster started here, or an existing one by its scheduler's
 address).
 
-While the cluster starts (worker processes importing, FMUs unpacked and loaded by the
-worker plugin), this process makes runs itself, serially; the rest is submitted as
-tasks of `auto_batch` runs once the workers are ready, so the start-up is not lost time
-and one worker is not slower than serial. Results are written by the caller's `record`
+This process makes the first run itself (loading every FMU) and, while the cluster
+starts (worker processes importing, FMUs unpacked and loaded by the worker plugin), more
+runs on the instances it has (see _meanwhile); the rest is submitted as tasks of
+`auto_batch` runs once the workers are ready, so the start-up is not lost time and one
+worker is not slower than serial. Results are written by the caller's `record`
 in this process as the tasks complete.
 """
 
@@ -86,18 +87,22 @@ def _close(client, cluster) -> None:
         cluster.close()
 
 
-def _meanwhile(todo, fmus, blobs, record, starting) -> int:
-    """Runs in this process until the cluster is ready; how many were made."""
-    store, made = FmuStore(blobs), 0
-    try:
-        while not starting.done() and made < len(todo):
-            if made == 0:
-                warm(store, fmus)
-            rid, values, document = todo[made]
-            record(rid, values, execute(store, document, fmus))
-            made += 1
-    finally:
-        store.close()
+def _loaded(store: FmuStore, fmus: dict[str, str]) -> bool:
+    """Every FMU has an idle instance: a run opens no new one."""
+    return all(store.pool.idle.get((alias, str(store.path(digest))))
+               for alias, digest in fmus.items())
+
+
+def _meanwhile(todo, store, fmus, record, starting) -> int:
+    """Runs in this process until the cluster is ready; how many were made. Only runs
+    that open no FMU: FMPy loads an FMU's library with the process's working directory
+    changed to the FMU's binaries folder for a moment, and a worker process started in
+    that moment would be told to start there (a folder removed later)."""
+    made = 0
+    while not starting.done() and made < len(todo) and _loaded(store, fmus):
+        rid, values, document = todo[made]
+        record(rid, values, execute(store, document, fmus))
+        made += 1
     return made
 
 
@@ -129,12 +134,23 @@ def run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, read
 
 
 def _run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, ready) -> None:
-    with ThreadPoolExecutor(1, thread_name_prefix="cosim-cluster-start") as pool:
-        starting = pool.submit(_start, scheduler, workers, blobs, fmus)
-        try:
-            made = _meanwhile(todo, fmus, blobs, record, starting)
-        finally:
-            client, cluster, count = starting.result()
+    # The first run before the cluster starts: it loads every FMU (and probes their
+    # slopes) in this process while no worker process is being started (_meanwhile).
+    store, made = FmuStore(blobs), 0
+    try:
+        if todo:
+            warm(store, fmus)
+            rid, values, document = todo[0]
+            record(rid, values, execute(store, document, fmus))
+            made = 1
+        with ThreadPoolExecutor(1, thread_name_prefix="cosim-cluster-start") as pool:
+            starting = pool.submit(_start, scheduler, workers, blobs, fmus)
+            try:
+                made += _meanwhile(todo[made:], store, fmus, record, starting)
+            finally:
+                client, cluster, count = starting.result()
+    finally:
+        store.close()
     try:
         rest = todo[made:]
         size = batch or auto_batch(len(rest), count, _steps(todo))
