@@ -127,6 +127,10 @@ def run(args: argparse.Namespace) -> int:
               f"{r['without']:8.1f} {up:9.2f} {up / w:6.2f} {up_ex / w:6.2f} {r['batch']:>6.0f}")
     print("(runs/s: with start-up; runs/s*: from the workers being ready; eff.: speed-up "
           "over serial / workers, eff.* without start-up)")
+    if max(counts) == 0:
+        print("budget: give a worker count above 0 too (the cluster's cost per task and "
+              "start-up come from it)")
+        return 0
     t_run, per_task, startup = budget(rows)
     n = args.predict
     print(f"budget: {1e3 * t_run:.1f} ms CPU per run; this process {1e3 * per_task:.1f} ms "
