@@ -2,8 +2,8 @@
 Dask cluster (a LocalCluster started here, or an existing one by its scheduler's
 address).
 
-This process makes the first run itself (loading every FMU) and, while the cluster
-starts (worker processes importing, FMUs unpacked and loaded by the worker plugin), more
+With a LocalCluster, this process makes the first run itself (loading every FMU) and,
+while the cluster starts (worker processes importing, FMUs unpacked and loaded by the worker plugin), more
 runs on the instances it has (see _meanwhile); the rest is submitted as tasks of
 `auto_batch` runs once the workers are ready, so the start-up is not lost time and one
 worker is not slower than serial. Results are written by the caller's `record`
@@ -136,9 +136,11 @@ def run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, read
 def _run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, ready) -> None:
     # The first run before the cluster starts: it loads every FMU (and probes their
     # slopes) in this process while no worker process is being started (_meanwhile).
+    # With --scheduler (an existing cluster, maybe reached from a login node) every run
+    # goes to the cluster: there is no start-up to fill.
     store, made = FmuStore(blobs), 0
     try:
-        if todo:
+        if scheduler is None:
             warm(store, fmus)
             rid, values, document = todo[0]
             record(rid, values, execute(store, document, fmus))
@@ -146,7 +148,8 @@ def _run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, rea
         with ThreadPoolExecutor(1, thread_name_prefix="cosim-cluster-start") as pool:
             starting = pool.submit(_start, scheduler, workers, blobs, fmus)
             try:
-                made += _meanwhile(todo[made:], store, fmus, record, starting)
+                if scheduler is None:
+                    made += _meanwhile(todo[made:], store, fmus, record, starting)
             finally:
                 client, cluster, count = starting.result()
     finally:
