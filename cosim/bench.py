@@ -20,6 +20,7 @@ master's median time per step over the minimal loop's, of the first scenario.
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 import statistics
 import sys
 import time
@@ -87,7 +88,7 @@ def ctypes_loop(master: Master) -> None:
     kernel = Kernel(master.fmus, master.inputs, {}, s.order)
     h = s.step_size
     for k in range(s.steps):
-        kernel.step_all(s.start_time + k * h, h, True)
+        kernel.step_all(s.start_time + k * h, h, True, True)
 
 
 def _median_per_step(scenario, make, runs: int) -> float:
@@ -138,10 +139,16 @@ def _count(low: int):
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("scenarios", nargs="*", default=["three_axis_quintic"])
-    parser.add_argument("--runs", type=_count(1), default=5)
+    from .bench_sweep import add_sweep_options
+    parser.add_argument("scenarios", nargs="*", default=["three_axis_quintic"],
+                        help="scenario names or files; or 'sweep': the sweep throughput per "
+                        "worker count (cosim bench sweep --runs N --workers 0,1,2)")
+    parser.add_argument("--runs", type=int, default=None,
+                        help="runs per median (default 5); with 'sweep': runs per sweep "
+                        "(default 200)")
     parser.add_argument("--sweep-runs", type=_count(0), default=24,
                         help="closed-loop runs per sweep throughput measurement (0: skip)")
+    add_sweep_options(parser)
 
 
 def main(argv=None) -> int:
@@ -151,17 +158,29 @@ def main(argv=None) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.scenarios == ["sweep"]:  # cosim bench sweep: throughput per worker count
+        from .bench_sweep import run as bench_sweep
+        args.runs = 200 if args.runs is None else args.runs
+        return bench_sweep(args)
+    args.runs = 5 if args.runs is None else args.runs
+    if not 1 <= args.runs <= 1000:
+        print(f"cosim: --runs: {args.runs} is not a whole number in 1..1000", file=sys.stderr)
+        return 2
     ratio = None
     for name in args.scenarios:
-        scenario = load_scenario(_scenario_path(name))
+        # Held inputs for the loops that compare with the minimal loop (which holds);
+        # the master with linear extrapolation (the default) on a line of its own.
+        scenario = replace(load_scenario(_scenario_path(name)), input_extrapolation="hold")
+        linear = replace(scenario, input_extrapolation="linear")
         cases = {
-            "minimal FMPy loop": lambda s: _Timed(s, minimal_loop),
-            "master": lambda s: Master(s),
-            "master (FMPy calls)": lambda s: Master(s, fast=False),
-            "ctypes loop (no recording)": lambda s: _Timed(s, ctypes_loop),
+            "minimal FMPy loop": (scenario, lambda s: _Timed(s, minimal_loop)),
+            "master": (scenario, Master),
+            "master (FMPy calls)": (scenario, lambda s: Master(s, fast=False)),
+            "ctypes loop (no recording)": (scenario, lambda s: _Timed(s, ctypes_loop)),
+            "master, linear extrapolation": (linear, Master),
         }
-        medians = {label: _median_per_step(scenario, make, args.runs)
-                   for label, make in cases.items()}
+        medians = {label: _median_per_step(s, make, args.runs)
+                   for label, (s, make) in cases.items()}
         print(f"{name}: {scenario.steps} steps of {scenario.step_size} s, median over "
               f"{args.runs} runs of the stepping loop, per step:")
         for label, median in medians.items():

@@ -146,6 +146,9 @@ def container_lines(scenario: Scenario, runs: int = 5) -> list[str]:
 
 
 def print_container_lines(scenario_file: Path, runs: int = 5) -> None:
-    """Prints the lines for the scenario in `scenario_file` (with its own coupling)."""
-    for line in container_lines(load_scenario(scenario_file), runs):
+    """Prints the lines for the scenario in `scenario_file` (its coupling order, inputs
+    held as the container holds them)."""
+    scenario = load_scenario(scenario_file)
+    scenario.input_extrapolation = "hold"
+    for line in container_lines(scenario, runs):
         print(line, flush=True)

@@ -78,7 +78,8 @@ RECORD = ([f"plant.force[{i}]" for i in (1, 2, 3)] + [f"plant.l[{i}]" for i in (
           + [f"planner.qddot[{i}]" for i in (1, 2, 3)])
 PROFILES = {"cubic": 3, "quintic": 5}
 KNOWN = {"name", "description", "start_time", "stop_time", "step_size", "fmus", "motion",
-         "start", "gains", "plant", "record", "coupling", "max_step_halvings", "limits"}
+         "start", "gains", "plant", "record", "coupling", "max_step_halvings", "limits",
+         "input_extrapolation"}
 # The scenario fields the FMUs' parameters come from, and the fields blamed for an
 # unreachable pose (cosim.workspace).
 FIELDS = {"planner": "motion", "pid": "gains", "plant": "plant"}
@@ -290,7 +291,8 @@ def resolve(data: dict, base_dir: Path,
              "connections": [{"from": f"{a}.{x}[{i}]", "to": f"{b}.{y}[{i}]"}
                              for a, x, b, y in CONNECTIONS for i in (1, 2, 3)],
              "record": data.get("record", RECORD)}
-    for key in ("name", "coupling", "max_step_halvings", "description", "limits"):
+    for key in ("name", "coupling", "input_extrapolation", "max_step_halvings",
+                "description", "limits"):
         if key in data:
             plain[key] = data[key]
     switches = []

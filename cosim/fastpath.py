@@ -70,15 +70,73 @@ class Transfer:
                            f"failed: {self.target._last_message()}")
 
 
+_SLOPES = ctypes.CFUNCTYPE(c_int, c_void_p, c_void_p, c_size_t, c_void_p, c_void_p)
+
+
+class SlopeTransfer:
+    """One prepared fmi2GetRealOutputDerivatives (source, order 1) + fmi2SetRealInput-
+    Derivatives (target) through a shared buffer: the input slopes over the next step."""
+
+    ok = True
+
+    def __init__(self, source, variables, target, inputs):
+        self.source, self.target = source, target
+        self.src_refs, self.dst_refs = _refs(source, variables), _refs(target, inputs)
+        n = len(variables)
+        self.orders = (c_int * n)(*([1] * n))
+        self.buffer = (c_double * n)()
+        self.get = _function(source, "fmi2GetRealOutputDerivatives", _SLOPES)
+        self.set = _function(target, "fmi2SetRealInputDerivatives", _SLOPES)
+        self.args_get = (source._fmu.component, ctypes.addressof(self.src_refs), n,
+                         ctypes.addressof(self.orders), ctypes.addressof(self.buffer))
+        self.args_set = (target._fmu.component, ctypes.addressof(self.dst_refs), n,
+                         ctypes.addressof(self.orders), ctypes.addressof(self.buffer))
+        self.names = (variables, inputs)
+
+    def __call__(self, _t: float = 0.0) -> None:
+        if self.get(*self.args_get) > 1:
+            raise FmuError(f"{self.source.alias}: fmi2GetRealOutputDerivatives("
+                           f"{', '.join(self.names[0])}) failed: "
+                           f"{self.source._last_message()}")
+        if self.set(*self.args_set) > 1:
+            raise FmuError(f"{self.target.alias}: fmi2SetRealInputDerivatives("
+                           f"{', '.join(self.names[1])}) failed: "
+                           f"{self.target._last_message()}")
+
+
+class HistorySlope:
+    """The slope through the last two samples (cosim.slopes.History) of the values a
+    value Transfer just moved, set as the target's input derivatives."""
+
+    def __init__(self, transfer: Transfer, history):
+        self.transfer, self.history = transfer, history
+        n = len(transfer.names[0])
+        self.values = np.frombuffer(transfer.buffer, dtype=np.float64)
+        self.orders = (c_int * n)(*([1] * n))
+        self.slope = np.zeros(n)
+        self.set = _function(transfer.target, "fmi2SetRealInputDerivatives", _SLOPES)
+        self.args = (transfer.target._fmu.component, ctypes.addressof(transfer.dst_refs), n,
+                     ctypes.addressof(self.orders), self.slope.ctypes.data)
+
+    def __call__(self, t: float) -> None:
+        self.slope[:] = self.history.slopes(t, self.values)
+        if self.set(*self.args) > 1:
+            raise FmuError(f"{self.transfer.target.alias}: fmi2SetRealInputDerivatives("
+                           f"{', '.join(self.transfer.names[1])}) failed: "
+                           f"{self.transfer.target._last_message()}")
+
+
 class Kernel:
     """Prepared calls of one master over its open FMUs; None from `build` when a
     connected or recorded variable is not Real."""
 
-    def __init__(self, fmus, inputs, recorded_by_fmu, order):
+    def __init__(self, fmus, inputs, recorded_by_fmu, order, slopes=None):
         self.fmus, self.order = fmus, order
         self.transfers = {alias: [Transfer(fmus[src], variables, fmus[alias], targets)
                                   for src, variables, targets in inputs[alias]]
                           for alias in order}
+        self.slopes = {alias: [self._slope(alias, *pair) for pair in (slopes or {}).get(alias, [])]
+                       for alias in order}
         self.steppers = [(alias, _function(fmus[alias], "fmi2DoStep", _DO_STEP),
                           fmus[alias]._fmu.component) for alias in order]
         self.recorders = []
@@ -101,15 +159,38 @@ class Kernel:
         for transfer in self.transfers[alias]:
             transfer()
 
-    def step_all(self, t: float, h: float, sampled: bool) -> None:
-        if sampled:
-            for alias in self.order:
-                for transfer in self.transfers[alias]:
-                    transfer()
+    def _slope(self, alias, source, variables, targets, history):
+        if history is None:
+            return SlopeTransfer(self.fmus[source], variables, self.fmus[alias], targets)
+        # The values are those the pair's value Transfer moved just before in the same
+        # propagation (a Transfer of the subset when the pair has other variables too).
+        for values in self.transfers[alias]:
+            if values.source is self.fmus[source] and values.names == (variables, targets):
+                return HistorySlope(values, history)
+        values = Transfer(self.fmus[source], variables, self.fmus[alias], targets)
+        self.transfers[alias].append(values)
+        return HistorySlope(values, history)
+
+    def propagate(self, t: float) -> None:
+        """Every FMU's inputs from its sources, in order (the sampled coupling), then
+        the input slopes."""
+        for alias in self.order:
+            for transfer in self.transfers[alias]:
+                transfer()
+        for alias in self.order:
+            for transfer in self.slopes[alias]:
+                transfer(t)
+
+    def step_all(self, t: float, h: float, propagate: bool, sampled: bool) -> None:
+        """One step of every FMU; `propagate`: the sampled propagation first."""
+        if propagate:
+            self.propagate(t)
         for alias, do_step, component in self.steppers:
             if not sampled:
                 for transfer in self.transfers[alias]:
                     transfer()
+                for transfer in self.slopes[alias]:
+                    transfer(t)
             status = do_step(component, t, h, 1)
             if status > 1:
                 fmu = self.fmus[alias]

@@ -18,6 +18,7 @@ from fmpy.fmi3 import FMU3Slave
 
 from .errors import FmuError
 from .fmu import LoggedCalls, status_categories
+from .intermediate import IntermediateInputs, flagged_inputs
 
 _ELEMENT = re.compile(r"^(.*)\[(\d+)\]$")
 _FMI3_DISCARD = 2
@@ -43,7 +44,8 @@ class Fmu3Instance(LoggedCalls):
     _DISCARD = _FMI3_DISCARD
     _FMU_STATE = "FMUState"
 
-    def __init__(self, alias: str, path: Path, start_time: float, stop_time: float):
+    def __init__(self, alias: str, path: Path, start_time: float, stop_time: float,
+                 extrapolate: bool = False):
         self.alias = alias
         self.messages: list[str] = []
         self._fmu, self._unzip, self._initialized = None, None, False
@@ -59,12 +61,19 @@ class Fmu3Instance(LoggedCalls):
         self._written = dict(self._starts)
         self._start_time, self._stop_time = start_time, stop_time
         self._unzip = extract(str(path))
+        # Linear input extrapolation through the intermediate update (cosim.intermediate).
+        self.intermediate = (IntermediateInputs(self, flagged_inputs(path))
+                             if extrapolate and md.coSimulation.providesIntermediateUpdate
+                             else None)
+        self.can_interpolate_inputs = self.intermediate is not None
+        update = self.intermediate.callback if self.intermediate is not None else None
         try:
             self._fmu = FMU3Slave(guid=md.guid, unzipDirectory=self._unzip,
                                   modelIdentifier=md.coSimulation.modelIdentifier,
                                   instanceName=alias)
             self._call("fmi3InstantiateCoSimulation",
-                       lambda: self._fmu.instantiate(logMessage=self._log))
+                       lambda: self._fmu.instantiate(logMessage=self._log,
+                                                     intermediateUpdate=update))
             categories = status_categories(md)
             if categories:
                 self._call("fmi3SetDebugLogging",
@@ -98,6 +107,27 @@ class Fmu3Instance(LoggedCalls):
                     lambda: getter([variable.valueReference], size))
         return [float(arrays[v.name][0 if i is None else i]) for v, i in located]
 
+    def is_real(self, name: str) -> bool:
+        return self._locate(name)[0].type == "Float64"
+
+    def get_written(self, names: tuple[str, ...]) -> list[float]:
+        """The values last written to the inputs `names`."""
+        located = [self._locate(name) for name in names]
+        return [float(self._written[v.name][0 if i is None else i]) for v, i in located]
+
+    def set_input_slopes(self, names: tuple[str, ...], values) -> None:
+        self.intermediate.set_slopes(names, values)
+
+    def do_step(self, time: float, step: float) -> None:
+        if self.intermediate is None:
+            super().do_step(time, step)
+            return
+        self.intermediate.begin(time)
+        super().do_step(time, step)
+        if self.intermediate.failure is not None:
+            raise FmuError(f"{self.alias}: setting inputs at an intermediate point of the "
+                           f"step from t = {time:.9g} s failed: {self.intermediate.failure}")
+
     def set_values(self, names: tuple[str, ...], values) -> None:
         """Sets `names` to `values`: whole arrays, completed from the last written."""
         changed = {}
@@ -129,4 +159,5 @@ class Fmu3Instance(LoggedCalls):
 
 def open_fmi3(alias, path, scenario):
     """The master's `open_fmu` for the FMI 3.0 builds of the scenario's FMUs."""
-    return Fmu3Instance(alias, fmi3_path(Path(path)), scenario.start_time, scenario.stop_time)
+    return Fmu3Instance(alias, fmi3_path(Path(path)), scenario.start_time, scenario.stop_time,
+                        extrapolate=getattr(scenario, "input_extrapolation", "") == "linear")

@@ -141,6 +141,8 @@ class FmuInstance(LoggedCalls):
         self.variables = {v.name: v for v in md.modelVariables}
         self._group_cache: dict = {}
         self.can_get_state = bool(md.coSimulation.canGetAndSetFMUstate)
+        self.can_interpolate_inputs = bool(md.coSimulation.canInterpolateInputs)
+        self.max_output_derivative_order = int(md.coSimulation.maxOutputDerivativeOrder or 0)
         self._unzip = extract(str(path))
         try:
             self._open(md, start_time, stop_time)
@@ -210,6 +212,23 @@ class FmuInstance(LoggedCalls):
 
     def enter_initialization(self) -> None:
         self._call("fmi2EnterInitializationMode", self._fmu.enterInitializationMode)
+
+    def is_real(self, name: str) -> bool:
+        return self.variables[name].type == "Real"
+
+    def get_output_slopes(self, names: tuple[str, ...]) -> list[float]:
+        """First time derivatives of Real outputs (fmi2GetRealOutputDerivatives)."""
+        refs = [self.variables[n].valueReference for n in names]
+        return self._call(f"fmi2GetRealOutputDerivatives({', '.join(names)})",
+                          lambda: self._fmu.getRealOutputDerivatives(refs, [1] * len(refs)))
+
+    def set_input_slopes(self, names: tuple[str, ...], values) -> None:
+        """First time derivatives of Real inputs over the next step
+        (fmi2SetRealInputDerivatives)."""
+        refs = [self.variables[n].valueReference for n in names]
+        self._call(f"fmi2SetRealInputDerivatives({', '.join(names)})",
+                   lambda: self._fmu.setRealInputDerivatives(refs, [1] * len(refs),
+                                                             list(values)))
 
     def reset(self, start_time: float, stop_time: float) -> None:
         """fmi2Reset: back to the state after instantiation (start values of every

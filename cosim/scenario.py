@@ -9,6 +9,7 @@ Schema (TOML shown; JSON has the same structure)::
     order = ["planner", "pid", "plant"]  # Gauss-Seidel order; every FMU once
     max_step_halvings = 0              # Discard retries with h/2, h/4, ... (optional)
     coupling = "sampled"               # or "gauss-seidel" (optional, default "sampled")
+    input_extrapolation = "hold"       # or "linear": input slopes where the FMUs allow
 
     [fmus]                             # alias -> FMU path (relative to this file)
     planner = "../dist/Planner.fmu"
@@ -46,6 +47,7 @@ __all__ = ["PlanSwitch", "Scenario", "ScenarioError", "Signal", "Connection",
 
 
 COUPLINGS = ("sampled", "gauss-seidel")
+EXTRAPOLATIONS = ("hold", "linear")
 DEFAULT_STEP = 0.001  # s
 MAX_STEPS = 1_000_000  # communication steps of one run (the results are held in memory)
 MAX_SIGNALS = 1000  # connections and recorded signals
@@ -84,6 +86,7 @@ class Scenario:
     record: list[Signal] = field(default_factory=list)
     max_step_halvings: int = 0
     coupling: str = "sampled"
+    input_extrapolation: str = "linear"
     # Plan switches of a multi-segment motion (PlanSwitch), in order.
     schedule: list = field(default_factory=list)
     # Limits the run is judged against (cosim.limits), SI.
@@ -123,7 +126,8 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if not isinstance(data, dict):
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
-             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits", "plan_switches"}
+             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits", "plan_switches",
+             "input_extrapolation"}
     unknown = sorted(set(data) - known, key=str)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
@@ -194,10 +198,15 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     coupling = data.get("coupling", "sampled")
     if coupling not in COUPLINGS:
         raise ScenarioError(f"field 'coupling' must be one of {COUPLINGS}, got {coupling!r}")
+    extrapolation = data.get("input_extrapolation", "linear")
+    if extrapolation not in EXTRAPOLATIONS:
+        raise ScenarioError(f"field 'input_extrapolation' must be one of {EXTRAPOLATIONS}, "
+                            f"got {extrapolation!r}")
     from .limits import parse_limits
     return Scenario(name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
                     record=record, max_step_halvings=halvings, coupling=coupling,
+                    input_extrapolation=extrapolation,
                     limits=parse_limits(data.get("limits", {})),
                     schedule=_plan_switches(data.get("plan_switches", []), fmus, round(steps)))
 

@@ -15,15 +15,18 @@ written next to it at the end. See cosim.sweep.spec for the SPEC format.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
+from collections import Counter
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from .plots import plot_sweep
-from .runner import FmuStore, execute, read_fmus, run_on_worker, worker_plugin
+from .engine import auto_batch, run_dask, run_serial
+from .runner import read_fmus
 from .spec import Spec, SpecError, document_for, load_spec, run_id
 from .store import Progress, Table, columns, read_table, values_row
 
-__all__ = ["Spec", "SpecError", "SweepOutcome", "load_spec", "run_sweep", "reachable_on"]
+__all__ = ["Spec", "SpecError", "SweepOutcome", "auto_batch", "load_spec", "run_sweep",
+           "reachable_on"]
 
 
 @dataclass
@@ -35,12 +38,21 @@ class SweepOutcome:
     failed: int
     wall_s: float
     completed_at: list[float]  # perf_counter() as each row was written
+    reasons: Counter = field(default_factory=Counter)  # failure reason -> runs
+    batch: int = 1  # runs per task
+    ready_s: float = 0.0  # from the start to the workers being ready (cluster start-up)
+    started_at: float = 0.0  # perf_counter() at the start of run_sweep
+    client_cpu_s: float = 0.0  # CPU time of this process (client, scheduler of a
+    # LocalCluster, table writer; the runs themselves when serial) after the workers
+    # were ready
 
     def throughput(self) -> float:
-        """Runs per second between the first and the last completed run (leaves out
-        the cluster's start-up and the workers' first imports)."""
-        t = self.completed_at
-        return (len(t) - 1) / (t[-1] - t[0]) if len(t) > 1 and t[-1] > t[0] else 0.0
+        """Runs per second from the workers being ready to the last completed run
+        (leaves out the cluster's start-up and the workers' warm-up)."""
+        ready = self.started_at + self.ready_s
+        after = [t for t in self.completed_at if t >= ready]
+        span = after[-1] - ready if after else 0.0
+        return len(after) / span if span > 0 else 0.0
 
 
 def reachable_on(plant_fmu: Path):
@@ -50,47 +62,12 @@ def reachable_on(plant_fmu: Path):
     return lambda pose: reachable(plant_fmu, pose)
 
 
-def _client(scheduler: str | None, workers: int | None):
-    from distributed import Client, LocalCluster
-    if scheduler is not None:
-        return Client(scheduler), None
-    cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
-                           processes=True, dashboard_address=None)
-    return Client(cluster), cluster
-
-
-def _run_serial(todo, fmus, blobs, record):
-    store = FmuStore(blobs)
-    store.setup()
-    for rid, values, document in todo:
-        record(rid, values, execute(store, document, fmus))
-
-
-def _run_dask(todo, fmus, blobs, record, scheduler, workers, retries):
-    from distributed import as_completed
-    client, cluster = _client(scheduler, workers)
-    try:
-        client.register_plugin(worker_plugin(blobs))
-        futures = {client.submit(run_on_worker, document, fmus, key=f"cosim-run-{rid}",
-                                 pure=False, retries=retries): (rid, values)
-                   for rid, values, document in todo}
-        for future in as_completed(futures):
-            rid, values = futures[future]
-            try:
-                outcome = future.result()
-            except Exception as e:  # worker lost too often (KilledWorker), or a bug
-                outcome = {"status": "failed", "reason": f"{type(e).__name__}: {e}"}
-            record(rid, values, outcome)
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
-
-
 def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
               workers: int | None = None, resume: bool = False, progress: bool = True,
-              retries: int = 2, plots: bool = True) -> SweepOutcome:
-    """Runs every run of `spec` not done yet; workers=0 runs serially in-process."""
+              retries: int = 2, plots: bool = True, batch: int | None = None
+              ) -> SweepOutcome:
+    """Runs every run of `spec` not done yet; workers=0 runs serially in-process;
+    `batch`: runs per Dask task (None: sized by auto_batch)."""
     import time
     started = time.perf_counter()
     header = columns(spec)
@@ -103,19 +80,28 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
             todo.append((rid, values, document_for(spec, values)))
     bar = Progress(len(todo), len(spec.runs) - len(todo), enabled=progress)
     completed_at: list[float] = []
+    reasons: Counter = Counter()
+    setup = {"ready_s": 0.0, "batch": 1, "cpu": time.process_time()}
 
     def record(rid, values, outcome):
         table.append(rid, values_row(spec, values), outcome)
         completed_at.append(time.perf_counter())
+        if outcome["status"] != "ok":
+            reasons[outcome.get("reason", "")] += 1
         bar.update(outcome["status"] == "ok")
+
+    def ready(size: int = 1) -> None:
+        setup["ready_s"], setup["batch"] = time.perf_counter() - started, size
+        setup["cpu"] = time.process_time()
 
     try:
         if workers == 0 and scheduler is None:
-            _run_serial(todo, fmus, blobs, record)
+            run_serial(todo, fmus, blobs, record, ready)
         elif todo:
-            _run_dask(todo, fmus, blobs, record, scheduler, workers, retries)
+            run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, ready)
     finally:
         table.close()
+    client_cpu = time.process_time() - setup["cpu"]
     written = []
     if plots:
         header, rows = read_table(table.path)
@@ -123,7 +109,8 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
         written = plot_sweep(header, rows, axes, any(v.kind == "random" for v in spec.varied),
                              out, spec.name)
     return SweepOutcome(table.path, written, len(todo), len(spec.runs) - len(todo),
-                        bar.failed, time.perf_counter() - started, completed_at)
+                        bar.failed, time.perf_counter() - started, completed_at, reasons,
+                        setup["batch"], setup["ready_s"], started, client_cpu)
 
 
 def _kinds(spec: Spec) -> list[str]:

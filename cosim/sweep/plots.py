@@ -1,10 +1,13 @@
-"""Plots of a sweep's table, written next to it: each metric over the varied grid
-(a line for one varying quantity, a heat map for two; averaged over the random draws)
-and, with random samples, a histogram of each metric."""
+"""Plots of a sweep's table, written next to it: each metric over the varied grid, with
+the spread over the random draws (a line for one varying quantity: the median and a band
+from the 10th to the 90th percentile of the draws, their range when there are fewer than
+10, every draw as a dot; a heat map of the median for two) and, with at least
+MIN_HISTOGRAM_DRAWS draws per grid point, a histogram of each metric."""
 
 from __future__ import annotations
 
 import math
+from collections import Counter
 from pathlib import Path
 
 import numpy as np
@@ -12,6 +15,9 @@ import numpy as np
 PLOTTED = {"rms_error_deg": "RMS tracking error (deg)", "max_error_deg": "max error (deg)",
            "peak_force_n": "peak actuator force (N)", "settling_time_s": "settling time (s)",
            "wall_s": "wall time per run (s)"}
+PERCENTILES = (10.0, 90.0)
+MIN_PERCENTILE_DRAWS = 10  # fewer draws: the band is their range
+MIN_HISTOGRAM_DRAWS = 20  # fewer draws per grid point: no histogram
 
 
 def _plt():
@@ -25,12 +31,27 @@ def _finite(rows, metric) -> bool:
     return any(isinstance(r.get(metric), float) and math.isfinite(r[metric]) for r in rows)
 
 
-def _mean_over(rows, keys, metric) -> dict:
+def _values_over(rows, keys, metric) -> dict:
     groups: dict = {}
     for r in rows:
-        if isinstance(r.get(metric), float):
+        if isinstance(r.get(metric), float) and math.isfinite(r[metric]):
             groups.setdefault(tuple(r[k] for k in keys), []).append(r[metric])
-    return {k: float(np.mean(v)) for k, v in groups.items()}
+    return groups
+
+
+def spread(rows, keys, metric) -> dict:
+    """Per grid point (the values of `keys`): (median, low, high, draws) of the metric
+    over the random draws; low/high the PERCENTILES, or the range below
+    MIN_PERCENTILE_DRAWS draws."""
+    out = {}
+    for key, values in _values_over(rows, keys, metric).items():
+        x = np.array(values)
+        if len(x) >= MIN_PERCENTILE_DRAWS:
+            low, high = np.percentile(x, PERCENTILES)
+        else:
+            low, high = x.min(), x.max()
+        out[key] = (float(np.median(x)), float(low), float(high), len(x))
+    return out
 
 
 def plot_sweep(header: list[str], rows: list[dict], axes: list[str], random: bool,
@@ -44,7 +65,8 @@ def plot_sweep(header: list[str], rows: list[dict], axes: list[str], random: boo
     written = []
     if varying:
         written.append(_grid_plot(ok, varying, metrics, out / f"{name}_grid.png"))
-    if random:
+    if random and min(Counter(tuple(r[a] for a in varying) for r in ok).values()) >= \
+            MIN_HISTOGRAM_DRAWS:
         written.append(_histograms(ok, metrics, varying, out / f"{name}_histogram.png"))
     return written
 
@@ -63,25 +85,44 @@ def _panels(count: int, height: float):
 def _grid_plot(rows, varying, metrics, path: Path) -> Path:
     plt, fig, panels = _panels(len(metrics), 3.6)
     for ax, metric in zip(panels, metrics):
+        stats = spread(rows, varying[:2], metric)
+        draws = max(n for *_, n in stats.values())
         if len(varying) == 2:
-            xs = sorted({r[varying[0]] for r in rows})
-            ys = sorted({r[varying[1]] for r in rows})
-            means = _mean_over(rows, varying[:2], metric)
-            image = np.array([[means.get((x, y), np.nan) for x in xs] for y in ys])
+            xs = sorted({k[0] for k in stats})
+            ys = sorted({k[1] for k in stats})
+            image = np.array([[stats[(x, y)][0] if (x, y) in stats else np.nan for x in xs]
+                              for y in ys])
             mesh = ax.pcolormesh(xs, ys, image, shading="nearest")
             fig.colorbar(mesh, ax=ax)
             ax.set_ylabel(varying[1])
+            width = max(high - low for _, low, high, _ in stats.values())
+            note = (f"median of {draws} draws; widest band {_band(draws)}: {width:.3g}"
+                    if draws > 1 else "")
         else:
-            means = _mean_over(rows, varying[:1], metric)
-            xs = sorted(k[0] for k in means)
-            ax.plot(xs, [means[(x,)] for x in xs], "o-")
+            xs = sorted(k[0] for k in stats)
+            median = [stats[(x,)][0] for x in xs]
+            ax.plot(xs, median, "o-", label=f"median of {draws} draws" if draws > 1 else None)
+            if draws > 1:
+                ax.fill_between(xs, [stats[(x,)][1] for x in xs], [stats[(x,)][2] for x in xs],
+                                alpha=0.25, label=_band(draws))
+                dots = _values_over(rows, varying[:1], metric)
+                ax.plot([x for x in xs for _ in dots[(x,)]], [v for x in xs for v in dots[(x,)]],
+                        ".", color="0.35", markersize=3, label="each draw")
+                ax.legend(fontsize=7)
             ax.set_ylabel(PLOTTED[metric])
+            note = ""
         ax.set_xlabel(varying[0])
-        ax.set_title(PLOTTED[metric], fontsize=9)
+        ax.set_title(PLOTTED[metric] + (f"\n{note}" if note else ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
+
+
+def _band(draws: int) -> str:
+    if draws >= MIN_PERCENTILE_DRAWS:
+        return f"{PERCENTILES[0]:.0f}-{PERCENTILES[1]:.0f} percentile"
+    return f"range of {draws} draws"
 
 
 def _histograms(rows, metrics, varying, path: Path) -> Path:

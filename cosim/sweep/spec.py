@@ -40,6 +40,7 @@ import json
 import math
 import re
 import tomllib
+import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -48,6 +49,9 @@ import numpy as np
 from ..scenario import ScenarioError
 
 DISTRIBUTIONS = {"normal": ("mean", "sd"), "uniform": ("low", "high")}
+MAX_RUNS = 1_000_000  # runs of one sweep (grid points x workspace targets x draws)
+MAX_SEED = 2 ** 63 - 1
+MAX_TARGETS = 10_000  # workspace targets, each checked by initialising the plant
 KNOWN = {"scenario", "name", "seed", "samples", "grid", "random", "workspace", "fmu_dir"}
 
 
@@ -96,11 +100,17 @@ def grid_values(table, where: str) -> list[float]:
         values = table["values"]
         if not isinstance(values, list) or not values:
             raise SpecError(f"field '{where}.values' must be a non-empty list")
+        if len(values) > MAX_RUNS:
+            raise SpecError(f"field '{where}.values' has {len(values)} values, above the "
+                            f"{MAX_RUNS} runs a sweep may have; give fewer values")
         return [_number({"v": v}, "v", f"{where}.values") for v in values]
     start, stop = _number(table, "from", where), _number(table, "to", where)
     steps = table.get("steps")
     if isinstance(steps, bool) or not isinstance(steps, int) or steps < 1:
         raise SpecError(f"field '{where}.steps' must be a positive integer, got {steps!r}")
+    if steps > MAX_RUNS:
+        raise SpecError(f"field '{where}.steps' = {steps} is above the {MAX_RUNS} runs a "
+                        "sweep may have; give fewer steps")
     if steps == 1:
         return [start]
     return [start + (stop - start) * k / (steps - 1) for k in range(steps)]
@@ -128,10 +138,14 @@ def _draw(rng: np.random.Generator, table: dict, where: str) -> float:
 
 
 def random_draws(tables: dict, seed, samples) -> list[list[float]]:
-    if isinstance(seed, bool) or not isinstance(seed, int):
-        raise SpecError(f"field 'seed' must be an integer with [random], got {seed!r}")
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed <= MAX_SEED:
+        raise SpecError(f"field 'seed' must be an integer from 0 to 2^63 - 1 with [random], "
+                        f"got {seed!r}")
     if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
         raise SpecError(f"field 'samples' must be a positive integer, got {samples!r}")
+    if samples > MAX_RUNS:
+        raise SpecError(f"field 'samples' = {samples} is above the {MAX_RUNS} runs a sweep "
+                        "may have; give fewer samples")
     rng = np.random.Generator(np.random.PCG64(seed))
     return [[_draw(rng, table, f"random.{path}") for path, table in tables.items()]
             for _ in range(samples)]
@@ -189,7 +203,7 @@ def load_spec(path: str | Path, fmu_dir: str | Path | None = None,
     path = Path(path)
     try:
         data = tomllib.loads(path.read_text())
-    except (OSError, tomllib.TOMLDecodeError) as e:
+    except (OSError, ValueError) as e:  # TOMLDecodeError and UnicodeDecodeError
         raise SpecError(f"{path}: cannot read the SPEC: {e}") from e
     try:
         return parse_spec(data, path.parent, path.stem, fmu_dir, reachable)
@@ -207,13 +221,14 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
     scenario = (base / data["scenario"]).resolve()
     try:
         document = tomllib.loads(scenario.read_text())
-    except (OSError, tomllib.TOMLDecodeError) as e:
+    except (OSError, ValueError) as e:  # TOMLDecodeError and UnicodeDecodeError
         raise SpecError(f"field 'scenario': cannot read {scenario}: {e}") from e
     name = data.get("name", default_name)
     if not isinstance(name, str) or not re.fullmatch(r"[\w.-]+", name):
         raise SpecError(f"field 'name' must be a file-name-safe string, got {name!r}")
     if fmu_dir is None and "fmu_dir" in data:
         fmu_dir = base / str(data["fmu_dir"])
+    check_fmus(document, scenario, fmu_dir)
     grid, randoms = _tables(data, "grid"), _tables(data, "random")
     varied, axes = [], []
     for p, table in grid.items():
@@ -224,6 +239,7 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
         unit = _unit(data["workspace"], "workspace")
         varied.append(Varied(data["workspace"]["path"], unit, "workspace"))
         axes.append(targets)
+    _check_size(axes, data.get("samples") if randoms else 1)
     draws = [[]]
     if randoms:
         draws = random_draws(randoms, data.get("seed"), data.get("samples"))
@@ -243,6 +259,41 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
     return spec
 
 
+def _check_size(axes: list[list], samples) -> None:
+    """Refuses a product of grid points, targets and draws above MAX_RUNS before it is
+    expanded (an integer `samples` only: random_draws reports other values)."""
+    total = math.prod(len(a) for a in axes)
+    if isinstance(samples, int) and not isinstance(samples, bool) and samples > 0:
+        if samples > MAX_RUNS:
+            raise SpecError(f"field 'samples' = {samples} is above the {MAX_RUNS} runs a "
+                            "sweep may have; give fewer samples")
+        total *= samples
+    if total > MAX_RUNS:
+        raise SpecError(f"fields 'grid'/'workspace'/'samples': {total} runs, above the "
+                        f"{MAX_RUNS} a sweep may have; vary fewer values")
+
+
+def check_fmus(document: dict, scenario: Path, fmu_dir) -> None:
+    """Each FMU of the base scenario is a file and an FMU (a zip archive holding
+    modelDescription.xml), before anything loads it."""
+    fmus = document.get("fmus", {})
+    for alias, name in (fmus.items() if isinstance(fmus, dict) else []):
+        if fmu_dir is not None:
+            path = Path(fmu_dir) / Path(str(name)).name
+        else:
+            path = scenario.parent / str(name)
+        fix = "build the FMUs (scripts/build-fmus.sh) or give --fmu-dir"
+        if not path.is_file():
+            raise SpecError(f"field 'fmus.{alias}' of the scenario: {path} is not a file; "
+                            f"{fix}")
+        try:
+            with zipfile.ZipFile(path) as archive:
+                archive.getinfo("modelDescription.xml")
+        except (zipfile.BadZipFile, KeyError, OSError):
+            raise SpecError(f"field 'fmus.{alias}' of the scenario: {path} is not an FMU "
+                            f"(a zip archive with modelDescription.xml); {fix}") from None
+
+
 def workspace_targets(table, reachable) -> list[list[float]] | None:
     if table is None:
         return None
@@ -252,6 +303,10 @@ def workspace_targets(table, reachable) -> list[list[float]] | None:
     if unknown:
         raise SpecError(f"unknown field 'workspace.{unknown[0]}'")
     axes = [grid_values(table.get(a), f"workspace.{a}") for a in ("thx", "thy", "thz")]
+    if math.prod(len(a) for a in axes) > MAX_TARGETS:
+        raise SpecError(f"field 'workspace': {math.prod(len(a) for a in axes)} targets, "
+                        f"above {MAX_TARGETS} (each is checked on the plant FMU); give "
+                        "fewer values")
     targets = [list(p) for p in itertools.product(*axes)]
     if reachable is not None:
         scale = math.pi / 180.0 if table.get("unit") == "deg" else 1.0

@@ -48,12 +48,8 @@ class Table:
         self.done: set[str] = set()
         path.parent.mkdir(parents=True, exist_ok=True)
         if resume and path.exists():
-            with open(path, newline="") as f:
-                rows = list(csv.reader(f))
-            if rows and rows[0] != header:
-                raise ValueError(f"{path}: written by another SPEC (columns differ); "
-                                 "run without --resume or choose another --out")
-            self.done = {r[0] for r in rows[1:] if len(r) > 1 and r[1] == "ok"}
+            rows = _complete_rows(path, header)
+            self.done = {r[0] for r in rows[1:] if len(r) == len(header) and r[1] == "ok"}
             self.file = open(path, "a", newline="")
             if not rows:
                 csv.writer(self.file).writerow(header)
@@ -71,6 +67,28 @@ class Table:
 
     def close(self) -> None:
         self.file.close()
+
+
+def _complete_rows(path: Path, header: list[str]) -> list[list[str]]:
+    """The table's rows without a torn last line: a sweep killed while writing leaves
+    a line without its newline, which is cut off here (the file too, so that the next
+    row starts on a line of its own) and its run made again. A file that is not this
+    SPEC's table is refused and left as it is."""
+    data = path.read_bytes()
+    end = data.rfind(b"\n") + 1
+    refuse = f"{path}: not a table of this SPEC ({{}}); run without --resume or choose " \
+             "another --out"
+    try:
+        rows = list(csv.reader(data[:end].decode().splitlines(keepends=True)))
+        data.decode()
+    except (UnicodeDecodeError, csv.Error) as e:
+        raise ValueError(refuse.format(e)) from None
+    if (rows and rows[0] != header) or (not rows and data):
+        raise ValueError(refuse.format("its columns differ"))
+    if end < len(data):
+        with open(path, "rb+") as f:
+            f.truncate(end)
+    return rows
 
 
 def read_table(path: Path) -> tuple[list[str], list[dict]]:

@@ -67,13 +67,17 @@ def test_cosimulation_matches_the_continuous_reference(name):
         assert deviation(result, ref, alias, signal) < tol, signal
 
 
-def test_deviation_is_first_order_in_the_step():
-    # Truth: a zero-order-hold discretisation of a smooth loop differs from the
-    # continuous loop by O(h); halving h must roughly halve the deviation.
+@pytest.mark.parametrize("extrapolation, low, high", [("hold", 1.6, 2.5), ("linear", 3.2, 5.0)])
+def test_deviation_order_in_the_step(extrapolation, low, high):
+    # Truth: the continuous loop (the reference). A zero-order hold of the inputs
+    # differs from it by O(h): halving h halves the deviation. Linear extrapolation
+    # (input slopes over the step) differs by O(h^2): halving h quarters it.
     ref = reference("three_axis_cubic")
-    coarse = deviation(run("three_axis_cubic"), ref, "plant", "theta")
-    fine = deviation(run("three_axis_cubic", step_size=0.0005), ref, "plant", "theta")
-    assert 1.6 < coarse / fine < 2.5, (coarse, fine)
+    coarse = deviation(run("three_axis_cubic", input_extrapolation=extrapolation), ref,
+                       "plant", "theta")
+    fine = deviation(run("three_axis_cubic", step_size=0.0005,
+                         input_extrapolation=extrapolation), ref, "plant", "theta")
+    assert low < coarse / fine < high, (coarse, fine)
 
 
 def test_tracking_requirement_holds_in_the_cosimulation():

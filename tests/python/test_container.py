@@ -73,6 +73,8 @@ def loop_gains() -> tuple[float, float]:
 
 
 def scenario(name: str, **changes):
+    """The scenario with held inputs, the coupling the container (the toolbox) uses."""
+    changes.setdefault("input_extrapolation", "hold")
     return dataclasses.replace(load_scenario(ROOT / "scenarios" / f"{name}.toml"), **changes)
 
 
@@ -98,13 +100,13 @@ def gains(s, name: str) -> np.ndarray:
     return np.array([float(s.parameters["pid"][f"{name}[{i}]"]) for i in AXES])
 
 
-def force_map_norm(s, thetas: np.ndarray) -> float:
-    """max over the poses of ||M||_inf, M = d force / d generalizedForceCommand, probed
-    on the plant FMU (f = M(theta) u is linear in u)."""
+def force_maps(s, thetas: np.ndarray) -> np.ndarray:
+    """M(theta) per pose, M = d force / d generalizedForceCommand, probed on the plant
+    FMU (f = M(theta) u is linear in u)."""
     plant = FmuInstance("plant", s.fmus["plant"], 0.0, 1.0)
     commands = tuple(f"generalizedForceCommand[{i}]" for i in AXES)
     forces = tuple(f"force[{i}]" for i in AXES)
-    norms = []
+    maps = []
     try:
         plant.enter_initialization()
         for theta in thetas:
@@ -113,21 +115,37 @@ def force_map_norm(s, thetas: np.ndarray) -> float:
             for axis in range(3):
                 plant.set_values(commands, list(np.eye(3)[axis]))
                 columns_.append(plant.get_values(forces))
-            norms.append(np.abs(np.array(columns_).T).sum(axis=1).max())
+            maps.append(np.array(columns_).T)
     finally:
         plant.close()
-    return float(max(norms))
+    return np.array(maps)
+
+
+def force_map_norm(s, thetas: np.ndarray) -> float:
+    """max over the poses of ||M(theta)||_inf."""
+    return float(np.abs(force_maps(s, thetas)).sum(axis=2).max())
+
+
+def force_after_step(master: dict, s) -> np.ndarray:
+    """The master's actuator forces at the moment FMPy samples the container: the
+    master's row k holds the values exchanged over step k (u applied over it, the force
+    of that u); FMPy samples after step k - 1, the control of step k - 1 still applied:
+    M(theta_k) u_{k-1} = force_k + M(theta_k) (u_{k-1} - u_k)."""
+    u = columns(master, "pid.u")
+    maps = force_maps(s, columns(master, "plant.theta")[1:])
+    force = columns(master, "plant.force")
+    force[1:] += np.einsum("kij,kj->ki", maps, u[:-1] - u[1:])
+    return force
 
 
 def deviations(master: dict, container, s) -> dict[str, np.ndarray]:
     """Per-axis max |container - master| of theta, applied torque u and force."""
-    h = s.step_size
-    error = columns(master, "planner.q") - columns(master, "plant.theta")
-    applied = columns(master, "pid.u")[1:] - gains(s, "Ki") * h * error[:-1]
+    u = columns(master, "pid.u")
+    force = force_after_step(master, s)
     return {
         "theta": np.abs(columns(container, "plant.theta") - columns(master, "plant.theta")).max(0),
-        "u": np.abs(columns(container, "pid.u")[:-1] - applied).max(0),
-        "force": np.abs(columns(container, "force") - columns(master, "plant.force")).max(0),
+        "u": np.abs(columns(container, "pid.u")[:-1] - u[:-1]).max(0),
+        "force": np.abs(columns(container, "force") - force).max(0),
     }
 
 

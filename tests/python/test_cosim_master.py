@@ -117,6 +117,53 @@ def test_sampled_coupling_feeds_every_input_at_the_step_start():
         assert result.columns["int.x"][-1] == pytest.approx(0.45, abs=1e-14)
 
 
+def test_sampled_rows_record_the_inputs_the_next_step_holds():
+    # Closed form: with sampled coupling the integrator holds u = t_k = k h over step k;
+    # row k records the values exchanged at t_k, so int.u equals ramp.y = k h on every
+    # row (recording after the step but before the propagation gave int.u = (k-1) h).
+    result, _ = run(scenario(record=["int.x", "int.u"]))
+    h = 0.1
+    assert result.columns["int.u"] == pytest.approx([k * h for k in range(11)], abs=1e-15)
+    assert result.columns["int.u"] == result.columns["ramp.y"]
+    # x at row k integrates the inputs of rows 0..k-1: x_k = h^2 k (k-1) / 2.
+    assert result.columns["int.x"] == pytest.approx(
+        [h * h * k * (k - 1) / 2 for k in range(11)], abs=1e-14)
+
+
+class SlopedIntegrator(Integrator):
+    """x' = u with u(t_k + s) = u + u' s over the step (canInterpolateInputs)."""
+
+    can_interpolate_inputs = True
+
+    def __init__(self, alias, h_max=1.0):
+        super().__init__(alias, h_max)
+        self.slope = 0.0
+
+    def set_input_slopes(self, names, values):
+        assert names == ("u",)
+        self.slope = values[0]
+
+    def do_step(self, t, h):
+        super().do_step(t, h)
+        self.x += self.slope * h * h / 2
+
+
+def test_linear_extrapolation_integrates_a_ramp_exactly():
+    # Closed form: the ramp gives no derivatives, so its slope comes from its last two
+    # samples: 0 over the first step (no history), then exactly 1. x_N = integral of t
+    # minus the first step's missing h^2/2: N^2 h^2 / 2 - h^2 / 2 = 0.495 (hold: 0.45).
+    made = {}
+
+    def open_fmu(alias, _path, _s):
+        made[alias] = Ramp(alias) if alias == "ramp" else SlopedIntegrator(alias)
+        return made[alias]
+
+    result = Master(scenario(input_extrapolation="linear"), open_fmu=open_fmu).run()
+    assert result.columns["int.x"][-1] == pytest.approx(0.495, abs=1e-14)
+    held = Master(scenario(input_extrapolation="hold"), open_fmu=open_fmu).run()
+    assert held.columns["int.x"][-1] == pytest.approx(0.45, abs=1e-14)
+
+
 def test_time_is_an_integer_step_count():
     # 0.1 added ten times is 0.9999999999999999; t_k = k h must be exact at the end.
     result, _ = run(scenario())

@@ -11,8 +11,6 @@ import csv
 import math
 import os
 import sys
-import threading
-import time
 from pathlib import Path
 
 import numpy as np
@@ -75,9 +73,12 @@ def test_reset_instances_give_the_runs_of_fresh_instances():
     assert reused.columns == fresh.columns
 
 
-def test_fast_path_matches_fmpy_calls_bit_for_bit():
-    # Truth: the same master through FMPy's wrappers (FmuInstance.get/set_values).
+@pytest.mark.parametrize("extrapolation", ["hold", "linear"])
+def test_fast_path_matches_fmpy_calls_bit_for_bit(extrapolation):
+    # Truth: the same master through FMPy's wrappers (FmuInstance.get/set_values,
+    # get_output_slopes / set_input_slopes).
     scenario = load_scenario(ROOT / "scenarios" / "three_axis_quintic.toml")
+    scenario.input_extrapolation = extrapolation
     assert Master(scenario).run().columns == Master(scenario, fast=False).run().columns
 
 
@@ -87,37 +88,64 @@ def test_two_worker_cluster_gives_the_serial_results(tmp_path):
     dask = run_sweep(spec, tmp_path / "dask", workers=2, progress=False)
     assert (serial.runs, serial.failed, dask.runs, dask.failed) == (4, 0, 4, 0)
     assert rows(serial.table) == rows(dask.table)
-    assert [p.name for p in dask.plots] == ["small_grid.png", "small_histogram.png"]
+    assert [p.name for p in dask.plots] == ["small_grid.png"]  # 2 draws: no histogram
 
 
-def test_a_killed_workers_runs_are_retried(tmp_path):
+class KillOnce:
+    """A worker plugin that ends its worker process the moment a task starts executing
+    there, once per cluster (the marker file is created exclusively): a deterministic
+    kill -9 in the middle of a run, with no thread racing the sweep."""
+
+    name = "kill-once"
+
+    def __init__(self, marker: str):
+        self.marker = marker
+
+    def setup(self, worker):
+        pass
+
+    def teardown(self, worker):
+        pass
+
+    def transition(self, key, start, finish, **kwargs):
+        if finish == "executing" and str(key).startswith("cosim-runs-"):
+            try:
+                os.close(os.open(self.marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+            except FileExistsError:
+                return
+            os._exit(9)
+
+
+def test_a_killed_workers_runs_are_retried(tmp_path, monkeypatch):
+    # Truth: the serial runs. A worker dies in the middle of its first task; the
+    # scheduler gives the task to the restarted (or the other) worker and the table is
+    # the serial table. The sweep runs inside a `with Client(...)` of the caller's own,
+    # which once made as_completed track the sweep's futures on the caller's event loop
+    # (a result lost with the worker was then awaited on the sweep's loop: "bound to a
+    # different event loop", issue 19): the futures must be tracked on the sweep's loop.
+    import distributed
     from distributed import Client, LocalCluster
+    from distributed.diagnostics.plugin import WorkerPlugin
     spec = load_spec(write_spec(tmp_path, GRID_AND_DRAWS, samples=4, omegas="[10, 30]"))
-    serial = run_sweep(spec, tmp_path / "serial", workers=0, progress=False)
-    table = tmp_path / "dask" / "small.csv"
+    serial = run_sweep(spec, tmp_path / "serial", workers=0, progress=False, plots=False)
+    marker = tmp_path / "killed"
+    loops = []
+    original = distributed.as_completed
+
+    def tracked(futures, loop=None, **kwargs):
+        loops.append(loop)
+        return original(futures, loop=loop, **kwargs)
+
+    monkeypatch.setattr(distributed, "as_completed", tracked)
+    plugin = type("KillOncePlugin", (KillOnce, WorkerPlugin), {})(str(marker))
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as cluster, Client(cluster) as client:
-        killed = []
-
-        def kill_a_busy_worker():
-            while not table.exists() or len(table.read_text().splitlines()) < 2:
-                time.sleep(0.02)
-            for _ in range(500):  # a worker with a run in progress, within 10 s
-                busy = [w for w, tasks in client.processing().items() if tasks]
-                if busy:
-                    pid = client.run(os.getpid, workers=busy[:1])[busy[0]]
-                    os.kill(pid, 9)
-                    killed.append(pid)
-                    return
-                time.sleep(0.02)
-
-        killer = threading.Thread(target=kill_a_busy_worker)
-        killer.start()
+                      dashboard_address=":0") as cluster, Client(cluster) as client:
+        client.register_plugin(plugin)
         outcome = run_sweep(spec, tmp_path / "dask", scheduler=cluster.scheduler_address,
-                            progress=False)
-        killer.join()
-    assert killed and outcome.failed == 0 and outcome.runs == 8
-    assert rows(table) == rows(serial.table)
+                            progress=False, plots=False, batch=2)
+        assert loops and loops[0] is not None and loops[0] is not client.loop
+    assert marker.exists() and outcome.failed == 0 and outcome.runs == 8
+    assert rows(outcome.table) == rows(serial.table)
 
 
 def test_resume_runs_only_what_is_missing(tmp_path):
@@ -126,11 +154,13 @@ def test_resume_runs_only_what_is_missing(tmp_path):
     partial = tmp_path / "partial" / "small.csv"
     partial.parent.mkdir()
     lines = full.table.read_text().splitlines(keepends=True)
-    partial.write_text("".join(lines[:2]))  # header and one run: a sweep cut short
+    # Header, one run and half of the next run's line: a sweep killed while writing.
+    partial.write_text("".join(lines[:2]) + lines[2][:len(lines[2]) // 2])
     again = run_sweep(spec, tmp_path / "partial", workers=0, resume=True, progress=False,
                       plots=False)
-    assert (again.runs, again.skipped) == (2, 1)
+    assert (again.runs, again.skipped) == (2, 1)  # the torn run is made again
     assert rows(partial) == rows(full.table)
+    assert len(partial.read_text().splitlines()) == 4  # the torn line is gone
 
 
 def test_a_failing_run_is_recorded_with_its_reason(tmp_path):
@@ -198,7 +228,7 @@ def test_the_command_refuses_a_malformed_spec_by_field(tmp_path):
     spec = write_spec(tmp_path, BASE + "[grid.'gains.omega']\nfrom = 10\nto = 60\n")
     run = subprocess.run([sys.executable, "-m", "cosim", "sweep", str(spec), "--out",
                           str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
-    assert run.returncode == 1
+    assert run.returncode == 2
     assert "field 'grid.gains.omega.steps' must be a positive integer" in run.stderr
     assert not (tmp_path / "small.csv").exists()
 
@@ -222,3 +252,74 @@ def test_random_draws_are_seeded_truncated_and_follow_their_distribution():
     assert abs(a.mean() - expected) < 5 * sd / np.sqrt(len(a))
     assert abs(b.mean() - 2.0) < 5 * np.sqrt(1 / 3 / len(b))
     assert abs(b.var() - 1 / 3) < 0.03
+
+
+def test_auto_batch_fits_the_task_length_and_keeps_every_worker_busy():
+    # Closed form: runs per task = min(T(W) / (steps RUN_STEP_S), runs / (4 W)), at
+    # least 1, with the task length T(W) = max(TASK_S, 4 W CLIENT_TASK_S).
+    from cosim.sweep.engine import CLIENT_TASK_S, RUN_STEP_S, TASK_S, auto_batch
+    run_s = 1000 * RUN_STEP_S
+    assert auto_batch(100000, 2, 1000) == int(TASK_S / run_s)
+    assert auto_batch(100000, 16, 1000) == int(4 * 16 * CLIENT_TASK_S / run_s)
+    assert auto_batch(64, 16, 1000) == 1  # 64 runs / (4 x 16 workers)
+    assert auto_batch(400, 2, 1000) == min(int(TASK_S / run_s), 50)
+    assert auto_batch(3, 8, 10 ** 9) == 1
+
+
+def test_grid_plots_show_the_spread_of_the_draws(tmp_path):
+    # Truth: numpy's median and percentiles of each grid point's draws, computed here
+    # apart; below 10 draws the band is the range. No histogram of a few draws.
+    from cosim.sweep.plots import plot_sweep, spread
+    rng = np.random.default_rng(5)
+    rows = [{"status": "ok", "w": w, "rms_error_deg": float(w + rng.normal())}
+            for w in (1.0, 2.0) for _ in range(30)]
+    rows += [{"status": "ok", "w": 3.0, "rms_error_deg": v} for v in (1.0, 5.0, 2.0)]
+    stats = spread(rows, ["w"], "rms_error_deg")
+    for w in (1.0, 2.0):
+        x = np.array([r["rms_error_deg"] for r in rows if r["w"] == w])
+        assert stats[(w,)] == pytest.approx((np.median(x), *np.percentile(x, [10, 90]), 30))
+    assert stats[(3.0,)] == (2.0, 1.0, 5.0, 3)
+    written = plot_sweep(["run_id", "status", "reason", "w"], rows, ["w"], True, tmp_path, "s")
+    assert [p.name for p in written] == ["s_grid.png"]  # 3 draws at w = 3: no histogram
+
+
+@pytest.mark.parametrize("extrapolation", ["hold", "linear"])
+def test_native_loop_matches_the_python_loop_bit_for_bit(extrapolation):
+    # Truth: the Python loop over the same prepared calls (cosim.fastpath). The
+    # waypoint scenario has plan switches, where the native runs of steps are split.
+    from cosim.native import library
+    assert library() is not None, "target/release/libcosim_kernel.so: run scripts/build-fmus.sh"
+    scenario = load_scenario(ROOT / "scenarios" / "three_axis_waypoints.toml")
+    scenario.input_extrapolation = extrapolation
+    assert scenario.schedule
+    native = Master(scenario).run()
+    assert native.columns == Master(scenario, native=False).run().columns
+
+
+def test_native_loop_reports_a_failure_as_the_python_loop_does():
+    # A plant whose integrator may not take the step (maxStep = 1 ns): it discards the
+    # first step; the native loop's message is the Python loop's (FMU, time, reason).
+    from cosim.errors import CosimError
+    scenario = load_scenario(ROOT / "scenarios" / "regulation.toml")
+    scenario.parameters["plant"]["maxStep"] = 1e-9
+    with pytest.raises(CosimError) as native:
+        Master(scenario).run()
+    with pytest.raises(CosimError) as python:
+        Master(scenario, native=False).run()
+    assert str(native.value) == str(python.value)
+    assert str(native.value).startswith("plant discarded the step at t = 0 s")
+
+
+def test_the_command_exits_1_with_the_reasons_of_failed_runs(tmp_path, capsys):
+    # A negative platform mass: the plant refuses it (its own reason in the table's
+    # 'reason' column); the command says how many runs failed and why, exit status 1.
+    from cosim.sweep.cli import main
+    text = BASE + "[grid.'plant.platformMass']\nvalues = [-1.0, 0.8]\nunit = \"kg\"\n"
+    spec = write_spec(tmp_path, text)
+    status = main([str(spec), "--out", str(tmp_path), "--workers", "0", "--quiet"])
+    err = capsys.readouterr().err.splitlines()
+    reason = next(r["reason"] for r in rows(tmp_path / "small.csv").values()
+                  if r["status"] == "failed")
+    assert status == 1
+    assert "1 of 2 runs failed" in err[0]
+    assert err[1] == f"  1 x {reason}" and reason.startswith("plant")

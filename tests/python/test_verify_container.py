@@ -13,24 +13,26 @@ import csv
 import numpy as np
 import pytest
 
-from test_container import deviations, run_master, scenario, tolerances
+from test_container import deviations, force_after_step, run_master, scenario, tolerances
 from cosim.container import build_container
 from verify_cli import verify
 
 AXES = (1, 2, 3)
 
 
-def write_reference(master: dict, path):
+def write_reference(master: dict, s, path):
     """The master's plant angles and actuator forces under the container's names
-    (`plant.theta[i]` is a container local, `force[i]` its output)."""
-    names = {f"plant.theta[{i}]": f"plant.theta[{i}]" for i in AXES}
-    names.update({f"force[{i}]": f"plant.force[{i}]" for i in AXES})
+    (`plant.theta[i]` is a container local, `force[i]` its output), the forces at the
+    moment FMPy samples the container (test_container.force_after_step)."""
+    force = force_after_step(master, s)
+    columns = {f"plant.theta[{i}]": master[f"plant.theta[{i}]"] for i in AXES}
+    columns.update({f"force[{i}]": force[:, i - 1] for i in AXES})
     with open(path, "w", newline="") as f:
         out = csv.writer(f, quoting=csv.QUOTE_NONNUMERIC, lineterminator="\n")
-        out.writerow(["time", *names])
+        out.writerow(["time", *columns])
         for k, t in enumerate(master["time"]):
-            out.writerow([float(t), *(float(master[m][k]) for m in names.values())])
-    return list(names)
+            out.writerow([float(t), *(float(c[k]) for c in columns.values())])
+    return list(columns)
 
 
 def test_container_fmu_verified_against_the_master(tmp_path):
@@ -39,7 +41,7 @@ def test_container_fmu_verified_against_the_master(tmp_path):
     fmu = tmp_path / "loop.fmu"
     build_container(s, fmu)
     reference = tmp_path / "master.csv"
-    signals = write_reference(master, reference)
+    signals = write_reference(master, s, reference)
     bound = tolerances(master, s)
     options = []
     for signal in signals:
