@@ -171,24 +171,32 @@ fn trajectories(p: &Table, place: &str) -> Result<[Polynomial; 3], LoopError> {
         .map_err(|_| bad("three planner axes expected".into()))
 }
 
+/// The output limits (uMin[i], uMax[i]) of a controller's axis `i` (1-based) when its
+/// `limitOutput[i]` is true, else None (the PID and the computed-torque law alike).
+pub(super) fn output_limits(
+    p: &Table,
+    i: usize,
+    place: &str,
+) -> Result<Option<(f64, f64)>, LoopError> {
+    if !boolean(p, &format!("limitOutput[{i}]"), place)? {
+        return Ok(None);
+    }
+    Ok(Some((
+        required(p, &format!("uMin[{i}]"), place)?,
+        required(p, &format!("uMax[{i}]"), place)?,
+    )))
+}
+
 fn gains(p: &Table, place: &str) -> Result<[PidGains; 3], LoopError> {
     let mut out = Vec::with_capacity(3);
     for i in 1..=3 {
         let key = |name: &str| format!("{name}[{i}]");
-        let limits = if boolean(p, &key("limitOutput"), place)? {
-            Some((
-                required(p, &key("uMin"), place)?,
-                required(p, &key("uMax"), place)?,
-            ))
-        } else {
-            None
-        };
         let g = PidGains {
             kp: required(p, &key("Kp"), place)?,
             ki: required(p, &key("Ki"), place)?,
             kd: required(p, &key("Kd"), place)?,
             tf: required(p, &key("Tf"), place)?,
-            limits,
+            limits: output_limits(p, i, place)?,
             use_rate_inputs: boolean(p, &key("useRateInputs"), place)?,
         };
         g.validate()?;
