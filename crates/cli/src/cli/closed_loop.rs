@@ -61,7 +61,8 @@ pub struct ReferenceArgs {
     /// Scenario file (TOML), as run by `python -m cosim`.
     #[arg(long)]
     scenario: PathBuf,
-    /// Output CSV; `<name>_ref.opt` is written beside it.
+    /// Output CSV; the options file is written beside it, the same name with the
+    /// extension .opt (`X_ref.csv` -> `X_ref.opt`).
     #[arg(long)]
     out: PathBuf,
     /// Relative and absolute tolerance of the Dop853 integration (1e-14 to 1e-2).
@@ -137,6 +138,14 @@ fn row(s: &LoopSample) -> impl Iterator<Item = f64> + '_ {
 }
 
 fn reference(args: ReferenceArgs) -> Result<(), CliError> {
+    if args.out.extension().is_some_and(|e| e == "opt") {
+        // The options file is `--out` with the extension .opt: it would replace the CSV.
+        return Err(usage(format!(
+            "--out {}: the options file is written beside the CSV with the extension \
+             .opt and would replace it; give a .csv file",
+            args.out.display()
+        )));
+    }
     let text = std::fs::read_to_string(&args.scenario).map_err(|e| {
         usage(format!(
             "{}: cannot read the scenario ({e})",
