@@ -163,13 +163,37 @@ fn reference(args: ReferenceArgs) -> Result<(), CliError> {
     )
     .map_err(|e| usage(format!("{}: {e}", args.scenario.display())))?;
     let samples = simulate(&spec, args.tolerance)?;
+    let (csv, rows) = reference_csv(&spec, &samples, args.every as usize)?;
+    std::fs::write(&args.out, csv).map_err(io_at(&args.out))?;
+    let options = format!(
+        "StartTime, {}\nStopTime, {}\nStepSize, {}\nRelTol, {:e}\n",
+        spec.start_time, spec.stop_time, spec.step_size, args.tolerance
+    );
+    let opt = args.out.with_extension("opt");
+    std::fs::write(&opt, options).map_err(io_at(&opt))?;
+    outln!(
+        "{}: {} samples of the continuous-time loop, {rows} written -> {}",
+        spec.name,
+        samples.len(),
+        args.out.display()
+    );
+    Ok(())
+}
+
+/// The cross-check CSV of `samples`, every `every`-th one and the last, and its number
+/// of data rows.
+fn reference_csv(
+    spec: &LoopSpec,
+    samples: &[LoopSample],
+    every: usize,
+) -> Result<(String, usize), CliError> {
     let mut csv = String::from("\"time\"");
-    for name in columns(&spec) {
+    for name in columns(spec) {
         write!(csv, ",\"{name}\"")?;
     }
     csv.push('\n');
-    let every = args.every as usize;
-    let last = samples.len() - 1;
+    let last = samples.len().saturating_sub(1);
+    let mut rows = 0;
     for (k, s) in samples.iter().enumerate() {
         if k % every != 0 && k != last {
             continue;
@@ -179,21 +203,9 @@ fn reference(args: ReferenceArgs) -> Result<(), CliError> {
             write!(csv, ",{v:e}")?;
         }
         csv.push('\n');
+        rows += 1;
     }
-    std::fs::write(&args.out, csv).map_err(io_at(&args.out))?;
-    let options = format!(
-        "StartTime, {}\nStopTime, {}\nStepSize, {}\nRelTol, {:e}\n",
-        spec.start_time, spec.stop_time, spec.step_size, args.tolerance
-    );
-    let opt = args.out.with_extension("opt");
-    std::fs::write(&opt, options).map_err(io_at(&opt))?;
-    outln!(
-        "{}: {} samples of the continuous-time loop -> {}",
-        spec.name,
-        samples.len(),
-        args.out.display()
-    );
-    Ok(())
+    Ok((csv, rows))
 }
 
 fn boundary(args: BoundaryArgs) -> Result<(), CliError> {
