@@ -135,6 +135,14 @@ fn scenarios_with_another_loop_are_refused_by_name() {
     let missing = text.replacen("\"Kp[2]\"", "\"Kq[2]\"", 1);
     let e = parse_loop_scenario(&missing).unwrap_err().to_string();
     assert!(e.contains("missing 'parameters.pid.Kp[2]'"), "{e}");
+    // A PID the gains' own check refuses is named by its table and axis.
+    let slow = text.replacen(
+        "\"useRateInputs[2]\" = true",
+        "\"useRateInputs[2]\" = false",
+        1,
+    );
+    let e = parse_loop_scenario(&slow).unwrap_err().to_string();
+    assert!(e.contains("'parameters.pid.' axis 2"), "{e}");
 }
 
 #[test]

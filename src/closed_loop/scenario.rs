@@ -199,7 +199,8 @@ fn gains(p: &Table, place: &str) -> Result<[PidGains; 3], LoopError> {
             limits: output_limits(p, i, place)?,
             use_rate_inputs: boolean(p, &key("useRateInputs"), place)?,
         };
-        g.validate()?;
+        g.validate()
+            .map_err(|e| bad(format!("'{place}' axis {i}: PID {e}")))?;
         out.push(g);
     }
     Ok([out[0], out[1], out[2]])
