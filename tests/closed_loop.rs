@@ -135,6 +135,14 @@ fn scenarios_with_another_loop_are_refused_by_name() {
     let missing = text.replacen("\"Kp[2]\"", "\"Kq[2]\"", 1);
     let e = parse_loop_scenario(&missing).unwrap_err().to_string();
     assert!(e.contains("missing 'parameters.pid.Kp[2]'"), "{e}");
+    // A PID the gains' own check refuses is named by its table and axis.
+    let slow = text.replacen(
+        "\"useRateInputs[2]\" = true",
+        "\"useRateInputs[2]\" = false",
+        1,
+    );
+    let e = parse_loop_scenario(&slow).unwrap_err().to_string();
+    assert!(e.contains("'parameters.pid.' axis 2"), "{e}");
 }
 
 #[test]
@@ -198,4 +206,39 @@ fn plan_switches_continue_the_motion_at_the_waypoint() {
     assert_eq!(before, spec.trajectories[0].sample(1.4).q);
     let after = spec.trajectories_at(2.0)[0].sample(2.0).q;
     assert_eq!(after, later[0].sample(2.0).q);
+}
+
+#[test]
+fn plan_switches_outside_the_run_or_out_of_order_are_refused_by_name() {
+    // Truth: the harness's rule (cosim/scenario.py, _plan_switches): steps increase and
+    // lie strictly inside the run (3 s at 1 ms: steps 1 to 2999). The reference must
+    // refuse what the co-simulation refuses, else trajectories_at picks a segment that
+    // never runs (a switch at step 0 replaces the first segment).
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/scenarios/expanded/three_axis_waypoints.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let at = "\"step\" = 1500";
+    assert!(text.contains(at));
+    let block = &text[text.find("[[plan_switches]]").unwrap()..];
+    let twice = format!("{text}\n{}", block.replace(at, "\"step\" = 1000"));
+    for (variant, step) in [
+        (
+            text.replace(at, "\"step\" = 0"),
+            "'plan_switches[0].step' is 0",
+        ),
+        (
+            text.replace(at, "\"step\" = -5"),
+            "'plan_switches[0].step' is -5",
+        ),
+        (
+            text.replace(at, "\"step\" = 3000"),
+            "'plan_switches[0].step' is 3000",
+        ),
+        (twice, "'plan_switches[1].step' is 1000"),
+    ] {
+        let e = parse_loop_scenario(&variant).unwrap_err().to_string();
+        assert!(e.contains(step), "{e}");
+    }
+    let later = text.replace(at, "\"step\" = 2999");
+    assert!(parse_loop_scenario(&later).is_ok());
 }

@@ -11,7 +11,7 @@
 //! spec's values): the model-mismatch study sets these apart from the plant's.
 
 use super::error::LoopError;
-use super::scenario::{bad, boolean, number, required};
+use super::scenario::{bad, number, output_limits, required};
 use crate::computed_torque::{AxisGains, ComputedTorque};
 use crate::control::pid::PidGains;
 use crate::pss3::dynamics::PlantParams;
@@ -148,19 +148,11 @@ pub fn computed_torque(p: &Table, place: &str) -> Result<ComputedTorque, LoopErr
     let mut gains = Vec::with_capacity(3);
     for i in 1..=3 {
         let key = |name: &str| format!("{name}[{i}]");
-        let limits = if boolean(p, &key("limitOutput"), place)? {
-            Some((
-                required(p, &key("uMin"), place)?,
-                required(p, &key("uMax"), place)?,
-            ))
-        } else {
-            None
-        };
         gains.push(AxisGains {
             kp: required(p, &key("Kp"), place)?,
             kd: required(p, &key("Kd"), place)?,
             ki: number(p, &key("Ki"), place)?.unwrap_or(0.0),
-            limits,
+            limits: output_limits(p, i, place)?,
         });
     }
     let gains = [gains[0], gains[1], gains[2]];

@@ -171,27 +171,36 @@ fn trajectories(p: &Table, place: &str) -> Result<[Polynomial; 3], LoopError> {
         .map_err(|_| bad("three planner axes expected".into()))
 }
 
+/// The output limits (uMin[i], uMax[i]) of a controller's axis `i` (1-based) when its
+/// `limitOutput[i]` is true, else None (the PID and the computed-torque law alike).
+pub(super) fn output_limits(
+    p: &Table,
+    i: usize,
+    place: &str,
+) -> Result<Option<(f64, f64)>, LoopError> {
+    if !boolean(p, &format!("limitOutput[{i}]"), place)? {
+        return Ok(None);
+    }
+    Ok(Some((
+        required(p, &format!("uMin[{i}]"), place)?,
+        required(p, &format!("uMax[{i}]"), place)?,
+    )))
+}
+
 fn gains(p: &Table, place: &str) -> Result<[PidGains; 3], LoopError> {
     let mut out = Vec::with_capacity(3);
     for i in 1..=3 {
         let key = |name: &str| format!("{name}[{i}]");
-        let limits = if boolean(p, &key("limitOutput"), place)? {
-            Some((
-                required(p, &key("uMin"), place)?,
-                required(p, &key("uMax"), place)?,
-            ))
-        } else {
-            None
-        };
         let g = PidGains {
             kp: required(p, &key("Kp"), place)?,
             ki: required(p, &key("Ki"), place)?,
             kd: required(p, &key("Kd"), place)?,
             tf: required(p, &key("Tf"), place)?,
-            limits,
+            limits: output_limits(p, i, place)?,
             use_rate_inputs: boolean(p, &key("useRateInputs"), place)?,
         };
-        g.validate()?;
+        g.validate()
+            .map_err(|e| bad(format!("'{place}' axis {i}: PID {e}")))?;
         out.push(g);
     }
     Ok([out[0], out[1], out[2]])
@@ -213,12 +222,16 @@ fn parameters<'a>(doc: &'a Table, alias: &str) -> Result<&'a Table, LoopError> {
 }
 
 /// The later segments of a multi-segment motion: each `[[plan_switches]]` entry resets
-/// the planner at communication step `step` with its `parameters`.
+/// the planner at communication step `step` with its `parameters`. As the harness
+/// (`cosim/scenario.py`), the steps must increase and lie inside the run: a switch at
+/// step 0 or out of order would make [`LoopSpec::trajectories_at`] pick a segment the
+/// co-simulation never runs.
 fn plan_switches(
     doc: &Table,
     planner: &str,
     start_time: f64,
     step_size: f64,
+    steps: f64,
 ) -> Result<Vec<(f64, [Polynomial; 3])>, LoopError> {
     let Some(list) = doc.get("plan_switches") else {
         return Ok(Vec::new());
@@ -227,6 +240,7 @@ fn plan_switches(
         .as_array()
         .ok_or_else(|| bad("'plan_switches' must be an array of tables".into()))?;
     let mut out = Vec::with_capacity(list.len());
+    let mut after = 0;
     for (k, item) in list.iter().enumerate() {
         let place = format!("plan_switches[{k}].");
         let step = item.get("step").and_then(Value::as_integer);
@@ -237,6 +251,13 @@ fn plan_switches(
                 "'{place}' needs an integer 'step', an 'alias' and a 'parameters' table"
             )));
         };
+        if !(step > after && (step as f64) < steps) {
+            return Err(bad(format!(
+                "'{place}step' is {step}: it must be after the previous switch's ({after}) \
+                 and before the last step ({steps})"
+            )));
+        }
+        after = step;
         if alias != planner {
             return Err(bad(format!(
                 "'{place}alias' is '{alias}': the reference switches only the planner"
@@ -327,7 +348,13 @@ pub fn parse_loop_scenario(text: &str) -> Result<LoopSpec, LoopError> {
             parameters(&doc, &planner)?,
             &format!("parameters.{planner}."),
         )?,
-        later_segments: plan_switches(&doc, &planner, start_time, step_size)?,
+        later_segments: plan_switches(
+            &doc,
+            &planner,
+            start_time,
+            step_size,
+            ((stop_time - start_time) / step_size).round(),
+        )?,
         controller: controller_of(kind, parameters(&doc, &control)?, &control)?,
         plant: PlantParams::default(),
         theta0: initial(plant_params, "theta0", &format!("parameters.{plant}."))?,

@@ -130,6 +130,7 @@ const CASES: &[Case] = &[
     case(&["closed-loop", "reference", "--scenario", ".", "--out", "out/r.csv"], 2, "cannot read the scenario"),
     case(&["closed-loop", "reference", "--scenario", "s.toml", "--out", "out/r.csv", "--tolerance", "0"], 2, "--tolerance"),
     case(&["closed-loop", "reference", "--scenario", "s.toml", "--out", "out/r.csv", "--every", "0"], 2, "--every"),
+    case(&["closed-loop", "reference", "--scenario", "s.toml", "--out", "out/r.opt"], 2, "--out out/r.opt"),
     // the command line itself
     case(&["pss4"], 2, "pss4"),
     case(&["pss3", "ik", "--angles", "0,0,130", "--bogus"], 2, "--bogus"),

@@ -61,7 +61,8 @@ pub struct ReferenceArgs {
     /// Scenario file (TOML), as run by `python -m cosim`.
     #[arg(long)]
     scenario: PathBuf,
-    /// Output CSV; `<name>_ref.opt` is written beside it.
+    /// Output CSV; the options file is written beside it, the same name with the
+    /// extension .opt (`X_ref.csv` -> `X_ref.opt`).
     #[arg(long)]
     out: PathBuf,
     /// Relative and absolute tolerance of the Dop853 integration (1e-14 to 1e-2).
@@ -137,6 +138,14 @@ fn row(s: &LoopSample) -> impl Iterator<Item = f64> + '_ {
 }
 
 fn reference(args: ReferenceArgs) -> Result<(), CliError> {
+    if args.out.extension().is_some_and(|e| e == "opt") {
+        // The options file is `--out` with the extension .opt: it would replace the CSV.
+        return Err(usage(format!(
+            "--out {}: the options file is written beside the CSV with the extension \
+             .opt and would replace it; give a .csv file",
+            args.out.display()
+        )));
+    }
     let text = std::fs::read_to_string(&args.scenario).map_err(|e| {
         usage(format!(
             "{}: cannot read the scenario ({e})",
@@ -154,13 +163,37 @@ fn reference(args: ReferenceArgs) -> Result<(), CliError> {
     )
     .map_err(|e| usage(format!("{}: {e}", args.scenario.display())))?;
     let samples = simulate(&spec, args.tolerance)?;
+    let (csv, rows) = reference_csv(&spec, &samples, args.every as usize)?;
+    std::fs::write(&args.out, csv).map_err(io_at(&args.out))?;
+    let options = format!(
+        "StartTime, {}\nStopTime, {}\nStepSize, {}\nRelTol, {:e}\n",
+        spec.start_time, spec.stop_time, spec.step_size, args.tolerance
+    );
+    let opt = args.out.with_extension("opt");
+    std::fs::write(&opt, options).map_err(io_at(&opt))?;
+    outln!(
+        "{}: {} samples of the continuous-time loop, {rows} written -> {}",
+        spec.name,
+        samples.len(),
+        args.out.display()
+    );
+    Ok(())
+}
+
+/// The cross-check CSV of `samples`, every `every`-th one and the last, and its number
+/// of data rows.
+fn reference_csv(
+    spec: &LoopSpec,
+    samples: &[LoopSample],
+    every: usize,
+) -> Result<(String, usize), CliError> {
     let mut csv = String::from("\"time\"");
-    for name in columns(&spec) {
+    for name in columns(spec) {
         write!(csv, ",\"{name}\"")?;
     }
     csv.push('\n');
-    let every = args.every as usize;
-    let last = samples.len() - 1;
+    let last = samples.len().saturating_sub(1);
+    let mut rows = 0;
     for (k, s) in samples.iter().enumerate() {
         if k % every != 0 && k != last {
             continue;
@@ -170,21 +203,9 @@ fn reference(args: ReferenceArgs) -> Result<(), CliError> {
             write!(csv, ",{v:e}")?;
         }
         csv.push('\n');
+        rows += 1;
     }
-    std::fs::write(&args.out, csv).map_err(io_at(&args.out))?;
-    let options = format!(
-        "StartTime, {}\nStopTime, {}\nStepSize, {}\nRelTol, {:e}\n",
-        spec.start_time, spec.stop_time, spec.step_size, args.tolerance
-    );
-    let opt = args.out.with_extension("opt");
-    std::fs::write(&opt, options).map_err(io_at(&opt))?;
-    outln!(
-        "{}: {} samples of the continuous-time loop -> {}",
-        spec.name,
-        samples.len(),
-        args.out.display()
-    );
-    Ok(())
+    Ok((csv, rows))
 }
 
 fn boundary(args: BoundaryArgs) -> Result<(), CliError> {
