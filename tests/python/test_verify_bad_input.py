@@ -158,3 +158,18 @@ def test_outputs_are_written_all_or_nothing(tmp_path):
                      "--junit", blocker / "junit.xml")
     assert outcome.code == 2 and "junit.xml" in outcome.err and "nothing was written" in outcome.err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
+
+
+def test_a_junit_path_that_is_a_folder_writes_nothing(tmp_path):
+    # --junit names an existing folder: the rename over it would fail after verify.json
+    # was renamed into place. Truth: nothing is written, no temporary file is left, and
+    # the message names the user's path (not a temporary name).
+    folder = tmp_path / "junit"
+    folder.mkdir()
+    out = tmp_path / "out"
+    outcome = verify(DIST / "PID.fmu", REFERENCES / "PID" / "defaults", "--out", out,
+                     "--junit", folder)
+    assert outcome.code == 2, outcome.err
+    assert f"cosim: {folder}: --out/--junit:" in outcome.err and "nothing was written" in outcome.err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["junit"]
+    assert list(folder.iterdir()) == []
