@@ -63,6 +63,20 @@ def _parameter_bindings(assignments: dict, variables: dict, alias: str) -> ET.El
     return bindings
 
 
+def resources(fmus: dict[str, Path]) -> dict[str, str]:
+    """The archive path of each alias's FMU: resources/NAME.fmu, one entry per file (two
+    aliases of one file share it); another file of a name already taken goes under
+    resources/ALIAS/."""
+    taken: dict[str, Path] = {}
+    found = {}
+    for alias, path in fmus.items():
+        name = f"resources/{path.name}"
+        if taken.setdefault(name, path.resolve()) != path.resolve():
+            name = f"resources/{alias}/{path.name}"
+        found[alias] = name
+    return found
+
+
 def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.ElementTree:
     """The SystemStructure.ssd document of `scenario`; `variables[alias]` maps each
     FMU's variable names to FMPy's ScalarVariable objects."""
@@ -70,6 +84,7 @@ def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.Eleme
     system = ET.SubElement(root, _tag("ssd", "System"), name=scenario.name)
     elements = ET.SubElement(system, _tag("ssd", "Elements"))
     used: dict[str, dict[str, str]] = {alias: {} for alias in scenario.order}
+    sources = resources(scenario.fmus)
     for c in scenario.connections:
         used[c.source.alias][c.source.variable] = "output"
         used[c.target.alias][c.target.variable] = "input"
@@ -78,7 +93,7 @@ def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.Eleme
     for alias in scenario.order:
         component = ET.SubElement(elements, _tag("ssd", "Component"), name=alias,
                                   type="application/x-fmu-sharedlibrary",
-                                  source=f"resources/{scenario.fmus[alias].name}")
+                                  source=sources[alias])
         connectors = ET.SubElement(component, _tag("ssd", "Connectors"))
         for name, kind in used[alias].items():
             _type_of(variables[alias], alias, name)
@@ -111,8 +126,11 @@ def write_ssp(scenario: Scenario, path: Path) -> None:
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
         z.writestr("SystemStructure.ssd", ET.tostring(tree.getroot(), encoding="unicode",
                                                       xml_declaration=True))
-        for fmu in scenario.fmus.values():
-            z.write(fmu, f"resources/{fmu.name}")
+        written = set()
+        for alias, name in resources(scenario.fmus).items():
+            if name not in written:
+                z.write(scenario.fmus[alias], name)
+                written.add(name)
 
 
 def fmpy_parameter_set(path: Path):
