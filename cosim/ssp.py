@@ -18,7 +18,7 @@ import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
-from .scenario import Scenario, ScenarioError, load_scenario
+from .scenario import Scenario, ScenarioError, load_scenario, read_document
 from .ssp_annotations import default_experiment, system_annotations
 from .ssp_annotations import tag as _tag
 
@@ -26,6 +26,8 @@ from .ssp_annotations import tag as _tag
 # names it (EcosSimulation.init(parameter_set=PARAMETER_SET)); libcosim takes a
 # component's first set when none is named.
 PARAMETER_SET = "scenario"
+NO_SCHEDULE = ("a multi-segment motion (a sequence of plans) has no SSP form: SSP parameters "
+               "are fixed for the whole run")
 
 
 def _variables(path: Path) -> dict:
@@ -117,8 +119,7 @@ def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.Eleme
 def write_ssp(scenario: Scenario, path: Path) -> None:
     """Writes the SSP archive of `scenario` to `path`."""
     if scenario.schedule:
-        raise ScenarioError("a multi-segment motion (a sequence of plans) has no SSP form: "
-                            "SSP parameters are fixed for the whole run")
+        raise ScenarioError(NO_SCHEDULE)
     variables = {alias: _variables(p) for alias, p in scenario.fmus.items()}
     tree = system_structure(scenario, variables)
     ET.indent(tree)
@@ -161,9 +162,10 @@ def run(args) -> int:
         raise ScenarioError(f"--out: {args.out}: the SSP archive is a file whose name ends "
                             "with .ssp; name such a file")
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
-    try:
-        write_ssp(scenario, args.out)
-    except ScenarioError as e:
-        raise ScenarioError(f"{args.scenario}: field 'motion.waypoints': {e}") from None
+    if scenario.schedule:  # the hand-written form's waypoints, or the plain form's switches
+        field = "plan_switches" if "plan_switches" in read_document(args.scenario) \
+            else "motion.waypoints"
+        raise ScenarioError(f"{args.scenario}: field '{field}': {NO_SCHEDULE}")
+    write_ssp(scenario, args.out)
     print(f"wrote {args.out}")
     return 0
