@@ -301,6 +301,13 @@ def read_document(path: Path) -> dict:
         raise ScenarioError(f"cannot be read: {e.strerror}") from None
 
 
+def schedule_field(path: Path) -> str:
+    """The field that holds the plan switches of the scenario file `path` (already loaded):
+    'plan_switches' in the plain form, 'motion.waypoints' in the hand-written one."""
+    return "plan_switches" if "plan_switches" in read_document(Path(path)) else \
+        "motion.waypoints"
+
+
 def load_scenario(path: str | Path, fmu_dir: str | Path | None = None,
                   preflight: bool = True) -> Scenario:
     """Reads and validates a .toml or .json scenario file. FMU paths are relative to the

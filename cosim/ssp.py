@@ -18,7 +18,7 @@ import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
-from .scenario import Scenario, ScenarioError, load_scenario, read_document
+from .scenario import Scenario, ScenarioError, load_scenario, schedule_field
 from .ssp_annotations import default_experiment, system_annotations
 from .ssp_annotations import tag as _tag
 
@@ -163,9 +163,8 @@ def run(args) -> int:
                             "with .ssp; name such a file")
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
     if scenario.schedule:  # the hand-written form's waypoints, or the plain form's switches
-        field = "plan_switches" if "plan_switches" in read_document(args.scenario) \
-            else "motion.waypoints"
-        raise ScenarioError(f"{args.scenario}: field '{field}': {NO_SCHEDULE}")
+        raise ScenarioError(f"{args.scenario}: field '{schedule_field(args.scenario)}': "
+                            f"{NO_SCHEDULE}")
     write_ssp(scenario, args.out)
     print(f"wrote {args.out}")
     return 0
