@@ -95,6 +95,11 @@ class Scenario:
         return round((self.stop_time - self.start_time) / self.step_size)
 
 
+# What a TOML/JSON reader calls the Python types of a document.
+KIND_NAMES = {str: "a string", float: "a finite number", int: "an integer", bool: "a boolean",
+              dict: "a table", list: "a list"}
+
+
 def _require(data: dict, key: str, kind, where: str = ""):
     if key not in data:
         raise ScenarioError(f"missing field '{where}{key}'")
@@ -102,8 +107,9 @@ def _require(data: dict, key: str, kind, where: str = ""):
     if kind is float and isinstance(value, int) and not isinstance(value, bool):
         value = float(value)
     if not isinstance(value, kind) or (kind is float and not math.isfinite(value)):
-        name = kind.__name__ if isinstance(kind, type) else "/".join(k.__name__ for k in kind)
-        raise ScenarioError(f"field '{where}{key}' must be a finite {name}, got {value!r}")
+        kinds = kind if isinstance(kind, tuple) else (kind,)
+        name = " or ".join(KIND_NAMES.get(k, k.__name__) for k in kinds)
+        raise ScenarioError(f"field '{where}{key}' must be {name}, got {value!r}")
     return value
 
 
@@ -128,6 +134,8 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
     name = _require(data, "name", str)
+    if "description" in data:
+        _require(data, "description", str)
     if not NAME.fullmatch(name):
         raise ScenarioError(f"field 'name' must be a plain file name (letters, digits, '_', "
                             f"'-', '.'; at most 100; no '/'), got {name!r}; it names the "

@@ -218,6 +218,8 @@ DOCUMENTS = [
      "'parameters.planner.order'"),
     ("plain: boolean as 1", edit(plain(), "parameters/plant/initFromActuators", 1), 2,
      "'parameters.plant.initFromActuators'"),
+    ("plain: description a number", edit(plain(), "description", 3), 2, "'description'"),
+    ("description a table", edit(B(), "description", {"a": 1}), 2, "'description'"),
     ("plain: parameter a string", edit(plain(), "parameters/pid/Kp[1]", "50"), 2,
      "'parameters.pid.Kp[1]'"),
     ("plain: parameter nan", edit(plain(), "parameters/pid/Kp[1]", float("nan")), 2,
