@@ -119,6 +119,11 @@ def test_bad_case_is_refused_with_one_line(name, tmp_path):
     (["--start", "theta0[1]"], ["--start", "NAME=VALUE"]),
     (["--start", "nothing=1"], ["start value 'nothing'"]),
     (["--step", "0"], ["--step", "not positive"]),
+    # A step longer than the experiment compared the start alone and passed; an infinite
+    # one too; a tiny one ran without end (the path-1 experiment lasts 2 s).
+    (["--step", "100"], ["command line: --step", "steps of the", "give a step from"]),
+    (["--step", "inf"], ["command line: --step", "give a step from"]),
+    (["--step", "1e-300"], ["command line: --step", "give a step from"]),
     (["--reference", "missing.csv"], ["missing.csv", "cannot be read"]),
 ])
 def test_bad_option_is_refused_with_one_line(args, words, tmp_path):
@@ -140,6 +145,16 @@ def test_missing_fmu_reference_and_options_file(tmp_path):
     (case / "PID_ref.csv").unlink()
     assert_user_error(verify(DIST / "PID.fmu", case, "--out", out),
                       ["<Model>_ref.csv", "no such files"], out)
+
+
+def test_a_step_size_that_would_never_end_is_refused(tmp_path):
+    # StepSize 1e-300 of a 2 s experiment: 2e300 steps, a run without end.
+    out, case = tmp_path / "out", tmp_path / "case"
+    shutil.copytree(REFERENCES / "PID" / "defaults", case)
+    edit_lines(case / "PID_ref.opt", lambda lines: [
+        "StepSize, 1e-300" if line.startswith("StepSize") else line for line in lines])
+    assert_user_error(verify(DIST / "PID.fmu", case, "--out", out),
+                      ["PID_ref.opt: StepSize", "give a step from"], out)
 
 
 def test_bad_input_as_a_process_has_no_traceback(tmp_path):
