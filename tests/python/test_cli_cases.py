@@ -172,3 +172,16 @@ def test_every_document_the_harness_points_to_exists():
              for m in re.findall(r"docs/[\w.-]+\.md", p.read_text())}
     assert len(named) >= 3
     assert sorted(n for n in named if not (ROOT / n).is_file()) == []
+
+
+def test_demo_errors_are_one_line_with_the_exit_code_of_the_contract(tmp_path, capsys,
+                                                                    monkeypatch):
+    # A bundled scenario that is missing (the user's checkout is incomplete) is a user
+    # error: exit 2 and one line 'cosim: FILE: ...' (the contract of cosim/cli.py); the
+    # demo said 'demo: ...' and exited 1, like a failed simulation.
+    import cosim.demo
+    from cosim.cli import main
+    monkeypatch.setattr(cosim.demo, "SCENARIOS", ["no_such_scenario"])
+    assert main(["demo", "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and err[0].startswith("cosim: ") and "no_such_scenario.toml" in err[0]
