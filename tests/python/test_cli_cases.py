@@ -185,3 +185,22 @@ def test_demo_errors_are_one_line_with_the_exit_code_of_the_contract(tmp_path, c
     assert main(["demo", "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err.splitlines()
     assert len(err) == 1 and err[0].startswith("cosim: ") and "no_such_scenario.toml" in err[0]
+
+
+def test_a_flat_recorded_signal_is_not_labelled_in_newtons(tmp_path, monkeypatch):
+    # NAME_signals.png draws any FMU's signals (planner angles in rad here): a panel
+    # constant to round-off was noted "constant to within ... N". Truth: the panel's
+    # signals are the planner's, whose unit is rad, not N.
+    import matplotlib
+    matplotlib.use("Agg")
+    import cosim.report
+    from cosim.outputs import plot_signals
+    notes = []
+    original = cosim.report.steady_axis
+    monkeypatch.setattr(cosim.report, "steady_axis",
+                        lambda ax, values, unit: notes.append(unit) or original(ax, values,
+                                                                               unit))
+    t = [0.0, 0.5, 1.0]
+    path = plot_signals({"time": t, "planner.q[1]": [0.1, 0.1, 0.1 + 1e-9]},
+                        ["planner.q[1]"], "flat", tmp_path)
+    assert path.is_file() and notes == ["SI units"]
