@@ -51,6 +51,7 @@ MAX_STEPS = 1_000_000  # communication steps of one run (the results are held in
 MAX_SIGNALS = 1000  # connections and recorded signals
 MAX_FILE_BYTES = 1_000_000
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
+ALIAS = re.compile(r"[A-Za-z_][A-Za-z0-9_]{0,99}")  # "alias.variable"; file names of exports
 REPOSITORY_DIST = Path(__file__).resolve().parent.parent / "dist"
 
 
@@ -143,6 +144,11 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     fmus_raw = _require(data, "fmus", dict)
     if not fmus_raw:
         raise ScenarioError("field 'fmus' must name at least one FMU")
+    for alias in fmus_raw:
+        if not ALIAS.fullmatch(alias):
+            raise ScenarioError(f"field 'fmus': the alias {alias!r} must be a name of letters, "
+                                "digits and '_' (not starting with a digit; at most 100): it "
+                                "names the FMU's signals and files; rename it")
     fmus = {alias: base_dir / _require(fmus_raw, alias, str, "fmus.") for alias in fmus_raw}
     order = _require(data, "order", list)
     if not all(isinstance(a, str) for a in order) or sorted(order) != sorted(fmus):

@@ -218,6 +218,12 @@ DOCUMENTS = [
      "'parameters.planner.order'"),
     ("plain: boolean as 1", edit(plain(), "parameters/plant/initFromActuators", 1), 2,
      "'parameters.plant.initFromActuators'"),
+    # An alias is a file name in the container's and the SSP's exports: "../x" wrote
+    # x.fmu outside the container's work folder (outside --out).
+    ("plain: alias a path", edit(plain(), "fmus", {"../../x": str(DIST / "PID.fmu")}), 2,
+     "alias '../../x'"),
+    ("plain: alias with a dot", edit(plain(), "fmus", {"a.b": str(DIST / "PID.fmu")}), 2,
+     "alias 'a.b'"),
     ("plain: description a number", edit(plain(), "description", 3), 2, "'description'"),
     ("description a table", edit(B(), "description", {"a": 1}), 2, "'description'"),
     ("plain: parameter a string", edit(plain(), "parameters/pid/Kp[1]", "50"), 2,
