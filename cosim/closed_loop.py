@@ -241,6 +241,16 @@ def _plant_value(value, name: str, plant_fmu: Path):
     return check_value(md, "plant", name, value, field)
 
 
+def _refuse_start_parameters(plant: dict) -> None:
+    """The plant's start parameters belong to `start`: set under `plant`, they would
+    override the start that the workspace check and the gain design used."""
+    for name in plant:
+        if name.startswith(("theta0[", "omega0[")) or name == "initFromActuators":
+            raise ScenarioError(f"field 'plant.{name}': the start state is the field 'start' "
+                                "(start.angles, start.omega), which the gain design and "
+                                "the workspace check use; set it there")
+
+
 def resolve(data: dict, base_dir: Path,
             preflight: bool = True) -> tuple[dict, list[PlanSwitch]]:
     """The plain scenario (as parse_scenario reads it) and the plan switches. With
@@ -263,6 +273,7 @@ def resolve(data: dict, base_dir: Path,
               if "omega" in start_raw else points[0].omega)
     _check_roles(fmus, base_dir)
     plant_fmu = base_dir / str(fmus["plant"])
+    _refuse_start_parameters(_table(data, "plant"))
     plant_values = {k: _plant_value(v, k, plant_fmu) for k, v in _table(data, "plant").items()}
     if preflight:
         initialize_alone(plant_fmu, "plant", plant_values, "plant")

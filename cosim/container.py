@@ -32,7 +32,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from .scenario import Scenario, ScenarioError, load_scenario
+from .scenario import Scenario, ScenarioError, load_scenario, schedule_field
 
 TOOLBOX_LOGGER = "fmu_manipulation_toolbox"
 
@@ -171,9 +171,9 @@ def run(args: argparse.Namespace) -> int:
                              "with .fmu; name such a file")
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
     if scenario.schedule:
-        raise ScenarioError(f"{args.scenario}: field 'motion.waypoints': a multi-segment "
-                            "motion has no container form (the container has no plan "
-                            "switches); use two waypoints")
+        raise ScenarioError(f"{args.scenario}: field '{schedule_field(args.scenario)}': a "
+                            "multi-segment motion has no container form (the container has "
+                            "no plan switches); use two waypoints")
     warnings = build_container(scenario, args.out)
     for line in warnings:
         print(f"fmu-manipulation-toolbox: {line}", file=sys.stderr)

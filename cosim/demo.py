@@ -9,12 +9,11 @@ import sys
 import time
 from pathlib import Path
 
-from .errors import CosimError
 from .master import Master
 from .outputs import write_outputs
 from .report import (HEADER, format_table, metrics, plot_cubic_vs_quintic, plot_tracking,
                      read_csv)
-from .scenario import ScenarioError, load_scenario
+from .scenario import load_scenario
 
 ROOT = Path(__file__).resolve().parent.parent
 SCENARIOS = ["regulation", "path1_cubic", "path1_quintic", "three_axis_cubic",
@@ -40,9 +39,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m cosim.demo", description=__doc__)
-    add_arguments(parser)
-    return run(parser.parse_args(argv))
+    """``python -m cosim.demo ...``: ``cosim demo ...`` (its errors, exit codes)."""
+    from .cli import main as cosim
+    return cosim(["demo", *(sys.argv[1:] if argv is None else argv)])
 
 
 def run(args: argparse.Namespace) -> int:
@@ -50,14 +49,10 @@ def run(args: argparse.Namespace) -> int:
     results, rows, walls = {}, [], {}
     for name in SCENARIOS:
         path = ROOT / "scenarios" / f"{name}.toml"
-        try:
-            scenario = load_scenario(path)
-            started = time.perf_counter()
-            result = Master(scenario).run()
-            walls[name] = time.perf_counter() - started
-        except (ScenarioError, CosimError) as e:
-            print(f"demo: {e}", file=sys.stderr)
-            return 1
+        scenario = load_scenario(path)  # errors: one line and exit code by cosim.cli
+        started = time.perf_counter()
+        result = Master(scenario).run()
+        walls[name] = time.perf_counter() - started
         csv_path = args.out / f"{name}.csv"
         write_outputs(scenario, result, args.out, plots=False)  # CSV, units, summary
         results[name] = read_csv(csv_path)

@@ -32,6 +32,27 @@ def remove_extracted(folder) -> None:
     if folder:
         shutil.rmtree(folder, ignore_errors=True)
 
+
+def release(fmu, initialized: bool, unzip) -> None:
+    """Terminates `fmu` (an FMPy instance or None) when initialised, frees it and removes
+    its extracted folder `unzip`; never raises: a failure while cleaning up must not mask
+    the error that led here."""
+    if fmu is not None:
+        if initialized:
+            try:
+                fmu.terminate()
+            except Exception:  # noqa: BLE001 - cleanup after an earlier failure
+                pass
+        try:
+            if getattr(fmu, "component", None) is not None:
+                fmu.freeInstance()
+            else:
+                fmu.freeLibrary()
+        except Exception:  # noqa: BLE001
+            pass
+    remove_extracted(unzip)
+
+
 _GETTERS = {"Real": "getReal", "Integer": "getInteger", "Boolean": "getBoolean"}
 _SETTERS = {"Real": "setReal", "Integer": "setInteger", "Boolean": "setBoolean"}
 _CONVERT = {"Real": float, "Integer": int, "Boolean": bool}
@@ -108,23 +129,9 @@ class LoggedCalls:
 
     def close(self) -> None:
         """Terminates (when initialised) and frees the instance and removes its extracted
-        folder; safe to call after any failure and more than once, and never raises: a
-        failure while cleaning up must not mask the error that led here."""
+        folder; safe to call after any failure and more than once, and never raises."""
         fmu, self._fmu = getattr(self, "_fmu", None), None
-        if fmu is not None:
-            if getattr(self, "_initialized", False):
-                try:
-                    fmu.terminate()
-                except Exception:  # noqa: BLE001 - cleanup after an earlier failure
-                    pass
-            try:
-                if getattr(fmu, "component", None) is not None:
-                    fmu.freeInstance()
-                else:
-                    fmu.freeLibrary()
-            except Exception:  # noqa: BLE001
-                pass
-        remove_extracted(getattr(self, "_unzip", None))
+        release(fmu, getattr(self, "_initialized", False), getattr(self, "_unzip", None))
         self._unzip = None
 
 

@@ -90,7 +90,7 @@ def check_value(md, alias: str, name: str, value, field: str):
     v = {x.name: x for x in md.modelVariables}.get(name)
     if v is None:
         raise ScenarioError(f"field '{field}': {alias} has no variable '{name}'; see the "
-                            "FMU reference (docs/fmu-reference.md) for the names")
+                            "FMU reference (docs/fmus.md) for the names")
     if v.causality not in ("parameter", "input") or v.variability == "constant":
         raise ScenarioError(f"field '{field}': {alias}.{name} is {v.causality} "
                             f"({v.variability}) and cannot be set; set a parameter or input")

@@ -10,7 +10,7 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
-from .fmu import remove_extracted, status_categories
+from .fmu import release, status_categories
 
 
 class ModelExchangeInstance:
@@ -68,18 +68,5 @@ class ModelExchangeInstance:
 
     def __exit__(self, *_exc) -> None:
         fmu, self._fmu = self._fmu, None
-        if fmu is not None:
-            try:
-                if self._initialized:
-                    fmu.terminate()
-            except Exception:  # noqa: BLE001 - never mask the error that led here
-                pass
-            try:
-                if getattr(fmu, "component", None) is not None:
-                    fmu.freeInstance()
-                else:
-                    fmu.freeLibrary()
-            except Exception:  # noqa: BLE001
-                pass
-        remove_extracted(self._unzip)
+        release(fmu, self._initialized, self._unzip)
         self._unzip = None

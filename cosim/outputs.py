@@ -19,7 +19,6 @@ from .limits import CLOSED_LOOP_COLUMNS, judge
 from .scenario import Scenario
 
 
-
 def column_units(scenario: Scenario, names) -> dict[str, str]:
     from .fmu_check import describe, unit_of
     units = {"time": "s"}
@@ -86,7 +85,7 @@ def plot_signals(columns: dict, names, title: str, out: Path) -> Path:
     for ax, (alias, signals) in zip(axes, by_alias.items()):
         for n in signals[:8]:
             ax.plot(columns["time"], columns[n], label=n)
-        steady_axis(ax, np.concatenate([columns[n] for n in signals[:8]]), "N")
+        steady_axis(ax, np.concatenate([columns[n] for n in signals[:8]]), "SI units")
         ax.set_ylabel(f"{alias} (SI)")
         ax.grid(True)
         ax.legend(loc="best", fontsize=7)

@@ -74,7 +74,7 @@ def metrics(result: dict) -> Metrics:
 
 # The smallest span a panel shows, in the panel's unit: data that vary less (round-off,
 # 1e-14 deg) are drawn flat with a note instead of being magnified into a deviation.
-MIN_SPAN = {"deg": 1e-6, "N": 1e-6}
+MIN_SPAN = {"deg": 1e-6, "N": 1e-6, "SI units": 1e-6}
 
 
 def steady_axis(ax, values, unit: str) -> None:

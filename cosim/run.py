@@ -6,6 +6,7 @@ scenario declares is exceeded."""
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 from pathlib import Path
 
@@ -77,6 +78,6 @@ def run(args: argparse.Namespace) -> int:
               f"{row['bound']:.6g} {row['unit']}: {verdict}")
     if not summary["passed"]:
         print(f"cosim: {args.scenario}: field 'limits': the run exceeded a declared limit "
-              "(see above and the _summary.json)", file=__import__("sys").stderr)
+              "(see above and the _summary.json)", file=sys.stderr)
         return 1
     return 0

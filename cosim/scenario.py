@@ -53,6 +53,7 @@ MAX_STEPS = 1_000_000  # communication steps of one run (the results are held in
 MAX_SIGNALS = 1000  # connections and recorded signals
 MAX_FILE_BYTES = 1_000_000
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}")
+ALIAS = re.compile(r"[A-Za-z_][A-Za-z0-9_]{0,99}")  # "alias.variable"; file names of exports
 REPOSITORY_DIST = Path(__file__).resolve().parent.parent / "dist"
 
 
@@ -98,6 +99,11 @@ class Scenario:
         return round((self.stop_time - self.start_time) / self.step_size)
 
 
+# What a TOML/JSON reader calls the Python types of a document.
+KIND_NAMES = {str: "a string", float: "a finite number", int: "an integer", bool: "a boolean",
+              dict: "a table", list: "a list"}
+
+
 def _require(data: dict, key: str, kind, where: str = ""):
     if key not in data:
         raise ScenarioError(f"missing field '{where}{key}'")
@@ -105,8 +111,9 @@ def _require(data: dict, key: str, kind, where: str = ""):
     if kind is float and isinstance(value, int) and not isinstance(value, bool):
         value = float(value)
     if not isinstance(value, kind) or (kind is float and not math.isfinite(value)):
-        name = kind.__name__ if isinstance(kind, type) else "/".join(k.__name__ for k in kind)
-        raise ScenarioError(f"field '{where}{key}' must be a finite {name}, got {value!r}")
+        kinds = kind if isinstance(kind, tuple) else (kind,)
+        name = " or ".join(KIND_NAMES.get(k, k.__name__) for k in kinds)
+        raise ScenarioError(f"field '{where}{key}' must be {name}, got {value!r}")
     return value
 
 
@@ -132,6 +139,8 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
     name = _require(data, "name", str)
+    if "description" in data:
+        _require(data, "description", str)
     if not NAME.fullmatch(name):
         raise ScenarioError(f"field 'name' must be a plain file name (letters, digits, '_', "
                             f"'-', '.'; at most 100; no '/'), got {name!r}; it names the "
@@ -139,6 +148,11 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     fmus_raw = _require(data, "fmus", dict)
     if not fmus_raw:
         raise ScenarioError("field 'fmus' must name at least one FMU")
+    for alias in fmus_raw:
+        if not ALIAS.fullmatch(alias):
+            raise ScenarioError(f"field 'fmus': the alias {alias!r} must be a name of letters, "
+                                "digits and '_' (not starting with a digit; at most 100): it "
+                                "names the FMU's signals and files; rename it")
     fmus = {alias: base_dir / _require(fmus_raw, alias, str, "fmus.") for alias in fmus_raw}
     order = _require(data, "order", list)
     if not all(isinstance(a, str) for a in order) or sorted(order) != sorted(fmus):
@@ -308,6 +322,13 @@ def read_document(path: Path) -> dict:
         raise ScenarioError("is nested too deeply to read") from None
     except OSError as e:
         raise ScenarioError(f"cannot be read: {e.strerror}") from None
+
+
+def schedule_field(path: Path) -> str:
+    """The field that holds the plan switches of the scenario file `path` (already loaded):
+    'plan_switches' in the plain form, 'motion.waypoints' in the hand-written one."""
+    return "plan_switches" if "plan_switches" in read_document(Path(path)) else \
+        "motion.waypoints"
 
 
 def load_scenario(path: str | Path, fmu_dir: str | Path | None = None,

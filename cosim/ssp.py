@@ -18,7 +18,7 @@ import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
-from .scenario import Scenario, ScenarioError, load_scenario
+from .scenario import Scenario, ScenarioError, load_scenario, schedule_field
 from .ssp_annotations import default_experiment, system_annotations
 from .ssp_annotations import tag as _tag
 
@@ -26,6 +26,8 @@ from .ssp_annotations import tag as _tag
 # names it (EcosSimulation.init(parameter_set=PARAMETER_SET)); libcosim takes a
 # component's first set when none is named.
 PARAMETER_SET = "scenario"
+NO_SCHEDULE = ("a multi-segment motion (a sequence of plans) has no SSP form: SSP parameters "
+               "are fixed for the whole run")
 
 
 def _variables(path: Path) -> dict:
@@ -63,6 +65,20 @@ def _parameter_bindings(assignments: dict, variables: dict, alias: str) -> ET.El
     return bindings
 
 
+def resources(fmus: dict[str, Path]) -> dict[str, str]:
+    """The archive path of each alias's FMU: resources/NAME.fmu, one entry per file (two
+    aliases of one file share it); another file of a name already taken goes under
+    resources/ALIAS/."""
+    taken: dict[str, Path] = {}
+    found = {}
+    for alias, path in fmus.items():
+        name = f"resources/{path.name}"
+        if taken.setdefault(name, path.resolve()) != path.resolve():
+            name = f"resources/{alias}/{path.name}"
+        found[alias] = name
+    return found
+
+
 def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.ElementTree:
     """The SystemStructure.ssd document of `scenario`; `variables[alias]` maps each
     FMU's variable names to FMPy's ScalarVariable objects."""
@@ -70,6 +86,7 @@ def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.Eleme
     system = ET.SubElement(root, _tag("ssd", "System"), name=scenario.name)
     elements = ET.SubElement(system, _tag("ssd", "Elements"))
     used: dict[str, dict[str, str]] = {alias: {} for alias in scenario.order}
+    sources = resources(scenario.fmus)
     for c in scenario.connections:
         used[c.source.alias][c.source.variable] = "output"
         used[c.target.alias][c.target.variable] = "input"
@@ -78,7 +95,7 @@ def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.Eleme
     for alias in scenario.order:
         component = ET.SubElement(elements, _tag("ssd", "Component"), name=alias,
                                   type="application/x-fmu-sharedlibrary",
-                                  source=f"resources/{scenario.fmus[alias].name}")
+                                  source=sources[alias])
         connectors = ET.SubElement(component, _tag("ssd", "Connectors"))
         for name, kind in used[alias].items():
             _type_of(variables[alias], alias, name)
@@ -102,8 +119,7 @@ def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.Eleme
 def write_ssp(scenario: Scenario, path: Path) -> None:
     """Writes the SSP archive of `scenario` to `path`."""
     if scenario.schedule:
-        raise ScenarioError("a multi-segment motion (a sequence of plans) has no SSP form: "
-                            "SSP parameters are fixed for the whole run")
+        raise ScenarioError(NO_SCHEDULE)
     variables = {alias: _variables(p) for alias, p in scenario.fmus.items()}
     tree = system_structure(scenario, variables)
     ET.indent(tree)
@@ -111,8 +127,11 @@ def write_ssp(scenario: Scenario, path: Path) -> None:
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
         z.writestr("SystemStructure.ssd", ET.tostring(tree.getroot(), encoding="unicode",
                                                       xml_declaration=True))
-        for fmu in scenario.fmus.values():
-            z.write(fmu, f"resources/{fmu.name}")
+        written = set()
+        for alias, name in resources(scenario.fmus).items():
+            if name not in written:
+                z.write(scenario.fmus[alias], name)
+                written.add(name)
 
 
 def fmpy_parameter_set(path: Path):
@@ -143,9 +162,9 @@ def run(args) -> int:
         raise ScenarioError(f"--out: {args.out}: the SSP archive is a file whose name ends "
                             "with .ssp; name such a file")
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
-    try:
-        write_ssp(scenario, args.out)
-    except ScenarioError as e:
-        raise ScenarioError(f"{args.scenario}: field 'motion.waypoints': {e}") from None
+    if scenario.schedule:  # the hand-written form's waypoints, or the plain form's switches
+        raise ScenarioError(f"{args.scenario}: field '{schedule_field(args.scenario)}': "
+                            f"{NO_SCHEDULE}")
+    write_ssp(scenario, args.out)
     print(f"wrote {args.out}")
     return 0

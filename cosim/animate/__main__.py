@@ -1,4 +1,4 @@
-"""``python -m cosim.animate RESULT.csv [options]`` until the dispatcher ``cosim animate``."""
+"""``python -m cosim.animate RESULT.csv [options]``: the same as ``cosim animate``."""
 
 import sys
 

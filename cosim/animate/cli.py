@@ -119,7 +119,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m cosim.animate")
-    add_arguments(parser)
-    parser.add_argument("--debug", action="store_true", help=argparse.SUPPRESS)
-    return run(parser.parse_args(argv))
+    """``python -m cosim.animate ...``: ``cosim animate ...`` (cosim.cli)."""
+    from ..cli import main as cosim
+    return cosim(["animate", *(sys.argv[1:] if argv is None else argv)])

@@ -1,17 +1,8 @@
-"""``python -m cosim.verify FMU [CASE] ...``: the verify subcommand on its own."""
+"""``python -m cosim.verify FMU [CASE] ...``: the same as ``cosim verify`` (cosim.cli)."""
 
-import argparse
 import sys
 
-from .cli import add_arguments, run
-
-
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="cosim verify", description=__doc__)
-    add_arguments(parser)
-    parser.add_argument("--debug", action="store_true", help="show tracebacks")
-    return run(parser.parse_args(argv))
-
+from ..cli import main
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(["verify", *sys.argv[1:]]))

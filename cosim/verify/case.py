@@ -5,6 +5,7 @@ line's options, which take precedence. The case file's format: docs/verify.md.""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -13,6 +14,7 @@ import numpy as np
 from . import casefile, tolerance
 from .errors import COMMAND_LINE, VerifyError
 from .table import Table, read_options, read_table
+from ..scenario import MAX_STEPS
 
 CASE_FILE = "case.json"
 ANY = "*"  # the tolerance of every signal that has none of its own
@@ -92,6 +94,17 @@ def _check_coverage(case: Case) -> None:
                           "extend the reference or shorten the experiment (StartTime, StopTime)")
 
 
+def _check_step(case: Case, source, field: str) -> None:
+    """At least one step and at most MAX_STEPS over the experiment: a step longer than
+    the experiment would compare the start alone, a tiny one would never end."""
+    span = case.stop - case.start
+    steps = span / case.step
+    if not (math.isfinite(case.step) and 1.0 - 1e-9 <= steps <= MAX_STEPS):
+        raise VerifyError(source, field, f"a step of {case.step:g} s makes {steps:.3g} steps "
+                          f"of the {span:g} s experiment",
+                          f"give a step from {span / MAX_STEPS:.3g} to {span:g} s")
+
+
 def _check_rule_names(case: Case, source: Path | str, field: str = "tolerances.") -> None:
     for rules in case.rules.values():
         for signal in rules:
@@ -127,6 +140,11 @@ def load_case(folder: Path | None, options) -> Case:
         event_times=casefile.event_times(case_path, data.get("event_times", [])),
         rules=casefile.tolerances(case_path, data.get("tolerances", {})))
     _check_coverage(case)
+    if options.step is not None:
+        _check_step(case, COMMAND_LINE, "--step")
+    else:
+        _check_step(case, folder / f"{model}_ref.opt" if folder else COMMAND_LINE,
+                    "StepSize" if folder else "--step")
     _check_rule_names(case, case_path)
     apply_options(case, options)
     return case

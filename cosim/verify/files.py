@@ -4,6 +4,7 @@ be written, the temporary files and the folders made for them are removed."""
 
 from __future__ import annotations
 
+import errno
 import os
 import tempfile
 from pathlib import Path
@@ -40,6 +41,8 @@ def write_all(files: dict[Path, bytes]) -> None:
     path = None
     try:
         for path, data in files.items():
+            if Path(path).is_dir():  # os.replace cannot put a file over a folder
+                raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), str(path))
             _make_parents(Path(path).parent, made)
             staged[Path(path)] = _stage(Path(path), data, 0o666 & ~umask)
     except BaseException as e:

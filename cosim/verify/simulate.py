@@ -77,17 +77,22 @@ def _check(case: Case, names: Names, fmu: Path) -> None:
 
 def simulate(fmu: Path, description, case: Case, interface: str) -> Run:
     """Runs the FMU over the case's experiment through FMPy."""
-    from fmpy import simulate_fmu
+    from fmpy import extract, simulate_fmu
+
+    from ..fmu import remove_extracted
     names = Names(description)
     _check(case, names, Path(fmu))
     inputs = None if case.inputs is None else names.input_signals(case.inputs.time,
                                                                   case.inputs.columns)
+    # Extracted here: simulate_fmu removes the folder it extracts only when the run ends
+    # well.
+    unzipped = extract(str(fmu))
     try:
         # FMPy prints its warnings (an input the file leaves out, ...): to stderr, so
         # that stdout holds the verdicts only.
         with contextlib.redirect_stdout(sys.stderr):
             result = simulate_fmu(
-                str(fmu), validate=False, fmi_type=interface, start_time=case.start,
+                unzipped, validate=False, fmi_type=interface, start_time=case.start,
                 stop_time=case.stop, output_interval=case.step,
                 step_size=case.step if interface == "CoSimulation" else None,
                 relative_tolerance=case.rel_tol,
@@ -95,5 +100,7 @@ def simulate(fmu: Path, description, case: Case, interface: str) -> Run:
                 input=inputs, output=names.outputs(case.signals()))
     except Exception as e:  # FMPy raises plain exceptions for a failed FMI call
         raise RunFailed(f"{fmu}: the {interface} run failed: {e}") from e
+    finally:
+        remove_extracted(unzipped)
     return Run(np.asarray(result["time"], float),
                {s: names.column(result, s) for s in case.signals()})

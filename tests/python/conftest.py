@@ -1,5 +1,6 @@
 """Shared paths of the FMU tests: the FMUs come from dist/ (scripts/build-fmus.sh)."""
 
+import shutil
 from pathlib import Path
 
 import pytest
@@ -11,6 +12,16 @@ REFERENCES = ROOT / "tests" / "references"
 # FMU crate): adding an FMU changes no list here.
 MODELS = sorted(path.stem for path in (ROOT / "modelDescription").glob("*.xml"))
 INTERFACES = ["CoSimulation", "ModelExchange"]
+
+
+def package_source(folder: Path) -> Path:
+    """`folder` made a copy of what `pip install` of the harness reads (cosim/,
+    pyproject.toml, README.md), so that an install leaves the working tree alone."""
+    shutil.copytree(ROOT / "cosim", folder / "cosim",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy(ROOT / name, folder / name)
+    return folder
 
 
 def fmu_path(model):

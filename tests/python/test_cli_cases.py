@@ -162,3 +162,45 @@ def test_one_help_lists_every_command_and_each_command_has_its_own(capsys):
     for name in COMMANDS:
         assert main([name, "--help"]) == 0
         assert f"usage: cosim {name}" in capsys.readouterr().out
+
+
+def test_every_document_the_harness_points_to_exists():
+    # Messages and help texts send users to docs/NAME.md: each such file must exist
+    # (truth: the repository's docs/ folder); a renamed document left a dead pointer.
+    import re
+    named = {m for p in (ROOT / "cosim").rglob("*.py")
+             for m in re.findall(r"docs/[\w.-]+\.md", p.read_text())}
+    assert len(named) >= 3
+    assert sorted(n for n in named if not (ROOT / n).is_file()) == []
+
+
+def test_demo_errors_are_one_line_with_the_exit_code_of_the_contract(tmp_path, capsys,
+                                                                    monkeypatch):
+    # A bundled scenario that is missing (the user's checkout is incomplete) is a user
+    # error: exit 2 and one line 'cosim: FILE: ...' (the contract of cosim/cli.py); the
+    # demo said 'demo: ...' and exited 1, like a failed simulation.
+    import cosim.demo
+    from cosim.cli import main
+    monkeypatch.setattr(cosim.demo, "SCENARIOS", ["no_such_scenario"])
+    assert main(["demo", "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and err[0].startswith("cosim: ") and "no_such_scenario.toml" in err[0]
+
+
+def test_a_flat_recorded_signal_is_not_labelled_in_newtons(tmp_path, monkeypatch):
+    # NAME_signals.png draws any FMU's signals (planner angles in rad here): a panel
+    # constant to round-off was noted "constant to within ... N". Truth: the panel's
+    # signals are the planner's, whose unit is rad, not N.
+    import matplotlib
+    matplotlib.use("Agg")
+    import cosim.report
+    from cosim.outputs import plot_signals
+    notes = []
+    original = cosim.report.steady_axis
+    monkeypatch.setattr(cosim.report, "steady_axis",
+                        lambda ax, values, unit: notes.append(unit) or original(ax, values,
+                                                                               unit))
+    t = [0.0, 0.5, 1.0]
+    path = plot_signals({"time": t, "planner.q[1]": [0.1, 0.1, 0.1 + 1e-9]},
+                        ["planner.q[1]"], "flat", tmp_path)
+    assert path.is_file() and notes == ["SI units"]

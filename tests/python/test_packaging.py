@@ -9,15 +9,13 @@ import subprocess
 import sys
 from pathlib import Path
 
+from conftest import package_source
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_installed_console_command_runs_a_scenario_anywhere(tmp_path):
-    source = tmp_path / "src"
-    shutil.copytree(ROOT / "cosim", source / "cosim",
-                    ignore=shutil.ignore_patterns("__pycache__"))
-    for name in ("pyproject.toml", "README.md"):
-        shutil.copy(ROOT / name, source / name)
+    source = package_source(tmp_path / "src")
     prefix = tmp_path / "prefix"
     # --no-deps --no-build-isolation: the dependencies are this venv's (no download).
     # --ignore-installed: pip would otherwise first uninstall the editable install of

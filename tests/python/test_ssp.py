@@ -101,3 +101,28 @@ def test_step_size_is_where_libcosim_and_omsimulator_read_it(name, tmp_path):
     # document must spell them with exactly these prefixes.
     for prefix in ("ssd", "ssc", "ssv", "osp", "oms"):
         assert f"<{prefix}:" in text and f'xmlns:{prefix}="{NS[prefix]}"' in text, prefix
+
+
+def test_each_component_source_holds_its_own_fmu_once(tmp_path):
+    # Two aliases of one file and a different file of the same name (a copy of the PID
+    # renamed Planner.fmu). Truth: the bytes of each alias's file on disk; a zip entry
+    # written twice would be a second, shadowed copy (zipfile warns "Duplicate name").
+    other = tmp_path / "other" / "Planner.fmu"
+    other.parent.mkdir()
+    other.write_bytes((ROOT / "dist" / "PID.fmu").read_bytes())
+    scenario = load_scenario(ROOT / "scenarios" / "regulation.toml")
+    scenario.fmus = {"planner": ROOT / "dist" / "Planner.fmu",
+                     "again": ROOT / "dist" / "Planner.fmu", "pid": other}
+    scenario.order, scenario.connections, scenario.record = list(scenario.fmus), [], []
+    scenario.parameters = {}
+    ssp = tmp_path / "x.ssp"
+    write_ssp(scenario, ssp)
+    with zipfile.ZipFile(ssp) as z:
+        names = z.namelist()
+        root = ET.fromstring(z.read("SystemStructure.ssd"))
+        sources = {c.get("name"): c.get("source")
+                   for c in root.iterfind("ssd:System/ssd:Elements/ssd:Component", NS)}
+        assert len(names) == len(set(names)) == 3
+        for alias, path in scenario.fmus.items():
+            assert z.read(sources[alias]) == path.read_bytes(), alias
+    assert sources["planner"] == sources["again"] != sources["pid"]

@@ -119,6 +119,11 @@ def test_bad_case_is_refused_with_one_line(name, tmp_path):
     (["--start", "theta0[1]"], ["--start", "NAME=VALUE"]),
     (["--start", "nothing=1"], ["start value 'nothing'"]),
     (["--step", "0"], ["--step", "not positive"]),
+    # A step longer than the experiment compared the start alone and passed; an infinite
+    # one too; a tiny one ran without end (the path-1 experiment lasts 2 s).
+    (["--step", "100"], ["command line: --step", "steps of the", "give a step from"]),
+    (["--step", "inf"], ["command line: --step", "give a step from"]),
+    (["--step", "1e-300"], ["command line: --step", "give a step from"]),
     (["--reference", "missing.csv"], ["missing.csv", "cannot be read"]),
 ])
 def test_bad_option_is_refused_with_one_line(args, words, tmp_path):
@@ -142,6 +147,16 @@ def test_missing_fmu_reference_and_options_file(tmp_path):
                       ["<Model>_ref.csv", "no such files"], out)
 
 
+def test_a_step_size_that_would_never_end_is_refused(tmp_path):
+    # StepSize 1e-300 of a 2 s experiment: 2e300 steps, a run without end.
+    out, case = tmp_path / "out", tmp_path / "case"
+    shutil.copytree(REFERENCES / "PID" / "defaults", case)
+    edit_lines(case / "PID_ref.opt", lambda lines: [
+        "StepSize, 1e-300" if line.startswith("StepSize") else line for line in lines])
+    assert_user_error(verify(DIST / "PID.fmu", case, "--out", out),
+                      ["PID_ref.opt: StepSize", "give a step from"], out)
+
+
 def test_bad_input_as_a_process_has_no_traceback(tmp_path):
     out = tmp_path / "out"
     outcome = verify_process(DIST / "Pss3Plant.fmu", broken_case(tmp_path, "NaN"), "--out", out)
@@ -158,3 +173,18 @@ def test_outputs_are_written_all_or_nothing(tmp_path):
                      "--junit", blocker / "junit.xml")
     assert outcome.code == 2 and "junit.xml" in outcome.err and "nothing was written" in outcome.err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
+
+
+def test_a_junit_path_that_is_a_folder_writes_nothing(tmp_path):
+    # --junit names an existing folder: the rename over it would fail after verify.json
+    # was renamed into place. Truth: nothing is written, no temporary file is left, and
+    # the message names the user's path (not a temporary name).
+    folder = tmp_path / "junit"
+    folder.mkdir()
+    out = tmp_path / "out"
+    outcome = verify(DIST / "PID.fmu", REFERENCES / "PID" / "defaults", "--out", out,
+                     "--junit", folder)
+    assert outcome.code == 2, outcome.err
+    assert f"cosim: {folder}: --out/--junit:" in outcome.err and "nothing was written" in outcome.err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["junit"]
+    assert list(folder.iterdir()) == []

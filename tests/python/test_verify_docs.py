@@ -6,7 +6,6 @@ scratch folder, from which the recipe's commands then import the package."""
 
 import os
 import re
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -15,6 +14,7 @@ import pytest
 import yaml
 from junitparser import JUnitXml
 
+from conftest import package_source
 from verify_cli import ROOT, shell
 
 DOC = ROOT / "docs" / "verify.md"
@@ -53,11 +53,7 @@ def test_sh_blocks_run():
 def installed(tmp_path_factory):
     """This checkout's package installed from its local path into a scratch folder."""
     scratch = tmp_path_factory.mktemp("release")
-    source = scratch / "source"
-    shutil.copytree(ROOT / "cosim", source / "cosim",
-                    ignore=shutil.ignore_patterns("__pycache__"))
-    for name in ("pyproject.toml", "README.md"):
-        shutil.copy(ROOT / name, source / name)
+    source = package_source(scratch / "source")
     site = scratch / "site"
     subprocess.run([sys.executable, "-m", "pip", "install", "--quiet", "--no-deps",
                     "--no-build-isolation", "--disable-pip-version-check", "--target",

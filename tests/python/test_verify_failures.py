@@ -9,6 +9,7 @@ result is sampled every 1 ms, as the reference) and every other signal passes.""
 
 import json
 import shutil
+import tempfile
 
 import numpy as np
 import pytest
@@ -167,3 +168,17 @@ def test_event_times_leave_out_the_instant_of_a_jump(tmp_path):
     # 0 to 2.5 s every 10 ms: 251 samples, one left out.
     assert [s["samples"] for s in bare_report["signals"]] == [251] * 9
     assert [s["samples"] for s in declared_report["signals"]] == [250] * 9
+
+
+def test_a_refused_run_leaves_no_extracted_fmu(tmp_path, monkeypatch):
+    # FMPy's simulate_fmu removes the folder it extracted only when the run succeeds.
+    # Truth: the temporary folder (tempfile's, where fmpy.extract unpacks) is empty
+    # after a run the PID refuses (uMin >= uMax, as above) and after one that passes.
+    temp = tmp_path / "temp"
+    temp.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(temp))
+    refused = verify(DIST / "PID.fmu", REFERENCES / "PID" / "saturation", "--start",
+                     "uMin[1]=5", "--out", tmp_path / "a")
+    assert refused.code == 1 and list(temp.iterdir()) == []
+    passed = verify(DIST / "PID.fmu", REFERENCES / "PID" / "saturation", "--out", tmp_path / "b")
+    assert passed.code == 0 and list(temp.iterdir()) == []
