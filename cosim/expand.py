@@ -41,8 +41,9 @@ def expanded_toml(scenario: Scenario, out: Path, source: str) -> str:
     s = scenario
     folder = Path(out).resolve().parent
     lines = [HEADER.format(source=source).rstrip("\n")]
-    lines += _table({"name": s.name, "start_time": s.start_time, "stop_time": s.stop_time,
-                     "step_size": s.step_size, "order": list(s.order),
+    described = {} if s.description is None else {"description": s.description}
+    lines += _table({"name": s.name, **described, "start_time": s.start_time,
+                     "stop_time": s.stop_time, "step_size": s.step_size, "order": list(s.order),
                      "coupling": s.coupling, "max_step_halvings": s.max_step_halvings,
                      "record": [str(r) for r in s.record]})
     lines += ["", "[fmus]"] + _table({a: os.path.relpath(p, folder) for a, p in s.fmus.items()})

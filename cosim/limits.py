@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from .errors import ScenarioError
 
-# limit -> (dimension, metric key in cosim.report.Metrics.si(), human unit, SI -> human)
+# limit -> (dimension, metric key in cosim.report.Metrics.si(), human unit)
 LIMITS = {
     "max_tracking_error": ("angle", "max_error", "deg"),
     "rms_tracking_error": ("angle", "rms_error", "deg"),

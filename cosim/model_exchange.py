@@ -10,6 +10,7 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
+from .errors import ScenarioError
 from .fmu import release, status_categories
 
 
@@ -25,6 +26,12 @@ class ModelExchangeInstance:
 
     def __enter__(self) -> "ModelExchangeInstance":
         md = read_model_description(self.path)
+        if md.modelExchange is None:
+            raise ScenarioError(
+                f"field 'fmus.plant': {Path(self.path).name} has no Model Exchange interface, "
+                "which the gain design 'gains.omega' needs; use a plant FMU built with Model "
+                "Exchange (the project's dist/Pss3Plant.fmu) or give 'gains.Kp', 'gains.Ki' "
+                "and 'gains.Kd'")
         self.refs = {v.name: v.valueReference for v in md.modelVariables}
         self._unzip = extract(self.path)
         self._initialized = False

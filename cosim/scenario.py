@@ -92,6 +92,7 @@ class Scenario:
     schedule: list = field(default_factory=list)
     # Limits the run is judged against (cosim.limits), SI.
     limits: dict = field(default_factory=dict)
+    description: str | None = None
 
     @property
     def steps(self) -> int:
@@ -220,7 +221,7 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     return Scenario(name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
                     record=record, max_step_halvings=halvings, coupling=coupling,
-                    input_extrapolation=extrapolation,
+                    input_extrapolation=extrapolation, description=data.get("description"),
                     limits=parse_limits(data.get("limits", {})),
                     schedule=_plan_switches(data.get("plan_switches", []), fmus, round(steps)))
 

@@ -1,7 +1,8 @@
 """The workspace check of a closed-loop plan, before any simulation: the plant FMU
 initialised at a pose gives the actuator lengths l[1..3] by its inverse kinematics, and
-the pose is reachable when every length lies in [strokeMin, strokeMax] (the check of
-cosim/sweep/reach.py, here on one instance reset between poses: ~30 us a pose).
+the pose is reachable when every length lies in [strokeMin, strokeMax]. This is the one
+implementation of the check (cosim/sweep/reach.py uses it too); one instance is reset
+between poses: ~30 us a pose.
 
 The plan is sampled at every communication step (at most MAX_SAMPLES poses, evenly
 spread, plus every waypoint) by running the planner FMU alone with the scenario's

@@ -97,9 +97,12 @@ def pose(rob: Robot, theta) -> Pose:
     theta = np.asarray(theta, dtype=float)
     rot = rotation(theta)
     platform = rob.pivot + rob.b @ rot.T
-    d = platform - rob.h
-    along = np.einsum("ij,ij->i", d, rob.u)
-    discriminant = along**2 - np.einsum("ij,ij->i", d, d) + rob.leg_length**2
+    # Absurd parameters (ld = 1e300) overflow to inf/nan here: no warning, the check below
+    # refuses them with the one-line error.
+    with np.errstate(over="ignore", invalid="ignore"):
+        d = platform - rob.h
+        along = np.einsum("ij,ij->i", d, rob.u)
+        discriminant = along**2 - np.einsum("ij,ij->i", d, d) + rob.leg_length**2
     if not np.all(discriminant >= 0.0):
         raise CannotAssemble(int(np.argmin(discriminant >= 0.0)) + 1)
     l = along - np.sqrt(discriminant)

@@ -75,13 +75,23 @@ def _failure_outputs(args, description, interface, case, error: str) -> dict[Pat
     return files
 
 
-def _write(files: dict[Path, bytes], out: Path) -> None:
+def _write(files: dict[Path, bytes], out: Path, signals) -> None:
+    """Writes `files`, then removes the PNG an earlier run wrote for a signal of this case
+    that this run did not plot (only `<signal>.png` names that verify itself writes)."""
     try:
         write_all(files)
     except OSError as e:
         raise VerifyError(e.filename or out, "--out/--junit",
                           f"cannot be written ({e.strerror})",
                           "give a writable folder; nothing was written") from None
+    for signal in signals:
+        stale = out / plot_name(signal)
+        try:
+            if stale not in files and stale.is_file():
+                stale.unlink()
+        except OSError as e:
+            raise VerifyError(stale, "--out", f"an earlier run's plot cannot be removed "
+                              f"({e.strerror})", "remove it by hand") from None
 
 
 def _verify(args) -> int:
@@ -95,10 +105,11 @@ def _verify(args) -> int:
     try:
         verdicts = judge_all(case, simulate(args.fmu, description, case, interface), interface)
     except RunFailed as e:
-        _write(_failure_outputs(args, description, interface, case, str(e)), args.out)
+        _write(_failure_outputs(args, description, interface, case, str(e)), args.out,
+               case.reference.columns)
         raise
     _write(_outputs(args, description, interface, case, verdicts,
-                    time.perf_counter() - started), args.out)
+                    time.perf_counter() - started), args.out, case.reference.columns)
     for v in verdicts:
         print(v.line())
     failed = sum(not v.passed for v in verdicts)

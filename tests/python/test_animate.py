@@ -10,6 +10,7 @@ leg of the wrong length or a slider off the plant's l."""
 from __future__ import annotations
 
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -169,6 +170,9 @@ def test_user_mistakes_get_one_line_and_exit_2(runs, tmp_path, capsys, monkeypat
     assert "need 4.8 GB" in user_error(capsys, [csv, *out, "--frames", "100", "--size", "4000"])
     assert "--param lq=1" in user_error(capsys, [csv, *out, "--param", "lq=1"])
     assert "cannot reach" in user_error(capsys, [csv, *out, "--param", "a=0.3"])
+    with warnings.catch_warnings():  # ld = 1e300 overflows: refused with no numpy warning
+        warnings.simplefilter("error")
+        assert "cannot reach" in user_error(capsys, [csv, *out, "--param", "ld=1e300"])
     assert "Planner.fmu: lp: no such parameter" in user_error(
         capsys, [csv, "--out", str(tmp_path / "out"), "--fmu", fmu_path("Planner")])
     monkeypatch.setenv("PATH", str(tmp_path))

@@ -7,6 +7,7 @@ hand-written source to the same bits."""
 
 from __future__ import annotations
 
+import json
 import math
 import sys
 import tomllib
@@ -58,3 +59,20 @@ def test_an_expanded_multi_segment_run_equals_its_hand_written_source(tmp_path, 
     a = (tmp_path / "scenarios" / "three_axis_waypoints.csv").read_bytes()
     b = (tmp_path / "expanded" / "three_axis_waypoints.csv").read_bytes()
     assert a == b and len(a) > 100_000
+
+
+def test_the_description_is_kept_through_the_expansion(tmp_path, capsys):
+    # Truth: the text given in the hand-written scenario, unchanged in the expanded form
+    # and again in the expansion of that expanded form.
+    text = "Three axes, with \"quotes\" and a \\ backslash"
+    source = tomllib.loads((ROOT / "scenarios" / "three_axis_waypoints.toml").read_text())
+    source["fmus"] = {a: str((ROOT / "scenarios" / p).resolve())
+                      for a, p in source["fmus"].items()}
+    source["description"] = text
+    path = tmp_path / "described.json"
+    path.write_text(json.dumps(source))
+    first, second = tmp_path / "first.toml", tmp_path / "second.toml"
+    assert main(["check", str(path), "--expanded", str(first)]) == 0
+    assert main(["check", str(first), "--expanded", str(second)]) == 0
+    for expanded in (first, second):
+        assert tomllib.loads(expanded.read_text())["description"] == text

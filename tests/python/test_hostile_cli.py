@@ -9,10 +9,12 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
 import tempfile
+import zipfile
 from pathlib import Path
 
 import pytest
@@ -144,6 +146,25 @@ def test_a_valid_run_writes_only_under_out(sandbox, capsys):
     sandbox(["run", path, "--out", "out", "--quiet"], capsys, 0, "")
     assert sorted(_tree(sandbox.work / "out")) == [
         "h.csv", "h.units.json", "h_error_forces.png", "h_orientation.png", "h_summary.json"]
+
+
+def test_a_plant_without_model_exchange_is_a_user_error(sandbox, capsys):
+    """The gain design 'gains.omega' evaluates the plant in Model Exchange: a plant FMU
+    that declares only Co-Simulation (here dist/Pss3Plant.fmu with the <ModelExchange>
+    element cut from its modelDescription.xml) is refused naming the slot and the fix."""
+    plant = sandbox.work / "CsOnly.fmu"
+    with zipfile.ZipFile(DIST / "Pss3Plant.fmu") as src, zipfile.ZipFile(plant, "w") as dst:
+        for item in src.infolist():
+            data = src.read(item)
+            if item.filename == "modelDescription.xml":
+                data = re.sub(rb"<ModelExchange\b.*?(/>|</ModelExchange>)", b"", data,
+                              flags=re.S)
+                assert b"<ModelExchange" not in data and b"<CoSimulation" in data
+            dst.writestr(item, data)
+    path = sandbox.work / "cs.json"
+    path.write_text(json.dumps(edit(base(), "fmus/plant", str(plant))))
+    sandbox(["check", path], capsys, 2, "'fmus.plant'",
+            names=["CsOnly.fmu", "Model Exchange", "gains.Kp"])
 
 
 def test_an_exceeded_limit_is_exit_1_with_the_results_written(sandbox, capsys):

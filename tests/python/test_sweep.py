@@ -223,6 +223,34 @@ def test_workspace_targets_outside_the_reachable_set_are_left_out(tmp_path):
     assert [run["motion.waypoints[1].angles"] for run in spec.runs] == [[0.0, 0.0, 138.0]]
 
 
+def test_the_sweep_reachability_is_the_workspace_check_at_the_stroke_end():
+    # Truth: cosim/workspace.py's Workspace.problem, the one implementation, which counts
+    # a length within STROKE_TOLERANCE of a stroke end as inside. Bisecting thx between
+    # 0 deg (reachable) and 10 deg (actuator 3 beyond its stroke) gives a pose whose
+    # length lies past strokeMax by less than that tolerance: the sweep must keep it.
+    from cosim.sweep.reach import reachable
+    from cosim.workspace import LENGTHS, STROKE_TOLERANCE, Workspace
+    plant = ROOT / "dist" / "Pss3Plant.fmu"
+    pose = lambda thx: (thx, 0.0, math.radians(138.0))  # noqa: E731
+    inside, outside = 0.0, math.radians(10.0)
+    with Workspace(plant, {}) as ws:
+        assert ws.problem(pose(inside)) is None and ws.problem(pose(outside)) is not None
+        for _ in range(80):
+            middle = 0.5 * (inside + outside)
+            if middle in (inside, outside):
+                break
+            if ws.problem(pose(middle)) is None:
+                inside = middle
+            else:
+                outside = middle
+        ws.problem(pose(inside))
+        longest = max(ws.fmu.get_values(LENGTHS))
+        stroke_max = ws.fmu.get_values(("strokeMax",))[0]
+    assert stroke_max < longest <= stroke_max + STROKE_TOLERANCE
+    assert reachable(plant, pose(inside)) is True
+    assert reachable(plant, pose(outside)) is False
+
+
 def test_the_command_refuses_a_malformed_spec_by_field(tmp_path):
     import subprocess
     spec = write_spec(tmp_path, BASE + "[grid.'gains.omega']\nfrom = 10\nto = 60\n")

@@ -77,6 +77,22 @@ def test_wrong_reference_fails_and_says_where(interface, tmp_path):
     assert all(results[s] == [] for s in SIGNALS if s != "theta[3]")
 
 
+def test_a_passing_run_removes_the_plots_of_an_earlier_failing_one(tmp_path):
+    # Truth: wrong_case fails theta[3] only (its PNG is written); the unchanged path-1
+    # reference passes every signal, so after it no plot of a signal of this case remains
+    # in --out, while a file verify never writes stays.
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "notes.png").write_bytes(b"the user's own file")
+    wrong = verify(DIST / "Pss3Plant.fmu", wrong_case(tmp_path), "--out", out)
+    assert wrong.code == 1 and (out / "theta_3.png").is_file(), wrong.err
+    right = verify(DIST / "Pss3Plant.fmu", REFERENCES / "Pss3Plant" / "path1", "--out", out)
+    assert right.code == 0, right.err
+    assert sorted(p.name for p in out.iterdir()) == ["notes.png", "verify.json"]
+    assert (out / "notes.png").read_bytes() == b"the user's own file"
+    assert json.loads((out / "verify.json").read_text())["passed"] is True
+
+
 def test_exit_codes_of_the_command(tmp_path):
     # The command as a process: 0 on the right reference, 1 on the wrong one.
     fmu = DIST / "Pss3Plant.fmu"
