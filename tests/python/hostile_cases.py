@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import copy
 import json
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -65,12 +66,15 @@ DELETE = object()
 B = base
 WP = "motion/waypoints"
 
+# An absolute path on this machine (the temp directory's), never written into the source.
+ABSOLUTE_NAME = str(Path(tempfile.gettempdir()).resolve() / "cosim-hostile-abs")
+
 # (id, document or raw bytes, exit code, text the message holds)
 DOCUMENTS = [
     ("top-level list", [1, 2], 2, "top level"),
     ("unknown field", edit(B(), "colour", "red"), 2, "'colour'"),
     ("name with ../", edit(B(), "name", "../escape"), 2, "'name'"),
-    ("name absolute", edit(B(), "name", "/tmp/cosim-hostile-abs"), 2, "'name'"),
+    ("name absolute", edit(B(), "name", ABSOLUTE_NAME), 2, "'name'"),
     ("name empty", edit(B(), "name", ""), 2, "'name'"),
     ("name a number", edit(B(), "name", 5), 2, "'name'"),
     ("name with NUL", edit(B(), "name", "a\u0000b"), 2, "'name'"),

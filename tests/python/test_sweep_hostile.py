@@ -15,6 +15,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
 from cosim.sweep.cli import main  # noqa: E402
+from hostile_cases import ABSOLUTE_NAME  # noqa: E402
 
 SCENARIO = ROOT / "scenarios" / "regulation.toml"
 HEAD = f'scenario = "{SCENARIO}"\n'
@@ -32,7 +33,7 @@ CASES = [
     ("scenario-garbage", "scenario = \"garbage.toml\"\n" + GRID, [], "field 'scenario'"),
     ("unknown-field", HEAD + "repeat = 3\n" + GRID, [], "unknown field 'repeat'"),
     ("name-escapes", HEAD + "name = \"../evil\"\n" + GRID, [], "field 'name'"),
-    ("name-absolute", HEAD + "name = \"/tmp/evil\"\n" + GRID, [], "field 'name'"),
+    ("name-absolute", HEAD + f"name = {ABSOLUTE_NAME!r}\n" + GRID, [], "field 'name'"),
     ("name-number", HEAD + "name = 7\n" + GRID, [], "field 'name'"),
     ("grid-number", HEAD + "grid = 3\n", [], "field 'grid'"),
     ("grid-entry-number", HEAD + "[grid]\n'gains.omega' = 5\n", [], "grid.gains.omega"),
