@@ -10,7 +10,6 @@ file and variable list, so a sweep asks once per process.
 
 from __future__ import annotations
 
-import shutil
 from functools import lru_cache
 from pathlib import Path
 
@@ -34,7 +33,6 @@ def _probe(path: str, names: tuple[str, ...]) -> bool:
         return False
     finally:
         fmu.close()
-        shutil.rmtree(fmu._unzip, ignore_errors=True)
 
 
 @lru_cache(maxsize=256)

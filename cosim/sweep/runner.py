@@ -59,7 +59,6 @@ class InstancePool:
     def discard(self, fmu) -> None:
         """An instance that failed is not reused."""
         fmu.close()
-        shutil.rmtree(fmu._unzip, ignore_errors=True)
 
 
 class FmuStore:
@@ -85,7 +84,6 @@ class FmuStore:
         for fmus in self.pool.idle.values():
             for fmu in fmus:
                 fmu.close()
-                shutil.rmtree(fmu._unzip, ignore_errors=True)
         self.pool.idle.clear()
         if self.folder is not None:
             shutil.rmtree(self.folder, ignore_errors=True)
