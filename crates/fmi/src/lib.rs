@@ -32,8 +32,8 @@ pub mod fmi3;
 pub mod prelude {
     pub use crate::core::arrays::{Array, BooleanArray, IntegerArray, RealArray, Role};
     pub use crate::core::{
-        DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo, OutputDerivativeError,
-        StepOutcome, Variability, Variable,
+        Declaration, DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo,
+        OutputDerivativeError, StepOutcome, Variability, Variable,
     };
     pub use crate::export_fmu;
 }

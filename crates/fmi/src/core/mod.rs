@@ -15,12 +15,14 @@
 
 pub mod arrays;
 pub mod check;
+pub mod declare;
 pub mod element;
 pub mod entry;
 pub mod fmu_state_calls;
 pub mod fmu_states;
 pub mod frontend;
 pub mod handles;
+pub mod hooks;
 pub mod input_derivatives;
 pub mod instance;
 pub mod log;
@@ -32,6 +34,7 @@ pub mod serialize;
 pub mod status;
 pub mod variables;
 
+pub use declare::Declaration;
 pub use instance::{Instance, Snapshot, Standard};
 pub use log::{Log, LogCategory};
 pub use model::{

@@ -2,6 +2,8 @@
 //! Rust with core types only; a front-end does all pointer handling, argument checking, state-machine
 //! enforcement, logging and unwind catching.
 
+use super::declare::{Declaration, flatten};
+pub use super::hooks::OutputDerivativeError;
 use super::log::{Log, LogCategory};
 use super::variables::Variable;
 
@@ -49,16 +51,6 @@ pub enum StepOutcome {
     },
 }
 
-/// Why `Model::output_derivative` gives no value.
-#[derive(Debug, Clone, PartialEq)]
-pub enum OutputDerivativeError {
-    /// The model does not provide this derivative (this output, or this order of it):
-    /// the importer asked for something the FMU does not offer (fmi2Error/fmi3Error).
-    NotProvided(String),
-    /// The model provides it but cannot evaluate it at this point (Discard).
-    CannotEvaluate(String),
-}
-
 /// What an event update (fmi2NewDiscreteStates, fmi3UpdateDiscreteStates) changed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct EventUpdate {
@@ -80,9 +72,20 @@ pub struct EventUpdate {
 pub trait Model: Clone + Send + Sized + 'static {
     fn info() -> &'static ModelInfo;
 
-    /// Builds the variable table (any order: the layer sorts it by value reference).
-    /// Each instance owns the table it built, so nothing of it outlives the instance.
-    fn variables() -> Vec<Variable<Self>>;
+    /// The variable table, declared once: a `static` slice of [`Declaration`]s
+    /// (scalars and arrays, accessors and hooks as `fn` pointers; see
+    /// [`declare`](super::declare)).
+    fn declarations() -> &'static [Declaration<Self>] {
+        &[]
+    }
+
+    /// The FMI 2.0 scalars of the table (any order: the layer sorts them by value
+    /// reference), built per instance, so nothing of it outlives the instance. The
+    /// default flattens [`Model::declarations`]; a model still written with
+    /// [`Variable`]s overrides it (to be ported to declarations).
+    fn variables() -> Vec<Variable<Self>> {
+        flatten(Self::declarations())
+    }
 
     /// A model with every field defined; the layer then applies all start values of
     /// the table through its writers, so defaults live in the table only.
@@ -193,8 +196,9 @@ pub trait Model: Clone + Send + Sized + 'static {
         Ok(())
     }
 
-    /// The `order`-th time derivative (1 ..= `max_output_derivative_order`) of the Real
-    /// output with value reference `vr` at the current time and state, with the inputs
+    /// Only for outputs declared without an [`output_derivative`](Declaration::output_derivative)
+    /// hook (a hook is the way to give them). The `order`-th time derivative (1 ..=
+    /// `max_output_derivative_order`) of the Real output with value reference `vr` at the current time and state, with the inputs
     /// held (after a co-simulation step: at the end of the communication step). The
     /// layer has checked `vr` (a Real output) and `order`, and the computed values are
     /// current.

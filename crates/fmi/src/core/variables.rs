@@ -8,6 +8,7 @@
 //! declaration allows (`Cow<'static, str>`), and only array elements format theirs.
 
 use super::element::ArrayElement;
+use super::hooks::OutputDerivative;
 use std::borrow::Cow;
 
 pub type Getter<M, T> = Box<dyn Fn(&M) -> T + Send + Sync>;
@@ -133,6 +134,9 @@ pub struct Variable<M> {
     pub dependencies: Option<&'static [&'static str]>,
     /// Set for the elements declared by [`RealArray`](super::arrays::RealArray).
     pub array: Option<ArrayElement>,
+    /// The declaration's output-derivative hook and this element's index, if the
+    /// variable was declared with one ([`declare`](super::declare)).
+    pub output_derivative: Option<(OutputDerivative<M>, usize)>,
 }
 
 impl<M> Variable<M> {
@@ -156,6 +160,7 @@ impl<M> Variable<M> {
             kind,
             dependencies: None,
             array: None,
+            output_derivative: None,
         }
     }
 
