@@ -32,7 +32,7 @@ pub mod fmi3;
 pub mod prelude {
     pub use crate::core::arrays::{Array, BooleanArray, IntegerArray, RealArray, Role};
     pub use crate::core::{
-        Declaration, DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo,
+        Declaration, DefaultExperiment, Element, EventUpdate, Log, LogCategory, Model, ModelInfo,
         OutputDerivativeError, StepOutcome, Variability, Variable,
     };
     pub use crate::export_fmu;

@@ -22,7 +22,7 @@
 //! moves an existing value reference.
 
 use super::element::ArrayElement;
-pub use super::hooks::OutputDerivative;
+pub use super::hooks::{Element, InputDerivative, OutputDerivative};
 use super::variables::{Causality, Initial, Kind, Variability, Variable};
 use std::borrow::Cow;
 
@@ -79,6 +79,8 @@ pub struct Declaration<M: 'static> {
     pub dependencies: Option<&'static [&'static str]>,
     /// Hook: time derivatives of an output.
     pub output_derivative: Option<OutputDerivative<M>>,
+    /// Hook: where the model keeps the time derivatives of a continuous input.
+    pub input_derivative: Option<InputDerivative<M>>,
 }
 
 impl<M> Clone for Value<M> {
@@ -114,6 +116,7 @@ impl<M> Declaration<M> {
             derivative_of: None,
             dependencies: None,
             output_derivative: None,
+            input_derivative: None,
         }
     }
 
@@ -333,6 +336,17 @@ impl<M> Declaration<M> {
         self
     }
 
+    /// Hook: where the model keeps the time derivatives of this continuous Real input,
+    /// element by element (the layer checks the order and the value before writing).
+    pub const fn input_derivative(mut self, f: InputDerivative<M>) -> Self {
+        assert!(
+            matches!(self.value, Value::Real { .. }),
+            "only a Real input has input derivatives"
+        );
+        self.input_derivative = Some(f);
+        self
+    }
+
     /// Number of elements (1 for a scalar).
     pub const fn size(&self) -> usize {
         match self.length {
@@ -420,6 +434,11 @@ fn element<M>(d: &'static Declaration<M>, first: u32, i: usize) -> Variable<M> {
         dependencies: d.dependencies,
         array,
         output_derivative: d.output_derivative.map(|f| (f, i)),
+        input_derivative: d.input_derivative.map(|f| (f, i)),
+        element: Some(Element {
+            name: d.name,
+            index: i,
+        }),
     };
     if let (Kind::Real { derivative_of, .. }, Some(state)) = (&mut v.kind, d.derivative_of) {
         *derivative_of = Some(match d.length {

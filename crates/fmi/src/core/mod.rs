@@ -35,6 +35,7 @@ pub mod status;
 pub mod variables;
 
 pub use declare::Declaration;
+pub use hooks::Element;
 pub use instance::{Instance, Snapshot, Standard};
 pub use log::{Log, LogCategory};
 pub use model::{

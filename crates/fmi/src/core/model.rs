@@ -3,9 +3,10 @@
 //! enforcement, logging and unwind catching.
 
 use super::declare::{Declaration, flatten};
+use super::hooks::Element;
 pub use super::hooks::OutputDerivativeError;
 use super::log::{Log, LogCategory};
-use super::variables::Variable;
+use super::variables::{Variable, find};
 
 /// DefaultExperiment of modelDescription.xml.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -166,9 +167,9 @@ pub trait Model: Clone + Send + Sized + 'static {
     }
 
     /// Partial derivative d(unknown)/d(known) at the current point, for
-    /// fmi2GetDirectionalDerivative. Only called when the model declares
-    /// `provides_directional_derivative`.
-    fn partial_derivative(&self, _unknown: u32, _known: u32) -> Result<f64, String> {
+    /// fmi2GetDirectionalDerivative, the variables given as declared elements. Only
+    /// called when the model declares `provides_directional_derivative`.
+    fn partial_derivative(&self, _unknown: Element, _known: Element) -> Result<f64, String> {
         Err("this model provides no partial derivatives".to_string())
     }
 
@@ -180,16 +181,21 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// here) makes the call return Discard.
     fn directional_derivative(
         &self,
-        _table: &[Variable<Self>],
+        table: &[Variable<Self>],
         unknowns: &[u32],
         knowns: &[u32],
         seed: &[f64],
         out: &mut [f64],
     ) -> Result<(), String> {
+        let element = |vr: u32| {
+            find(table, vr)
+                .and_then(|v| v.element)
+                .ok_or_else(|| format!("value reference {vr} is no declared variable"))
+        };
         for (o, &u) in out.iter_mut().zip(unknowns) {
             let mut sum = 0.0;
             for (&k, &s) in knowns.iter().zip(seed) {
-                sum += self.partial_derivative(u, k)? * s;
+                sum += self.partial_derivative(element(u)?, element(k)?)? * s;
             }
             *o = sum;
         }

@@ -8,7 +8,7 @@
 //! declaration allows (`Cow<'static, str>`), and only array elements format theirs.
 
 use super::element::ArrayElement;
-use super::hooks::OutputDerivative;
+use super::hooks::{Element, InputDerivative, OutputDerivative};
 use std::borrow::Cow;
 
 pub type Getter<M, T> = Box<dyn Fn(&M) -> T + Send + Sync>;
@@ -137,6 +137,11 @@ pub struct Variable<M> {
     /// The declaration's output-derivative hook and this element's index, if the
     /// variable was declared with one ([`declare`](super::declare)).
     pub output_derivative: Option<(OutputDerivative<M>, usize)>,
+    /// The declaration's input-derivative slot and this element's index, if any.
+    pub input_derivative: Option<(InputDerivative<M>, usize)>,
+    /// The declaration and element this scalar is, if it was declared
+    /// ([`declare`](super::declare)).
+    pub element: Option<Element>,
 }
 
 impl<M> Variable<M> {
@@ -161,6 +166,8 @@ impl<M> Variable<M> {
             dependencies: None,
             array: None,
             output_derivative: None,
+            input_derivative: None,
+            element: None,
         }
     }
 
