@@ -140,7 +140,7 @@ macro_rules! state {
     };
 }
 
-static VARIABLES: [Decl; 18] = [
+static VARIABLES: &[Decl] = &[
     gain!("Kp", 1, "Proportional gain", 1.0, gains.kp),
     gain!("Ki", 11, "Integral gain (1/s)", 0.5, gains.ki),
     gain!("Kd", 21, "Derivative gain (s)", 0.1, gains.kd),
@@ -290,7 +290,7 @@ impl Model for Pid {
     }
 
     fn declarations() -> &'static [Declaration<Self>] {
-        &VARIABLES
+        VARIABLES
     }
 
     fn new() -> Self {

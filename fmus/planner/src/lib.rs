@@ -140,7 +140,7 @@ const fn axes(d: Decl, vr: u32) -> Decl {
 
 type Decl = Declaration<Planner>;
 
-static VARIABLES: [Decl; 12] = [
+static VARIABLES: &[Decl] = &[
     Decl::integer(
         "order",
         "Polynomial degree: 3 (cubic) or 5 (quintic)",
@@ -195,7 +195,7 @@ impl Model for Planner {
     }
 
     fn declarations() -> &'static [Declaration<Self>] {
-        &VARIABLES
+        VARIABLES
     }
 
     fn new() -> Self {

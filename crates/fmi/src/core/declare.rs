@@ -96,6 +96,23 @@ impl<M> Clone for Declaration<M> {
 }
 impl<M> Copy for Declaration<M> {}
 
+/// A builder method `$method(x)` that sets the field `$field` of a `Value::$variant`
+/// to `x` (or `$wrap(x)`); on a declaration of another type it panics, which in the
+/// `static` of a model is a compile error.
+macro_rules! typed {
+    ($(#[$doc:meta])* $method:ident, $variant:ident, $field:ident: $t:ty $(, $wrap:ident)?) => {
+        $(#[$doc])*
+        pub const fn $method(mut self, x: $t) -> Self {
+            match &mut self.value {
+                Value::$variant { $field, .. } => *$field = $($wrap)?(x),
+                _ => panic!(concat!(stringify!($method), " on a declaration of another type")),
+            }
+            assert!(self.start_fits(), "give one start value or one per element");
+            self
+        }
+    };
+}
+
 impl<M> Declaration<M> {
     const fn with_value(name: &'static str, description: &'static str, value: Value<M>) -> Self {
         let variability = match value {
@@ -269,61 +286,29 @@ impl<M> Declaration<M> {
         self
     }
 
-    /// Start value(s) of a Real: one for every element or one per element.
-    pub const fn start_real(mut self, values: &'static [f64]) -> Self {
-        match &mut self.value {
-            Value::Real { start, .. } => *start = values,
-            _ => panic!("start_real on a declaration that is no Real"),
-        }
-        assert!(self.start_fits(), "give one start value or one per element");
-        self
+    typed! {
+        /// Start value(s) of a Real: one for every element or one per element.
+        start_real, Real, start: &'static [f64]
     }
-
-    /// Start value(s) of an Integer.
-    pub const fn start_integer(mut self, values: &'static [i32]) -> Self {
-        match &mut self.value {
-            Value::Integer { start, .. } => *start = values,
-            _ => panic!("start_integer on a declaration that is no Integer"),
-        }
-        assert!(self.start_fits(), "give one start value or one per element");
-        self
+    typed! {
+        /// Start value(s) of an Integer: one for every element or one per element.
+        start_integer, Integer, start: &'static [i32]
     }
-
-    /// Start value(s) of a Boolean.
-    pub const fn start_boolean(mut self, values: &'static [bool]) -> Self {
-        match &mut self.value {
-            Value::Boolean { start, .. } => *start = values,
-            _ => panic!("start_boolean on a declaration that is no Boolean"),
-        }
-        assert!(self.start_fits(), "give one start value or one per element");
-        self
+    typed! {
+        /// Start value(s) of a Boolean: one for every element or one per element.
+        start_boolean, Boolean, start: &'static [bool]
     }
-
-    /// Writer of a Real.
-    pub const fn set_real(mut self, f: Set<M, f64>) -> Self {
-        match &mut self.value {
-            Value::Real { set, .. } => *set = Some(f),
-            _ => panic!("set_real on a declaration that is no Real"),
-        }
-        self
+    typed! {
+        /// Writer of a Real.
+        set_real, Real, set: Set<M, f64>, Some
     }
-
-    /// Writer of an Integer.
-    pub const fn set_integer(mut self, f: Set<M, i32>) -> Self {
-        match &mut self.value {
-            Value::Integer { set, .. } => *set = Some(f),
-            _ => panic!("set_integer on a declaration that is no Integer"),
-        }
-        self
+    typed! {
+        /// Writer of an Integer.
+        set_integer, Integer, set: Set<M, i32>, Some
     }
-
-    /// Writer of a Boolean.
-    pub const fn set_boolean(mut self, f: Set<M, bool>) -> Self {
-        match &mut self.value {
-            Value::Boolean { set, .. } => *set = Some(f),
-            _ => panic!("set_boolean on a declaration that is no Boolean"),
-        }
-        self
+    typed! {
+        /// Writer of a Boolean.
+        set_boolean, Boolean, set: Set<M, bool>, Some
     }
 
     /// Hook: the time derivatives of this Real output, element by element.
