@@ -58,6 +58,30 @@ pub enum Value<M: 'static> {
 }
 
 /// One variable of the table, scalar or array (see the module documentation).
+///
+/// ```
+/// use robofmu_fmi::prelude::*;
+/// struct Arm { q: [f64; 3] }
+/// static VARIABLES: &[Declaration<Arm>] = &[
+///     Declaration::real("q", "joint angle", |m: &Arm, i| m.q[i])
+///         .array(3)
+///         .set_real(|m, i, v| { m.q[i] = v; Ok(()) })
+///         .parameter(Variability::Fixed)
+///         .unit("rad", Some("deg"))
+///         .start_real(&[0.0, 0.5, 1.0]),
+/// ];
+/// ```
+///
+/// A declaration that contradicts itself does not compile, e.g. two start values for
+/// three elements:
+///
+/// ```compile_fail
+/// use robofmu_fmi::prelude::*;
+/// struct Arm { q: [f64; 3] }
+/// static VARIABLES: &[Declaration<Arm>] = &[
+///     Declaration::real("q", "joint angle", |m: &Arm, i| m.q[i]).array(3).start_real(&[0.0, 0.5]),
+/// ];
+/// ```
 pub struct Declaration<M: 'static> {
     pub name: &'static str,
     pub description: &'static str,
