@@ -114,9 +114,9 @@ fn accessors_and_hooks_reach_their_element() {
     else {
         panic!("x[2] settable, der(x[2]) readable")
     };
-    set(&mut m, 2.0).unwrap();
+    set.call(&mut m, 2.0).unwrap();
     assert_eq!(m.x, [0.0, 2.0]);
-    assert_eq!(get(&m), 6.0); // d/dt x = 3 x
+    assert_eq!(get.call(&m), 6.0); // d/dt x = 3 x
     let (hook, i) = table[8]
         .output_derivative
         .expect("y has output derivatives");

@@ -23,7 +23,7 @@
 
 use super::element::ArrayElement;
 pub use super::hooks::{Element, InputDerivative, OutputDerivative};
-use super::variables::{Causality, Initial, Kind, Variability, Variable};
+use super::variables::{Causality, Getter, Initial, Kind, Setter, Variability, Variable};
 use std::borrow::Cow;
 
 /// Reads element i (0 for a scalar).
@@ -470,8 +470,8 @@ fn kind<M>(value: &Value<M>, i: usize) -> Kind<M> {
             unit,
             display_unit,
         } => Kind::Real {
-            get: Box::new(move |m| get(m, i)),
-            set: set.map(|s| Box::new(move |m: &mut M, x| s(m, i, x)) as _),
+            get: Getter::Element(get, i),
+            set: set.map(|s| Setter::Element(s, i)),
             start: start_of(start, i),
             min,
             max,
@@ -486,15 +486,15 @@ fn kind<M>(value: &Value<M>, i: usize) -> Kind<M> {
             min,
             max,
         } => Kind::Integer {
-            get: Box::new(move |m| get(m, i)),
-            set: set.map(|s| Box::new(move |m: &mut M, x| s(m, i, x)) as _),
+            get: Getter::Element(get, i),
+            set: set.map(|s| Setter::Element(s, i)),
             start: start_of(start, i),
             min,
             max,
         },
         Value::Boolean { get, set, start } => Kind::Boolean {
-            get: Box::new(move |m| get(m, i)),
-            set: set.map(|s| Box::new(move |m: &mut M, x| s(m, i, x)) as _),
+            get: Getter::Element(get, i),
+            set: set.map(|s| Setter::Element(s, i)),
             start: start_of(start, i),
         },
     }

@@ -45,13 +45,13 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
         match &v.kind {
             Kind::Real {
                 get, set: Some(_), ..
-            } => payload.extend_from_slice(&get(&s.model).to_le_bytes()),
+            } => payload.extend_from_slice(&get.call(&s.model).to_le_bytes()),
             Kind::Integer {
                 get, set: Some(_), ..
-            } => payload.extend_from_slice(&get(&s.model).to_le_bytes()),
+            } => payload.extend_from_slice(&get.call(&s.model).to_le_bytes()),
             Kind::Boolean {
                 get, set: Some(_), ..
-            } => payload.push(get(&s.model) as u8),
+            } => payload.push(get.call(&s.model) as u8),
             _ => {}
         }
     }
@@ -197,11 +197,11 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
     for v in table {
         let name = v.name.as_ref();
         let result = match &v.kind {
-            Kind::Real { set: Some(set), .. } => set(&mut model, r.f64(name)?),
+            Kind::Real { set: Some(set), .. } => set.call(&mut model, r.f64(name)?),
             Kind::Integer { set: Some(set), .. } => {
-                set(&mut model, i32::from_le_bytes(r.array(name)?))
+                set.call(&mut model, i32::from_le_bytes(r.array(name)?))
             }
-            Kind::Boolean { set: Some(set), .. } => set(&mut model, r.flag(name)?),
+            Kind::Boolean { set: Some(set), .. } => set.call(&mut model, r.flag(name)?),
             _ => Ok(()),
         };
         result.map_err(|e| format!("FMU state value of \"{name}\" rejected: {e}"))?;

@@ -11,8 +11,36 @@ use super::element::ArrayElement;
 use super::hooks::{Element, InputDerivative, OutputDerivative};
 use std::borrow::Cow;
 
-pub type Getter<M, T> = Box<dyn Fn(&M) -> T + Send + Sync>;
-pub type Setter<M, T> = Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>;
+/// Reads a variable: a declared element (`fn` and element index: nothing allocated per
+/// instance) or a closure (a `Variable` built per instance).
+pub enum Getter<M, T> {
+    Element(fn(&M, usize) -> T, usize),
+    Closure(Box<dyn Fn(&M) -> T + Send + Sync>),
+}
+
+/// Writes a variable, like [`Getter`]; Err: the value is refused, with the reason.
+pub enum Setter<M, T> {
+    Element(fn(&mut M, usize, T) -> Result<(), String>, usize),
+    Closure(Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>),
+}
+
+impl<M, T> Getter<M, T> {
+    pub fn call(&self, model: &M) -> T {
+        match self {
+            Getter::Element(f, i) => f(model, *i),
+            Getter::Closure(f) => f(model),
+        }
+    }
+}
+
+impl<M, T> Setter<M, T> {
+    pub fn call(&self, model: &mut M, value: T) -> Result<(), String> {
+        match self {
+            Setter::Element(f, i) => f(model, *i, value),
+            Setter::Closure(f) => f(model, value),
+        }
+    }
+}
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Causality {
@@ -185,7 +213,7 @@ impl<M> Variable<M> {
         get: impl Fn(&M) -> f64 + Send + Sync + 'static,
     ) -> Self {
         let kind = Kind::Real {
-            get: Box::new(get),
+            get: Getter::Closure(Box::new(get)),
             set: None,
             start: None,
             min: None,
@@ -205,7 +233,7 @@ impl<M> Variable<M> {
         get: impl Fn(&M) -> i32 + Send + Sync + 'static,
     ) -> Self {
         let kind = Kind::Integer {
-            get: Box::new(get),
+            get: Getter::Closure(Box::new(get)),
             set: None,
             start: None,
             min: None,
@@ -222,7 +250,7 @@ impl<M> Variable<M> {
         get: impl Fn(&M) -> bool + Send + Sync + 'static,
     ) -> Self {
         let kind = Kind::Boolean {
-            get: Box::new(get),
+            get: Getter::Closure(Box::new(get)),
             set: None,
             start: None,
         };
@@ -335,7 +363,7 @@ impl<M> Variable<M> {
         f: impl Fn(&mut M, f64) -> Result<(), String> + Send + Sync + 'static,
     ) -> Self {
         if let Kind::Real { set, .. } = &mut self.kind {
-            *set = Some(Box::new(f));
+            *set = Some(Setter::Closure(Box::new(f)));
         }
         self
     }
@@ -346,7 +374,7 @@ impl<M> Variable<M> {
         f: impl Fn(&mut M, i32) -> Result<(), String> + Send + Sync + 'static,
     ) -> Self {
         if let Kind::Integer { set, .. } = &mut self.kind {
-            *set = Some(Box::new(f));
+            *set = Some(Setter::Closure(Box::new(f)));
         }
         self
     }
@@ -357,7 +385,7 @@ impl<M> Variable<M> {
         f: impl Fn(&mut M, bool) -> Result<(), String> + Send + Sync + 'static,
     ) -> Self {
         if let Kind::Boolean { set, .. } = &mut self.kind {
-            *set = Some(Box::new(f));
+            *set = Some(Setter::Closure(Box::new(f)));
         }
         self
     }
