@@ -5,7 +5,8 @@
 //! names from the FMI 2.0 convention `base[i]` / `der(state[i])`.
 
 use robofmu_fmi::core::check::check_table;
-use robofmu_fmi::core::declare::{Declaration, flatten, value_references};
+use robofmu_fmi::core::declare::{Declaration, value_references};
+use robofmu_fmi::core::flatten::flatten;
 use robofmu_fmi::core::variables::Kind;
 use robofmu_fmi::core::{OutputDerivativeError, Variability};
 
@@ -98,7 +99,7 @@ fn arrays_flatten_to_fmi2_scalars_with_labels_and_per_element_starts() {
         panic!("a Real")
     };
     assert_eq!(derivative_of.as_deref(), Some("x[2]"));
-    let element = table[4].element.expect("declared");
+    let element = table[4].element().expect("declared");
     assert_eq!((element.name, element.index), ("der(x)", 1));
     let mut sorted = table;
     sorted.sort_by_key(|v| v.value_reference);
@@ -117,12 +118,10 @@ fn accessors_and_hooks_reach_their_element() {
     set.call(&mut m, 2.0).unwrap();
     assert_eq!(m.x, [0.0, 2.0]);
     assert_eq!(get.call(&m), 6.0); // d/dt x = 3 x
-    let (hook, i) = table[8]
-        .output_derivative
-        .expect("y has output derivatives");
+    let (hook, i) = table[8].output_hook().expect("y has output derivatives");
     assert_eq!(hook(&m, i, 1), Ok(4.0)); // d(x^2)/dx = 2 x at x = 2
     let (slot, i) = table[6]
-        .input_derivative
+        .input_hook()
         .expect("u has an input-derivative slot");
     *slot(&mut m, i, 1).expect("order 1 kept") = 0.5;
     assert_eq!(m.ramp, [0.0, 0.5]);

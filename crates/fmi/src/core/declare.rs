@@ -21,10 +21,8 @@
 //! is FMI 3.0's `time`), elements consecutive. Appending a declaration therefore never
 //! moves an existing value reference.
 
-use super::element::ArrayElement;
 pub use super::hooks::{Element, InputDerivative, OutputDerivative};
-use super::variables::{Causality, Getter, Initial, Kind, Setter, Variability, Variable};
-use std::borrow::Cow;
+use super::variables::{Causality, Initial, Variability};
 
 /// Reads element i (0 for a scalar).
 pub type Get<M, T> = fn(&M, usize) -> T;
@@ -378,15 +376,6 @@ impl<M> Declaration<M> {
     }
 }
 
-/// Start value of element i: none, the one for all, or element i's.
-fn start_of<T: Copy>(start: &[T], i: usize) -> Option<T> {
-    match start {
-        [] => None,
-        [all] => Some(*all),
-        each => Some(each[i]),
-    }
-}
-
 /// The value references of every declaration's element 1 by the scheme of the module
 /// documentation.
 pub fn value_references<M>(declarations: &[Declaration<M>]) -> Vec<u32> {
@@ -400,102 +389,4 @@ pub fn value_references<M>(declarations: &[Declaration<M>]) -> Vec<u32> {
             first
         })
         .collect()
-}
-
-/// The FMI 2.0 scalars of the declarations, in declaration order (the layer sorts them
-/// by value reference).
-pub fn flatten<M>(declarations: &'static [Declaration<M>]) -> Vec<Variable<M>> {
-    let firsts = value_references(declarations);
-    let total = declarations.iter().map(Declaration::size).sum();
-    let mut table = Vec::with_capacity(total);
-    for (d, first) in declarations.iter().zip(firsts) {
-        table.extend((0..d.size()).map(|i| element(d, first, i)));
-    }
-    table
-}
-
-/// Element i of declaration `d` as an FMI 2.0 scalar.
-fn element<M>(d: &'static Declaration<M>, first: u32, i: usize) -> Variable<M> {
-    let vr = first + i as u32 * d.stride;
-    let array = d.length.map(|length| ArrayElement {
-        base: d.derivative_of.unwrap_or(d.name),
-        index: i,
-        length,
-        stride: d.stride,
-        derivative: d.derivative_of.is_some(),
-    });
-    let name: Cow<'static, str> = match &array {
-        Some(e) => e.name(i).into(),
-        None => d.name.into(),
-    };
-    let description: Cow<'static, str> = match (d.label, d.length) {
-        (Some(label), Some(_)) => format!("{label} {}: {}", i + 1, d.description).into(),
-        _ => d.description.into(),
-    };
-    let mut v = Variable {
-        value_reference: vr,
-        name,
-        description,
-        causality: d.causality,
-        variability: d.variability,
-        initial: d.initial,
-        kind: kind(&d.value, i),
-        dependencies: d.dependencies,
-        array,
-        output_derivative: d.output_derivative.map(|f| (f, i)),
-        input_derivative: d.input_derivative.map(|f| (f, i)),
-        element: Some(Element {
-            name: d.name,
-            index: i,
-        }),
-    };
-    if let (Kind::Real { derivative_of, .. }, Some(state)) = (&mut v.kind, d.derivative_of) {
-        *derivative_of = Some(match d.length {
-            Some(_) => format!("{state}[{}]", i + 1).into(),
-            None => state.into(),
-        });
-    }
-    v
-}
-
-/// The scalar accessors of element i.
-fn kind<M>(value: &Value<M>, i: usize) -> Kind<M> {
-    match *value {
-        Value::Real {
-            get,
-            set,
-            start,
-            min,
-            max,
-            unit,
-            display_unit,
-        } => Kind::Real {
-            get: Getter::Element(get, i),
-            set: set.map(|s| Setter::Element(s, i)),
-            start: start_of(start, i),
-            min,
-            max,
-            unit,
-            display_unit,
-            derivative_of: None,
-        },
-        Value::Integer {
-            get,
-            set,
-            start,
-            min,
-            max,
-        } => Kind::Integer {
-            get: Getter::Element(get, i),
-            set: set.map(|s| Setter::Element(s, i)),
-            start: start_of(start, i),
-            min,
-            max,
-        },
-        Value::Boolean { get, set, start } => Kind::Boolean {
-            get: Getter::Element(get, i),
-            set: set.map(|s| Setter::Element(s, i)),
-            start: start_of(start, i),
-        },
-    }
 }

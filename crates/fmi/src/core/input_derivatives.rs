@@ -68,7 +68,7 @@ impl<M: Model> Instance<M> {
                  of magnitude at most {MAX_MAGNITUDE:e}"
             ));
         }
-        let hook = v.input_derivative;
+        let hook = v.input_hook();
         let slot = slot(self.model_mut(), hook, vr, order);
         *slot.ok_or_else(|| no_slot::<M>(&name, order))? = value;
         Ok(())

@@ -18,6 +18,7 @@ pub mod check;
 pub mod declare;
 pub mod element;
 pub mod entry;
+pub mod flatten;
 pub mod fmu_state_calls;
 pub mod fmu_states;
 pub mod frontend;

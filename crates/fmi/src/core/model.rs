@@ -2,7 +2,8 @@
 //! Rust with core types only; a front-end does all pointer handling, argument checking, state-machine
 //! enforcement, logging and unwind catching.
 
-use super::declare::{Declaration, flatten};
+use super::declare::Declaration;
+use super::flatten::flatten;
 use super::hooks::Element;
 pub use super::hooks::OutputDerivativeError;
 use super::log::{Log, LogCategory};
@@ -189,7 +190,7 @@ pub trait Model: Clone + Send + Sized + 'static {
     ) -> Result<(), String> {
         let element = |vr: u32| {
             find(table, vr)
-                .and_then(|v| v.element)
+                .and_then(|v| v.element())
                 .ok_or_else(|| format!("value reference {vr} is no declared variable"))
         };
         for (o, &u) in out.iter_mut().zip(unknowns) {

@@ -84,7 +84,7 @@ fn evaluate<M: Model>(inst: &mut Instance<M>, requests: &[Request]) -> Result<Ve
         let what = format!("derivative of order {order} of \"{name}\"");
         let hook = variable(inst.table(), r.vr)
             .map_err(Refusal::Error)?
-            .output_derivative;
+            .output_hook();
         let value = match hook {
             Some((f, element)) => f(inst.model(), element, order),
             None => inst.model().output_derivative(r.vr, order),

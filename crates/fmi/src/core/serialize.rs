@@ -98,7 +98,7 @@ fn input_derivative_slots<M: Model>(table: &[Variable<M>]) -> Vec<Slot<M>> {
     let inputs = table.iter().filter(|v| interpolated_input(v));
     inputs
         .flat_map(|v| {
-            let hook = v.input_derivative;
+            let hook = v.input_hook();
             orders.clone().map(move |o| (v.value_reference, hook, o))
         })
         .collect()

@@ -7,6 +7,7 @@
 //! cheap: names, descriptions and dependency lists are static strings wherever the
 //! declaration allows (`Cow<'static, str>`), and only array elements format theirs.
 
+use super::declare::Declaration;
 use super::element::ArrayElement;
 use super::hooks::{Element, InputDerivative, OutputDerivative};
 use std::borrow::Cow;
@@ -149,7 +150,7 @@ impl VariableType {
 }
 
 /// One scalar variable.
-pub struct Variable<M> {
+pub struct Variable<M: 'static> {
     pub value_reference: u32,
     pub name: Cow<'static, str>,
     pub description: Cow<'static, str>,
@@ -162,17 +163,12 @@ pub struct Variable<M> {
     pub dependencies: Option<&'static [&'static str]>,
     /// Set for the elements declared by [`RealArray`](super::arrays::RealArray).
     pub array: Option<ArrayElement>,
-    /// The declaration's output-derivative hook and this element's index, if the
-    /// variable was declared with one ([`declare`](super::declare)).
-    pub output_derivative: Option<(OutputDerivative<M>, usize)>,
-    /// The declaration's input-derivative slot and this element's index, if any.
-    pub input_derivative: Option<(InputDerivative<M>, usize)>,
-    /// The declaration and element this scalar is, if it was declared
+    /// The declaration this scalar is element i of, if it was declared
     /// ([`declare`](super::declare)).
-    pub element: Option<Element>,
+    pub declared: Option<(&'static Declaration<M>, usize)>,
 }
 
-impl<M> Variable<M> {
+impl<M: 'static> Variable<M> {
     fn with_kind(
         vr: u32,
         name: impl Into<Cow<'static, str>>,
@@ -193,9 +189,7 @@ impl<M> Variable<M> {
             kind,
             dependencies: None,
             array: None,
-            output_derivative: None,
-            input_derivative: None,
-            element: None,
+            declared: None,
         }
     }
 
@@ -388,6 +382,27 @@ impl<M> Variable<M> {
             *set = Some(Setter::Closure(Box::new(f)));
         }
         self
+    }
+
+    /// The declared element this scalar is, if it was declared.
+    pub fn element(&self) -> Option<Element> {
+        let (d, index) = self.declared?;
+        Some(Element {
+            name: d.name,
+            index,
+        })
+    }
+
+    /// The declaration's output-derivative hook and the element index, if any.
+    pub fn output_hook(&self) -> Option<(OutputDerivative<M>, usize)> {
+        let (d, index) = self.declared?;
+        Some((d.output_derivative?, index))
+    }
+
+    /// The declaration's input-derivative slot and the element index, if any.
+    pub fn input_hook(&self) -> Option<(InputDerivative<M>, usize)> {
+        let (d, index) = self.declared?;
+        Some((d.input_derivative?, index))
     }
 
     pub fn variable_type(&self) -> VariableType {
