@@ -5,7 +5,7 @@
 //!
 //! One declaration is a scalar or a one-dimensional array (FMI 3.0 shape: `q` with
 //! `<Dimension start="3"/>`); FMI 2.0 sees the array flattened into the scalars
-//! `q[1]`..`q[3]` ([`flatten`]). Accessors take the element index (0 for a scalar),
+//! `q[1]`..`q[3]` ([`flatten`](super::flatten)). Accessors take the element index (0 for a scalar),
 //! hooks take the element index too, so a model never decodes a value reference.
 //!
 //! The builder methods are `const fn`: a declaration that contradicts itself (a unit on

@@ -19,10 +19,13 @@ pub enum Getter<M, T> {
     Closure(Box<dyn Fn(&M) -> T + Send + Sync>),
 }
 
+/// A writer closure of a variable built per instance.
+pub type SetClosure<M, T> = Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>;
+
 /// Writes a variable, like [`Getter`]; Err: the value is refused, with the reason.
 pub enum Setter<M, T> {
     Element(fn(&mut M, usize, T) -> Result<(), String>, usize),
-    Closure(Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>),
+    Closure(SetClosure<M, T>),
 }
 
 impl<M, T> Getter<M, T> {

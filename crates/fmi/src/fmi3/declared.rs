@@ -1,5 +1,5 @@
 //! The FMI 3.0 view of a declared model: one [`Variable3`] per
-//! [`Declaration`](crate::core::declare::Declaration), taken from the declaration as it
+//! [`Declaration`], taken from the declaration as it
 //! is (a scalar, or an array with its length), without parsing names or descriptions.
 //! [`view`] falls back to the name-parsing [`build`] for a model still written with
 //! `Model::variables`.
