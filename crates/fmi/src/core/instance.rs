@@ -85,7 +85,7 @@ pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, Str
             } => set.call(&mut model, *s),
             _ => Ok(()),
         };
-        result.map_err(|e| format!("start value of \"{}\" rejected: {e}", v.name))?;
+        result.map_err(|e| format!("start value of \"{}\" rejected: {e}", v.name()))?;
     }
     Ok(model)
 }
@@ -101,7 +101,9 @@ pub fn sorted_table<M: Model>() -> Result<Vec<Variable<M>>, String> {
     {
         return Err(format!(
             "\"{}\" and \"{}\" share the value reference {}",
-            pair[0].name, pair[1].name, pair[0].value_reference
+            pair[0].name(),
+            pair[1].name(),
+            pair[0].value_reference
         ));
     }
     Ok(table)
@@ -133,28 +135,12 @@ pub fn variable<M>(table: &[Variable<M>], vr: u32) -> Result<&Variable<M>, Strin
 /// derivative or other calculated variable, as opposed to a parameter, an input or a
 /// continuous state, even one declared as an output).
 pub fn calculated_flags<M>(table: &[Variable<M>]) -> Vec<bool> {
-    let states: Vec<&str> = table
-        .iter()
-        .filter_map(|v| match &v.kind {
-            Kind::Real {
-                derivative_of: Some(state),
-                ..
-            } => Some(state.as_ref()),
-            _ => None,
-        })
-        .collect();
+    let states: Vec<(&str, Option<usize>)> = table.iter().filter_map(Variable::state_key).collect();
     table
         .iter()
         .map(|v| {
-            let derivative = matches!(
-                v.kind,
-                Kind::Real {
-                    derivative_of: Some(_),
-                    ..
-                }
-            );
             let calculated = matches!(v.initial, Some(Initial::Calculated | Initial::Approx));
-            derivative || (calculated && !states.contains(&v.name.as_ref()))
+            v.is_derivative() || (calculated && !states.contains(&v.key()))
         })
         .collect()
 }
@@ -162,7 +148,7 @@ pub fn calculated_flags<M>(table: &[Variable<M>]) -> Vec<bool> {
 fn wrong_type<M>(v: &Variable<M>, wanted: &str) -> String {
     format!(
         "\"{}\" (value reference {}) is a {} variable, not {wanted}",
-        v.name,
+        v.name(),
         v.value_reference,
         v.variable_type().as_str()
     )
@@ -249,7 +235,7 @@ impl<M: Model> Instance<M> {
             if let Kind::Real { get, .. } = &v.kind {
                 let value = get.call(&self.model);
                 if !value.is_finite() {
-                    return Err(format!("\"{}\" evaluates to {value}", v.name));
+                    return Err(format!("\"{}\" evaluates to {value}", v.name()));
                 }
             }
         }
@@ -380,7 +366,7 @@ impl<M: Model> Instance<M> {
         if value.is_finite() {
             Ok(value)
         } else {
-            Err(format!("\"{}\" evaluated to {value}", v.name))
+            Err(format!("\"{}\" evaluated to {value}", v.name()))
         }
     }
 
@@ -406,29 +392,29 @@ impl<M: Model> Instance<M> {
             return Err(wrong_type(v, "Real"));
         };
         if !value.is_finite() {
-            return Err(format!("\"{}\" cannot be set to {value}", v.name));
+            return Err(format!("\"{}\" cannot be set to {value}", v.name()));
         }
         if value.abs() > MAX_MAGNITUDE {
             return Err(format!(
                 "\"{}\" = {value:e} exceeds the magnitude {MAX_MAGNITUDE:e} the layer accepts \
                  (such a value overflows the model's arithmetic)",
-                v.name
+                v.name()
             ));
         }
         if min.is_some_and(|m| value < m) || max.is_some_and(|m| value > m) {
             return Err(format!(
                 "\"{}\" = {value} is outside [{}, {}]",
-                v.name,
+                v.name(),
                 min.unwrap_or(f64::NEG_INFINITY),
                 max.unwrap_or(f64::INFINITY)
             ));
         }
         let set = set
             .as_ref()
-            .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
+            .ok_or_else(|| format!("\"{}\" has no writer", v.name()))?;
         self.dirty = true;
         set.call(&mut self.model, value)
-            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
+            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name()))
     }
 
     pub fn set_integer(&mut self, vr: u32, value: i32) -> Result<(), String> {
@@ -437,14 +423,14 @@ impl<M: Model> Instance<M> {
             return Err(wrong_type(v, "Integer"));
         };
         if min.is_some_and(|m| value < m) || max.is_some_and(|m| value > m) {
-            return Err(format!("\"{}\" = {value} is outside its range", v.name));
+            return Err(format!("\"{}\" = {value} is outside its range", v.name()));
         }
         let set = set
             .as_ref()
-            .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
+            .ok_or_else(|| format!("\"{}\" has no writer", v.name()))?;
         self.dirty = true;
         set.call(&mut self.model, value)
-            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
+            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name()))
     }
 
     pub fn set_boolean(&mut self, vr: u32, value: bool) -> Result<(), String> {
@@ -454,9 +440,9 @@ impl<M: Model> Instance<M> {
         };
         let set = set
             .as_ref()
-            .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
+            .ok_or_else(|| format!("\"{}\" has no writer", v.name()))?;
         self.dirty = true;
         set.call(&mut self.model, value)
-            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
+            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name()))
     }
 }

@@ -195,7 +195,7 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
     let terminated_by_model = r.flag("terminated flag")?;
     let mut model = model_with_start_values::<M>(table)?;
     for v in table {
-        let name = v.name.as_ref();
+        let name = &v.name();
         let result = match &v.kind {
             Kind::Real { set: Some(set), .. } => set.call(&mut model, r.f64(name)?),
             Kind::Integer { set: Some(set), .. } => {

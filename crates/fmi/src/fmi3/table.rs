@@ -242,11 +242,25 @@ fn same_declaration<M>(a: &Variable<M>, b: &Variable<M>) -> bool {
         && unit(a) == unit(b)
 }
 
+/// [`split_index`] of a name borrowed from the table or formatted for it.
+fn split_name(name: Cow<'_, str>) -> (bool, Cow<'_, str>, Option<usize>) {
+    match name {
+        Cow::Borrowed(name) => {
+            let (derivative, base, index) = split_index(name);
+            (derivative, Cow::Borrowed(base), index)
+        }
+        Cow::Owned(name) => {
+            let (derivative, base, index) = split_index(&name);
+            (derivative, Cow::Owned(base.to_string()), index)
+        }
+    }
+}
+
 /// The table positions of one FMI 3.0 variable: a scalar or the elements of an array
 /// named `base` (`der(base)`).
 struct Group<'a> {
     derivative: bool,
-    base: &'a str,
+    base: Cow<'a, str>,
     is_array: bool,
     members: Vec<usize>,
 }
@@ -254,23 +268,25 @@ struct Group<'a> {
 /// Groups of table positions, one per FMI 3.0 variable, in order of first appearance.
 fn groups<M>(table: &[Variable<M>]) -> Result<Vec<Group<'_>>, String> {
     let mut order: Vec<Group> = Vec::new();
-    let mut position: HashMap<(bool, &str), usize> = HashMap::with_capacity(table.len());
+    let mut position: HashMap<(bool, Cow<str>), usize> = HashMap::with_capacity(table.len());
     for (i, v) in table.iter().enumerate() {
-        let (derivative, base, index) = split_index(&v.name);
+        let (derivative, base, index) = split_name(v.name());
         let is_array = index.is_some();
-        let slot = *position.entry((derivative, base)).or_insert_with(|| {
-            order.push(Group {
-                derivative,
-                base,
-                is_array,
-                members: Vec::new(),
+        let slot = *position
+            .entry((derivative, base.clone()))
+            .or_insert_with(|| {
+                order.push(Group {
+                    derivative,
+                    base: base.clone(),
+                    is_array,
+                    members: Vec::new(),
+                });
+                order.len() - 1
             });
-            order.len() - 1
-        });
         if order[slot].is_array != is_array {
             return Err(format!(
                 "\"{}\" is declared both as a scalar and as an array",
-                group_name(derivative, base)
+                group_name(derivative, &base)
             ));
         }
         order[slot].members.push(i);
@@ -284,7 +300,7 @@ fn groups<M>(table: &[Variable<M>]) -> Result<Vec<Group<'_>>, String> {
 /// A scalar declared once; an array's elements numbered 1..n, agreeing with their
 /// `ArrayElement` metadata, declared alike.
 fn check_group<M>(table: &[Variable<M>], group: &mut Group) -> Result<(), String> {
-    let name = || group_name(group.derivative, group.base);
+    let name = || group_name(group.derivative, &group.base);
     if !group.is_array {
         if group.members.len() > 1 {
             return Err(format!("duplicate variable \"{}\"", name()));
@@ -293,19 +309,19 @@ fn check_group<M>(table: &[Variable<M>], group: &mut Group) -> Result<(), String
     }
     group
         .members
-        .sort_by_key(|&i| split_index(&table[i].name).2);
+        .sort_by_key(|&i| split_index(&table[i].name()).2);
     let n = group.members.len();
     let first = &table[group.members[0]];
     for (k, &i) in group.members.iter().enumerate() {
         let v = &table[i];
-        if split_index(&v.name).2 != Some(k + 1) {
+        if split_index(&v.name()).2 != Some(k + 1) {
             return Err(format!(
                 "the elements of \"{}\" are not numbered 1..n",
                 name()
             ));
         }
         if let Some(a) = &v.array
-            && (a.base != group.base
+            && (a.base != group.base.as_ref()
                 || a.derivative != group.derivative
                 || a.index != k
                 || a.length != n)
@@ -313,7 +329,7 @@ fn check_group<M>(table: &[Variable<M>], group: &mut Group) -> Result<(), String
             return Err(format!(
                 "\"{}\" is declared as element {} of {} of \"{}\", but the table has \
                  {n} elements named {}[..]",
-                v.name,
+                v.name(),
                 a.index + 1,
                 a.length,
                 group_name(a.derivative, a.base),
@@ -323,7 +339,8 @@ fn check_group<M>(table: &[Variable<M>], group: &mut Group) -> Result<(), String
         if !same_declaration(first, v) {
             return Err(format!(
                 "\"{}\" differs from \"{}\" in type, causality, variability, initial or unit",
-                v.name, first.name
+                v.name(),
+                first.name()
             ));
         }
     }
@@ -391,20 +408,19 @@ fn variable3<M>(
     group: &Group,
 ) -> Result<Variable3, String> {
     let first = &table[group.members[0]];
-    let derivative_of =
-        match &first.kind {
-            Kind::Real {
-                derivative_of: Some(state),
-                ..
-            } => Some(fmi3_reference(table, groups, state).ok_or_else(|| {
-                format!("\"{}\" names the unknown variable \"{state}\"", first.name)
-            })?),
-            _ => None,
-        };
+    let derivative_of = match first.state_name() {
+        Some(state) => Some(fmi3_reference(table, groups, &state).ok_or_else(|| {
+            format!(
+                "\"{}\" names the unknown variable \"{state}\"",
+                first.name()
+            )
+        })?),
+        None => None,
+    };
     let name = match (&first.array, group.is_array) {
         (Some(a), true) if !a.derivative => Cow::Borrowed(a.base),
-        (_, true) => Cow::Owned(group_name(group.derivative, group.base)),
-        (_, false) => first.name.clone(),
+        (_, true) => Cow::Owned(group_name(group.derivative, &group.base)),
+        (_, false) => Cow::Owned(first.name().into_owned()),
     };
     Ok(Variable3 {
         value_reference: first.value_reference,
@@ -431,7 +447,7 @@ fn fmi3_reference<M>(table: &[Variable<M>], groups: &[Group], name: &str) -> Opt
     groups
         .iter()
         .find(|g| g.derivative == derivative && g.base == base && g.is_array == index.is_some())
-        .filter(|g| g.members.iter().any(|&i| table[i].name == name))
+        .filter(|g| g.members.iter().any(|&i| table[i].name() == name))
         .map(|g| table[g.members[0]].value_reference)
 }
 
@@ -444,11 +460,12 @@ pub fn description<M>(table: &[Variable<M>], v: &Variable3) -> String {
             "Event indicators: an event occurs where one changes sign".to_string()
         }
         Source::Elements(elements) => {
-            let descriptions: Vec<&str> = elements
+            let owned: Vec<Cow<str>> = elements
                 .iter()
                 .filter_map(|&e| find(table, e))
-                .map(|e| e.description.as_ref())
+                .map(Variable::description)
                 .collect();
+            let descriptions: Vec<&str> = owned.iter().map(AsRef::as_ref).collect();
             if v.dimension.is_some() {
                 array_description(&descriptions)
             } else {
@@ -475,7 +492,10 @@ pub fn dependencies<M: Model>(
         };
         for name in names {
             list.push(fmi3_reference(table, &groups, name).ok_or_else(|| {
-                format!("\"{}\" names the unknown variable \"{name}\"", scalar.name)
+                format!(
+                    "\"{}\" names the unknown variable \"{name}\"",
+                    scalar.name()
+                )
             })?);
         }
     }

@@ -69,9 +69,11 @@ fn dependencies<M: Model>(
                 .map(|name| {
                     table
                         .iter()
-                        .find(|s| &s.name == name)
+                        .find(|s| s.name() == *name)
                         .and_then(|s| locate(t, s.value_reference))
-                        .ok_or_else(|| format!("\"{}\" depends on unknown \"{name}\"", scalar.name))
+                        .ok_or_else(|| {
+                            format!("\"{}\" depends on unknown \"{name}\"", scalar.name())
+                        })
                 })
                 .collect::<Result<Vec<_>, _>>()?,
         };
