@@ -29,8 +29,9 @@ pub const TIME_VALUE_REFERENCE: u32 = 0;
 /// What an FMI 3.0 variable reads and writes.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Source {
-    /// Elements of the model's table, by their (FMI 2.0) value references.
-    Elements(Vec<u32>),
+    /// Elements of the model's table, by their (FMI 2.0) value references: element k
+    /// at `first + k * stride` (k below the variable's size; nothing stored per element).
+    Elements { first: u32, stride: u32 },
     /// The instance's time.
     Time,
     /// The model's event indicators (`Model::event_indicators`).
@@ -67,35 +68,80 @@ impl Variable3 {
         M::INTERMEDIATE_UPDATE_POINTS > 0
             && self.variable_type == VariableType::Real
             && self.variability == Variability::Continuous
-            && matches!(self.source, Source::Elements(_))
+            && matches!(self.source, Source::Elements { .. })
             && matches!(self.causality, Causality::Input | Causality::Output)
     }
 
-    /// The table's elements, in order (empty for time and event indicators).
-    pub fn elements(&self) -> &[u32] {
-        match &self.source {
-            Source::Elements(e) => e,
-            _ => &[],
+    /// The table's elements, in order (none for time and event indicators).
+    pub fn elements(&self) -> Elements {
+        match self.source {
+            Source::Elements { first, stride } => Elements {
+                next: first,
+                stride,
+                left: self.size(),
+            },
+            _ => Elements {
+                next: 0,
+                stride: 1,
+                left: 0,
+            },
         }
     }
 }
+
+/// The table elements (FMI 2.0 value references) of an FMI 3.0 variable, in order,
+/// computed from the first one and the stride.
+#[derive(Debug, Clone)]
+pub struct Elements {
+    next: u32,
+    stride: u32,
+    left: usize,
+}
+
+impl Elements {
+    /// Whether there are none (time, event indicators).
+    pub fn is_empty(&self) -> bool {
+        self.left == 0
+    }
+}
+
+impl Iterator for Elements {
+    type Item = u32;
+
+    fn next(&mut self) -> Option<u32> {
+        self.left = self.left.checked_sub(1)?;
+        let e = self.next;
+        self.next = self.next.wrapping_add(self.stride);
+        Some(e)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        (self.left, Some(self.left))
+    }
+}
+
+impl ExactSizeIterator for Elements {}
 
 /// The FMI 3.0 variables of a model, in description order, with a lookup by value
 /// reference.
 #[derive(Debug, Clone)]
 pub struct Table3 {
     pub variables: Vec<Variable3>,
-    by_reference: HashMap<u32, usize>,
+    /// (value reference, position) sorted, when the description order is not the
+    /// value-reference order; empty otherwise (the lookup searches the variables).
+    by_reference: Vec<(u32, usize)>,
 }
 
 impl Table3 {
     /// The table of `variables` (in description order).
     pub fn new(variables: Vec<Variable3>) -> Self {
-        let by_reference = variables
-            .iter()
-            .enumerate()
-            .map(|(i, v)| (v.value_reference, i))
-            .collect();
+        let mut by_reference = Vec::new();
+        if !variables.is_sorted_by_key(|v| v.value_reference) {
+            by_reference = (variables.iter().enumerate())
+                .map(|(i, v)| (v.value_reference, i))
+                .collect();
+            by_reference.sort_unstable();
+        }
         Table3 {
             variables,
             by_reference,
@@ -103,7 +149,17 @@ impl Table3 {
     }
 
     pub fn find(&self, vr: u32) -> Option<&Variable3> {
-        self.by_reference.get(&vr).map(|&i| &self.variables[i])
+        let i = if self.by_reference.is_empty() {
+            (self.variables)
+                .binary_search_by_key(&vr, |v| v.value_reference)
+                .ok()?
+        } else {
+            let k = (self.by_reference)
+                .binary_search_by_key(&vr, |&(r, _)| r)
+                .ok()?;
+            self.by_reference[k].1
+        };
+        Some(&self.variables[i])
     }
 
     /// The variable with value reference `vr`, of type `wanted`.
@@ -430,15 +486,29 @@ fn variable3<M>(
         variability: first.variability,
         initial: first.initial,
         dimension: group.is_array.then_some(group.members.len()),
-        source: Source::Elements(
-            group
-                .members
-                .iter()
-                .map(|&i| table[i].value_reference)
-                .collect(),
-        ),
+        source: evenly_spaced(table, group)?,
         derivative_of,
     })
+}
+
+/// The elements of a group as a first value reference and a stride (an FMI 3.0 array
+/// reads its elements by index arithmetic).
+fn evenly_spaced<M>(table: &[Variable<M>], group: &Group) -> Result<Source, String> {
+    let vr = |k: usize| table[group.members[k]].value_reference;
+    let first = vr(0);
+    let stride = if group.members.len() > 1 {
+        vr(1).wrapping_sub(first)
+    } else {
+        1
+    };
+    let even = (0..group.members.len()).all(|k| vr(k) == first.wrapping_add(k as u32 * stride));
+    if !even || stride == 0 {
+        return Err(format!(
+            "the elements of \"{}\" do not have evenly spaced value references",
+            group_name(group.derivative, &group.base)
+        ));
+    }
+    Ok(Source::Elements { first, stride })
 }
 
 /// The FMI 3.0 value reference of the variable owning the table scalar `name`.
@@ -459,10 +529,10 @@ pub fn description<M>(table: &[Variable<M>], v: &Variable3) -> String {
         Source::EventIndicators => {
             "Event indicators: an event occurs where one changes sign".to_string()
         }
-        Source::Elements(elements) => {
-            let owned: Vec<Cow<str>> = elements
-                .iter()
-                .filter_map(|&e| find(table, e))
+        Source::Elements { .. } => {
+            let owned: Vec<Cow<str>> = v
+                .elements()
+                .filter_map(|e| find(table, e))
                 .map(Variable::description)
                 .collect();
             let descriptions: Vec<&str> = owned.iter().map(AsRef::as_ref).collect();
@@ -485,7 +555,7 @@ pub fn dependencies<M: Model>(
 ) -> Result<Option<Vec<u32>>, String> {
     let groups = groups(table)?;
     let mut list = Vec::new();
-    for &e in v.elements() {
+    for e in v.elements() {
         let scalar = find(table, e).ok_or_else(|| format!("no element {e}"))?;
         let Some(names) = scalar.dependencies else {
             return Ok(None);
@@ -517,7 +587,7 @@ fn check_state_order<M>(table: &[Variable<M>], variables: &[Variable3]) -> Resul
     let fmi3: Vec<u32> = variables
         .iter()
         .filter(|v| v.derivative_of.is_some())
-        .flat_map(|v| v.elements().iter().copied())
+        .flat_map(Variable3::elements)
         .collect();
     if fmi2 == fmi3 {
         Ok(())
