@@ -30,6 +30,8 @@
 
 mod gains;
 mod law;
+mod model_parameters;
 
 pub use gains::pole_placement;
 pub use law::{AxisGains, ComputedTorque, ControllerError, Inputs, Output};
+pub use model_parameters::{MODEL_PARAMETERS, ModelParameter, model_parameter, with_fmu_names};
