@@ -78,7 +78,7 @@ impl ComputedTorqueFmu {
             limits: self.limited[k].then_some(self.limits[k]),
             ..self.gains[k]
         });
-        ComputedTorque::new(self.model.clone(), gains).map_err(|e| with_fmu_names(&e.to_string()))
+        ComputedTorque::new(self.model, gains).map_err(|e| with_fmu_names(&e.to_string()))
     }
 
     /// The output at the current inputs and integral, and the integral's rate.

@@ -193,7 +193,16 @@ fn fixed(
 /// output is the force that holds the robot against gravity.
 fn inputs() -> Vec<Variable<ComputedTorqueFmu>> {
     let pose = start_pose();
-    let list: [(&str, &str, &str, Option<&str>, Field<f64>, Vector3<f64>); 5] = [
+    /// Name, description, unit, display unit, field, start value.
+    type Input = (
+        &'static str,
+        &'static str,
+        &'static str,
+        Option<&'static str>,
+        Field<f64>,
+        Vector3<f64>,
+    );
+    let list: [Input; 5] = [
         (
             "setpoint",
             "planned Euler angle q",
