@@ -13,7 +13,7 @@
 use super::error::LoopError;
 use super::scenario::{bad, number, output_limits, required};
 use crate::computed_torque::{
-    AxisGains, ComputedTorque, MODEL_PARAMETERS, model_parameter, with_fmu_names,
+    AxisGains, ComputedTorque, MODEL_PARAMETERS, controller_message, model_parameter,
 };
 use crate::control::pid::PidGains;
 use crate::pss3::dynamics::PlantParams;
@@ -127,5 +127,5 @@ pub fn computed_torque(p: &Table, place: &str) -> Result<ComputedTorque, LoopErr
     }
     let gains = [gains[0], gains[1], gains[2]];
     ComputedTorque::new(model(p, place)?, gains)
-        .map_err(|e| bad(with_fmu_names(&format!("'{place}': {e}"))))
+        .map_err(|e| bad(format!("'{place}': {}", controller_message(&e))))
 }

@@ -5,7 +5,9 @@
 //! (its scenario reading). End stops and the stroke are not part of the controller's
 //! model (they protect the plant; the law does not plan for them).
 
-use crate::pss3::dynamics::PlantParams;
+use super::ControllerError;
+use crate::pss3::ParamError;
+use crate::pss3::dynamics::{PlantParamError, PlantParams};
 
 /// One scalar model parameter.
 #[derive(Clone, Copy)]
@@ -234,6 +236,25 @@ pub fn with_fmu_names(message: &str) -> String {
         }
     }
     message
+}
+
+/// The geometry parameters, which together decide whether the legs assemble.
+pub const GEOMETRY: &str = "the geometry lp, ld, gamma, lb, alpha, beta, a";
+
+/// Why a controller cannot be built, with its parameters under their FMU names (a
+/// geometry or inertia-tensor error names every parameter that takes part).
+pub fn controller_message(e: &ControllerError) -> String {
+    match e {
+        ControllerError::Model(PlantParamError::Geometry(
+            inner @ ParamError::LegCannotAssemble { .. },
+        )) => {
+            format!("controller model: {GEOMETRY}: {inner}")
+        }
+        ControllerError::Model(PlantParamError::InertiaNotPhysical(reason)) => {
+            format!("controller model: parameter platformInertia: {reason}")
+        }
+        other => with_fmu_names(&other.to_string()),
+    }
 }
 
 #[cfg(test)]

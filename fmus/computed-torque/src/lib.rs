@@ -13,9 +13,9 @@ mod variables;
 
 use nalgebra::Vector3;
 use robofmu::computed_torque::{
-    AxisGains, ComputedTorque, Inputs, Output, pole_placement, with_fmu_names,
+    AxisGains, ComputedTorque, Inputs, controller_message, pole_placement,
 };
-use robofmu::pss3::dynamics::PlantParams;
+use robofmu::pss3::dynamics::{DynamicsError, PlantParams};
 use robofmu_fmi::prelude::*;
 
 /// Euler-angle axes.
@@ -61,9 +61,9 @@ pub struct ComputedTorqueFmu {
     integral: Vector3<f64>,
     /// The law for the current parameters (None: rebuild before use).
     law: Option<ComputedTorque>,
-    /// The output at the current inputs and integral and the integral's rate
+    /// What the controller computes at the current inputs and integral
     /// (`calculate_values`).
-    output: Option<(Output, Vector3<f64>)>,
+    output: Option<Evaluation>,
 }
 
 impl ComputedTorqueFmu {
@@ -78,11 +78,16 @@ impl ComputedTorqueFmu {
             limits: self.limited[k].then_some(self.limits[k]),
             ..self.gains[k]
         });
-        ComputedTorque::new(self.model, gains).map_err(|e| with_fmu_names(&e.to_string()))
+        ComputedTorque::new(self.model, gains).map_err(|e| controller_message(&e))
     }
 
-    /// The output at the current inputs and integral, and the integral's rate.
-    fn evaluate(&self) -> Result<(Output, Vector3<f64>), String> {
+    /// The output at the current inputs and integral. Where the controller's model
+    /// cannot be evaluated at the measured pose (its legs cannot reach it, or the
+    /// Euler angles are singular), the law has no inverse dynamics: the output is then
+    /// zero force (within the limits) and the integral holds, so that a getter never
+    /// fails on an input value (a plant cannot be there: its own step is discarded
+    /// first).
+    fn evaluate(&self) -> Result<Evaluation, String> {
         let built;
         let law = match &self.law {
             Some(law) => law,
@@ -91,19 +96,38 @@ impl ComputedTorqueFmu {
                 &built
             }
         };
-        let output = law
-            .output(&self.integral, &self.inputs)
-            .map_err(|e| e.to_string())?;
-        Ok((output, law.integral_rate(&output)))
+        match law.output(&self.integral, &self.inputs) {
+            Ok(output) => Ok(Evaluation {
+                u: output.u,
+                integral_rate: law.integral_rate(&output),
+            }),
+            Err(DynamicsError::Kinematics(_)) => Ok(Evaluation {
+                u: Vector3::from_fn(|k, _| match law.gains()[k].limits {
+                    Some((min, max)) => 0f64.clamp(min, max),
+                    None => 0.0,
+                }),
+                integral_rate: Vector3::zeros(),
+            }),
+            Err(e) => Err(format!("the law cannot be evaluated: {e}")),
+        }
     }
 
     fn u(&self, k: usize) -> f64 {
-        self.output.map_or(f64::NAN, |(o, _)| o.u[k])
+        self.output.map_or(f64::NAN, |o| o.u[k])
     }
 
     fn integral_rate(&self, k: usize) -> f64 {
-        self.output.map_or(f64::NAN, |(_, rate)| rate[k])
+        self.output.map_or(f64::NAN, |o| o.integral_rate[k])
     }
+}
+
+/// What the controller computes at its inputs and integral.
+#[derive(Debug, Clone, Copy)]
+struct Evaluation {
+    /// The output, N m.
+    u: Vector3<f64>,
+    /// The time derivative of the error integral (anti-windup applied).
+    integral_rate: Vector3<f64>,
 }
 
 impl Model for ComputedTorqueFmu {
@@ -156,8 +180,8 @@ impl Model for ComputedTorqueFmu {
         // Inputs held over the step: e is constant, so I + e h is exact; the
         // anti-windup decision is taken at the start of the step (as the PID's).
         match self.evaluate() {
-            Ok((_, rate)) => {
-                self.integral += rate * step;
+            Ok(evaluation) => {
+                self.integral += evaluation.integral_rate * step;
                 StepOutcome::Completed
             }
             Err(reason) => StepOutcome::Discarded {
@@ -176,8 +200,8 @@ impl Model for ComputedTorqueFmu {
     }
 
     fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
-        let (_, rate) = self.evaluate()?;
-        dx.copy_from_slice(rate.as_slice());
+        let evaluation = self.evaluate()?;
+        dx.copy_from_slice(evaluation.integral_rate.as_slice());
         Ok(())
     }
 }

@@ -201,3 +201,23 @@ fn a_model_that_is_no_robot_is_refused_by_its_fmu_name() {
         "{message}"
     );
 }
+
+#[test]
+fn outside_the_models_workspace_the_output_is_zero_force_and_the_integral_holds() {
+    // Truth: the documented fallback. At thx = 80 deg the legs cannot reach the
+    // platform joints (the workspace is |thx|, |thy| < 12 deg or so): no inverse
+    // dynamics, so u = 0 (clamped into the limits) and d(integral)/dt = 0; every call
+    // returns OK (a getter never fails on an input value).
+    let h = Fmu::new(FMI2_MODEL_EXCHANGE);
+    assert_eq!(h.set_boolean("limitOutput[2]", true), Fmi2Status::Ok);
+    assert_eq!(h.set_real("uMin[2]", 0.25), Fmi2Status::Ok);
+    assert_eq!(h.set_real("uMax[2]", 1.0), Fmi2Status::Ok);
+    h.set_vector("measurement", [80f64.to_radians(), 0.0, 2.13]);
+    assert_eq!(h.initialize(), Fmi2Status::Ok, "{}", h.last_message());
+    h.enter_continuous_time_mode();
+    assert_eq!(h.vector("u"), [0.0, 0.25, 0.0]);
+    assert_eq!(h.derivatives(), (Fmi2Status::Ok, vec![0.0; 3]));
+    // Back inside, the law acts again.
+    h.set_vector("measurement", [0.0, 0.0, 2.13]);
+    assert_ne!(h.real("u[1]"), 0.0);
+}
