@@ -189,10 +189,12 @@ fn fixed(
     }
 }
 
-/// The inputs, each starting at the start pose at rest (path 1's start), where the
-/// output is the force that holds the robot against gravity.
+/// The inputs: measured at rest in the start pose (path 1's start), planned at rest
+/// 0.5, -0.5 and 1 deg away, so that the default run's output moves (the error's
+/// integral grows).
 fn inputs() -> Vec<Variable<ComputedTorqueFmu>> {
     let pose = start_pose();
+    let planned = pose + Vector3::new(0.5, -0.5, 1.0).map(f64::to_radians);
     /// Name, description, unit, display unit, field, start value.
     type Input = (
         &'static str,
@@ -209,7 +211,7 @@ fn inputs() -> Vec<Variable<ComputedTorqueFmu>> {
             "rad",
             Some("deg"),
             field!(m, k => m.inputs.setpoint[k]),
-            pose,
+            planned,
         ),
         (
             "setpointRate",
