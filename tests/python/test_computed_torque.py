@@ -132,3 +132,17 @@ def test_a_wrong_computed_torque_scenario_is_refused_by_field(tmp_path, capsys, 
     assert code == 2, err
     assert message in err, err
     assert "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+def test_the_demo_turns_a_pid_scenario_into_the_hand_written_computed_torque_one():
+    # Truth: scenarios/path1_cubic_ct.toml, written by hand from path1_cubic.toml: the
+    # demo's conversion resolves to the same FMU parameters and connections.
+    from cosim.demo_controllers import computed_torque_document
+    from cosim.scenario import parse_document, read_document
+    folder = ROOT / "scenarios"
+    converted = parse_document(computed_torque_document(
+        read_document(folder / "path1_cubic.toml")), folder)
+    written = load_scenario(folder / "path1_cubic_ct.toml")
+    assert converted.parameters == written.parameters
+    assert converted.connections == written.connections
+    assert converted.controller == written.controller == "computed-torque"
