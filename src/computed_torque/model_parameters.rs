@@ -20,36 +20,42 @@ pub struct ModelParameter {
     pub unit: Option<&'static str>,
     pub display_unit: Option<&'static str>,
     pub description: &'static str,
+    /// The spec's value (`PlantParams::default()`, checked by a test), as a constant for
+    /// the FMU's static variable table.
+    pub spec: f64,
     pub get: fn(&PlantParams) -> f64,
     pub set: fn(&mut PlantParams, f64),
 }
 
-/// `parameter!(name, library name, unit, display unit, description, field path)`.
+/// `parameter!(name, library name, unit, display unit, description, spec value, field
+/// path)`.
 macro_rules! parameter {
     ($name:literal, $library:literal, $unit:expr, $display:expr, $description:literal,
-     $($field:tt).+) => {
+     $spec:expr, $($field:tt).+) => {
         ModelParameter {
             name: $name,
             library_name: $library,
             unit: $unit,
             display_unit: $display,
             description: $description,
+            spec: $spec,
             get: |p| p.$($field).+,
             set: |p, v| p.$($field).+ = v,
         }
     };
 }
 
-/// `inertia!(name, row, column)`: an entry of the symmetric platform inertia tensor
+/// `inertia!(name, row, column, spec value)`: an entry of the symmetric platform inertia tensor
 /// (setting an off-diagonal entry sets both).
 macro_rules! inertia {
-    ($name:literal, $r:literal, $c:literal) => {
+    ($name:literal, $r:literal, $c:literal, $spec:expr) => {
         ModelParameter {
             name: $name,
             library_name: "platform_inertia",
             unit: Some("kg.m2"),
             display_unit: None,
             description: "Platform inertia tensor about P in {B} (symmetric: sets both entries)",
+            spec: $spec,
             get: |p| p.inertia.platform_inertia[($r, $c)],
             set: |p, v| {
                 p.inertia.platform_inertia[($r, $c)] = v;
@@ -73,6 +79,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         M,
         MM,
         "Height of the platform centre P above the base origin C",
+        0.632187,
         geometry.lp
     ),
     parameter!(
@@ -81,6 +88,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         M,
         MM,
         "Radius of the platform joints around P",
+        0.245396,
         geometry.ld
     ),
     parameter!(
@@ -89,6 +97,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         RAD,
         DEG,
         "Angle of platform joint 1 in {B}",
+        (-150.0f64).to_radians(),
         geometry.gamma
     ),
     parameter!(
@@ -97,6 +106,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         M,
         MM,
         "Distance from C to the slider joints at l = 0",
+        0.344098,
         geometry.lb
     ),
     parameter!(
@@ -105,6 +115,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         RAD,
         DEG,
         "Azimuth offset of the slider joints",
+        8.674f64.to_radians(),
         geometry.alpha
     ),
     parameter!(
@@ -113,6 +124,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         RAD,
         DEG,
         "Polar angle of the slider joints h_i from Z",
+        66.242f64.to_radians(),
         geometry.beta
     ),
     parameter!(
@@ -121,6 +133,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         M,
         MM,
         "Leg length, joint centre to joint centre",
+        0.619598,
         geometry.a
     ),
     parameter!(
@@ -129,6 +142,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         KG,
         None,
         "Platform mass",
+        0.80057,
         inertia.platform_mass
     ),
     parameter!(
@@ -137,6 +151,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         M,
         MM,
         "Platform centre of mass relative to P, in {B}, x",
+        0.0,
         inertia.platform_com.x
     ),
     parameter!(
@@ -145,6 +160,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         M,
         MM,
         "Platform centre of mass relative to P, in {B}, y",
+        0.0,
         inertia.platform_com.y
     ),
     parameter!(
@@ -153,20 +169,22 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         M,
         MM,
         "Platform centre of mass relative to P, in {B}, z",
+        0.01955,
         inertia.platform_com.z
     ),
-    inertia!("platformInertia[1,1]", 0, 0),
-    inertia!("platformInertia[2,2]", 1, 1),
-    inertia!("platformInertia[3,3]", 2, 2),
-    inertia!("platformInertia[1,2]", 0, 1),
-    inertia!("platformInertia[1,3]", 0, 2),
-    inertia!("platformInertia[2,3]", 1, 2),
+    inertia!("platformInertia[1,1]", 0, 0, 0.011824),
+    inertia!("platformInertia[2,2]", 1, 1, 0.011824),
+    inertia!("platformInertia[3,3]", 2, 2, 0.022886),
+    inertia!("platformInertia[1,2]", 0, 1, 0.0),
+    inertia!("platformInertia[1,3]", 0, 2, 0.0),
+    inertia!("platformInertia[2,3]", 1, 2, 0.0),
     parameter!(
         "legMass",
         "leg_mass",
         KG,
         None,
         "Mass of each leg",
+        0.9467,
         inertia.leg_mass
     ),
     parameter!(
@@ -175,6 +193,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         None,
         None,
         "Leg centre of mass along the leg from the slider joint, as a fraction of a",
+        0.5,
         inertia.leg_com_fraction
     ),
     parameter!(
@@ -183,6 +202,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         Some("kg.m2"),
         None,
         "Leg inertia about its centre of mass, perpendicular to the leg",
+        0.036458,
         inertia.leg_transverse_inertia
     ),
     parameter!(
@@ -191,6 +211,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         KG,
         None,
         "Mass of each slider (rod and stud)",
+        0.26272,
         inertia.slider_mass
     ),
     ModelParameter {
@@ -199,6 +220,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         unit: Some("m/s2"),
         display_unit: None,
         description: "Gravitational acceleration, acting along -Z of {A}",
+        spec: 9.81,
         get: |p| -p.gravity.z,
         set: |p, v| p.gravity = nalgebra::Vector3::new(0.0, 0.0, -v),
     },
@@ -208,6 +230,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         Some("N.s/m"),
         None,
         "Viscous friction on each slider, force -c lDot",
+        0.0,
         friction.slider
     ),
     parameter!(
@@ -216,6 +239,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         Some("N.m.s/rad"),
         None,
         "Viscous friction at the spherical joint P, moment -c omega",
+        0.0,
         friction.pivot
     ),
 ];
@@ -281,6 +305,15 @@ mod tests {
         (model_parameter("platformInertia[1,3]").unwrap().set)(&mut params, 0.01);
         assert_eq!(params.inertia.platform_inertia[(2, 0)], 0.01);
         assert_eq!((model_parameter("g").unwrap().get)(&params), 9.81);
+    }
+
+    #[test]
+    fn the_spec_values_are_the_library_defaults() {
+        // Truth: PlantParams::default(), the spec's robot (docs/3pss-model.md).
+        let spec = PlantParams::default();
+        for p in &MODEL_PARAMETERS {
+            assert_eq!(p.spec, (p.get)(&spec), "{}", p.name);
+        }
     }
 
     #[test]
