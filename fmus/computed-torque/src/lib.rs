@@ -135,7 +135,7 @@ impl Model for ComputedTorqueFmu {
         &INFO
     }
 
-    fn variables() -> Vec<Variable<Self>> {
+    fn declarations() -> &'static [Declaration<Self>] {
         variables::table()
     }
 

@@ -1,298 +1,269 @@
-//! The variable table of the ComputedTorque FMU: gains and limits per axis (tunable),
-//! the controller's model (fixed, the plant FMU's names), the inputs, the output and
-//! the error integral (state).
+//! The variable table of the ComputedTorque FMU, declared once (a static table, see
+//! `robofmu_fmi::core::declare`): gains and limits per axis (tunable), the
+//! controller's model (fixed, one declaration per entry of the robot library's
+//! `computed_torque::MODEL_PARAMETERS`), the inputs, the output and the error integral
+//! (state).
 
-use super::{AXES, ComputedTorqueFmu};
-use nalgebra::Vector3;
-use robofmu::computed_torque::{MODEL_PARAMETERS, ModelParameter};
-use robofmu::pss3::dynamics::PlantParams;
-use robofmu::pss3::start_pose;
-use robofmu_fmi::core::arrays::ElementType;
+use super::{AXES, ComputedTorqueFmu, DEFAULT_BANDWIDTH};
+use robofmu::computed_torque::{AxisGains, MODEL_PARAMETERS, pole_placement};
+use robofmu::pss3::START_ROLL_DEG;
 use robofmu_fmi::prelude::*;
 
-/// Value references: group (below) plus axis 1..3; the model parameters from MODEL on.
-const KP: u32 = 0;
-const KD: u32 = 10;
-const KI: u32 = 20;
-const LIMITED: u32 = 30;
-const U_MIN: u32 = 40;
-const U_MAX: u32 = 50;
-const INPUTS: u32 = 100;
-const U: u32 = 200;
-const INTEGRAL: u32 = 300;
-const DER_INTEGRAL: u32 = 310;
-const MODEL: u32 = 1000;
+type Decl = Declaration<ComputedTorqueFmu>;
 
-/// Read and write access to element k of a per-axis field.
-type Field<T> = (
-    fn(&ComputedTorqueFmu, usize) -> T,
-    fn(&mut ComputedTorqueFmu, usize) -> &mut T,
-);
+/// The default gains: a triple pole at -30 rad/s of the error dynamics.
+const GAINS: AxisGains = match pole_placement(DEFAULT_BANDWIDTH, true) {
+    Ok(gains) => gains,
+    Err(_) => panic!("the default bandwidth is positive"),
+};
 
-/// `field!(m, k => m.gains[k].kp)`: the `Field` of that place.
-macro_rules! field {
-    ($m:ident, $k:ident => $($place:tt)+) => {
-        (
-            |$m: &ComputedTorqueFmu, $k: usize| $($place)+,
-            |$m: &mut ComputedTorqueFmu, $k: usize| &mut $($place)+,
-        )
+/// The default inputs: measured at rest in the start pose (path 1's start), planned
+/// 0.5, -0.5 and 1 deg away, so that the default run's output moves.
+const MEASURED: [f64; 3] = [0.0, 0.0, START_ROLL_DEG.to_radians()];
+const PLANNED: [f64; 3] = [
+    0.5f64.to_radians(),
+    -0.5f64.to_radians(),
+    START_ROLL_DEG.to_radians() + 1f64.to_radians(),
+];
+
+/// The spec value of every model parameter (start values of the model's declarations).
+const SPECS: [f64; MODEL_PARAMETERS.len()] = {
+    let mut specs = [0.0; MODEL_PARAMETERS.len()];
+    let mut k = 0;
+    while k < specs.len() {
+        specs[k] = MODEL_PARAMETERS[k].spec;
+        k += 1;
+    }
+    specs
+};
+
+/// The per-axis array of `m.$($place)+[k]`-like fields, at `vr`, "Axis k: ..." in FMI
+/// 2.0; writing it rebuilds the law before its next use.
+macro_rules! axes {
+    ($ty:ident, $set:ident, $name:literal, $vr:literal, $what:literal,
+     |$m:ident, $k:ident| $($place:tt)+) => {
+        Decl::$ty($name, $what, |$m, $k| $($place)+)
+            .array(AXES)
+            .at($vr)
+            .label("Axis")
+            .$set(|$m, $k, v| {
+                $($place)+ = v;
+                $m.changed();
+                Ok(())
+            })
     };
 }
 
-/// The array `base[1..3]` read and written through `field`; writing rebuilds the law
-/// before its next use.
-fn axes<T: ElementType>(
-    group: u32,
-    base: &'static str,
-    description: &'static str,
-    (read, write): Field<T>,
-) -> Array<ComputedTorqueFmu, T, impl Role<ComputedTorqueFmu>> {
-    Array::new(group + 1, base, AXES, description, read)
-        .label("Axis")
-        .set(move |m, k, v| {
-            *write(m, k) = v;
-            m.changed();
-            Ok(())
-        })
+/// A tunable Real parameter per axis.
+macro_rules! gain {
+    ($name:literal, $vr:literal, $what:literal, $start:expr, $($place:tt)+) => {
+        axes!(real, set_real, $name, $vr, $what, $($place)+)
+            .parameter(Variability::Tunable)
+            .start_real(&[$start])
+    };
 }
 
-fn tunable(v: Variable<ComputedTorqueFmu>) -> Variable<ComputedTorqueFmu> {
-    v.parameter(Variability::Tunable)
-}
-
-/// Gains and output limits.
-fn gains(defaults: &ComputedTorqueFmu) -> Vec<Variable<ComputedTorqueFmu>> {
-    type Parameter = (
-        u32,
-        &'static str,
-        &'static str,
-        Option<&'static str>,
-        Field<f64>,
-        [f64; AXES],
-    );
-    let real: [Parameter; 5] = [
-        (
-            KP,
-            "Kp",
-            "acceleration per angle error, 1/s2",
-            None,
-            field!(m, k => m.gains[k].kp),
-            defaults.gains.map(|g| g.kp),
-        ),
-        (
-            KD,
-            "Kd",
-            "acceleration per rate error",
-            Some("1/s"),
-            field!(m, k => m.gains[k].kd),
-            defaults.gains.map(|g| g.kd),
-        ),
-        (
-            KI,
-            "Ki",
-            "acceleration per integrated error, 1/s3",
-            None,
-            field!(m, k => m.gains[k].ki),
-            defaults.gains.map(|g| g.ki),
-        ),
-        (
-            U_MIN,
-            "uMin",
-            "lower output limit (used when limitOutput)",
-            Some("N.m"),
-            field!(m, k => m.limits[k].0),
-            defaults.limits.map(|l| l.0),
-        ),
-        (
-            U_MAX,
-            "uMax",
-            "upper output limit (used when limitOutput)",
-            Some("N.m"),
-            field!(m, k => m.limits[k].1),
-            defaults.limits.map(|l| l.1),
-        ),
-    ];
-    let mut table = Vec::new();
-    for (group, name, description, unit, field, start) in real {
-        let array = axes(group, name, description, field).each(move |v, k| {
-            let v = tunable(v).start_real(start[k]);
-            if let Some(unit) = unit {
-                v.unit(unit, None)
-            } else {
-                v
-            }
-        });
-        table.extend(array.variables());
-    }
-    let limited = axes(
-        LIMITED,
-        "limitOutput",
-        "clamp the output to [uMin, uMax]",
-        field!(m, k => m.limited[k]),
-    )
-    .each(|v, _| tunable(v).start_boolean(false));
-    table.extend(limited.variables());
-    table
-}
-
-/// The controller's model: scalars, and the arrays `name[1..3]` of consecutive entries.
-fn model(defaults: &PlantParams) -> Vec<Variable<ComputedTorqueFmu>> {
-    let mut table = Vec::new();
-    let mut k = 0;
-    while k < MODEL_PARAMETERS.len() {
-        let p = &MODEL_PARAMETERS[k];
-        let vr = MODEL + k as u32 + 1;
-        if let Some(base) = p.name.strip_suffix("[1]") {
-            let entries: [&'static ModelParameter; 3] =
-                std::array::from_fn(|i| &MODEL_PARAMETERS[k + i]);
-            let start = entries.map(|e| (e.get)(defaults));
-            let base: &'static str = base;
-            let description = p.description.trim_end_matches(", x");
-            let array =
-                RealArray::new(vr, base, 3, description, move |m: &ComputedTorqueFmu, i| {
-                    (entries[i].get)(&m.model)
-                })
-                .set(move |m, i, v| {
-                    (entries[i].set)(&mut m.model, v);
-                    m.changed();
-                    Ok(())
-                })
-                .each(move |v, i| fixed(v, entries[i], start[i]));
-            table.extend(array.variables());
-            k += 3;
-            continue;
-        }
-        let (get, set) = (p.get, p.set);
-        let v = Variable::real(vr, p.name, p.description, move |m: &ComputedTorqueFmu| {
-            get(&m.model)
-        })
-        .set_real(move |m, v| {
-            set(&mut m.model, v);
-            m.changed();
-            Ok(())
-        });
-        table.push(fixed(v, p, (p.get)(defaults)));
-        k += 1;
-    }
-    table
-}
-
-fn fixed(
-    v: Variable<ComputedTorqueFmu>,
-    p: &ModelParameter,
-    start: f64,
-) -> Variable<ComputedTorqueFmu> {
-    let v = v.parameter(Variability::Fixed).start_real(start);
-    match p.unit {
-        Some(unit) => v.unit(unit, p.display_unit),
-        None => v,
-    }
-}
-
-/// The inputs: measured at rest in the start pose (path 1's start), planned at rest
-/// 0.5, -0.5 and 1 deg away, so that the default run's output moves (the error's
-/// integral grows).
-fn inputs() -> Vec<Variable<ComputedTorqueFmu>> {
-    let pose = start_pose();
-    let planned = pose + Vector3::new(0.5, -0.5, 1.0).map(f64::to_radians);
-    /// Name, description, unit, display unit, field, start value.
-    type Input = (
-        &'static str,
-        &'static str,
-        &'static str,
-        Option<&'static str>,
-        Field<f64>,
-        Vector3<f64>,
-    );
-    let list: [Input; 5] = [
-        (
-            "setpoint",
-            "planned Euler angle q",
-            "rad",
-            Some("deg"),
-            field!(m, k => m.inputs.setpoint[k]),
-            planned,
-        ),
-        (
-            "setpointRate",
-            "planned Euler-angle rate qdot",
-            "rad/s",
-            Some("deg/s"),
-            field!(m, k => m.inputs.setpoint_rate[k]),
-            Vector3::zeros(),
-        ),
-        (
-            "setpointAcceleration",
-            "planned Euler-angle acceleration qddot",
-            "rad/s2",
-            Some("deg/s2"),
-            field!(m, k => m.inputs.setpoint_acceleration[k]),
-            Vector3::zeros(),
-        ),
-        (
-            "measurement",
-            "measured Euler angle theta",
-            "rad",
-            Some("deg"),
-            field!(m, k => m.inputs.measurement[k]),
-            pose,
-        ),
-        (
-            "measuredRate",
-            "measured Euler-angle rate thetaDot",
-            "rad/s",
-            Some("deg/s"),
-            field!(m, k => m.inputs.measured_rate[k]),
-            Vector3::zeros(),
-        ),
-    ];
-    let mut table = Vec::new();
-    for (n, (name, description, unit, display, (read, write), start)) in
-        list.into_iter().enumerate()
-    {
-        let array = RealArray::new(INPUTS + 10 * n as u32 + 1, name, AXES, description, read)
+/// An input per axis (rad-based unit, display in degrees).
+macro_rules! input {
+    ($name:literal, $vr:literal, $what:literal, $unit:literal, $display:literal, $start:expr,
+     $field:ident) => {
+        Decl::real($name, $what, |m, k| m.inputs.$field[k])
+            .array(AXES)
+            .at($vr)
             .label("Axis")
-            .set(move |m, k, v| {
-                *write(m, k) = v;
+            .set_real(|m, k, v| {
+                m.inputs.$field[k] = v;
                 Ok(())
             })
-            .each(move |v, k| v.input().unit(unit, display).start_real(start[k]));
-        table.extend(array.variables());
-    }
-    table
+            .input()
+            .unit($unit, Some($display))
+            .start_real($start)
+    };
 }
 
-/// The whole table.
-pub fn table() -> Vec<Variable<ComputedTorqueFmu>> {
-    let defaults = <ComputedTorqueFmu as Model>::new();
-    let mut table = gains(&defaults);
-    table.extend(model(&defaults.model));
-    table.extend(inputs());
-    let u = RealArray::new(
-        U + 1,
+/// `length` spec values from entry `k` on.
+const fn specs(k: usize, length: usize) -> &'static [f64] {
+    let all: &'static [f64] = &SPECS;
+    all.split_at(k).1.split_at(length).0
+}
+
+fn get_model<const K: usize>(m: &ComputedTorqueFmu, i: usize) -> f64 {
+    (MODEL_PARAMETERS[K + i].get)(&m.model)
+}
+
+fn set_model<const K: usize>(m: &mut ComputedTorqueFmu, i: usize, v: f64) -> Result<(), String> {
+    (MODEL_PARAMETERS[K + i].set)(&mut m.model, v);
+    m.changed();
+    Ok(())
+}
+
+/// The model parameter `MODEL_PARAMETERS[K]` (with `length` > 1: the array `name[1..]`
+/// of that many consecutive entries), fixed, at value reference 1001 + K.
+const fn model<const K: usize>(length: usize) -> Decl {
+    let p = &MODEL_PARAMETERS[K];
+    let (name, description) = if length > 1 {
+        let base = p.name.split_at(p.name.len() - 3).0; // "name[1]" -> "name"
+        (base, p.description.split_at(p.description.len() - 3).0) // ", x"
+    } else {
+        (p.name, p.description)
+    };
+    let mut d = Decl::real(name, description, get_model::<K>).at(1001 + K as u32);
+    if length > 1 {
+        d = d.array(length);
+    }
+    d = d
+        .set_real(set_model::<K>)
+        .parameter(Variability::Fixed)
+        .start_real(specs(K, length));
+    if let Some(unit) = p.unit {
+        d = d.unit(unit, p.display_unit);
+    }
+    d
+}
+
+static VARIABLES: &[Decl] = &[
+    gain!(
+        "Kp",
+        1,
+        "acceleration per angle error, 1/s2",
+        GAINS.kp,
+        |m, k| m.gains[k].kp
+    ),
+    gain!("Kd", 11, "acceleration per rate error", GAINS.kd, |m, k| m
+        .gains[k]
+        .kd)
+    .unit("1/s", None),
+    gain!(
+        "Ki",
+        21,
+        "acceleration per integrated error, 1/s3",
+        GAINS.ki,
+        |m, k| m.gains[k].ki
+    ),
+    axes!(
+        boolean,
+        set_boolean,
+        "limitOutput",
+        31,
+        "clamp the output to [uMin, uMax]",
+        |m, k| m.limited[k]
+    )
+    .parameter(Variability::Tunable)
+    .start_boolean(&[false]),
+    gain!(
+        "uMin",
+        41,
+        "lower output limit (used when limitOutput)",
+        -1.0,
+        |m, k| m.limits[k].0
+    )
+    .unit("N.m", None),
+    gain!(
+        "uMax",
+        51,
+        "upper output limit (used when limitOutput)",
+        1.0,
+        |m, k| m.limits[k].1
+    )
+    .unit("N.m", None),
+    input!(
+        "setpoint",
+        101,
+        "planned Euler angle q",
+        "rad",
+        "deg",
+        &PLANNED,
+        setpoint
+    ),
+    input!(
+        "setpointRate",
+        111,
+        "planned Euler-angle rate qdot",
+        "rad/s",
+        "deg/s",
+        &[0.0],
+        setpoint_rate
+    ),
+    input!(
+        "setpointAcceleration",
+        121,
+        "planned Euler-angle acceleration qddot",
+        "rad/s2",
+        "deg/s2",
+        &[0.0],
+        setpoint_acceleration
+    ),
+    input!(
+        "measurement",
+        131,
+        "measured Euler angle theta",
+        "rad",
+        "deg",
+        &MEASURED,
+        measurement
+    ),
+    input!(
+        "measuredRate",
+        141,
+        "measured Euler-angle rate thetaDot",
+        "rad/s",
+        "deg/s",
+        &[0.0],
+        measured_rate
+    ),
+    Decl::real(
         "u",
-        AXES,
         "Euler-angle generalized force (plant generalizedForceCommand)",
-        |m: &ComputedTorqueFmu, k| m.u(k),
+        |m, k| m.u(k),
     )
+    .array(AXES)
+    .at(201)
     .label("Axis")
-    .each(|v, _| v.output().unit("N.m", None));
-    table.extend(u.variables());
-    let integral = axes(
-        INTEGRAL,
+    .output()
+    .unit("N.m", None),
+    axes!(
+        real,
+        set_real,
         "integral",
+        301,
         "integral of the angle error (state)",
-        field!(m, k => m.integral[k]),
+        |m, k| m.integral[k]
     )
-    .each(|v, _| v.state().start_real(0.0));
-    table.extend(integral.variables());
-    let derivative = RealArray::derivatives(
-        DER_INTEGRAL + 1,
-        "integral",
-        AXES,
+    .state()
+    .start_real(&[0.0]),
+    Decl::real(
+        "der(integral)",
         "Time derivative of the error integral",
-        |m: &ComputedTorqueFmu, k| m.integral_rate(k),
-    );
-    table.extend(derivative.variables());
-    table
+        |m, k| m.integral_rate(k),
+    )
+    .array(AXES)
+    .at(311)
+    .derivative_of("integral"),
+    model::<0>(1), // lp
+    model::<1>(1),
+    model::<2>(1),
+    model::<3>(1),
+    model::<4>(1),
+    model::<5>(1),
+    model::<6>(1),  // a
+    model::<7>(1),  // platformMass
+    model::<8>(3),  // platformCom[1..3]
+    model::<11>(1), // platformInertia[1,1] ... [2,3]
+    model::<12>(1),
+    model::<13>(1),
+    model::<14>(1),
+    model::<15>(1),
+    model::<16>(1),
+    model::<17>(1), // legMass
+    model::<18>(1),
+    model::<19>(1),
+    model::<20>(1),
+    model::<21>(1), // g
+    model::<22>(1),
+    model::<23>(1), // pivotFriction
+];
+
+/// The whole table.
+pub fn table() -> &'static [Decl] {
+    VARIABLES
 }
