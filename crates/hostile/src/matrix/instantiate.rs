@@ -1,162 +1,27 @@
-//! fmi2Instantiate with arguments the standard forbids (FMI 2.0 section 2.1.5):
-//! missing callbacks, null or empty names, a wrong GUID, an unknown fmuType. The
-//! FMU must return NULL; when a logger was given, it says why. The observed status
-//! is fmi2OK for an instance and fmi2Error for NULL.
+//! Instantiation with arguments the standard forbids (FMI 2.0 2.1.5, FMI 3.0
+//! 2.3.1): missing callbacks, null or empty names, a null or foreign GUID
+//! (instantiation token), an unknown fmuType or an interface the FMU does not
+//! provide. The FMU returns NULL; when a logger was given, it says why. The
+//! observed status is OK for an instance and Error for NULL. The functions and
+//! their arguments differ between the standards: the rows are
+//! `seam::Tables::instantiations`.
 
-use super::{Case, Expect, Observed};
+use super::Case;
+use super::seam::Standard;
 use crate::Loaded;
-use crate::binary::{ERROR, OK};
-use crate::host::{Callbacks, Environment, c_string};
-use std::ffi::c_int;
 
-const WHY_CALLBACKS: &str = "FMI 2.0 2.1.5: allocateMemory and freeMemory are required (not NULL): refuse with a log line (issue 12 item 5)";
-const WHY_LOGGER: &str =
-    "no logger: the FMU cannot report anything; refuses silently (project choice)";
-const WHY_ARGS: &str = "FMI 2.0 2.1.5: instanceName non-empty, fmuGUID of this FMU, fmuType 0 or 1: refuse with a log line";
-
-struct Args {
-    name: Option<&'static str>,
-    fmu_type: c_int,
-    guid: Option<String>,
-    callbacks: Option<Callbacks>,
-}
-
-fn attempt(l: &Loaded, m: usize, a: &Args) -> Observed {
-    let env = Environment::new(a.callbacks.unwrap_or(Callbacks::ALL));
-    let name = a.name.map(c_string);
-    let guid = a.guid.as_deref().map(c_string);
-    let b = &l.binaries[m];
-    let ptr = |s: &Option<std::ffi::CString>| s.as_ref().map_or(std::ptr::null(), |s| s.as_ptr());
-    let functions = if a.callbacks.is_some() {
-        &*env.functions as *const _
-    } else {
-        std::ptr::null()
-    };
-    // SAFETY: strings and callbacks are valid or null.
-    let c = unsafe {
-        (b.instantiate)(
-            ptr(&name),
-            a.fmu_type,
-            ptr(&guid),
-            std::ptr::null(),
-            functions,
-            0,
-            1,
-        )
-    };
-    let status = if c.is_null() { ERROR } else { OK };
-    if !c.is_null() {
-        // SAFETY: an instance of this binary.
-        unsafe { (b.free_instance)(c) };
-    }
-    Observed::of(status, env.take_log())
-}
-
-pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
-    let guid = l.fmus[m].description.guid.clone();
-    let ok = Args {
-        name: Some("probe"),
-        fmu_type: 1,
-        guid: Some(guid.clone()),
-        callbacks: Some(Callbacks::ALL),
-    };
-    let with = |f: &dyn Fn(&mut Args)| {
-        let mut a = Args {
-            guid: ok.guid.clone(),
-            ..ok
-        };
-        f(&mut a);
-        a
-    };
-    let no = |allocate: bool, free: bool, logger: bool| Callbacks {
-        allocate,
-        free,
-        logger,
-    };
-    let table: Vec<(&str, Args, Expect, &'static str)> = vec![
-        (
-            "all arguments valid (control)",
-            with(&|_| {}),
-            Expect::ok(),
-            WHY_ARGS,
-        ),
-        (
-            "allocateMemory = NULL",
-            with(&|a| a.callbacks = Some(no(false, true, true))),
-            Expect::error("allocateMemory"),
-            WHY_CALLBACKS,
-        ),
-        (
-            "freeMemory = NULL",
-            with(&|a| a.callbacks = Some(no(true, false, true))),
-            Expect::error("freeMemory"),
-            WHY_CALLBACKS,
-        ),
-        (
-            "allocateMemory = freeMemory = NULL",
-            with(&|a| a.callbacks = Some(no(false, false, true))),
-            Expect::error("Memory"),
-            WHY_CALLBACKS,
-        ),
-        (
-            "logger = NULL",
-            with(&|a| a.callbacks = Some(no(true, true, false))),
-            Expect::silent_error(),
-            WHY_LOGGER,
-        ),
-        (
-            "functions = NULL",
-            with(&|a| a.callbacks = None),
-            Expect::silent_error(),
-            WHY_LOGGER,
-        ),
-        (
-            "instanceName = NULL",
-            with(&|a| a.name = None),
-            Expect::error("instanceName"),
-            WHY_ARGS,
-        ),
-        (
-            "instanceName empty",
-            with(&|a| a.name = Some("")),
-            Expect::error("instanceName"),
-            WHY_ARGS,
-        ),
-        (
-            "fmuGUID = NULL",
-            with(&|a| a.guid = None),
-            Expect::error("GUID"),
-            WHY_ARGS,
-        ),
-        (
-            "fmuGUID of another model",
-            with(&|a| a.guid = Some("{00000000-0000-0000-0000-000000000000}".into())),
-            Expect::error("GUID"),
-            WHY_ARGS,
-        ),
-        (
-            "fmuType = 2",
-            with(&|a| a.fmu_type = 2),
-            Expect::error("fmuType"),
-            WHY_ARGS,
-        ),
-        (
-            "fmuType = -1",
-            with(&|a| a.fmu_type = -1),
-            Expect::error("fmuType"),
-            WHY_ARGS,
-        ),
-    ];
-    table
+pub fn cases<I: Standard>(l: &Loaded, m: usize) -> Vec<Case> {
+    (I::tables().instantiations)(l, m)
         .into_iter()
-        .map(|(name, args, expect, why)| Case {
+        .map(|a| Case {
+            standard: I::STANDARD,
             class: "instantiate",
             model: m,
-            interface: None,
-            name: name.to_string(),
-            expect,
-            why,
-            probe: Box::new(move |l| attempt(l, m, &args)),
+            interface: a.interface,
+            name: a.name,
+            expect: a.expect,
+            why: a.why,
+            probe: a.probe,
         })
         .collect()
 }

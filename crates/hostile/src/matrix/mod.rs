@@ -1,23 +1,26 @@
-//! The bad-input matrix: every case names the call it makes, the status and log
-//! text it expects and why (the standard's rule or the project's documented
-//! choice). Cases run in forked children, grouped per model; a crash fails only
-//! the case that caused it.
+//! The bad-input matrix, one for both standards: every case names the call it
+//! makes, the status and log text it expects and why (the standard's rule or the
+//! project's documented choice). Each case class is written once, generic over
+//! the seam `seam::Standard`, and run for FMI 2.0 (`fmi2`: its call tables and
+//! reasons) and FMI 3.0 (`fmi3`); classes only one standard has are listed in its
+//! tables. Cases run in forked children, grouped per model; a crash fails only the
+//! case that caused it.
 
-pub mod bad_states;
-pub mod calls;
+pub mod fmi2;
+pub mod fmi3;
 pub mod handles;
 pub mod instantiate;
 pub mod orders;
 pub mod pointers;
 pub mod pose;
-pub mod references;
+pub mod seam;
 pub mod serialized;
-pub mod standard;
 pub mod states;
 pub mod values;
 
 use crate::Loaded;
 use crate::binary::{DISCARD, ERROR, OK, Status, status_name};
+use crate::fmu::Standard;
 use crate::host::{Probed, take, unlogged};
 use crate::isolate;
 use crate::standard_interface::StandardInterface;
@@ -105,6 +108,7 @@ impl Observed {
 pub type Probe = Box<dyn Fn(&Loaded) -> Observed>;
 
 pub struct Case {
+    pub standard: Standard,
     pub class: &'static str,
     pub model: usize,
     /// The interface's short name ("ME", "CS", "CS+events"), None for instantiation.
@@ -207,12 +211,22 @@ fn shorten(log: &str) -> String {
     }
 }
 
+impl Case {
+    /// The class as the report names it: "fmi3 " before the FMI 3.0 classes.
+    pub fn label(&self) -> String {
+        match self.standard {
+            Standard::Fmi2 => self.class.to_string(),
+            Standard::Fmi3 => format!("fmi3 {}", self.class),
+        }
+    }
+}
+
 /// "class / model / interface / name", the key of the known-failure list.
 pub fn full_name(case: &Case) -> String {
     let interface = case.interface.unwrap_or("--");
     format!(
         "{} / {} / {} / {}",
-        case.class,
+        case.label(),
         crate::fmu::models()[case.model],
         interface,
         case.name
@@ -231,37 +245,36 @@ pub fn run(loaded: &Loaded, cases: &[Case]) -> Vec<Verdict> {
 
 /// Every case of the matrix, FMI 2.0 then FMI 3.0.
 pub fn all_cases(loaded: &Loaded) -> Vec<Case> {
-    let mut cases = fmi2_cases(loaded);
-    cases.extend(crate::fmi3::matrix::all_cases(loaded));
+    let mut cases = cases_of::<crate::host::Interface>(loaded);
+    cases.extend(cases_of::<crate::fmi3::host::Interface3>(loaded));
     cases
 }
 
 /// A builder of the cases of one class for model `m`.
 pub type Cases = fn(&Loaded, usize) -> Vec<Case>;
 
-/// The cases of every builder of `classes` for each of the models, model by model.
-pub fn per_model(loaded: &Loaded, classes: &[Cases]) -> Vec<Case> {
-    (0..crate::fmu::models().len())
-        .flat_map(|m| classes.iter().flat_map(move |class| class(loaded, m)))
-        .collect()
+/// The classes of the matrix, each written once for both standards.
+fn classes<I: seam::Standard>() -> Vec<Cases> {
+    vec![
+        pointers::cases::<I>,
+        values::cases::<I>,
+        serialized::cases::<I>,
+        orders::cases::<I>,
+        handles::cases::<I>,
+        states::cases::<I>,
+        pose::cases::<I>,
+        instantiate::cases::<I>,
+    ]
 }
 
-/// The FMI 2.0 cases.
-pub fn fmi2_cases(loaded: &Loaded) -> Vec<Case> {
-    per_model(
-        loaded,
-        &[
-            pointers::cases,
-            references::cases,
-            values::cases,
-            serialized::cases,
-            orders::cases,
-            handles::cases,
-            states::cases,
-            pose::cases,
-            instantiate::cases,
-        ],
-    )
+/// The cases of one standard: every class, then the standard's own classes,
+/// model by model.
+pub fn cases_of<I: seam::Standard>(loaded: &Loaded) -> Vec<Case> {
+    let mut all = classes::<I>();
+    all.extend_from_slice(I::tables().own_classes);
+    (0..crate::fmu::models().len())
+        .flat_map(|m| all.iter().flat_map(move |class| class(loaded, m)))
+        .collect()
 }
 
 /// Like `on_instance`, with well-formed arguments that include a valid FMU state
@@ -284,10 +297,10 @@ pub fn with_args<I: StandardInterface>(
 /// Per class: cases, passed, failed, known failures; then every failure with its
 /// expectation's reason. Returns the text and whether the suite failed.
 pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
-    let mut classes: Vec<&str> = Vec::new();
+    let mut classes: Vec<String> = Vec::new();
     for c in cases {
-        if !classes.contains(&c.class) {
-            classes.push(c.class);
+        if !classes.contains(&c.label()) {
+            classes.push(c.label());
         }
     }
     let mut text = format!(
@@ -303,7 +316,11 @@ pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
     let mut failed = false;
     for class in classes {
         let (mut n, mut pass, mut fail, mut known) = (0, 0, 0, 0);
-        for (c, v) in cases.iter().zip(verdicts).filter(|(c, _)| c.class == class) {
+        for (c, v) in cases
+            .iter()
+            .zip(verdicts)
+            .filter(|(c, _)| c.label() == class)
+        {
             n += 1;
             match v {
                 Verdict::Pass => pass += 1,
@@ -333,7 +350,7 @@ pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
             .map(|m| {
                 let count = cases
                     .iter()
-                    .filter(|c| c.class == class && c.model == m)
+                    .filter(|c| c.label() == class && c.model == m)
                     .count();
                 count.to_string()
             })

@@ -4,11 +4,12 @@
 //! project refuses anything else with fmi2Error and a log line naming the
 //! reference or the variable.
 
-use super::{Case, Expect, on_instance};
 use crate::Loaded;
 use crate::binary::{Status, Vr};
 use crate::description::{Description, VarType};
+use crate::fmu::Standard;
 use crate::host::{Instance, Interface, State};
+use crate::matrix::{Case, Expect, on_instance};
 
 const WHY_UNKNOWN: &str =
     "value reference not in the modelDescription (FMI 2.0 2.1.7): fmi2Error naming it";
@@ -106,6 +107,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             for (function, own, call) in functions {
                 for (label, vr, log, why) in probes(d, own) {
                     cases.push(Case {
+                        standard: Standard::Fmi2,
                         class: "value reference",
                         model: m,
                         interface: Some(interface.short()),
@@ -126,6 +128,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
         {
             let vr = output.vr;
             cases.push(Case {
+                standard: Standard::Fmi2,
                 class: "value reference",
                 model: m,
                 interface: Some(interface.short()),
@@ -142,6 +145,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
         if d.provides_directional_derivative {
             let bad = unused(d);
             cases.push(Case {
+                standard: Standard::Fmi2,
                 class: "value reference",
                 model: m,
                 interface: Some(interface.short()),

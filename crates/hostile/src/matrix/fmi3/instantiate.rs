@@ -1,18 +1,19 @@
+//! The FMI 3.0 rows of the instantiation class (`matrix::instantiate`):
 //! fmi3InstantiateModelExchange, fmi3InstantiateCoSimulation and
-//! fmi3InstantiateScheduledExecution with arguments the standard forbids (FMI 3.0
-//! section 2.3.1): null or empty instance names, a null or foreign instantiation
+//! fmi3InstantiateScheduledExecution with arguments FMI 3.0 section 2.3.1 forbids: null or empty instance names, a null or foreign instantiation
 //! token, and an interface the FMU does not provide. The FMU returns NULL and its
 //! logger says why. Without a logger (logMessage = NULL, accepted: the FMU then
 //! cannot report) the instance must still refuse an illegal call without
 //! crashing. The observed status is OK for an instance (or the status of that
 //! illegal call) and Error for NULL.
 
-use super::{Case, Observed};
 use crate::Loaded;
 use crate::binary::{ERROR, OK};
 use crate::fmi3::host::{Interface3, logger};
 use crate::host::{Log, c_string, take};
 use crate::matrix::Expect;
+use crate::matrix::Observed;
+use crate::matrix::seam::Attempt;
 use std::ffi::c_void;
 use std::sync::Mutex;
 
@@ -92,7 +93,7 @@ fn attempt(l: &Loaded, m: usize, a: &Args) -> Observed {
     Observed::of(status, take(&log))
 }
 
-pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
+pub fn attempts(l: &Loaded, m: usize) -> Vec<Attempt> {
     let token = l.fmus3[m].description.guid.clone();
     let mut cases = Vec::new();
     let interfaces = [
@@ -151,9 +152,7 @@ pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
         ];
         let short = interface.map_or("--", Interface3::short);
         for (name, args, expect, why) in table {
-            cases.push(Case {
-                class: "fmi3 instantiate",
-                model: m,
+            cases.push(Attempt {
                 interface: Some(short),
                 name: name.to_string(),
                 expect,
@@ -168,9 +167,7 @@ pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
         token: Some(token),
         logger: true,
     };
-    cases.push(Case {
-        class: "fmi3 instantiate",
-        model: m,
+    cases.push(Attempt {
         interface: None,
         name: "fmi3InstantiateScheduledExecution".into(),
         expect: Expect::error("Co-Simulation only"),

@@ -8,15 +8,15 @@
 //! variable or the counts, and the instance recovers with fmi3Reset.
 
 use super::calls::Target;
-use super::{Case, on_instance};
 use crate::Loaded;
 use crate::binary::Status;
 use crate::description::{Description, VarType};
 use crate::fmi3::binary::Vr;
 use crate::fmi3::host::{Instance, Interface3, State3};
+use crate::fmu::Standard;
 use crate::host::unlogged;
-use crate::matrix::Expect;
-use crate::matrix::references::{unknown_references, unused};
+use crate::matrix::fmi2::references::{unknown_references, unused};
+use crate::matrix::{Case, Expect, on_instance};
 
 const WHY_UNKNOWN: &str =
     "value reference not in the modelDescription (FMI 3.0 2.2.6): fmi3Error naming it";
@@ -114,7 +114,8 @@ fn reference_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case
             }
             for (label, vr, n, log, why) in probes {
                 cases.push(Case {
-                    class: "fmi3 value reference",
+                    standard: Standard::Fmi3,
+                    class: "value reference",
                     model: m,
                     interface: Some(interface.short()),
                     name: format!("{function}({label})"),
@@ -134,7 +135,8 @@ fn reference_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case
     {
         let (vr, n) = (output.vr, output.size);
         cases.push(Case {
-            class: "fmi3 value reference",
+            standard: Standard::Fmi3,
+            class: "value reference",
             model: m,
             interface: Some(interface.short()),
             name: format!("fmi3SetFloat64(output {})", output.name),
@@ -190,7 +192,8 @@ fn count_cases(d: &Description, m: usize) -> Vec<Case> {
         wrong.retain(|&n| n != right);
         for n in wrong {
             cases.push(Case {
-                class: "fmi3 element count",
+                standard: Standard::Fmi3,
+                class: "element count",
                 model: m,
                 interface: Some(Interface3::ModelExchange.short()),
                 name: format!("{function}(n = {n}, the model has {right})"),
@@ -278,7 +281,8 @@ fn derivative_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
         for (n_seed, n_out) in wrong {
             let p = partial.clone();
             cases.push(Case {
-                class: "fmi3 element count",
+                standard: Standard::Fmi3,
+                class: "element count",
                 model: m,
                 interface: Some(interface.short()),
                 name: format!(
@@ -296,7 +300,8 @@ fn derivative_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
         let bad = unused(d);
         let p = partial.clone();
         cases.push(Case {
-            class: "fmi3 value reference",
+            standard: Standard::Fmi3,
+            class: "value reference",
             model: m,
             interface: Some(interface.short()),
             name: format!("{function}(unknown vr {bad})"),
@@ -323,7 +328,8 @@ fn serialized_size_cases(m: usize, interface: Interface3) -> Vec<Case> {
     [-1isize, 1]
         .into_iter()
         .map(|delta| Case {
-            class: "fmi3 element count",
+            standard: Standard::Fmi3,
+            class: "element count",
             model: m,
             interface: Some(interface.short()),
             name: format!("fmi3SerializeFMUState(size = serialized size {delta:+})"),
@@ -356,7 +362,8 @@ fn dependency_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
     [1isize, -1, isize::MAX / 32]
         .into_iter()
         .map(|delta| Case {
-            class: "fmi3 element count",
+            standard: Standard::Fmi3,
+            class: "element count",
             model: m,
             interface: Some(interface.short()),
             name: format!(
@@ -401,7 +408,8 @@ fn order_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case> {
     [0, -1, i32::MAX]
         .into_iter()
         .map(|order| Case {
-            class: "fmi3 value reference",
+            standard: Standard::Fmi3,
+            class: "value reference",
             model: m,
             interface: Some(interface.short()),
             name: format!("fmi3GetOutputDerivatives({name}, order {order})"),
