@@ -13,6 +13,7 @@ pub mod instantiate;
 pub mod orders;
 pub mod pointers;
 pub mod pose;
+pub mod references;
 pub mod seam;
 pub mod serialized;
 pub mod states;
@@ -257,6 +258,7 @@ pub type Cases = fn(&Loaded, usize) -> Vec<Case>;
 fn classes<I: seam::Standard>() -> Vec<Cases> {
     vec![
         pointers::cases::<I>,
+        references::cases::<I>,
         values::cases::<I>,
         serialized::cases::<I>,
         orders::cases::<I>,

@@ -3,10 +3,10 @@
 //! table of the standard's calls, rows and reasons (`Tables`). The classes in
 //! `matrix/*.rs` are written once on it; `matrix/fmi2` and `matrix/fmi3` fill it.
 
-use super::{Cases, Expect, Probe};
+use super::{Case, Cases, Expect, Probe};
 use crate::Loaded;
 use crate::binary::Status;
-use crate::description::{Description, Variable};
+use crate::description::{Description, VarType, Variable};
 use crate::fmu;
 use crate::standard_interface::{Call, Invoke, StandardInterface};
 use std::ffi::c_void;
@@ -24,6 +24,16 @@ pub type Evaluate<I> = fn(&<I as StandardInterface>::Instance<'_>) -> Status;
 /// loaded binary, and checks that instance afterwards (Err: it no longer answers).
 pub type OtherStandard<I> =
     fn(&Loaded, usize, I, &mut dyn FnMut(*mut c_void) -> Status) -> Result<Status, String>;
+
+/// A typed getter or setter: its name, its type (None: a type the models lack)
+/// and the call (instance, value reference, count of values).
+pub type Access<I> = (
+    &'static str,
+    Option<VarType>,
+    fn(&<I as StandardInterface>::Instance<'_>, u32, usize) -> Status,
+);
+/// Cases of a class only one standard has for model `m` and an interface.
+pub type Extras<I> = fn(&Description, usize, I) -> Vec<Case>;
 
 /// Instance handles the FMU never issued (or no longer owns).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,10 +72,10 @@ pub struct ValueNames {
     /// The setter of Real values ("fmi2SetReal") and the getter.
     pub setter: &'static str,
     pub getter: &'static str,
-    /// After the variable's name in a case name: "" or "[0]" (first element).
+    /// After the variable's name in a case name: "" or "\[0\]" (first element).
     pub element: &'static str,
     /// After the variable's name in the expected log: "\"" (the whole name) or ""
-    /// (FMI 3.0 logs an element: "theta0[1]").
+    /// (FMI 3.0 logs an element: "theta0\[1\]").
     pub quote_end: &'static str,
     /// The names of Real, Integer and Boolean in the standard.
     pub types: [&'static str; 3],
@@ -93,8 +103,19 @@ pub struct Attempt {
     pub probe: Probe,
 }
 
+/// Why the value-reference class expects an error.
+pub struct ReferenceReasons {
+    pub unknown: &'static str,
+    pub wrong_type: &'static str,
+    /// A function of a type the models lack: every reference is refused.
+    pub lacking: &'static str,
+    pub not_settable: &'static str,
+    pub count: &'static str,
+}
+
 /// Why each class expects what it expects, in the words of the standard.
 pub struct Reasons {
+    pub references: ReferenceReasons,
     pub illegal_order: &'static str,
     pub lacking: &'static str,
     pub null_pointer: &'static str,
@@ -117,13 +138,20 @@ pub struct Tables<I: StandardInterface> {
     /// Functions of capabilities the models lack: refused in every state.
     pub lacking: fn() -> Vec<(&'static str, Invoke<I>)>,
     pub null_pointers: fn() -> Vec<Row<I>>,
+    /// The typed getters and setters, Real first.
+    pub getters: fn() -> Vec<Access<I>>,
+    pub setters: fn() -> Vec<Access<I>>,
+    /// Whether they take a count of values (FMI 3.0 nValues): wrong counts probed.
+    pub counted_values: bool,
+    /// Value-reference and count cases of functions only this standard has.
+    pub reference_extras: Extras<I>,
     /// The functions that take an FMU state.
     pub state_uses: fn() -> Vec<(&'static str, Use<I>)>,
     /// The seed of the random "FMU state" block.
     pub state_seed: u64,
     /// The calls that evaluate the model (Model Exchange).
     pub evaluations: fn() -> Vec<(&'static str, Evaluate<I>)>,
-    /// Whether the model's continuous state holds theta[2] at element 1.
+    /// Whether the model's continuous state holds `theta[2]` at element 1.
     pub unassemblable: fn(&Description) -> bool,
     /// The bad handles, and fmiXFreeInstance's name.
     pub handles: &'static [Handle],

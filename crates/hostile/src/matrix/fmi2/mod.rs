@@ -13,7 +13,7 @@ use crate::binary::{Binary, Component, ERROR, OK, Status};
 use crate::description::{Description, Variable};
 use crate::fmu;
 use crate::host::{Instance, Interface, State};
-use crate::matrix::seam::{Handle, Reasons, Standard, Tables, Value, ValueNames};
+use crate::matrix::seam::{Handle, Reasons, ReferenceReasons, Standard, Tables, Value, ValueNames};
 use crate::standard_interface::{
     FreeInstance, GetArray, SetStates, SetTime, StandardInterface, Transition,
 };
@@ -110,6 +110,13 @@ impl StandardInterface for Interface {
 }
 
 const REASONS: Reasons = Reasons {
+    references: ReferenceReasons {
+        unknown: "value reference not in the modelDescription (FMI 2.0 2.1.7): fmi2Error naming it",
+        wrong_type: "value reference of another type than the function's (FMI 2.0 2.1.7): fmi2Error naming the variable",
+        lacking: "the models have no String variables: every reference is refused",
+        not_settable: "calculated output set with fmi2SetReal (FMI 2.0 2.2.7 allows setting only parameters, inputs and initial=exact/approx): fmi2Error naming it",
+        count: "FMI 2.0 value functions take one value per reference: no count to probe",
+    },
     illegal_order: "call not allowed in this state by the FMI 2.0 state tables (3.2.3 ME, 4.2.4 CS): fmi2Error and a log line",
     lacking: "function of a capability the model lacks: fmi2Error and a log line naming the function",
     null_pointer: "null argument with a non-zero length: undefined in FMI 2.0; refused with fmi2Error and a log line (project choice)",
@@ -133,6 +140,10 @@ impl Standard for Interface {
             calls: calls::calls,
             lacking: Vec::new,
             null_pointers: pointers::table,
+            getters: references::getters,
+            setters: references::setters,
+            counted_values: false,
+            reference_extras: references::extras,
             state_uses: uses::state_uses,
             state_seed: 0xbad,
             evaluations: uses::evaluations,
@@ -155,7 +166,7 @@ impl Standard for Interface {
                 types: ["Real", "Integer", "Boolean"],
                 booleans: [2, -1],
             },
-            own_classes: &[references::cases],
+            own_classes: &[],
             reasons: REASONS,
         }
     }

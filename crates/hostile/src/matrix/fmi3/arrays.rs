@@ -1,155 +1,70 @@
-//! Value references and element counts: references the model does not have, of
-//! the wrong type, of variables that cannot be set, and nValues (or nx, nz, nSeed,
-//! nSensitivity, the serialized size) that do not match the arrays: one element
-//! too few, one too many, none, and a huge count with a real array of the right
-//! size (the FMU must compare counts before touching the array). FMI 3.0 (section
-//! 2.2.6.2) defines nValues as the total of the variables' elements; the project
-//! refuses anything else with fmi3Error and a log line naming the reference, the
-//! variable or the counts, and the instance recovers with fmi3Reset.
+//! The FMI 3.0 rows of the value-reference class (`matrix::references`): the
+//! typed getters and setters with nValues, and the cases of functions only FMI 3.0
+//! has (`extras`): nSeed and nSensitivity of the directional and adjoint
+//! derivatives and an unknown reference given to them, the serialized size,
+//! nDependencies, and output-derivative orders. Also the class only FMI 3.0 has,
+//! "element count" of the Model Exchange arrays (nx, nz; `cases`). FMI 3.0
+//! (section 2.2.6.2) defines nValues as the total of the variables' elements; the
+//! project refuses anything else with fmi3Error and a log line naming the
+//! reference, the variable or the counts, and the instance recovers with
+//! fmi3Reset.
 
 use super::calls::Target;
 use crate::Loaded;
 use crate::binary::Status;
 use crate::description::{Description, VarType};
-use crate::fmi3::binary::Vr;
 use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::fmu::Standard;
 use crate::host::unlogged;
-use crate::matrix::fmi2::references::{unknown_references, unused};
+use crate::matrix::references::{unused, wrong_counts};
+use crate::matrix::seam::Access;
 use crate::matrix::{Case, Expect, on_instance};
 
 const WHY_UNKNOWN: &str =
     "value reference not in the modelDescription (FMI 3.0 2.2.6): fmi3Error naming it";
-const WHY_TYPE: &str = "value reference of another type than the function's (FMI 3.0 2.2.6): fmi3Error naming the variable";
-const WHY_NOT_SETTABLE: &str = "calculated output set with fmi3SetFloat64 (FMI 3.0 2.2.6 allows setting only parameters, inputs and initial=exact/approx): fmi3Error naming it";
 const WHY_ORDER: &str = "FMI 3.0 4.2.1 fmi3GetOutputDerivatives: order from 1 to maxOutputDerivativeOrder; 0, -1 and 2^31-1 are refused with fmi3Error naming the order";
-const WHY_COUNT: &str = "count that does not match the arrays (FMI 3.0 2.2.6.2 nValues = total elements; 3.2 nx, nz; 2.2.11 nSeed, nSensitivity; 2.2.9 serialized size): fmi3Error naming the counts";
+pub const WHY_COUNT: &str = "count that does not match the arrays (FMI 3.0 2.2.6.2 nValues = total elements; 3.2 nx, nz; 2.2.11 nSeed, nSensitivity; 2.2.9 serialized size): fmi3Error naming the counts";
 
-/// A typed accessor: (name, type, call(instance, vr, nValues)).
-type Access = (&'static str, VarType, fn(&Instance, Vr, usize) -> Status);
-
-fn getters() -> [Access; 3] {
-    [
-        ("fmi3GetFloat64", VarType::Real, |i, vr, n| unsafe {
+pub fn getters() -> Vec<Access<Interface3>> {
+    vec![
+        ("fmi3GetFloat64", Some(VarType::Real), |i, vr, n| unsafe {
             let mut x = vec![0.0; n.min(64)];
             (i.binary.get_float64)(i.c, &vr, 1, x.as_mut_ptr(), n)
         }),
-        ("fmi3GetInt32", VarType::Integer, |i, vr, n| unsafe {
+        ("fmi3GetInt32", Some(VarType::Integer), |i, vr, n| unsafe {
             let mut x = vec![0; n.min(64)];
             (i.binary.get_int32)(i.c, &vr, 1, x.as_mut_ptr(), n)
         }),
-        ("fmi3GetBoolean", VarType::Boolean, |i, vr, n| unsafe {
-            let mut x = vec![0; n.min(64)];
-            (i.binary.get_boolean)(i.c, &vr, 1, x.as_mut_ptr(), n)
-        }),
+        (
+            "fmi3GetBoolean",
+            Some(VarType::Boolean),
+            |i, vr, n| unsafe {
+                let mut x = vec![0; n.min(64)];
+                (i.binary.get_boolean)(i.c, &vr, 1, x.as_mut_ptr(), n)
+            },
+        ),
     ]
 }
 
-fn setters() -> [Access; 3] {
-    [
-        ("fmi3SetFloat64", VarType::Real, |i, vr, n| unsafe {
+pub fn setters() -> Vec<Access<Interface3>> {
+    vec![
+        ("fmi3SetFloat64", Some(VarType::Real), |i, vr, n| unsafe {
             let x = vec![0.0; n.min(64)];
             (i.binary.set_float64)(i.c, &vr, 1, x.as_ptr(), n)
         }),
-        ("fmi3SetInt32", VarType::Integer, |i, vr, n| unsafe {
+        ("fmi3SetInt32", Some(VarType::Integer), |i, vr, n| unsafe {
             let x = vec![1; n.min(64)];
             (i.binary.set_int32)(i.c, &vr, 1, x.as_ptr(), n)
         }),
-        ("fmi3SetBoolean", VarType::Boolean, |i, vr, n| unsafe {
-            let x = vec![0; n.min(64)];
-            (i.binary.set_boolean)(i.c, &vr, 1, x.as_ptr(), n)
-        }),
+        (
+            "fmi3SetBoolean",
+            Some(VarType::Boolean),
+            |i, vr, n| unsafe {
+                let x = vec![0; n.min(64)];
+                (i.binary.set_boolean)(i.c, &vr, 1, x.as_ptr(), n)
+            },
+        ),
     ]
-}
-
-/// Counts that do not match `size` elements: one less, one more, none, huge. A huge
-/// count is given with an array of at most 64 elements (the FMU must not use it).
-fn wrong_counts(size: usize) -> Vec<usize> {
-    let mut n = vec![size + 1, 0, usize::MAX / 16];
-    if size > 1 {
-        n.insert(0, size - 1);
-    }
-    n
-}
-
-fn reference_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case> {
-    let mut cases = Vec::new();
-    let groups = [
-        (getters(), State3::InitializationMode, false),
-        (setters(), State3::Instantiated, true),
-    ];
-    for (functions, state, settable) in groups {
-        for (function, own, call) in functions {
-            let mut probes: Vec<_> = unknown_references(d)
-                .into_iter()
-                .map(|(label, vr, log)| (label, vr, 1, log, WHY_UNKNOWN))
-                .collect();
-            for t in [VarType::Real, VarType::Integer, VarType::Boolean] {
-                if let Some(v) = d
-                    .of_type(t)
-                    .find(|v| t != own && v.causality != "independent")
-                {
-                    probes.push((
-                        format!("{t:?} variable {}", v.name),
-                        v.vr,
-                        v.size,
-                        v.name.clone(),
-                        WHY_TYPE,
-                    ));
-                }
-            }
-            let own_var = d
-                .of_type(own)
-                .find(|v| v.causality != "independent" && (!settable || v.is_settable()));
-            if let Some(v) = own_var {
-                for n in wrong_counts(v.size) {
-                    probes.push((
-                        format!("{} with nValues = {n}", v.name),
-                        v.vr,
-                        n,
-                        "nValues".into(),
-                        WHY_COUNT,
-                    ));
-                }
-            }
-            for (label, vr, n, log, why) in probes {
-                cases.push(Case {
-                    standard: Standard::Fmi3,
-                    class: "value reference",
-                    model: m,
-                    interface: Some(interface.short()),
-                    name: format!("{function}({label})"),
-                    expect: Expect::error(&log),
-                    why,
-                    probe: Box::new(move |l| {
-                        on_instance(l, m, interface, state, |i| call(i, vr, n))
-                    }),
-                });
-            }
-        }
-    }
-    if let Some(output) = d
-        .variables
-        .iter()
-        .find(|v| v.causality == "output" && v.var_type == VarType::Real)
-    {
-        let (vr, n) = (output.vr, output.size);
-        cases.push(Case {
-            standard: Standard::Fmi3,
-            class: "value reference",
-            model: m,
-            interface: Some(interface.short()),
-            name: format!("fmi3SetFloat64(output {})", output.name),
-            expect: Expect::error(&output.name),
-            why: WHY_NOT_SETTABLE,
-            probe: Box::new(move |l| {
-                on_instance(l, m, interface, State3::Instantiated, |i| {
-                    (setters()[0].2)(i, vr, n)
-                })
-            }),
-        });
-    }
-    cases
 }
 
 /// (function, state, call(instance, count)) for the counted arrays of ME.
@@ -425,20 +340,23 @@ fn order_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case> {
         .collect()
 }
 
-pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
-    let d = &loaded.fmus3[m].description;
-    let mut cases = Vec::new();
-    for interface in Interface3::ALL {
-        cases.extend(reference_cases(d, m, interface));
-        cases.extend(derivative_cases(d, m, interface));
-        cases.extend(serialized_size_cases(m, interface));
-        cases.extend(dependency_cases(d, m, interface));
-        if !interface.is_me() {
-            cases.extend(order_cases(d, m, interface));
-        }
-    }
-    if d.number_of_states > 0 {
-        cases.extend(count_cases(d, m));
+/// The cases of the functions only FMI 3.0 has, for one interface.
+pub fn extras(d: &Description, m: usize, interface: Interface3) -> Vec<Case> {
+    let mut cases = derivative_cases(d, m, interface);
+    cases.extend(serialized_size_cases(m, interface));
+    cases.extend(dependency_cases(d, m, interface));
+    if !interface.is_me() {
+        cases.extend(order_cases(d, m, interface));
     }
     cases
+}
+
+/// The class only FMI 3.0 has: wrong nx and nz given to the Model Exchange arrays.
+pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
+    let d = &loaded.fmus3[m].description;
+    if d.number_of_states > 0 {
+        count_cases(d, m)
+    } else {
+        Vec::new()
+    }
 }

@@ -22,7 +22,7 @@ use crate::description::{Description, Variable};
 use crate::fmi3::binary::{Binary3, Instance3};
 use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::fmu;
-use crate::matrix::seam::{Handle, Reasons, Standard, Tables, Value, ValueNames};
+use crate::matrix::seam::{Handle, Reasons, ReferenceReasons, Standard, Tables, Value, ValueNames};
 use crate::standard_interface::{
     FreeInstance, GetArray, SetStates, SetTime, StandardInterface, Transition,
 };
@@ -111,6 +111,13 @@ impl StandardInterface for Interface3 {
 }
 
 const REASONS: Reasons = Reasons {
+    references: ReferenceReasons {
+        unknown: "value reference not in the modelDescription (FMI 3.0 2.2.6): fmi3Error naming it",
+        wrong_type: "value reference of another type than the function's (FMI 3.0 2.2.6): fmi3Error naming the variable",
+        lacking: "a type the models lack: every reference is refused",
+        not_settable: "calculated output set with fmi3SetFloat64 (FMI 3.0 2.2.6 allows setting only parameters, inputs and initial=exact/approx): fmi3Error naming it",
+        count: arrays::WHY_COUNT,
+    },
     illegal_order: "call not allowed in this state by the FMI 3.0 state machines (3.3 ME, 4.3 CS): fmi3Error and a log line; fmi3Reset recovers (2.3.1)",
     lacking: "function of a capability the model lacks (variable type, clocks, structural parameters, Scheduled Execution): fmi3Error and a log line naming the function in every state",
     null_pointer: "null argument with a non-zero length: undefined in FMI 3.0; refused with fmi3Error and a log line (project choice); fmi3Reset recovers",
@@ -134,6 +141,10 @@ impl Standard for Interface3 {
             calls: calls::calls,
             lacking: calls::unsupported,
             null_pointers: pointers::table,
+            getters: arrays::getters,
+            setters: arrays::setters,
+            counted_values: true,
+            reference_extras: arrays::extras,
             state_uses: uses::state_uses,
             state_seed: 0xbad3,
             evaluations: uses::evaluations,
