@@ -3,7 +3,8 @@
 //! `fmi3::host::Interface3`): its states, a live instance of a loaded model, the
 //! legal calls that reach a state, the check after a refusal and the well-formed
 //! arguments of its call table. The generic probes (`matrix::on_instance`,
-//! `matrix::with_args`, `matrix::orders::illegal_orders`) are written once on it.
+//! `matrix::with_args`, `sequence_run`) are written once on it; the matrix's
+//! classes on its extension `matrix::seam::Standard`.
 
 use crate::Loaded;
 use crate::binary::Status;
