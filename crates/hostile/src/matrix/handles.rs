@@ -160,24 +160,23 @@ pub fn cases<I: Standard>(_: &Loaded, m: usize) -> Vec<Case> {
     for &interface in I::INTERFACES {
         for &handle in tables.handles {
             for &(name, invoke) in &all {
-                cases.push(Case {
-                    standard: I::STANDARD,
-                    class: "bad instance handle",
-                    model: m,
-                    interface: Some(interface.short()),
-                    name: format!("{name}({handle:?})"),
-                    expect: if invoke.is_some() {
-                        Expect::silent_error()
-                    } else {
-                        Expect::ok()
-                    },
-                    why: if handle == Handle::Null {
-                        tables.reasons.handle_null
-                    } else {
-                        tables.reasons.handle_foreign
-                    },
-                    probe: Box::new(move |l| probe(l, m, interface, handle, invoke)),
-                });
+                cases.push(Case::new(
+                    ("bad instance handle", m, interface),
+                    format!("{name}({handle:?})"),
+                    (
+                        if invoke.is_some() {
+                            Expect::silent_error()
+                        } else {
+                            Expect::ok()
+                        },
+                        if handle == Handle::Null {
+                            tables.reasons.handle_null
+                        } else {
+                            tables.reasons.handle_foreign
+                        },
+                    ),
+                    move |l| probe(l, m, interface, handle, invoke),
+                ));
             }
         }
     }

@@ -213,6 +213,25 @@ fn shorten(log: &str) -> String {
 }
 
 impl Case {
+    /// A case of class `class` of standard `I` on model `m` and `interface`:
+    /// its name, what it expects and why, and its probe.
+    pub fn new<I: seam::Standard>(
+        (class, model, interface): (&'static str, usize, I),
+        name: String,
+        (expect, why): (Expect, &'static str),
+        probe: impl Fn(&Loaded) -> Observed + 'static,
+    ) -> Case {
+        Case {
+            standard: I::STANDARD,
+            class,
+            model,
+            interface: Some(interface.short()),
+            name,
+            expect,
+            why,
+            probe: Box::new(probe),
+        }
+    }
     /// The class as the report names it: "fmi3 " before the FMI 3.0 classes.
     pub fn label(&self) -> String {
         match self.standard {

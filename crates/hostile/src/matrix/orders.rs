@@ -6,7 +6,7 @@
 //! every state: an error with a log line naming the function.
 
 use super::seam::Standard;
-use super::{Case, Expect, Probe, with_args};
+use super::{Case, Expect, Observed, with_args};
 use crate::Loaded;
 use crate::standard_interface::{Call, Invoke, StandardInterface};
 
@@ -33,14 +33,14 @@ pub fn invoke_probe<I: StandardInterface>(
     interface: I,
     state: I::State,
     invoke: Invoke<I>,
-) -> Probe {
-    Box::new(move |l| {
+) -> impl Fn(&Loaded) -> Observed + 'static {
+    move |l| {
         with_args(l, m, interface, state, |inst, a| {
             let (binary, handle) = I::raw(inst);
             // SAFETY: a live instance of this binary and well-formed arguments.
             unsafe { invoke(binary, handle, a) }
         })
-    })
+    }
 }
 
 /// One case per call of `calls` that the standard does not allow in `state`:
@@ -58,15 +58,13 @@ where
     calls
         .into_iter()
         .filter(|call| !(call.legal)(interface, state))
-        .map(|call| Case {
-            standard: I::STANDARD,
-            class,
-            model: m,
-            interface: Some(interface.short()),
-            name: format!("{} in {state:?}", call.name),
-            expect: Expect::error("illegal call sequence"),
-            why,
-            probe: invoke_probe(m, interface, state, call.invoke),
+        .map(|call| {
+            Case::new(
+                (class, m, interface),
+                format!("{} in {state:?}", call.name),
+                (Expect::error("illegal call sequence"), why),
+                invoke_probe(m, interface, state, call.invoke),
+            )
         })
         .collect()
 }
@@ -83,16 +81,12 @@ pub fn cases<I: Standard>(loaded: &Loaded, m: usize) -> Vec<Case> {
             ("illegal call order", tables.reasons.illegal_order),
         ));
         for (name, invoke) in (tables.lacking)() {
-            cases.push(Case {
-                standard: I::STANDARD,
-                class: "lacking capability",
-                model: m,
-                interface: Some(interface.short()),
-                name: format!("{name} in {state:?}"),
-                expect: Expect::error(name),
-                why: tables.reasons.lacking,
-                probe: invoke_probe(m, interface, state, invoke),
-            });
+            cases.push(Case::new(
+                ("lacking capability", m, interface),
+                format!("{name} in {state:?}"),
+                (Expect::error(name), tables.reasons.lacking),
+                invoke_probe(m, interface, state, invoke),
+            ));
         }
     });
     cases

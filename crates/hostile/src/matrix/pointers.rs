@@ -25,16 +25,12 @@ fn null_pointer_cases<I: Standard>(
             let Some(state) = applies(d, interface) else {
                 continue;
             };
-            cases.push(Case {
-                standard: I::STANDARD,
-                class,
-                model: m,
-                interface: Some(interface.short()),
-                name: name.to_string(),
-                expect: Expect::error("null"),
-                why,
-                probe: invoke_probe(m, interface, state, invoke),
-            });
+            cases.push(Case::new(
+                (class, m, interface),
+                name.to_string(),
+                (Expect::error("null"), why),
+                invoke_probe(m, interface, state, invoke),
+            ));
         }
     }
     cases

@@ -38,24 +38,22 @@ pub fn cases<I: Standard>(l: &Loaded, m: usize) -> Vec<Case> {
     let (n, why) = (d.number_of_states, tables.reasons.unassemblable);
     (tables.evaluations)()
         .into_iter()
-        .map(|(name, evaluate)| Case {
-            standard: I::STANDARD,
-            class: "unassemblable pose",
-            model: m,
-            interface: Some(I::MODEL_EXCHANGE.short()),
-            name: format!("{name} at theta[2] = {UNASSEMBLABLE_THETA2}"),
-            expect: Expect::discard(),
-            why,
-            probe: Box::new(move |l| {
-                on_instance(l, m, I::MODEL_EXCHANGE, I::CONTINUOUS_TIME_MODE, |i| {
-                    let s = break_pose::<I>(i, n);
-                    if s != OK {
-                        return s;
-                    }
-                    crate::host::take(crate::host::Probed::log(i));
-                    evaluate(i)
-                })
-            }),
+        .map(|(name, evaluate)| {
+            Case::new(
+                ("unassemblable pose", m, I::MODEL_EXCHANGE),
+                format!("{name} at theta[2] = {UNASSEMBLABLE_THETA2}"),
+                (Expect::discard(), why),
+                move |l| {
+                    on_instance(l, m, I::MODEL_EXCHANGE, I::CONTINUOUS_TIME_MODE, |i| {
+                        let s = break_pose::<I>(i, n);
+                        if s != OK {
+                            return s;
+                        }
+                        crate::host::take(crate::host::Probed::log(i));
+                        evaluate(i)
+                    })
+                },
+            )
         })
         .collect()
 }

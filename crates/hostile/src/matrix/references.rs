@@ -98,18 +98,12 @@ fn interface_cases<I: Standard>(d: &Description, m: usize, interface: I) -> Vec<
     for (functions, state, settable) in groups {
         for (function, own, call) in functions {
             for (label, vr, n, log, why) in probes::<I>(d, own, settable) {
-                cases.push(Case {
-                    standard: I::STANDARD,
-                    class: "value reference",
-                    model: m,
-                    interface: Some(interface.short()),
-                    name: format!("{function}({label})"),
-                    expect: Expect::error(&log),
-                    why,
-                    probe: Box::new(move |l| {
-                        on_instance(l, m, interface, state, |i| call(i, vr, n))
-                    }),
-                });
+                cases.push(Case::new(
+                    ("value reference", m, interface),
+                    format!("{function}({label})"),
+                    (Expect::error(&log), why),
+                    move |l| on_instance(l, m, interface, state, |i| call(i, vr, n)),
+                ));
             }
         }
     }
@@ -120,18 +114,15 @@ fn interface_cases<I: Standard>(d: &Description, m: usize, interface: I) -> Vec<
     {
         let (vr, n) = (output.vr, output.size);
         let set: Access<I> = (tables.setters)()[0];
-        cases.push(Case {
-            standard: I::STANDARD,
-            class: "value reference",
-            model: m,
-            interface: Some(interface.short()),
-            name: format!("{}(output {})", set.0, output.name),
-            expect: Expect::error(&output.name),
-            why: tables.reasons.references.not_settable,
-            probe: Box::new(move |l| {
-                on_instance(l, m, interface, I::INSTANTIATED, |i| (set.2)(i, vr, n))
-            }),
-        });
+        cases.push(Case::new(
+            ("value reference", m, interface),
+            format!("{}(output {})", set.0, output.name),
+            (
+                Expect::error(&output.name),
+                tables.reasons.references.not_settable,
+            ),
+            move |l| on_instance(l, m, interface, I::INSTANTIATED, |i| (set.2)(i, vr, n)),
+        ));
     }
     cases
 }

@@ -89,15 +89,12 @@ pub(crate) fn restore<I: Standard>(
 /// A damaged serialized state deserialized into an instance of `interface` in
 /// its reference state: refused with an error and a log line about the FMU state.
 fn damaged_case<I: Standard>(m: usize, interface: I, name: String, bytes: Vec<u8>) -> Case {
-    Case {
-        standard: I::STANDARD,
-        class: "serialized state",
-        model: m,
-        interface: Some(interface.short()),
+    let why = I::tables().reasons.damaged;
+    Case::new(
+        ("serialized state", m, interface),
         name,
-        expect: Expect::error("FMU state"),
-        why: I::tables().reasons.damaged,
-        probe: Box::new(move |l| {
+        (Expect::error("FMU state"), why),
+        move |l| {
             on_instance(l, m, interface, interface.reference_state(), |inst| {
                 let (s, state) = I::deserialize(inst, &bytes);
                 if !state.is_null() && s == OK {
@@ -105,8 +102,8 @@ fn damaged_case<I: Standard>(m: usize, interface: I, name: String, bytes: Vec<u8
                 }
                 s
             })
-        }),
-    }
+        },
+    )
 }
 
 /// The damaged variants of serialized bytes: every byte flipped, every truncation
@@ -137,16 +134,12 @@ pub fn cases<I: Standard>(loaded: &Loaded, m: usize) -> Vec<Case> {
         let (bytes, outputs) = reference(loaded, m, interface);
         assert!(!bytes.is_empty(), "empty reference state");
         let control = bytes.clone();
-        cases.push(Case {
-            standard: I::STANDARD,
-            class: "serialized state",
-            model: m,
-            interface: Some(interface.short()),
-            name: "unmodified bytes restore the outputs bit for bit".into(),
-            expect: Expect::ok(),
-            why: I::tables().reasons.control,
-            probe: Box::new(move |l| restore(l, m, interface, &control, &outputs)),
-        });
+        cases.push(Case::new(
+            ("serialized state", m, interface),
+            "unmodified bytes restore the outputs bit for bit".into(),
+            (Expect::ok(), I::tables().reasons.control),
+            move |l| restore(l, m, interface, &control, &outputs),
+        ));
         for (name, variant) in damaged(&bytes) {
             cases.push(damaged_case(m, interface, name, variant));
         }

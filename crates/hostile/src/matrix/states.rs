@@ -98,16 +98,15 @@ fn bad_state_cases<I: Standard>(m: usize) -> Vec<Case> {
     for &interface in I::INTERFACES {
         for bad in BAD_STATES {
             for (name, use_it) in (tables.state_uses)() {
-                cases.push(Case {
-                    standard: I::STANDARD,
-                    class: "bad FMU state",
-                    model: m,
-                    interface: Some(interface.short()),
-                    name: format!("{name}({bad:?})"),
-                    expect: Expect::error("not a live FMU state"),
-                    why: tables.reasons.bad_state,
-                    probe: Box::new(move |l| probe(l, m, interface, (bad, seed), use_it)),
-                });
+                cases.push(Case::new(
+                    ("bad FMU state", m, interface),
+                    format!("{name}({bad:?})"),
+                    (
+                        Expect::error("not a live FMU state"),
+                        tables.reasons.bad_state,
+                    ),
+                    move |l| probe(l, m, interface, (bad, seed), use_it),
+                ));
             }
         }
     }
@@ -124,20 +123,16 @@ fn cross_interface_cases<I: Standard>(l: &Loaded, m: usize) -> Vec<Case> {
                 continue;
             }
             let (bytes, outputs) = (bytes.clone(), outputs.clone());
-            cases.push(Case {
-                standard: I::STANDARD,
-                class: "cross-interface state",
-                model: m,
-                interface: Some(to.short()),
-                name: format!(
+            cases.push(Case::new(
+                ("cross-interface state", m, to),
+                format!(
                     "state serialized by a {} instance in {:?}",
                     from.short(),
                     from.reference_state()
                 ),
-                expect: Expect::ok(),
-                why: I::tables().reasons.cross_interface,
-                probe: Box::new(move |l| restore(l, m, to, &bytes, &outputs)),
-            });
+                (Expect::ok(), I::tables().reasons.cross_interface),
+                move |l| restore(l, m, to, &bytes, &outputs),
+            ));
         }
     }
     cases

@@ -125,21 +125,19 @@ fn non_finite_cases<I: Standard>(m: usize, interface: I, v: &Variable) -> Vec<Ca
         .into_iter()
         .map(|x| {
             let var = v.clone();
-            Case {
-                standard: I::STANDARD,
-                class: "non-finite value",
-                model: m,
-                interface: Some(interface.short()),
-                name: format!("{}({}{} = {x})", names.setter, v.name, names.element),
-                // The log names the variable (FMI 3.0: its element, "theta0[1]").
-                expect: Expect::error(&format!("\"{}{}", v.name, names.quote_end)),
-                why: I::tables().reasons.non_finite,
-                probe: Box::new(move |l| {
+            Case::new(
+                ("non-finite value", m, interface),
+                format!("{}({}{} = {x})", names.setter, v.name, names.element),
+                (
+                    Expect::error(&format!("\"{}{}", v.name, names.quote_end)),
+                    I::tables().reasons.non_finite,
+                ),
+                move |l| {
                     on_instance(l, m, interface, I::INSTANTIATED, |i| {
                         I::set_value(i, &var, Value::Real(x))
                     })
-                }),
-            }
+                },
+            )
         })
         .collect()
 }
@@ -147,22 +145,16 @@ fn non_finite_cases<I: Standard>(m: usize, interface: I, v: &Variable) -> Vec<Ca
 fn extreme_case<I: Standard>(m: usize, interface: I, v: &Variable, value: Value) -> Case {
     let names = I::tables().values;
     let var = v.clone();
-    Case {
-        standard: I::STANDARD,
-        class: "extreme value",
-        model: m,
-        interface: Some(interface.short()),
-        name: format!("{}{} = {}", v.name, names.element, value.label(names.types)),
-        expect: Expect {
-            statuses: &[OK, DISCARD, ERROR],
-            log: None,
-        },
-        why: I::tables().reasons.extreme,
-        probe: Box::new(move |l| {
-            let inst = interface.instance(l, m);
-            scenario(&inst, interface, &var, value)
-        }),
-    }
+    let expect = Expect {
+        statuses: &[OK, DISCARD, ERROR],
+        log: None,
+    };
+    Case::new(
+        ("extreme value", m, interface),
+        format!("{}{} = {}", v.name, names.element, value.label(names.types)),
+        (expect, I::tables().reasons.extreme),
+        move |l| scenario(&interface.instance(l, m), interface, &var, value),
+    )
 }
 
 pub fn cases<I: Standard>(loaded: &Loaded, m: usize) -> Vec<Case> {
@@ -182,16 +174,12 @@ pub fn cases<I: Standard>(loaded: &Loaded, m: usize) -> Vec<Case> {
             if !applies(d, interface) {
                 continue;
             }
-            cases.push(Case {
-                standard: I::STANDARD,
-                class: "non-finite value",
-                model: m,
-                interface: Some(interface.short()),
-                name: format!("{function}({label})"),
-                expect: Expect::error(function),
-                why: tables.reasons.argument,
-                probe: Box::new(move |l| on_instance(l, m, interface, state, call)),
-            });
+            cases.push(Case::new(
+                ("non-finite value", m, interface),
+                format!("{function}({label})"),
+                (Expect::error(function), tables.reasons.argument),
+                move |l| on_instance(l, m, interface, state, call),
+            ));
         }
     }
     cases

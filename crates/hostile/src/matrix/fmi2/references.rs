@@ -3,7 +3,6 @@
 //! fmi2GetDirectionalDerivative.
 
 use crate::description::{Description, VarType};
-use crate::fmu::Standard;
 use crate::host::{Interface, State};
 use crate::matrix::references::unused;
 use crate::matrix::seam::Access;
@@ -59,21 +58,17 @@ pub fn extras(d: &Description, m: usize, interface: Interface) -> Vec<Case> {
     let mut cases = Vec::new();
     if d.provides_directional_derivative {
         let bad = unused(d);
-        cases.push(Case {
-            standard: Standard::Fmi2,
-            class: "value reference",
-            model: m,
-            interface: Some(interface.short()),
-            name: format!("fmi2GetDirectionalDerivative(unknown vr {bad})"),
-            expect: Expect::error(&bad.to_string()),
-            why: WHY_UNKNOWN,
-            probe: Box::new(move |l| {
+        cases.push(Case::new(
+            ("value reference", m, interface),
+            format!("fmi2GetDirectionalDerivative(unknown vr {bad})"),
+            (Expect::error(&bad.to_string()), WHY_UNKNOWN),
+            move |l| {
                 on_instance(l, m, interface, State::InitializationMode, |i| unsafe {
                     let known = i.description.real_vrs()[0];
                     (i.binary.get_directional_derivative)(i.c, &bad, 1, &known, 1, &1.0, &mut 0.0)
                 })
-            }),
-        });
+            },
+        ));
     }
     cases
 }

@@ -14,7 +14,6 @@ use crate::Loaded;
 use crate::binary::Status;
 use crate::description::{Description, VarType};
 use crate::fmi3::host::{Instance, Interface3, State3};
-use crate::fmu::Standard;
 use crate::host::unlogged;
 use crate::matrix::references::{unused, wrong_counts};
 use crate::matrix::seam::Access;
@@ -106,15 +105,11 @@ fn count_cases(d: &Description, m: usize) -> Vec<Case> {
         let mut wrong = wrong_counts(right);
         wrong.retain(|&n| n != right);
         for n in wrong {
-            cases.push(Case {
-                standard: Standard::Fmi3,
-                class: "element count",
-                model: m,
-                interface: Some(Interface3::ModelExchange.short()),
-                name: format!("{function}(n = {n}, the model has {right})"),
-                expect: Expect::error("length"),
-                why: WHY_COUNT,
-                probe: Box::new(move |l| {
+            cases.push(Case::new(
+                ("element count", m, Interface3::ModelExchange),
+                format!("{function}(n = {n}, the model has {right})"),
+                (Expect::error("length"), WHY_COUNT),
+                move |l| {
                     on_instance(
                         l,
                         m,
@@ -122,8 +117,8 @@ fn count_cases(d: &Description, m: usize) -> Vec<Case> {
                         State3::ContinuousTimeMode,
                         |i| call(i, n),
                     )
-                }),
-            });
+                },
+            ));
         }
     }
     cases
@@ -195,34 +190,26 @@ fn derivative_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
         wrong.extend(wrong_counts(out).into_iter().map(|n| (seed, n)));
         for (n_seed, n_out) in wrong {
             let p = partial.clone();
-            cases.push(Case {
-                standard: Standard::Fmi3,
-                class: "element count",
-                model: m,
-                interface: Some(interface.short()),
-                name: format!(
+            cases.push(Case::new(
+                ("element count", m, interface),
+                format!(
                     "{function}(nSeed = {n_seed}, nSensitivity = {n_out}; needs {seed}, {out})"
                 ),
-                expect: Expect::error("nSeed"),
-                why: WHY_COUNT,
-                probe: Box::new(move |l| {
+                (Expect::error("nSeed"), WHY_COUNT),
+                move |l| {
                     on_instance(l, m, interface, State3::InitializationMode, |i| {
                         derivative(i, &p, adjoint, n_seed, n_out)
                     })
-                }),
-            });
+                },
+            ));
         }
         let bad = unused(d);
         let p = partial.clone();
-        cases.push(Case {
-            standard: Standard::Fmi3,
-            class: "value reference",
-            model: m,
-            interface: Some(interface.short()),
-            name: format!("{function}(unknown vr {bad})"),
-            expect: Expect::error(&bad.to_string()),
-            why: WHY_UNKNOWN,
-            probe: Box::new(move |l| {
+        cases.push(Case::new(
+            ("value reference", m, interface),
+            format!("{function}(unknown vr {bad})"),
+            (Expect::error(&bad.to_string()), WHY_UNKNOWN),
+            move |l| {
                 on_instance(l, m, interface, State3::InitializationMode, |i| {
                     let q = (Target { vr: bad, size: 1 }, p.1.clone());
                     derivative(
@@ -233,8 +220,8 @@ fn derivative_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
                         if adjoint { q.1.size } else { 1 },
                     )
                 })
-            }),
-        });
+            },
+        ));
     }
     cases
 }
@@ -242,29 +229,27 @@ fn derivative_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
 fn serialized_size_cases(m: usize, interface: Interface3) -> Vec<Case> {
     [-1isize, 1]
         .into_iter()
-        .map(|delta| Case {
-            standard: Standard::Fmi3,
-            class: "element count",
-            model: m,
-            interface: Some(interface.short()),
-            name: format!("fmi3SerializeFMUState(size = serialized size {delta:+})"),
-            expect: Expect::error("size"),
-            why: WHY_COUNT,
-            probe: Box::new(move |l| {
-                on_instance(l, m, interface, State3::InitializationMode, |i| {
-                    let (_, state) = i.get_state();
-                    let mut n = 0usize;
-                    // SAFETY: a state of this instance; a buffer one byte larger than asked.
-                    let s = unsafe {
-                        (i.binary.serialized_size)(i.c, state, &mut n);
-                        let size = n.saturating_add_signed(delta);
-                        let mut bytes = vec![0u8; n + 1];
-                        (i.binary.serialize)(i.c, state, bytes.as_mut_ptr(), size)
-                    };
-                    unlogged(i, || i.free_state(state));
-                    s
-                })
-            }),
+        .map(|delta| {
+            Case::new(
+                ("element count", m, interface),
+                format!("fmi3SerializeFMUState(size = serialized size {delta:+})"),
+                (Expect::error("size"), WHY_COUNT),
+                move |l| {
+                    on_instance(l, m, interface, State3::InitializationMode, |i| {
+                        let (_, state) = i.get_state();
+                        let mut n = 0usize;
+                        // SAFETY: a state of this instance; a buffer one byte larger than asked.
+                        let s = unsafe {
+                            (i.binary.serialized_size)(i.c, state, &mut n);
+                            let size = n.saturating_add_signed(delta);
+                            let mut bytes = vec![0u8; n + 1];
+                            (i.binary.serialize)(i.c, state, bytes.as_mut_ptr(), size)
+                        };
+                        unlogged(i, || i.free_state(state));
+                        s
+                    })
+                },
+            )
         })
         .collect()
 }
@@ -276,35 +261,33 @@ fn dependency_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Cas
     };
     [1isize, -1, isize::MAX / 32]
         .into_iter()
-        .map(|delta| Case {
-            standard: Standard::Fmi3,
-            class: "element count",
-            model: m,
-            interface: Some(interface.short()),
-            name: format!(
-                "fmi3GetVariableDependencies(vr {dependent}, nDependencies = count {delta:+})"
-            ),
-            expect: Expect::error("nDependencies"),
-            why: WHY_COUNT,
-            probe: Box::new(move |l| {
-                on_instance(l, m, interface, State3::InitializationMode, |i| unsafe {
-                    let mut n = 0usize;
-                    (i.binary.get_number_of_variable_dependencies)(i.c, dependent, &mut n);
-                    let claimed = n.saturating_add_signed(delta);
-                    let room = (n + 1).min(claimed.max(1));
-                    let (mut e, mut v, mut ei, mut k) =
-                        (vec![0; room], vec![0; room], vec![0; room], vec![0; room]);
-                    (i.binary.get_variable_dependencies)(
-                        i.c,
-                        dependent,
-                        e.as_mut_ptr(),
-                        v.as_mut_ptr(),
-                        ei.as_mut_ptr(),
-                        k.as_mut_ptr(),
-                        claimed,
-                    )
-                })
-            }),
+        .map(|delta| {
+            Case::new(
+                ("element count", m, interface),
+                format!(
+                    "fmi3GetVariableDependencies(vr {dependent}, nDependencies = count {delta:+})"
+                ),
+                (Expect::error("nDependencies"), WHY_COUNT),
+                move |l| {
+                    on_instance(l, m, interface, State3::InitializationMode, |i| unsafe {
+                        let mut n = 0usize;
+                        (i.binary.get_number_of_variable_dependencies)(i.c, dependent, &mut n);
+                        let claimed = n.saturating_add_signed(delta);
+                        let room = (n + 1).min(claimed.max(1));
+                        let (mut e, mut v, mut ei, mut k) =
+                            (vec![0; room], vec![0; room], vec![0; room], vec![0; room]);
+                        (i.binary.get_variable_dependencies)(
+                            i.c,
+                            dependent,
+                            e.as_mut_ptr(),
+                            v.as_mut_ptr(),
+                            ei.as_mut_ptr(),
+                            k.as_mut_ptr(),
+                            claimed,
+                        )
+                    })
+                },
+            )
         })
         .collect()
 }
@@ -322,20 +305,25 @@ fn order_cases(d: &Description, m: usize, interface: Interface3) -> Vec<Case> {
     let (vr, size, name) = (output.vr, output.size, output.name.clone());
     [0, -1, i32::MAX]
         .into_iter()
-        .map(|order| Case {
-            standard: Standard::Fmi3,
-            class: "value reference",
-            model: m,
-            interface: Some(interface.short()),
-            name: format!("fmi3GetOutputDerivatives({name}, order {order})"),
-            expect: Expect::error("order"),
-            why: WHY_ORDER,
-            probe: Box::new(move |l| {
-                on_instance(l, m, interface, State3::StepMode, |i| unsafe {
-                    let mut out = vec![0.0; size];
-                    (i.binary.get_output_derivatives)(i.c, &vr, 1, &order, out.as_mut_ptr(), size)
-                })
-            }),
+        .map(|order| {
+            Case::new(
+                ("value reference", m, interface),
+                format!("fmi3GetOutputDerivatives({name}, order {order})"),
+                (Expect::error("order"), WHY_ORDER),
+                move |l| {
+                    on_instance(l, m, interface, State3::StepMode, |i| unsafe {
+                        let mut out = vec![0.0; size];
+                        (i.binary.get_output_derivatives)(
+                            i.c,
+                            &vr,
+                            1,
+                            &order,
+                            out.as_mut_ptr(),
+                            size,
+                        )
+                    })
+                },
+            )
         })
         .collect()
 }

@@ -8,7 +8,6 @@
 use crate::Loaded;
 use crate::binary::{Binary, OK, Status};
 use crate::fmi3::host::{Instance, Interface3};
-use crate::fmu::Standard;
 use crate::host::{Instance as Instance2, Interface};
 use crate::matrix::{Case, Expect, Observed};
 use std::ffi::c_void;
@@ -106,15 +105,13 @@ fn fmi2_state(l: &Loaded, m: usize, interface: Interface3) -> Observed {
 pub fn cases(_: &Loaded, m: usize) -> Vec<Case> {
     Interface3::ALL
         .into_iter()
-        .map(|interface| Case {
-            standard: Standard::Fmi3,
-            class: "cross-standard state",
-            model: m,
-            interface: Some(interface.short()),
-            name: "fmi3SetFMUState(live state of an FMI 2.0 instance of this FMU)".into(),
-            expect: Expect::ok(),
-            why: WHY_FMI2,
-            probe: Box::new(move |l| fmi2_state(l, m, interface)),
+        .map(|interface| {
+            Case::new(
+                ("cross-standard state", m, interface),
+                "fmi3SetFMUState(live state of an FMI 2.0 instance of this FMU)".into(),
+                (Expect::ok(), WHY_FMI2),
+                move |l| fmi2_state(l, m, interface),
+            )
         })
         .collect()
 }
