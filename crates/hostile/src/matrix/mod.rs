@@ -318,10 +318,11 @@ pub fn with_args<I: StandardInterface>(
 /// Per class: cases, passed, failed, known failures; then every failure with its
 /// expectation's reason. Returns the text and whether the suite failed.
 pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
-    let mut classes: Vec<String> = Vec::new();
+    let key = |c: &Case| (c.standard, c.class);
+    let mut classes: Vec<&Case> = Vec::new();
     for c in cases {
-        if !classes.contains(&c.label()) {
-            classes.push(c.label());
+        if !classes.iter().any(|k| key(k) == key(c)) {
+            classes.push(c);
         }
     }
     let mut text = format!(
@@ -335,12 +336,12 @@ pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
     );
     let mut details = String::new();
     let mut failed = false;
-    for class in classes {
+    for first in classes {
         let (mut n, mut pass, mut fail, mut known) = (0, 0, 0, 0);
         for (c, v) in cases
             .iter()
             .zip(verdicts)
-            .filter(|(c, _)| c.label() == class)
+            .filter(|(c, _)| key(c) == key(first))
         {
             n += 1;
             match v {
@@ -371,13 +372,14 @@ pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
             .map(|m| {
                 let count = cases
                     .iter()
-                    .filter(|c| c.label() == class && c.model == m)
+                    .filter(|c| key(c) == key(first) && c.model == m)
                     .count();
                 count.to_string()
             })
             .collect();
         text += &format!(
-            "{class:<24} {n:>6} {pass:>6} {fail:>6} {known:>6}  {}\n",
+            "{:<24} {n:>6} {pass:>6} {fail:>6} {known:>6}  {}\n",
+            first.label(),
             per_model.join("/")
         );
     }

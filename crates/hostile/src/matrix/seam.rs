@@ -3,7 +3,7 @@
 //! table of the standard's calls, rows and reasons (`Tables`). The classes in
 //! `matrix/*.rs` are written once on it; `matrix/fmi2` and `matrix/fmi3` fill it.
 
-use super::{Case, Cases, Expect, Probe};
+use super::{Case, Cases, Expect, Observed, Probe};
 use crate::Loaded;
 use crate::binary::Status;
 use crate::description::{Description, VarType, Variable};
@@ -93,6 +93,29 @@ pub type ScalarRow<I> = (
     Evaluate<I>,
 );
 
+/// The two arguments both standards' instantiation functions take and the
+/// instantiation class varies: the instance name and the GUID (FMI 3.0:
+/// instantiation token).
+#[derive(Clone)]
+pub struct Names {
+    pub name: Option<&'static str>,
+    pub token: Option<String>,
+}
+
+/// A standard's instantiation functions for the instantiation class.
+pub struct Instantiation<I: 'static> {
+    /// The interfaces instantiated with a function each (None: one function).
+    pub kinds: &'static [Option<I>],
+    /// The name of the token argument, and the text its refusal logs.
+    pub token: (&'static str, &'static str),
+    pub why: &'static str,
+    /// Instantiates model `m` (interface `kind`) with `names`, then frees it:
+    /// OK for an instance, Error for NULL, and the log.
+    pub attempt: fn(&Loaded, usize, Option<I>, &Names) -> Observed,
+    /// The rows only this standard has.
+    pub own: fn(&Loaded, usize) -> Vec<Attempt>,
+}
+
 /// One attempt to instantiate with the arguments of a row of the standard's
 /// instantiation table.
 pub struct Attempt {
@@ -157,7 +180,7 @@ pub struct Tables<I: StandardInterface> {
     pub handles: &'static [Handle],
     pub free_instance: &'static str,
     pub other_standard: Option<OtherStandard<I>>,
-    pub instantiations: fn(&Loaded, usize) -> Vec<Attempt>,
+    pub instantiation: Instantiation<I>,
     /// Scalar arguments of functions (times, steps, tolerances) set to values
     /// they refuse.
     pub scalar_arguments: fn() -> Vec<ScalarRow<I>>,

@@ -156,7 +156,7 @@ impl Standard for Interface {
             ],
             free_instance: "fmi2FreeInstance",
             other_standard: None,
-            instantiations: instantiate::attempts,
+            instantiation: instantiate::INSTANTIATION,
             scalar_arguments: Vec::new,
             values: ValueNames {
                 setter: "fmi2SetReal",

@@ -1,11 +1,10 @@
-//! The FMI 3.0 rows of the instantiation class (`matrix::instantiate`):
-//! fmi3InstantiateModelExchange, fmi3InstantiateCoSimulation and
-//! fmi3InstantiateScheduledExecution with arguments FMI 3.0 section 2.3.1 forbids: null or empty instance names, a null or foreign instantiation
-//! token, and an interface the FMU does not provide. The FMU returns NULL and its
-//! logger says why. Without a logger (logMessage = NULL, accepted: the FMU then
-//! cannot report) the instance must still refuse an illegal call without
-//! crashing. The observed status is OK for an instance (or the status of that
-//! illegal call) and Error for NULL.
+//! FMI 3.0 in the instantiation class (`matrix::instantiate`):
+//! fmi3InstantiateModelExchange and fmi3InstantiateCoSimulation with the names
+//! they are given, and the rows only FMI 3.0 has (section 2.3.1): no logger
+//! (logMessage = NULL, accepted: the FMU then cannot report, but the instance
+//! must still refuse an illegal call without crashing; the observed status is
+//! that call's), and fmi3InstantiateScheduledExecution, an interface the FMU does
+//! not provide.
 
 use crate::Loaded;
 use crate::binary::{ERROR, OK};
@@ -13,7 +12,7 @@ use crate::fmi3::host::{Interface3, logger};
 use crate::host::{Log, c_string, take};
 use crate::matrix::Expect;
 use crate::matrix::Observed;
-use crate::matrix::seam::Attempt;
+use crate::matrix::seam::{Attempt, Instantiation, Names};
 use std::ffi::c_void;
 use std::sync::Mutex;
 
@@ -93,86 +92,56 @@ fn attempt(l: &Loaded, m: usize, a: &Args) -> Observed {
     Observed::of(status, take(&log))
 }
 
-pub fn attempts(l: &Loaded, m: usize) -> Vec<Attempt> {
-    let token = l.fmus3[m].description.guid.clone();
-    let mut cases = Vec::new();
-    let interfaces = [
-        Some(Interface3::ModelExchange),
-        Some(Interface3::CoSimulation),
-    ];
-    for interface in interfaces {
-        let ok = Args {
-            interface,
-            name: Some("probe"),
-            token: Some(token.clone()),
-            logger: true,
-        };
-        let with = |f: &dyn Fn(&mut Args)| {
-            let mut a = ok.clone();
-            f(&mut a);
-            a
-        };
-        let table: Vec<(&str, Args, Expect, &'static str)> = vec![
-            (
-                "all arguments valid (control)",
-                with(&|_| {}),
-                Expect::ok(),
-                WHY_ARGS,
-            ),
-            (
-                "instanceName = NULL",
-                with(&|a| a.name = None),
-                Expect::error("instanceName"),
-                WHY_ARGS,
-            ),
-            (
-                "instanceName empty",
-                with(&|a| a.name = Some("")),
-                Expect::error("instanceName"),
-                WHY_ARGS,
-            ),
-            (
-                "instantiationToken = NULL",
-                with(&|a| a.token = None),
-                Expect::error("instantiationToken"),
-                WHY_ARGS,
-            ),
-            (
-                "instantiationToken of another model",
-                with(&|a| a.token = Some("{00000000-0000-0000-0000-000000000000}".into())),
-                Expect::error("instantiationToken"),
-                WHY_ARGS,
-            ),
-            (
-                "logMessage = NULL, then fmi3ExitInitializationMode in Instantiated",
-                with(&|a| a.logger = false),
-                Expect::silent_error(),
-                WHY_NO_LOGGER,
-            ),
-        ];
-        let short = interface.map_or("--", Interface3::short);
-        for (name, args, expect, why) in table {
-            cases.push(Attempt {
-                interface: Some(short),
-                name: name.to_string(),
-                expect,
-                why,
-                probe: Box::new(move |l| attempt(l, m, &args)),
-            });
-        }
-    }
-    let scheduled = Args {
-        interface: None,
-        name: Some("probe"),
-        token: Some(token),
+/// The instantiation function of `interface` with `names`, with a logger.
+fn with_names(l: &Loaded, m: usize, interface: Option<Interface3>, names: &Names) -> Observed {
+    let args = Args {
+        interface,
+        name: names.name,
+        token: names.token.clone(),
         logger: true,
     };
-    cases.push(Attempt {
+    attempt(l, m, &args)
+}
+
+/// The instantiation rows of FMI 3.0: Model Exchange and Co-Simulation.
+pub const INSTANTIATION: Instantiation<Interface3> = Instantiation {
+    kinds: &[
+        Some(Interface3::ModelExchange),
+        Some(Interface3::CoSimulation),
+    ],
+    token: ("instantiationToken", "instantiationToken"),
+    why: WHY_ARGS,
+    attempt: with_names,
+    own: attempts,
+};
+
+/// The rows only FMI 3.0 has.
+fn attempts(l: &Loaded, m: usize) -> Vec<Attempt> {
+    let token = l.fmus3[m].description.guid.clone();
+    let args = |interface, logger| Args {
+        interface,
+        name: Some("probe"),
+        token: Some(token.clone()),
+        logger,
+    };
+    let mut attempts = Vec::new();
+    for interface in [Interface3::ModelExchange, Interface3::CoSimulation] {
+        let silent = args(Some(interface), false);
+        attempts.push(Attempt {
+            interface: Some(interface.short()),
+            name: "logMessage = NULL, then fmi3ExitInitializationMode in Instantiated".into(),
+            expect: Expect::silent_error(),
+            why: WHY_NO_LOGGER,
+            probe: Box::new(move |l| attempt(l, m, &silent)),
+        });
+    }
+    let scheduled = args(None, true);
+    attempts.push(Attempt {
         interface: None,
         name: "fmi3InstantiateScheduledExecution".into(),
         expect: Expect::error("Co-Simulation only"),
         why: WHY_SCHEDULED,
         probe: Box::new(move |l| attempt(l, m, &scheduled)),
     });
-    cases
+    attempts
 }

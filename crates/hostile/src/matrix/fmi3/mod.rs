@@ -159,7 +159,7 @@ impl Standard for Interface3 {
             ],
             free_instance: "fmi3FreeInstance",
             other_standard: Some(cross_standard::with_fmi2_instance),
-            instantiations: instantiate::attempts,
+            instantiation: instantiate::INSTANTIATION,
             scalar_arguments: values::scalar_arguments,
             values: ValueNames {
                 setter: "fmi3SetFloat64",
