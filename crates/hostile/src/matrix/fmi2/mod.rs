@@ -14,9 +14,7 @@ use crate::description::{Description, Variable};
 use crate::fmu;
 use crate::host::{Instance, Interface, State};
 use crate::matrix::seam::{Handle, Reasons, ReferenceReasons, Standard, Tables, Value, ValueNames};
-use crate::standard_interface::{
-    FreeInstance, GetArray, SetStates, SetTime, StandardInterface, Transition,
-};
+use crate::standard_interface::{GetArray, StandardInterface, Transition, same_named_methods};
 use calls::Args;
 use std::ffi::c_void;
 
@@ -38,6 +36,8 @@ impl StandardInterface for Interface {
     const MODEL_EXCHANGE: Interface = Interface::ModelExchange;
     const CONTINUOUS_TIME_MODE: State = State::ContinuousTimeMode;
 
+    same_named_methods!();
+
     fn short(self) -> &'static str {
         Interface::short(self)
     }
@@ -54,9 +54,6 @@ impl StandardInterface for Interface {
                     .iter()
                     .any(|v| v.name == "actuatorForce[1]"))
     }
-    fn reach(inst: &Instance<'_>, state: State) -> Result<(), String> {
-        inst.reach(state)
-    }
     /// An FMI 2.0 instance in Error can only be freed; what it still reports
     /// must not be a silent NaN: after fmi2Error, outputs read with fmi2OK are
     /// finite.
@@ -70,15 +67,6 @@ impl StandardInterface for Interface {
         }
         Ok(())
     }
-    fn raw<'i>(inst: &'i Instance<'_>) -> (&'i Binary, Component) {
-        (inst.binary, inst.c)
-    }
-    fn continuous_states(b: &Binary) -> (GetArray, SetStates) {
-        (b.get_continuous_states, b.set_continuous_states)
-    }
-    fn serialize(inst: &Instance<'_>, state: *mut c_void) -> Result<Vec<u8>, String> {
-        inst.serialize(state)
-    }
     fn deserialize(inst: &Instance<'_>, bytes: &[u8]) -> (Status, *mut c_void) {
         let mut state = std::ptr::null_mut();
         // SAFETY: a buffer of the given length and a null slot for a new state.
@@ -87,25 +75,12 @@ impl StandardInterface for Interface {
         };
         (s, state)
     }
-    unsafe fn set_state(inst: &Instance<'_>, state: *mut c_void) -> Status {
-        // SAFETY: a live instance; the caller vouches for the state.
-        unsafe { (inst.binary.set_fmu_state)(inst.c, state) }
-    }
     fn me_evaluation(b: &Binary) -> (Transition, GetArray, GetArray) {
         (
             b.enter_continuous_time_mode,
             b.get_derivatives,
             b.get_event_indicators,
         )
-    }
-    fn free_instance(b: &Binary) -> FreeInstance {
-        b.free_instance
-    }
-    fn set_time(b: &Binary) -> SetTime {
-        b.set_time
-    }
-    fn args(inst: &Instance<'_>, state: *mut c_void) -> Args {
-        Args::new(inst.description, state)
     }
 }
 

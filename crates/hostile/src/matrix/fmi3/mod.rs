@@ -23,9 +23,7 @@ use crate::fmi3::binary::{Binary3, Instance3};
 use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::fmu;
 use crate::matrix::seam::{Handle, Reasons, ReferenceReasons, Standard, Tables, Value, ValueNames};
-use crate::standard_interface::{
-    FreeInstance, GetArray, SetStates, SetTime, StandardInterface, Transition,
-};
+use crate::standard_interface::{GetArray, StandardInterface, Transition, same_named_methods};
 use calls::Args;
 use std::ffi::c_void;
 
@@ -47,6 +45,8 @@ impl StandardInterface for Interface3 {
     const MODEL_EXCHANGE: Interface3 = Interface3::ModelExchange;
     const CONTINUOUS_TIME_MODE: State3 = State3::ContinuousTimeMode;
 
+    same_named_methods!();
+
     fn short(self) -> &'static str {
         Interface3::short(self)
     }
@@ -63,9 +63,6 @@ impl StandardInterface for Interface3 {
                     .iter()
                     .any(|v| v.name == "actuatorForce"))
     }
-    fn reach(inst: &Instance<'_>, state: State3) -> Result<(), String> {
-        inst.reach(state)
-    }
     /// After fmi3Error the instance is in Error and must recover with fmi3Reset
     /// (FMI 3.0 section 2.3.1).
     fn usable_after(inst: &Instance<'_>, status: Status) -> Result<(), String> {
@@ -76,21 +73,8 @@ impl StandardInterface for Interface3 {
             Ok(())
         }
     }
-    fn raw<'i>(inst: &'i Instance<'_>) -> (&'i Binary3, Instance3) {
-        (inst.binary, inst.c)
-    }
-    fn continuous_states(b: &Binary3) -> (GetArray, SetStates) {
-        (b.get_continuous_states, b.set_continuous_states)
-    }
-    fn serialize(inst: &Instance<'_>, state: *mut c_void) -> Result<Vec<u8>, String> {
-        inst.serialize(state)
-    }
     fn deserialize(inst: &Instance<'_>, bytes: &[u8]) -> (Status, *mut c_void) {
         inst.deserialize(bytes)
-    }
-    unsafe fn set_state(inst: &Instance<'_>, state: *mut c_void) -> Status {
-        // SAFETY: a live instance; the caller vouches for the state.
-        unsafe { (inst.binary.set_fmu_state)(inst.c, state) }
     }
     fn me_evaluation(b: &Binary3) -> (Transition, GetArray, GetArray) {
         (
@@ -98,15 +82,6 @@ impl StandardInterface for Interface3 {
             b.get_continuous_state_derivatives,
             b.get_event_indicators,
         )
-    }
-    fn free_instance(b: &Binary3) -> FreeInstance {
-        b.free_instance
-    }
-    fn set_time(b: &Binary3) -> SetTime {
-        b.set_time
-    }
-    fn args(inst: &Instance<'_>, state: *mut c_void) -> Args {
-        Args::new(inst.description, state)
     }
 }
 
