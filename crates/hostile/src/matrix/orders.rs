@@ -12,7 +12,7 @@ use crate::standard_interface::{Call, Invoke, StandardInterface};
 
 /// Calls `f` with every interface of the standard and every state reachable with
 /// it on model `m`.
-pub fn each_reachable<I: StandardInterface>(
+fn each_reachable<I: StandardInterface>(
     loaded: &Loaded,
     m: usize,
     mut f: impl FnMut(I, I::State),
