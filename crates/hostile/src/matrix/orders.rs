@@ -12,11 +12,7 @@ use crate::standard_interface::{Call, Invoke, StandardInterface};
 
 /// Calls `f` with every interface of the standard and every state reachable with
 /// it on model `m`.
-fn each_reachable<I: StandardInterface>(
-    loaded: &Loaded,
-    m: usize,
-    mut f: impl FnMut(I, I::State),
-) {
+fn each_reachable<I: StandardInterface>(loaded: &Loaded, m: usize, mut f: impl FnMut(I, I::State)) {
     for &interface in I::INTERFACES {
         for &state in I::STATES {
             if interface.reachable(loaded, m, state) {
