@@ -476,7 +476,7 @@ fn variable3<M>(
     let name = match (&first.array, group.is_array) {
         (Some(a), true) if !a.derivative => Cow::Borrowed(a.base),
         (_, true) => Cow::Owned(group_name(group.derivative, &group.base)),
-        (_, false) => Cow::Owned(first.name().into_owned()),
+        (_, false) => first.stored_name.clone(),
     };
     Ok(Variable3 {
         value_reference: first.value_reference,
