@@ -200,7 +200,12 @@ impl Pss3Plant {
     /// Computes the outputs, Euler-angle rates and gravity compensation of the
     /// current state and inputs.
     fn compute(&self) -> Result<Computed, String> {
-        let state = self.current_state()?;
+        self.compute_at(&self.current_state()?)
+    }
+
+    /// `compute` at `state` instead of the current state (same inputs).
+    fn compute_at(&self, state: &PlantState) -> Result<Computed, String> {
+        let state = *state;
         let plant = self.plant()?;
         let outputs = plant
             .outputs(&state, &self.inputs)
