@@ -242,6 +242,52 @@ fn switches(
         .each(move |v, _| v.parameter(variability).start_boolean(false))
 }
 
+/// The knowns at initialization of channel `c` that its output u reads (the law of
+/// `control::pid`), also its dI/dt (conditional integration compares u with the limits).
+macro_rules! output_knowns {
+    ($c:literal) => {
+        [
+            concat!("Kp[", $c, "]"),
+            concat!("Ki[", $c, "]"),
+            concat!("Kd[", $c, "]"),
+            concat!("Tf[", $c, "]"),
+            concat!("limitOutput[", $c, "]"),
+            concat!("uMin[", $c, "]"),
+            concat!("uMax[", $c, "]"),
+            concat!("useRateInputs[", $c, "]"),
+            concat!("setpoint[", $c, "]"),
+            concat!("measurement[", $c, "]"),
+            concat!("setpointRate[", $c, "]"),
+            concat!("measuredRate[", $c, "]"),
+            concat!("feedforward[", $c, "]"),
+            concat!("integral[", $c, "]"),
+            concat!("filter[", $c, "]"),
+        ]
+    };
+}
+
+/// The knowns at initialization of channel `c` that the filter's dx/dt reads.
+macro_rules! filter_knowns {
+    ($c:literal) => {
+        [
+            concat!("Kd[", $c, "]"),
+            concat!("Tf[", $c, "]"),
+            concat!("useRateInputs[", $c, "]"),
+            concat!("setpoint[", $c, "]"),
+            concat!("measurement[", $c, "]"),
+            concat!("setpointRate[", $c, "]"),
+            concat!("measuredRate[", $c, "]"),
+            concat!("filter[", $c, "]"),
+        ]
+    };
+}
+
+/// InitialUnknowns dependencies per channel: of u and dI/dt, of the filter's dx/dt.
+static OUTPUT_KNOWNS: [[&str; 15]; CHANNELS] =
+    [output_knowns!(1), output_knowns!(2), output_knowns!(3)];
+static FILTER_KNOWNS: [[&str; 8]; CHANNELS] =
+    [filter_knowns!(1), filter_knowns!(2), filter_knowns!(3)];
+
 fn variables() -> Vec<Variable<Pid>> {
     let mut table = Vec::new();
     let parameter = |(group, name, description, default, field): &(
@@ -277,7 +323,8 @@ fn variables() -> Vec<Variable<Pid>> {
             .each(move |v, c| v.input().start_real(defaults[c]));
         table.extend(array.variables());
     }
-    let u = channels(U, "u", "control output", |m, c| m.output(c).u).each(|v, _| v.output());
+    let u = channels(U, "u", "control output", |m, c| m.output(c).u)
+        .each(|v, c| v.output().initial_depends_on(&OUTPUT_KNOWNS[c]));
     table.extend(u.variables());
     /// Group, name, description, field of a state; group, description, value of its
     /// derivative.
@@ -305,8 +352,14 @@ fn variables() -> Vec<Variable<Pid>> {
     for (group, name, description, field, der_group, der_description, der) in states {
         let state =
             settable(group, name, description, field).each(|v, _| v.state().start_real(0.0));
+        let knowns: fn(usize) -> &'static [&'static str] = if group == INTEGRAL {
+            |c| &OUTPUT_KNOWNS[c]
+        } else {
+            |c| &FILTER_KNOWNS[c]
+        };
         let derivative =
-            RealArray::derivatives(vr(der_group, 0), name, CHANNELS, der_description, der);
+            RealArray::derivatives(vr(der_group, 0), name, CHANNELS, der_description, der)
+                .each(move |v, c| v.initial_depends_on(knowns(c)));
         table.extend(state.variables().into_iter().chain(derivative.variables()));
     }
     table

@@ -168,6 +168,26 @@ fn display_unit(unit: &str) -> Option<&'static str> {
     }
 }
 
+/// The knowns at initialization of axis `a`: the polynomial's order, times and that
+/// axis's boundary values (InitialUnknowns dependencies of q, qdot, qddot).
+macro_rules! axis_knowns {
+    ($a:literal) => {
+        [
+            "order",
+            "t0",
+            "tf",
+            concat!("q0[", $a, "]"),
+            concat!("qf[", $a, "]"),
+            concat!("qdot0[", $a, "]"),
+            concat!("qdotf[", $a, "]"),
+            concat!("qddot0[", $a, "]"),
+            concat!("qddotf[", $a, "]"),
+        ]
+    };
+}
+
+static AXIS_KNOWNS: [[&str; 9]; AXES] = [axis_knowns!(1), axis_knowns!(2), axis_knowns!(3)];
+
 fn variables() -> Vec<Variable<Planner>> {
     let mut table = vec![
         Variable::integer(
@@ -234,8 +254,11 @@ fn variables() -> Vec<Variable<Planner>> {
             Some(s) => [s.q, s.qdot, s.qddot][k],
             None => f64::NAN,
         };
-        let array = axes(output_vr(0, k), name, what, get)
-            .each(move |v, _| v.output().unit(unit, display_unit(unit)));
+        let array = axes(output_vr(0, k), name, what, get).each(move |v, axis| {
+            v.output()
+                .unit(unit, display_unit(unit))
+                .initial_depends_on(&AXIS_KNOWNS[axis])
+        });
         table.extend(array.variables());
     }
     table

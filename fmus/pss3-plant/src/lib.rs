@@ -13,6 +13,7 @@
 //! Parameters are fixed: the plant is validated once at fmi2ExitInitializationMode and
 //! an invalid value is refused with a message that names the FMU parameter.
 
+mod initial_dependencies;
 mod output_rates;
 mod parameters;
 mod partials;

@@ -131,6 +131,10 @@ pub struct Variable<M> {
     /// Names of the inputs and continuous states an output or state derivative
     /// depends on (ModelStructure `dependencies`); None: on all of them.
     pub dependencies: Option<&'static [&'static str]>,
+    /// Names of the knowns at initialization (inputs, variables with initial =
+    /// "exact") an initial unknown depends on (InitialUnknowns `dependencies`); None:
+    /// on all of them.
+    pub initial_dependencies: Option<&'static [&'static str]>,
     /// Set for the elements declared by [`RealArray`](super::arrays::RealArray).
     pub array: Option<ArrayElement>,
 }
@@ -155,6 +159,7 @@ impl<M> Variable<M> {
             initial: None,
             kind,
             dependencies: None,
+            initial_dependencies: None,
             array: None,
         }
     }
@@ -260,6 +265,14 @@ impl<M> Variable<M> {
     /// A static list: building it costs nothing at instantiation.
     pub fn depends_on(mut self, names: &'static [&'static str]) -> Self {
         self.dependencies = Some(names);
+        self
+    }
+
+    /// The knowns at initialization (by name) this initial unknown depends on: the
+    /// inputs and the variables with initial = "exact" (parameters, start values of
+    /// states) from which Initialization Mode computes it. A static list.
+    pub fn initial_depends_on(mut self, names: &'static [&'static str]) -> Self {
+        self.initial_dependencies = Some(names);
         self
     }
 

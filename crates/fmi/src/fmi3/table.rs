@@ -461,11 +461,28 @@ pub fn dependencies<M: Model>(
     table: &[Variable<M>],
     v: &Variable3,
 ) -> Result<Option<Vec<u32>>, String> {
+    references(table, v, |scalar| scalar.dependencies)
+}
+
+/// As [`dependencies`], for the initial unknown `v` and the knowns at initialization.
+pub fn initial_dependencies<M: Model>(
+    table: &[Variable<M>],
+    v: &Variable3,
+) -> Result<Option<Vec<u32>>, String> {
+    references(table, v, |scalar| scalar.initial_dependencies)
+}
+
+/// The value references of the names `names` gives for every element of `v`, merged.
+fn references<M: Model>(
+    table: &[Variable<M>],
+    v: &Variable3,
+    names: impl Fn(&Variable<M>) -> Option<&'static [&'static str]>,
+) -> Result<Option<Vec<u32>>, String> {
     let groups = groups(table)?;
     let mut list = Vec::new();
     for &e in v.elements() {
         let scalar = find(table, e).ok_or_else(|| format!("no element {e}"))?;
-        let Some(names) = scalar.dependencies else {
+        let Some(names) = names(scalar) else {
             return Ok(None);
         };
         for name in names {
