@@ -1,9 +1,10 @@
 """Finite differences at initialization: which initial unknowns of an FMU move when one
 known is moved in Initialization Mode, through FMPy (FMI 2.0 and FMI 3.0).
 
-The knowns at initialization are the inputs and the variables with initial="exact"
-(parameters, start values of states): FMI 2.0 section 3.2.3 (InitialUnknowns), FMI 3.0
-section 2.4.8 (InitialUnknown). An unknown "moves" when any bit of any of its values
+The knowns at initialization are the inputs, the variables with initial="exact"
+(parameters, start values of states) and the independent variable (the start time; a
+variable of FMI 3.0 only): FMI 2.0 section 3.2.3 (InitialUnknowns), FMI 3.0 section
+2.4.8 (InitialUnknown). An unknown "moves" when any bit of any of its values
 changes: a value the FMU does not compute from the known is reproduced exactly."""
 
 import math
@@ -35,10 +36,10 @@ class InitialProbe:
         self.fmu = cls(guid=md.guid, unzipDirectory=self.directory,
                        modelIdentifier=md.coSimulation.modelIdentifier)
         self.by_name = {v.name: v for v in md.modelVariables}
+        # The independent variable (FMI 3.0 "time") is moved through the start time.
         self.knowns = [v for v in md.modelVariables
-                       if v.causality == "input"
-                       or (v.initial == "exact" and v.causality != "independent"
-                           and v.variability != "constant")]
+                       if v.causality in ("input", "independent")
+                       or (v.initial == "exact" and v.variability != "constant")]
         self.unknowns = [u.variable for u in md.initialUnknowns]
 
     def close(self):
@@ -69,7 +70,7 @@ class InitialProbe:
 
     def start(self, v):
         """The start values of the known v (a list, one per element)."""
-        start = v.start
+        start = 0.0 if v.causality == "independent" else v.start
         if isinstance(start, str):
             start = start.split()
         values = start if isinstance(start, (list, tuple)) else [start] * self._size(v)
@@ -79,16 +80,21 @@ class InitialProbe:
 
     def evaluate(self, assignments):
         """The initial unknowns' values in Initialization Mode after setting
-        `assignments` ({variable name: list of values}); None when the FMU refuses."""
+        `assignments` ({variable name: list of values}; the independent variable's
+        value is the start time, 0 by default); None when the FMU refuses."""
+        independent = {v.name for v in self.knowns if v.causality == "independent"}
+        start = next((values[0] for name, values in assignments.items()
+                      if name in independent), 0.0)
         self.fmu.instantiate()
         try:
             if self.fmi3:
-                self.fmu.enterInitializationMode(startTime=0.0)
+                self.fmu.enterInitializationMode(startTime=start)
             else:
-                self.fmu.setupExperiment(startTime=0.0)
+                self.fmu.setupExperiment(startTime=start)
                 self.fmu.enterInitializationMode()
             for name, values in assignments.items():
-                self._set(self.by_name[name], values)
+                if name not in independent:
+                    self._set(self.by_name[name], values)
             return {v.name: self._get(v) for v in self.unknowns}
         except Exception:  # noqa: BLE001 - any refusal of the FMU: not evaluable
             return None

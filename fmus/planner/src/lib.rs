@@ -168,11 +168,13 @@ fn display_unit(unit: &str) -> Option<&'static str> {
     }
 }
 
-/// The knowns at initialization of axis `a`: the polynomial's order, times and that
-/// axis's boundary values (InitialUnknowns dependencies of q, qdot, qddot).
+/// The knowns at initialization of axis `a`: the start time (FMI 3.0 only: FMI 2.0
+/// has no time variable to name), the polynomial's order, times and that axis's
+/// boundary values (InitialUnknowns dependencies of q, qdot, qddot).
 macro_rules! axis_knowns {
     ($a:literal) => {
         [
+            "time",
             "order",
             "t0",
             "tf",
@@ -186,7 +188,7 @@ macro_rules! axis_knowns {
     };
 }
 
-static AXIS_KNOWNS: [[&str; 9]; AXES] = [axis_knowns!(1), axis_knowns!(2), axis_knowns!(3)];
+static AXIS_KNOWNS: [[&str; 10]; AXES] = [axis_knowns!(1), axis_knowns!(2), axis_knowns!(3)];
 
 fn variables() -> Vec<Variable<Planner>> {
     let mut table = vec![

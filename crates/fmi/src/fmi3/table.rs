@@ -464,7 +464,8 @@ pub fn dependencies<M: Model>(
     references(table, v, |scalar| scalar.dependencies)
 }
 
-/// As [`dependencies`], for the initial unknown `v` and the knowns at initialization.
+/// As [`dependencies`], for the initial unknown `v` and the knowns at initialization
+/// (among them "time", the start time, which FMI 2.0 tables have no variable for).
 pub fn initial_dependencies<M: Model>(
     table: &[Variable<M>],
     v: &Variable3,
@@ -486,6 +487,11 @@ fn references<M: Model>(
             return Ok(None);
         };
         for name in names {
+            if *name == "time" {
+                // The independent variable, a known of the initial unknowns.
+                list.push(TIME_VALUE_REFERENCE);
+                continue;
+            }
             list.push(fmi3_reference(table, &groups, name).ok_or_else(|| {
                 format!("\"{}\" names the unknown variable \"{name}\"", scalar.name)
             })?);
