@@ -72,17 +72,17 @@ pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, Str
                 set: Some(set),
                 start: Some(s),
                 ..
-            } => set(&mut model, *s),
+            } => set.call(&mut model, *s),
             Kind::Integer {
                 set: Some(set),
                 start: Some(s),
                 ..
-            } => set(&mut model, *s),
+            } => set.call(&mut model, *s),
             Kind::Boolean {
                 set: Some(set),
                 start: Some(s),
                 ..
-            } => set(&mut model, *s),
+            } => set.call(&mut model, *s),
             _ => Ok(()),
         };
         result.map_err(|e| format!("start value of \"{}\" rejected: {e}", v.name))?;
@@ -247,7 +247,7 @@ impl<M: Model> Instance<M> {
         let calculated = self.table.iter().zip(&self.calculated);
         for (v, _) in calculated.filter(|(_, c)| **c) {
             if let Kind::Real { get, .. } = &v.kind {
-                let value = get(&self.model);
+                let value = get.call(&self.model);
                 if !value.is_finite() {
                     return Err(format!("\"{}\" evaluates to {value}", v.name));
                 }
@@ -376,7 +376,7 @@ impl<M: Model> Instance<M> {
         let Kind::Real { get, .. } = &v.kind else {
             unreachable!("checked by typed")
         };
-        let value = get(&self.model);
+        let value = get.call(&self.model);
         if value.is_finite() {
             Ok(value)
         } else {
@@ -386,14 +386,14 @@ impl<M: Model> Instance<M> {
 
     pub fn get_integer(&self, vr: u32) -> Result<i32, String> {
         match &self.typed(vr, VariableType::Integer)?.kind {
-            Kind::Integer { get, .. } => Ok(get(&self.model)),
+            Kind::Integer { get, .. } => Ok(get.call(&self.model)),
             _ => unreachable!("checked by typed"),
         }
     }
 
     pub fn get_boolean(&self, vr: u32) -> Result<bool, String> {
         match &self.typed(vr, VariableType::Boolean)?.kind {
-            Kind::Boolean { get, .. } => Ok(get(&self.model)),
+            Kind::Boolean { get, .. } => Ok(get.call(&self.model)),
             _ => unreachable!("checked by typed"),
         }
     }
@@ -427,7 +427,8 @@ impl<M: Model> Instance<M> {
             .as_ref()
             .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
         self.dirty = true;
-        set(&mut self.model, value).map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
+        set.call(&mut self.model, value)
+            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
     }
 
     pub fn set_integer(&mut self, vr: u32, value: i32) -> Result<(), String> {
@@ -442,7 +443,8 @@ impl<M: Model> Instance<M> {
             .as_ref()
             .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
         self.dirty = true;
-        set(&mut self.model, value).map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
+        set.call(&mut self.model, value)
+            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
     }
 
     pub fn set_boolean(&mut self, vr: u32, value: bool) -> Result<(), String> {
@@ -454,6 +456,7 @@ impl<M: Model> Instance<M> {
             .as_ref()
             .ok_or_else(|| format!("\"{}\" has no writer", v.name))?;
         self.dirty = true;
-        set(&mut self.model, value).map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
+        set.call(&mut self.model, value)
+            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name))
     }
 }
