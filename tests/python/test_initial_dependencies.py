@@ -1,4 +1,4 @@
-"""The initialization dependencies of the three FMUs (FMI 2.0 ModelStructure
+"""The initialization dependencies of Planner, PID and Pss3Plant (FMI 2.0 ModelStructure
 InitialUnknowns, FMI 3.0 <InitialUnknown dependencies>) against finite differences at
 initialization (initial_probe.py): each known is moved in Initialization Mode, in
 several configurations chosen to make every path of the models act (a tilted moving
@@ -18,7 +18,7 @@ Without dependencies an importer must assume every start value depends on every 
 
 import pytest
 
-from conftest import MODELS, fmu3_path, fmu_path
+from conftest import fmu3_path, fmu_path
 from initial_probe import InitialProbe
 
 PLANT_INPUTS = {"actuatorForce": [20.0, -5.0, 12.0], "torqueCommand": [1.0, -2.0, 0.5],
@@ -68,7 +68,7 @@ def observed(probe, model):
 
 
 @pytest.mark.parametrize("fmi3", [False, True], ids=["fmi2", "fmi3"])
-@pytest.mark.parametrize("model", MODELS)
+@pytest.mark.parametrize("model", sorted(CONFIGS))
 def test_initial_dependencies_match_finite_differences(tmp_path, model, fmi3):
     path = fmu3_path(model) if fmi3 else fmu_path(model)
     probe = InitialProbe(path, tmp_path / model, fmi3)
