@@ -164,6 +164,10 @@ pub struct Variable<M: 'static> {
     /// Names of the inputs and continuous states an output or state derivative
     /// depends on (ModelStructure `dependencies`); None: on all of them.
     pub dependencies: Option<&'static [&'static str]>,
+    /// Names of the knowns at initialization (inputs, variables with initial =
+    /// "exact") an initial unknown depends on (InitialUnknowns `dependencies`); None:
+    /// on all of them.
+    pub initial_dependencies: Option<&'static [&'static str]>,
     /// Set for the elements declared by [`RealArray`](super::arrays::RealArray).
     pub array: Option<ArrayElement>,
     /// The declaration this scalar is element i of, if it was declared
@@ -191,6 +195,7 @@ impl<M: 'static> Variable<M> {
             initial: None,
             kind,
             dependencies: None,
+            initial_dependencies: None,
             array: None,
             declared: None,
         }
