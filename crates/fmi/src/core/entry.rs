@@ -5,7 +5,7 @@
 
 use super::frontend::{FmuInstance, Frontend, LoggerOf, StatusCode};
 use super::handles::{self, HandleKind};
-use super::instance::Snapshot;
+use super::instance::{Snapshot, TIME_MATCH};
 use super::log::Log;
 use super::logging::{LogSink, status_category};
 use super::model::Model;
@@ -290,6 +290,22 @@ pub fn setup_experiment<M: Model>(
     Ok(())
 }
 
+/// SetTime (Model Exchange): a finite time, not after the stop time (FMI 2.0
+/// section 3.2.1: computing past a defined stopTime is an error).
+pub fn set_time<M: Model>(
+    core: &mut super::instance::Instance<M>,
+    time: f64,
+) -> Result<(), String> {
+    let time = check_finite(time, "time")?;
+    if let Some(stop) = core.stop_time
+        && time > stop + TIME_MATCH * stop.abs().max(1.0)
+    {
+        return Err(format!("time = {time} s is after stopTime = {stop} s"));
+    }
+    core.set_time(time);
+    Ok(())
+}
+
 /// ExitInitializationMode: the model's checks, then the mode after initialization.
 pub fn exit_initialization_mode<F: Frontend, M: Model>(
     inst: &mut FmuInstance<F, M>,
@@ -306,13 +322,23 @@ pub fn exit_initialization_mode<F: Frontend, M: Model>(
 }
 
 /// Logs that `function` cannot evaluate the model at the instance's time (`reason`)
-/// and returns Discard: the instance stays usable.
+/// and returns Discard: the instance stays usable. Before initialization ends, the
+/// reason is the parameters' when ExitInitializationMode would refuse them (a value
+/// that cannot be evaluated is then their consequence).
 pub fn discard<F: Frontend, M: Model>(
     inst: &mut FmuInstance<F, M>,
     function: &str,
     reason: &str,
 ) -> F::Status {
     let discard = StatusCode::DISCARD;
+    let initializing = inst.mode == F::INSTANTIATED || inst.mode == F::INITIALIZATION;
+    let refused = initializing
+        .then(|| inst.core.parameters_refused())
+        .flatten();
+    let reason = match refused {
+        Some(why) => format!("invalid parameters (ExitInitializationMode refuses them): {why}"),
+        None => reason.to_string(),
+    };
     inst.log.status(
         discard,
         &format!("{function}: at t = {} s: {reason}", inst.core.time),

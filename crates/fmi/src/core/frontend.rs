@@ -33,6 +33,8 @@ pub trait Frontend: 'static {
     /// The standard's spelling of an FMU state in messages and function names.
     const FMU_STATE: &'static str;
     const INSTANTIATED: Self::Mode;
+    /// Initialization Mode: with Instantiated, where parameters may still be refused.
+    const INITIALIZATION: Self::Mode;
     const ERROR: Self::Mode;
     const FATAL: Self::Mode;
     /// The categories the layer itself logs under (models add theirs after these).

@@ -51,6 +51,7 @@ macro_rules! export_fmi3 {
                         log_message,
                         interface: $crate::fmi3::mode::Interface::ModelExchange,
                         intermediate_update: None,
+                        required: (std::ptr::null(), 0),
                     })
                 }
             }
@@ -63,8 +64,8 @@ macro_rules! export_fmi3 {
                 logging_on: Fmi3Boolean,
                 event_mode_used: Fmi3Boolean,
                 early_return_allowed: Fmi3Boolean,
-                _required_intermediate_variables: *const Fmi3ValueReference,
-                _n_required_intermediate_variables: usize,
+                required_intermediate_variables: *const Fmi3ValueReference,
+                n_required_intermediate_variables: usize,
                 environment: Fmi3InstanceEnvironment,
                 log_message: Option<Fmi3LogMessageCallback>,
                 intermediate_update: Option<Fmi3IntermediateUpdateCallback>,
@@ -84,6 +85,10 @@ macro_rules! export_fmi3 {
                         intermediate_update: $crate::fmi3::intermediate::IntermediateUpdate::new(
                             intermediate_update,
                             environment,
+                        ),
+                        required: (
+                            required_intermediate_variables,
+                            n_required_intermediate_variables,
                         ),
                     })
                 }
