@@ -17,7 +17,6 @@
 use std::any::TypeId;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard};
-use std::thread::ThreadId;
 
 /// What a handle points to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -41,7 +40,7 @@ struct Entry {
     /// instance, its own handle.
     owner: usize,
     /// The thread running a call on the instance.
-    busy: Option<ThreadId>,
+    busy: Option<usize>,
     /// FreeInstance came while the instance was busy: the running call frees it.
     free_requested: bool,
     reporter: Option<Reporter>,
@@ -62,6 +61,19 @@ static NEXT: AtomicU64 = AtomicU64::new(1);
 /// High bits of every handle: outside the user address space of x86-64 and AArch64,
 /// so a handle is never also the address of a live heap block of the importer.
 const HANDLE_BASE: u64 = 0xF0F0_0000_0000_0000;
+
+thread_local! {
+    /// A byte of every thread: its address tells the live threads apart. (A native
+    /// thread-local without destructor: unlike `std::thread::current`, it takes no
+    /// pthread key, which a library loaded and unloaded a thousand times would run
+    /// out of.)
+    static MARK: u8 = const { 0 };
+}
+
+/// A number that tells this thread from every other live thread.
+fn this_thread() -> usize {
+    MARK.with(|mark| mark as *const u8 as usize)
+}
 
 fn live() -> MutexGuard<'static, Vec<Entry>> {
     // A panic while holding the lock cannot leave the list inconsistent (every
@@ -162,7 +174,7 @@ pub fn enter<M: 'static>(handle: usize) -> Result<usize, Refused> {
         .iter_mut()
         .find(|e| e.is::<M>(handle, HandleKind::Instance) && !e.free_requested)
         .ok_or(Refused::Unknown)?;
-    let me = std::thread::current().id();
+    let me = this_thread();
     match entry.busy {
         None => {
             entry.busy = Some(me);
