@@ -16,6 +16,9 @@ fn main() {
             Err(why) => format!("FAIL {why}"),
         });
         for (case, result) in cases.iter().zip(results) {
+            if matches!(&result, Ok(line) if line.starts_with("ok not applicable")) {
+                continue; // e.g. intermediateUpdate of a model without intermediate points
+            }
             let passed = matches!(&result, Ok(line) if line.starts_with("ok "));
             tally.add(case.class, passed);
             if !passed {

@@ -12,6 +12,9 @@ fn main() {
     for api in apis(&loaded) {
         for case in cases(api.as_ref()) {
             let result = (case.run)(api.as_ref());
+            if matches!(&result, Ok(seen) if seen.starts_with("not applicable")) {
+                continue;
+            }
             if let Err(why) = &result {
                 println!("{} [{}] {}: {why}", api.name(), case.class, case.name);
             }

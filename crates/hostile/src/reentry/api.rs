@@ -30,8 +30,16 @@ pub trait Api: Sync {
     fn free(&self, h: Handle);
     /// Logging on with every category (logCalls included).
     fn log_all(&self, h: Handle) -> Status;
-    /// Setup (FMI 2.0), Initialization Mode from `start`, exit.
-    fn initialize(&self, h: Handle, start: f64) -> Status;
+    /// Setup (FMI 2.0) and Initialization Mode from `start`.
+    fn enter_initialization(&self, h: Handle, start: f64) -> Status;
+    fn exit_initialization(&self, h: Handle) -> Status;
+    /// Initialization Mode from `start`, then exit.
+    fn initialize(&self, h: Handle, start: f64) -> Status {
+        match self.enter_initialization(h, start) {
+            crate::binary::OK => self.exit_initialization(h),
+            s => s,
+        }
+    }
     fn do_step(&self, h: Handle, t: f64, dt: f64) -> Status;
     fn reset(&self, h: Handle) -> Status;
     fn set_real(&self, h: Handle, vr: u32, x: f64) -> Status;
@@ -48,6 +56,10 @@ pub trait Api: Sync {
     /// FMI 3.0 only: a Co-Simulation instance given requiredIntermediateVariables
     /// (`vrs`, `n`) as they are (None in FMI 2.0).
     fn instantiate_required(&self, host: &Host, vrs: *const u32, n: usize) -> Option<Handle>;
+    /// The FMI 3.0 functions (None in FMI 2.0).
+    fn fmi3(&self) -> Option<&Binary3> {
+        None
+    }
 }
 
 /// The first Real parameter or input with a start value, and that value (of its
@@ -138,19 +150,17 @@ impl Api for Api2<'_> {
     fn log_all(&self, h: Handle) -> Status {
         unsafe { (self.binary.set_debug_logging)(h, 1, 0, std::ptr::null()) }
     }
-    fn initialize(&self, h: Handle, start: f64) -> Status {
+    fn enter_initialization(&self, h: Handle, start: f64) -> Status {
         let b = self.binary;
         unsafe {
-            let s = (b.setup_experiment)(h, 0, 0.0, start, 0, 0.0);
-            if s != crate::binary::OK {
-                return s;
+            match (b.setup_experiment)(h, 0, 0.0, start, 0, 0.0) {
+                crate::binary::OK => (b.enter_initialization_mode)(h),
+                s => s,
             }
-            let s = (b.enter_initialization_mode)(h);
-            if s != crate::binary::OK {
-                return s;
-            }
-            (b.exit_initialization_mode)(h)
         }
+    }
+    fn exit_initialization(&self, h: Handle) -> Status {
+        unsafe { (self.binary.exit_initialization_mode)(h) }
     }
     fn do_step(&self, h: Handle, t: f64, dt: f64) -> Status {
         unsafe { (self.binary.do_step)(h, t, dt, 1) }
@@ -243,15 +253,11 @@ impl Api for Api3<'_> {
     fn log_all(&self, h: Handle) -> Status {
         unsafe { (self.binary.set_debug_logging)(h, 1, 0, std::ptr::null()) }
     }
-    fn initialize(&self, h: Handle, start: f64) -> Status {
-        let b = self.binary;
-        unsafe {
-            let s = (b.enter_initialization_mode)(h, 0, 0.0, start, 0, 0.0);
-            if s != crate::binary::OK {
-                return s;
-            }
-            (b.exit_initialization_mode)(h)
-        }
+    fn enter_initialization(&self, h: Handle, start: f64) -> Status {
+        unsafe { (self.binary.enter_initialization_mode)(h, 0, 0.0, start, 0, 0.0) }
+    }
+    fn exit_initialization(&self, h: Handle) -> Status {
+        unsafe { (self.binary.exit_initialization_mode)(h) }
     }
     fn do_step(&self, h: Handle, t: f64, dt: f64) -> Status {
         let (mut event, mut terminate, mut early, mut last) = (0u8, 0u8, 0u8, 0.0);
@@ -308,5 +314,25 @@ impl Api for Api3<'_> {
     }
     fn instantiate_required(&self, host: &Host, vrs: *const u32, n: usize) -> Option<Handle> {
         Some(self.instantiate_cs(host, std::ptr::null(), vrs, n))
+    }
+    fn fmi3(&self) -> Option<&Binary3> {
+        Some(self.binary)
+    }
+}
+
+/// An FMI 3.0 Model Exchange instance with `host`'s logger.
+pub fn instantiate_me(binary: &Binary3, d: &Description, host: &Host) -> Handle {
+    let (name, token) = (c_string("reentry"), c_string(&d.guid));
+    // SAFETY: valid strings; the host outlives the instance.
+    unsafe {
+        (binary.instantiate_me)(
+            name.as_ptr(),
+            token.as_ptr(),
+            std::ptr::null(),
+            0,
+            1,
+            host.environment(),
+            super::host::logger3(),
+        )
     }
 }

@@ -11,6 +11,7 @@ pub mod api;
 pub mod calls;
 pub mod host;
 pub mod reuse;
+pub mod status;
 pub mod threads;
 
 use crate::binary::{Status, status_name};
@@ -57,66 +58,123 @@ pub struct Case {
     pub run: Probe,
 }
 
-fn case(class: &'static str, name: &str, run: fn(&dyn Api) -> Outcome) -> Case {
-    Case {
-        class,
-        name: name.into(),
-        run: Box::new(run),
-    }
+/// Which FMUs a probe applies to.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Scope {
+    All,
+    /// FMI 3.0 only (intermediateUpdate, requiredIntermediateVariables).
+    Fmi3,
+    /// FMI 3.0 models with an eventIndicators variable.
+    Fmi3Indicators,
 }
+
+type Entry = (&'static str, &'static str, fn(&dyn Api) -> Outcome, Scope);
+
+/// The fixed probes: class, name, probe, scope.
+const PROBES: [Entry; 14] = [
+    (
+        "callbacks",
+        "logger frees on Error",
+        calls::free_on_error,
+        Scope::All,
+    ),
+    (
+        "callbacks",
+        "logger frees at the DoStep logCalls line",
+        calls::free_at_do_step_line,
+        Scope::All,
+    ),
+    (
+        "callbacks",
+        "logger resets on Error",
+        calls::reset_on_error,
+        Scope::All,
+    ),
+    (
+        "callbacks",
+        "logger sets an FMU state on Error",
+        calls::set_state_on_error,
+        Scope::All,
+    ),
+    (
+        "callbacks",
+        "logger calls a getter inside DoStep",
+        calls::getter_at_do_step_line,
+        Scope::All,
+    ),
+    (
+        "reuse",
+        "freed instance, new one at its address",
+        reuse::freed_instance,
+        Scope::All,
+    ),
+    (
+        "reuse",
+        "freed FMU state, new one at its address",
+        reuse::freed_state,
+        Scope::All,
+    ),
+    (
+        "reuse",
+        "intermediateUpdate frees and re-instantiates",
+        reuse::freed_in_intermediate_update,
+        Scope::Fmi3,
+    ),
+    (
+        "reuse",
+        "requiredIntermediateVariables garbage, n = 2^60",
+        reuse::garbage_required_variables,
+        Scope::Fmi3,
+    ),
+    (
+        "threads",
+        "second thread inside a call, then free",
+        threads::second_thread_then_free,
+        Scope::All,
+    ),
+    ("time", "step to +inf", forged::step_to_infinity, Scope::All),
+    (
+        "time",
+        "step that does not advance the time",
+        forged::step_that_does_not_advance,
+        Scope::All,
+    ),
+    (
+        "status",
+        "refused parameters: Discard with their reason",
+        status::refused_parameters,
+        Scope::All,
+    ),
+    (
+        "status",
+        "GetFloat64(eventIndicators) as GetEventIndicators",
+        status::event_indicators_agree,
+        Scope::Fmi3Indicators,
+    ),
+];
 
 /// Every probe for the FMU of `api` (the forged states depend on its parameters).
 pub fn cases(api: &dyn Api) -> Vec<Case> {
-    let mut all = vec![
-        case("callbacks", "logger frees on Error", calls::free_on_error),
-        case(
-            "callbacks",
-            "logger frees at the DoStep logCalls line",
-            calls::free_at_do_step_line,
-        ),
-        case("callbacks", "logger resets on Error", calls::reset_on_error),
-        case(
-            "callbacks",
-            "logger sets an FMU state on Error",
-            calls::set_state_on_error,
-        ),
-        case(
-            "callbacks",
-            "logger calls a getter inside DoStep",
-            calls::getter_at_do_step_line,
-        ),
-        case(
-            "reuse",
-            "freed instance, new one at its address",
-            reuse::freed_instance,
-        ),
-        case(
-            "reuse",
-            "freed FMU state, new one at its address",
-            reuse::freed_state,
-        ),
-        case(
-            "reuse",
-            "intermediateUpdate frees and re-instantiates",
-            reuse::freed_in_intermediate_update,
-        ),
-        case(
-            "reuse",
-            "requiredIntermediateVariables garbage, n = 2^60",
-            reuse::garbage_required_variables,
-        ),
-        case(
-            "threads",
-            "second thread inside a call, then free",
-            threads::second_thread_then_free,
-        ),
-        case("time", "step to +inf", forged::step_to_infinity),
-        case(
-            "time",
-            "step that does not advance the time",
-            forged::step_that_does_not_advance,
-        ),
-    ];
+    let fmi3 = api.fmi3().is_some();
+    let indicators = api
+        .description()
+        .variables
+        .iter()
+        .any(|v| v.name == "eventIndicators");
+    let applies = |scope| match scope {
+        Scope::All => true,
+        Scope::Fmi3 => fmi3,
+        Scope::Fmi3Indicators => fmi3 && indicators,
+    };
+    let mut all: Vec<Case> = PROBES
+        .iter()
+        .filter(|(.., scope)| applies(*scope))
+        .map(|&(class, name, run, _)| Case {
+            class,
+            name: name.into(),
+            run: Box::new(run),
+        })
+        .collect();
     for (name, edit) in forged::edits(api) {
         all.push(Case {
             class: "forged states",
