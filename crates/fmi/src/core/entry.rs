@@ -21,7 +21,7 @@ use std::sync::Arc;
 /// (+ Fatal mode), both with a log line naming `function`.
 ///
 /// The instance is busy during the call: a call from one of its callbacks or from
-/// another thread meanwhile is refused ([`refuse`]); a FreeInstance meanwhile is
+/// another thread meanwhile is refused with Error and a log line; a FreeInstance meanwhile is
 /// done when this call ends, and from the callback that asked for it on, this call
 /// neither touches the instance nor logs through it.
 ///
@@ -61,17 +61,22 @@ pub unsafe fn with_instance<F: Frontend, M: Model>(
 }
 
 /// The status of a call from its outcome, with the log line and mode of an error or a
-/// panic; only the status once the host asked to free the instance meanwhile.
+/// panic. Once the host asked to free the instance during the call: Error (Fatal for
+/// a panic) without a log line, since the instance is gone for the host.
 fn conclude<F: Frontend, M: Model>(
     inst: &mut FmuInstance<F, M>,
     token: usize,
     function: &str,
     outcome: std::thread::Result<Result<F::Status, String>>,
 ) -> F::Status {
-    let freed = || handles::free_requested(token);
+    if handles::free_requested(token) {
+        return match outcome {
+            Ok(_) => F::Status::ERROR,
+            Err(_) => F::Status::FATAL,
+        };
+    }
     match outcome {
         Ok(Ok(status)) => status,
-        Ok(Err(_)) if freed() => F::Status::ERROR,
         Ok(Err(message)) => {
             inst.log
                 .status(F::Status::ERROR, &format!("{function}: {message}"));
@@ -80,7 +85,6 @@ fn conclude<F: Frontend, M: Model>(
             }
             F::Status::ERROR
         }
-        Err(_) if freed() => F::Status::FATAL,
         Err(payload) => {
             let message = panic_message(payload.as_ref());
             inst.mode = F::FATAL;
@@ -290,8 +294,8 @@ pub fn setup_experiment<M: Model>(
     Ok(())
 }
 
-/// SetTime (Model Exchange): a finite time, not after the stop time (FMI 2.0
-/// section 3.2.1: computing past a defined stopTime is an error).
+/// SetTime (Model Exchange): a finite time, not after the stop time (FMI 2.0,
+/// fmi2SetupExperiment: computing past a defined stopTime is an error).
 pub fn set_time<M: Model>(
     core: &mut super::instance::Instance<M>,
     time: f64,

@@ -1,6 +1,6 @@
 //! The one check of a value that comes from outside the model, before it is written
 //! through the variable's writer: a setter's argument (fmi2Set*, fmi3Set*) and every
-//! value read back from a serialized FMU state go through [`write`], so a state can
+//! value read back from a serialized FMU state go through [`write()`], so a state can
 //! hold nothing that the setters would refuse.
 
 use super::variables::{Kind, Variable};
