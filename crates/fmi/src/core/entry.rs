@@ -39,19 +39,23 @@ pub unsafe fn with_instance<F: Frontend, M: Model>(
         Ok(address) => address as *mut FmuInstance<F, M>,
         Err(refused) => return refuse::<F>(function, refused),
     };
+    // SAFETY: a live instance, busy with this call: nothing else reaches it.
+    let start = unsafe { (*instance).log.emitted() };
     let outcome = catch_unwind(AssertUnwindSafe(|| {
-        // SAFETY: a live instance, busy with this call: nothing else reaches it.
+        // SAFETY: as above.
         let inst = unsafe { &mut *instance };
         check_call(inst, call)?;
-        let before = inst.log.emitted();
         inst.log.debug("logCalls", function);
-        if inst.log.emitted() != before && handles::free_requested(token) {
+        if inst.log.emitted() != start && handles::free_requested(token) {
             return Err(String::new()); // freed by the logger: the body does not run
         }
         body(inst)
     }));
     // SAFETY: as above (a requested free waits for `leave`); the closure's borrow ended.
-    let status = conclude(unsafe { &mut *instance }, token, function, outcome);
+    let inst = unsafe { &mut *instance };
+    // Only a callback (a message to the host) can have freed it from this thread.
+    let freed = inst.log.emitted() != start && handles::free_requested(token);
+    let status = conclude(inst, freed, function, outcome);
     if let Some(freed) = handles::leave(token) {
         // SAFETY: registered by `instantiate` as boxes of these types; unregistered
         // by `leave`, so freed once.
@@ -61,15 +65,15 @@ pub unsafe fn with_instance<F: Frontend, M: Model>(
 }
 
 /// The status of a call from its outcome, with the log line and mode of an error or a
-/// panic. Once the host asked to free the instance during the call: Error (Fatal for
-/// a panic) without a log line, since the instance is gone for the host.
+/// panic. When a callback freed the instance during the call (`freed`): Error (Fatal
+/// for a panic) without a log line, since the instance is gone for the host.
 fn conclude<F: Frontend, M: Model>(
     inst: &mut FmuInstance<F, M>,
-    token: usize,
+    freed: bool,
     function: &str,
     outcome: std::thread::Result<Result<F::Status, String>>,
 ) -> F::Status {
-    if handles::free_requested(token) {
+    if freed {
         return match outcome {
             Ok(_) => F::Status::ERROR,
             Err(_) => F::Status::FATAL,

@@ -53,6 +53,8 @@ impl Entry {
     }
 }
 
+/// The live handles, sorted by handle (new handles are the largest, so a push keeps
+/// the order; a removal shifts the rest): every lookup is a binary search.
 static LIVE: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
 
 /// The next handle number; never reset, so never reused.
@@ -81,6 +83,16 @@ fn live() -> MutexGuard<'static, Vec<Entry>> {
     LIVE.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
+/// The index of `handle` in the sorted list.
+fn find(list: &[Entry], handle: usize) -> Option<usize> {
+    list.binary_search_by_key(&handle, |e| e.handle).ok()
+}
+
+/// The index of `handle` if it is a live handle of `kind` for model `M`.
+fn find_is<M: 'static>(list: &[Entry], handle: usize, kind: HandleKind) -> Option<usize> {
+    find(list, handle).filter(|&i| list[i].is::<M>(handle, kind))
+}
+
 fn shrink(list: &mut Vec<Entry>) {
     if list.is_empty() {
         *list = Vec::new();
@@ -94,9 +106,11 @@ pub fn register<M: 'static>(
     owner: Option<usize>,
     reporter: Option<Reporter>,
 ) -> usize {
+    // Numbered under the lock, so that the list stays sorted.
+    let mut list = live();
     let n = NEXT.fetch_add(1, Ordering::Relaxed);
     let handle = (HANDLE_BASE | (n << 4)) as usize;
-    live().push(Entry {
+    list.push(Entry {
         handle,
         address,
         kind,
@@ -111,7 +125,7 @@ pub fn register<M: 'static>(
 
 /// Whether `handle` is a live handle of `kind` for model `M`.
 pub fn is_live<M: 'static>(handle: usize, kind: HandleKind) -> bool {
-    live().iter().any(|e| e.is::<M>(handle, kind))
+    find_is::<M>(&live(), handle, kind).is_some()
 }
 
 /// Runs `f` on the address behind `handle` if it is a live handle of `kind` for model
@@ -135,8 +149,8 @@ pub fn while_live<M: 'static, R>(
 /// Forgets a handle of model `M` and returns its address; None if it was not live.
 pub fn unregister<M: 'static>(handle: usize, kind: HandleKind) -> Option<usize> {
     let mut list = live();
-    let found = list.iter().position(|e| e.is::<M>(handle, kind));
-    let address = found.map(|i| list.swap_remove(i).address);
+    let found = find_is::<M>(&list, handle, kind);
+    let address = found.map(|i| list.remove(i).address);
     shrink(&mut list);
     address
 }
@@ -170,10 +184,11 @@ pub enum Refused {
 /// returns its address.
 pub fn enter<M: 'static>(handle: usize) -> Result<usize, Refused> {
     let mut list = live();
-    let entry = list
-        .iter_mut()
-        .find(|e| e.is::<M>(handle, HandleKind::Instance) && !e.free_requested)
-        .ok_or(Refused::Unknown)?;
+    let i = find_is::<M>(&list, handle, HandleKind::Instance).ok_or(Refused::Unknown)?;
+    let entry = &mut list[i];
+    if entry.free_requested {
+        return Err(Refused::Unknown);
+    }
     let me = this_thread();
     match entry.busy {
         None => {
@@ -190,9 +205,8 @@ pub fn enter<M: 'static>(handle: usize) -> Result<usize, Refused> {
 /// Whether FreeInstance was called on the busy instance `handle` (by a callback of
 /// the running call or by another thread).
 pub fn free_requested(handle: usize) -> bool {
-    live()
-        .iter()
-        .any(|e| e.handle == handle && e.kind == HandleKind::Instance && e.free_requested)
+    let list = live();
+    find(&list, handle).is_some_and(|i| list[i].free_requested)
 }
 
 /// What freeing an instance takes: its address and those of the states it owns.
@@ -206,14 +220,12 @@ pub struct Freed {
 /// and the caller frees them.
 pub fn leave(handle: usize) -> Option<Freed> {
     let mut list = live();
-    let i = list
-        .iter()
-        .position(|e| e.handle == handle && e.kind == HandleKind::Instance)?;
+    let i = find(&list, handle).filter(|&i| list[i].kind == HandleKind::Instance)?;
     list[i].busy = None;
     if !list[i].free_requested {
         return None;
     }
-    let instance = list.swap_remove(i).address;
+    let instance = list.remove(i).address;
     let states = take_states_of(&mut list, handle);
     shrink(&mut list);
     Some(Freed { instance, states })
@@ -224,14 +236,15 @@ pub fn leave(handle: usize) -> Option<Freed> {
 /// which case the running call frees it when it leaves ([`leave`]).
 pub fn free_instance<M: 'static>(handle: usize) -> Option<Freed> {
     let mut list = live();
-    let i = list
-        .iter()
-        .position(|e| e.is::<M>(handle, HandleKind::Instance) && !e.free_requested)?;
+    let i = find_is::<M>(&list, handle, HandleKind::Instance)?;
+    if list[i].free_requested {
+        return None;
+    }
     if list[i].busy.is_some() {
         list[i].free_requested = true;
         return None;
     }
-    let instance = list.swap_remove(i).address;
+    let instance = list.remove(i).address;
     let states = take_states_of(&mut list, handle);
     shrink(&mut list);
     Some(Freed { instance, states })
