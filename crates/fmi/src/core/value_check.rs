@@ -83,10 +83,10 @@ pub fn write<M>(model: &mut M, v: &Variable<M>, value: Value) -> Result<(), Stri
         (_, Value::Integer(_)) => return Err(wrong_type(v, "Integer")),
         (_, Value::Boolean(_)) => return Err(wrong_type(v, "Boolean")),
     };
-    let shown = match value {
-        Value::Real(x) => x.to_string(),
-        Value::Integer(x) => x.to_string(),
-        Value::Boolean(x) => x.to_string(),
-    };
-    result.map_err(|e| format!("\"{name}\" = {shown}: {e}"))
+    // Formatted only for a refusal (a float to text costs more than the write).
+    result.map_err(|e| match value {
+        Value::Real(x) => format!("\"{name}\" = {x}: {e}"),
+        Value::Integer(x) => format!("\"{name}\" = {x}: {e}"),
+        Value::Boolean(x) => format!("\"{name}\" = {x}: {e}"),
+    })
 }
