@@ -51,7 +51,6 @@ macro_rules! export_fmi3 {
                         log_message,
                         interface: $crate::fmi3::mode::Interface::ModelExchange,
                         intermediate_update: None,
-                        required: (std::ptr::null(), 0),
                     })
                 }
             }
@@ -71,7 +70,7 @@ macro_rules! export_fmi3 {
                 intermediate_update: Option<Fmi3IntermediateUpdateCallback>,
             ) -> Fmi3Instance {
                 unsafe {
-                    api::instantiate::<M>(api::Instantiation {
+                    api::instantiate_requiring::<M>(api::Instantiation {
                         function: "fmi3InstantiateCoSimulation",
                         instance_name,
                         token,
@@ -86,11 +85,7 @@ macro_rules! export_fmi3 {
                             intermediate_update,
                             environment,
                         ),
-                        required: (
-                            required_intermediate_variables,
-                            n_required_intermediate_variables,
-                        ),
-                    })
+                    }, (required_intermediate_variables, n_required_intermediate_variables))
                 }
             }
             #[unsafe(no_mangle)]

@@ -29,8 +29,6 @@ pub struct Instantiation {
     pub interface: Interface,
     /// The intermediateUpdate callback (Co-Simulation; None for Model Exchange).
     pub intermediate_update: Option<IntermediateUpdate>,
-    /// requiredIntermediateVariables and their number (Co-Simulation).
-    pub required: (*const Fmi3ValueReference, usize),
 }
 
 /// Err unless requiredIntermediateVariables names at most as many variables as the
@@ -83,6 +81,19 @@ fn logger<M: Model>(
 /// Creates an instance (fmi3InstantiateModelExchange and -CoSimulation): checks the
 /// instance name and the instantiation token; null on failure, with a log line.
 pub unsafe fn instantiate<M: Model>(args: Instantiation) -> Fmi3Instance {
+    // SAFETY: an empty list.
+    unsafe { instantiate_requiring::<M>(args, (std::ptr::null(), 0)) }
+}
+
+/// [`instantiate`] for fmi3InstantiateCoSimulation, which also checks
+/// requiredIntermediateVariables (`required`: the array and its length).
+///
+/// # Safety
+/// A non-null `required.0` must be valid for `required.1` value references.
+pub unsafe fn instantiate_requiring<M: Model>(
+    args: Instantiation,
+    required: (*const Fmi3ValueReference, usize),
+) -> Fmi3Instance {
     let logger = || logger::<M>(args.log_message, args.environment, args.logging_on);
     entry::instantiate(
         args.function,
@@ -104,7 +115,7 @@ pub unsafe fn instantiate<M: Model>(args: Instantiation) -> Fmi3Instance {
             }
             let inst = Instance::<M>::new(args.interface, log, args.intermediate_update)?;
             // SAFETY: the host passes an array of the given length or null.
-            unsafe { check_required(&inst, args.required) }?;
+            unsafe { check_required(&inst, required) }?;
             Ok(inst)
         },
     )
