@@ -16,7 +16,7 @@
 //! deserialization trusts nothing it reads: it rebuilds the model from start values
 //! and writes every value back through the setters' check ([`value_check::write`]:
 //! finite, magnitude, min/max, the writer's own check), reads times that are finite
-//! and not after the stop time, then runs the model's own checks of
+//! (the last successful one not after the stop time), then runs the model's own checks of
 //! ExitInitializationMode and checks the terminated flag against a step (`check_model`).
 //! Foreign (other magic, version or model), truncated, padded, corrupted or edited
 //! bytes are refused with a message naming the field.
@@ -193,8 +193,9 @@ fn finite_time(t: f64, field: &str) -> Result<f64, String> {
     }
 }
 
-/// The times of a state: finite, the time and the last successful time not after
-/// the stop time (the layer refuses steps and SetTime beyond it).
+/// The times of a state: finite, and the last successful time not after the stop
+/// time (the layer refuses steps beyond it; the time itself may be, in Model
+/// Exchange, where an integrator evaluates past the stop time).
 fn read_times(r: &mut Reader) -> Result<(f64, Option<f64>, f64), String> {
     let time = finite_time(r.f64("time")?, "time")?;
     let stop_defined = r.flag("stop time flag")?;
@@ -206,13 +207,9 @@ fn read_times(r: &mut Reader) -> Result<(f64, Option<f64>, f64), String> {
     let last = finite_time(r.f64("last successful time")?, "last successful time")?;
     if let Some(stop) = stop_time {
         let slack = TIME_MATCH * stop.abs().max(1.0);
-        for (t, field) in [(time, "time"), (last, "last successful time")] {
-            if t > stop + slack {
-                return Err(refused(
-                    field,
-                    format!("{t} s is after the stop time {stop} s"),
-                ));
-            }
+        if last > stop + slack {
+            let why = format!("{last} s is after the stop time {stop} s");
+            return Err(refused("last successful time", why));
         }
     }
     Ok((time, stop_time, last))

@@ -28,7 +28,8 @@ pub enum Edit {
     /// Payload byte offset (after the writing standard byte), new bytes, the field
     /// the refusal must name.
     At(usize, Vec<u8>, &'static str),
-    /// A stop time (defined) one second before the time.
+    /// A stop time (defined) one second before the time (and the last successful
+    /// time, equal to it after a Co-Simulation step).
     StopBeforeTime,
     /// The scalar Real parameter (value reference, name) set to this value.
     Parameter(u32, String, f64),
@@ -153,7 +154,8 @@ fn apply(bytes: &mut [u8], edit: &Edit, marker: Option<f64>) -> Result<String, S
                 f64::from_le_bytes(bytes[p + TIME..p + TIME + 8].try_into().unwrap_or_default());
             bytes[p + STOP_FLAG] = 1;
             bytes[p + STOP..p + STOP + 8].copy_from_slice(&(time - 1.0).to_le_bytes());
-            Ok("time".into())
+            // After a Co-Simulation step the last successful time is the time.
+            Ok("last successful time".into())
         }
         Edit::Parameter(_, name, x) => {
             let m = marker
