@@ -12,6 +12,7 @@ use robofmu_fmi::core::frontend::log_categories;
 use robofmu_fmi::core::instance::sorted_table;
 use robofmu_fmi::core::model::Model;
 use robofmu_fmi::core::variables::{Causality, Initial, Kind, Variable, find};
+use robofmu_fmi::fmi3::declared::view;
 use robofmu_fmi::fmi3::mode::Fmi3;
 use robofmu_fmi::fmi3::table::{self, Table3, Variable3, build};
 use serde::Serialize;
@@ -316,7 +317,14 @@ pub fn model_description<M: Model>() -> Result<String, String> {
     let info = M::info();
     let table = sorted_table::<M>()?;
     check_table(&table)?;
-    let t = build(&table)?;
+    let t = view::<M>(&table)?;
+    if t.variables != build(&table)?.variables {
+        return Err(
+            "the declared FMI 3.0 view differs from the one parsed from the \
+                    FMI 2.0 names"
+                .to_string(),
+        );
+    }
     let states: usize = t.derivatives().map(Variable3::size).sum();
     if states != info.number_of_continuous_states {
         return Err(format!(

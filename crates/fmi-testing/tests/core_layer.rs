@@ -349,8 +349,8 @@ fn one_array_declaration_gives_named_scalars_with_getters_setters_and_dimensions
     else {
         panic!("theta[2] is a settable Real");
     };
-    assert_eq!(get(&model), 2.0);
-    set(&mut model, -4.5).unwrap();
+    assert_eq!(get.call(&model), 2.0);
+    set.call(&mut model, -4.5).unwrap();
     assert_eq!(model, [1.0, -4.5, 3.0]);
     assert_eq!(*start, Some(0.2));
 }

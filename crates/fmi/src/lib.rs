@@ -8,14 +8,18 @@
 //! 1. describe the FMU once in a `static` [`ModelInfo`](prelude::ModelInfo) (names,
 //!    instantiation token, default experiment, state and event-indicator counts,
 //!    capabilities, log categories);
-//! 2. implement [`Model`](prelude::Model) for the model type: `variables()` returns the
-//!    table, [`Variable`](prelude::Variable)s and [`Array`](prelude::Array)s naming
-//!    the getter/setter, causality, [`Variability`](prelude::Variability), unit, start
-//!    and bounds of each; the step returns a [`StepOutcome`](prelude::StepOutcome),
-//!    Model Exchange events an [`EventUpdate`](prelude::EventUpdate); messages go to
-//!    the [`Log`](prelude::Log) in one of the model's
-//!    [`LogCategory`](prelude::LogCategory)s;
-//! 3. end the crate with [`export_fmu!`]`(Type);` it exports the FMI 2.0 and the
+//! 2. declare the variables once, in a `static` slice of
+//!    [`Declaration`](prelude::Declaration)s: scalars and arrays (`.array(n)`), each
+//!    with its getter and setter (`fn` pointers taking the element index), causality,
+//!    [`Variability`](prelude::Variability), unit, start, bounds and hooks (output
+//!    derivatives, input-derivative slots); value references are pinned with `.at(vr)`
+//!    or assigned by the layer (see [`core::declare`]);
+//! 3. implement [`Model`](prelude::Model) for the model type: `declarations()` returns
+//!    that slice; the step returns a [`StepOutcome`](prelude::StepOutcome), Model
+//!    Exchange events an [`EventUpdate`](prelude::EventUpdate); partial derivatives
+//!    name their variables as [`Element`](prelude::Element)s; messages go to the
+//!    [`Log`](prelude::Log) in one of the model's [`LogCategory`](prelude::LogCategory)s;
+//! 4. end the crate with [`export_fmu!`]`(Type);` it exports the FMI 2.0 and the
 //!    FMI 3.0 C functions from the same cdylib.
 //!
 //! The modules below are the layer itself: [`core`] (the version-neutral core: model
@@ -32,8 +36,8 @@ pub mod fmi3;
 pub mod prelude {
     pub use crate::core::arrays::{Array, BooleanArray, IntegerArray, RealArray, Role};
     pub use crate::core::{
-        DefaultExperiment, EventUpdate, Log, LogCategory, Model, ModelInfo, OutputDerivativeError,
-        StepOutcome, Variability, Variable,
+        Declaration, DefaultExperiment, Element, EventUpdate, Log, LogCategory, Model, ModelInfo,
+        OutputDerivativeError, StepOutcome, Variability, Variable,
     };
     pub use crate::export_fmu;
 }

@@ -74,8 +74,8 @@ fn interleaved_strided_arrays_pass_the_table_check_and_read_and_write_their_fiel
     else {
         panic!("qf[2] is a settable Real at value reference 21");
     };
-    assert_eq!(get(&model), 5.0);
-    set(&mut model, -7.5).unwrap();
+    assert_eq!(get.call(&model), 5.0);
+    set.call(&mut model, -7.5).unwrap();
     assert_eq!(model.qf, [4.0, -7.5, 6.0]);
     assert_eq!(model.q0, [1.0, 2.0, 3.0]);
 }
@@ -163,6 +163,6 @@ fn boolean_and_derivative_arrays_are_named_like_hand_declared_scalars() {
         panic!("on[2] is a settable Boolean");
     };
     let mut model = Switches::default();
-    set(&mut model, true).unwrap();
-    assert_eq!((model.on, get(&model)), ([false, true], true));
+    set.call(&mut model, true).unwrap();
+    assert_eq!((model.on, get.call(&model)), ([false, true], true));
 }

@@ -8,7 +8,6 @@
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
 use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
-use robofmu_fmi::core::arrays::ElementType;
 use robofmu_fmi::prelude::*;
 
 pub const CHANNELS: usize = 3;
@@ -63,258 +62,174 @@ impl Pid {
     }
 }
 
-/// Value references: group g (below) times 10, plus channel 1..3.
-const KP: u32 = 0;
-const KI: u32 = 10;
-const KD: u32 = 20;
-const TF: u32 = 30;
-const LIMITED: u32 = 40;
-const U_MIN: u32 = 50;
-const U_MAX: u32 = 60;
-const USE_RATES: u32 = 70;
-const SETPOINT: u32 = 100;
-const MEASUREMENT: u32 = 110;
-const SETPOINT_RATE: u32 = 120;
-const MEASURED_RATE: u32 = 130;
-const FEEDFORWARD: u32 = 140;
-const U: u32 = 200;
-const INTEGRAL: u32 = 300;
-const FILTER: u32 = 310;
-const DER_INTEGRAL: u32 = 320;
-const DER_FILTER: u32 = 330;
+impl Pid {
+    /// Applies a change of channel c (setting a limit updates the law's limits).
+    fn change(&mut self, c: usize, f: impl FnOnce(&mut Self)) -> Result<(), String> {
+        f(self);
+        self.sync_limits(c);
+        Ok(())
+    }
 
-fn vr(group: u32, c: usize) -> u32 {
-    group + c as u32 + 1
-}
-
-/// (group, channel) of a value reference.
-fn split(vr: u32) -> (u32, usize) {
-    (vr - (vr - 1) % 10 - 1, ((vr - 1) % 10) as usize)
-}
-
-/// The field of `inputs` that the input group `group` sets.
-fn input_field(inputs: &mut PidInputs, group: u32) -> Option<&mut f64> {
-    match group {
-        SETPOINT => Some(&mut inputs.setpoint),
-        MEASUREMENT => Some(&mut inputs.measurement),
-        SETPOINT_RATE => Some(&mut inputs.setpoint_rate),
-        MEASURED_RATE => Some(&mut inputs.measured_rate),
-        FEEDFORWARD => Some(&mut inputs.feedforward),
-        _ => None,
+    /// The input derivatives of `order` (1 or 2) of channel c.
+    fn ramp(&mut self, c: usize, order: u32) -> Option<&mut PidInputs> {
+        let ramp = self.ramps.get_mut(c)?;
+        match order {
+            1 => Some(&mut ramp.rate),
+            2 => Some(&mut ramp.acceleration),
+            _ => None,
+        }
     }
 }
 
-/// Read and write access to one field of channel c (reading needs no copy of the
-/// model).
-struct Field<T> {
-    read: fn(&Pid, usize) -> T,
-    write: fn(&mut Pid, usize) -> &mut T,
+type Decl = Declaration<Pid>;
+
+/// The array of the three channels, element c at `vr + c - 1`, described as
+/// "Channel c: ..." in FMI 2.0.
+const fn channels(d: Decl, vr: u32) -> Decl {
+    d.array(CHANNELS).at(vr).label("Channel")
 }
 
-// Copy without requiring T: Copy (the fields are function pointers).
-impl<T> Clone for Field<T> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-
-impl<T> Copy for Field<T> {}
-
-type RealField = Field<f64>;
-
-/// `field!(gains.kp)`: the `Field` of `m.gains[c].kp`; `field!(limited)`: of
-/// `m.limited[c]`.
-macro_rules! field {
-    ($group:ident . $member:tt) => {
-        Field {
-            read: |m, c| m.$group[c].$member,
-            write: |m, c| &mut m.$group[c].$member,
-        }
-    };
-    ($group:ident) => {
-        Field {
-            read: |m, c| m.$group[c],
-            write: |m, c| &mut m.$group[c],
-        }
+/// A settable channel array of the field `m.$group[c]$(.$member)` (`$ty`: real or boolean).
+macro_rules! settable {
+    ($ty:ident, $set:ident, $name:literal, $vr:literal, $what:literal, $group:ident $(. $member:tt)?) => {
+        channels(Decl::$ty($name, $what, |m, c| m.$group[c]$(.$member)?), $vr)
+            .$set(|m, c, v| m.change(c, |m| m.$group[c]$(.$member)? = v))
     };
 }
 
-/// Tunable Real parameters: group, name, description, default, field.
-const REAL_PARAMETERS: [(u32, &str, &str, f64, RealField); 6] = [
-    (KP, "Kp", "Proportional gain", 1.0, field!(gains.kp)),
-    (KI, "Ki", "Integral gain (1/s)", 0.5, field!(gains.ki)),
-    (KD, "Kd", "Derivative gain (s)", 0.1, field!(gains.kd)),
-    (
-        TF,
+/// A tunable Real parameter of the three channels.
+macro_rules! gain {
+    ($name:literal, $vr:literal, $what:literal, $start:literal, $($field:tt)+) => {
+        settable!(real, set_real, $name, $vr, $what, $($field)+)
+            .parameter(Variability::Tunable)
+            .start_real(&[$start])
+    };
+}
+
+/// A Boolean parameter of the three channels (default false).
+macro_rules! switch {
+    ($name:literal, $vr:literal, $what:literal, $variability:ident, $($field:tt)+) => {
+        settable!(boolean, set_boolean, $name, $vr, $what, $($field)+)
+            .parameter(Variability::$variability)
+            .start_boolean(&[false])
+    };
+}
+
+/// A continuous Real input of the three channels, with its input derivatives.
+macro_rules! input {
+    ($name:literal, $vr:literal, $what:literal, $start:expr, $field:ident) => {
+        settable!(real, set_real, $name, $vr, $what, inputs.$field)
+            .input()
+            .start_real($start)
+            .input_derivative(|m, c, n| m.ramp(c, n).map(|r| &mut r.$field))
+    };
+}
+
+/// A state of the three channels (start 0), and its time derivative.
+macro_rules! state {
+    ($name:literal, $vr:literal, $what:literal, $field:ident) => {
+        settable!(real, set_real, $name, $vr, $what, states.$field)
+            .state()
+            .start_real(&[0.0])
+    };
+    ($name:literal, $state:literal, $vr:literal, $what:literal, $field:ident) => {
+        Decl::real($name, $what, |m, c| m.derivative(c).$field)
+            .array(CHANNELS)
+            .at($vr)
+            .derivative_of($state)
+    };
+}
+
+static VARIABLES: &[Decl] = &[
+    gain!("Kp", 1, "Proportional gain", 1.0, gains.kp),
+    gain!("Ki", 11, "Integral gain (1/s)", 0.5, gains.ki),
+    gain!("Kd", 21, "Derivative gain (s)", 0.1, gains.kd),
+    gain!(
         "Tf",
+        31,
         "Derivative filter time constant (0 allowed only with rate inputs)",
         0.05,
-        field!(gains.tf),
+        gains.tf
     ),
-    (
-        U_MIN,
+    switch!(
+        "limitOutput",
+        41,
+        "clamp the output to [uMin, uMax]",
+        Tunable,
+        limited
+    ),
+    gain!(
         "uMin",
+        51,
         "Lower output limit (used when limitOutput)",
         -1.0,
-        field!(limits.0),
+        limits.0
     ),
-    (
-        U_MAX,
+    gain!(
         "uMax",
+        61,
         "Upper output limit (used when limitOutput)",
         1.0,
-        field!(limits.1),
+        limits.1
     ),
-];
-
-/// Real inputs: group, name, description, default per channel, field.
-const INPUTS: [(u32, &str, &str, [f64; CHANNELS], RealField); 5] = [
-    (
-        SETPOINT,
-        "setpoint",
-        "Setpoint r",
-        [1.0, 0.5, -0.25],
-        field!(inputs.setpoint),
-    ),
-    (
-        MEASUREMENT,
-        "measurement",
-        "Measurement y (e = r - y)",
-        [0.0; CHANNELS],
-        field!(inputs.measurement),
-    ),
-    (
-        SETPOINT_RATE,
-        "setpointRate",
-        "Setpoint rate dr/dt (used when useRateInputs)",
-        [0.0; CHANNELS],
-        field!(inputs.setpoint_rate),
-    ),
-    (
-        MEASURED_RATE,
-        "measuredRate",
-        "Measured rate dy/dt (used when useRateInputs)",
-        [0.0; CHANNELS],
-        field!(inputs.measured_rate),
-    ),
-    (
-        FEEDFORWARD,
-        "feedforward",
-        "Added to the output before the limits",
-        [0.0; CHANNELS],
-        field!(inputs.feedforward),
-    ),
-];
-
-/// `base[1..3]` read by `get`, each element described as "Channel c: `description`".
-fn channels<T: ElementType>(
-    group: u32,
-    base: &'static str,
-    description: &'static str,
-    get: impl Fn(&Pid, usize) -> T + Clone + Send + Sync + 'static,
-) -> Array<Pid, T, impl Role<Pid>> {
-    Array::new(vr(group, 0), base, CHANNELS, description, get).label("Channel")
-}
-
-/// The settable channel array of `field` (setting a limit updates the law's limits).
-fn settable<T: ElementType>(
-    group: u32,
-    base: &'static str,
-    description: &'static str,
-    field: Field<T>,
-) -> Array<Pid, T, impl Role<Pid>> {
-    channels(group, base, description, field.read).set(move |m, c, v| {
-        *(field.write)(m, c) = v;
-        m.sync_limits(c);
-        Ok(())
-    })
-}
-
-/// The Boolean parameter `base[1..3]` (default false) of `field`.
-fn switches(
-    group: u32,
-    base: &'static str,
-    description: &'static str,
-    variability: Variability,
-    field: Field<bool>,
-) -> Array<Pid, bool, impl Role<Pid>> {
-    settable(group, base, description, field)
-        .each(move |v, _| v.parameter(variability).start_boolean(false))
-}
-
-fn variables() -> Vec<Variable<Pid>> {
-    let mut table = Vec::new();
-    let parameter = |(group, name, description, default, field): &(
-        u32,
-        &'static str,
-        &'static str,
-        f64,
-        RealField,
-    )| {
-        let default = *default;
-        settable(*group, name, description, *field)
-            .each(move |v, _| v.parameter(Variability::Tunable).start_real(default))
-            .variables()
-    };
-    table.extend(REAL_PARAMETERS.iter().flat_map(parameter));
-    let limited = switches(
-        LIMITED,
-        "limitOutput",
-        "clamp the output to [uMin, uMax]",
-        Variability::Tunable,
-        field!(limited),
-    );
-    let use_rates = switches(
-        USE_RATES,
+    switch!(
         "useRateInputs",
+        71,
         "derivative from setpointRate - measuredRate instead of the filtered error",
-        Variability::Fixed,
-        field!(gains.use_rate_inputs),
-    );
-    table.extend(limited.variables().into_iter().chain(use_rates.variables()));
-    for (group, name, description, defaults, field) in INPUTS {
-        let array = settable(group, name, description, field)
-            .each(move |v, c| v.input().start_real(defaults[c]));
-        table.extend(array.variables());
-    }
-    let u = channels(U, "u", "control output", |m, c| m.output(c).u).each(|v, _| v.output());
-    table.extend(u.variables());
-    /// Group, name, description, field of a state; group, description, value of its
-    /// derivative.
-    type Derivative = fn(&Pid, usize) -> f64;
-    let states: [(u32, &str, &str, RealField, u32, &str, Derivative); 2] = [
-        (
-            INTEGRAL,
-            "integral",
-            "integral of the error (state)",
-            field!(states.integral),
-            DER_INTEGRAL,
-            "Time derivative of the error integral",
-            |m, c| m.derivative(c).integral,
-        ),
-        (
-            FILTER,
-            "filter",
-            "derivative filter state (state)",
-            field!(states.filter),
-            DER_FILTER,
-            "Time derivative of the derivative filter state",
-            |m, c| m.derivative(c).filter,
-        ),
-    ];
-    for (group, name, description, field, der_group, der_description, der) in states {
-        let state =
-            settable(group, name, description, field).each(|v, _| v.state().start_real(0.0));
-        let derivative =
-            RealArray::derivatives(vr(der_group, 0), name, CHANNELS, der_description, der);
-        table.extend(state.variables().into_iter().chain(derivative.variables()));
-    }
-    table
-}
+        Fixed,
+        gains.use_rate_inputs
+    ),
+    input!("setpoint", 101, "Setpoint r", &[1.0, 0.5, -0.25], setpoint),
+    input!(
+        "measurement",
+        111,
+        "Measurement y (e = r - y)",
+        &[0.0],
+        measurement
+    ),
+    input!(
+        "setpointRate",
+        121,
+        "Setpoint rate dr/dt (used when useRateInputs)",
+        &[0.0],
+        setpoint_rate
+    ),
+    input!(
+        "measuredRate",
+        131,
+        "Measured rate dy/dt (used when useRateInputs)",
+        &[0.0],
+        measured_rate
+    ),
+    input!(
+        "feedforward",
+        141,
+        "Added to the output before the limits",
+        &[0.0],
+        feedforward
+    ),
+    channels(Decl::real("u", "control output", |m, c| m.output(c).u), 201).output(),
+    state!("integral", 301, "integral of the error (state)", integral),
+    state!("filter", 311, "derivative filter state (state)", filter),
+    state!(
+        "der(integral)",
+        "integral",
+        321,
+        "Time derivative of the error integral",
+        integral
+    ),
+    state!(
+        "der(filter)",
+        "filter",
+        331,
+        "Time derivative of the derivative filter state",
+        filter
+    ),
+];
 
 /// d(output or state derivative)/d(input or state) of one channel, from the law in
 /// `control::pid` (the limits make u flat, conditional integration makes dI/dt flat).
-fn channel_partial(m: &Pid, c: usize, unknown: u32, known: u32) -> Result<f64, String> {
+fn channel_partial(m: &Pid, c: usize, unknown: &str, known: &str) -> Result<f64, String> {
     let g = &m.gains[c];
     let out = m.output(c);
     // Coefficients of e (via setpoint/measurement), of the rate error and of the states
@@ -334,41 +249,37 @@ fn channel_partial(m: &Pid, c: usize, unknown: u32, known: u32) -> Result<f64, S
     let saturated = g
         .limits
         .is_some_and(|(lo, hi)| out.u_raw > hi || out.u_raw < lo);
-    let sign = |k: u32| match k {
-        SETPOINT | SETPOINT_RATE => 1.0,
+    let sign = |k: &str| match k {
+        "setpoint" | "setpointRate" => 1.0,
         _ => -1.0,
     };
     Ok(match unknown {
-        U if saturated => 0.0,
-        U => match known {
-            SETPOINT | MEASUREMENT => sign(known) * (g.kp + d_e),
-            SETPOINT_RATE | MEASURED_RATE => sign(known) * d_rate,
-            FEEDFORWARD => 1.0,
-            INTEGRAL => g.ki,
-            FILTER => d_filter,
+        "u" if saturated => 0.0,
+        "u" => match known {
+            "setpoint" | "measurement" => sign(known) * (g.kp + d_e),
+            "setpointRate" | "measuredRate" => sign(known) * d_rate,
+            "feedforward" => 1.0,
+            "integral" => g.ki,
+            "filter" => d_filter,
             _ => {
-                return Err(format!(
-                    "value reference group {known} is not an input or state"
-                ));
+                return Err(format!("\"{known}\" is not an input or state"));
             }
         },
-        DER_INTEGRAL if pid::integration_stopped(g, &out) => 0.0,
-        DER_INTEGRAL => match known {
-            SETPOINT | MEASUREMENT => sign(known),
+        "der(integral)" if pid::integration_stopped(g, &out) => 0.0,
+        "der(integral)" => match known {
+            "setpoint" | "measurement" => sign(known),
             _ => 0.0,
         },
-        DER_FILTER if !filter_active => 0.0,
-        DER_FILTER => match (known, g.use_rate_inputs) {
-            (SETPOINT | MEASUREMENT, false) | (SETPOINT_RATE | MEASURED_RATE, true) => {
+        "der(filter)" if !filter_active => 0.0,
+        "der(filter)" => match (known, g.use_rate_inputs) {
+            ("setpoint" | "measurement", false) | ("setpointRate" | "measuredRate", true) => {
                 sign(known) / g.tf
             }
-            (FILTER, _) => -1.0 / g.tf,
+            ("filter", _) => -1.0 / g.tf,
             _ => 0.0,
         },
         _ => {
-            return Err(format!(
-                "value reference group {unknown} is not an output or derivative"
-            ));
+            return Err(format!("\"{unknown}\" is not an output or derivative"));
         }
     })
 }
@@ -378,8 +289,8 @@ impl Model for Pid {
         &INFO
     }
 
-    fn variables() -> Vec<Variable<Self>> {
-        variables()
+    fn declarations() -> &'static [Declaration<Self>] {
+        VARIABLES
     }
 
     fn new() -> Self {
@@ -441,17 +352,6 @@ impl Model for Pid {
     /// the 9 inner points (held over the next sub-interval).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
 
-    fn input_derivative_mut(&mut self, vr: u32, order: u32) -> Option<&mut f64> {
-        let (group, c) = split(vr);
-        let ramp = self.ramps.get_mut(c)?;
-        let part = match order {
-            1 => &mut ramp.rate,
-            2 => &mut ramp.acceleration,
-            _ => return None,
-        };
-        input_field(part, group)
-    }
-
     fn continuous_states(&self, x: &mut [f64]) {
         for c in 0..CHANNELS {
             x[c] = self.states[c].integral;
@@ -475,15 +375,11 @@ impl Model for Pid {
         Ok(())
     }
 
-    fn partial_derivative(&self, unknown: u32, known: u32) -> Result<f64, String> {
-        let ((ug, uc), (kg, kc)) = (split(unknown), split(known));
-        if uc >= CHANNELS || kc >= CHANNELS {
-            return Err(format!("value reference {unknown} or {known} out of range"));
-        }
-        if uc != kc {
+    fn partial_derivative(&self, unknown: Element, known: Element) -> Result<f64, String> {
+        if unknown.index != known.index {
             return Ok(0.0);
         }
-        channel_partial(self, uc, ug, kg)
+        channel_partial(self, unknown.index, unknown.name, known.name)
     }
 }
 

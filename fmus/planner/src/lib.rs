@@ -82,172 +82,120 @@ impl Planner {
     fn sample(&self, axis: usize) -> Option<robofmu_control::trajectory::Sample> {
         self.axes.as_ref().ok().map(|p| p[axis].sample(self.time))
     }
-}
 
-/// Value references: order 1, t0 2, tf 3; boundary values 10 a + k (axis a = 1..3,
-/// k = 0..5: q0, qf, qdot0, qdotf, qddot0, qddotf); outputs 100 + 10 (a - 1) + k
-/// (k = 0..2: q, qdot, qddot).
-fn boundary_vr(axis: usize, k: usize) -> u32 {
-    AXIS_STRIDE * (axis as u32 + 1) + k as u32
-}
+    /// Applies a change of the parameters and rebuilds the polynomials.
+    fn change(&mut self, f: impl FnOnce(&mut Self)) -> Result<(), String> {
+        f(self);
+        self.rebuild();
+        Ok(())
+    }
 
-fn output_vr(axis: usize, k: usize) -> u32 {
-    100 + AXIS_STRIDE * axis as u32 + k as u32
-}
+    /// Output `k` (0 q, 1 qdot, 2 qddot) of `axis` (NaN until the parameters are valid).
+    fn output(&self, axis: usize, k: usize) -> f64 {
+        self.sample(axis)
+            .map_or(f64::NAN, |s| [s.q, s.qdot, s.qddot][k])
+    }
 
-/// Step of the value references from one axis to the next.
-const AXIS_STRIDE: u32 = 10;
-
-/// (axis, k) of the output value reference `output_vr(axis, k)`.
-fn output_of(vr: u32) -> Option<(usize, usize)> {
-    let offset = vr.checked_sub(100)?;
-    let (axis, k) = (
-        (offset / AXIS_STRIDE) as usize,
-        (offset % AXIS_STRIDE) as usize,
-    );
-    (axis < AXES && k < OUTPUTS.len()).then_some((axis, k))
-}
-
-/// Name, unit, description and default per axis of the boundary values, in the order
-/// of `boundary_field`.
-const BOUNDARY_FIELDS: [(&str, &str, &str, [f64; AXES]); 6] = [
-    ("q0", "rad", "position at t0", [0.0, 0.0, 0.0]),
-    ("qf", "rad", "position at tf", [0.5, -0.3, 0.8]),
-    ("qdot0", "rad/s", "velocity at t0", [0.0; AXES]),
-    ("qdotf", "rad/s", "velocity at tf", [0.0; AXES]),
-    (
-        "qddot0",
-        "rad/s2",
-        "acceleration at t0 (quintic only)",
-        [0.0; AXES],
-    ),
-    (
-        "qddotf",
-        "rad/s2",
-        "acceleration at tf (quintic only)",
-        [0.0; AXES],
-    ),
-];
-
-fn boundary_field(b: &mut Boundary, k: usize) -> &mut f64 {
-    match k {
-        0 => &mut b.q0,
-        1 => &mut b.qf,
-        2 => &mut b.qdot0,
-        3 => &mut b.qdotf,
-        4 => &mut b.qddot0,
-        _ => &mut b.qddotf,
+    /// Exact: order n of output k (q, qdot, qddot) is the derivative of order k + n of
+    /// the axis's polynomial (`Polynomial::derivative`: one-sided from inside the
+    /// motion at t0 and tf, zero while held), so the first derivative of q equals the
+    /// output qdot and that of qdot the output qddot at every time.
+    fn derivative(&self, axis: usize, k: usize, n: u32) -> Result<f64, OutputDerivativeError> {
+        let axes = self.axes.as_ref();
+        let axes = axes.map_err(|e| OutputDerivativeError::CannotEvaluate(e.clone()))?;
+        Ok(axes[axis].derivative(self.time, k + n as usize))
     }
 }
 
-const OUTPUTS: [(&str, &str, &str); 3] = [
-    ("q", "rad", "planned position"),
-    ("qdot", "rad/s", "planned velocity"),
-    ("qddot", "rad/s2", "planned acceleration"),
-];
-
-/// The array `base[1..3]` of the axes, element a at `first_vr + 10 (a - 1)` (the
-/// value references step by axis), described as "Axis a: `what`".
-fn axes(
-    first_vr: u32,
-    base: &'static str,
-    what: &'static str,
-    get: impl Fn(&Planner, usize) -> f64 + Clone + Send + Sync + 'static,
-) -> Array<Planner, f64, impl Role<Planner>> {
-    Array::new(first_vr, base, AXES, what, get)
-        .stride(AXIS_STRIDE)
-        .label("Axis")
-}
-
-fn display_unit(unit: &str) -> Option<&'static str> {
-    match unit {
-        "rad" => Some("deg"),
-        "rad/s" => Some("deg/s"),
-        "rad/s2" => Some("deg/s2"),
-        _ => None,
-    }
-}
-
-fn variables() -> Vec<Variable<Planner>> {
-    let mut table = vec![
-        Variable::integer(
-            1,
-            "order",
-            "Polynomial degree: 3 (cubic) or 5 (quintic)",
-            |m: &Planner| m.degree,
+/// A boundary value of the three axes: parameter `$field` of `Boundary`, element a
+/// at value reference `$vr + 10 (a - 1)` (the value references step by axis).
+macro_rules! boundary {
+    ($field:ident, $vr:literal, $unit:literal, $display:literal, $what:literal, $start:expr) => {
+        axes(
+            Decl::real(stringify!($field), $what, |m, a| m.boundary[a].$field),
+            $vr,
         )
+        .set_real(|m, a, v| m.change(|m| m.boundary[a].$field = v))
         .parameter(Variability::Fixed)
-        .start_integer(5)
-        .integer_range(3, 5)
-        .set_integer(|m, v| {
-            if Order::from_degree(v).is_none() {
-                return Err("the order must be 3 or 5".to_string());
-            }
-            m.degree = v;
-            m.rebuild();
-            Ok(())
-        }),
-        Variable::real(2, "t0", "Start time of the motion", |m: &Planner| m.t0)
-            .parameter(Variability::Fixed)
-            .unit("s", None)
-            .start_real(0.0)
-            .set_real(|m, v| {
-                m.t0 = v;
-                m.rebuild();
-                Ok(())
-            }),
-        Variable::real(
-            3,
-            "tf",
-            "End time of the motion (after t0)",
-            |m: &Planner| m.tf,
-        )
+        .unit($unit, Some($display))
+        .start_real($start)
+    };
+}
+
+/// A planned output of the three axes (`k`: 0 q, 1 qdot, 2 qddot), element a at value
+/// reference `$vr + 10 (a - 1)`, with its exact time derivatives.
+macro_rules! planned {
+    ($name:literal, $k:literal, $vr:literal, $unit:literal, $display:literal, $what:literal) => {
+        axes(Decl::real($name, $what, |m, a| m.output(a, $k)), $vr)
+            .output()
+            .unit($unit, Some($display))
+            .output_derivative(|m, a, n| m.derivative(a, $k, n))
+    };
+}
+
+/// The array of the three axes: element a at `vr + 10 (a - 1)`, "Axis a: ..." in FMI 2.0.
+const fn axes(d: Decl, vr: u32) -> Decl {
+    d.array(AXES).at(vr).stride(10).label("Axis")
+}
+
+type Decl = Declaration<Planner>;
+
+static VARIABLES: &[Decl] = &[
+    Decl::integer(
+        "order",
+        "Polynomial degree: 3 (cubic) or 5 (quintic)",
+        |m, _| m.degree,
+    )
+    .set_integer(|m, _, v| match Order::from_degree(v) {
+        None => Err("the order must be 3 or 5".to_string()),
+        Some(_) => m.change(|m| m.degree = v),
+    })
+    .parameter(Variability::Fixed)
+    .start_integer(&[5])
+    .integer_range(3, 5)
+    .at(1),
+    Decl::real("t0", "Start time of the motion", |m, _| m.t0)
+        .set_real(|m, _, v| m.change(|m| m.t0 = v))
         .parameter(Variability::Fixed)
         .unit("s", None)
-        .start_real(2.0)
-        .set_real(|m, v| {
-            m.tf = v;
-            m.rebuild();
-            Ok(())
-        }),
-    ];
-    for (k, &(name, unit, what, defaults)) in BOUNDARY_FIELDS.iter().enumerate() {
-        let get = move |m: &Planner, axis: usize| {
-            let mut b = m.boundary[axis];
-            *boundary_field(&mut b, k)
-        };
-        let array = axes(boundary_vr(0, k), name, what, get)
-            .set(move |m, axis, v| {
-                *boundary_field(&mut m.boundary[axis], k) = v;
-                m.rebuild();
-                Ok(())
-            })
-            .each(move |v, axis| {
-                v.parameter(Variability::Fixed)
-                    .unit(unit, display_unit(unit))
-                    .start_real(defaults[axis])
-            });
-        table.extend(array.variables());
-    }
-    for (k, &(name, unit, what)) in OUTPUTS.iter().enumerate() {
-        let get = move |m: &Planner, axis: usize| match m.sample(axis) {
-            Some(s) => [s.q, s.qdot, s.qddot][k],
-            None => f64::NAN,
-        };
-        let array = axes(output_vr(0, k), name, what, get)
-            .each(move |v, _| v.output().unit(unit, display_unit(unit)));
-        table.extend(array.variables());
-    }
-    table
-}
+        .start_real(&[0.0]),
+    Decl::real("tf", "End time of the motion (after t0)", |m, _| m.tf)
+        .set_real(|m, _, v| m.change(|m| m.tf = v))
+        .parameter(Variability::Fixed)
+        .unit("s", None)
+        .start_real(&[2.0]),
+    boundary!(q0, 10, "rad", "deg", "position at t0", &[0.0]),
+    boundary!(qf, 11, "rad", "deg", "position at tf", &[0.5, -0.3, 0.8]),
+    boundary!(qdot0, 12, "rad/s", "deg/s", "velocity at t0", &[0.0]),
+    boundary!(qdotf, 13, "rad/s", "deg/s", "velocity at tf", &[0.0]),
+    boundary!(
+        qddot0,
+        14,
+        "rad/s2",
+        "deg/s2",
+        "acceleration at t0 (quintic only)",
+        &[0.0]
+    ),
+    boundary!(
+        qddotf,
+        15,
+        "rad/s2",
+        "deg/s2",
+        "acceleration at tf (quintic only)",
+        &[0.0]
+    ),
+    planned!("q", 0, 100, "rad", "deg", "planned position"),
+    planned!("qdot", 1, 101, "rad/s", "deg/s", "planned velocity"),
+    planned!("qddot", 2, 102, "rad/s2", "deg/s2", "planned acceleration"),
+];
 
 impl Model for Planner {
     fn info() -> &'static ModelInfo {
         &INFO
     }
 
-    fn variables() -> Vec<Variable<Self>> {
-        variables()
+    fn declarations() -> &'static [Declaration<Self>] {
+        VARIABLES
     }
 
     fn new() -> Self {
@@ -286,21 +234,6 @@ impl Model for Planner {
     fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
         // Outputs are explicit functions of time: nothing to integrate.
         StepOutcome::Completed
-    }
-
-    /// Exact: order n of q, qdot, qddot is the derivative of order n, n + 1, n + 2 of
-    /// the axis's polynomial (`Polynomial::derivative`: one-sided from inside the
-    /// motion at t0 and tf, zero while held), so the first derivative of q equals the
-    /// output qdot and that of qdot the output qddot at every time.
-    fn output_derivative(&self, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
-        let (axis, k) = output_of(vr).ok_or_else(|| {
-            OutputDerivativeError::NotProvided(format!("value reference {vr} is no planner output"))
-        })?;
-        let axes = self
-            .axes
-            .as_ref()
-            .map_err(|e| OutputDerivativeError::CannotEvaluate(e.clone()))?;
-        Ok(axes[axis].derivative(self.time, k + order as usize))
     }
 
     fn next_time_event(&self, time: f64) -> Option<f64> {

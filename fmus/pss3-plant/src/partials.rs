@@ -206,7 +206,7 @@ fn output_partials(
         let mut copy = moved(m, k, delta)?;
         copy.calculate_values()
             .map_err(|e| format!("the plant cannot be evaluated near this point: {e}"))?;
-        Ok(getters.iter().map(|get| get(&copy)).collect())
+        Ok(getters.iter().map(|get| get.call(&copy)).collect())
     };
     let current = *known_value(&mut m.current_state()?, &mut m.inputs.clone(), k);
     let h = match k {

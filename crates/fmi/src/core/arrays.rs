@@ -52,16 +52,16 @@ element_type!(i32, integer, set_integer);
 element_type!(bool, boolean, set_boolean);
 
 /// What a declaration does to element i (causality, unit, start value, writer, ...).
-pub trait Role<M>: Fn(Variable<M>, usize) -> Variable<M> {}
+pub trait Role<M: 'static>: Fn(Variable<M>, usize) -> Variable<M> {}
 
-impl<M, F: Fn(Variable<M>, usize) -> Variable<M>> Role<M> for F {}
+impl<M: 'static, F: Fn(Variable<M>, usize) -> Variable<M>> Role<M> for F {}
 
 /// One declaration of an array `base[1..length]` of element type T (see the module
 /// documentation). The elements are built at once; the roles given by
 /// [`Array::each`], [`Array::set`] and [`Array::label`] are composed (no boxing) and
 /// applied in one pass by [`Array::variables`], so a declaration allocates nothing
 /// beyond its scalars.
-pub struct Array<M, T: ElementType, R = fn(Variable<M>, usize) -> Variable<M>> {
+pub struct Array<M: 'static, T: ElementType, R = fn(Variable<M>, usize) -> Variable<M>> {
     elements: Vec<Variable<M>>,
     first_vr: u32,
     role: R,

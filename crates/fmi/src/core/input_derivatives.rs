@@ -10,6 +10,7 @@
 //! state (restored by setting or deserializing a state). It changes neither the
 //! input's value nor any output: outputs read after a step use the inputs as set.
 
+use super::hooks::InputDerivative;
 use super::instance::{Instance, MAX_MAGNITUDE, variable};
 use super::model::Model;
 use super::variables::{Causality, Kind, Variability, Variable};
@@ -67,9 +68,24 @@ impl<M: Model> Instance<M> {
                  of magnitude at most {MAX_MAGNITUDE:e}"
             ));
         }
-        let slot = self.model_mut().input_derivative_mut(vr, order);
+        let hook = v.input_hook();
+        let slot = slot(self.model_mut(), hook, vr, order);
         *slot.ok_or_else(|| no_slot::<M>(&name, order))? = value;
         Ok(())
+    }
+}
+
+/// The slot of the `order`-th derivative of input `vr`: the declaration's hook, if it
+/// has one (`hook` of the input's table entry), or else [`Model::input_derivative_mut`].
+pub fn slot<M: Model>(
+    model: &mut M,
+    hook: Option<(InputDerivative<M>, usize)>,
+    vr: u32,
+    order: u32,
+) -> Option<&mut f64> {
+    match hook {
+        Some((f, element)) => f(model, element, order),
+        None => model.input_derivative_mut(vr, order),
     }
 }
 

@@ -80,17 +80,17 @@ pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, Str
                 set: Some(set),
                 start: Some(s),
                 ..
-            } => set(&mut model, *s),
+            } => set.call(&mut model, *s),
             Kind::Integer {
                 set: Some(set),
                 start: Some(s),
                 ..
-            } => set(&mut model, *s),
+            } => set.call(&mut model, *s),
             Kind::Boolean {
                 set: Some(set),
                 start: Some(s),
                 ..
-            } => set(&mut model, *s),
+            } => set.call(&mut model, *s),
             _ => Ok(()),
         };
         result.map_err(|e| format!("start value of \"{}\" rejected: {e}", v.name))?;
@@ -242,7 +242,7 @@ impl<M: Model> Instance<M> {
         let calculated = self.table.iter().zip(&self.calculated);
         for (v, _) in calculated.filter(|(_, c)| **c) {
             if let Kind::Real { get, .. } = &v.kind {
-                let value = get(&self.model);
+                let value = get.call(&self.model);
                 if !value.is_finite() {
                     return Err(format!("\"{}\" evaluates to {value}", v.name));
                 }
@@ -263,7 +263,7 @@ impl<M: Model> Instance<M> {
             if self.calculated[at] {
                 needs_values = true;
             } else if let Kind::Real { get, .. } = &self.table[at].kind {
-                let value = get(&self.model);
+                let value = get.call(&self.model);
                 if !value.is_finite() {
                     let name = &self.table[at].name;
                     return Ok(Some(format!("\"{name}\" evaluates to {value}")));
@@ -398,7 +398,7 @@ impl<M: Model> Instance<M> {
         let Kind::Real { get, .. } = &v.kind else {
             unreachable!("checked by typed")
         };
-        let value = get(&self.model);
+        let value = get.call(&self.model);
         if value.is_finite() {
             Ok(value)
         } else {
@@ -408,14 +408,14 @@ impl<M: Model> Instance<M> {
 
     pub fn get_integer(&self, vr: u32) -> Result<i32, String> {
         match &self.typed(vr, VariableType::Integer)?.kind {
-            Kind::Integer { get, .. } => Ok(get(&self.model)),
+            Kind::Integer { get, .. } => Ok(get.call(&self.model)),
             _ => unreachable!("checked by typed"),
         }
     }
 
     pub fn get_boolean(&self, vr: u32) -> Result<bool, String> {
         match &self.typed(vr, VariableType::Boolean)?.kind {
-            Kind::Boolean { get, .. } => Ok(get(&self.model)),
+            Kind::Boolean { get, .. } => Ok(get.call(&self.model)),
             _ => unreachable!("checked by typed"),
         }
     }

@@ -15,12 +15,15 @@
 
 pub mod arrays;
 pub mod check;
+pub mod declare;
 pub mod element;
 pub mod entry;
+pub mod flatten;
 pub mod fmu_state_calls;
 pub mod fmu_states;
 pub mod frontend;
 pub mod handles;
+pub mod hooks;
 pub mod input_derivatives;
 pub mod instance;
 pub mod log;
@@ -33,6 +36,8 @@ pub mod status;
 pub mod value_check;
 pub mod variables;
 
+pub use declare::Declaration;
+pub use hooks::Element;
 pub use instance::{Instance, Snapshot, Standard};
 pub use log::{Log, LogCategory};
 pub use model::{

@@ -2,8 +2,12 @@
 //! Rust with core types only; a front-end does all pointer handling, argument checking, state-machine
 //! enforcement, logging and unwind catching.
 
+use super::declare::Declaration;
+use super::flatten::flatten;
+use super::hooks::Element;
+pub use super::hooks::OutputDerivativeError;
 use super::log::{Log, LogCategory};
-use super::variables::Variable;
+use super::variables::{Variable, find};
 
 /// DefaultExperiment of modelDescription.xml.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -49,16 +53,6 @@ pub enum StepOutcome {
     },
 }
 
-/// Why `Model::output_derivative` gives no value.
-#[derive(Debug, Clone, PartialEq)]
-pub enum OutputDerivativeError {
-    /// The model does not provide this derivative (this output, or this order of it):
-    /// the importer asked for something the FMU does not offer (fmi2Error/fmi3Error).
-    NotProvided(String),
-    /// The model provides it but cannot evaluate it at this point (Discard).
-    CannotEvaluate(String),
-}
-
 /// What an event update (fmi2NewDiscreteStates, fmi3UpdateDiscreteStates) changed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct EventUpdate {
@@ -80,9 +74,20 @@ pub struct EventUpdate {
 pub trait Model: Clone + Send + Sized + 'static {
     fn info() -> &'static ModelInfo;
 
-    /// Builds the variable table (any order: the layer sorts it by value reference).
-    /// Each instance owns the table it built, so nothing of it outlives the instance.
-    fn variables() -> Vec<Variable<Self>>;
+    /// The variable table, declared once: a `static` slice of [`Declaration`]s
+    /// (scalars and arrays, accessors and hooks as `fn` pointers; see
+    /// [`declare`](super::declare)).
+    fn declarations() -> &'static [Declaration<Self>] {
+        &[]
+    }
+
+    /// The FMI 2.0 scalars of the table (any order: the layer sorts them by value
+    /// reference), built per instance, so nothing of it outlives the instance. The
+    /// default flattens [`Model::declarations`]; a model still written with
+    /// [`Variable`]s overrides it (to be ported to declarations).
+    fn variables() -> Vec<Variable<Self>> {
+        flatten(Self::declarations())
+    }
 
     /// A model with every field defined; the layer then applies all start values of
     /// the table through its writers, so defaults live in the table only.
@@ -163,9 +168,9 @@ pub trait Model: Clone + Send + Sized + 'static {
     }
 
     /// Partial derivative d(unknown)/d(known) at the current point, for
-    /// fmi2GetDirectionalDerivative. Only called when the model declares
-    /// `provides_directional_derivative`.
-    fn partial_derivative(&self, _unknown: u32, _known: u32) -> Result<f64, String> {
+    /// fmi2GetDirectionalDerivative, the variables given as declared elements. Only
+    /// called when the model declares `provides_directional_derivative`.
+    fn partial_derivative(&self, _unknown: Element, _known: Element) -> Result<f64, String> {
         Err("this model provides no partial derivatives".to_string())
     }
 
@@ -177,24 +182,30 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// here) makes the call return Discard.
     fn directional_derivative(
         &self,
-        _table: &[Variable<Self>],
+        table: &[Variable<Self>],
         unknowns: &[u32],
         knowns: &[u32],
         seed: &[f64],
         out: &mut [f64],
     ) -> Result<(), String> {
+        let element = |vr: u32| {
+            find(table, vr)
+                .and_then(|v| v.element())
+                .ok_or_else(|| format!("value reference {vr} is no declared variable"))
+        };
         for (o, &u) in out.iter_mut().zip(unknowns) {
             let mut sum = 0.0;
             for (&k, &s) in knowns.iter().zip(seed) {
-                sum += self.partial_derivative(u, k)? * s;
+                sum += self.partial_derivative(element(u)?, element(k)?)? * s;
             }
             *o = sum;
         }
         Ok(())
     }
 
-    /// The `order`-th time derivative (1 ..= `max_output_derivative_order`) of the Real
-    /// output with value reference `vr` at the current time and state, with the inputs
+    /// Only for outputs declared without an [`output_derivative`](Declaration::output_derivative)
+    /// hook (a hook is the way to give them). The `order`-th time derivative (1 ..=
+    /// `max_output_derivative_order`) of the Real output with value reference `vr` at the current time and state, with the inputs
     /// held (after a co-simulation step: at the end of the communication step). The
     /// layer has checked `vr` (a Real output) and `order`, and the computed values are
     /// current.

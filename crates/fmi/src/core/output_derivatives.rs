@@ -82,17 +82,21 @@ fn evaluate<M: Model>(inst: &mut Instance<M>, requests: &[Request]) -> Result<Ve
     for &r in requests {
         let (name, order) = check(inst, r).map_err(Refusal::Error)?;
         let what = format!("derivative of order {order} of \"{name}\"");
-        let value = inst
-            .model()
-            .output_derivative(r.vr, order)
-            .map_err(|e| match e {
-                OutputDerivativeError::NotProvided(why) => {
-                    Refusal::Error(format!("{what} is not provided: {why}"))
-                }
-                OutputDerivativeError::CannotEvaluate(why) => {
-                    Refusal::Discard(format!("{what} cannot be evaluated here: {why}"))
-                }
-            })?;
+        let hook = variable(inst.table(), r.vr)
+            .map_err(Refusal::Error)?
+            .output_hook();
+        let value = match hook {
+            Some((f, element)) => f(inst.model(), element, order),
+            None => inst.model().output_derivative(r.vr, order),
+        }
+        .map_err(|e| match e {
+            OutputDerivativeError::NotProvided(why) => {
+                Refusal::Error(format!("{what} is not provided: {why}"))
+            }
+            OutputDerivativeError::CannotEvaluate(why) => {
+                Refusal::Discard(format!("{what} cannot be evaluated here: {why}"))
+            }
+        })?;
         if !value.is_finite() {
             return Err(Refusal::Discard(format!("{what} evaluates to {value}")));
         }

@@ -21,7 +21,8 @@
 //! Foreign (other magic, version or model), truncated, padded, corrupted or edited
 //! bytes are refused with a message naming the field.
 
-use super::input_derivatives::interpolated_input;
+use super::hooks::InputDerivative;
+use super::input_derivatives::{interpolated_input, slot};
 use super::instance::{Silent, Snapshot, Standard, TIME_MATCH, model_with_start_values};
 use super::model::{Model, StepOutcome};
 use super::value_check::{self, MAX_MAGNITUDE, Value};
@@ -49,13 +50,13 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
         match &v.kind {
             Kind::Real {
                 get, set: Some(_), ..
-            } => payload.extend_from_slice(&get(&s.model).to_le_bytes()),
+            } => payload.extend_from_slice(&get.call(&s.model).to_le_bytes()),
             Kind::Integer {
                 get, set: Some(_), ..
-            } => payload.extend_from_slice(&get(&s.model).to_le_bytes()),
+            } => payload.extend_from_slice(&get.call(&s.model).to_le_bytes()),
             Kind::Boolean {
                 get, set: Some(_), ..
-            } => payload.push(get(&s.model) as u8),
+            } => payload.push(get.call(&s.model) as u8),
             _ => {}
         }
     }
@@ -63,10 +64,10 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
     // The slots are reached through `&mut`: read them from a copy (only for a model
     // that takes derivatives).
     let mut model = (!slots.is_empty()).then(|| s.model.clone());
-    for (vr, order) in slots {
+    for (vr, hook, order) in slots {
         let value = model
             .as_mut()
-            .and_then(|m| m.input_derivative_mut(vr, order).copied());
+            .and_then(|m| slot(m, hook, vr, order).copied());
         payload.extend_from_slice(&value.unwrap_or(0.0).to_le_bytes());
     }
     let n = M::info().number_of_continuous_states;
@@ -94,12 +95,17 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
     out
 }
 
-/// (value reference, order) of every input derivative a state of M holds.
-fn input_derivative_slots<M: Model>(table: &[Variable<M>]) -> Vec<(u32, u32)> {
+/// (value reference, hook, order) of every input derivative a state of M holds.
+type Slot<M> = (u32, Option<(InputDerivative<M>, usize)>, u32);
+
+fn input_derivative_slots<M: Model>(table: &[Variable<M>]) -> Vec<Slot<M>> {
     let orders = 1..=M::MAX_INPUT_DERIVATIVE_ORDER;
     let inputs = table.iter().filter(|v| interpolated_input(v));
     inputs
-        .flat_map(|v| orders.clone().map(|o| (v.value_reference, o)))
+        .flat_map(|v| {
+            let hook = v.input_hook();
+            orders.clone().map(move |o| (v.value_reference, hook, o))
+        })
         .collect()
 }
 
@@ -276,12 +282,12 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
     let terminated_by_model = r.flag("terminated flag")?;
     let mut model = model_with_start_values::<M>(table)?;
     read_values(table, &mut r, &mut model)?;
-    for (vr, order) in input_derivative_slots(table) {
+    for (vr, hook, order) in input_derivative_slots(table) {
         let value = r.f64("an input derivative")?;
         if value == 0.0 {
             continue; // a fresh model holds zeros
         }
-        match model.input_derivative_mut(vr, order) {
+        match slot(&mut model, hook, vr, order) {
             Some(slot) if value.is_finite() && value.abs() <= MAX_MAGNITUDE => *slot = value,
             _ => {
                 return Err(refused(

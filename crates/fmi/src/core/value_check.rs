@@ -62,7 +62,7 @@ pub fn write<M>(model: &mut M, v: &Variable<M>, value: Value) -> Result<(), Stri
             let set = set
                 .as_ref()
                 .ok_or_else(|| format!("\"{name}\" has no writer"))?;
-            set(model, x)
+            set.call(model, x)
         }
         (Kind::Integer { set, min, max, .. }, Value::Integer(x)) => {
             if min.is_some_and(|m| x < m) || max.is_some_and(|m| x > m) {
@@ -71,13 +71,13 @@ pub fn write<M>(model: &mut M, v: &Variable<M>, value: Value) -> Result<(), Stri
             let set = set
                 .as_ref()
                 .ok_or_else(|| format!("\"{name}\" has no writer"))?;
-            set(model, x)
+            set.call(model, x)
         }
         (Kind::Boolean { set, .. }, Value::Boolean(x)) => {
             let set = set
                 .as_ref()
                 .ok_or_else(|| format!("\"{name}\" has no writer"))?;
-            set(model, x)
+            set.call(model, x)
         }
         (_, Value::Real(_)) => return Err(wrong_type(v, "Real")),
         (_, Value::Integer(_)) => return Err(wrong_type(v, "Integer")),

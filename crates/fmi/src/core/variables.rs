@@ -7,11 +7,44 @@
 //! cheap: names, descriptions and dependency lists are static strings wherever the
 //! declaration allows (`Cow<'static, str>`), and only array elements format theirs.
 
+use super::declare::Declaration;
 use super::element::ArrayElement;
+use super::hooks::{Element, InputDerivative, OutputDerivative};
 use std::borrow::Cow;
 
-pub type Getter<M, T> = Box<dyn Fn(&M) -> T + Send + Sync>;
-pub type Setter<M, T> = Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>;
+/// Reads a variable: a declared element (`fn` and element index: nothing allocated per
+/// instance) or a closure (a `Variable` built per instance).
+pub enum Getter<M, T> {
+    Element(fn(&M, usize) -> T, usize),
+    Closure(Box<dyn Fn(&M) -> T + Send + Sync>),
+}
+
+/// A writer closure of a variable built per instance.
+pub type SetClosure<M, T> = Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>;
+
+/// Writes a variable, like [`Getter`]; Err: the value is refused, with the reason.
+pub enum Setter<M, T> {
+    Element(fn(&mut M, usize, T) -> Result<(), String>, usize),
+    Closure(SetClosure<M, T>),
+}
+
+impl<M, T> Getter<M, T> {
+    pub fn call(&self, model: &M) -> T {
+        match self {
+            Getter::Element(f, i) => f(model, *i),
+            Getter::Closure(f) => f(model),
+        }
+    }
+}
+
+impl<M, T> Setter<M, T> {
+    pub fn call(&self, model: &mut M, value: T) -> Result<(), String> {
+        match self {
+            Setter::Element(f, i) => f(model, *i, value),
+            Setter::Closure(f) => f(model, value),
+        }
+    }
+}
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Causality {
@@ -120,7 +153,7 @@ impl VariableType {
 }
 
 /// One scalar variable.
-pub struct Variable<M> {
+pub struct Variable<M: 'static> {
     pub value_reference: u32,
     pub name: Cow<'static, str>,
     pub description: Cow<'static, str>,
@@ -133,9 +166,12 @@ pub struct Variable<M> {
     pub dependencies: Option<&'static [&'static str]>,
     /// Set for the elements declared by [`RealArray`](super::arrays::RealArray).
     pub array: Option<ArrayElement>,
+    /// The declaration this scalar is element i of, if it was declared
+    /// ([`declare`](super::declare)).
+    pub declared: Option<(&'static Declaration<M>, usize)>,
 }
 
-impl<M> Variable<M> {
+impl<M: 'static> Variable<M> {
     fn with_kind(
         vr: u32,
         name: impl Into<Cow<'static, str>>,
@@ -156,6 +192,7 @@ impl<M> Variable<M> {
             kind,
             dependencies: None,
             array: None,
+            declared: None,
         }
     }
 
@@ -173,7 +210,7 @@ impl<M> Variable<M> {
         get: impl Fn(&M) -> f64 + Send + Sync + 'static,
     ) -> Self {
         let kind = Kind::Real {
-            get: Box::new(get),
+            get: Getter::Closure(Box::new(get)),
             set: None,
             start: None,
             min: None,
@@ -193,7 +230,7 @@ impl<M> Variable<M> {
         get: impl Fn(&M) -> i32 + Send + Sync + 'static,
     ) -> Self {
         let kind = Kind::Integer {
-            get: Box::new(get),
+            get: Getter::Closure(Box::new(get)),
             set: None,
             start: None,
             min: None,
@@ -210,7 +247,7 @@ impl<M> Variable<M> {
         get: impl Fn(&M) -> bool + Send + Sync + 'static,
     ) -> Self {
         let kind = Kind::Boolean {
-            get: Box::new(get),
+            get: Getter::Closure(Box::new(get)),
             set: None,
             start: None,
         };
@@ -323,7 +360,7 @@ impl<M> Variable<M> {
         f: impl Fn(&mut M, f64) -> Result<(), String> + Send + Sync + 'static,
     ) -> Self {
         if let Kind::Real { set, .. } = &mut self.kind {
-            *set = Some(Box::new(f));
+            *set = Some(Setter::Closure(Box::new(f)));
         }
         self
     }
@@ -334,7 +371,7 @@ impl<M> Variable<M> {
         f: impl Fn(&mut M, i32) -> Result<(), String> + Send + Sync + 'static,
     ) -> Self {
         if let Kind::Integer { set, .. } = &mut self.kind {
-            *set = Some(Box::new(f));
+            *set = Some(Setter::Closure(Box::new(f)));
         }
         self
     }
@@ -345,9 +382,30 @@ impl<M> Variable<M> {
         f: impl Fn(&mut M, bool) -> Result<(), String> + Send + Sync + 'static,
     ) -> Self {
         if let Kind::Boolean { set, .. } = &mut self.kind {
-            *set = Some(Box::new(f));
+            *set = Some(Setter::Closure(Box::new(f)));
         }
         self
+    }
+
+    /// The declared element this scalar is, if it was declared.
+    pub fn element(&self) -> Option<Element> {
+        let (d, index) = self.declared?;
+        Some(Element {
+            name: d.name,
+            index,
+        })
+    }
+
+    /// The declaration's output-derivative hook and the element index, if any.
+    pub fn output_hook(&self) -> Option<(OutputDerivative<M>, usize)> {
+        let (d, index) = self.declared?;
+        Some((d.output_derivative?, index))
+    }
+
+    /// The declaration's input-derivative slot and the element index, if any.
+    pub fn input_hook(&self) -> Option<(InputDerivative<M>, usize)> {
+        let (d, index) = self.declared?;
+        Some((d.input_derivative?, index))
     }
 
     pub fn variable_type(&self) -> VariableType {

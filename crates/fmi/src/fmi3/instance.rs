@@ -4,11 +4,12 @@
 //! Values are read and written per FMI 3.0 variable (a scalar or an array) through the
 //! table's elements.
 
+use super::declared::view;
 use super::extra::Fmi3Extra;
 use super::intermediate::IntermediateUpdate;
 use super::logging::Logger;
 use super::mode::{Fmi3, Interface, Mode};
-use super::table::{Source, Variable3, build};
+use super::table::{Source, Variable3};
 use crate::core::entry;
 use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
@@ -26,7 +27,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         intermediate_update: Option<IntermediateUpdate>,
     ) -> Result<Self, String> {
         let core = core_instance::Instance::new()?;
-        let table = Arc::new(build(core.table())?);
+        let table = Arc::new(view(core.table())?);
         let extra = Fmi3Extra {
             table,
             intermediate_update,

@@ -89,6 +89,19 @@ pub struct Table3 {
 }
 
 impl Table3 {
+    /// The table of `variables` (in description order).
+    pub fn new(variables: Vec<Variable3>) -> Self {
+        let by_reference = variables
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (v.value_reference, i))
+            .collect();
+        Table3 {
+            variables,
+            by_reference,
+        }
+    }
+
     pub fn find(&self, vr: u32) -> Option<&Variable3> {
         self.by_reference.get(&vr).map(|&i| &self.variables[i])
     }
@@ -341,18 +354,10 @@ pub fn build<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
         variables.push(event_indicator_variable(last + 1, n_indicators));
     }
     check_state_order(table, &variables)?;
-    let by_reference = variables
-        .iter()
-        .enumerate()
-        .map(|(i, v)| (v.value_reference, i))
-        .collect();
-    Ok(Table3 {
-        variables,
-        by_reference,
-    })
+    Ok(Table3::new(variables))
 }
 
-fn time_variable() -> Variable3 {
+pub(super) fn time_variable() -> Variable3 {
     Variable3 {
         value_reference: TIME_VALUE_REFERENCE,
         name: Cow::Borrowed("time"),
@@ -366,7 +371,7 @@ fn time_variable() -> Variable3 {
     }
 }
 
-fn event_indicator_variable(value_reference: u32, n: usize) -> Variable3 {
+pub(super) fn event_indicator_variable(value_reference: u32, n: usize) -> Variable3 {
     Variable3 {
         value_reference,
         name: Cow::Borrowed("eventIndicators"),

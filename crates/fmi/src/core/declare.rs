@@ -1,0 +1,392 @@
+//! The declarative, array-native variable table: a model declares its variables once,
+//! as a `static` slice of [`Declaration`]s, plain data and `fn` pointers, so the
+//! declaration allocates nothing and nothing of it has to be freed when the library
+//! is unloaded.
+//!
+//! One declaration is a scalar or a one-dimensional array (FMI 3.0 shape: `q` with
+//! `<Dimension start="3"/>`); FMI 2.0 sees the array flattened into the scalars
+//! `q[1]`..`q[3]` ([`flatten`](super::flatten)). Accessors take the element index (0 for a scalar),
+//! hooks take the element index too, so a model never decodes a value reference.
+//!
+//! The builder methods are `const fn`: a declaration that contradicts itself (a unit on
+//! an Integer, a start list of the wrong length, a stride of 0) is a compile error in
+//! the `static`. What needs the whole table (unique names, legal causality and
+//! variability combinations, derivatives of existing states) is checked by
+//! [`check_table`](super::check::check_table) on the flattened table, in each FMU's
+//! drift test.
+//!
+//! Value references: a declaration pinned with [`Declaration::at`] has its element i
+//! at `vr + i * stride`; an unpinned declaration takes the value reference after the
+//! largest one of the declarations before it in the slice (the first one takes 1: 0
+//! is FMI 3.0's `time`), elements consecutive. Appending a declaration therefore never
+//! moves an existing value reference.
+
+pub use super::hooks::{Element, InputDerivative, OutputDerivative};
+use super::variables::{Causality, Initial, Variability};
+
+/// Reads element i (0 for a scalar).
+pub type Get<M, T> = fn(&M, usize) -> T;
+/// Writes element i (0 for a scalar); Err: the value is refused, with the reason.
+pub type Set<M, T> = fn(&mut M, usize, T) -> Result<(), String>;
+
+/// The typed part of a declaration. `start` holds no value (none), one value (every
+/// element's) or one per element.
+pub enum Value<M: 'static> {
+    Real {
+        get: Get<M, f64>,
+        set: Option<Set<M, f64>>,
+        start: &'static [f64],
+        min: Option<f64>,
+        max: Option<f64>,
+        unit: Option<&'static str>,
+        display_unit: Option<&'static str>,
+    },
+    Integer {
+        get: Get<M, i32>,
+        set: Option<Set<M, i32>>,
+        start: &'static [i32],
+        min: Option<i32>,
+        max: Option<i32>,
+    },
+    Boolean {
+        get: Get<M, bool>,
+        set: Option<Set<M, bool>>,
+        start: &'static [bool],
+    },
+}
+
+/// One variable of the table, scalar or array (see the module documentation).
+///
+/// ```
+/// use robofmu_fmi::prelude::*;
+/// struct Arm { q: [f64; 3] }
+/// static VARIABLES: &[Declaration<Arm>] = &[
+///     Declaration::real("q", "joint angle", |m: &Arm, i| m.q[i])
+///         .array(3)
+///         .set_real(|m, i, v| { m.q[i] = v; Ok(()) })
+///         .parameter(Variability::Fixed)
+///         .unit("rad", Some("deg"))
+///         .start_real(&[0.0, 0.5, 1.0]),
+/// ];
+/// ```
+///
+/// A declaration that contradicts itself does not compile, e.g. two start values for
+/// three elements:
+///
+/// ```compile_fail
+/// use robofmu_fmi::prelude::*;
+/// struct Arm { q: [f64; 3] }
+/// static VARIABLES: &[Declaration<Arm>] = &[
+///     Declaration::real("q", "joint angle", |m: &Arm, i| m.q[i]).array(3).start_real(&[0.0, 0.5]),
+/// ];
+/// ```
+pub struct Declaration<M: 'static> {
+    pub name: &'static str,
+    pub description: &'static str,
+    /// FMI 2.0 element descriptions "`label` i: description" (e.g. "Axis 2: ...").
+    pub label: Option<&'static str>,
+    /// `Some(n)`: an array of n elements.
+    pub length: Option<usize>,
+    /// Pinned value reference of element 1, if any.
+    pub value_reference: Option<u32>,
+    /// Step of the value references from one element to the next.
+    pub stride: u32,
+    pub causality: Causality,
+    pub variability: Variability,
+    pub initial: Option<Initial>,
+    pub value: Value<M>,
+    /// The state (scalar or array) this declaration is the time derivative of.
+    pub derivative_of: Option<&'static str>,
+    /// The inputs and continuous states an output or derivative depends on.
+    pub dependencies: Option<&'static [&'static str]>,
+    /// Hook: time derivatives of an output.
+    pub output_derivative: Option<OutputDerivative<M>>,
+    /// Hook: where the model keeps the time derivatives of a continuous input.
+    pub input_derivative: Option<InputDerivative<M>>,
+}
+
+impl<M> Clone for Value<M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<M> Copy for Value<M> {}
+impl<M> Clone for Declaration<M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<M> Copy for Declaration<M> {}
+
+/// A builder method `$method(x)` that sets the field `$field` of a `Value::$variant`
+/// to `x` (or `$wrap(x)`); on a declaration of another type it panics, which in the
+/// `static` of a model is a compile error.
+macro_rules! typed {
+    ($(#[$doc:meta])* $method:ident, $variant:ident, $field:ident: $t:ty $(, $wrap:ident)?) => {
+        $(#[$doc])*
+        pub const fn $method(mut self, x: $t) -> Self {
+            match &mut self.value {
+                Value::$variant { $field, .. } => *$field = $($wrap)?(x),
+                _ => panic!(concat!(stringify!($method), " on a declaration of another type")),
+            }
+            assert!(self.start_fits(), "give one start value or one per element");
+            self
+        }
+    };
+}
+
+impl<M> Declaration<M> {
+    const fn with_value(name: &'static str, description: &'static str, value: Value<M>) -> Self {
+        let variability = match value {
+            Value::Real { .. } => Variability::Continuous,
+            _ => Variability::Discrete,
+        };
+        Declaration {
+            name,
+            description,
+            label: None,
+            length: None,
+            value_reference: None,
+            stride: 1,
+            causality: Causality::Local,
+            variability,
+            initial: None,
+            value,
+            derivative_of: None,
+            dependencies: None,
+            output_derivative: None,
+            input_derivative: None,
+        }
+    }
+
+    /// A Real variable read by `get` (a local until a role is given).
+    pub const fn real(name: &'static str, description: &'static str, get: Get<M, f64>) -> Self {
+        let value = Value::Real {
+            get,
+            set: None,
+            start: &[],
+            min: None,
+            max: None,
+            unit: None,
+            display_unit: None,
+        };
+        Self::with_value(name, description, value)
+    }
+
+    /// An Integer variable read by `get`.
+    pub const fn integer(name: &'static str, description: &'static str, get: Get<M, i32>) -> Self {
+        let value = Value::Integer {
+            get,
+            set: None,
+            start: &[],
+            min: None,
+            max: None,
+        };
+        Self::with_value(name, description, value)
+    }
+
+    /// A Boolean variable read by `get`.
+    pub const fn boolean(name: &'static str, description: &'static str, get: Get<M, bool>) -> Self {
+        let value = Value::Boolean {
+            get,
+            set: None,
+            start: &[],
+        };
+        Self::with_value(name, description, value)
+    }
+
+    /// An array of `length` elements instead of a scalar.
+    pub const fn array(mut self, length: usize) -> Self {
+        assert!(length > 0, "an array has at least one element");
+        self.length = Some(length);
+        assert!(self.start_fits(), "give one start value or one per element");
+        self
+    }
+
+    /// Pins the value reference of element 1 (see the module documentation).
+    pub const fn at(mut self, value_reference: u32) -> Self {
+        self.value_reference = Some(value_reference);
+        self
+    }
+
+    /// Value references `vr + i * stride` (arrays interleaved with others by index).
+    pub const fn stride(mut self, stride: u32) -> Self {
+        assert!(stride > 0, "a value reference stride is at least 1");
+        self.stride = stride;
+        self
+    }
+
+    /// Describes element i in FMI 2.0 as "`label` i: description".
+    pub const fn label(mut self, label: &'static str) -> Self {
+        self.label = Some(label);
+        self
+    }
+
+    /// Role: parameter (initial exact), fixed after initialization or tunable.
+    pub const fn parameter(mut self, variability: Variability) -> Self {
+        self.causality = Causality::Parameter;
+        self.variability = variability;
+        self.initial = Some(Initial::Exact);
+        self
+    }
+
+    /// Role: input (no initial attribute; a start value is required).
+    pub const fn input(mut self) -> Self {
+        self.causality = Causality::Input;
+        self
+    }
+
+    /// Role: output computed by the model (initial calculated, no start value).
+    pub const fn output(mut self) -> Self {
+        self.causality = Causality::Output;
+        self.initial = Some(Initial::Calculated);
+        self
+    }
+
+    /// Role: continuous state (local, initial exact with a start value).
+    pub const fn state(mut self) -> Self {
+        self.causality = Causality::Local;
+        self.initial = Some(Initial::Exact);
+        self
+    }
+
+    /// Role: time derivative of the state `state` (local, calculated); for an array,
+    /// element i is the derivative of element i of the array `state`.
+    pub const fn derivative_of(mut self, state: &'static str) -> Self {
+        assert!(
+            matches!(self.value, Value::Real { .. }),
+            "only a Real is a derivative"
+        );
+        self.causality = Causality::Local;
+        self.initial = Some(Initial::Calculated);
+        self.derivative_of = Some(state);
+        self
+    }
+
+    /// The inputs and continuous states (by FMI 2.0 name) this output or derivative
+    /// depends on; without it, on all of them.
+    pub const fn depends_on(mut self, names: &'static [&'static str]) -> Self {
+        self.dependencies = Some(names);
+        self
+    }
+
+    /// Unit (and display unit) of a Real.
+    pub const fn unit(mut self, name: &'static str, display: Option<&'static str>) -> Self {
+        match &mut self.value {
+            Value::Real {
+                unit, display_unit, ..
+            } => {
+                *unit = Some(name);
+                *display_unit = display;
+            }
+            _ => panic!("only a Real has a unit"),
+        }
+        self
+    }
+
+    /// Bounds of a Real, enforced on every set.
+    pub const fn real_range(mut self, lower: Option<f64>, upper: Option<f64>) -> Self {
+        match &mut self.value {
+            Value::Real { min, max, .. } => {
+                *min = lower;
+                *max = upper;
+            }
+            _ => panic!("real_range on a declaration that is no Real"),
+        }
+        self
+    }
+
+    /// Bounds of an Integer, enforced on every set.
+    pub const fn integer_range(mut self, lower: i32, upper: i32) -> Self {
+        match &mut self.value {
+            Value::Integer { min, max, .. } => {
+                *min = Some(lower);
+                *max = Some(upper);
+            }
+            _ => panic!("integer_range on a declaration that is no Integer"),
+        }
+        self
+    }
+
+    typed! {
+        /// Start value(s) of a Real: one for every element or one per element.
+        start_real, Real, start: &'static [f64]
+    }
+    typed! {
+        /// Start value(s) of an Integer: one for every element or one per element.
+        start_integer, Integer, start: &'static [i32]
+    }
+    typed! {
+        /// Start value(s) of a Boolean: one for every element or one per element.
+        start_boolean, Boolean, start: &'static [bool]
+    }
+    typed! {
+        /// Writer of a Real.
+        set_real, Real, set: Set<M, f64>, Some
+    }
+    typed! {
+        /// Writer of an Integer.
+        set_integer, Integer, set: Set<M, i32>, Some
+    }
+    typed! {
+        /// Writer of a Boolean.
+        set_boolean, Boolean, set: Set<M, bool>, Some
+    }
+
+    /// Hook: the time derivatives of this Real output, element by element.
+    pub const fn output_derivative(mut self, f: OutputDerivative<M>) -> Self {
+        assert!(
+            matches!(self.value, Value::Real { .. }),
+            "only a Real output has output derivatives"
+        );
+        self.output_derivative = Some(f);
+        self
+    }
+
+    /// Hook: where the model keeps the time derivatives of this continuous Real input,
+    /// element by element (the layer checks the order and the value before writing).
+    pub const fn input_derivative(mut self, f: InputDerivative<M>) -> Self {
+        assert!(
+            matches!(self.value, Value::Real { .. }),
+            "only a Real input has input derivatives"
+        );
+        self.input_derivative = Some(f);
+        self
+    }
+
+    /// Number of elements (1 for a scalar).
+    pub const fn size(&self) -> usize {
+        match self.length {
+            Some(n) => n,
+            None => 1,
+        }
+    }
+
+    const fn start_count(&self) -> usize {
+        match self.value {
+            Value::Real { start, .. } => start.len(),
+            Value::Integer { start, .. } => start.len(),
+            Value::Boolean { start, .. } => start.len(),
+        }
+    }
+
+    const fn start_fits(&self) -> bool {
+        let n = self.start_count();
+        n <= 1 || n == self.size()
+    }
+}
+
+/// The value references of every declaration's element 1 by the scheme of the module
+/// documentation.
+pub fn value_references<M>(declarations: &[Declaration<M>]) -> Vec<u32> {
+    let mut next = 1;
+    declarations
+        .iter()
+        .map(|d| {
+            let first = d.value_reference.unwrap_or(next);
+            let last = first + (d.size() as u32 - 1) * d.stride;
+            next = next.max(last + 1);
+            first
+        })
+        .collect()
+}

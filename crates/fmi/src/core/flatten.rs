@@ -1,0 +1,109 @@
+//! The FMI 2.0 scalars of a declared table ([`declare`](super::declare)): what an
+//! instance holds, element by element, pointing back at its declaration.
+
+use super::declare::{Declaration, Value, value_references};
+use super::element::ArrayElement;
+use super::variables::{Getter, Kind, Setter, Variable};
+use std::borrow::Cow;
+
+/// The FMI 2.0 scalars of the declarations, in declaration order (the layer sorts them
+/// by value reference).
+pub fn flatten<M>(declarations: &'static [Declaration<M>]) -> Vec<Variable<M>> {
+    let firsts = value_references(declarations);
+    let total = declarations.iter().map(Declaration::size).sum();
+    let mut table = Vec::with_capacity(total);
+    for (d, first) in declarations.iter().zip(firsts) {
+        table.extend((0..d.size()).map(|i| element(d, first, i)));
+    }
+    table
+}
+
+/// Element i of declaration `d` as an FMI 2.0 scalar.
+fn element<M>(d: &'static Declaration<M>, first: u32, i: usize) -> Variable<M> {
+    let vr = first + i as u32 * d.stride;
+    let array = d.length.map(|length| ArrayElement {
+        base: d.derivative_of.unwrap_or(d.name),
+        index: i,
+        length,
+        stride: d.stride,
+        derivative: d.derivative_of.is_some(),
+    });
+    let name: Cow<'static, str> = match &array {
+        Some(e) => e.name(i).into(),
+        None => d.name.into(),
+    };
+    let description: Cow<'static, str> = match (d.label, d.length) {
+        (Some(label), Some(_)) => format!("{label} {}: {}", i + 1, d.description).into(),
+        _ => d.description.into(),
+    };
+    let mut v = Variable {
+        value_reference: vr,
+        name,
+        description,
+        causality: d.causality,
+        variability: d.variability,
+        initial: d.initial,
+        kind: kind(&d.value, i),
+        dependencies: d.dependencies,
+        array,
+        declared: Some((d, i)),
+    };
+    if let (Kind::Real { derivative_of, .. }, Some(state)) = (&mut v.kind, d.derivative_of) {
+        *derivative_of = Some(match d.length {
+            Some(_) => format!("{state}[{}]", i + 1).into(),
+            None => state.into(),
+        });
+    }
+    v
+}
+
+/// The scalar accessors of element i.
+fn kind<M>(value: &Value<M>, i: usize) -> Kind<M> {
+    match *value {
+        Value::Real {
+            get,
+            set,
+            start,
+            min,
+            max,
+            unit,
+            display_unit,
+        } => Kind::Real {
+            get: Getter::Element(get, i),
+            set: set.map(|s| Setter::Element(s, i)),
+            start: start_of(start, i),
+            min,
+            max,
+            unit,
+            display_unit,
+            derivative_of: None,
+        },
+        Value::Integer {
+            get,
+            set,
+            start,
+            min,
+            max,
+        } => Kind::Integer {
+            get: Getter::Element(get, i),
+            set: set.map(|s| Setter::Element(s, i)),
+            start: start_of(start, i),
+            min,
+            max,
+        },
+        Value::Boolean { get, set, start } => Kind::Boolean {
+            get: Getter::Element(get, i),
+            set: set.map(|s| Setter::Element(s, i)),
+            start: start_of(start, i),
+        },
+    }
+}
+
+/// Start value of element i: none, the one for all, or element i's.
+fn start_of<T: Copy>(start: &[T], i: usize) -> Option<T> {
+    match start {
+        [] => None,
+        [all] => Some(*all),
+        each => Some(each[i]),
+    }
+}

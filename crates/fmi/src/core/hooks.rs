@@ -1,0 +1,32 @@
+//! The hooks a declaration can carry ([`declare`](super::declare)): functions of the
+//! model that the layer calls with an element index, never with a value reference.
+
+/// A variable as a model's callbacks see it: the name of its declaration (the FMI 3.0
+/// name: `u`, `der(integral)`) and the element's index (0 for a scalar).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Element {
+    pub name: &'static str,
+    pub index: usize,
+}
+
+/// Why `Model::output_derivative` gives no value.
+#[derive(Debug, Clone, PartialEq)]
+pub enum OutputDerivativeError {
+    /// The model does not provide this derivative (this output, or this order of it):
+    /// the importer asked for something the FMU does not offer (fmi2Error/fmi3Error).
+    NotProvided(String),
+    /// The model provides it but cannot evaluate it at this point (Discard).
+    CannotEvaluate(String),
+}
+
+/// The `order`-th time derivative of output element i (0 for a scalar), at the
+/// current time and state with the inputs held; the layer has checked the variable (a
+/// Real output) and the order (1 ..= maxOutputDerivativeOrder), and the computed values
+/// are current.
+pub type OutputDerivative<M> = fn(&M, usize, u32) -> Result<f64, OutputDerivativeError>;
+
+/// Where the model keeps the `order`-th time derivative (1 ..=
+/// `MAX_INPUT_DERIVATIVE_ORDER`) of continuous Real input element i; None: it keeps
+/// none (see [`Model::input_derivative_mut`](super::model::Model::input_derivative_mut)
+/// for the semantics).
+pub type InputDerivative<M> = for<'a> fn(&'a mut M, usize, u32) -> Option<&'a mut f64>;

@@ -1,0 +1,129 @@
+//! The declarative table (`core::declare`): the value-reference scheme, the FMI 2.0
+//! scalars an array declaration flattens to, and the hooks routed by element. The
+//! expected value references follow from the scheme in the module documentation
+//! (pinned: vr + i * stride; unpinned: one after the largest before), the expected
+//! names from the FMI 2.0 convention `base[i]` / `der(state[i])`.
+
+use robofmu_fmi::core::check::check_table;
+use robofmu_fmi::core::declare::{Declaration, value_references};
+use robofmu_fmi::core::flatten::flatten;
+use robofmu_fmi::core::variables::Kind;
+use robofmu_fmi::core::{OutputDerivativeError, Variability};
+
+#[derive(Clone, Default)]
+struct Axes {
+    x: [f64; 2],
+    k: i32,
+    ramp: [f64; 2],
+}
+
+type Decl = Declaration<Axes>;
+
+static TABLE: &[Decl] = &[
+    Decl::integer("k", "a gain", |m, _| m.k)
+        .set_integer(|m, _, v| {
+            m.k = v;
+            Ok(())
+        })
+        .parameter(Variability::Fixed)
+        .start_integer(&[4]),
+    Decl::real("x", "position", |m, i| m.x[i])
+        .array(2)
+        .at(10)
+        .stride(5)
+        .label("Axis")
+        .set_real(|m, i, v| {
+            m.x[i] = v;
+            Ok(())
+        })
+        .state()
+        .start_real(&[1.5, -2.5]),
+    Decl::real("der(x)", "velocity", |m, i| 3.0 * m.x[i])
+        .array(2)
+        .derivative_of("x"),
+    Decl::real("u", "input", |m, i| m.x[i])
+        .array(2)
+        .set_real(|_, _, _| Ok(()))
+        .input()
+        .start_real(&[0.0])
+        .input_derivative(|m, i, order| (order == 1).then(|| &mut m.ramp[i])),
+    Decl::real("y", "output", |m, i| m.x[i] * m.x[i])
+        .array(2)
+        .output()
+        .output_derivative(|m, i, order| match order {
+            1 => Ok(2.0 * m.x[i]),
+            _ => Err(OutputDerivativeError::NotProvided(
+                "order 1 only".to_string(),
+            )),
+        }),
+];
+
+#[test]
+fn value_references_are_pinned_or_follow_the_largest_before() {
+    // k: first unpinned -> 1; x pinned at 10, stride 5 -> 10, 15; der(x): 16, 17;
+    // u: 18, 19; y: 20, 21.
+    assert_eq!(value_references(TABLE), [1, 10, 16, 18, 20]);
+    let vrs: Vec<u32> = flatten(TABLE).iter().map(|v| v.value_reference).collect();
+    assert_eq!(vrs, [1, 10, 15, 16, 17, 18, 19, 20, 21]);
+}
+
+#[test]
+fn arrays_flatten_to_fmi2_scalars_with_labels_and_per_element_starts() {
+    let table = flatten(TABLE);
+    let names: Vec<&str> = table.iter().map(|v| v.name.as_ref()).collect();
+    assert_eq!(
+        names,
+        [
+            "k",
+            "x[1]",
+            "x[2]",
+            "der(x[1])",
+            "der(x[2])",
+            "u[1]",
+            "u[2]",
+            "y[1]",
+            "y[2]"
+        ]
+    );
+    assert_eq!(table[2].description, "Axis 2: position");
+    assert_eq!(table[3].description, "velocity");
+    let start = |i: usize| match table[i].kind {
+        Kind::Real { start, .. } => start,
+        _ => None,
+    };
+    assert_eq!(
+        (start(1), start(2), start(5), start(6)),
+        (Some(1.5), Some(-2.5), Some(0.0), Some(0.0))
+    );
+    let Kind::Real { derivative_of, .. } = &table[4].kind else {
+        panic!("a Real")
+    };
+    assert_eq!(derivative_of.as_deref(), Some("x[2]"));
+    let element = table[4].element().expect("declared");
+    assert_eq!((element.name, element.index), ("der(x)", 1));
+    let mut sorted = table;
+    sorted.sort_by_key(|v| v.value_reference);
+    check_table(&sorted).expect("a legal table");
+}
+
+#[test]
+fn accessors_and_hooks_reach_their_element() {
+    let table = flatten(TABLE);
+    let mut m = Axes::default();
+    let (Kind::Real { set: Some(set), .. }, Kind::Real { get, .. }) =
+        (&table[2].kind, &table[4].kind)
+    else {
+        panic!("x[2] settable, der(x[2]) readable")
+    };
+    set.call(&mut m, 2.0).unwrap();
+    assert_eq!(m.x, [0.0, 2.0]);
+    assert_eq!(get.call(&m), 6.0); // d/dt x = 3 x
+    let (hook, i) = table[8].output_hook().expect("y has output derivatives");
+    assert_eq!(hook(&m, i, 1), Ok(4.0)); // d(x^2)/dx = 2 x at x = 2
+    let (slot, i) = table[6]
+        .input_hook()
+        .expect("u has an input-derivative slot");
+    *slot(&mut m, i, 1).expect("order 1 kept") = 0.5;
+    assert_eq!(m.ramp, [0.0, 0.5]);
+    assert!(slot(&mut m, i, 2).is_none());
+}
