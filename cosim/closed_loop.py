@@ -42,6 +42,10 @@ Example (every quantity states its unit; see cosim/units.py for the units)::
     [limits]                            # optional, see cosim/limits.py
     max_tracking_error = "0.5 deg"
 
+The controller is the PID above or, with ``controller = "computed-torque"``, the
+ComputedTorque FMU under the alias ``ct`` with gains by ``[gains] omega`` and its model
+of the robot in ``[model]`` (default: the plant's; see cosim/controllers.py).
+
 Several waypoints make a multi-segment motion: one planner polynomial per segment,
 each starting with the angles, rates (and, quintic, accelerations) the previous one
 ends with, so velocity (and, quintic, acceleration) is continuous at every waypoint.
@@ -59,6 +63,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from .controllers import LOOPS, Loop, kind_of, model_parameters, pole_placement
 from .design import design_gains, euler_accelerations, euler_rates
 from .fmu_check import describe
 from .preflight import initialize_alone
@@ -67,22 +72,16 @@ from .schedule import PlanSwitch
 from .workspace import check_poses
 from .units import UNITS, exponents, quantity, quantity_vector, unit_in
 
-CONNECTIONS = [("planner", "q", "pid", "setpoint"),
-               ("planner", "qdot", "pid", "setpointRate"),
-               ("plant", "theta", "pid", "measurement"),
-               ("plant", "thetaDot", "pid", "measuredRate"),
-               ("plant", "gravityCompensation", "pid", "feedforward"),
-               ("pid", "u", "plant", "generalizedForceCommand")]
 RECORD = ([f"plant.force[{i}]" for i in (1, 2, 3)] + [f"plant.l[{i}]" for i in (1, 2, 3)]
           + [f"plant.omegaDot[{i}]" for i in (1, 2, 3)]
           + [f"planner.qddot[{i}]" for i in (1, 2, 3)])
 PROFILES = {"cubic": 3, "quintic": 5}
 KNOWN = {"name", "description", "start_time", "stop_time", "step_size", "fmus", "motion",
          "start", "gains", "plant", "record", "coupling", "max_step_halvings", "limits",
-         "input_extrapolation"}
+         "input_extrapolation", "controller", "model"}
 # The scenario fields the FMUs' parameters come from, and the fields blamed for an
 # unreachable pose (cosim.workspace).
-FIELDS = {"planner": "motion", "pid": "gains", "plant": "plant"}
+FIELDS = {"planner": "motion", "pid": "gains", "ct": "model", "plant": "plant"}
 WHERE = {"plan": "motion.waypoints"}
 MAX_WAYPOINTS = 1000
 
@@ -199,26 +198,29 @@ def _article(noun: str) -> str:
 
 
 # A variable each role's FMU must have: a wrong FMU in a slot is named as such.
-ROLE_VARIABLES = {"planner": "qf[1]", "pid": "Kp[1]", "plant": "theta0[1]"}
+ROLE_VARIABLES = {"planner": "qf[1]", "plant": "theta0[1]"}
 
 
-def _check_roles(fmus: dict, base_dir: Path) -> None:
+def _check_roles(fmus: dict, base_dir: Path, loop: Loop) -> None:
+    roles = ROLE_VARIABLES | {loop.alias: loop.role_variable}
     for alias, f in fmus.items():
         if not isinstance(f, str):
             raise ScenarioError(f"field 'fmus.{alias}' must be a file name (a string)")
         md = describe(base_dir / f, f"fmus.{alias}")
-        if ROLE_VARIABLES[alias] not in {v.name for v in md.modelVariables}:
+        if roles[alias] not in {v.name for v in md.modelVariables}:
             raise ScenarioError(f"field 'fmus.{alias}': {Path(f).name} ({md.modelName}) is "
-                                f"not a {alias} FMU (no variable {ROLE_VARIABLES[alias]}); "
+                                f"not a {alias} FMU (no variable {roles[alias]}); "
                                 f"name the {alias} FMU of dist/")
 
 
-def _plant_value(value, name: str, plant_fmu: Path):
-    """A plant parameter: a number (SI, in the unit the FMU declares) or "value unit",
-    whose unit must have the dimension of the unit the FMU declares for `name`."""
+def _plant_value(value, name: str, plant_fmu: Path, table: str = "plant",
+                 alias: str = "plant"):
+    """A parameter of the FMU `alias` set in the scenario's `table`: a number (SI, in
+    the unit the FMU declares) or "value unit", whose unit must have the dimension of
+    the unit the FMU declares for `name`."""
     from .fmu_check import check_value, describe, unit_of
-    field = f"plant.{name}"
-    md = describe(plant_fmu, "fmus.plant")
+    field = f"{table}.{name}"
+    md = describe(plant_fmu, f"fmus.{alias}")
     variable = {v.name: v for v in md.modelVariables}.get(name)
     if isinstance(value, str) and variable is not None:
         declared = unit_of(md, variable)
@@ -228,7 +230,7 @@ def _plant_value(value, name: str, plant_fmu: Path):
                                 f"write \"value unit\" with one of: {', '.join(UNITS)}")
         dimension = UNITS[unit][1]
         if declared is None or declared[1] is None:
-            raise ScenarioError(f"field '{field}': plant.{name} declares no unit; write a "
+            raise ScenarioError(f"field '{field}': {alias}.{name} declares no unit; write a "
                                 "plain number")
         if declared[1] != exponents(dimension) or declared[2] != 1.0 or declared[3] != 0.0:
             hint = [u for u, (f, d) in UNITS.items() if f == 1.0 and declared[1:] == (
@@ -238,7 +240,7 @@ def _plant_value(value, name: str, plant_fmu: Path):
                                 f"{name} is declared in {declared[0]}; write {form}a plain "
                                 f"number in {declared[0]}")
         value = quantity(value, dimension, field)
-    return check_value(md, "plant", name, value, field)
+    return check_value(md, alias, name, value, field)
 
 
 def _refuse_start_parameters(plant: dict) -> None:
@@ -251,6 +253,27 @@ def _refuse_start_parameters(plant: dict) -> None:
                                 "the workspace check use; set it there")
 
 
+def _controller(data: dict, kind: str, fmu: Path, plant_fmu: Path, plant_values: dict,
+                poses, preflight: bool) -> dict:
+    """The controller FMU's parameters: PID gains designed on the plant, or the
+    computed-torque gains and model (cosim.controllers)."""
+    if kind == "computed-torque":
+        from .fmu_check import describe
+        gains = pole_placement(_table(data, "gains"), quantity)
+        model = model_parameters(describe(fmu, "fmus.ct"), plant_values,
+                                 _table(data, "model"),
+                                 lambda v, name: _plant_value(v, name, fmu, "model", "ct"))
+        return gains | model
+    gains = _gains(_table(data, "gains"), plant_fmu, poses,
+                   plant_values if preflight else None)
+    pid = {}
+    for i, (kp, ki, kd) in enumerate(gains):
+        n = i + 1
+        pid |= {f"Kp[{n}]": kp, f"Ki[{n}]": ki, f"Kd[{n}]": kd, f"Tf[{n}]": 0.0,
+                f"useRateInputs[{n}]": True}
+    return pid
+
+
 def resolve(data: dict, base_dir: Path,
             preflight: bool = True) -> tuple[dict, list[PlanSwitch]]:
     """The plain scenario (as parse_scenario reads it) and the plan switches. With
@@ -259,9 +282,15 @@ def resolve(data: dict, base_dir: Path,
     unknown = sorted(set(data) - KNOWN)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'")
+    kind = kind_of(data)
+    loop = LOOPS[kind]
     fmus = _table(data, "fmus")
-    if set(fmus) != {"planner", "pid", "plant"}:
-        raise ScenarioError("field 'fmus' must name exactly 'planner', 'pid' and 'plant'")
+    if set(fmus) != {"planner", loop.alias, "plant"}:
+        raise ScenarioError(f"field 'fmus' must name exactly 'planner', '{loop.alias}' and "
+                            f"'plant' (controller = \"{kind}\")")
+    if "model" in data and kind != "computed-torque":
+        raise ScenarioError("field 'model' (the controller's model of the robot) needs "
+                            "controller = \"computed-torque\"; remove it for the PID")
     order, points = waypoints(_table(data, "motion"))
     start_raw = _table(data, "start")
     unknown = sorted(set(start_raw) - {"angles", "omega"})
@@ -271,7 +300,7 @@ def resolve(data: dict, base_dir: Path,
               if "angles" in start_raw else points[0].angles)
     omega0 = (quantity_vector(start_raw["omega"], "angular velocity", "start.omega", 3)
               if "omega" in start_raw else points[0].omega)
-    _check_roles(fmus, base_dir)
+    _check_roles(fmus, base_dir, loop)
     plant_fmu = base_dir / str(fmus["plant"])
     _refuse_start_parameters(_table(data, "plant"))
     plant_values = {k: _plant_value(v, k, plant_fmu) for k, v in _table(data, "plant").items()}
@@ -281,13 +310,8 @@ def resolve(data: dict, base_dir: Path,
         check_poses(plant_fmu, plant_values, [(start_field, None, theta0)] + [
             (f"motion.waypoints[{k}].angles", p.time, p.angles) for k, p in enumerate(points)],
                     "move the waypoints (or the start) inside the workspace")
-    gains = _gains(_table(data, "gains"), plant_fmu, design_poses(theta0, points),
-                   plant_values if preflight else None)
-    pid = {}
-    for i, (kp, ki, kd) in enumerate(gains):
-        n = i + 1
-        pid |= {f"Kp[{n}]": kp, f"Ki[{n}]": ki, f"Kd[{n}]": kd, f"Tf[{n}]": 0.0,
-                f"useRateInputs[{n}]": True}
+    controller = _controller(data, kind, base_dir / str(fmus[loop.alias]), plant_fmu,
+                             plant_values, design_poses(theta0, points), preflight)
     plant = {f"theta0[{i + 1}]": theta0[i] for i in range(3)}
     plant |= {f"omega0[{i + 1}]": omega0[i] for i in range(3)}
     plant |= plant_values
@@ -296,14 +320,15 @@ def resolve(data: dict, base_dir: Path,
     step = quantity(data["step_size"], "time", "step_size") if "step_size" in data else 1e-3
     plain = {"start_time": start_time,
              "stop_time": quantity(data.get("stop_time"), "time", "stop_time"),
-             "step_size": step, "order": ["planner", "pid", "plant"], "fmus": dict(fmus),
+             "step_size": step, "order": ["planner", loop.alias, "plant"],
+             "fmus": dict(fmus),
              "parameters": {"planner": segment_parameters(order, points[0], points[1]),
-                            "pid": pid, "plant": plant},
+                            loop.alias: controller, "plant": plant},
              "connections": [{"from": f"{a}.{x}[{i}]", "to": f"{b}.{y}[{i}]"}
-                             for a, x, b, y in CONNECTIONS for i in (1, 2, 3)],
+                             for a, x, b, y in loop.connections for i in (1, 2, 3)],
              "record": data.get("record", RECORD)}
     for key in ("name", "coupling", "input_extrapolation", "max_step_halvings",
-                "description", "limits"):
+                "description", "limits", "controller"):
         if key in data:
             plain[key] = data[key]
     switches = []

@@ -1,5 +1,6 @@
 """The main demo: every closed-loop scenario through the FMUs, with CSVs, plots and a
-summary table.  ``python -m cosim.demo [--out results]``."""
+summary table, then the PID against the computed-torque controller on each
+(cosim.demo_controllers).  ``python -m cosim.demo [--out results]``."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import sys
 import time
 from pathlib import Path
 
+from .demo_controllers import print_comparison
 from .master import Master
 from .outputs import write_outputs
 from .report import (HEADER, format_table, metrics, plot_cubic_vs_quintic, plot_tracking,
@@ -61,6 +63,8 @@ def run(args: argparse.Namespace) -> int:
         plot_tracking(results[name], name, args.out, reference)
         rows.append([name, *metrics(results[name]).row(), f"{walls[name]:.2f}"])
     print(format_table(["scenario", *HEADER, "wall (s)"], rows))
+    print()
+    print_comparison([ROOT / "scenarios" / f"{n}.toml" for n in SCENARIOS], results)
     print()
     comparison = []
     for motion in ("path1", "three_axis"):

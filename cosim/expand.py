@@ -42,6 +42,8 @@ def expanded_toml(scenario: Scenario, out: Path, source: str) -> str:
     folder = Path(out).resolve().parent
     lines = [HEADER.format(source=source).rstrip("\n")]
     described = {} if s.description is None else {"description": s.description}
+    if s.controller != "pid":
+        described["controller"] = s.controller
     lines += _table({"name": s.name, **described, "start_time": s.start_time,
                      "stop_time": s.stop_time, "step_size": s.step_size, "order": list(s.order),
                      "coupling": s.coupling, "max_step_halvings": s.max_step_halvings,

@@ -9,6 +9,8 @@ Schema (TOML shown; JSON has the same structure)::
     order = ["planner", "pid", "plant"]  # Gauss-Seidel order; every FMU once
     max_step_halvings = 0              # Discard retries with h/2, h/4, ... (optional)
     coupling = "sampled"               # or "gauss-seidel" (optional, default "sampled")
+    controller = "pid"                 # or "computed-torque": the closed loop's controller,
+                                       # for the Rust reference (optional, default "pid")
     input_extrapolation = "hold"       # or "linear": input slopes where the FMUs allow
 
     [fmus]                             # alias -> FMU path (relative to this file)
@@ -93,6 +95,9 @@ class Scenario:
     # Limits the run is judged against (cosim.limits), SI.
     limits: dict = field(default_factory=dict)
     description: str | None = None
+    # The closed loop's controller ("pid" or "computed-torque", cosim.controllers): read
+    # by the Rust reference from the expanded form.
+    controller: str = "pid"
 
     @property
     def steps(self) -> int:
@@ -135,7 +140,7 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
              "parameters", "connections", "record", "max_step_halvings", "coupling", "limits", "plan_switches",
-             "input_extrapolation"}
+             "input_extrapolation", "controller"}
     unknown = sorted(set(data) - known, key=str)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
@@ -217,8 +222,9 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if extrapolation not in EXTRAPOLATIONS:
         raise ScenarioError(f"field 'input_extrapolation' must be one of {EXTRAPOLATIONS}, "
                             f"got {extrapolation!r}")
+    from .controllers import kind_of
     from .limits import parse_limits
-    return Scenario(name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
+    return Scenario(controller=kind_of(data), name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
                     record=record, max_step_halvings=halvings, coupling=coupling,
                     input_extrapolation=extrapolation, description=data.get("description"),

@@ -9,6 +9,9 @@ forms evaluated with numpy, independently of the Rust code and without running a
   Kd r (1 - exp(-t/Tf)) for the rate path, clamped to the limits (with conditional
   integration the integral stops exactly when the raw output reaches the limit, and
   the clamped output is the clamped straight line).
+* ComputedTorque: a model reduced to the platform (massless legs and sliders) at rest
+  in an upright pose, where the Euler-angle mass matrix is the platform's inertia
+  tensor about P and gravity has no moment: u = I_B (Kp e + Ki e t) for held inputs.
 
 Each case directory holds <Model>_ref.csv (cross-check format: quoted names, time
 first), <Model>_ref.opt (StartTime, StopTime, StepSize, RelTol) and case.json (start
@@ -174,6 +177,37 @@ def pid_cases():
     write_case("PID", "defaults", options, columns, {}, tolerances, inputs=inputs)
 
 
+def computed_torque_case():
+    """ComputedTorque with a model whose legs and sliders are massless, at rest in the
+    start pose (0, 0, thz): the law's inverse dynamics is then the platform's alone,
+    u = E^T R I_B R^T E a, and with thx = thy = 0 both E and R are Rz(thz), so
+    M_x = I_B (the platform inertia about P in {B}) and u = I_B a; gravity acts through
+    P and the centre of mass on the vertical, so G = 0. With the inputs held (zero
+    rates and planned acceleration, error e), the integral is e t and
+    a = Kp e + Ki e t: u is a straight line per axis, clamped at a limit (axis 3)."""
+    options = {"StartTime": 0.0, "StopTime": 1.0, "StepSize": 0.01, "RelTol": 1e-8}
+    t = grid(options)
+    thz = np.radians(122.07)  # the start pose of docs/3pss-model.md, the FMU's default
+    inertia = [0.011824, 0.011824, 0.022886]  # platformInertia[k,k] default, kg m^2
+    kp, ki = 2700.0, 27000.0  # the default gains: triple pole at -30 rad/s (Kd unused)
+    errors = [0.01, -0.02, 0.015]
+    u_max = 5.0
+    start_values = {"legMass": 0.0, "sliderMass": 0.0, "legTransverseInertia": 0.0,
+                    "limitOutput[3]": True, "uMin[3]": -u_max, "uMax[3]": u_max}
+    columns = {"time": t}
+    for k, e in enumerate(errors):
+        start_values[f"setpoint[{k + 1}]"] = [0.0, 0.0, thz][k] + e
+        u = inertia[k] * (kp * e + ki * e * t)
+        columns[f"u[{k + 1}]"] = np.minimum(u, u_max) if k == 2 else u
+    # Co-Simulation: the held-input integral is exact; Model Exchange: the integral's
+    # rate is constant, which CVode integrates exactly. Both leave only round-off
+    # (measured 4e-14 N m on u up to 5 N m); 1e-9 N m as for the PID's exact cases.
+    names = list(columns)[1:]
+    tolerances = {"CoSimulation": {n: 1e-9 for n in names},
+                  "ModelExchange": {n: 1e-9 for n in names}}
+    write_case("ComputedTorque", "platform_only", options, columns, start_values, tolerances)
+
+
 def main():
     planner_case("quintic_t0_0.5", 5, 0.5, 2.0, [
         {"q0": 0.1, "qf": 0.9, "qdot0": 0.2, "qdotf": -0.1, "qddot0": 0.5, "qddotf": -0.3},
@@ -191,6 +225,7 @@ def main():
         for qf in (0.5, -0.3, 0.8)
     ], stop=2.5, at_defaults=True)
     pid_cases()
+    computed_torque_case()
 
 
 if __name__ == "__main__":

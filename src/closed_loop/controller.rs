@@ -12,10 +12,11 @@
 
 use super::error::LoopError;
 use super::scenario::{bad, number, output_limits, required};
-use crate::computed_torque::{AxisGains, ComputedTorque};
+use crate::computed_torque::{
+    AxisGains, ComputedTorque, MODEL_PARAMETERS, controller_message, model_parameter,
+};
 use crate::control::pid::PidGains;
 use crate::pss3::dynamics::PlantParams;
-use nalgebra::Vector3;
 use toml::Table;
 
 /// The controller of a loop.
@@ -88,41 +89,13 @@ pub enum Role {
     Robot,
 }
 
-/// Where a model parameter lives in the plant parameters.
-type ModelField = fn(&mut PlantParams) -> &mut f64;
-
-/// Model parameters of the controller under the plant FMU's names (scalars but g, the
-/// magnitude of gravity along -Z).
-const MODEL_SCALARS: [(&str, ModelField); 7] = [
-    ("platformMass", |p| &mut p.inertia.platform_mass),
-    ("legMass", |p| &mut p.inertia.leg_mass),
-    ("legComFraction", |p| &mut p.inertia.leg_com_fraction),
-    ("legTransverseInertia", |p| {
-        &mut p.inertia.leg_transverse_inertia
-    }),
-    ("sliderMass", |p| &mut p.inertia.slider_mass),
-    ("sliderFriction", |p| &mut p.friction.slider),
-    ("pivotFriction", |p| &mut p.friction.pivot),
-];
-
-/// The controller's model: the spec's robot with the parameters the table sets.
+/// The controller's model: the spec's robot with the model parameters (the plant
+/// FMU's names, `computed_torque::MODEL_PARAMETERS`) the table sets.
 fn model(p: &Table, place: &str) -> Result<PlantParams, LoopError> {
     let mut params = PlantParams::default();
-    for (name, field) in MODEL_SCALARS {
-        if let Some(v) = number(p, name, place)? {
-            *field(&mut params) = v;
-        }
-    }
-    if let Some(g) = number(p, "g", place)? {
-        params.gravity = Vector3::new(0.0, 0.0, -g);
-    }
-    for row in 0..3 {
-        for col in row..3 {
-            let name = format!("platformInertia[{},{}]", row + 1, col + 1);
-            if let Some(v) = number(p, &name, place)? {
-                params.inertia.platform_inertia[(row, col)] = v;
-                params.inertia.platform_inertia[(col, row)] = v;
-            }
+    for parameter in &MODEL_PARAMETERS {
+        if let Some(v) = number(p, parameter.name, place)? {
+            (parameter.set)(&mut params, v);
         }
     }
     Ok(params)
@@ -131,10 +104,7 @@ fn model(p: &Table, place: &str) -> Result<PlantParams, LoopError> {
 fn is_known(key: &str) -> bool {
     let per_axis = ["Kp", "Kd", "Ki", "limitOutput", "uMin", "uMax"];
     let axis_key = |name: &str| (1..=3).any(|i| key == format!("{name}[{i}]"));
-    per_axis.iter().any(|n| axis_key(n))
-        || key == "g"
-        || MODEL_SCALARS.iter().any(|(n, _)| *n == key)
-        || (1..=3).any(|r| (r..=3).any(|c| key == format!("platformInertia[{r},{c}]")))
+    per_axis.iter().any(|n| axis_key(n)) || model_parameter(key).is_some()
 }
 
 /// Reads the computed-torque controller's parameter table.
@@ -156,5 +126,6 @@ pub fn computed_torque(p: &Table, place: &str) -> Result<ComputedTorque, LoopErr
         });
     }
     let gains = [gains[0], gains[1], gains[2]];
-    ComputedTorque::new(model(p, place)?, gains).map_err(|e| bad(format!("'{place}': {e}")))
+    ComputedTorque::new(model(p, place)?, gains)
+        .map_err(|e| bad(format!("'{place}': {}", controller_message(&e))))
 }

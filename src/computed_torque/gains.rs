@@ -11,8 +11,9 @@
 use super::law::{AxisGains, ControllerError};
 
 /// Gains of one axis for a double (`integral` false) or triple (`integral` true) real
-/// pole at -`bandwidth` (rad/s), without output limits.
-pub fn pole_placement(bandwidth: f64, integral: bool) -> Result<AxisGains, ControllerError> {
+/// pole at -`bandwidth` (rad/s), without output limits (a `const fn`: the ComputedTorque
+/// FMU takes its default gains from it in its static variable table).
+pub const fn pole_placement(bandwidth: f64, integral: bool) -> Result<AxisGains, ControllerError> {
     if !(bandwidth.is_finite() && bandwidth > 0.0) {
         return Err(ControllerError::Bandwidth(bandwidth));
     }

@@ -41,7 +41,7 @@ def _close(a, b, where: str) -> None:
 
 @pytest.mark.parametrize("name", NAMES)
 def test_the_committed_expansion_is_the_harness_expansion(name, tmp_path, capsys):
-    assert len(NAMES) == 6  # every scenario of scenarios/ but heavy_platform (plant parameters)
+    assert len(NAMES) == 9  # every scenario of scenarios/ but heavy_platform (plant parameters)
     fresh = tmp_path / f"{name}.toml"
     assert main(["check", str(ROOT / "scenarios" / f"{name}.toml"), "--expanded",
                  str(fresh)]) == 0

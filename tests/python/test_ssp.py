@@ -25,9 +25,10 @@ from cosim.ssp import PARAMETER_SET, write_ssp  # noqa: E402
 from cosim.ssp_annotations import NS  # noqa: E402
 
 SCHEMA = Path(fmpy.__file__).parent / "ssp" / "schema" / "SystemStructureDescription.xsd"
-# Every scenario with one plan (a multi-segment motion has no SSP form).
+# Every scenario with one plan (a multi-segment motion has no SSP form), with either
+# controller.
 SCENARIOS = ["regulation", "path1_cubic", "path1_quintic", "three_axis_cubic",
-             "three_axis_quintic"]
+             "three_axis_quintic", "path1_cubic_ct", "three_axis_quintic_ct"]
 
 
 @pytest.fixture(scope="module")

@@ -146,3 +146,32 @@ fn plant_reference_regenerates_the_checked_in_default_pose_case() {
     assert!(first[4..].iter().chain(&last[4..]).all(|w| w.abs() < 1e-12));
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+#[test]
+fn ct_reference_regenerates_the_checked_in_defaults_case() {
+    // Truth: tests/references/ComputedTorque/defaults was written by this command
+    // (Lagrange's equations at the FMU's defaults); regenerating gives the same bytes.
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = std::env::temp_dir().join(format!("robofmu-ct-{}", std::process::id()));
+    let run = robofmu(&["pss3", "ct-reference", "--out-dir", out.to_str().unwrap()]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let checked_in = root.join("tests/references/ComputedTorque/defaults");
+    for file in [
+        "ComputedTorque_ref.csv",
+        "ComputedTorque_input.csv",
+        "ComputedTorque_ref.opt",
+        "case.json",
+    ] {
+        let fresh = std::fs::read(out.join(file)).unwrap();
+        let kept = std::fs::read(checked_in.join(file)).unwrap();
+        assert!(
+            fresh == kept,
+            "{file} differs: regenerate with robofmu pss3 ct-reference"
+        );
+    }
+    std::fs::remove_dir_all(out).unwrap();
+}

@@ -9,13 +9,13 @@
 //! against a serial run (`threads`) and the plant driven into its stops
 //! (`plant_hard`). Every probe runs in a forked child (`isolate`), so a crash of an
 //! FMU is reported as a failed case with its signal. The machinery (isolation,
-//! generator, description reader, case tables and their judge) serves both
-//! standards. The probes whose logic is the same in both (case loops, the generic
-//! `matrix::on_instance` and `matrix::with_args`, bad FMU states and handles,
-//! damaged serialized states, the sequence bookkeeping in `sequence_run`) are
-//! written once on the `standard_interface::StandardInterface` trait; what is per
-//! standard (C signatures, state machines, call tables) lives in the FMI 2.0
-//! modules (`binary`, `host`, `matrix/*`) and in `fmi3`.
+//! generator, description reader, judge) serves both standards. The matrix is one
+//! for both: each case class is written once over the seam `matrix::seam` and run
+//! for FMI 2.0 and FMI 3.0, whose tables (calls, rows, reasons) are in
+//! `matrix::fmi2` and `matrix::fmi3`. The sequence bookkeeping (`sequence_run`)
+//! is written once on the `standard_interface::StandardInterface` trait; what is
+//! per standard (C signatures, instances, state machines) lives in the FMI 2.0
+//! modules (`binary`, `host`, `sequences`, `lifecycle`) and in `fmi3`.
 
 pub mod binary;
 pub mod cycles;

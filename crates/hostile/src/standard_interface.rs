@@ -3,7 +3,8 @@
 //! `fmi3::host::Interface3`): its states, a live instance of a loaded model, the
 //! legal calls that reach a state, the check after a refusal and the well-formed
 //! arguments of its call table. The generic probes (`matrix::on_instance`,
-//! `matrix::with_args`, `matrix::orders::illegal_orders`) are written once on it.
+//! `matrix::with_args`, `sequence_run`) are written once on it; the matrix's
+//! classes on its extension `matrix::seam::Standard`.
 
 use crate::Loaded;
 use crate::binary::Status;
@@ -115,3 +116,43 @@ pub struct Call<I: StandardInterface> {
     pub legal: Legal<I>,
     pub invoke: Invoke<I>,
 }
+
+/// The methods of `StandardInterface` whose bodies read the same for both
+/// standards, because the two instance types and the two function tables share
+/// their field and method names (`binary`, `c`, `description`, `reach`,
+/// `serialize`, `set_fmu_state`, ...). Expanded inside each standard's impl.
+macro_rules! same_named_methods {
+    () => {
+        fn reach(inst: &Self::Instance<'_>, state: Self::State) -> Result<(), String> {
+            inst.reach(state)
+        }
+        fn raw<'i>(inst: &'i Self::Instance<'_>) -> (&'i Self::Binary, Self::Handle) {
+            (inst.binary, inst.c)
+        }
+        fn continuous_states(
+            b: &Self::Binary,
+        ) -> (
+            $crate::standard_interface::GetArray,
+            $crate::standard_interface::SetStates,
+        ) {
+            (b.get_continuous_states, b.set_continuous_states)
+        }
+        fn serialize(inst: &Self::Instance<'_>, state: *mut c_void) -> Result<Vec<u8>, String> {
+            inst.serialize(state)
+        }
+        unsafe fn set_state(inst: &Self::Instance<'_>, state: *mut c_void) -> Status {
+            // SAFETY: a live instance; the caller vouches for the state.
+            unsafe { (inst.binary.set_fmu_state)(inst.c, state) }
+        }
+        fn free_instance(b: &Self::Binary) -> $crate::standard_interface::FreeInstance {
+            b.free_instance
+        }
+        fn set_time(b: &Self::Binary) -> $crate::standard_interface::SetTime {
+            b.set_time
+        }
+        fn args(inst: &Self::Instance<'_>, state: *mut c_void) -> Self::Args {
+            <Self::Args>::new(inst.description, state)
+        }
+    };
+}
+pub(crate) use same_named_methods;

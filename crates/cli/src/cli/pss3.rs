@@ -3,6 +3,7 @@
 //! lengths metres; everything inside and in CSV files is SI.
 
 mod csv;
+mod ct_reference;
 mod path;
 mod plant_reference;
 mod pose;
@@ -26,6 +27,9 @@ pub enum Pss3Command {
     /// Open-loop reference of the Pss3Plant FMU for path 1 (kinematics + inverse
     /// dynamics): reference motion, input forces, options and case file.
     PlantReference(plant_reference::PlantReferenceArgs),
+    /// Reference of the ComputedTorque FMU at its defaults (Lagrange's inverse dynamics):
+    /// output, options and case file.
+    CtReference(ct_reference::CtReferenceArgs),
     /// Workspace scans (stroke box by FK, orientation grid by IK): CSV files and plots.
     Workspace(workspace::WorkspaceArgs),
 }
@@ -38,6 +42,7 @@ pub fn run(command: Pss3Command) -> Result<(), CliError> {
         Pss3Command::Jacobian(args) => pose::run_jacobian(&args),
         Pss3Command::ActuatorPath(args) => path::run(&args),
         Pss3Command::PlantReference(args) => plant_reference::run(&args),
+        Pss3Command::CtReference(args) => ct_reference::run(&args),
         Pss3Command::Workspace(args) => workspace::run(&args),
     }
 }

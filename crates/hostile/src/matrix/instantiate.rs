@@ -1,162 +1,89 @@
-//! fmi2Instantiate with arguments the standard forbids (FMI 2.0 section 2.1.5):
-//! missing callbacks, null or empty names, a wrong GUID, an unknown fmuType. The
-//! FMU must return NULL; when a logger was given, it says why. The observed status
-//! is fmi2OK for an instance and fmi2Error for NULL.
+//! Instantiation with arguments the standard forbids (FMI 2.0 2.1.5, FMI 3.0
+//! 2.3.1): a null or empty instance name and a null or foreign GUID
+//! (instantiation token), tried with each instantiation function of the standard;
+//! and the rows only one standard has (FMI 2.0: missing callbacks, an unknown
+//! fmuType; FMI 3.0: no logger, Scheduled Execution). The FMU returns NULL; when a
+//! logger was given, it says why. The observed status is OK for an instance and
+//! Error for NULL.
 
-use super::{Case, Expect, Observed};
+use super::seam::{Attempt, Names, Standard};
+use super::{Case, Expect};
 use crate::Loaded;
-use crate::binary::{ERROR, OK};
-use crate::host::{Callbacks, Environment, c_string};
-use std::ffi::c_int;
 
-const WHY_CALLBACKS: &str = "FMI 2.0 2.1.5: allocateMemory and freeMemory are required (not NULL): refuse with a log line (issue 12 item 5)";
-const WHY_LOGGER: &str =
-    "no logger: the FMU cannot report anything; refuses silently (project choice)";
-const WHY_ARGS: &str = "FMI 2.0 2.1.5: instanceName non-empty, fmuGUID of this FMU, fmuType 0 or 1: refuse with a log line";
-
-struct Args {
-    name: Option<&'static str>,
-    fmu_type: c_int,
-    guid: Option<String>,
-    callbacks: Option<Callbacks>,
-}
-
-fn attempt(l: &Loaded, m: usize, a: &Args) -> Observed {
-    let env = Environment::new(a.callbacks.unwrap_or(Callbacks::ALL));
-    let name = a.name.map(c_string);
-    let guid = a.guid.as_deref().map(c_string);
-    let b = &l.binaries[m];
-    let ptr = |s: &Option<std::ffi::CString>| s.as_ref().map_or(std::ptr::null(), |s| s.as_ptr());
-    let functions = if a.callbacks.is_some() {
-        &*env.functions as *const _
-    } else {
-        std::ptr::null()
-    };
-    // SAFETY: strings and callbacks are valid or null.
-    let c = unsafe {
-        (b.instantiate)(
-            ptr(&name),
-            a.fmu_type,
-            ptr(&guid),
-            std::ptr::null(),
-            functions,
-            0,
-            1,
-        )
-    };
-    let status = if c.is_null() { ERROR } else { OK };
-    if !c.is_null() {
-        // SAFETY: an instance of this binary.
-        unsafe { (b.free_instance)(c) };
-    }
-    Observed::of(status, env.take_log())
-}
-
-pub fn cases(l: &Loaded, m: usize) -> Vec<Case> {
-    let guid = l.fmus[m].description.guid.clone();
-    let ok = Args {
+/// The rows both standards have: (name, arguments, expected log; None: OK).
+fn rows(
+    (token, logged): (&'static str, &'static str),
+    guid: &str,
+) -> Vec<(String, Names, Option<&'static str>)> {
+    let ok = Names {
         name: Some("probe"),
-        fmu_type: 1,
-        guid: Some(guid.clone()),
-        callbacks: Some(Callbacks::ALL),
+        token: Some(guid.to_string()),
     };
-    let with = |f: &dyn Fn(&mut Args)| {
-        let mut a = Args {
-            guid: ok.guid.clone(),
-            ..ok
-        };
-        f(&mut a);
-        a
+    let with = |f: &dyn Fn(&mut Names)| {
+        let mut n = ok.clone();
+        f(&mut n);
+        n
     };
-    let no = |allocate: bool, free: bool, logger: bool| Callbacks {
-        allocate,
-        free,
-        logger,
-    };
-    let table: Vec<(&str, Args, Expect, &'static str)> = vec![
+    let foreign = "{00000000-0000-0000-0000-000000000000}";
+    vec![
+        ("all arguments valid (control)".into(), ok.clone(), None),
         (
-            "all arguments valid (control)",
-            with(&|_| {}),
-            Expect::ok(),
-            WHY_ARGS,
+            "instanceName = NULL".into(),
+            with(&|n| n.name = None),
+            Some("instanceName"),
         ),
         (
-            "allocateMemory = NULL",
-            with(&|a| a.callbacks = Some(no(false, true, true))),
-            Expect::error("allocateMemory"),
-            WHY_CALLBACKS,
+            "instanceName empty".into(),
+            with(&|n| n.name = Some("")),
+            Some("instanceName"),
         ),
         (
-            "freeMemory = NULL",
-            with(&|a| a.callbacks = Some(no(true, false, true))),
-            Expect::error("freeMemory"),
-            WHY_CALLBACKS,
+            format!("{token} = NULL"),
+            with(&|n| n.token = None),
+            Some(logged),
         ),
         (
-            "allocateMemory = freeMemory = NULL",
-            with(&|a| a.callbacks = Some(no(false, false, true))),
-            Expect::error("Memory"),
-            WHY_CALLBACKS,
+            format!("{token} of another model"),
+            with(&|n| n.token = Some(foreign.into())),
+            Some(logged),
         ),
-        (
-            "logger = NULL",
-            with(&|a| a.callbacks = Some(no(true, true, false))),
-            Expect::silent_error(),
-            WHY_LOGGER,
-        ),
-        (
-            "functions = NULL",
-            with(&|a| a.callbacks = None),
-            Expect::silent_error(),
-            WHY_LOGGER,
-        ),
-        (
-            "instanceName = NULL",
-            with(&|a| a.name = None),
-            Expect::error("instanceName"),
-            WHY_ARGS,
-        ),
-        (
-            "instanceName empty",
-            with(&|a| a.name = Some("")),
-            Expect::error("instanceName"),
-            WHY_ARGS,
-        ),
-        (
-            "fmuGUID = NULL",
-            with(&|a| a.guid = None),
-            Expect::error("GUID"),
-            WHY_ARGS,
-        ),
-        (
-            "fmuGUID of another model",
-            with(&|a| a.guid = Some("{00000000-0000-0000-0000-000000000000}".into())),
-            Expect::error("GUID"),
-            WHY_ARGS,
-        ),
-        (
-            "fmuType = 2",
-            with(&|a| a.fmu_type = 2),
-            Expect::error("fmuType"),
-            WHY_ARGS,
-        ),
-        (
-            "fmuType = -1",
-            with(&|a| a.fmu_type = -1),
-            Expect::error("fmuType"),
-            WHY_ARGS,
-        ),
-    ];
-    table
+    ]
+}
+
+/// The rows both standards have, for each instantiation function.
+fn common<I: Standard>(l: &Loaded, m: usize) -> Vec<Attempt> {
+    let table = I::tables().instantiation;
+    let guid = &I::description(l, m).guid;
+    let mut attempts = Vec::new();
+    for &kind in table.kinds {
+        for (name, names, log) in rows(table.token, guid) {
+            let attempt = table.attempt;
+            attempts.push(Attempt {
+                interface: kind.map(I::short),
+                name,
+                expect: log.map_or_else(Expect::ok, Expect::error),
+                why: table.why,
+                probe: Box::new(move |l| attempt(l, m, kind, &names)),
+            });
+        }
+    }
+    attempts
+}
+
+pub fn cases<I: Standard>(l: &Loaded, m: usize) -> Vec<Case> {
+    let mut attempts = common::<I>(l, m);
+    attempts.extend((I::tables().instantiation.own)(l, m));
+    attempts
         .into_iter()
-        .map(|(name, args, expect, why)| Case {
+        .map(|a| Case {
+            standard: I::STANDARD,
             class: "instantiate",
             model: m,
-            interface: None,
-            name: name.to_string(),
-            expect,
-            why,
-            probe: Box::new(move |l| attempt(l, m, &args)),
+            interface: a.interface,
+            name: a.name,
+            expect: a.expect,
+            why: a.why,
+            probe: a.probe,
         })
         .collect()
 }

@@ -1,26 +1,32 @@
-//! The bad-input matrix: every case names the call it makes, the status and log
-//! text it expects and why (the standard's rule or the project's documented
-//! choice). Cases run in forked children, grouped per model; a crash fails only
-//! the case that caused it.
+//! The bad-input matrix, one for both standards: every case names the call it
+//! makes, the status and log text it expects and why (the standard's rule or the
+//! project's documented choice). Each case class is written once, generic over
+//! the seam `seam::Standard`, and run for FMI 2.0 (`fmi2`: its call tables and
+//! reasons) and FMI 3.0 (`fmi3`); classes only one standard has are listed in its
+//! tables. Cases run in forked children, grouped per model; a crash fails only the
+//! case that caused it.
 
-pub mod bad_states;
-pub mod calls;
+pub mod fmi2;
+pub mod fmi3;
 pub mod handles;
 pub mod instantiate;
 pub mod orders;
 pub mod pointers;
 pub mod pose;
 pub mod references;
+pub mod seam;
 pub mod serialized;
-pub mod standard;
 pub mod states;
 pub mod values;
+pub mod verdict;
 
 use crate::Loaded;
-use crate::binary::{DISCARD, ERROR, OK, Status, status_name};
+use crate::binary::{DISCARD, ERROR, OK, Status};
+use crate::fmu::Standard;
 use crate::host::{Probed, take, unlogged};
 use crate::isolate;
 use crate::standard_interface::StandardInterface;
+pub use verdict::{Verdict, full_name, judge, known_failures, report};
 
 /// What a case expects: one of `statuses`, and `log` (when given) contained in the
 /// log lines of the call, compared without case.
@@ -105,6 +111,7 @@ impl Observed {
 pub type Probe = Box<dyn Fn(&Loaded) -> Observed>;
 
 pub struct Case {
+    pub standard: Standard,
     pub class: &'static str,
     pub model: usize,
     /// The interface's short name ("ME", "CS", "CS+events"), None for instantiation.
@@ -137,86 +144,33 @@ pub fn on_instance<I: StandardInterface>(
     Observed::of(status, log)
 }
 
-/// Cases known to fail on the FMI layer this suite runs against, by full name
-/// (`full_name`), each with the reason. They are reported (not hidden); one that
-/// passes is an error, so the list is shrunk as fixes land. Empty since the PID
-/// refuses 0 < Tf < 1 ps naming Tf and the plant's start-pose failure names the
-/// geometry parameters (issue 12 item 3).
-pub fn known_failures() -> Vec<(String, &'static str)> {
-    Vec::new()
-}
-
-/// Outcome of one case.
-pub enum Verdict {
-    Pass,
-    Fail(String),
-    KnownFailure(String),
-    FixedKnownFailure,
-}
-
-pub fn judge(case: &Case, result: &isolate::CaseResult) -> Verdict {
-    let failure = match result {
-        Err(death) => Some(death.clone()),
-        Ok(line) => {
-            let seen = Observed::decode(line);
-            mismatch(&case.expect, &seen)
+impl Case {
+    /// A case of class `class` of standard `I` on model `m` and `interface`:
+    /// its name, what it expects and why, and its probe.
+    pub fn new<I: seam::Standard>(
+        (class, model, interface): (&'static str, usize, I),
+        name: String,
+        (expect, why): (Expect, &'static str),
+        probe: impl Fn(&Loaded) -> Observed + 'static,
+    ) -> Case {
+        Case {
+            standard: I::STANDARD,
+            class,
+            model,
+            interface: Some(interface.short()),
+            name,
+            expect,
+            why,
+            probe: Box::new(probe),
         }
-    };
-    let name = full_name(case);
-    let known = known_failures()
-        .into_iter()
-        .find(|(known, _)| *known == name);
-    match (failure, known) {
-        (None, None) => Verdict::Pass,
-        (None, Some(_)) => Verdict::FixedKnownFailure,
-        (Some(f), None) => Verdict::Fail(f),
-        (Some(f), Some((_, reason))) => Verdict::KnownFailure(format!("{f} [{reason}]")),
     }
-}
-
-fn mismatch(expect: &Expect, seen: &Observed) -> Option<String> {
-    if let Some(p) = &seen.problem {
-        return Some(shorten(p));
+    /// The class as the report names it: "fmi3 " before the FMI 3.0 classes.
+    pub fn label(&self) -> String {
+        match self.standard {
+            Standard::Fmi2 => self.class.to_string(),
+            Standard::Fmi3 => format!("fmi3 {}", self.class),
+        }
     }
-    if !expect.statuses.contains(&seen.status) {
-        let wanted: Vec<String> = expect.statuses.iter().map(|&s| status_name(s)).collect();
-        return Some(format!(
-            "returned {}, expected {} (log: {})",
-            status_name(seen.status),
-            wanted.join(" or "),
-            shorten(&seen.log)
-        ));
-    }
-    match &expect.log {
-        Some(text) if !seen.log.to_lowercase().contains(&text.to_lowercase()) => Some(format!(
-            "log lacks \"{text}\" (log: {})",
-            if seen.log.is_empty() {
-                "empty".into()
-            } else {
-                shorten(&seen.log)
-            }
-        )),
-        _ => None,
-    }
-}
-
-fn shorten(log: &str) -> String {
-    match log.char_indices().nth(400) {
-        Some((i, _)) => format!("{}...", &log[..i]),
-        None => log.to_string(),
-    }
-}
-
-/// "class / model / interface / name", the key of the known-failure list.
-pub fn full_name(case: &Case) -> String {
-    let interface = case.interface.unwrap_or("--");
-    format!(
-        "{} / {} / {} / {}",
-        case.class,
-        crate::fmu::models()[case.model],
-        interface,
-        case.name
-    )
 }
 
 /// Runs the cases, each model's cases in its own sequence of forked children.
@@ -231,37 +185,37 @@ pub fn run(loaded: &Loaded, cases: &[Case]) -> Vec<Verdict> {
 
 /// Every case of the matrix, FMI 2.0 then FMI 3.0.
 pub fn all_cases(loaded: &Loaded) -> Vec<Case> {
-    let mut cases = fmi2_cases(loaded);
-    cases.extend(crate::fmi3::matrix::all_cases(loaded));
+    let mut cases = cases_of::<crate::host::Interface>(loaded);
+    cases.extend(cases_of::<crate::fmi3::host::Interface3>(loaded));
     cases
 }
 
 /// A builder of the cases of one class for model `m`.
 pub type Cases = fn(&Loaded, usize) -> Vec<Case>;
 
-/// The cases of every builder of `classes` for each of the models, model by model.
-pub fn per_model(loaded: &Loaded, classes: &[Cases]) -> Vec<Case> {
-    (0..crate::fmu::models().len())
-        .flat_map(|m| classes.iter().flat_map(move |class| class(loaded, m)))
-        .collect()
+/// The classes of the matrix, each written once for both standards.
+fn classes<I: seam::Standard>() -> Vec<Cases> {
+    vec![
+        pointers::cases::<I>,
+        references::cases::<I>,
+        values::cases::<I>,
+        serialized::cases::<I>,
+        orders::cases::<I>,
+        handles::cases::<I>,
+        states::cases::<I>,
+        pose::cases::<I>,
+        instantiate::cases::<I>,
+    ]
 }
 
-/// The FMI 2.0 cases.
-pub fn fmi2_cases(loaded: &Loaded) -> Vec<Case> {
-    per_model(
-        loaded,
-        &[
-            pointers::cases,
-            references::cases,
-            values::cases,
-            serialized::cases,
-            orders::cases,
-            handles::cases,
-            states::cases,
-            pose::cases,
-            instantiate::cases,
-        ],
-    )
+/// The cases of one standard: every class, then the standard's own classes,
+/// model by model.
+pub fn cases_of<I: seam::Standard>(loaded: &Loaded) -> Vec<Case> {
+    let mut all = classes::<I>();
+    all.extend_from_slice(I::tables().own_classes);
+    (0..crate::fmu::models().len())
+        .flat_map(|m| all.iter().flat_map(move |class| class(loaded, m)))
+        .collect()
 }
 
 /// Like `on_instance`, with well-formed arguments that include a valid FMU state
@@ -279,70 +233,4 @@ pub fn with_args<I: StandardInterface>(
         unlogged(inst, || inst.release_state(fmu_state));
         status
     })
-}
-
-/// Per class: cases, passed, failed, known failures; then every failure with its
-/// expectation's reason. Returns the text and whether the suite failed.
-pub fn report(cases: &[Case], verdicts: &[Verdict]) -> (String, bool) {
-    let mut classes: Vec<&str> = Vec::new();
-    for c in cases {
-        if !classes.contains(&c.class) {
-            classes.push(c.class);
-        }
-    }
-    let mut text = format!(
-        "{:<24} {:>6} {:>6} {:>6} {:>6}  per model ({})\n",
-        "class",
-        "cases",
-        "pass",
-        "fail",
-        "known",
-        crate::fmu::models().join("/")
-    );
-    let mut details = String::new();
-    let mut failed = false;
-    for class in classes {
-        let (mut n, mut pass, mut fail, mut known) = (0, 0, 0, 0);
-        for (c, v) in cases.iter().zip(verdicts).filter(|(c, _)| c.class == class) {
-            n += 1;
-            match v {
-                Verdict::Pass => pass += 1,
-                Verdict::KnownFailure(why) => {
-                    known += 1;
-                    details += &format!("KNOWN FAILURE {}: {why}\n", full_name(c));
-                }
-                Verdict::Fail(why) => {
-                    fail += 1;
-                    details += &format!(
-                        "FAIL {}: {why}\n    expected because: {}\n",
-                        full_name(c),
-                        c.why
-                    );
-                }
-                Verdict::FixedKnownFailure => {
-                    fail += 1;
-                    details += &format!(
-                        "PASSES BUT LISTED AS KNOWN FAILURE (remove it): {}\n",
-                        full_name(c)
-                    );
-                }
-            }
-        }
-        failed |= fail > 0;
-        let per_model: Vec<String> = (0..crate::fmu::models().len())
-            .map(|m| {
-                let count = cases
-                    .iter()
-                    .filter(|c| c.class == class && c.model == m)
-                    .count();
-                count.to_string()
-            })
-            .collect();
-        text += &format!(
-            "{class:<24} {n:>6} {pass:>6} {fail:>6} {known:>6}  {}\n",
-            per_model.join("/")
-        );
-    }
-    text += &format!("total cases: {}\n", cases.len());
-    (details + &text, failed)
 }

@@ -1,66 +1,31 @@
 //! Value references the model does not have, of the wrong type, or of variables
-//! that cannot be set. The standard (FMI 2.0 section 2.1.7) only defines calls
-//! with value references of the modelDescription and the function's type; the
-//! project refuses anything else with fmi2Error and a log line naming the
-//! reference or the variable.
+//! that cannot be set, passed to the typed getters and setters of the standard's
+//! tables; where the functions take a count of values (FMI 3.0 nValues), counts
+//! that do not match the arrays: one element too few, one too many, none, and a
+//! huge count with a real array of the right size (the FMU must compare counts
+//! before touching the array). The standards only define calls with references of
+//! the modelDescription and the function's type (FMI 2.0 2.1.7, FMI 3.0 2.2.6,
+//! nValues the total of the elements in 2.2.6.2); the project refuses anything
+//! else with an error and a log line naming the reference, the variable or the
+//! counts, and the instance stays usable as its standard requires. Cases only
+//! one standard has (its derivative, dependency and order functions) are the
+//! tables' `reference_extras`.
 
+use super::seam::{Access, Standard};
 use super::{Case, Expect, on_instance};
 use crate::Loaded;
-use crate::binary::{Status, Vr};
 use crate::description::{Description, VarType};
-use crate::host::{Instance, Interface, State};
 
-const WHY_UNKNOWN: &str =
-    "value reference not in the modelDescription (FMI 2.0 2.1.7): fmi2Error naming it";
-const WHY_TYPE: &str = "value reference of another type than the function's (FMI 2.0 2.1.7): fmi2Error naming the variable";
-const WHY_NOT_SETTABLE: &str = "calculated output set with fmi2SetReal (FMI 2.0 2.2.7 allows setting only parameters, inputs and initial=exact/approx): fmi2Error naming it";
-const WHY_STRING: &str = "the models have no String variables: every reference is refused";
-
-type Getter = fn(&Instance, Vr) -> Status;
-
-fn getters() -> [(&'static str, Option<VarType>, Getter); 4] {
-    [
-        ("fmi2GetReal", Some(VarType::Real), |i, vr| {
-            i.get_reals(&[vr]).0
-        }),
-        ("fmi2GetInteger", Some(VarType::Integer), |i, vr| unsafe {
-            (i.binary.get_integer)(i.c, &vr, 1, &mut 0)
-        }),
-        ("fmi2GetBoolean", Some(VarType::Boolean), |i, vr| unsafe {
-            (i.binary.get_boolean)(i.c, &vr, 1, &mut 0)
-        }),
-        ("fmi2GetString", None, |i, vr| unsafe {
-            (i.binary.get_string)(i.c, &vr, 1, &mut std::ptr::null())
-        }),
-    ]
-}
-
-fn setters() -> [(&'static str, Option<VarType>, Getter); 4] {
-    [
-        ("fmi2SetReal", Some(VarType::Real), |i, vr| {
-            i.set_real(vr, 0.0)
-        }),
-        ("fmi2SetInteger", Some(VarType::Integer), |i, vr| unsafe {
-            (i.binary.set_integer)(i.c, &vr, 1, &1)
-        }),
-        ("fmi2SetBoolean", Some(VarType::Boolean), |i, vr| unsafe {
-            (i.binary.set_boolean)(i.c, &vr, 1, &0)
-        }),
-        ("fmi2SetString", None, |i, vr| unsafe {
-            (i.binary.set_string)(i.c, &vr, 1, &c"x".as_ptr())
-        }),
-    ]
-}
+type Vr = u32;
 
 /// An unused value reference: above every one the model declares.
-pub(crate) fn unused(d: &Description) -> Vr {
+pub fn unused(d: &Description) -> Vr {
     d.variables.iter().map(|v| v.vr).max().unwrap_or(0) + 1
 }
 
 /// The value references no variable has (one above the largest, and the largest
-/// representable), as (label, value reference, expected log text); shared with
-/// the FMI 3.0 matrix.
-pub(crate) fn unknown_references(d: &Description) -> [(String, Vr, String); 2] {
+/// representable), as (label, value reference, expected log text).
+fn unknown_references(d: &Description) -> [(String, Vr, String); 2] {
     [
         (
             format!("unused vr {}", unused(d)),
@@ -71,93 +36,104 @@ pub(crate) fn unknown_references(d: &Description) -> [(String, Vr, String); 2] {
     ]
 }
 
-/// (label, value reference, expected log text, why) for a function of `own` type.
-fn probes(d: &Description, own: Option<VarType>) -> Vec<(String, Vr, String, &'static str)> {
-    let mut p: Vec<_> = unknown_references(d)
-        .into_iter()
-        .map(|(label, vr, log)| (label, vr, log, WHY_UNKNOWN))
-        .collect();
-    for t in [VarType::Real, VarType::Integer, VarType::Boolean] {
-        if Some(t) == own {
-            continue;
-        }
-        if let Some(v) = d.of_type(t).next() {
-            let why = if own.is_none() { WHY_STRING } else { WHY_TYPE };
-            p.push((
-                format!("{:?} variable {}", t, v.name),
-                v.vr,
-                v.name.clone(),
-                why,
-            ));
-        }
+/// Counts that do not match `size` elements: one less, one more, none, huge. A huge
+/// count is given with an array of at most 64 elements (the FMU must not use it).
+pub fn wrong_counts(size: usize) -> Vec<usize> {
+    let mut n = vec![size + 1, 0, usize::MAX / 16];
+    if size > 1 {
+        n.insert(0, size - 1);
     }
-    p
+    n
 }
 
-pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
-    let d = &loaded.fmus[m].description;
+/// One probe: label, value reference, count, expected log text, why.
+type Probe = (String, Vr, usize, String, &'static str);
+
+/// The probes of a function of `own` type (None: a type the models lack).
+fn probes<I: Standard>(d: &Description, own: Option<VarType>, settable: bool) -> Vec<Probe> {
+    let tables = I::tables();
+    let why = &tables.reasons.references;
+    let mut probes: Vec<Probe> = unknown_references(d)
+        .into_iter()
+        .map(|(label, vr, log)| (label, vr, 1, log, why.unknown))
+        .collect();
+    for t in [VarType::Real, VarType::Integer, VarType::Boolean] {
+        let first = d
+            .of_type(t)
+            .find(|v| Some(t) != own && v.causality != "independent");
+        if let Some(v) = first {
+            let why = if own.is_none() {
+                why.lacking
+            } else {
+                why.wrong_type
+            };
+            let label = format!("{t:?} variable {}", v.name);
+            probes.push((label, v.vr, v.size, v.name.clone(), why));
+        }
+    }
+    let Some(own) = own.filter(|_| tables.counted_values) else {
+        return probes;
+    };
+    let own_var = d
+        .of_type(own)
+        .find(|v| v.causality != "independent" && (!settable || v.is_settable()));
+    if let Some(v) = own_var {
+        for n in wrong_counts(v.size) {
+            let label = format!("{} with nValues = {n}", v.name);
+            probes.push((label, v.vr, n, "nValues".into(), why.count));
+        }
+    }
+    probes
+}
+
+/// Every probe passed to every getter (Initialization Mode) and setter
+/// (Instantiated), and a calculated output set.
+fn interface_cases<I: Standard>(d: &Description, m: usize, interface: I) -> Vec<Case> {
+    let tables = I::tables();
     let mut cases = Vec::new();
-    for interface in Interface::BOTH {
-        let groups = [
-            (getters(), State::InitializationMode),
-            (setters(), State::Instantiated),
-        ];
-        for (functions, state) in groups {
-            for (function, own, call) in functions {
-                for (label, vr, log, why) in probes(d, own) {
-                    cases.push(Case {
-                        class: "value reference",
-                        model: m,
-                        interface: Some(interface.short()),
-                        name: format!("{function}({label})"),
-                        expect: Expect::error(&log),
-                        why,
-                        probe: Box::new(move |l| {
-                            on_instance(l, m, interface, state, |i| call(i, vr))
-                        }),
-                    });
-                }
+    let groups = [
+        ((tables.getters)(), I::INITIALIZATION_MODE, false),
+        ((tables.setters)(), I::INSTANTIATED, true),
+    ];
+    for (functions, state, settable) in groups {
+        for (function, own, call) in functions {
+            for (label, vr, n, log, why) in probes::<I>(d, own, settable) {
+                cases.push(Case::new(
+                    ("value reference", m, interface),
+                    format!("{function}({label})"),
+                    (Expect::error(&log), why),
+                    move |l| on_instance(l, m, interface, state, |i| call(i, vr, n)),
+                ));
             }
         }
-        if let Some(output) = d
-            .variables
-            .iter()
-            .find(|v| v.causality == "output" && v.var_type == VarType::Real)
-        {
-            let vr = output.vr;
-            cases.push(Case {
-                class: "value reference",
-                model: m,
-                interface: Some(interface.short()),
-                name: format!("fmi2SetReal(output {})", output.name),
-                expect: Expect::error(&output.name),
-                why: WHY_NOT_SETTABLE,
-                probe: Box::new(move |l| {
-                    on_instance(l, m, interface, State::Instantiated, |i| {
-                        i.set_real(vr, 0.0)
-                    })
-                }),
-            });
-        }
-        if d.provides_directional_derivative {
-            let bad = unused(d);
-            cases.push(Case {
-                class: "value reference",
-                model: m,
-                interface: Some(interface.short()),
-                name: format!("fmi2GetDirectionalDerivative(unknown vr {bad})"),
-                expect: Expect::error(&bad.to_string()),
-                why: WHY_UNKNOWN,
-                probe: Box::new(move |l| {
-                    on_instance(l, m, interface, State::InitializationMode, |i| unsafe {
-                        let known = i.description.real_vrs()[0];
-                        (i.binary.get_directional_derivative)(
-                            i.c, &bad, 1, &known, 1, &1.0, &mut 0.0,
-                        )
-                    })
-                }),
-            });
-        }
+    }
+    if let Some(output) = d
+        .variables
+        .iter()
+        .find(|v| v.causality == "output" && v.var_type == VarType::Real)
+    {
+        let (vr, n) = (output.vr, output.size);
+        let set: Access<I> = (tables.setters)()[0];
+        cases.push(Case::new(
+            ("value reference", m, interface),
+            format!("{}(output {})", set.0, output.name),
+            (
+                Expect::error(&output.name),
+                tables.reasons.references.not_settable,
+            ),
+            move |l| on_instance(l, m, interface, I::INSTANTIATED, |i| (set.2)(i, vr, n)),
+        ));
+    }
+    cases
+}
+
+pub fn cases<I: Standard>(loaded: &Loaded, m: usize) -> Vec<Case> {
+    let d = I::description(loaded, m);
+    let extras = I::tables().reference_extras;
+    let mut cases = Vec::new();
+    for &interface in I::INTERFACES {
+        cases.extend(interface_cases(d, m, interface));
+        cases.extend(extras(d, m, interface));
     }
     cases
 }

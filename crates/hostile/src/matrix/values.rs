@@ -1,110 +1,41 @@
-//! Non-finite and extreme values for every variable a host can set.
+//! Non-finite and extreme values for every variable a host can set, and for the
+//! scalar arguments of functions (times, step sizes, tolerances, continuous
+//! states, seeds) where the standard's tables list them.
 //!
-//! NaN and infinities are refused by fmi2SetReal with fmi2Error naming the
-//! variable (FMI 2.0 has no non-finite Real values in a model; project choice to
-//! refuse). Extreme finite values (±1e308, ±5e-324, the ends of the Integer range,
-//! Booleans other than 0/1) follow issue 12: a value the model cannot work with is
-//! refused when it is set or at fmi2ExitInitializationMode with a message naming
-//! it; an input that overflows a step makes that step Discard; a getter is never
-//! the first to notice (no fmi2Error from a getter, no NaN from a getter that
-//! returned fmi2OK).
+//! NaN and infinities are refused by the setter with an error naming the variable
+//! (project choice: a model's Real/Float64 values are finite), a scalar argument
+//! with an error naming the function. Extreme finite values (±1e308, ±5e-324, the
+//! ends of the Integer/Int32 range, Booleans other than false/true) follow issue
+//! 12: a value the model cannot work with is refused when it is set or at
+//! fmiXExitInitializationMode with a message naming it; an input that overflows a
+//! step makes that step (or evaluation) Discard; a getter is never the first to
+//! notice (no error from a getter, no NaN from a getter that returned OK).
 
-use super::{Case, Expect, Observed};
+use super::seam::{Standard, Value};
+use super::{Case, Expect, Observed, on_instance};
 use crate::Loaded;
 use crate::binary::{DISCARD, ERROR, OK, Status, status_name};
 use crate::description::{VarType, Variable};
-use crate::host::{Instance, Interface, Probed, State, take};
+use crate::host::{Probed, take};
 use crate::standard_interface::StandardInterface;
 
-const WHY_NON_FINITE: &str = "NaN/inf set: refused by fmi2SetReal with fmi2Error naming the variable (project choice; FMI 2.0 Reals of a model are finite)";
-const WHY_EXTREME: &str = "extreme finite value: refused at set or exitInitializationMode naming the variable, or a step Discard; never first noticed by a getter (issue 12 item 3)";
-
-#[derive(Clone, Copy, Debug)]
-enum Value {
-    Real(f64),
-    Integer(i32),
-    Boolean(i32),
-}
-
-fn extremes(t: VarType) -> Vec<Value> {
+fn extremes<I: Standard>(t: VarType) -> Vec<Value> {
     match t {
         VarType::Real => [1e308, -1e308, 5e-324, -5e-324].map(Value::Real).to_vec(),
         VarType::Integer => [i32::MIN, -1, 0, i32::MAX].map(Value::Integer).to_vec(),
-        VarType::Boolean => [2, -1].map(Value::Boolean).to_vec(),
+        VarType::Boolean => I::tables().values.booleans.map(Value::Boolean).to_vec(),
     }
-}
-
-fn set(inst: &Instance, vr: u32, value: Value) -> Status {
-    // SAFETY: one reference and one value of the function's type.
-    unsafe {
-        match value {
-            Value::Real(x) => inst.set_real(vr, x),
-            Value::Integer(n) => (inst.binary.set_integer)(inst.c, &vr, 1, &n),
-            Value::Boolean(b) => (inst.binary.set_boolean)(inst.c, &vr, 1, &b),
-        }
-    }
-}
-
-pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
-    let d = &loaded.fmus[m].description;
-    let mut cases = Vec::new();
-    for interface in Interface::BOTH {
-        for v in d.variables.iter().filter(|v| v.is_settable()) {
-            let vr = v.vr;
-            if v.var_type == VarType::Real {
-                for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-                    cases.push(Case {
-                        class: "non-finite value",
-                        model: m,
-                        interface: Some(interface.short()),
-                        name: format!("fmi2SetReal({} = {x})", v.name),
-                        expect: Expect::error(&format!("\"{}\"", v.name)),
-                        why: WHY_NON_FINITE,
-                        probe: Box::new(move |l| {
-                            super::on_instance(l, m, interface, State::Instantiated, |i| {
-                                i.set_real(vr, x)
-                            })
-                        }),
-                    });
-                }
-            }
-            for value in extremes(v.var_type) {
-                let var = v.clone();
-                cases.push(Case {
-                    class: "extreme value",
-                    model: m,
-                    interface: Some(interface.short()),
-                    name: format!("{} = {value:?}", v.name),
-                    expect: Expect {
-                        statuses: &[OK, DISCARD, ERROR],
-                        log: None,
-                    },
-                    why: WHY_EXTREME,
-                    probe: Box::new(move |l| {
-                        let inst = Instance::new(&l.binaries[m], &l.fmus[m].description, interface);
-                        scenario(&inst, &var, value)
-                    }),
-                });
-            }
-        }
-    }
-    cases
 }
 
 /// Whether the log names the variable, or its array (\"theta0\" for \"theta0[2]\").
-pub(crate) fn names(log: &str, variable: &str) -> bool {
+fn names(log: &str, variable: &str) -> bool {
     let array = variable.split('[').next().unwrap_or(variable);
     log.contains(variable) || log.contains(array)
 }
 
 /// After `what` returned `s` for a value of `variable`: a refusal whose log names
 /// the variable is what the case expects; anything else is broken (both standards).
-pub(crate) fn refused_naming<P: Probed>(
-    inst: &P,
-    variable: &str,
-    what: &str,
-    s: Status,
-) -> Observed {
+fn refused_naming<P: Probed>(inst: &P, variable: &str, what: &str, s: Status) -> Observed {
     let log = take(inst.log());
     if s == ERROR && names(&log, variable) {
         Observed::of(ERROR, log)
@@ -151,65 +82,105 @@ pub(crate) fn me_evaluate<I: StandardInterface>(
     }
 }
 
-/// Set, initialize, one step (CS) or derivatives (ME), read every Real.
-fn scenario(inst: &Instance, v: &Variable, value: Value) -> Observed {
+/// Set, initialize, one step (CS) or derivatives and indicators (ME), read every
+/// output.
+fn scenario<I: Standard>(
+    inst: &I::Instance<'_>,
+    interface: I,
+    v: &Variable,
+    value: Value,
+) -> Observed {
     let refused_naming = |what: &str, s: Status| refused_naming(inst, &v.name, what, s);
-    let s = set(inst, v.vr, value);
+    let s = I::set_value(inst, v, value);
     if s != OK {
         return refused_naming("the set", s);
     }
-    let b = inst.binary;
-    // SAFETY: a live instance, legal calls with well-formed arguments.
-    unsafe {
-        (b.setup_experiment)(inst.c, 0, 0.0, 0.0, 0, 0.0);
-        (b.enter_initialization_mode)(inst.c);
-        let s = (b.exit_initialization_mode)(inst.c);
-        if s != OK {
-            return refused_naming("fmi2ExitInitializationMode", s);
-        }
+    if let Err((what, s)) = I::initialize(inst) {
+        return refused_naming(what, s);
     }
-    let discarded = match evaluate(inst) {
+    let discarded = match I::evaluate(inst, interface) {
         Ok(d) => d,
         Err(e) => return Observed::broken(e),
     };
-    read_outputs(inst, discarded)
-}
-
-/// One step or one evaluation; Ok(true) when it was discarded.
-fn evaluate(inst: &Instance) -> Result<bool, String> {
-    let d = inst.description;
-    match inst.interface {
-        Interface::CoSimulation => discarded(inst, "fmi2DoStep", inst.do_step(0.0, 1e-3)),
-        Interface::ModelExchange => {
-            me_evaluate::<Interface>(inst, (d.number_of_states, d.number_of_event_indicators))
+    let (s, x) = I::outputs(inst);
+    let getter = I::tables().values.getter;
+    match s {
+        OK if x.iter().any(|v| !v.is_finite()) => {
+            Observed::broken(format!("{getter} returned OK with a non-finite value"))
         }
+        OK => Observed::of(if discarded { DISCARD } else { OK }, take(inst.log())),
+        DISCARD if discarded && interface.is_me() => Observed::of(DISCARD, take(inst.log())),
+        _ => Observed::broken(format!(
+            "a getter was the first to notice: {getter} returned {} (log: {})",
+            status_name(s),
+            take(inst.log())
+        )),
     }
 }
 
-fn read_outputs(inst: &Instance, discarded: bool) -> Observed {
-    let d = inst.description;
-    let may_discard = discarded && inst.interface == Interface::ModelExchange;
-    for v in d.of_type(VarType::Real) {
-        let (s, x) = inst.get_reals(&[v.vr]);
-        match s {
-            OK if !x[0].is_finite() => {
-                return Observed::broken(format!(
-                    "fmi2GetReal({}) returned fmi2OK with {}",
-                    v.name, x[0]
-                ));
+/// NaN and infinities set into the first element of a Real variable.
+fn non_finite_cases<I: Standard>(m: usize, interface: I, v: &Variable) -> Vec<Case> {
+    let names = I::tables().values;
+    [f64::NAN, f64::INFINITY, f64::NEG_INFINITY]
+        .into_iter()
+        .map(|x| {
+            let var = v.clone();
+            Case::new(
+                ("non-finite value", m, interface),
+                format!("{}({}{} = {x})", names.setter, v.name, names.element),
+                (
+                    Expect::error(&format!("\"{}{}", v.name, names.quote_end)),
+                    I::tables().reasons.non_finite,
+                ),
+                move |l| {
+                    on_instance(l, m, interface, I::INSTANTIATED, |i| {
+                        I::set_value(i, &var, Value::Real(x))
+                    })
+                },
+            )
+        })
+        .collect()
+}
+
+fn extreme_case<I: Standard>(m: usize, interface: I, v: &Variable, value: Value) -> Case {
+    let names = I::tables().values;
+    let var = v.clone();
+    let expect = Expect {
+        statuses: &[OK, DISCARD, ERROR],
+        log: None,
+    };
+    Case::new(
+        ("extreme value", m, interface),
+        format!("{}{} = {}", v.name, names.element, value.label(names.types)),
+        (expect, I::tables().reasons.extreme),
+        move |l| scenario(&interface.instance(l, m), interface, &var, value),
+    )
+}
+
+pub fn cases<I: Standard>(loaded: &Loaded, m: usize) -> Vec<Case> {
+    let d = I::description(loaded, m);
+    let tables = I::tables();
+    let mut cases = Vec::new();
+    for &interface in I::INTERFACES {
+        for v in d.variables.iter().filter(|v| v.is_settable()) {
+            if v.var_type == VarType::Real {
+                cases.extend(non_finite_cases(m, interface, v));
             }
-            OK => {}
-            DISCARD if may_discard => {}
-            _ => {
-                return Observed::broken(format!(
-                    "a getter was the first to notice: fmi2GetReal({}) returned {} (log: {})",
-                    v.name,
-                    status_name(s),
-                    inst.take_log()
-                ));
+            for value in extremes::<I>(v.var_type) {
+                cases.push(extreme_case(m, interface, v, value));
             }
         }
+        for (function, label, state, applies, call) in (tables.scalar_arguments)() {
+            if !applies(d, interface) {
+                continue;
+            }
+            cases.push(Case::new(
+                ("non-finite value", m, interface),
+                format!("{function}({label})"),
+                (Expect::error(function), tables.reasons.argument),
+                move |l| on_instance(l, m, interface, state, call),
+            ));
+        }
     }
-    let status = if discarded { DISCARD } else { OK };
-    Observed::of(status, inst.take_log())
+    cases
 }

@@ -1,24 +1,18 @@
-//! Null pointers for every pointer argument of the FMI 3.0 functions the models
-//! support, with a length that makes the pointer necessary, in a state where the
-//! call is legal. Expected: fmi3Error and a log line saying which argument is null
-//! (the standard leaves null arguments undefined; the project refuses them, see
-//! docs/reliability.md), and the instance recovers with fmi3Reset.
+//! The FMI 3.0 rows of the null-pointer class (`matrix::pointers`): every pointer
+//! argument of the functions the models support, with a length that makes the
+//! pointer necessary.
 
-use super::Case;
 use super::calls::Args;
-use crate::Loaded;
 use crate::binary::Status;
 use crate::description::Description;
 use crate::fmi3::binary::{Binary3, FmuState, Instance3, Vr};
 use crate::fmi3::host::{Interface3, State3};
-use crate::matrix::pointers::{self, null_pointer_cases};
+use crate::matrix::seam;
 use std::ptr::{null, null_mut};
 
-const WHY: &str = "null argument with a non-zero length: undefined in FMI 3.0; refused with fmi3Error and a log line (project choice); fmi3Reset recovers";
-
-type Applies = pointers::Applies<Interface3>;
+type Applies = seam::Applies<Interface3>;
 type Invoke = crate::standard_interface::Invoke<Interface3>;
-type Row = pointers::Row<Interface3>;
+type Row = seam::Row<Interface3>;
 
 fn init(_: &Description, _: Interface3) -> Option<State3> {
     Some(State3::InitializationMode)
@@ -470,7 +464,7 @@ fn co_simulation_table() -> Vec<Row> {
     ]
 }
 
-fn table() -> Vec<Row> {
+pub fn table() -> Vec<Row> {
     let mut t = values_table();
     t.extend((0..4).map(dependencies_row));
     t.extend(state_table());
@@ -479,9 +473,4 @@ fn table() -> Vec<Row> {
     t.extend(model_exchange_table());
     t.extend(co_simulation_table());
     t
-}
-
-pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
-    let d = &loaded.fmus3[m].description;
-    null_pointer_cases::<Interface3>((d, m), ("fmi3 null pointer", WHY), table)
 }

@@ -7,12 +7,11 @@
 //! is legal. Expected: fmi3OK where allowed, otherwise fmi3Error naming the
 //! variable (and the instance recovers with fmi3Reset).
 
-use super::{Case, on_instance};
 use crate::Loaded;
 use crate::binary::Status;
 use crate::description::{VarType, Variable};
 use crate::fmi3::host::{Instance, Interface3, State3};
-use crate::matrix::Expect;
+use crate::matrix::{Case, Expect, on_instance};
 
 const WHY_ALLOWED: &str = "FMI 3.0 2.4.7.4: inputs in every state where their setter is legal, tunable parameters in Event and Step Mode: fmi3OK";
 const WHY_REFUSED: &str = "FMI 3.0 2.4.7.4: a fixed parameter cannot change after initialization, a tunable one not in Continuous-Time Mode: fmi3Error naming it";
@@ -80,21 +79,19 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 }
                 let allowed = may_change(v, state);
                 let var = v.clone();
-                cases.push(Case {
-                    class: "fmi3 variability",
-                    model: m,
-                    interface: Some(interface.short()),
-                    name: format!("{} {} {} in {state:?}", v.variability, v.causality, v.name),
-                    expect: if allowed {
-                        Expect::ok()
-                    } else {
-                        Expect::error(&format!("\"{}", v.name))
-                    },
-                    why: if allowed { WHY_ALLOWED } else { WHY_REFUSED },
-                    probe: Box::new(move |l| {
-                        on_instance(l, m, interface, state, |i| set_start(i, &var))
-                    }),
-                });
+                cases.push(Case::new(
+                    ("variability", m, interface),
+                    format!("{} {} {} in {state:?}", v.variability, v.causality, v.name),
+                    (
+                        if allowed {
+                            Expect::ok()
+                        } else {
+                            Expect::error(&format!("\"{}", v.name))
+                        },
+                        if allowed { WHY_ALLOWED } else { WHY_REFUSED },
+                    ),
+                    move |l| on_instance(l, m, interface, state, |i| set_start(i, &var)),
+                ));
             }
         }
     }

@@ -1,0 +1,210 @@
+//! Binding of the computed-torque law (`robofmu::computed_torque`) as the FMU
+//! "ComputedTorque": inputs the planned Euler angles, rates and accelerations and the
+//! measured angles and rates; output the Euler-angle generalized force, the plant's
+//! `generalizedForceCommand` (the input the PID drives: the controllers are
+//! interchangeable). Gains and output limits per axis are tunable; the controller's
+//! model of the robot (the plant FMU's parameter names, `computed_torque::
+//! MODEL_PARAMETERS`) is fixed, so a model mismatch is a parameter that differs from
+//! the plant's. The error integral is the continuous state (Model Exchange); in
+//! Co-Simulation it is stepped exactly under a zero-order hold of the inputs (I + e h),
+//! with the PID's conditional-integration anti-windup decided at the start of the step.
+
+mod variables;
+
+use nalgebra::Vector3;
+use robofmu::computed_torque::{
+    AxisGains, ComputedTorque, Inputs, controller_message, pole_placement,
+};
+use robofmu::pss3::dynamics::{DynamicsError, PlantParams};
+use robofmu_fmi::prelude::*;
+
+/// Euler-angle axes.
+pub const AXES: usize = 3;
+
+/// The default bandwidth of the gains, rad/s: a triple pole at -30 rad/s, the PID
+/// design's bandwidth in the scenarios.
+pub const DEFAULT_BANDWIDTH: f64 = 30.0;
+
+static INFO: ModelInfo = ModelInfo {
+    model_name: "ComputedTorque",
+    model_identifier: "ComputedTorque",
+    guid: "{3f1c9a52-7d4e-4b8a-9e61-0c2d5b7a8f14}",
+    description: "Computed-torque controller of the 3-PSS robot: inverse dynamics of its own \
+                  model at the measured state for the planned acceleration plus PID feedback \
+                  on the Euler-angle error, output limits with conditional-integration \
+                  anti-windup",
+    default_experiment: DefaultExperiment {
+        start_time: 0.0,
+        stop_time: 2.0,
+        tolerance: 1e-8,
+        step_size: 1e-3,
+    },
+    number_of_continuous_states: AXES,
+    number_of_event_indicators: 0,
+    provides_directional_derivative: false,
+    max_output_derivative_order: 0,
+    log_categories: &[LogCategory {
+        name: "logController",
+        description: "Gains and model of the controller at initialization",
+    }],
+};
+
+/// Parameters, inputs and the error integral of one controller instance.
+#[derive(Clone)]
+pub struct ComputedTorqueFmu {
+    model: PlantParams,
+    gains: [AxisGains; AXES],
+    /// Limits as set; they apply only when `limited` is true.
+    limits: [(f64, f64); AXES],
+    limited: [bool; AXES],
+    inputs: Inputs,
+    integral: Vector3<f64>,
+    /// The law for the current parameters (None: rebuild before use).
+    law: Option<ComputedTorque>,
+    /// What the controller computes at the current inputs and integral
+    /// (`calculate_values`).
+    output: Option<Evaluation>,
+}
+
+impl ComputedTorqueFmu {
+    /// A parameter changed: the law is rebuilt before its next use.
+    fn changed(&mut self) {
+        self.law = None;
+    }
+
+    /// The law for the current parameters, or why there is none (FMU parameter names).
+    fn build_law(&self) -> Result<ComputedTorque, String> {
+        let gains = std::array::from_fn(|k| AxisGains {
+            limits: self.limited[k].then_some(self.limits[k]),
+            ..self.gains[k]
+        });
+        ComputedTorque::new(self.model, gains).map_err(|e| controller_message(&e))
+    }
+
+    /// The output at the current inputs and integral. Where the controller's model
+    /// cannot be evaluated at the measured pose (its legs cannot reach it, or the
+    /// Euler angles are singular), the law has no inverse dynamics: the output is then
+    /// zero force (within the limits) and the integral holds, so that a getter never
+    /// fails on an input value (a plant cannot be there: its own step is discarded
+    /// first).
+    fn evaluate(&self) -> Result<Evaluation, String> {
+        let built;
+        let law = match &self.law {
+            Some(law) => law,
+            None => {
+                built = self.build_law()?;
+                &built
+            }
+        };
+        match law.output(&self.integral, &self.inputs) {
+            Ok(output) => Ok(Evaluation {
+                u: output.u,
+                integral_rate: law.integral_rate(&output),
+            }),
+            Err(DynamicsError::Kinematics(_)) => Ok(Evaluation {
+                u: Vector3::from_fn(|k, _| match law.gains()[k].limits {
+                    Some((min, max)) => 0f64.clamp(min, max),
+                    None => 0.0,
+                }),
+                integral_rate: Vector3::zeros(),
+            }),
+            Err(e) => Err(format!("the law cannot be evaluated: {e}")),
+        }
+    }
+
+    fn u(&self, k: usize) -> f64 {
+        self.output.map_or(f64::NAN, |o| o.u[k])
+    }
+
+    fn integral_rate(&self, k: usize) -> f64 {
+        self.output.map_or(f64::NAN, |o| o.integral_rate[k])
+    }
+}
+
+/// What the controller computes at its inputs and integral.
+#[derive(Debug, Clone, Copy)]
+struct Evaluation {
+    /// The output, N m.
+    u: Vector3<f64>,
+    /// The time derivative of the error integral (anti-windup applied).
+    integral_rate: Vector3<f64>,
+}
+
+impl Model for ComputedTorqueFmu {
+    fn info() -> &'static ModelInfo {
+        &INFO
+    }
+
+    fn declarations() -> &'static [Declaration<Self>] {
+        variables::table()
+    }
+
+    fn new() -> Self {
+        let gains = pole_placement(DEFAULT_BANDWIDTH, true).expect("positive bandwidth");
+        ComputedTorqueFmu {
+            model: PlantParams::default(),
+            gains: [gains; AXES],
+            limits: [(-1.0, 1.0); AXES],
+            limited: [false; AXES],
+            inputs: Inputs::default(),
+            integral: Vector3::zeros(),
+            law: None,
+            output: None,
+        }
+    }
+
+    fn set_time(&mut self, _time: f64) {
+        // The law is time invariant.
+    }
+
+    fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
+        let law = self.build_law()?;
+        log.debug(
+            "logController",
+            &format!("gains {:?}, model {:?}", law.gains(), self.model),
+        );
+        self.law = Some(law);
+        Ok(())
+    }
+
+    fn calculate_values(&mut self) -> Result<(), String> {
+        self.output = None;
+        if self.law.is_none() {
+            self.law = Some(self.build_law()?);
+        }
+        self.output = Some(self.evaluate()?);
+        Ok(())
+    }
+
+    fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
+        // Inputs held over the step: e is constant, so I + e h is exact; the
+        // anti-windup decision is taken at the start of the step (as the PID's).
+        match self.evaluate() {
+            Ok(evaluation) => {
+                self.integral += evaluation.integral_rate * step;
+                StepOutcome::Completed
+            }
+            Err(reason) => StepOutcome::Discarded {
+                reason,
+                terminate: true,
+            },
+        }
+    }
+
+    fn continuous_states(&self, x: &mut [f64]) {
+        x.copy_from_slice(self.integral.as_slice());
+    }
+
+    fn set_continuous_states(&mut self, x: &[f64]) {
+        self.integral.copy_from_slice(x);
+    }
+
+    fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
+        let evaluation = self.evaluate()?;
+        dx.copy_from_slice(evaluation.integral_rate.as_slice());
+        Ok(())
+    }
+}
+
+// The exported fmi2* and fmi3* symbols of this FMU.
+export_fmu!(ComputedTorqueFmu);

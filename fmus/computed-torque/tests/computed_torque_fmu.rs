@@ -1,0 +1,223 @@
+//! The ComputedTorque FMU through its FMI 2.0 entry points: its output is the
+//! library's law for the parameters set through the FMU, the plant's forward dynamics
+//! driven by it accelerate as commanded (a second formulation), the integral steps
+//! exactly with the PID's anti-windup, and a wrong model is refused by its FMU name.
+
+use nalgebra::Vector3;
+use robofmu::computed_torque::{AxisGains, ComputedTorque, Inputs};
+use robofmu::pss3::dynamics::{EndStopMode, Friction, Plant, PlantInputs, PlantParams, PlantState};
+use robofmu::pss3::rotation::{euler_accelerations, euler_rate_matrix};
+use robofmu_computed_torque_fmu::ComputedTorqueFmu;
+use robofmu_fmi::fmi2::types::{FMI2_CO_SIMULATION, FMI2_MODEL_EXCHANGE, Fmi2Status};
+use robofmu_fmi_testing::Host;
+
+type Fmu = Host<ComputedTorqueFmu>;
+
+/// A reproducible uniform sequence in [0, 1) (64-bit LCG, Knuth's MMIX constants).
+struct Uniform(u64);
+
+impl Uniform {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn vector(&mut self, centre: [f64; 3], half_width: f64) -> Vector3<f64> {
+        Vector3::from(centre).map(|c| c + half_width * (2.0 * self.next() - 1.0))
+    }
+}
+
+/// A random controller state: inputs inside the workspace with fast motion and
+/// errors of up to a degree, and an error integral.
+fn random_state(r: &mut Uniform) -> (Inputs, Vector3<f64>) {
+    // Inside the stroke box (the plant's end stops idle, the controller ignores them).
+    let theta = r.vector([0.0, 0.0, 138f64.to_radians()], 3f64.to_radians());
+    let theta_dot = r.vector([0.0; 3], 1.0);
+    let inputs = Inputs {
+        setpoint: theta + r.vector([0.0; 3], 1f64.to_radians()),
+        setpoint_rate: theta_dot + r.vector([0.0; 3], 0.1),
+        setpoint_acceleration: r.vector([0.0; 3], 10.0),
+        measurement: theta,
+        measured_rate: theta_dot,
+    };
+    (inputs, r.vector([0.0; 3], 1e-3))
+}
+
+fn set_inputs(h: &Fmu, i: &Inputs) {
+    h.set_vector("setpoint", i.setpoint.into());
+    h.set_vector("setpointRate", i.setpoint_rate.into());
+    h.set_vector("setpointAcceleration", i.setpoint_acceleration.into());
+    h.set_vector("measurement", i.measurement.into());
+    h.set_vector("measuredRate", i.measured_rate.into());
+}
+
+/// The plant's parameters with viscous friction (so the friction terms count).
+fn rough_robot() -> PlantParams {
+    PlantParams {
+        friction: Friction {
+            slider: 25.0,
+            pivot: 0.08,
+        },
+        ..PlantParams::default()
+    }
+}
+
+/// A Model Exchange instance with gains per axis and the model `rough_robot` with the
+/// leg mass scaled by `leg_mass_factor`, in continuous-time mode.
+fn model_exchange(gains: &[AxisGains; 3], leg_mass_factor: f64) -> Fmu {
+    let h = Fmu::new(FMI2_MODEL_EXCHANGE);
+    for (k, g) in gains.iter().enumerate() {
+        for (name, v) in [("Kp", g.kp), ("Kd", g.kd), ("Ki", g.ki)] {
+            assert_eq!(h.set_real(&format!("{name}[{}]", k + 1), v), Fmi2Status::Ok);
+        }
+    }
+    let nominal = rough_robot();
+    let leg_mass = nominal.inertia.leg_mass * leg_mass_factor;
+    for (name, v) in [
+        ("legMass", leg_mass),
+        ("sliderFriction", 25.0),
+        ("pivotFriction", 0.08),
+    ] {
+        assert_eq!(h.set_real(name, v), Fmi2Status::Ok);
+    }
+    assert_eq!(h.initialize(), Fmi2Status::Ok, "{}", h.last_message());
+    h.enter_continuous_time_mode();
+    h
+}
+
+fn gains() -> [AxisGains; 3] {
+    [0, 1, 2].map(|k| AxisGains {
+        kp: 2700.0 + 150.0 * k as f64,
+        kd: 90.0 - 3.0 * k as f64,
+        ki: 27000.0 - 1000.0 * k as f64,
+        limits: None,
+    })
+}
+
+#[test]
+fn the_output_is_the_library_law_for_the_parameters_set() {
+    // Truth: robofmu::computed_torque::ComputedTorque built here with the same model
+    // (leg mass 20 % above the spec's, friction) and gains; the FMU must reproduce it
+    // at random states to rounding (the same arithmetic: 1e-12 relative).
+    let h = model_exchange(&gains(), 1.2);
+    let mut model = rough_robot();
+    model.inertia.leg_mass *= 1.2;
+    let law = ComputedTorque::new(model, gains()).unwrap();
+    let mut r = Uniform(23);
+    for _ in 0..40 {
+        let (inputs, integral) = random_state(&mut r);
+        set_inputs(&h, &inputs);
+        assert_eq!(h.set_states(integral.as_slice()), Fmi2Status::Ok);
+        let expected = law.output(&integral, &inputs).unwrap().u;
+        let u = Vector3::from(h.vector("u"));
+        let scale = expected.amax().max(1.0);
+        assert!((u - expected).amax() <= 1e-12 * scale, "{u} vs {expected}");
+        let (s, dx) = h.derivatives();
+        assert_eq!(s, Fmi2Status::Ok);
+        let error = inputs.setpoint - inputs.measurement;
+        assert_eq!(dx, error.as_slice(), "unlimited: the integral's rate is e");
+    }
+}
+
+#[test]
+fn the_plant_driven_by_the_fmu_output_accelerates_as_commanded() {
+    // Truth: the plant's forward dynamics (Plant::derivative, the plant FMU's
+    // equations) driven by u with the controller's model equal to the plant's: the
+    // Euler-angle accelerations are the commanded a = q_ddot + Kd e_dot + Kp e + Ki I,
+    // written out here from the gains. Tolerance: the mass matrix solve in forward
+    // dynamics against its product in the law, 1e-9 of |a|.
+    let h = model_exchange(&gains(), 1.0);
+    // End stops as errors: a state outside the stroke fails instead of adding a stop
+    // force the controller does not model.
+    let mut robot = rough_robot();
+    robot.end_stops.mode = EndStopMode::Error;
+    let plant = Plant::new(robot).unwrap();
+    let mut r = Uniform(5);
+    for _ in 0..20 {
+        let (i, integral) = random_state(&mut r);
+        set_inputs(&h, &i);
+        assert_eq!(h.set_states(integral.as_slice()), Fmi2Status::Ok);
+        let commanded = Vector3::from_fn(|k, _| {
+            let g = gains()[k];
+            i.setpoint_acceleration[k]
+                + g.kd * (i.setpoint_rate[k] - i.measured_rate[k])
+                + g.kp * (i.setpoint[k] - i.measurement[k])
+                + g.ki * integral[k]
+        });
+        let theta = i.measurement;
+        let state = PlantState {
+            euler: theta,
+            omega: euler_rate_matrix(&theta) * i.measured_rate,
+        };
+        let command = PlantInputs {
+            generalized_force: Vector3::from(h.vector("u")),
+            ..PlantInputs::default()
+        };
+        let d = plant.derivative(&state, &command).unwrap();
+        let achieved = euler_accelerations(&theta, &i.measured_rate, &d.omega_dot).unwrap();
+        assert!(
+            (achieved - commanded).amax() < 1e-9 * commanded.amax(),
+            "{achieved} vs {commanded}"
+        );
+    }
+}
+
+#[test]
+fn a_step_integrates_the_held_error_and_stops_at_a_limit_pushing_out() {
+    // Truth: with the inputs held over a step of h the error e is constant, so the
+    // integral grows by e h exactly; an axis whose output is at its limit while Ki e
+    // pushes further out keeps its integral (the PID's conditional integration).
+    let h = Fmu::new(FMI2_CO_SIMULATION);
+    let mut r = Uniform(7);
+    let (mut inputs, _) = random_state(&mut r);
+    inputs.setpoint = inputs.measurement + Vector3::new(0.01, -0.004, 0.002);
+    // Axis 1: an upper limit far below the output its positive error asks for.
+    assert_eq!(h.set_boolean("limitOutput[1]", true), Fmi2Status::Ok);
+    assert_eq!(h.set_real("uMin[1]", -0.5), Fmi2Status::Ok);
+    assert_eq!(h.set_real("uMax[1]", 0.5), Fmi2Status::Ok);
+    set_inputs(&h, &inputs);
+    assert_eq!(h.initialize(), Fmi2Status::Ok, "{}", h.last_message());
+    assert_eq!(h.real("u[1]"), 0.5);
+    let step = 1e-3;
+    assert_eq!(h.step(0.0, step), Fmi2Status::Ok);
+    let integral = h.vector("integral");
+    let error = inputs.setpoint - inputs.measurement;
+    assert_eq!(integral[0], 0.0);
+    assert_eq!(integral[1], error[1] * step);
+    assert_eq!(integral[2], error[2] * step);
+}
+
+#[test]
+fn a_model_that_is_no_robot_is_refused_by_its_fmu_name() {
+    let h = Fmu::with_logging(FMI2_CO_SIMULATION, false);
+    assert_eq!(h.set_real("legMass", -1.0), Fmi2Status::Ok);
+    assert_eq!(h.initialize(), Fmi2Status::Error);
+    let message = h.last_message();
+    assert!(
+        message.contains("parameter legMass = -1 must not be negative"),
+        "{message}"
+    );
+}
+
+#[test]
+fn outside_the_models_workspace_the_output_is_zero_force_and_the_integral_holds() {
+    // Truth: the documented fallback. At thx = 80 deg the legs cannot reach the
+    // platform joints (the workspace is |thx|, |thy| < 12 deg or so): no inverse
+    // dynamics, so u = 0 (clamped into the limits) and d(integral)/dt = 0; every call
+    // returns OK (a getter never fails on an input value).
+    let h = Fmu::new(FMI2_MODEL_EXCHANGE);
+    assert_eq!(h.set_boolean("limitOutput[2]", true), Fmi2Status::Ok);
+    assert_eq!(h.set_real("uMin[2]", 0.25), Fmi2Status::Ok);
+    assert_eq!(h.set_real("uMax[2]", 1.0), Fmi2Status::Ok);
+    h.set_vector("measurement", [80f64.to_radians(), 0.0, 2.13]);
+    assert_eq!(h.initialize(), Fmi2Status::Ok, "{}", h.last_message());
+    h.enter_continuous_time_mode();
+    assert_eq!(h.vector("u"), [0.0, 0.25, 0.0]);
+    assert_eq!(h.derivatives(), (Fmi2Status::Ok, vec![0.0; 3]));
+    // Back inside, the law acts again.
+    h.set_vector("measurement", [0.0, 0.0, 2.13]);
+    assert_ne!(h.real("u[1]"), 0.0);
+}
