@@ -4,7 +4,10 @@
 # steps, FMU states, reset, free, unload, through the FMI 2.0 interface (Model
 # Exchange, Co-Simulation) and the FMI 3.0 interface (Model Exchange,
 # Co-Simulation with and without event mode, partial derivatives, variable
-# dependencies). Fails on any memcheck error and on any definite leak. Installs valgrind from Debian when it is missing and
+# dependencies). Then the issue 20 probes (robofmu-hostile-reentry): loggers that
+# free, reset, set states and re-enter, reused handles, a second thread on a busy
+# instance, forged states, both standards, every FMU. Fails on any memcheck error
+# and on any definite leak. Installs valgrind from Debian when it is missing and
 # this runs as root (CI); otherwise asks for it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,6 +20,9 @@ if ! command -v valgrind >/dev/null 2>&1; then
         exit 1
     fi
 fi
-cargo build --release -p robofmu-hostile --bin robofmu-hostile-lifecycle
-valgrind --error-exitcode=1 --errors-for-leak-kinds=definite --leak-check=full \
-    --show-leak-kinds=definite -q target/release/robofmu-hostile-lifecycle
+cargo build --release -p robofmu-hostile --bin robofmu-hostile-lifecycle \
+    --bin robofmu-hostile-reentry
+for program in robofmu-hostile-lifecycle robofmu-hostile-reentry; do
+    valgrind --error-exitcode=1 --errors-for-leak-kinds=definite --leak-check=full \
+        --show-leak-kinds=definite -q "target/release/$program"
+done

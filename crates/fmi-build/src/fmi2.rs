@@ -167,18 +167,19 @@ fn unknown_list(unknowns: Vec<Unknown>) -> Option<UnknownList> {
     (!unknowns.is_empty()).then_some(UnknownList { unknowns })
 }
 
-/// An unknown without dependencies (it depends on all knowns).
-fn plain(index: usize) -> Unknown {
-    Unknown {
-        index,
-        dependencies: None,
-    }
-}
-
 /// The unknown `v` with its declared dependencies as ascending 1-based indices.
 fn with_dependencies<M>(v: &Variable<M>, table: &[Variable<M>]) -> Unknown {
+    unknown(v, v.dependencies, table)
+}
+
+/// The unknown `v` with the knowns `names` as ascending 1-based indices (None: all).
+fn unknown<M>(
+    v: &Variable<M>,
+    names: Option<&'static [&'static str]>,
+    table: &[Variable<M>],
+) -> Unknown {
     let index_of = |name: &str| table.iter().position(|s| s.name() == name).map(|i| i + 1);
-    let dependencies = v.dependencies.as_ref().map(|names| {
+    let dependencies = names.map(|names| {
         let mut indices: Vec<usize> = names.iter().filter_map(|n| index_of(n)).collect();
         indices.sort_unstable();
         indices.dedup();
@@ -246,12 +247,6 @@ pub fn model_description<M: Model>() -> Result<String, String> {
             info.number_of_continuous_states
         ));
     }
-    let index_of = |v: &Variable<M>| {
-        table
-            .iter()
-            .position(|s| s.value_reference == v.value_reference)
-            .map_or(0, |i| i + 1)
-    };
     let outputs = table
         .iter()
         .filter(|v| v.causality == Causality::Output)
@@ -268,7 +263,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
                         .iter()
                         .any(|d| d.value_reference == v.value_reference))
         })
-        .map(|v| plain(index_of(v)))
+        .map(|v| unknown(v, v.initial_dependencies, table))
         .collect();
     let interface = |variable_step: Option<bool>| Interface {
         model_identifier: info.model_identifier,

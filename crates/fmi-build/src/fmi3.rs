@@ -267,12 +267,12 @@ fn model_structure<M: Model>(table: &[Variable<M>], t: &Table3) -> Result<ModelS
     for v in t.derivatives() {
         unknowns.push(Unknown::ContinuousStateDerivative(dependencies(table, v)?));
     }
-    unknowns.extend(all().filter(|v| is_initial_unknown(v)).map(|v| {
-        Unknown::InitialUnknown(Dependencies {
+    for v in all().filter(|v| is_initial_unknown(v)) {
+        unknowns.push(Unknown::InitialUnknown(Dependencies {
             value_reference: v.value_reference,
-            dependencies: None,
-        })
-    }));
+            dependencies: table::initial_dependencies(table, v)?.map(joined),
+        }));
+    }
     if let Some(v) = t.event_indicators() {
         unknowns.push(Unknown::EventIndicator(dependencies(table, v)?));
     }

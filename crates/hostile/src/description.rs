@@ -258,7 +258,13 @@ fn read_fmi3_element(
         ("EventIndicator", _) => d.number_of_event_indicators += size_of(d, vr),
         _ => {}
     }
-    let listed = get("dependencies").is_some_and(|l| !l.trim().is_empty());
+    // fmi3GetVariableDependencies answers the continuous-time structure (outputs,
+    // state derivatives, event indicators), not an <InitialUnknown>'s list.
+    let structural = matches!(
+        e.name().as_ref(),
+        "Output" | "ContinuousStateDerivative" | "EventIndicator"
+    );
+    let listed = structural && get("dependencies").is_some_and(|l| !l.trim().is_empty());
     if let Some(vr) = vr.filter(|vr| listed && !d.dependents.contains(vr)) {
         d.dependents.push(vr);
     }

@@ -140,6 +140,52 @@ macro_rules! state {
     };
 }
 
+/// The knowns at initialization of channel `c` that its output u reads (the law of
+/// `control::pid`), also its dI/dt (conditional integration compares u with the limits).
+macro_rules! output_knowns {
+    ($c:literal) => {
+        [
+            concat!("Kp[", $c, "]"),
+            concat!("Ki[", $c, "]"),
+            concat!("Kd[", $c, "]"),
+            concat!("Tf[", $c, "]"),
+            concat!("limitOutput[", $c, "]"),
+            concat!("uMin[", $c, "]"),
+            concat!("uMax[", $c, "]"),
+            concat!("useRateInputs[", $c, "]"),
+            concat!("setpoint[", $c, "]"),
+            concat!("measurement[", $c, "]"),
+            concat!("setpointRate[", $c, "]"),
+            concat!("measuredRate[", $c, "]"),
+            concat!("feedforward[", $c, "]"),
+            concat!("integral[", $c, "]"),
+            concat!("filter[", $c, "]"),
+        ]
+    };
+}
+
+/// The knowns at initialization of channel `c` that the filter's dx/dt reads.
+macro_rules! filter_knowns {
+    ($c:literal) => {
+        [
+            concat!("Kd[", $c, "]"),
+            concat!("Tf[", $c, "]"),
+            concat!("useRateInputs[", $c, "]"),
+            concat!("setpoint[", $c, "]"),
+            concat!("measurement[", $c, "]"),
+            concat!("setpointRate[", $c, "]"),
+            concat!("measuredRate[", $c, "]"),
+            concat!("filter[", $c, "]"),
+        ]
+    };
+}
+
+/// InitialUnknowns dependencies per channel: of u and dI/dt, of the filter's dx/dt.
+static OUTPUT_KNOWNS: [[&str; 15]; CHANNELS] =
+    [output_knowns!(1), output_knowns!(2), output_knowns!(3)];
+static FILTER_KNOWNS: [[&str; 8]; CHANNELS] =
+    [filter_knowns!(1), filter_knowns!(2), filter_knowns!(3)];
+
 static VARIABLES: &[Decl] = &[
     gain!("Kp", 1, "Proportional gain", 1.0, gains.kp),
     gain!("Ki", 11, "Integral gain (1/s)", 0.5, gains.ki),
@@ -208,7 +254,9 @@ static VARIABLES: &[Decl] = &[
         &[0.0],
         feedforward
     ),
-    channels(Decl::real("u", "control output", |m, c| m.output(c).u), 201).output(),
+    channels(Decl::real("u", "control output", |m, c| m.output(c).u), 201)
+        .output()
+        .initial_depends_on(|c| &OUTPUT_KNOWNS[c]),
     state!("integral", 301, "integral of the error (state)", integral),
     state!("filter", 311, "derivative filter state (state)", filter),
     state!(
@@ -217,14 +265,16 @@ static VARIABLES: &[Decl] = &[
         321,
         "Time derivative of the error integral",
         integral
-    ),
+    )
+    .initial_depends_on(|c| &OUTPUT_KNOWNS[c]),
     state!(
         "der(filter)",
         "filter",
         331,
         "Time derivative of the derivative filter state",
         filter
-    ),
+    )
+    .initial_depends_on(|c| &FILTER_KNOWNS[c]),
 ];
 
 /// d(output or state derivative)/d(input or state) of one channel, from the law in

@@ -104,10 +104,12 @@ fn serialized_states_record_the_fmi3_front_end() {
         unsafe { api::get_fmu_state::<robofmu_pid_fmu::Pid>(c, &mut state) },
         Fmi3Status::Ok
     );
-    let snapshot = unsafe { &*(state as *const robofmu_fmi::core::Snapshot<robofmu_pid_fmu::Pid>) };
+    // The handle is opaque (core::handles): the registry gives the snapshot behind it.
+    let snapshot =
+        robofmu_fmi::core::fmu_states::snapshot::<robofmu_pid_fmu::Pid>(state, "FMUState").unwrap();
     assert_eq!(snapshot.standard, robofmu_fmi::core::Standard::Fmi3);
     let table = robofmu_fmi::core::instance::sorted_table::<robofmu_pid_fmu::Pid>().unwrap();
-    let bytes = robofmu_fmi::core::serialize::serialize(&table, snapshot);
+    let bytes = robofmu_fmi::core::serialize::serialize(&table, &snapshot);
     let back =
         robofmu_fmi::core::serialize::deserialize::<robofmu_pid_fmu::Pid>(&table, &bytes).unwrap();
     assert_eq!(back.standard, robofmu_fmi::core::Standard::Fmi3);

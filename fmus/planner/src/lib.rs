@@ -122,14 +122,38 @@ macro_rules! boundary {
     };
 }
 
+/// The knowns at initialization of axis `a`: the start time (FMI 3.0 only: FMI 2.0
+/// has no time variable to name), the polynomial's order, times and that axis's
+/// boundary values (InitialUnknowns dependencies of q, qdot, qddot).
+macro_rules! axis_knowns {
+    ($a:literal) => {
+        [
+            "time",
+            "order",
+            "t0",
+            "tf",
+            concat!("q0[", $a, "]"),
+            concat!("qf[", $a, "]"),
+            concat!("qdot0[", $a, "]"),
+            concat!("qdotf[", $a, "]"),
+            concat!("qddot0[", $a, "]"),
+            concat!("qddotf[", $a, "]"),
+        ]
+    };
+}
+
+static AXIS_KNOWNS: [[&str; 10]; AXES] = [axis_knowns!(1), axis_knowns!(2), axis_knowns!(3)];
+
 /// A planned output of the three axes (`k`: 0 q, 1 qdot, 2 qddot), element a at value
-/// reference `$vr + 10 (a - 1)`, with its exact time derivatives.
+/// reference `$vr + 10 (a - 1)`, with its exact time derivatives and its knowns at
+/// initialization.
 macro_rules! planned {
     ($name:literal, $k:literal, $vr:literal, $unit:literal, $display:literal, $what:literal) => {
         axes(Decl::real($name, $what, |m, a| m.output(a, $k)), $vr)
             .output()
             .unit($unit, Some($display))
             .output_derivative(|m, a, n| m.derivative(a, $k, n))
+            .initial_depends_on(|a| &AXIS_KNOWNS[a])
     };
 }
 

@@ -13,6 +13,7 @@
 //! Parameters are fixed: the plant is validated once at fmi2ExitInitializationMode and
 //! an invalid value is refused with a message that names the FMU parameter.
 
+mod initial_dependencies;
 mod output_rates;
 mod parameters;
 mod partials;
@@ -200,7 +201,12 @@ impl Pss3Plant {
     /// Computes the outputs, Euler-angle rates and gravity compensation of the
     /// current state and inputs.
     fn compute(&self) -> Result<Computed, String> {
-        let state = self.current_state()?;
+        self.compute_at(&self.current_state()?)
+    }
+
+    /// `compute` at `state` instead of the current state (same inputs).
+    fn compute_at(&self, state: &PlantState) -> Result<Computed, String> {
+        let state = *state;
         let plant = self.plant()?;
         let outputs = plant
             .outputs(&state, &self.inputs)

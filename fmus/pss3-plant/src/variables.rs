@@ -2,7 +2,7 @@
 //!
 //! Value references: a vector variable's group below plus i = 1..3.
 
-use super::{Pss3Plant, parameters};
+use super::{Pss3Plant, initial_dependencies, parameters};
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{PlantInputs, PlantOutputs};
 use robofmu_fmi::prelude::*;
@@ -111,7 +111,7 @@ macro_rules! elements {
 }
 
 /// The parts one after the other, in a static table (no allocation at instantiation).
-const fn concat<const N: usize>(parts: &[&[&'static str]]) -> [&'static str; N] {
+pub const fn concat<const N: usize>(parts: &[&[&'static str]]) -> [&'static str; N] {
     let mut out = [""; N];
     let (mut k, mut p) = (0, 0);
     while p < parts.len() {
@@ -408,5 +408,9 @@ pub fn table() -> Vec<Variable<Pss3Plant>> {
     outputs(&mut table);
     derivatives(&mut table);
     table.extend(parameters::variables(&Pss3Plant::new()));
+    for v in &mut table {
+        let dependencies = initial_dependencies::of(&v.name());
+        v.initial_dependencies = dependencies;
+    }
     table
 }

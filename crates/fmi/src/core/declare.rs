@@ -21,7 +21,7 @@
 //! is FMI 3.0's `time`), elements consecutive. Appending a declaration therefore never
 //! moves an existing value reference.
 
-pub use super::hooks::{Element, InputDerivative, OutputDerivative};
+pub use super::hooks::{Element, InitialDependencies, InputDerivative, OutputDerivative};
 use super::variables::{Causality, Initial, Variability};
 
 /// Reads element i (0 for a scalar).
@@ -99,6 +99,8 @@ pub struct Declaration<M: 'static> {
     pub derivative_of: Option<&'static str>,
     /// The inputs and continuous states an output or derivative depends on.
     pub dependencies: Option<&'static [&'static str]>,
+    /// Hook: the knowns at initialization an initial unknown depends on, by element.
+    pub initial_dependencies: Option<InitialDependencies>,
     /// Hook: time derivatives of an output.
     pub output_derivative: Option<OutputDerivative<M>>,
     /// Hook: where the model keeps the time derivatives of a continuous input.
@@ -154,6 +156,7 @@ impl<M> Declaration<M> {
             value,
             derivative_of: None,
             dependencies: None,
+            initial_dependencies: None,
             output_derivative: None,
             input_derivative: None,
         }
@@ -267,6 +270,13 @@ impl<M> Declaration<M> {
     /// depends on; without it, on all of them.
     pub const fn depends_on(mut self, names: &'static [&'static str]) -> Self {
         self.dependencies = Some(names);
+        self
+    }
+
+    /// Hook: the knowns at initialization (by FMI 2.0 name) element i of this output or
+    /// derivative depends on; without it, on all of them.
+    pub const fn initial_depends_on(mut self, f: InitialDependencies) -> Self {
+        self.initial_dependencies = Some(f);
         self
     }
 

@@ -39,6 +39,7 @@ fn element<M>(d: &'static Declaration<M>, first: u32, i: usize) -> Variable<M> {
         initial: d.initial,
         kind: kind(&d.value, i),
         dependencies: d.dependencies,
+        initial_dependencies: d.initial_dependencies.map(|f| f(i)),
         array,
         declared: Some((d, i)),
     }

@@ -24,7 +24,7 @@ pub unsafe fn get<F: Frontend, M: Model>(
     inst: &mut FmuInstance<F, M>,
     state: *mut *mut c_void,
 ) -> Result<F> {
-    let owner = inst as *mut FmuInstance<F, M> as *mut c_void;
+    let owner = inst.handle;
     let slot = unsafe { output_ref(state, noun::<F>()) }?;
     let snapshot = inst.snapshot();
     fmu_states::store(slot, snapshot, owner, noun::<F>())?;
@@ -102,7 +102,7 @@ pub unsafe fn deserialize_from<F: Frontend, M: Model>(
     size: usize,
     state: *mut *mut c_void,
 ) -> Result<F> {
-    let owner = inst as *mut FmuInstance<F, M> as *mut c_void;
+    let owner = inst.handle;
     let data = unsafe { input_slice(bytes, size, "serializedState[]") }?;
     let slot = unsafe { output_ref(state, noun::<F>()) }?;
     let s = deserialize::<M>(inst.core.table(), data)?;

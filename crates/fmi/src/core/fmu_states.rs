@@ -29,33 +29,34 @@ fn null(state: *mut c_void, noun: &str) -> Result<(), String> {
 /// during the copy.
 pub fn snapshot<M: Model>(state: *mut c_void, noun: &str) -> Result<Snapshot<M>, String> {
     null(state, noun)?;
-    handles::while_live::<M, _>(state as usize, HandleKind::State, || {
+    handles::while_live::<M, _>(state as usize, HandleKind::State, |address| {
         // SAFETY: registered as a live state of M (created by `store` below) and
         // not freeable while the registry is locked.
-        unsafe { (*(state as *const Snapshot<M>)).clone() }
+        unsafe { (*(address as *const Snapshot<M>)).clone() }
     })
     .ok_or_else(|| not_live::<M>(state, noun))
 }
 
 /// Stores `s` in `*slot`, reusing the state already there (the standard lets the
 /// host pass a previously obtained state to be overwritten). A new state belongs to
-/// the instance `owner` and is freed with it at the latest.
+/// the instance with the handle `owner` and is freed with it at the latest. The
+/// host's handle of a state is new (never an address: see [`handles`]).
 pub fn store<M: Model>(
     slot: &mut *mut c_void,
     s: Snapshot<M>,
-    owner: *mut c_void,
+    owner: usize,
     noun: &str,
 ) -> Result<(), String> {
     if slot.is_null() {
-        let state = Box::into_raw(Box::new(s)) as *mut c_void;
-        handles::register::<M>(state as usize, HandleKind::State, owner as usize);
-        *slot = state;
+        let address = Box::into_raw(Box::new(s)) as usize;
+        let state = handles::register::<M>(address, HandleKind::State, Some(owner), None);
+        *slot = state as *mut c_void;
         return Ok(());
     }
     let state = *slot;
-    handles::while_live::<M, _>(state as usize, HandleKind::State, || {
+    handles::while_live::<M, _>(state as usize, HandleKind::State, |address| {
         // SAFETY: a live state of M, not freeable while the registry is locked.
-        unsafe { *(state as *mut Snapshot<M>) = s };
+        unsafe { *(address as *mut Snapshot<M>) = s };
     })
     .ok_or_else(|| not_live::<M>(state, noun))
 }
@@ -68,11 +69,11 @@ pub fn free<M: Model>(slot: &mut *mut c_void, noun: &str) -> Result<(), String> 
     if state.is_null() {
         return Ok(());
     }
-    if !handles::unregister::<M>(state as usize, HandleKind::State) {
+    let Some(address) = handles::unregister::<M>(state as usize, HandleKind::State) else {
         return Err(not_live::<M>(state, noun));
-    }
+    };
     // SAFETY: was a live state of M, and this call unregistered it: freed once.
-    drop(unsafe { Box::from_raw(state as *mut Snapshot<M>) });
+    drop(unsafe { Box::from_raw(address as *mut Snapshot<M>) });
     *slot = std::ptr::null_mut();
     Ok(())
 }

@@ -23,7 +23,7 @@ pub trait Frontend: 'static {
     /// A call whose legality depends on the mode.
     type Call: Copy;
     /// The host's logger callback of the standard.
-    type Sink: LogSink<Status = Self::Status>;
+    type Sink: LogSink<Status = Self::Status> + Clone;
     /// What an instance of this standard keeps beyond mode, interface, logger and core.
     type Extra: 'static;
     /// The standard that writes this front-end's FMU states.
@@ -33,6 +33,8 @@ pub trait Frontend: 'static {
     /// The standard's spelling of an FMU state in messages and function names.
     const FMU_STATE: &'static str;
     const INSTANTIATED: Self::Mode;
+    /// Initialization Mode: with Instantiated, where parameters may still be refused.
+    const INITIALIZATION: Self::Mode;
     const ERROR: Self::Mode;
     const FATAL: Self::Mode;
     /// The categories the layer itself logs under (models add theirs after these).
@@ -91,6 +93,8 @@ pub fn log_categories<F: Frontend, M: Model>() -> Vec<LogCategory> {
 /// either. Its handle is registered in [`handles`](super::handles) under its own
 /// type, so that an instance of another FMU or of the other standard is refused.
 pub struct FmuInstance<F: Frontend, M: Model> {
+    /// The handle the host holds (set when the instance is registered).
+    pub handle: usize,
     pub mode: F::Mode,
     pub interface: F::Interface,
     pub log: LoggerOf<F>,
@@ -108,6 +112,7 @@ impl<F: Frontend, M: Model> FmuInstance<F, M> {
         core: Instance<M>,
     ) -> Self {
         FmuInstance {
+            handle: 0,
             mode: F::INSTANTIATED,
             interface,
             log,

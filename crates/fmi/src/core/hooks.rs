@@ -30,3 +30,8 @@ pub type OutputDerivative<M> = fn(&M, usize, u32) -> Result<f64, OutputDerivativ
 /// none (see [`Model::input_derivative_mut`](super::model::Model::input_derivative_mut)
 /// for the semantics).
 pub type InputDerivative<M> = for<'a> fn(&'a mut M, usize, u32) -> Option<&'a mut f64>;
+
+/// The knowns at initialization (by FMI 2.0 name: inputs, variables with initial =
+/// "exact", "time" for the independent variable) that initial unknown element i
+/// depends on (InitialUnknowns `dependencies`).
+pub type InitialDependencies = fn(usize) -> &'static [&'static str];

@@ -4,7 +4,15 @@
 
 use super::log::Log;
 use super::model::{Model, StepOutcome};
+use super::value_check::{self, Value, wrong_type};
 use super::variables::{Initial, Kind, Variable, VariableType, find};
+
+/// Does not log: the model's checks on a copy are not the instance's.
+pub struct Silent;
+
+impl Log for Silent {
+    fn debug(&self, _category: &str, _message: &str) {}
+}
 
 /// The FMI standard whose front-end wrote an FMU state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -145,20 +153,7 @@ pub fn calculated_flags<M>(table: &[Variable<M>]) -> Vec<bool> {
         .collect()
 }
 
-fn wrong_type<M>(v: &Variable<M>, wanted: &str) -> String {
-    format!(
-        "\"{}\" (value reference {}) is a {} variable, not {wanted}",
-        v.name(),
-        v.value_reference,
-        v.variable_type().as_str()
-    )
-}
-
-/// Largest magnitude the layer accepts for a Real value set by the host. No model
-/// quantity in SI units comes near it, and the product of two such values is still
-/// finite, so an extreme finite value (say 1e308) is refused where it is set, naming
-/// the variable, instead of overflowing later in the model.
-pub const MAX_MAGNITUDE: f64 = 1e150;
+pub use super::value_check::MAX_MAGNITUDE;
 
 /// Largest accepted difference between the master's communication point and the
 /// instance time (and overshoot of the stop time), relative to max(1, |t|): absorbs
@@ -243,19 +238,34 @@ impl<M: Model> Instance<M> {
     }
 
     /// Prepares reading `vrs`: Err for an unknown value reference; Ok(Some(reason))
-    /// when one of them is calculated and the model cannot be evaluated here (the
-    /// front-end returns Discard); Ok(None) when all can be read.
+    /// when one of them cannot be evaluated here (a calculated one where the model
+    /// cannot be evaluated, or any Real that is not finite: the front-end returns
+    /// Discard); Ok(None) when all can be read.
     pub fn prepare_read(&mut self, vrs: &[u32]) -> Result<Option<String>, String> {
         let mut needs_values = false;
         for &vr in vrs {
             let at = self.table.binary_search_by_key(&vr, |v| v.value_reference);
             let at = at.map_err(|_| format!("unknown value reference {vr}"))?;
-            needs_values |= self.calculated[at];
+            if self.calculated[at] {
+                needs_values = true;
+            } else if let Kind::Real { get, .. } = &self.table[at].kind {
+                let value = get.call(&self.model);
+                if !value.is_finite() {
+                    let name = self.table[at].shown_name();
+                    return Ok(Some(format!("\"{name}\" evaluates to {value}")));
+                }
+            }
         }
         if needs_values {
             return Ok(self.update_values().err());
         }
         Ok(None)
+    }
+
+    /// Why ExitInitializationMode would refuse the parameters now, if it would (the
+    /// model's check on a copy).
+    pub fn parameters_refused(&self) -> Option<String> {
+        self.model.clone().exit_initialization(&Silent).err()
     }
 
     pub fn snapshot(&self, standard: Standard) -> Snapshot<M> {
@@ -300,6 +310,18 @@ impl<M: Model> Instance<M> {
         }
         if h <= 0.0 {
             return Err(format!("communicationStepSize = {h} is not positive"));
+        }
+        let end = t + h;
+        if !end.is_finite() {
+            return Err(format!(
+                "the step from t = {t} s by {h} s ends at t = {end} s"
+            ));
+        }
+        if end <= t {
+            return Err(format!(
+                "the step from t = {t} s by {h} s does not advance the time (t + h = t in \
+                 double precision): use a larger step or an earlier start time"
+            ));
         }
         if (t - self.time).abs() > TIME_MATCH * t.abs().max(1.0) {
             return Err(format!(
@@ -384,65 +406,23 @@ impl<M: Model> Instance<M> {
         }
     }
 
-    /// Writes a Real through its writer after the type, finiteness and range checks
+    /// Writes a value through its writer after the checks of [`value_check::write`]
     /// (whether the variable may be set now is the front-end's rule).
-    pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
+    fn write(&mut self, vr: u32, value: Value) -> Result<(), String> {
         let v = variable(&self.table, vr)?;
-        let Kind::Real { set, min, max, .. } = &v.kind else {
-            return Err(wrong_type(v, "Real"));
-        };
-        if !value.is_finite() {
-            return Err(format!("\"{}\" cannot be set to {value}", v.name()));
-        }
-        if value.abs() > MAX_MAGNITUDE {
-            return Err(format!(
-                "\"{}\" = {value:e} exceeds the magnitude {MAX_MAGNITUDE:e} the layer accepts \
-                 (such a value overflows the model's arithmetic)",
-                v.name()
-            ));
-        }
-        if min.is_some_and(|m| value < m) || max.is_some_and(|m| value > m) {
-            return Err(format!(
-                "\"{}\" = {value} is outside [{}, {}]",
-                v.name(),
-                min.unwrap_or(f64::NEG_INFINITY),
-                max.unwrap_or(f64::INFINITY)
-            ));
-        }
-        let set = set
-            .as_ref()
-            .ok_or_else(|| format!("\"{}\" has no writer", v.name()))?;
         self.dirty = true;
-        set.call(&mut self.model, value)
-            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name()))
+        value_check::write(&mut self.model, v, value)
+    }
+
+    pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
+        self.write(vr, Value::Real(value))
     }
 
     pub fn set_integer(&mut self, vr: u32, value: i32) -> Result<(), String> {
-        let v = variable(&self.table, vr)?;
-        let Kind::Integer { set, min, max, .. } = &v.kind else {
-            return Err(wrong_type(v, "Integer"));
-        };
-        if min.is_some_and(|m| value < m) || max.is_some_and(|m| value > m) {
-            return Err(format!("\"{}\" = {value} is outside its range", v.name()));
-        }
-        let set = set
-            .as_ref()
-            .ok_or_else(|| format!("\"{}\" has no writer", v.name()))?;
-        self.dirty = true;
-        set.call(&mut self.model, value)
-            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name()))
+        self.write(vr, Value::Integer(value))
     }
 
     pub fn set_boolean(&mut self, vr: u32, value: bool) -> Result<(), String> {
-        let v = variable(&self.table, vr)?;
-        let Kind::Boolean { set, .. } = &v.kind else {
-            return Err(wrong_type(v, "Boolean"));
-        };
-        let set = set
-            .as_ref()
-            .ok_or_else(|| format!("\"{}\" has no writer", v.name()))?;
-        self.dirty = true;
-        set.call(&mut self.model, value)
-            .map_err(|e| format!("\"{}\" = {value}: {e}", v.name()))
+        self.write(vr, Value::Boolean(value))
     }
 }

@@ -10,6 +10,7 @@
 
 pub use super::log::{Log, LogCategory};
 use super::status::StatusCode;
+use std::cell::Cell;
 
 /// The log categories of one instance and which of them the host enabled: the state
 /// that fmi2SetDebugLogging and fmi3SetDebugLogging change.
@@ -86,6 +87,8 @@ pub fn status_category<S: StatusCode>(status: S) -> &'static str {
 pub struct Logger<S> {
     sink: S,
     filter: CategoryFilter,
+    /// Messages passed to the host so far: a call whose count changed has called back.
+    emitted: Cell<u64>,
 }
 
 impl<S: LogSink> Logger<S> {
@@ -93,7 +96,24 @@ impl<S: LogSink> Logger<S> {
         Logger {
             sink,
             filter: CategoryFilter::new(categories, logging_on),
+            emitted: Cell::new(0),
         }
+    }
+
+    /// The host's callback.
+    pub fn sink(&self) -> &S {
+        &self.sink
+    }
+
+    /// How many messages went to the host so far (each a call into the host, which
+    /// may have called back into the FMU).
+    pub fn emitted(&self) -> u64 {
+        self.emitted.get()
+    }
+
+    fn emit(&self, status: S::Status, category: &str, message: &str) {
+        self.emitted.set(self.emitted.get().wrapping_add(1));
+        self.sink.emit(status, category, message);
     }
 
     /// SetDebugLogging: see [`CategoryFilter::configure`].
@@ -110,7 +130,7 @@ impl<S: LogSink> Logger<S> {
     pub fn status(&self, status: S::Status, message: &str) {
         let category = status_category(status);
         if status >= S::Status::ERROR || self.filter.is_enabled(category) {
-            self.sink.emit(status, category, message);
+            self.emit(status, category, message);
         }
     }
 }
@@ -118,7 +138,7 @@ impl<S: LogSink> Logger<S> {
 impl<S: LogSink> Log for Logger<S> {
     fn debug(&self, category: &str, message: &str) {
         if self.filter.is_enabled(category) {
-            self.sink.emit(S::Status::OK, category, message);
+            self.emit(S::Status::OK, category, message);
         }
     }
 }

@@ -33,6 +33,7 @@ pub mod model_exchange_calls;
 pub mod output_derivatives;
 pub mod serialize;
 pub mod status;
+pub mod value_check;
 pub mod variables;
 
 pub use declare::Declaration;

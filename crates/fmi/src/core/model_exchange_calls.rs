@@ -97,8 +97,8 @@ pub unsafe fn set_continuous_states<F: Frontend, M: Model>(
 
 /// Fills the output array `ptr` of the model's count `expected` with `f`. An error of
 /// the model (it cannot be evaluated here; an integrator may retry with a smaller
-/// step) is logged and returned as Discard, leaving the instance usable; a non-finite
-/// value is an error.
+/// step) is logged and returned as Discard, leaving the instance usable, and so is a
+/// non-finite value (the same rule as for every getter).
 ///
 /// # Safety
 /// `ptr` must be null or valid for `n` values.
@@ -117,7 +117,8 @@ pub unsafe fn fill<F: Frontend, M: Model>(
         return Ok(discard(inst, function, &reason));
     }
     if let Some(bad) = out.iter().find(|v| !v.is_finite()) {
-        return Err(format!("the model computed {bad}"));
+        let reason = format!("the model computed {bad}");
+        return Ok(discard(inst, function, &reason));
     }
     Ok(StatusCode::OK)
 }

@@ -12,15 +12,20 @@
 //!   takes none) |
 //!   number of continuous states u32 | states f64... | extra length u64 | extra bytes.
 //!
-//! Deserialization rebuilds the model from start values and writes every value back
-//! through the variable writers, so a state that passes the checks is also a valid
-//! model state. Foreign (other magic, version or model), truncated, padded or
-//! corrupted bytes are rejected with a message.
+//! The checksum detects damage, not edits (anyone can recompute it), so
+//! deserialization trusts nothing it reads: it rebuilds the model from start values
+//! and writes every value back through the setters' check ([`value_check::write`]:
+//! finite, magnitude, min/max, the writer's own check), reads times that are finite
+//! (the last successful one not after the stop time), then runs the model's own checks of
+//! ExitInitializationMode and checks the terminated flag against a step (`check_model`).
+//! Foreign (other magic, version or model), truncated, padded, corrupted or edited
+//! bytes are refused with a message naming the field.
 
 use super::hooks::InputDerivative;
 use super::input_derivatives::{interpolated_input, slot};
-use super::instance::{Snapshot, Standard, model_with_start_values};
-use super::model::Model;
+use super::instance::{Silent, Snapshot, Standard, TIME_MATCH, model_with_start_values};
+use super::model::{Model, StepOutcome};
+use super::value_check::{self, MAX_MAGNITUDE, Value};
 use super::variables::{Kind, Variable};
 
 const MAGIC: &[u8; 8] = b"RBFMUST\0";
@@ -180,6 +185,91 @@ pub fn deserialize<M: Model>(table: &[Variable<M>], bytes: &[u8]) -> Result<Snap
     read_payload(table, payload)
 }
 
+/// The refusal of a state whose field `field` holds what the model could never be in.
+fn refused(field: &str, why: impl std::fmt::Display) -> String {
+    format!("FMU state refused: field \"{field}\": {why}")
+}
+
+/// Err unless the time `t` read from the field `field` is finite.
+fn finite_time(t: f64, field: &str) -> Result<f64, String> {
+    if t.is_finite() {
+        Ok(t)
+    } else {
+        Err(refused(field, format!("{t} is not a finite time")))
+    }
+}
+
+/// The times of a state: finite, and the last successful time not after the stop
+/// time (the layer refuses steps beyond it; the time itself may be, in Model
+/// Exchange, where an integrator evaluates past the stop time).
+fn read_times(r: &mut Reader) -> Result<(f64, Option<f64>, f64), String> {
+    let time = finite_time(r.f64("time")?, "time")?;
+    let stop_defined = r.flag("stop time flag")?;
+    let stop = r.f64("stop time")?;
+    let stop_time = match stop_defined {
+        true => Some(finite_time(stop, "stop time")?),
+        false => None,
+    };
+    let last = finite_time(r.f64("last successful time")?, "last successful time")?;
+    if let Some(stop) = stop_time {
+        let slack = TIME_MATCH * stop.abs().max(1.0);
+        if last > stop + slack {
+            let why = format!("{last} s is after the stop time {stop} s");
+            return Err(refused("last successful time", why));
+        }
+    }
+    Ok((time, stop_time, last))
+}
+
+/// Every settable variable of the table read from `r` and written to `model` through
+/// the setters' check ([`value_check::write`]).
+fn read_values<M: Model>(
+    table: &[Variable<M>],
+    r: &mut Reader,
+    model: &mut M,
+) -> Result<(), String> {
+    for v in table {
+        let name = &v.name();
+        let value = match &v.kind {
+            Kind::Real { set: Some(_), .. } => Value::Real(r.f64(name)?),
+            Kind::Integer { set: Some(_), .. } => {
+                Value::Integer(i32::from_le_bytes(r.array(name)?))
+            }
+            Kind::Boolean { set: Some(_), .. } => Value::Boolean(r.flag(name)?),
+            _ => continue,
+        };
+        value_check::write(model, v, value).map_err(|e| refused(name, e))?;
+    }
+    Ok(())
+}
+
+/// The model's own checks of a restored model: its parameters pass the checks of
+/// ExitInitializationMode, and a state that says the model terminated it is one from
+/// which a step is refused for good.
+fn check_model<M: Model>(model: &M, time: f64, terminated: bool) -> Result<(), String> {
+    model
+        .clone()
+        .exit_initialization(&Silent)
+        .map_err(|e| refused("parameters", format!("the model refuses them: {e}")))?;
+    if terminated {
+        let h = M::info().default_experiment.step_size;
+        let step = model.clone().do_step(time, h, &Silent);
+        if !matches!(
+            step,
+            StepOutcome::Discarded {
+                terminate: true,
+                ..
+            }
+        ) {
+            return Err(refused(
+                "terminated flag",
+                "set, but the model can go on from this state",
+            ));
+        }
+    }
+    Ok(())
+}
+
 fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snapshot<M>, String> {
     let mut r = Reader {
         bytes: payload,
@@ -188,35 +278,21 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
     let code = r.array::<1>("the writing standard")?[0];
     let standard = Standard::from_code(code)
         .ok_or_else(|| format!("corrupt FMU state: unknown writing standard {code}"))?;
-    let time = r.f64("time")?;
-    let stop_defined = r.flag("stop time flag")?;
-    let stop_time = Some(r.f64("stop time")?).filter(|_| stop_defined);
-    let last_successful_time = r.f64("last successful time")?;
+    let (time, stop_time, last_successful_time) = read_times(&mut r)?;
     let terminated_by_model = r.flag("terminated flag")?;
     let mut model = model_with_start_values::<M>(table)?;
-    for v in table {
-        let name = &v.name();
-        let result = match &v.kind {
-            Kind::Real { set: Some(set), .. } => set.call(&mut model, r.f64(name)?),
-            Kind::Integer { set: Some(set), .. } => {
-                set.call(&mut model, i32::from_le_bytes(r.array(name)?))
-            }
-            Kind::Boolean { set: Some(set), .. } => set.call(&mut model, r.flag(name)?),
-            _ => Ok(()),
-        };
-        result.map_err(|e| format!("FMU state value of \"{name}\" rejected: {e}"))?;
-    }
+    read_values(table, &mut r, &mut model)?;
     for (vr, hook, order) in input_derivative_slots(table) {
         let value = r.f64("an input derivative")?;
         if value == 0.0 {
             continue; // a fresh model holds zeros
         }
         match slot(&mut model, hook, vr, order) {
-            Some(slot) if value.is_finite() => *slot = value,
+            Some(slot) if value.is_finite() && value.abs() <= MAX_MAGNITUDE => *slot = value,
             _ => {
-                return Err(format!(
-                    "corrupt FMU state: input derivative of order {order} of value \
-                     reference {vr} = {value}"
+                return Err(refused(
+                    "input derivative",
+                    format!("order {order} of value reference {vr} = {value}"),
                 ));
             }
         }
@@ -231,6 +307,9 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
     let x = (0..n)
         .map(|_| r.f64("a continuous state"))
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
+        return Err(refused("continuous states", format!("contains {bad}")));
+    }
     model.set_continuous_states(&x);
     let extra_len = usize::try_from(r.u64("extra length")?).map_err(|_| "extra too large")?;
     let extra = r.take(extra_len, "model-specific state")?;
@@ -239,6 +318,7 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
         return Err("corrupt FMU state: payload longer than the model's state".to_string());
     }
     model.set_time(time);
+    check_model(&model, time, terminated_by_model)?;
     Ok(Snapshot {
         model,
         time,

@@ -169,6 +169,10 @@ pub struct Variable<M: 'static> {
     /// Names of the inputs and continuous states an output or state derivative
     /// depends on (ModelStructure `dependencies`); None: on all of them.
     pub dependencies: Option<&'static [&'static str]>,
+    /// Names of the knowns at initialization (inputs, variables with initial =
+    /// "exact") an initial unknown depends on (InitialUnknowns `dependencies`); None:
+    /// on all of them.
+    pub initial_dependencies: Option<&'static [&'static str]>,
     /// Set for the elements declared by [`RealArray`](super::arrays::RealArray).
     pub array: Option<ArrayElement>,
     /// The declaration this scalar is element i of, if it was declared
@@ -196,6 +200,7 @@ impl<M: 'static> Variable<M> {
             initial: None,
             kind,
             dependencies: None,
+            initial_dependencies: None,
             array: None,
             declared: None,
         }
@@ -405,6 +410,15 @@ impl<M: 'static> Variable<M> {
         }
     }
 
+    /// The FMI 2.0 name as [`Display`](std::fmt::Display), written without an
+    /// allocation (for messages formatted only on a refusal).
+    pub fn shown_name(&self) -> ShownName<'_> {
+        match (self.array, self.declared) {
+            (Some(array), Some((_, i))) => ShownName::Element(array, i),
+            _ => ShownName::Plain(&self.stored_name),
+        }
+    }
+
     /// The FMI 2.0 description; element i of a labelled declared array is described
     /// when asked ("`label` i: description").
     pub fn description(&self) -> Cow<'_, str> {
@@ -498,6 +512,24 @@ impl<M: 'static> Variable<M> {
             Kind::Real { start, .. } => start.is_some(),
             Kind::Integer { start, .. } => start.is_some(),
             Kind::Boolean { start, .. } => start.is_some(),
+        }
+    }
+}
+
+/// A variable's FMI 2.0 name, written when displayed ([`Variable::shown_name`]).
+#[derive(Debug, Clone, Copy)]
+pub enum ShownName<'a> {
+    Plain(&'a str),
+    /// Element i of a declared array.
+    Element(ArrayElement, usize),
+}
+
+impl std::fmt::Display for ShownName<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            ShownName::Plain(name) => f.write_str(name),
+            ShownName::Element(a, i) if a.derivative => write!(f, "der({}[{}])", a.base, i + 1),
+            ShownName::Element(a, i) => write!(f, "{}[{}]", a.base, i + 1),
         }
     }
 }

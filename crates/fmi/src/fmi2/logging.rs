@@ -18,6 +18,7 @@ pub const LAYER_CATEGORIES: [LogCategory; 6] =
 pub type Logger = logging::Logger<Callback>;
 
 /// The host's fmi2CallbackLogger with its environment and the instance name.
+#[derive(Clone)]
 pub struct Callback {
     pub function: Fmi2CallbackLogger,
     pub environment: Fmi2ComponentEnvironment,

@@ -142,6 +142,7 @@ impl Frontend for Fmi2 {
     const FMU_STATE: &'static str = "FMUstate";
     const MODE_WORD: &'static str = "mode";
     const INSTANTIATED: Mode = Instantiated;
+    const INITIALIZATION: Mode = InitializationMode;
     const ERROR: Mode = Error;
     const FATAL: Mode = Fatal;
     const LAYER_CATEGORIES: [LogCategory; 6] = LAYER_CATEGORIES;

@@ -63,14 +63,14 @@ macro_rules! export_fmi3 {
                 logging_on: Fmi3Boolean,
                 event_mode_used: Fmi3Boolean,
                 early_return_allowed: Fmi3Boolean,
-                _required_intermediate_variables: *const Fmi3ValueReference,
-                _n_required_intermediate_variables: usize,
+                required_intermediate_variables: *const Fmi3ValueReference,
+                n_required_intermediate_variables: usize,
                 environment: Fmi3InstanceEnvironment,
                 log_message: Option<Fmi3LogMessageCallback>,
                 intermediate_update: Option<Fmi3IntermediateUpdateCallback>,
             ) -> Fmi3Instance {
                 unsafe {
-                    api::instantiate::<M>(api::Instantiation {
+                    api::instantiate_requiring::<M>(api::Instantiation {
                         function: "fmi3InstantiateCoSimulation",
                         instance_name,
                         token,
@@ -85,7 +85,7 @@ macro_rules! export_fmi3 {
                             intermediate_update,
                             environment,
                         ),
-                    })
+                    }, (required_intermediate_variables, n_required_intermediate_variables))
                 }
             }
             #[unsafe(no_mangle)]

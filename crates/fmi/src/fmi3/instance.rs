@@ -36,7 +36,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     }
 
     /// Makes the computed values current for reading `variables`; Ok(Some(reason))
-    /// when one of them is calculated and the model cannot be evaluated here. In
+    /// when one of them cannot be evaluated here (the read returns Discard). In
     /// Intermediate Update Mode only variables declared intermediateUpdate are read.
     pub fn prepare_read(&mut self, variables: &[&Variable3]) -> Result<Option<String>, String> {
         if self.mode == Mode::IntermediateUpdateMode
@@ -49,7 +49,26 @@ impl<M: Model> FmuInstance<Fmi3, M> {
             ));
         }
         let elements: Vec<u32> = variables.iter().flat_map(|v| v.elements()).collect();
-        self.core.prepare_read(&elements)
+        if let Some(reason) = self.core.prepare_read(&elements)? {
+            return Ok(Some(reason));
+        }
+        let indicators = variables
+            .iter()
+            .any(|v| v.source == Source::EventIndicators);
+        Ok(indicators.then(|| self.indicators_unevaluable()).flatten())
+    }
+
+    /// Why the event indicators cannot be evaluated here, if they cannot (the same
+    /// answer as fmi3GetEventIndicators: the model's reason, or a non-finite value).
+    fn indicators_unevaluable(&self) -> Option<String> {
+        let mut z = vec![0.0; M::info().number_of_event_indicators];
+        match self.core.model().event_indicators(&mut z) {
+            Err(reason) => Some(reason),
+            Ok(()) => z
+                .iter()
+                .find(|x| !x.is_finite())
+                .map(|bad| format!("the model computed the event indicator {bad}")),
+        }
     }
 
     /// Reads the Float64 variable `v` into `out` (its size).

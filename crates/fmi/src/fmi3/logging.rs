@@ -17,6 +17,7 @@ pub type Logger = logging::Logger<Callback>;
 
 /// The host's fmi3LogMessageCallback with its environment. A host may pass no
 /// callback (logMessage = NULL): then nothing is logged.
+#[derive(Clone)]
 pub struct Callback {
     pub function: Option<Fmi3LogMessageCallback>,
     pub environment: Fmi3InstanceEnvironment,

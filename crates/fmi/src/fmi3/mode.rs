@@ -164,6 +164,7 @@ impl Frontend for Fmi3 {
     const FMU_STATE: &'static str = "FMUState";
     const MODE_WORD: &'static str = "state";
     const INSTANTIATED: Mode = Instantiated;
+    const INITIALIZATION: Mode = InitializationMode;
     const ERROR: Mode = Error;
     const FATAL: Mode = Fatal;
     const LAYER_CATEGORIES: [LogCategory; 6] = LAYER_CATEGORIES;

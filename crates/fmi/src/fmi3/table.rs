@@ -553,14 +553,37 @@ pub fn dependencies<M: Model>(
     table: &[Variable<M>],
     v: &Variable3,
 ) -> Result<Option<Vec<u32>>, String> {
+    references(table, v, |scalar| scalar.dependencies)
+}
+
+/// As [`dependencies`], for the initial unknown `v` and the knowns at initialization
+/// (among them "time", the start time, which FMI 2.0 tables have no variable for).
+pub fn initial_dependencies<M: Model>(
+    table: &[Variable<M>],
+    v: &Variable3,
+) -> Result<Option<Vec<u32>>, String> {
+    references(table, v, |scalar| scalar.initial_dependencies)
+}
+
+/// The value references of the names `names` gives for every element of `v`, merged.
+fn references<M: Model>(
+    table: &[Variable<M>],
+    v: &Variable3,
+    names: impl Fn(&Variable<M>) -> Option<&'static [&'static str]>,
+) -> Result<Option<Vec<u32>>, String> {
     let groups = groups(table)?;
     let mut list = Vec::new();
     for e in v.elements() {
         let scalar = find(table, e).ok_or_else(|| format!("no element {e}"))?;
-        let Some(names) = scalar.dependencies else {
+        let Some(names) = names(scalar) else {
             return Ok(None);
         };
         for name in names {
+            if *name == "time" {
+                // The independent variable, a known of the initial unknowns.
+                list.push(TIME_VALUE_REFERENCE);
+                continue;
+            }
             list.push(fmi3_reference(table, &groups, name).ok_or_else(|| {
                 format!(
                     "\"{}\" names the unknown variable \"{name}\"",

@@ -30,7 +30,7 @@ use super::mode::Call;
 use super::types::{Fmi2Component, Fmi2Status};
 use crate::core::entry;
 use crate::core::model::Model;
-use crate::ffi::{check_finite, input_slice, output_ref, output_slice};
+use crate::ffi::{input_slice, output_ref, output_slice};
 
 /// [`entry::with_instance`] for FMI 2.0: runs `body` on the instance behind `c` after
 /// checking that `call` is legal in its mode; errors become fmi2Error, panics fmi2Fatal.

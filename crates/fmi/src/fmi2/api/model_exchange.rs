@@ -1,6 +1,6 @@
 //! Functions of FMI 2.0 Model Exchange.
 
-use super::{check_finite, output_ref, with_instance};
+use super::{output_ref, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::model_exchange_calls::{self as calls, indicators, states};
@@ -82,7 +82,7 @@ pub unsafe fn completed_integrator_step<M: Model>(
 pub unsafe fn set_time<M: Model>(c: Fmi2Component, time: Fmi2Real) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2SetTime", Call::SetTime, |inst| {
-            inst.core.set_time(check_finite(time, "time")?);
+            entry::set_time(&mut inst.core, time)?;
             Ok(Fmi2Status::Ok)
         })
     }

@@ -6,7 +6,7 @@ use crate::core::entry;
 use crate::core::frontend::log_categories;
 use crate::core::model::Model;
 use crate::core::model_exchange_calls;
-use crate::ffi::text;
+use crate::ffi::{input_slice, text};
 use crate::fmi3::instance::Instance;
 use crate::fmi3::intermediate::IntermediateUpdate;
 use crate::fmi3::logging::{Callback, Logger};
@@ -31,6 +31,40 @@ pub struct Instantiation {
     pub intermediate_update: Option<IntermediateUpdate>,
 }
 
+/// Err unless requiredIntermediateVariables names at most as many variables as the
+/// model has, each a variable the importer may set or get in Intermediate Update Mode
+/// (declared intermediateUpdate; FMI 3.0 section 4.2.4). The count is checked before
+/// the array is read, so a wrong count never reads beyond the importer's array.
+///
+/// # Safety
+/// A non-null `vrs` must be valid for `n` value references.
+unsafe fn check_required<M: Model>(
+    inst: &Instance<M>,
+    (vrs, n): (*const Fmi3ValueReference, usize),
+) -> Result<(), String> {
+    let declared = inst.core.table().len();
+    if n > declared {
+        return Err(format!(
+            "nRequiredIntermediateVariables = {n}, but the model has {declared} variables"
+        ));
+    }
+    // SAFETY: by the contract above.
+    let vrs = unsafe { input_slice(vrs, n, "requiredIntermediateVariables[]") }?;
+    for &vr in vrs {
+        let v = inst.extra.table.find(vr).ok_or_else(|| {
+            format!("requiredIntermediateVariables: unknown value reference {vr}")
+        })?;
+        if !v.intermediate_update::<M>() {
+            return Err(format!(
+                "requiredIntermediateVariables: \"{}\" (value reference {vr}) is not declared \
+                 intermediateUpdate",
+                v.name
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The logger of an instance of M.
 fn logger<M: Model>(
     function: Option<Fmi3LogMessageCallback>,
@@ -47,6 +81,19 @@ fn logger<M: Model>(
 /// Creates an instance (fmi3InstantiateModelExchange and -CoSimulation): checks the
 /// instance name and the instantiation token; null on failure, with a log line.
 pub unsafe fn instantiate<M: Model>(args: Instantiation) -> Fmi3Instance {
+    // SAFETY: an empty list.
+    unsafe { instantiate_requiring::<M>(args, (std::ptr::null(), 0)) }
+}
+
+/// [`instantiate`] for fmi3InstantiateCoSimulation, which also checks
+/// requiredIntermediateVariables (`required`: the array and its length).
+///
+/// # Safety
+/// A non-null `required.0` must be valid for `required.1` value references.
+pub unsafe fn instantiate_requiring<M: Model>(
+    args: Instantiation,
+    required: (*const Fmi3ValueReference, usize),
+) -> Fmi3Instance {
     let logger = || logger::<M>(args.log_message, args.environment, args.logging_on);
     entry::instantiate(
         args.function,
@@ -66,7 +113,10 @@ pub unsafe fn instantiate<M: Model>(args: Instantiation) -> Fmi3Instance {
                     M::info().guid
                 ));
             }
-            Instance::<M>::new(args.interface, log, args.intermediate_update)
+            let inst = Instance::<M>::new(args.interface, log, args.intermediate_update)?;
+            // SAFETY: the host passes an array of the given length or null.
+            unsafe { check_required(&inst, required) }?;
+            Ok(inst)
         },
     )
 }

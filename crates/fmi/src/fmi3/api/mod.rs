@@ -33,7 +33,7 @@ pub use step::StepResult;
 pub use unsupported::*;
 pub use values::*;
 
-use crate::ffi::{check_finite, input_slice, output_ref, output_slice};
+use crate::ffi::{input_slice, output_ref, output_slice};
 
 use super::instance::Instance;
 use super::mode::Call;

@@ -1,7 +1,7 @@
 //! Functions of FMI 3.0 Model Exchange, and fmi3UpdateDiscreteStates (Event Mode of
 //! both interfaces).
 
-use super::{check_finite, output_ref, with_instance};
+use super::{output_ref, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::model_exchange_calls::{self as calls, indicators, states};
@@ -81,7 +81,7 @@ pub unsafe fn completed_integrator_step<M: Model>(
 pub unsafe fn set_time<M: Model>(c: Fmi3Instance, time: Fmi3Float64) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, "fmi3SetTime", Call::SetTime, |inst| {
-            inst.core.set_time(check_finite(time, "time")?);
+            entry::set_time(&mut inst.core, time)?;
             Ok(Fmi3Status::Ok)
         })
     }
