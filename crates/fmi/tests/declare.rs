@@ -88,6 +88,9 @@ fn arrays_flatten_to_fmi2_scalars_with_labels_and_per_element_starts() {
             "y[2]"
         ]
     );
+    // The allocation-free name of messages writes the same text (second formulation).
+    let shown: Vec<String> = table.iter().map(|v| v.shown_name().to_string()).collect();
+    assert_eq!(shown, names);
     assert_eq!(table[2].description(), "Axis 2: position");
     assert_eq!(table[3].description(), "velocity");
     let start = |i: usize| match table[i].kind {
