@@ -100,13 +100,13 @@ fn used_units<M>(table: &[Variable<M>]) -> Result<Vec<&'static UnitDefinition>, 
             ..
         } = &v.kind
         {
-            let def = unit(name).ok_or_else(|| format!("\"{}\": unknown unit {name}", v.name))?;
+            let def = unit(name).ok_or_else(|| format!("\"{}\": unknown unit {name}", v.name()))?;
             if let Some(d) = display_unit
                 && !def.display_units.iter().any(|du| du.name == *d)
             {
                 return Err(format!(
                     "\"{}\": {d} is not a display unit of {name}",
-                    v.name
+                    v.name()
                 ));
             }
             if !used.iter().any(|u| u.name == def.name) {

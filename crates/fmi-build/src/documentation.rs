@@ -25,14 +25,14 @@ pub fn documentation<M: Model>(standard: &str) -> Result<String, String> {
         };
         rows.push_str(&format!(
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-            escape(&v.name),
+            escape(&v.name()),
             v.value_reference,
             v.variable_type().as_str(),
             v.causality.as_str(),
             v.variability.as_str(),
             start.unwrap_or_default(),
             unit.unwrap_or_default(),
-            escape(&v.description),
+            escape(&v.description()),
         ));
     }
     let e = info.default_experiment;

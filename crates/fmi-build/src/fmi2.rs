@@ -178,7 +178,7 @@ fn unknown<M>(
     names: Option<&'static [&'static str]>,
     table: &[Variable<M>],
 ) -> Unknown {
-    let index_of = |name: &str| table.iter().position(|s| s.name == name).map(|i| i + 1);
+    let index_of = |name: &str| table.iter().position(|s| s.name() == name).map(|i| i + 1);
     let dependencies = names.map(|names| {
         let mut indices: Vec<usize> = names.iter().filter_map(|n| index_of(n)).collect();
         indices.sort_unstable();
@@ -190,13 +190,13 @@ fn unknown<M>(
             .join(" ")
     });
     Unknown {
-        index: index_of(&v.name).unwrap_or(0),
+        index: index_of(&v.name()).unwrap_or(0),
         dependencies,
     }
 }
 
 fn scalar_variable<M>(v: &Variable<M>, table: &[Variable<M>]) -> ScalarVariable {
-    let index_of = |name: &str| table.iter().position(|s| s.name == name).map(|i| i + 1);
+    let index_of = |name: &str| table.iter().position(|s| s.name() == name).map(|i| i + 1);
     let kind = match &v.kind {
         Kind::Real {
             start,
@@ -204,7 +204,6 @@ fn scalar_variable<M>(v: &Variable<M>, table: &[Variable<M>]) -> ScalarVariable 
             max,
             unit,
             display_unit,
-            derivative_of,
             ..
         } => TypeElement::Real(RealAttributes {
             unit: *unit,
@@ -212,7 +211,7 @@ fn scalar_variable<M>(v: &Variable<M>, table: &[Variable<M>]) -> ScalarVariable 
             min: min.map(number),
             max: max.map(number),
             start: start.map(number),
-            derivative: derivative_of.as_deref().and_then(index_of),
+            derivative: v.state_name().as_deref().and_then(index_of),
         }),
         Kind::Integer {
             start, min, max, ..
@@ -224,9 +223,9 @@ fn scalar_variable<M>(v: &Variable<M>, table: &[Variable<M>]) -> ScalarVariable 
         Kind::Boolean { start, .. } => TypeElement::Boolean(BooleanAttributes { start: *start }),
     };
     ScalarVariable {
-        name: v.name.to_string(),
+        name: v.name().into_owned(),
         value_reference: v.value_reference,
-        description: v.description.to_string(),
+        description: v.description().into_owned(),
         causality: v.causality.as_str(),
         variability: v.variability.as_str(),
         initial: v.initial.map(Initial::as_str),

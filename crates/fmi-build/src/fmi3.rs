@@ -206,8 +206,7 @@ fn model_variable<M: Model>(table: &[Variable<M>], v: &Variable3) -> Result<Type
     };
     let elements: Vec<_> = v
         .elements()
-        .iter()
-        .map(|&vr| find(table, vr).ok_or_else(|| format!("no element {vr}")))
+        .map(|vr| find(table, vr).ok_or_else(|| format!("no element {vr}")))
         .collect::<Result<_, _>>()?;
     let Some(first) = elements.first() else {
         return Ok(TypedVariable::Float64(out));

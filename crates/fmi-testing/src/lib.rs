@@ -96,7 +96,7 @@ pub struct Host<M: Model> {
 pub fn vr<M: Model>(name: &str) -> u32 {
     M::variables()
         .into_iter()
-        .find(|v| v.name == name)
+        .find(|v| v.name() == name)
         .unwrap_or_else(|| panic!("no variable {name}"))
         .value_reference
 }

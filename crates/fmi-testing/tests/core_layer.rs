@@ -325,7 +325,7 @@ fn one_array_declaration_gives_named_scalars_with_getters_setters_and_dimensions
         })
         .each(|v, i| v.state().start_real(0.1 * (i + 1) as f64));
     let table = array.variables();
-    let names: Vec<&str> = table.iter().map(|v| v.name.as_ref()).collect();
+    let names: Vec<String> = table.iter().map(|v| v.name().into_owned()).collect();
     assert_eq!(names, ["theta[1]", "theta[2]", "theta[3]"]);
     let vrs: Vec<u32> = table.iter().map(|v| v.value_reference).collect();
     assert_eq!(vrs, [101, 102, 103]);

@@ -8,7 +8,9 @@ use robofmu_fmi::core::check::check_table;
 use robofmu_fmi::core::declare::{Declaration, value_references};
 use robofmu_fmi::core::flatten::flatten;
 use robofmu_fmi::core::variables::Kind;
+use robofmu_fmi::core::variables::{Causality, VariableType};
 use robofmu_fmi::core::{OutputDerivativeError, Variability};
+use robofmu_fmi::fmi3::table::{Source, Table3, Variable3};
 
 #[derive(Clone, Default)]
 struct Axes {
@@ -70,7 +72,8 @@ fn value_references_are_pinned_or_follow_the_largest_before() {
 #[test]
 fn arrays_flatten_to_fmi2_scalars_with_labels_and_per_element_starts() {
     let table = flatten(TABLE);
-    let names: Vec<&str> = table.iter().map(|v| v.name.as_ref()).collect();
+    // Named from the declaration when asked (nothing formatted at flattening).
+    let names: Vec<String> = table.iter().map(|v| v.name().into_owned()).collect();
     assert_eq!(
         names,
         [
@@ -85,8 +88,11 @@ fn arrays_flatten_to_fmi2_scalars_with_labels_and_per_element_starts() {
             "y[2]"
         ]
     );
-    assert_eq!(table[2].description, "Axis 2: position");
-    assert_eq!(table[3].description, "velocity");
+    // The allocation-free name of messages writes the same text (second formulation).
+    let shown: Vec<String> = table.iter().map(|v| v.shown_name().to_string()).collect();
+    assert_eq!(shown, names);
+    assert_eq!(table[2].description(), "Axis 2: position");
+    assert_eq!(table[3].description(), "velocity");
     let start = |i: usize| match table[i].kind {
         Kind::Real { start, .. } => start,
         _ => None,
@@ -95,10 +101,9 @@ fn arrays_flatten_to_fmi2_scalars_with_labels_and_per_element_starts() {
         (start(1), start(2), start(5), start(6)),
         (Some(1.5), Some(-2.5), Some(0.0), Some(0.0))
     );
-    let Kind::Real { derivative_of, .. } = &table[4].kind else {
-        panic!("a Real")
-    };
-    assert_eq!(derivative_of.as_deref(), Some("x[2]"));
+    assert_eq!(table[4].state_name().as_deref(), Some("x[2]"));
+    assert_eq!(table[4].state_key(), Some(("x", Some(1))));
+    assert_eq!(table[2].key(), ("x", Some(1)));
     let element = table[4].element().expect("declared");
     assert_eq!((element.name, element.index), ("der(x)", 1));
     let mut sorted = table;
@@ -126,4 +131,47 @@ fn accessors_and_hooks_reach_their_element() {
     *slot(&mut m, i, 1).expect("order 1 kept") = 0.5;
     assert_eq!(m.ramp, [0.0, 0.5]);
     assert!(slot(&mut m, i, 2).is_none());
+}
+
+/// An FMI 3.0 array of 3 elements at value references 10, 20, 30 (first 10, stride 10).
+fn strided_array(value_reference: u32) -> Variable3 {
+    Variable3 {
+        value_reference,
+        name: "q".into(),
+        variable_type: VariableType::Real,
+        causality: Causality::Output,
+        variability: Variability::Continuous,
+        initial: None,
+        dimension: Some(3),
+        source: Source::Elements {
+            first: value_reference,
+            stride: 10,
+        },
+        derivative_of: None,
+    }
+}
+
+#[test]
+fn fmi3_elements_are_index_arithmetic_and_lookups_find_every_variable() {
+    // Expected: element k at first + k * stride (the scheme of core/declare.rs).
+    let q = strided_array(10);
+    assert_eq!(q.elements().collect::<Vec<_>>(), [10, 20, 30]);
+    assert_eq!(q.elements().len(), 3);
+    let time = Variable3 {
+        source: Source::Time,
+        dimension: None,
+        ..strided_array(0)
+    };
+    assert!(time.elements().is_empty());
+    // Description order not by value reference (40 before 11): the lookup still finds
+    // each, and nothing else.
+    let table = Table3::new(vec![time, strided_array(40), strided_array(11)]);
+    for vr in [0, 40, 11] {
+        assert_eq!(table.find(vr).map(|v| v.value_reference), Some(vr));
+    }
+    assert!(table.find(20).is_none());
+    // In value-reference order (searched directly).
+    let sorted = Table3::new(vec![strided_array(11), strided_array(40)]);
+    assert_eq!(sorted.find(40).map(|v| v.value_reference), Some(40));
+    assert!(sorted.find(12).is_none());
 }

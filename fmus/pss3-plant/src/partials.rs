@@ -196,7 +196,7 @@ fn output_partials(
 ) -> Result<Vec<f64>, String> {
     let getters = unknowns
         .iter()
-        .map(|&vr| match find(table, vr).map(|v| (&v.name, &v.kind)) {
+        .map(|&vr| match find(table, vr).map(|v| (v.name(), &v.kind)) {
             Some((_, Kind::Real { get, .. })) => Ok(get),
             Some((name, _)) => Err(format!("\"{name}\" is not a Real variable")),
             None => Err(format!("unknown value reference {vr}")),

@@ -409,7 +409,8 @@ pub fn table() -> Vec<Variable<Pss3Plant>> {
     derivatives(&mut table);
     table.extend(parameters::variables(&Pss3Plant::new()));
     for v in &mut table {
-        v.initial_dependencies = initial_dependencies::of(&v.name);
+        let dependencies = initial_dependencies::of(&v.name());
+        v.initial_dependencies = dependencies;
     }
     table
 }

@@ -16,7 +16,7 @@ fn real_outputs() -> Vec<String> {
     Pss3Plant::variables()
         .into_iter()
         .filter(|v| v.causality == Causality::Output && v.variable_type() == VariableType::Real)
-        .map(|v| v.name.into_owned())
+        .map(|v| v.name().into_owned())
         .collect()
 }
 

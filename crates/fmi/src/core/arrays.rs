@@ -138,7 +138,7 @@ impl<M: 'static, T: ElementType, R: Role<M>> Array<M, T, R> {
     /// Describes element i as "`label` i: description" (e.g. "Axis 2: position").
     pub fn label(self, label: &'static str) -> Array<M, T, impl Role<M>> {
         self.each(move |v, i| {
-            let description = numbered(&[label, " "], i + 1, ": ") + &v.description;
+            let description = numbered(&[label, " "], i + 1, ": ") + &v.stored_description;
             v.describe(description)
         })
     }
@@ -197,10 +197,10 @@ impl<M: 'static> RealArray<M> {
 pub(super) fn check_arrays<M>(table: &[Variable<M>]) -> Result<(), String> {
     for v in table {
         let Some(element) = &v.array else { continue };
-        if v.name != element.name(element.index) {
+        if v.name() != element.name(element.index) {
             return Err(format!(
                 "\"{}\": array element named unlike its position",
-                v.name
+                v.name()
             ));
         }
         if element.stride == 0 {

@@ -187,14 +187,14 @@ pub fn instantiate<F: Frontend, M: Model>(
 ) -> *mut c_void {
     let created = catch_unwind(AssertUnwindSafe(|| match create(logger()) {
         Ok(instance) => {
-            instance.log.debug(
-                "logEvents",
-                &format!(
+            if instance.log.enabled("logEvents") {
+                let message = format!(
                     "instantiated {} for {:?}",
                     M::info().model_name,
                     instance.interface
-                ),
-            );
+                );
+                instance.log.debug("logEvents", &message);
+            }
             let report = reporter::<F>(&instance.log);
             let address = Box::into_raw(Box::new(instance));
             let kind = HandleKind::Instance;

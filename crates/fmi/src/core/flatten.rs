@@ -1,5 +1,7 @@
 //! The FMI 2.0 scalars of a declared table ([`declare`](super::declare)): what an
-//! instance holds, element by element, pointing back at its declaration.
+//! instance holds, element by element, pointing back at its declaration. Nothing is
+//! formatted here: an element's name, description and state are formatted from its
+//! declaration when asked ([`Variable::name`]).
 
 use super::declare::{Declaration, Value, value_references};
 use super::element::ArrayElement;
@@ -28,18 +30,10 @@ fn element<M>(d: &'static Declaration<M>, first: u32, i: usize) -> Variable<M> {
         stride: d.stride,
         derivative: d.derivative_of.is_some(),
     });
-    let name: Cow<'static, str> = match &array {
-        Some(e) => e.name(i).into(),
-        None => d.name.into(),
-    };
-    let description: Cow<'static, str> = match (d.label, d.length) {
-        (Some(label), Some(_)) => format!("{label} {}: {}", i + 1, d.description).into(),
-        _ => d.description.into(),
-    };
-    let mut v = Variable {
+    Variable {
         value_reference: vr,
-        name,
-        description,
+        stored_name: Cow::Borrowed(d.name),
+        stored_description: Cow::Borrowed(d.description),
         causality: d.causality,
         variability: d.variability,
         initial: d.initial,
@@ -48,14 +42,7 @@ fn element<M>(d: &'static Declaration<M>, first: u32, i: usize) -> Variable<M> {
         initial_dependencies: d.initial_dependencies.map(|f| f(i)),
         array,
         declared: Some((d, i)),
-    };
-    if let (Kind::Real { derivative_of, .. }, Some(state)) = (&mut v.kind, d.derivative_of) {
-        *derivative_of = Some(match d.length {
-            Some(_) => format!("{state}[{}]", i + 1).into(),
-            None => state.into(),
-        });
     }
-    v
 }
 
 /// The scalar accessors of element i.
@@ -77,7 +64,7 @@ fn kind<M>(value: &Value<M>, i: usize) -> Kind<M> {
             max,
             unit,
             display_unit,
-            derivative_of: None,
+            derivative_of_built: None,
         },
         Value::Integer {
             get,

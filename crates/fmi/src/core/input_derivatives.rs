@@ -54,13 +54,13 @@ impl<M: Model> Instance<M> {
         if !interpolated_input(v) {
             return Err(format!(
                 "\"{}\" (value reference {vr}) is a {} {} {}, not a continuous Real input",
-                v.name,
+                v.name(),
                 v.variability.as_str(),
                 v.variable_type().as_str(),
                 v.causality.as_str()
             ));
         }
-        let name = v.name.clone();
+        let name = v.name().into_owned();
         let order = check_order::<M>(&name, order)?;
         if !value.is_finite() || value.abs() > MAX_MAGNITUDE {
             return Err(format!(

@@ -93,7 +93,7 @@ pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, Str
             } => set.call(&mut model, *s),
             _ => Ok(()),
         };
-        result.map_err(|e| format!("start value of \"{}\" rejected: {e}", v.name))?;
+        result.map_err(|e| format!("start value of \"{}\" rejected: {e}", v.name()))?;
     }
     Ok(model)
 }
@@ -109,7 +109,9 @@ pub fn sorted_table<M: Model>() -> Result<Vec<Variable<M>>, String> {
     {
         return Err(format!(
             "\"{}\" and \"{}\" share the value reference {}",
-            pair[0].name, pair[1].name, pair[0].value_reference
+            pair[0].name(),
+            pair[1].name(),
+            pair[0].value_reference
         ));
     }
     Ok(table)
@@ -141,28 +143,12 @@ pub fn variable<M>(table: &[Variable<M>], vr: u32) -> Result<&Variable<M>, Strin
 /// derivative or other calculated variable, as opposed to a parameter, an input or a
 /// continuous state, even one declared as an output).
 pub fn calculated_flags<M>(table: &[Variable<M>]) -> Vec<bool> {
-    let states: Vec<&str> = table
-        .iter()
-        .filter_map(|v| match &v.kind {
-            Kind::Real {
-                derivative_of: Some(state),
-                ..
-            } => Some(state.as_ref()),
-            _ => None,
-        })
-        .collect();
+    let states: Vec<(&str, Option<usize>)> = table.iter().filter_map(Variable::state_key).collect();
     table
         .iter()
         .map(|v| {
-            let derivative = matches!(
-                v.kind,
-                Kind::Real {
-                    derivative_of: Some(_),
-                    ..
-                }
-            );
             let calculated = matches!(v.initial, Some(Initial::Calculated | Initial::Approx));
-            derivative || (calculated && !states.contains(&v.name.as_ref()))
+            v.is_derivative() || (calculated && !states.contains(&v.key()))
         })
         .collect()
 }
@@ -244,7 +230,7 @@ impl<M: Model> Instance<M> {
             if let Kind::Real { get, .. } = &v.kind {
                 let value = get.call(&self.model);
                 if !value.is_finite() {
-                    return Err(format!("\"{}\" evaluates to {value}", v.name));
+                    return Err(format!("\"{}\" evaluates to {value}", v.name()));
                 }
             }
         }
@@ -265,7 +251,7 @@ impl<M: Model> Instance<M> {
             } else if let Kind::Real { get, .. } = &self.table[at].kind {
                 let value = get.call(&self.model);
                 if !value.is_finite() {
-                    let name = &self.table[at].name;
+                    let name = self.table[at].shown_name();
                     return Ok(Some(format!("\"{name}\" evaluates to {value}")));
                 }
             }
@@ -402,7 +388,7 @@ impl<M: Model> Instance<M> {
         if value.is_finite() {
             Ok(value)
         } else {
-            Err(format!("\"{}\" evaluated to {value}", v.name))
+            Err(format!("\"{}\" evaluated to {value}", v.name()))
         }
     }
 

@@ -121,6 +121,11 @@ impl<S: LogSink> Logger<S> {
         self.filter.configure(logging_on, names)
     }
 
+    /// Whether messages under `category` reach the host (to skip formatting them).
+    pub fn enabled(&self, category: &str) -> bool {
+        self.filter.is_enabled(category)
+    }
+
     /// Logs a message about a call that ends with `status`.
     pub fn status(&self, status: S::Status, message: &str) {
         let category = status_category(status);

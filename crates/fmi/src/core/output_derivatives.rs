@@ -6,6 +6,7 @@
 use super::instance::{Instance, variable};
 use super::model::{Model, OutputDerivativeError};
 use super::variables::{Causality, VariableType};
+use std::borrow::Cow;
 
 /// The derivative of order `order` of the table element `vr` (FMI 2.0 value reference).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -16,28 +17,30 @@ pub struct Request {
 
 /// The name of the requested variable once it is checked to be a Real output, and the
 /// order once it is checked to be within 1 ..= maxOutputDerivativeOrder.
-fn check<M: Model>(inst: &Instance<M>, r: Request) -> Result<(&str, u32), String> {
+fn check<M: Model>(inst: &Instance<M>, r: Request) -> Result<(Cow<'_, str>, u32), String> {
     let v = variable(inst.table(), r.vr)?;
     if v.causality != Causality::Output || v.variable_type() != VariableType::Real {
         return Err(format!(
             "\"{}\" (value reference {}) is not a Real output: only outputs have output \
              derivatives",
-            v.name, r.vr
+            v.name(),
+            r.vr
         ));
     }
     let max = M::info().max_output_derivative_order;
     match u32::try_from(r.order) {
-        Ok(order) if (1..=max).contains(&order) => Ok((&v.name, order)),
+        Ok(order) if (1..=max).contains(&order) => Ok((v.name(), order)),
         _ if max == 0 => Err(format!(
             "{} provides no output derivatives (maxOutputDerivativeOrder=\"0\"); \
              asked for order {} of \"{}\"",
             M::info().model_name,
             r.order,
-            v.name
+            v.name()
         )),
         _ => Err(format!(
             "order {} of \"{}\" is outside 1..{max} (maxOutputDerivativeOrder=\"{max}\")",
-            r.order, v.name
+            r.order,
+            v.name()
         )),
     }
 }

@@ -229,7 +229,7 @@ fn read_values<M: Model>(
     model: &mut M,
 ) -> Result<(), String> {
     for v in table {
-        let name = v.name.as_ref();
+        let name = &v.name();
         let value = match &v.kind {
             Kind::Real { set: Some(_), .. } => Value::Real(r.f64(name)?),
             Kind::Integer { set: Some(_), .. } => {

@@ -3,7 +3,7 @@
 //! value read back from a serialized FMU state go through [`write()`], so a state can
 //! hold nothing that the setters would refuse.
 
-use super::variables::{Kind, Variable};
+use super::variables::{Kind, ShownName, Variable};
 
 /// Largest magnitude the layer accepts for a Real value set by the host. No model
 /// quantity in SI units comes near it, and the product of two such values is still
@@ -23,7 +23,7 @@ pub enum Value {
 pub fn wrong_type<M>(v: &Variable<M>, wanted: &str) -> String {
     format!(
         "\"{}\" (value reference {}) is a {} variable, not {wanted}",
-        v.name,
+        v.shown_name(),
         v.value_reference,
         v.variable_type().as_str()
     )
@@ -31,7 +31,12 @@ pub fn wrong_type<M>(v: &Variable<M>, wanted: &str) -> String {
 
 /// Err unless the Real `value` is finite, within [`MAX_MAGNITUDE`] and within the
 /// variable's [min, max].
-fn check_real(name: &str, value: f64, min: Option<f64>, max: Option<f64>) -> Result<(), String> {
+fn check_real(
+    name: ShownName,
+    value: f64,
+    min: Option<f64>,
+    max: Option<f64>,
+) -> Result<(), String> {
     if !value.is_finite() {
         return Err(format!("\"{name}\" cannot be set to {value}"));
     }
@@ -55,7 +60,7 @@ fn check_real(name: &str, value: f64, min: Option<f64>, max: Option<f64>) -> Res
 /// Integer: min/max) and writes it through the variable's writer, whose own check
 /// may still refuse it. Whether the variable may be set now is the front-end's rule.
 pub fn write<M>(model: &mut M, v: &Variable<M>, value: Value) -> Result<(), String> {
-    let name = &v.name;
+    let name = v.shown_name();
     let result = match (&v.kind, value) {
         (Kind::Real { set, min, max, .. }, Value::Real(x)) => {
             check_real(name, x, *min, *max)?;

@@ -5,10 +5,11 @@
 //! Every instance builds its own table (nothing of it may outlive the instance: a
 //! table kept by the loaded library would leak at dlclose), so building one is kept
 //! cheap: names, descriptions and dependency lists are static strings wherever the
-//! declaration allows (`Cow<'static, str>`), and only array elements format theirs.
+//! declaration allows (`Cow<'static, str>`); an element of a declared array is named
+//! and described from its declaration only when asked ([`Variable::name`]).
 
 use super::declare::Declaration;
-use super::element::ArrayElement;
+use super::element::{ArrayElement, numbered};
 use super::hooks::{Element, InputDerivative, OutputDerivative};
 use std::borrow::Cow;
 
@@ -117,8 +118,9 @@ pub enum Kind<M> {
         max: Option<f64>,
         unit: Option<&'static str>,
         display_unit: Option<&'static str>,
-        /// Name of the state this variable is the time derivative of.
-        derivative_of: Option<Cow<'static, str>>,
+        /// Name of the state this variable (built per instance, not declared) is the
+        /// time derivative of; a declared one says it in its declaration.
+        derivative_of_built: Option<Cow<'static, str>>,
     },
     Integer {
         get: Getter<M, i32>,
@@ -155,8 +157,11 @@ impl VariableType {
 /// One scalar variable.
 pub struct Variable<M: 'static> {
     pub value_reference: u32,
-    pub name: Cow<'static, str>,
-    pub description: Cow<'static, str>,
+    /// The name ([`Variable::name`]; of a declared array: the declaration's).
+    pub(crate) stored_name: Cow<'static, str>,
+    /// The description ([`Variable::description`]; of a declared array: the
+    /// declaration's).
+    pub(crate) stored_description: Cow<'static, str>,
     pub causality: Causality,
     pub variability: Variability,
     pub initial: Option<Initial>,
@@ -188,8 +193,8 @@ impl<M: 'static> Variable<M> {
         };
         Variable {
             value_reference: vr,
-            name: name.into(),
-            description: description.into(),
+            stored_name: name.into(),
+            stored_description: description.into(),
             causality: Causality::Local,
             variability,
             initial: None,
@@ -203,7 +208,7 @@ impl<M: 'static> Variable<M> {
 
     /// Replaces the description (e.g. per element of an array).
     pub fn describe(mut self, description: impl Into<Cow<'static, str>>) -> Self {
-        self.description = description.into();
+        self.stored_description = description.into();
         self
     }
 
@@ -222,7 +227,7 @@ impl<M: 'static> Variable<M> {
             max: None,
             unit: None,
             display_unit: None,
-            derivative_of: None,
+            derivative_of_built: None,
         };
         Self::with_kind(vr, name, description, kind)
     }
@@ -291,8 +296,12 @@ impl<M: 'static> Variable<M> {
     pub fn derivative_of(mut self, state: impl Into<Cow<'static, str>>) -> Self {
         self.causality = Causality::Local;
         self.initial = Some(Initial::Calculated);
-        if let Kind::Real { derivative_of, .. } = &mut self.kind {
-            *derivative_of = Some(state.into());
+        if let Kind::Real {
+            derivative_of_built,
+            ..
+        } = &mut self.kind
+        {
+            *derivative_of_built = Some(state.into());
         }
         self
     }
@@ -392,6 +401,75 @@ impl<M: 'static> Variable<M> {
         self
     }
 
+    /// The FMI 2.0 name; an element of a declared array is named when asked (`q[2]`),
+    /// so that nothing is formatted at instantiation.
+    pub fn name(&self) -> Cow<'_, str> {
+        match (&self.array, self.declared) {
+            (Some(array), Some((_, i))) => array.name(i).into(),
+            _ => Cow::Borrowed(&self.stored_name),
+        }
+    }
+
+    /// The FMI 2.0 name as [`Display`](std::fmt::Display), written without an
+    /// allocation (for messages formatted only on a refusal).
+    pub fn shown_name(&self) -> ShownName<'_> {
+        match (self.array, self.declared) {
+            (Some(array), Some((_, i))) => ShownName::Element(array, i),
+            _ => ShownName::Plain(&self.stored_name),
+        }
+    }
+
+    /// The FMI 2.0 description; element i of a labelled declared array is described
+    /// when asked ("`label` i: description").
+    pub fn description(&self) -> Cow<'_, str> {
+        match self.declared {
+            Some((d, i)) => match (d.label, d.length) {
+                (Some(label), Some(_)) => format!("{label} {}: {}", i + 1, d.description).into(),
+                _ => d.description.into(),
+            },
+            None => Cow::Borrowed(&self.stored_description),
+        }
+    }
+
+    /// The scalar as (name, element index): a declared element by its declaration's
+    /// name and index (None for a scalar), any other by its name. Compared with
+    /// [`Variable::state_key`] without formatting a name.
+    pub fn key(&self) -> (&str, Option<usize>) {
+        match self.declared {
+            Some((d, i)) => (d.name, d.length.map(|_| i)),
+            None => (&self.stored_name, None),
+        }
+    }
+
+    /// The [`key`](Variable::key) of the state this scalar is the time derivative of.
+    pub fn state_key(&self) -> Option<(&str, Option<usize>)> {
+        match (self.declared, &self.kind) {
+            (Some((d, i)), _) => Some((d.derivative_of?, d.length.map(|_| i))),
+            (
+                None,
+                Kind::Real {
+                    derivative_of_built: Some(state),
+                    ..
+                },
+            ) => Some((state, None)),
+            _ => None,
+        }
+    }
+
+    /// The name of the state this scalar is the time derivative of (formatted when
+    /// asked for an element of a declared array).
+    pub fn state_name(&self) -> Option<Cow<'_, str>> {
+        Some(match self.state_key()? {
+            (state, None) => Cow::Borrowed(state),
+            (state, Some(i)) => numbered(&[state, "["], i + 1, "]").into(),
+        })
+    }
+
+    /// Whether this scalar is the time derivative of a state.
+    pub fn is_derivative(&self) -> bool {
+        self.state_key().is_some()
+    }
+
     /// The declared element this scalar is, if it was declared.
     pub fn element(&self) -> Option<Element> {
         let (d, index) = self.declared?;
@@ -438,6 +516,24 @@ impl<M: 'static> Variable<M> {
     }
 }
 
+/// A variable's FMI 2.0 name, written when displayed ([`Variable::shown_name`]).
+#[derive(Debug, Clone, Copy)]
+pub enum ShownName<'a> {
+    Plain(&'a str),
+    /// Element i of a declared array.
+    Element(ArrayElement, usize),
+}
+
+impl std::fmt::Display for ShownName<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            ShownName::Plain(name) => f.write_str(name),
+            ShownName::Element(a, i) if a.derivative => write!(f, "der({}[{}])", a.base, i + 1),
+            ShownName::Element(a, i) => write!(f, "{}[{}]", a.base, i + 1),
+        }
+    }
+}
+
 /// Position of the variable with value reference `vr` in a table sorted by value
 /// reference (checked by `check_table`).
 pub fn find<M>(table: &[Variable<M>], vr: u32) -> Option<&Variable<M>> {
@@ -459,17 +555,17 @@ pub fn check_variables<M>(table: &[Variable<M>]) -> Result<(), String> {
         if pair[0].value_reference >= pair[1].value_reference {
             return Err(format!(
                 "value references not strictly increasing at \"{}\"",
-                pair[1].name
+                pair[1].name()
             ));
         }
     }
-    let mut names: Vec<&str> = table.iter().map(|v| v.name.as_ref()).collect();
+    let mut names: Vec<Cow<str>> = table.iter().map(Variable::name).collect();
     names.sort_unstable();
     if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
         return Err(format!("duplicate variable name \"{}\"", w[0]));
     }
     for v in table {
-        let name = &v.name;
+        let name = v.name();
         let legal = matches!(
             (v.causality, v.variability, v.initial),
             (C::Parameter, V::Fixed | V::Tunable, Some(Initial::Exact))
@@ -516,13 +612,9 @@ pub fn check_variables<M>(table: &[Variable<M>]) -> Result<(), String> {
                 if settable { "may" } else { "may not" }
             ));
         }
-        if let Kind::Real {
-            derivative_of: Some(state),
-            ..
-        } = &v.kind
-        {
+        if let Some(state) = v.state_name() {
             let found = table.iter().any(|s| {
-                &s.name == state
+                s.name() == state
                     && s.variable_type() == VariableType::Real
                     && s.variability == V::Continuous
             });
@@ -542,32 +634,23 @@ fn check_dependencies<M>(v: &Variable<M>, table: &[Variable<M>]) -> Result<(), S
     let Some(names) = &v.dependencies else {
         return Ok(());
     };
-    let is_derivative = |v: &Variable<M>| {
-        matches!(
-            v.kind,
-            Kind::Real {
-                derivative_of: Some(_),
-                ..
-            }
-        )
-    };
-    if v.causality != Causality::Output && !is_derivative(v) {
+    if v.causality != Causality::Output && !v.is_derivative() {
         return Err(format!(
             "\"{}\": only outputs and derivatives declare dependencies",
-            v.name
+            v.name()
         ));
     }
     for name in names.iter() {
         let is_state = derivative_variables(table)
             .iter()
-            .any(|d| matches!(&d.kind, Kind::Real { derivative_of: Some(s), .. } if s == name));
+            .any(|d| d.state_name().is_some_and(|s| s == *name));
         let is_input = table
             .iter()
-            .any(|k| &k.name == name && k.causality == Causality::Input);
+            .any(|k| k.name() == *name && k.causality == Causality::Input);
         if !(is_state || is_input) {
             return Err(format!(
                 "\"{}\": dependency \"{name}\" is neither an input nor a continuous state",
-                v.name
+                v.name()
             ));
         }
     }
@@ -576,16 +659,5 @@ fn check_dependencies<M>(v: &Variable<M>, table: &[Variable<M>]) -> Result<(), S
 
 /// Value references of the derivative variables, in table order (= state order).
 pub fn derivative_variables<M>(table: &[Variable<M>]) -> Vec<&Variable<M>> {
-    table
-        .iter()
-        .filter(|v| {
-            matches!(
-                v.kind,
-                Kind::Real {
-                    derivative_of: Some(_),
-                    ..
-                }
-            )
-        })
-        .collect()
+    table.iter().filter(|v| v.is_derivative()).collect()
 }

@@ -47,7 +47,7 @@ impl<M: Model> FmuInstance<Fmi2, M> {
                 _ => false,
             },
         };
-        entry::settable(ok, &v.name, v.causality, v.variability, mode)
+        entry::settable(ok, &v.name(), v.causality, v.variability, mode)
     }
 
     /// The mode check for writing `vr` as a `wanted` variable (a wrong type is

@@ -52,7 +52,6 @@ fn variable3<M>(
         Value::Integer { .. } => VariableType::Integer,
         Value::Boolean { .. } => VariableType::Boolean,
     };
-    let elements = (0..d.size()).map(|i| first + i as u32 * d.stride);
     Ok(Variable3 {
         value_reference: first,
         name: Cow::Borrowed(d.name),
@@ -61,7 +60,10 @@ fn variable3<M>(
         variability: d.variability,
         initial: d.initial,
         dimension: d.length,
-        source: Source::Elements(elements.collect()),
+        source: Source::Elements {
+            first,
+            stride: d.stride,
+        },
         derivative_of,
     })
 }

@@ -48,10 +48,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 v.name
             ));
         }
-        let elements: Vec<u32> = variables
-            .iter()
-            .flat_map(|v| v.elements().iter().copied())
-            .collect();
+        let elements: Vec<u32> = variables.iter().flat_map(|v| v.elements()).collect();
         if let Some(reason) = self.core.prepare_read(&elements)? {
             return Ok(Some(reason));
         }
@@ -84,8 +81,8 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                     return Err(format!("the model computed the event indicator {bad}"));
                 }
             }
-            Source::Elements(elements) => {
-                for (o, &e) in out.iter_mut().zip(elements) {
+            Source::Elements { .. } => {
+                for (o, e) in out.iter_mut().zip(v.elements()) {
                     *o = self.core.get_real(e)?;
                 }
             }
@@ -94,14 +91,14 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     }
 
     pub fn get_int32(&self, v: &Variable3, out: &mut [i32]) -> Result<(), String> {
-        for (o, &e) in out.iter_mut().zip(v.elements()) {
+        for (o, e) in out.iter_mut().zip(v.elements()) {
             *o = self.core.get_integer(e)?;
         }
         Ok(())
     }
 
     pub fn get_boolean(&self, v: &Variable3, out: &mut [bool]) -> Result<(), String> {
-        for (o, &e) in out.iter_mut().zip(v.elements()) {
+        for (o, e) in out.iter_mut().zip(v.elements()) {
             *o = self.core.get_boolean(e)?;
         }
         Ok(())
@@ -109,7 +106,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
 
     pub fn set_float64(&mut self, v: &Variable3, values: &[f64]) -> Result<(), String> {
         self.check_settable(v)?;
-        for (&x, &e) in values.iter().zip(v.elements()) {
+        for (&x, e) in values.iter().zip(v.elements()) {
             self.core.set_real(e, x)?;
         }
         Ok(())
@@ -117,7 +114,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
 
     pub fn set_int32(&mut self, v: &Variable3, values: &[i32]) -> Result<(), String> {
         self.check_settable(v)?;
-        for (&x, &e) in values.iter().zip(v.elements()) {
+        for (&x, e) in values.iter().zip(v.elements()) {
             self.core.set_integer(e, x)?;
         }
         Ok(())
@@ -125,7 +122,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
 
     pub fn set_boolean(&mut self, v: &Variable3, values: &[bool]) -> Result<(), String> {
         self.check_settable(v)?;
-        for (&x, &e) in values.iter().zip(v.elements()) {
+        for (&x, e) in values.iter().zip(v.elements()) {
             self.core.set_boolean(e, x)?;
         }
         Ok(())

@@ -29,8 +29,9 @@ pub const TIME_VALUE_REFERENCE: u32 = 0;
 /// What an FMI 3.0 variable reads and writes.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Source {
-    /// Elements of the model's table, by their (FMI 2.0) value references.
-    Elements(Vec<u32>),
+    /// Elements of the model's table, by their (FMI 2.0) value references: element k
+    /// at `first + k * stride` (k below the variable's size; nothing stored per element).
+    Elements { first: u32, stride: u32 },
     /// The instance's time.
     Time,
     /// The model's event indicators (`Model::event_indicators`).
@@ -67,35 +68,80 @@ impl Variable3 {
         M::INTERMEDIATE_UPDATE_POINTS > 0
             && self.variable_type == VariableType::Real
             && self.variability == Variability::Continuous
-            && matches!(self.source, Source::Elements(_))
+            && matches!(self.source, Source::Elements { .. })
             && matches!(self.causality, Causality::Input | Causality::Output)
     }
 
-    /// The table's elements, in order (empty for time and event indicators).
-    pub fn elements(&self) -> &[u32] {
-        match &self.source {
-            Source::Elements(e) => e,
-            _ => &[],
+    /// The table's elements, in order (none for time and event indicators).
+    pub fn elements(&self) -> Elements {
+        match self.source {
+            Source::Elements { first, stride } => Elements {
+                next: first,
+                stride,
+                left: self.size(),
+            },
+            _ => Elements {
+                next: 0,
+                stride: 1,
+                left: 0,
+            },
         }
     }
 }
+
+/// The table elements (FMI 2.0 value references) of an FMI 3.0 variable, in order,
+/// computed from the first one and the stride.
+#[derive(Debug, Clone)]
+pub struct Elements {
+    next: u32,
+    stride: u32,
+    left: usize,
+}
+
+impl Elements {
+    /// Whether there are none (time, event indicators).
+    pub fn is_empty(&self) -> bool {
+        self.left == 0
+    }
+}
+
+impl Iterator for Elements {
+    type Item = u32;
+
+    fn next(&mut self) -> Option<u32> {
+        self.left = self.left.checked_sub(1)?;
+        let e = self.next;
+        self.next = self.next.wrapping_add(self.stride);
+        Some(e)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        (self.left, Some(self.left))
+    }
+}
+
+impl ExactSizeIterator for Elements {}
 
 /// The FMI 3.0 variables of a model, in description order, with a lookup by value
 /// reference.
 #[derive(Debug, Clone)]
 pub struct Table3 {
     pub variables: Vec<Variable3>,
-    by_reference: HashMap<u32, usize>,
+    /// (value reference, position) sorted, when the description order is not the
+    /// value-reference order; empty otherwise (the lookup searches the variables).
+    by_reference: Vec<(u32, usize)>,
 }
 
 impl Table3 {
     /// The table of `variables` (in description order).
     pub fn new(variables: Vec<Variable3>) -> Self {
-        let by_reference = variables
-            .iter()
-            .enumerate()
-            .map(|(i, v)| (v.value_reference, i))
-            .collect();
+        let mut by_reference = Vec::new();
+        if !variables.is_sorted_by_key(|v| v.value_reference) {
+            by_reference = (variables.iter().enumerate())
+                .map(|(i, v)| (v.value_reference, i))
+                .collect();
+            by_reference.sort_unstable();
+        }
         Table3 {
             variables,
             by_reference,
@@ -103,7 +149,17 @@ impl Table3 {
     }
 
     pub fn find(&self, vr: u32) -> Option<&Variable3> {
-        self.by_reference.get(&vr).map(|&i| &self.variables[i])
+        let i = if self.by_reference.is_empty() {
+            (self.variables)
+                .binary_search_by_key(&vr, |v| v.value_reference)
+                .ok()?
+        } else {
+            let k = (self.by_reference)
+                .binary_search_by_key(&vr, |&(r, _)| r)
+                .ok()?;
+            self.by_reference[k].1
+        };
+        Some(&self.variables[i])
     }
 
     /// The variable with value reference `vr`, of type `wanted`.
@@ -242,11 +298,25 @@ fn same_declaration<M>(a: &Variable<M>, b: &Variable<M>) -> bool {
         && unit(a) == unit(b)
 }
 
+/// [`split_index`] of a name borrowed from the table or formatted for it.
+fn split_name(name: Cow<'_, str>) -> (bool, Cow<'_, str>, Option<usize>) {
+    match name {
+        Cow::Borrowed(name) => {
+            let (derivative, base, index) = split_index(name);
+            (derivative, Cow::Borrowed(base), index)
+        }
+        Cow::Owned(name) => {
+            let (derivative, base, index) = split_index(&name);
+            (derivative, Cow::Owned(base.to_string()), index)
+        }
+    }
+}
+
 /// The table positions of one FMI 3.0 variable: a scalar or the elements of an array
 /// named `base` (`der(base)`).
 struct Group<'a> {
     derivative: bool,
-    base: &'a str,
+    base: Cow<'a, str>,
     is_array: bool,
     members: Vec<usize>,
 }
@@ -254,23 +324,25 @@ struct Group<'a> {
 /// Groups of table positions, one per FMI 3.0 variable, in order of first appearance.
 fn groups<M>(table: &[Variable<M>]) -> Result<Vec<Group<'_>>, String> {
     let mut order: Vec<Group> = Vec::new();
-    let mut position: HashMap<(bool, &str), usize> = HashMap::with_capacity(table.len());
+    let mut position: HashMap<(bool, Cow<str>), usize> = HashMap::with_capacity(table.len());
     for (i, v) in table.iter().enumerate() {
-        let (derivative, base, index) = split_index(&v.name);
+        let (derivative, base, index) = split_name(v.name());
         let is_array = index.is_some();
-        let slot = *position.entry((derivative, base)).or_insert_with(|| {
-            order.push(Group {
-                derivative,
-                base,
-                is_array,
-                members: Vec::new(),
+        let slot = *position
+            .entry((derivative, base.clone()))
+            .or_insert_with(|| {
+                order.push(Group {
+                    derivative,
+                    base: base.clone(),
+                    is_array,
+                    members: Vec::new(),
+                });
+                order.len() - 1
             });
-            order.len() - 1
-        });
         if order[slot].is_array != is_array {
             return Err(format!(
                 "\"{}\" is declared both as a scalar and as an array",
-                group_name(derivative, base)
+                group_name(derivative, &base)
             ));
         }
         order[slot].members.push(i);
@@ -284,7 +356,7 @@ fn groups<M>(table: &[Variable<M>]) -> Result<Vec<Group<'_>>, String> {
 /// A scalar declared once; an array's elements numbered 1..n, agreeing with their
 /// `ArrayElement` metadata, declared alike.
 fn check_group<M>(table: &[Variable<M>], group: &mut Group) -> Result<(), String> {
-    let name = || group_name(group.derivative, group.base);
+    let name = || group_name(group.derivative, &group.base);
     if !group.is_array {
         if group.members.len() > 1 {
             return Err(format!("duplicate variable \"{}\"", name()));
@@ -293,19 +365,19 @@ fn check_group<M>(table: &[Variable<M>], group: &mut Group) -> Result<(), String
     }
     group
         .members
-        .sort_by_key(|&i| split_index(&table[i].name).2);
+        .sort_by_key(|&i| split_index(&table[i].name()).2);
     let n = group.members.len();
     let first = &table[group.members[0]];
     for (k, &i) in group.members.iter().enumerate() {
         let v = &table[i];
-        if split_index(&v.name).2 != Some(k + 1) {
+        if split_index(&v.name()).2 != Some(k + 1) {
             return Err(format!(
                 "the elements of \"{}\" are not numbered 1..n",
                 name()
             ));
         }
         if let Some(a) = &v.array
-            && (a.base != group.base
+            && (a.base != group.base.as_ref()
                 || a.derivative != group.derivative
                 || a.index != k
                 || a.length != n)
@@ -313,7 +385,7 @@ fn check_group<M>(table: &[Variable<M>], group: &mut Group) -> Result<(), String
             return Err(format!(
                 "\"{}\" is declared as element {} of {} of \"{}\", but the table has \
                  {n} elements named {}[..]",
-                v.name,
+                v.name(),
                 a.index + 1,
                 a.length,
                 group_name(a.derivative, a.base),
@@ -323,7 +395,8 @@ fn check_group<M>(table: &[Variable<M>], group: &mut Group) -> Result<(), String
         if !same_declaration(first, v) {
             return Err(format!(
                 "\"{}\" differs from \"{}\" in type, causality, variability, initial or unit",
-                v.name, first.name
+                v.name(),
+                first.name()
             ));
         }
     }
@@ -391,20 +464,19 @@ fn variable3<M>(
     group: &Group,
 ) -> Result<Variable3, String> {
     let first = &table[group.members[0]];
-    let derivative_of =
-        match &first.kind {
-            Kind::Real {
-                derivative_of: Some(state),
-                ..
-            } => Some(fmi3_reference(table, groups, state).ok_or_else(|| {
-                format!("\"{}\" names the unknown variable \"{state}\"", first.name)
-            })?),
-            _ => None,
-        };
+    let derivative_of = match first.state_name() {
+        Some(state) => Some(fmi3_reference(table, groups, &state).ok_or_else(|| {
+            format!(
+                "\"{}\" names the unknown variable \"{state}\"",
+                first.name()
+            )
+        })?),
+        None => None,
+    };
     let name = match (&first.array, group.is_array) {
         (Some(a), true) if !a.derivative => Cow::Borrowed(a.base),
-        (_, true) => Cow::Owned(group_name(group.derivative, group.base)),
-        (_, false) => first.name.clone(),
+        (_, true) => Cow::Owned(group_name(group.derivative, &group.base)),
+        (_, false) => first.stored_name.clone(),
     };
     Ok(Variable3 {
         value_reference: first.value_reference,
@@ -414,15 +486,29 @@ fn variable3<M>(
         variability: first.variability,
         initial: first.initial,
         dimension: group.is_array.then_some(group.members.len()),
-        source: Source::Elements(
-            group
-                .members
-                .iter()
-                .map(|&i| table[i].value_reference)
-                .collect(),
-        ),
+        source: evenly_spaced(table, group)?,
         derivative_of,
     })
+}
+
+/// The elements of a group as a first value reference and a stride (an FMI 3.0 array
+/// reads its elements by index arithmetic).
+fn evenly_spaced<M>(table: &[Variable<M>], group: &Group) -> Result<Source, String> {
+    let vr = |k: usize| table[group.members[k]].value_reference;
+    let first = vr(0);
+    let stride = if group.members.len() > 1 {
+        vr(1).wrapping_sub(first)
+    } else {
+        1
+    };
+    let even = (0..group.members.len()).all(|k| vr(k) == first.wrapping_add(k as u32 * stride));
+    if !even || stride == 0 {
+        return Err(format!(
+            "the elements of \"{}\" do not have evenly spaced value references",
+            group_name(group.derivative, &group.base)
+        ));
+    }
+    Ok(Source::Elements { first, stride })
 }
 
 /// The FMI 3.0 value reference of the variable owning the table scalar `name`.
@@ -431,7 +517,7 @@ fn fmi3_reference<M>(table: &[Variable<M>], groups: &[Group], name: &str) -> Opt
     groups
         .iter()
         .find(|g| g.derivative == derivative && g.base == base && g.is_array == index.is_some())
-        .filter(|g| g.members.iter().any(|&i| table[i].name == name))
+        .filter(|g| g.members.iter().any(|&i| table[i].name() == name))
         .map(|g| table[g.members[0]].value_reference)
 }
 
@@ -443,12 +529,13 @@ pub fn description<M>(table: &[Variable<M>], v: &Variable3) -> String {
         Source::EventIndicators => {
             "Event indicators: an event occurs where one changes sign".to_string()
         }
-        Source::Elements(elements) => {
-            let descriptions: Vec<&str> = elements
-                .iter()
-                .filter_map(|&e| find(table, e))
-                .map(|e| e.description.as_ref())
+        Source::Elements { .. } => {
+            let owned: Vec<Cow<str>> = v
+                .elements()
+                .filter_map(|e| find(table, e))
+                .map(Variable::description)
                 .collect();
+            let descriptions: Vec<&str> = owned.iter().map(AsRef::as_ref).collect();
             if v.dimension.is_some() {
                 array_description(&descriptions)
             } else {
@@ -486,7 +573,7 @@ fn references<M: Model>(
 ) -> Result<Option<Vec<u32>>, String> {
     let groups = groups(table)?;
     let mut list = Vec::new();
-    for &e in v.elements() {
+    for e in v.elements() {
         let scalar = find(table, e).ok_or_else(|| format!("no element {e}"))?;
         let Some(names) = names(scalar) else {
             return Ok(None);
@@ -498,7 +585,10 @@ fn references<M: Model>(
                 continue;
             }
             list.push(fmi3_reference(table, &groups, name).ok_or_else(|| {
-                format!("\"{}\" names the unknown variable \"{name}\"", scalar.name)
+                format!(
+                    "\"{}\" names the unknown variable \"{name}\"",
+                    scalar.name()
+                )
             })?);
         }
     }
@@ -520,7 +610,7 @@ fn check_state_order<M>(table: &[Variable<M>], variables: &[Variable3]) -> Resul
     let fmi3: Vec<u32> = variables
         .iter()
         .filter(|v| v.derivative_of.is_some())
-        .flat_map(|v| v.elements().iter().copied())
+        .flat_map(Variable3::elements)
         .collect();
     if fmi2 == fmi3 {
         Ok(())

@@ -99,7 +99,7 @@ fn no_string_variable<M: Model>(inst: &Instance<M>, vr: u32) -> String {
     match find(inst.core.table(), vr) {
         Some(v) => format!(
             "\"{}\" (value reference {vr}) is a {} variable, not String",
-            v.name,
+            v.name(),
             v.variable_type().as_str()
         ),
         None => format!("unknown value reference {vr}"),

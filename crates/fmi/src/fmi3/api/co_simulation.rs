@@ -72,7 +72,7 @@ fn element_requests<M: Model>(
                 v.name
             ));
         }
-        requests.extend(v.elements().iter().map(|&vr| Request { vr, order }));
+        requests.extend(v.elements().map(|vr| Request { vr, order }));
     }
     if requests.len() != n_values {
         return Err(format!(

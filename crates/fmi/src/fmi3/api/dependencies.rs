@@ -32,7 +32,7 @@ fn all_knowns(t: &Table3) -> Vec<(u32, usize)> {
 /// The (variable, element index) of the scalar named `name` in the FMI 3.0 table.
 fn locate(t: &Table3, table_vr: u32) -> Option<(u32, usize)> {
     t.variables.iter().find_map(|v| {
-        let i = v.elements().iter().position(|&e| e == table_vr)?;
+        let i = v.elements().position(|e| e == table_vr)?;
         Some((v.value_reference, element_index(v, i)))
     })
 }
@@ -60,7 +60,7 @@ fn dependencies<M: Model>(
         }
         return Ok(out);
     }
-    for (i, &e) in elements.iter().enumerate() {
+    for (i, e) in elements.enumerate() {
         let scalar = find(table, e).ok_or_else(|| format!("no element {e}"))?;
         let knowns = match &scalar.dependencies {
             None => all_knowns(t),
@@ -69,9 +69,11 @@ fn dependencies<M: Model>(
                 .map(|name| {
                     table
                         .iter()
-                        .find(|s| &s.name == name)
+                        .find(|s| s.name() == *name)
                         .and_then(|s| locate(t, s.value_reference))
-                        .ok_or_else(|| format!("\"{}\" depends on unknown \"{name}\"", scalar.name))
+                        .ok_or_else(|| {
+                            format!("\"{}\" depends on unknown \"{name}\"", scalar.name())
+                        })
                 })
                 .collect::<Result<Vec<_>, _>>()?,
         };

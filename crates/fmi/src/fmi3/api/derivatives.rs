@@ -23,7 +23,7 @@ fn elements<M: Model>(inst: &Instance<M>, vrs: &[u32], what: &str) -> Result<Vec
         if v.elements().is_empty() {
             return Err(format!("{what}: \"{}\" has no partial derivatives", v.name));
         }
-        out.extend_from_slice(v.elements());
+        out.extend(v.elements());
     }
     Ok(out)
 }
