@@ -15,6 +15,7 @@ pub fn check_checked_in<M: Model>(manifest_dir: &str) -> Result<(), String> {
     let errors: Vec<String> = [
         crate::fmi2::check_checked_in::<M>(&dir),
         crate::fmi3::check_checked_in::<M>(&dir.join("fmi3")),
+        crate::fmi3::check_scalar_checked_in::<M>(&dir.join("fmi3-scalar")),
     ]
     .into_iter()
     .filter_map(Result::err)

@@ -21,13 +21,19 @@ use std::sync::Arc;
 pub type Instance<M> = FmuInstance<Fmi3, M>;
 
 impl<M: Model> FmuInstance<Fmi3, M> {
+    /// An instance serving the array view, or the scalar-only one when `scalar`.
     pub fn new(
         interface: Interface,
         log: Logger,
         intermediate_update: Option<IntermediateUpdate>,
+        scalar: bool,
     ) -> Result<Self, String> {
         let core = core_instance::Instance::new()?;
-        let table = Arc::new(view(core.table())?);
+        let mut table = view(core.table())?;
+        if scalar {
+            table = super::scalar::view(core.table(), &table)?;
+        }
+        let table = Arc::new(table);
         let extra = Fmi3Extra {
             table,
             intermediate_update,
