@@ -98,3 +98,20 @@ def test_scalar_variant_equals_the_array_build_and_fmi2():
                 for s in scalar)
     print(f"{model}/{case_dir.name}/{interface}: scalar vs array/FMI 2.0 {worst:.3g}")
     assert worst <= AGREEMENT
+
+
+def test_ecos_runs_the_scalar_variant_like_the_fmi2_build():
+    # Expected: ecos (FMI Library) stepping the scalar variant reads, after every step,
+    # what it reads from the FMI 2.0 build (same binary; that run equals FMPy:
+    # test_importers_alone.py). It cannot address the array build's elements
+    # ("No real property fmu::u[1]"), the reason for this variant.
+    from importer_runs import run_fmu_ecos
+    md = read_model_description(fmu_path("PID"))
+    experiment = md.defaultExperiment
+    h = float(experiment.stepSize)
+    steps = round((float(experiment.stopTime) - float(experiment.startTime)) / h)
+    outputs = [v.name for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
+    expected = run_fmu_ecos(fmu_path("PID"), outputs, steps, h, {})
+    rows = run_fmu_ecos(scalar_path("PID"), outputs, steps, h, {})
+    assert np.ptp(expected[:, 1:], axis=0).max() > 0.1  # the outputs move
+    assert np.abs(rows - expected).max() <= AGREEMENT
