@@ -4,6 +4,7 @@ under its own instantiationToken. Truths: the FMI 2.0 description (names, refere
 units, starts, bounds), the FMI 3.0 array build and the FMI 2.0 build (simulations)."""
 
 import ctypes
+from xml.etree import ElementTree
 
 import numpy as np
 import pytest
@@ -115,3 +116,29 @@ def test_ecos_runs_the_scalar_variant_like_the_fmi2_build():
     rows = run_fmu_ecos(scalar_path("PID"), outputs, steps, h, {})
     assert np.ptp(expected[:, 1:], axis=0).max() > 0.1  # the outputs move
     assert np.abs(rows - expected).max() <= AGREEMENT
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_runtime_dependencies_are_those_of_the_description(model, tmp_path):
+    # Expected: fmi3GetVariableDependencies of the scalar view (computed at run time
+    # from the instance's table) lists, for every output and state derivative, the value
+    # references of the description's `dependencies` (written by the build crate), all
+    # with element index 0 (scalars); without `dependencies`, every known (the inputs
+    # and the states).
+    lib = Fmi3Library(scalar_path(model), tmp_path)
+    instance = lib.instantiate_co_simulation()
+    names = {v.valueReference: v.name for v in lib.description.modelVariables}
+    root = ElementTree.parse(tmp_path / "modelDescription.xml").getroot()
+    variables = lib.description.modelVariables
+    knowns = sorted([v.valueReference for v in variables if v.causality == "input"]
+                    + [v.derivative.valueReference for v in variables if v.derivative])
+    unknowns = [u for u in root.find("ModelStructure")
+                if u.tag in ("Output", "ContinuousStateDerivative")]
+    assert unknowns
+    for u in unknowns:
+        listed = u.attrib.get("dependencies")
+        declared = knowns if listed is None else sorted(int(r) for r in listed.split())
+        found = lib.dependencies(instance, names[int(u.attrib["valueReference"])])
+        assert sorted(vr for _, vr, _, _ in found) == declared, u.attrib
+        assert {(i, k) for i, _, k, _ in found} <= {(0, 0)}
+    lib.free(instance)
