@@ -11,7 +11,7 @@ import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
-from conftest import DIST, MODELS, fmu3_path, fmu_path
+from conftest import DIST, INTERFACES, MODELS, fmu3_path, fmu_path
 from fmi3_host import ERROR, OK, Fmi3Library
 from test_fmi3 import AGREEMENT, simulate
 from test_importers import reference_cases
@@ -26,8 +26,8 @@ def scalar_path(model):
 
 @pytest.mark.parametrize("model", MODELS)
 def test_every_fmi2_scalar_is_the_same_fmi3_scalar(model):
-    # Expected: the FMI 2.0 description, variable by variable; the only array left is
-    # the plant's eventIndicators (no FMI 2.0 variable: fmi2GetEventIndicators).
+    # Expected: the FMI 2.0 description, variable by variable, and no array (the
+    # plant's event indicators, no FMI 2.0 variable, are scalars too).
     assert validate_fmu(scalar_path(model)) == []
     md2 = read_model_description(fmu_path(model))
     md3 = read_model_description(scalar_path(model))
@@ -40,7 +40,7 @@ def test_every_fmi2_scalar_is_the_same_fmi3_scalar(model):
                                                          v.unit), v.name
         assert (s.start, s.min, s.max) == (v.start, v.min, v.max), v.name
     arrays = [v.name for v in md3.modelVariables if v.shape not in (None, ())]
-    assert arrays in ([], ["eventIndicators"])
+    assert arrays == []
     assert md3.numberOfContinuousStates == md2.numberOfContinuousStates
     assert md3.numberOfEventIndicators == md2.numberOfEventIndicators
     assert md3.guid == md2.guid + "-scalar"
@@ -82,13 +82,15 @@ def test_per_scalar_get_and_set_with_one_value_each(model, tmp_path):
     assert status == ERROR
 
 
-SCENARIO = next(c.values for c in reference_cases() if c.values[0] == "Pss3Plant")
+CASE = next(c.values[1] for c in reference_cases() if c.values[0] == "Pss3Plant")
 
 
-def test_scalar_variant_equals_the_array_build_and_fmi2():
+@pytest.mark.parametrize("interface", INTERFACES)
+def test_scalar_variant_equals_the_array_build_and_fmi2(interface):
     # Expected: the same binary and model code behind three descriptions; the scalar
-    # variant takes the FMI 2.0 names as they are.
-    model, case_dir, interface = SCENARIO
+    # variant takes the FMI 2.0 names as they are. Model Exchange reads the event
+    # indicators (scalars here).
+    model, case_dir = "Pss3Plant", CASE
     md3 = read_model_description(fmu3_path(model))
     time2, fmi2, _, _ = simulate(fmu_path(model), None, case_dir, model, interface, False)
     time3, fmi3, _, _ = simulate(fmu3_path(model), md3, case_dir, model, interface, True)
@@ -142,3 +144,19 @@ def test_runtime_dependencies_are_those_of_the_description(model, tmp_path):
         assert sorted(vr for _, vr, _, _ in found) == declared, u.attrib
         assert {(i, k) for i, _, k, _ in found} <= {(0, 0)}
     lib.free(instance)
+
+
+def test_each_event_indicator_scalar_reads_its_element_of_the_array(tmp_path):
+    # Expected: the array build's eventIndicators (nValues = 6) after initialization at
+    # the defaults, element k in the scalar eventIndicators[k].
+    arrays = Fmi3Library(fmu3_path("Pss3Plant"), tmp_path / "arrays")
+    scalars = Fmi3Library(scalar_path("Pss3Plant"), tmp_path / "scalar")
+    a, s = arrays.instantiate_co_simulation(), scalars.instantiate_co_simulation()
+    arrays.initialize(a)
+    scalars.initialize(s)
+    status, expected = arrays.get_float64(a, ["eventIndicators"], 6)
+    assert status == OK and any(expected)
+    for k, z in enumerate(expected):
+        assert scalars.get_float64(s, [f"eventIndicators[{k + 1}]"], 1) == (OK, [z])
+    arrays.free(a)
+    scalars.free(s)

@@ -309,7 +309,7 @@ fn model_structure(deps: &DependencyOf, t: &Table3) -> Result<ModelStructure, St
     for v in all().filter(|v| is_initial_unknown(v)) {
         unknowns.push(Unknown::InitialUnknown(dependencies(deps, v, true)?));
     }
-    if let Some(v) = t.event_indicators() {
+    for v in t.event_indicators() {
         unknowns.push(Unknown::EventIndicator(dependencies(deps, v, false)?));
     }
     Ok(ModelStructure { unknowns })

@@ -60,7 +60,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         }
         let indicators = variables
             .iter()
-            .any(|v| v.source == Source::EventIndicators);
+            .any(|v| matches!(v.source, Source::EventIndicators { .. }));
         Ok(indicators.then(|| self.indicators_unevaluable()).flatten())
     }
 
@@ -81,11 +81,13 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     pub fn get_float64(&self, v: &Variable3, out: &mut [f64]) -> Result<(), String> {
         match &v.source {
             Source::Time => out[0] = self.core.time,
-            Source::EventIndicators => {
-                self.core.model().event_indicators(out)?;
-                if let Some(bad) = out.iter().find(|z| !z.is_finite()) {
+            Source::EventIndicators { first } => {
+                let mut z = vec![0.0; M::info().number_of_event_indicators];
+                self.core.model().event_indicators(&mut z)?;
+                if let Some(bad) = z.iter().find(|z| !z.is_finite()) {
                     return Err(format!("the model computed the event indicator {bad}"));
                 }
+                out.copy_from_slice(&z[*first..*first + out.len()]);
             }
             Source::Elements { .. } => {
                 for (o, e) in out.iter_mut().zip(v.elements()) {

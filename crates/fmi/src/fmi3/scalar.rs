@@ -1,7 +1,9 @@
 //! The scalar-only FMI 3.0 view (dist/fmi3-scalar): every FMI 2.0 scalar of the table
 //! (`theta[1]`, ...) is an FMI 3.0 scalar with the same name and value reference, for
-//! importers that cannot use FMI 3.0 arrays. The binary serves this view to an instance
-//! created with [`token`] instead of the model's GUID.
+//! importers that cannot use FMI 3.0 arrays; the event indicators (no FMI 2.0 variable)
+//! are the scalars `eventIndicators[k]` after the table's last value reference. The
+//! binary serves this view to an instance created with [`token`] instead of the
+//! model's GUID.
 
 use super::table::{Source, Table3, Variable3};
 use crate::core::model::Model;
@@ -14,10 +16,21 @@ pub fn token<M: Model>() -> String {
 }
 
 /// The scalar view of `arrays` (the array view of the flattened `table`): each array
-/// of table elements becomes one scalar per element; time and the event indicators stay.
+/// of table elements becomes one scalar per element, and so does the event indicators'
+/// array; time stays.
 pub fn view<M>(table: &[Variable<M>], arrays: &Table3) -> Result<Table3, String> {
     let mut variables = Vec::with_capacity(table.len() + 2);
     for v in &arrays.variables {
+        if let Source::EventIndicators { .. } = v.source {
+            variables.extend((0..v.size()).map(|k| Variable3 {
+                value_reference: v.value_reference + k as u32,
+                name: Cow::Owned(format!("{}[{}]", v.name, k + 1)),
+                dimension: None,
+                source: Source::EventIndicators { first: k },
+                ..v.clone()
+            }));
+            continue;
+        }
         let Source::Elements { stride, .. } = v.source else {
             variables.push(v.clone());
             continue;
