@@ -23,10 +23,13 @@ EXPLAINED: dict[str, str] = {}
 
 
 def built_fmus():
-    """FMI 2.0 FMUs in dist/, and FMI 3.0 FMUs in dist/fmi3/ once they are built."""
+    """FMI 2.0 FMUs in dist/, and FMI 3.0 FMUs in dist/fmi3/ and dist/fmi3-scalar/ once
+    they are built."""
     fmi2 = [pytest.param(fmu_path(model), id=f"fmi2-{model}") for model in MODELS]
     fmi3 = [pytest.param(str(p), id=f"fmi3-{p.stem}") for p in sorted((DIST / "fmi3").glob("*.fmu"))]
-    return fmi2 + fmi3
+    scalar = [pytest.param(str(p), id=f"fmi3-scalar-{p.stem}")
+              for p in sorted((DIST / "fmi3-scalar").glob("*.fmu"))]
+    return fmi2 + fmi3 + scalar
 
 
 def check(fmu: str) -> tuple[int, str, list[tuple[str, str]]]:

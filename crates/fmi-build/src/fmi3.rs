@@ -14,6 +14,7 @@ use robofmu_fmi::core::model::Model;
 use robofmu_fmi::core::variables::{Causality, Initial, Kind, Variable, find};
 use robofmu_fmi::fmi3::declared::view;
 use robofmu_fmi::fmi3::mode::Fmi3;
+use robofmu_fmi::fmi3::scalar;
 use robofmu_fmi::fmi3::table::{self, Table3, Variable3, build};
 use serde::Serialize;
 
@@ -25,7 +26,7 @@ struct ModelDescription {
     #[serde(rename = "@modelName")]
     model_name: &'static str,
     #[serde(rename = "@instantiationToken")]
-    instantiation_token: &'static str,
+    instantiation_token: String,
     #[serde(rename = "@description")]
     description: &'static str,
     #[serde(rename = "@generationTool")]
@@ -243,11 +244,47 @@ fn model_variable<M: Model>(table: &[Variable<M>], v: &Variable3) -> Result<Type
     })
 }
 
-fn dependencies<M: Model>(table: &[Variable<M>], v: &Variable3) -> Result<Dependencies, String> {
+/// The dependencies (ascending value references; None: all knowns) of an unknown, the
+/// second argument choosing the initial ones; per view.
+type DependencyOf<'a> = dyn Fn(&Variable3, bool) -> Result<Option<Vec<u32>>, String> + 'a;
+
+fn dependencies(deps: &DependencyOf, v: &Variable3, initial: bool) -> Result<Dependencies, String> {
     Ok(Dependencies {
         value_reference: v.value_reference,
-        dependencies: table::dependencies(table, v)?.map(joined),
+        dependencies: deps(v, initial)?.map(joined),
     })
+}
+
+/// The dependencies of `v` in the array view (by FMI 3.0 variable).
+fn array_dependencies<M: Model>(
+    table: &[Variable<M>],
+    v: &Variable3,
+    initial: bool,
+) -> Result<Option<Vec<u32>>, String> {
+    if initial {
+        table::initial_dependencies(table, v)
+    } else {
+        table::dependencies(table, v)
+    }
+}
+
+/// The dependencies of `v` in the scalar view (by table scalar); time and the event
+/// indicators (no table element) depend on all knowns.
+fn scalar_dependencies<M: Model>(
+    table: &[Variable<M>],
+    v: &Variable3,
+    initial: bool,
+) -> Result<Option<Vec<u32>>, String> {
+    let Some(vr) = v.elements().next() else {
+        return array_dependencies(table, v, initial);
+    };
+    let s = find(table, vr).ok_or_else(|| format!("no element {vr}"))?;
+    let names = if initial {
+        s.initial_dependencies
+    } else {
+        s.dependencies
+    };
+    names.map(|n| scalar::references(table, n)).transpose()
 }
 
 /// Whether `v` is an initial unknown (section 2.4.8 of FMI 3.0): outputs and state
@@ -258,23 +295,22 @@ fn is_initial_unknown(v: &Variable3) -> bool {
         || v.causality == Causality::CalculatedParameter
 }
 
-fn model_structure<M: Model>(table: &[Variable<M>], t: &Table3) -> Result<ModelStructure, String> {
+fn model_structure(deps: &DependencyOf, t: &Table3) -> Result<ModelStructure, String> {
     let all = || t.variables.iter();
     let mut unknowns: Vec<Unknown> = all()
         .filter(|v| v.causality == Causality::Output)
-        .map(|v| dependencies(table, v).map(Unknown::Output))
+        .map(|v| dependencies(deps, v, false).map(Unknown::Output))
         .collect::<Result<_, _>>()?;
     for v in t.derivatives() {
-        unknowns.push(Unknown::ContinuousStateDerivative(dependencies(table, v)?));
+        unknowns.push(Unknown::ContinuousStateDerivative(dependencies(
+            deps, v, false,
+        )?));
     }
     for v in all().filter(|v| is_initial_unknown(v)) {
-        unknowns.push(Unknown::InitialUnknown(Dependencies {
-            value_reference: v.value_reference,
-            dependencies: table::initial_dependencies(table, v)?.map(joined),
-        }));
+        unknowns.push(Unknown::InitialUnknown(dependencies(deps, v, true)?));
     }
-    if let Some(v) = t.event_indicators() {
-        unknowns.push(Unknown::EventIndicator(dependencies(table, v)?));
+    for v in t.event_indicators() {
+        unknowns.push(Unknown::EventIndicator(dependencies(deps, v, false)?));
     }
     Ok(ModelStructure { unknowns })
 }
@@ -313,6 +349,16 @@ fn interfaces<M: Model>() -> (Interface, Interface) {
 
 /// The text of the FMI 3.0 modelDescription.xml for model M.
 pub fn model_description<M: Model>() -> Result<String, String> {
+    description::<M>(false)
+}
+
+/// The text of the scalar-only FMI 3.0 modelDescription.xml for model M (every FMI 2.0
+/// scalar an FMI 3.0 scalar, instantiationToken `scalar::token`).
+pub fn scalar_model_description<M: Model>() -> Result<String, String> {
+    description::<M>(true)
+}
+
+fn description<M: Model>(scalar_view: bool) -> Result<String, String> {
     let info = M::info();
     let table = sorted_table::<M>()?;
     check_table(&table)?;
@@ -324,6 +370,23 @@ pub fn model_description<M: Model>() -> Result<String, String> {
                 .to_string(),
         );
     }
+    let t = if scalar_view {
+        scalar::view(&table, &t)?
+    } else {
+        t
+    };
+    let array_deps = |v: &Variable3, i| array_dependencies(&table, v, i);
+    let scalar_deps = |v: &Variable3, i| scalar_dependencies(&table, v, i);
+    let deps: &DependencyOf = if scalar_view {
+        &scalar_deps
+    } else {
+        &array_deps
+    };
+    let token = if scalar_view {
+        scalar::token::<M>()
+    } else {
+        info.guid.to_string()
+    };
     let states: usize = t.derivatives().map(Variable3::size).sum();
     if states != info.number_of_continuous_states {
         return Err(format!(
@@ -340,7 +403,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
     let description = ModelDescription {
         fmi_version: "3.0",
         model_name: info.model_name,
-        instantiation_token: info.guid,
+        instantiation_token: token,
         description: info.description,
         generation_tool: GENERATION_TOOL,
         naming: "structured",
@@ -350,7 +413,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         log_categories: LogCategories::of(&log_categories::<Fmi3, M>()),
         default_experiment: DefaultExperiment::of(&info.default_experiment),
         model_variables: ModelVariables { variables },
-        model_structure: model_structure(&table, &t)?,
+        model_structure: model_structure(deps, &t)?,
     };
     common::xml_document(&description)
 }
@@ -360,4 +423,9 @@ pub fn model_description<M: Model>() -> Result<String, String> {
 /// variable UPDATE_MODEL_DESCRIPTION set, the file is rewritten first.
 pub fn check_checked_in<M: Model>(dir: &std::path::Path) -> Result<(), String> {
     common::check_checked_in::<M>(dir, &model_description::<M>()?)
+}
+
+/// The drift check of the scalar-only description (dir: `modelDescription/fmi3-scalar`).
+pub fn check_scalar_checked_in<M: Model>(dir: &std::path::Path) -> Result<(), String> {
+    common::check_checked_in::<M>(dir, &scalar_model_description::<M>()?)
 }

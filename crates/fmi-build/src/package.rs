@@ -4,9 +4,8 @@
 
 use crate::documentation::documentation;
 use crate::fmi2::model_description;
-use crate::fmi3::model_description as fmi3_description;
+use crate::fmi3::{model_description as fmi3_description, scalar_model_description};
 use crate::platform::platform_tuple;
-use robofmu_fmi::core::instance::Standard;
 use robofmu_fmi::core::model::Model;
 use std::fs::File;
 use std::io::Write;
@@ -112,32 +111,57 @@ fn run_packager<M: Model>(crate_name: &str, args: &[String]) -> Result<Vec<PathB
     match command {
         "package" => {
             let dir = out.unwrap_or_else(|| PathBuf::from("dist"));
-            let paths = [
-                dir.join(format!("{name}.fmu")),
-                dir.join("fmi3").join(format!("{name}.fmu")),
-            ];
-            create_dir(&dir.join("fmi3"))?;
-            package::<M>(crate_name, &paths[0], Standard::Fmi2)?;
-            package::<M>(crate_name, &paths[1], Standard::Fmi3)?;
-            Ok(paths.to_vec())
+            let mut paths = Vec::new();
+            for variant in VARIANTS {
+                create_dir(&dir.join(variant.folder()))?;
+                let path = dir.join(variant.folder()).join(format!("{name}.fmu"));
+                package::<M>(crate_name, &path, variant)?;
+                paths.push(path);
+            }
+            Ok(paths)
         }
         "model-description" => {
             let dir = out.unwrap_or_else(|| PathBuf::from("modelDescription"));
-            create_dir(&dir.join("fmi3"))?;
-            let paths = [
-                dir.join(format!("{name}.xml")),
-                dir.join("fmi3").join(format!("{name}.xml")),
-            ];
-            for (path, text) in paths
-                .iter()
-                .zip([model_description::<M>()?, fmi3_description::<M>()?])
-            {
-                std::fs::write(path, text)
+            let mut paths = Vec::new();
+            for variant in VARIANTS {
+                create_dir(&dir.join(variant.folder()))?;
+                let path = dir.join(variant.folder()).join(format!("{name}.xml"));
+                std::fs::write(&path, variant.model_description::<M>()?)
                     .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                paths.push(path);
             }
-            Ok(paths.to_vec())
+            Ok(paths)
         }
         _ => Err(USAGE.to_string()),
+    }
+}
+
+/// The three FMUs of a model: FMI 2.0, FMI 3.0 (arrays) and FMI 3.0 scalar-only.
+#[derive(Clone, Copy)]
+enum Variant {
+    Fmi2,
+    Fmi3,
+    Fmi3Scalar,
+}
+
+const VARIANTS: [Variant; 3] = [Variant::Fmi2, Variant::Fmi3, Variant::Fmi3Scalar];
+
+impl Variant {
+    /// The folder under the output directory ("" for FMI 2.0).
+    fn folder(self) -> &'static str {
+        match self {
+            Variant::Fmi2 => "",
+            Variant::Fmi3 => "fmi3",
+            Variant::Fmi3Scalar => "fmi3-scalar",
+        }
+    }
+
+    fn model_description<M: Model>(self) -> Result<String, String> {
+        match self {
+            Variant::Fmi2 => model_description::<M>(),
+            Variant::Fmi3 => fmi3_description::<M>(),
+            Variant::Fmi3Scalar => scalar_model_description::<M>(),
+        }
     }
 }
 
@@ -154,21 +178,17 @@ fn built_library(crate_name: &str) -> Result<PathBuf, String> {
     Ok(profile.join(library_file_name(crate_name)))
 }
 
-/// Packages M for `standard` from the cdylib that cargo built for the running packager.
-fn package<M: Model>(crate_name: &str, out: &Path, standard: Standard) -> Result<(), String> {
+/// Packages M as `variant` from the cdylib that cargo built for the running packager.
+fn package<M: Model>(crate_name: &str, out: &Path, variant: Variant) -> Result<(), String> {
     let library = built_library(crate_name)?;
-    let (model_description, documentation, platform) = match standard {
-        Standard::Fmi2 => (
-            model_description::<M>()?,
+    let (documentation, platform) = match variant {
+        Variant::Fmi2 => (
             documentation::<M>("FMI 2.0")?,
             platform_folder().to_string(),
         ),
-        Standard::Fmi3 => (
-            fmi3_description::<M>()?,
-            documentation::<M>("FMI 3.0")?,
-            platform_tuple(),
-        ),
+        Variant::Fmi3 | Variant::Fmi3Scalar => (documentation::<M>("FMI 3.0")?, platform_tuple()),
     };
+    let model_description = variant.model_description::<M>()?;
     let contents = FmuContents {
         model_identifier: M::info().model_identifier,
         model_description: &model_description,

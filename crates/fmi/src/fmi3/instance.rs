@@ -21,13 +21,19 @@ use std::sync::Arc;
 pub type Instance<M> = FmuInstance<Fmi3, M>;
 
 impl<M: Model> FmuInstance<Fmi3, M> {
+    /// An instance serving the array view, or the scalar-only one when `scalar`.
     pub fn new(
         interface: Interface,
         log: Logger,
         intermediate_update: Option<IntermediateUpdate>,
+        scalar: bool,
     ) -> Result<Self, String> {
         let core = core_instance::Instance::new()?;
-        let table = Arc::new(view(core.table())?);
+        let mut table = view(core.table())?;
+        if scalar {
+            table = super::scalar::view(core.table(), &table)?;
+        }
+        let table = Arc::new(table);
         let extra = Fmi3Extra {
             table,
             intermediate_update,
@@ -54,7 +60,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         }
         let indicators = variables
             .iter()
-            .any(|v| v.source == Source::EventIndicators);
+            .any(|v| matches!(v.source, Source::EventIndicators { .. }));
         Ok(indicators.then(|| self.indicators_unevaluable()).flatten())
     }
 
@@ -75,11 +81,13 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     pub fn get_float64(&self, v: &Variable3, out: &mut [f64]) -> Result<(), String> {
         match &v.source {
             Source::Time => out[0] = self.core.time,
-            Source::EventIndicators => {
-                self.core.model().event_indicators(out)?;
-                if let Some(bad) = out.iter().find(|z| !z.is_finite()) {
+            Source::EventIndicators { first } => {
+                let mut z = vec![0.0; M::info().number_of_event_indicators];
+                self.core.model().event_indicators(&mut z)?;
+                if let Some(bad) = z.iter().find(|z| !z.is_finite()) {
                     return Err(format!("the model computed the event indicator {bad}"));
                 }
+                out.copy_from_slice(&z[*first..*first + out.len()]);
             }
             Source::Elements { .. } => {
                 for (o, e) in out.iter_mut().zip(v.elements()) {

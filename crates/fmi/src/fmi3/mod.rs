@@ -14,5 +14,6 @@ pub mod instance;
 pub mod intermediate;
 pub mod logging;
 pub mod mode;
+pub mod scalar;
 pub mod table;
 pub mod types;

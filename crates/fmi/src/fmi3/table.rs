@@ -34,8 +34,9 @@ pub enum Source {
     Elements { first: u32, stride: u32 },
     /// The instance's time.
     Time,
-    /// The model's event indicators (`Model::event_indicators`).
-    EventIndicators,
+    /// The model's event indicators (`Model::event_indicators`) from index `first` on
+    /// (0 for the array of all; one index per scalar in the scalar-only view).
+    EventIndicators { first: usize },
 }
 
 /// One variable of the FMI 3.0 description: a scalar or a one-dimensional array.
@@ -217,11 +218,11 @@ impl Table3 {
         knowns
     }
 
-    /// The event-indicator variable, if the model has event indicators.
-    pub fn event_indicators(&self) -> Option<&Variable3> {
-        self.variables
+    /// The event-indicator variables (one array, or one scalar per indicator).
+    pub fn event_indicators(&self) -> impl Iterator<Item = &Variable3> {
+        (self.variables)
             .iter()
-            .find(|v| v.source == Source::EventIndicators)
+            .filter(|v| matches!(v.source, Source::EventIndicators { .. }))
     }
 }
 
@@ -453,7 +454,7 @@ pub(super) fn event_indicator_variable(value_reference: u32, n: usize) -> Variab
         variability: Variability::Continuous,
         initial: Some(Initial::Calculated),
         dimension: Some(n),
-        source: Source::EventIndicators,
+        source: Source::EventIndicators { first: 0 },
         derivative_of: None,
     }
 }
@@ -526,7 +527,7 @@ fn fmi3_reference<M>(table: &[Variable<M>], groups: &[Group], name: &str) -> Opt
 pub fn description<M>(table: &[Variable<M>], v: &Variable3) -> String {
     match &v.source {
         Source::Time => "Simulation time".to_string(),
-        Source::EventIndicators => {
+        Source::EventIndicators { .. } => {
             "Event indicators: an event occurs where one changes sign".to_string()
         }
         Source::Elements { .. } => {

@@ -106,14 +106,15 @@ pub unsafe fn instantiate_requiring<M: Model>(
             }
             // SAFETY: as above.
             let given = unsafe { text(args.token, "instantiationToken") }?;
-            if given != M::info().guid {
+            let scalar = given == crate::fmi3::scalar::token::<M>();
+            if given != M::info().guid && !scalar {
                 return Err(format!(
                     "instantiationToken {given} does not match this binary ({}, {})",
                     M::info().model_name,
                     M::info().guid
                 ));
             }
-            let inst = Instance::<M>::new(args.interface, log, args.intermediate_update)?;
+            let inst = Instance::<M>::new(args.interface, log, args.intermediate_update, scalar)?;
             // SAFETY: the host passes an array of the given length or null.
             unsafe { check_required(&inst, required) }?;
             Ok(inst)

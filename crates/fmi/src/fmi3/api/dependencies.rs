@@ -40,7 +40,7 @@ fn locate(t: &Table3, table_vr: u32) -> Option<(u32, usize)> {
 fn is_unknown(v: &Variable3) -> bool {
     v.causality == Causality::Output
         || v.derivative_of.is_some()
-        || v.source == Source::EventIndicators
+        || matches!(v.source, Source::EventIndicators { .. })
 }
 
 /// The dependencies of the variable `v` of model M (whose table is `table`).
