@@ -11,7 +11,7 @@ import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
-from conftest import DIST, INTERFACES, MODELS, fmu3_path, fmu_path
+from conftest import DIST, MODELS, fmu3_path, fmu_path
 from fmi3_host import ERROR, OK, Fmi3Library
 from test_fmi3 import AGREEMENT, simulate
 from test_importers import reference_cases
@@ -82,15 +82,11 @@ def test_per_scalar_get_and_set_with_one_value_each(model, tmp_path):
     assert status == ERROR
 
 
-CASE = next(c.values[1] for c in reference_cases() if c.values[0] == "Pss3Plant")
-
-
-@pytest.mark.parametrize("interface", INTERFACES)
-def test_scalar_variant_equals_the_array_build_and_fmi2(interface):
+@pytest.mark.parametrize("model, case_dir, interface", reference_cases())
+def test_scalar_variant_equals_the_array_build_and_fmi2(model, case_dir, interface):
     # Expected: the same binary and model code behind three descriptions; the scalar
     # variant takes the FMI 2.0 names as they are. Model Exchange reads the event
-    # indicators (scalars here).
-    model, case_dir = "Pss3Plant", CASE
+    # indicators (scalars here). Every reference case of every model.
     md3 = read_model_description(fmu3_path(model))
     time2, fmi2, _, _ = simulate(fmu_path(model), None, case_dir, model, interface, False)
     time3, fmi3, _, _ = simulate(fmu3_path(model), md3, case_dir, model, interface, True)
@@ -103,20 +99,21 @@ def test_scalar_variant_equals_the_array_build_and_fmi2(interface):
     assert worst <= AGREEMENT
 
 
-def test_ecos_runs_the_scalar_variant_like_the_fmi2_build():
+@pytest.mark.parametrize("model", MODELS)
+def test_ecos_runs_the_scalar_variant_like_the_fmi2_build(model):
     # Expected: ecos (FMI Library) stepping the scalar variant reads, after every step,
     # what it reads from the FMI 2.0 build (same binary; that run equals FMPy:
     # test_importers_alone.py). It cannot address the array build's elements
     # ("No real property fmu::u[1]"), the reason for this variant.
     from importer_runs import run_fmu_ecos
-    md = read_model_description(fmu_path("PID"))
+    md = read_model_description(fmu_path(model))
     experiment = md.defaultExperiment
     h = float(experiment.stepSize)
     steps = round((float(experiment.stopTime) - float(experiment.startTime)) / h)
     outputs = [v.name for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
-    expected = run_fmu_ecos(fmu_path("PID"), outputs, steps, h, {})
-    rows = run_fmu_ecos(scalar_path("PID"), outputs, steps, h, {})
-    assert np.ptp(expected[:, 1:], axis=0).max() > 0.1  # the outputs move
+    expected = run_fmu_ecos(fmu_path(model), outputs, steps, h, {})
+    rows = run_fmu_ecos(scalar_path(model), outputs, steps, h, {})
+    assert np.ptp(expected[:, 1:], axis=0).max() > 0  # the outputs move
     assert np.abs(rows - expected).max() <= AGREEMENT
 
 
