@@ -120,6 +120,22 @@ fn serialize_with(
 // SAFETY (every unsafe block below): the functions of the loaded binary with
 // arguments valid for the call; a handle may be dead or foreign, which the FMU must
 // refuse (that is what the probes test).
+/// The three FMU-state calls, the same text for both standards (same field names,
+/// same argument order).
+macro_rules! fmu_state_calls {
+    () => {
+        fn get_state(&self, h: Handle, state: &mut Handle) -> Status {
+            unsafe { (self.binary.get_fmu_state)(h, state) }
+        }
+        fn set_state(&self, h: Handle, state: Handle) -> Status {
+            unsafe { (self.binary.set_fmu_state)(h, state) }
+        }
+        fn free_state(&self, h: Handle, state: &mut Handle) -> Status {
+            unsafe { (self.binary.free_fmu_state)(h, state) }
+        }
+    };
+}
+
 impl Api for Api2<'_> {
     fn name(&self) -> String {
         format!("{} (FMI 2.0)", self.fmu.name())
@@ -176,15 +192,7 @@ impl Api for Api2<'_> {
         let s = unsafe { (self.binary.get_real)(h, &vr, 1, &mut x) };
         (s, x)
     }
-    fn get_state(&self, h: Handle, state: &mut Handle) -> Status {
-        unsafe { (self.binary.get_fmu_state)(h, state) }
-    }
-    fn set_state(&self, h: Handle, state: Handle) -> Status {
-        unsafe { (self.binary.set_fmu_state)(h, state) }
-    }
-    fn free_state(&self, h: Handle, state: &mut Handle) -> Status {
-        unsafe { (self.binary.free_fmu_state)(h, state) }
-    }
+    fmu_state_calls!();
     fn serialize(&self, h: Handle, state: Handle) -> Result<Vec<u8>, Status> {
         let b = self.binary;
         serialize_with(
@@ -287,15 +295,7 @@ impl Api for Api3<'_> {
         let s = unsafe { (self.binary.get_float64)(h, &vr, 1, values.as_mut_ptr(), n) };
         (s, values[0])
     }
-    fn get_state(&self, h: Handle, state: &mut Handle) -> Status {
-        unsafe { (self.binary.get_fmu_state)(h, state) }
-    }
-    fn set_state(&self, h: Handle, state: Handle) -> Status {
-        unsafe { (self.binary.set_fmu_state)(h, state) }
-    }
-    fn free_state(&self, h: Handle, state: &mut Handle) -> Status {
-        unsafe { (self.binary.free_fmu_state)(h, state) }
-    }
+    fmu_state_calls!();
     fn serialize(&self, h: Handle, state: Handle) -> Result<Vec<u8>, Status> {
         let b = self.binary;
         serialize_with(
