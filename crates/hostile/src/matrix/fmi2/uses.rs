@@ -5,31 +5,13 @@
 use crate::binary::{OK, Status};
 use crate::description::{Description, Variable};
 use crate::host::{Instance, Interface};
+use crate::matrix::same_named::fmu_state_use_rows;
 use crate::matrix::seam::{Evaluate, Use, Value};
 use crate::matrix::values::{discarded, me_evaluate};
 use std::ffi::c_char;
 
 pub fn state_uses() -> Vec<(&'static str, Use<Interface>)> {
-    vec![
-        ("fmi2SetFMUstate", |i, s| unsafe {
-            (i.binary.set_fmu_state)(i.c, s)
-        }),
-        ("fmi2FreeFMUstate", |i, s| {
-            let mut slot = s;
-            unsafe { (i.binary.free_fmu_state)(i.c, &mut slot) }
-        }),
-        ("fmi2SerializedFMUstateSize", |i, s| unsafe {
-            (i.binary.serialized_size)(i.c, s, &mut 0)
-        }),
-        ("fmi2SerializeFMUstate", |i, s| unsafe {
-            let mut bytes = vec![0 as c_char; 256];
-            (i.binary.serialize)(i.c, s, bytes.as_mut_ptr(), bytes.len())
-        }),
-        ("fmi2GetFMUstate(slot holding it)", |i, s| {
-            let mut slot = s;
-            unsafe { (i.binary.get_fmu_state)(i.c, &mut slot) }
-        }),
-    ]
+    fmu_state_use_rows!("fmi2", "FMUstate", c_char)
 }
 
 pub fn evaluations() -> Vec<(&'static str, Evaluate<Interface>)> {

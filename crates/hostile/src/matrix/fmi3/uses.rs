@@ -5,27 +5,12 @@
 use crate::binary::{OK, Status};
 use crate::description::{Description, Variable};
 use crate::fmi3::host::{Instance, Interface3};
+use crate::matrix::same_named::fmu_state_use_rows;
 use crate::matrix::seam::{Evaluate, Use, Value};
 use crate::matrix::values::{discarded, me_evaluate};
 
 pub fn state_uses() -> Vec<(&'static str, Use<Interface3>)> {
-    vec![
-        ("fmi3SetFMUState", |i, s| unsafe {
-            (i.binary.set_fmu_state)(i.c, s)
-        }),
-        ("fmi3FreeFMUState", |i, s| i.free_state(s)),
-        ("fmi3SerializedFMUStateSize", |i, s| unsafe {
-            (i.binary.serialized_size)(i.c, s, &mut 0)
-        }),
-        ("fmi3SerializeFMUState", |i, s| unsafe {
-            let mut bytes = vec![0u8; 256];
-            (i.binary.serialize)(i.c, s, bytes.as_mut_ptr(), bytes.len())
-        }),
-        ("fmi3GetFMUState(slot holding it)", |i, s| {
-            let mut slot = s;
-            unsafe { (i.binary.get_fmu_state)(i.c, &mut slot) }
-        }),
-    ]
+    fmu_state_use_rows!("fmi3", "FMUState", u8)
 }
 
 pub fn evaluations() -> Vec<(&'static str, Evaluate<Interface3>)> {
