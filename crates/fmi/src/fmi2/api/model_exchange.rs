@@ -3,9 +3,9 @@
 use super::{output_ref, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
-use crate::core::model_exchange_calls::{self as calls, indicators, states};
+use crate::core::model_exchange_calls::{self as calls, StateArray, get_array};
 use crate::fmi2::instance::Instance;
-use crate::fmi2::mode::{Call, Mode};
+use crate::fmi2::mode::{Call, Fmi2, Mode};
 use crate::fmi2::types::*;
 
 fn fmi2_boolean(value: bool) -> Fmi2Boolean {
@@ -103,37 +103,18 @@ pub unsafe fn set_continuous_states<M: Model>(
     }
 }
 
-/// [`calls::fill`]: an output array of the model's count `expected` filled by `f`.
-unsafe fn fill<M: Model>(
-    c: Fmi2Component,
-    function: &str,
-    call: Call,
-    ptr: *mut Fmi2Real,
-    n: usize,
-    expected: fn() -> usize,
-    f: impl FnOnce(&M, &mut [f64]) -> Result<(), String>,
-) -> Fmi2Status {
-    unsafe {
-        with_instance::<M>(c, function, call, |inst| {
-            calls::fill(inst, function, ptr, n, expected(), f)
-        })
-    }
-}
-
 pub unsafe fn get_derivatives<M: Model>(
     c: Fmi2Component,
     dx: *mut Fmi2Real,
     nx: usize,
 ) -> Fmi2Status {
     unsafe {
-        fill::<M>(
+        get_array::<Fmi2, M>(
             c,
-            "fmi2GetDerivatives",
-            Call::GetDerivatives,
+            ("fmi2GetDerivatives", Call::GetDerivatives),
+            StateArray::Derivatives,
             dx,
             nx,
-            states::<M>,
-            M::derivatives,
         )
     }
 }
@@ -144,14 +125,12 @@ pub unsafe fn get_event_indicators<M: Model>(
     nz: usize,
 ) -> Fmi2Status {
     unsafe {
-        fill::<M>(
+        get_array::<Fmi2, M>(
             c,
-            "fmi2GetEventIndicators",
-            Call::GetEventIndicators,
+            ("fmi2GetEventIndicators", Call::GetEventIndicators),
+            StateArray::EventIndicators,
             z,
             nz,
-            indicators::<M>,
-            M::event_indicators,
         )
     }
 }
@@ -162,17 +141,12 @@ pub unsafe fn get_continuous_states<M: Model>(
     nx: usize,
 ) -> Fmi2Status {
     unsafe {
-        fill::<M>(
+        get_array::<Fmi2, M>(
             c,
-            "fmi2GetContinuousStates",
-            Call::GetContinuousStates,
+            ("fmi2GetContinuousStates", Call::GetContinuousStates),
+            StateArray::ContinuousStates,
             x,
             nx,
-            states::<M>,
-            |m, x| {
-                m.continuous_states(x);
-                Ok(())
-            },
         )
     }
 }
@@ -183,17 +157,15 @@ pub unsafe fn get_nominals_of_continuous_states<M: Model>(
     nx: usize,
 ) -> Fmi2Status {
     unsafe {
-        fill::<M>(
+        get_array::<Fmi2, M>(
             c,
-            "fmi2GetNominalsOfContinuousStates",
-            Call::GetNominalsOfContinuousStates,
+            (
+                "fmi2GetNominalsOfContinuousStates",
+                Call::GetNominalsOfContinuousStates,
+            ),
+            StateArray::Nominals,
             x_nominal,
             nx,
-            states::<M>,
-            |m, x| {
-                m.nominals_of_continuous_states(x);
-                Ok(())
-            },
         )
     }
 }

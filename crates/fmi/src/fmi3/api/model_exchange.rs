@@ -4,9 +4,9 @@
 use super::{output_ref, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
-use crate::core::model_exchange_calls::{self as calls, indicators, states};
+use crate::core::model_exchange_calls::{self as calls, StateArray, get_array, indicators, states};
 use crate::fmi3::instance::Instance;
-use crate::fmi3::mode::{Call, Mode};
+use crate::fmi3::mode::{Call, Fmi3, Mode};
 use crate::fmi3::types::*;
 
 /// The outputs of fmi3UpdateDiscreteStates.
@@ -102,35 +102,21 @@ pub unsafe fn set_continuous_states<M: Model>(
     }
 }
 
-/// [`calls::fill`]: an output array of the model's count `expected` filled by `f`.
-unsafe fn fill<M: Model>(
-    c: Fmi3Instance,
-    function: &str,
-    ptr: *mut Fmi3Float64,
-    n: usize,
-    expected: fn() -> usize,
-    f: impl FnOnce(&M, &mut [f64]) -> Result<(), String>,
-) -> Fmi3Status {
-    unsafe {
-        with_instance::<M>(c, function, Call::ContinuousStateQuery, |inst| {
-            calls::fill(inst, function, ptr, n, expected(), f)
-        })
-    }
-}
-
 pub unsafe fn get_continuous_state_derivatives<M: Model>(
     c: Fmi3Instance,
     dx: *mut Fmi3Float64,
     nx: usize,
 ) -> Fmi3Status {
     unsafe {
-        fill::<M>(
+        get_array::<Fmi3, M>(
             c,
-            "fmi3GetContinuousStateDerivatives",
+            (
+                "fmi3GetContinuousStateDerivatives",
+                Call::ContinuousStateQuery,
+            ),
+            StateArray::Derivatives,
             dx,
             nx,
-            states::<M>,
-            M::derivatives,
         )
     }
 }
@@ -141,13 +127,12 @@ pub unsafe fn get_event_indicators<M: Model>(
     nz: usize,
 ) -> Fmi3Status {
     unsafe {
-        fill::<M>(
+        get_array::<Fmi3, M>(
             c,
-            "fmi3GetEventIndicators",
+            ("fmi3GetEventIndicators", Call::ContinuousStateQuery),
+            StateArray::EventIndicators,
             z,
             nz,
-            indicators::<M>,
-            M::event_indicators,
         )
     }
 }
@@ -158,10 +143,13 @@ pub unsafe fn get_continuous_states<M: Model>(
     nx: usize,
 ) -> Fmi3Status {
     unsafe {
-        fill::<M>(c, "fmi3GetContinuousStates", x, nx, states::<M>, |m, x| {
-            m.continuous_states(x);
-            Ok(())
-        })
+        get_array::<Fmi3, M>(
+            c,
+            ("fmi3GetContinuousStates", Call::ContinuousStateQuery),
+            StateArray::ContinuousStates,
+            x,
+            nx,
+        )
     }
 }
 
@@ -171,16 +159,15 @@ pub unsafe fn get_nominals_of_continuous_states<M: Model>(
     nx: usize,
 ) -> Fmi3Status {
     unsafe {
-        fill::<M>(
+        get_array::<Fmi3, M>(
             c,
-            "fmi3GetNominalsOfContinuousStates",
+            (
+                "fmi3GetNominalsOfContinuousStates",
+                Call::ContinuousStateQuery,
+            ),
+            StateArray::Nominals,
             nominals,
             nx,
-            states::<M>,
-            |m, n| {
-                m.nominals_of_continuous_states(n);
-                Ok(())
-            },
         )
     }
 }
