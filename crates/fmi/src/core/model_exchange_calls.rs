@@ -184,3 +184,19 @@ unsafe fn fill<F: Frontend, M: Model>(
     }
     Ok(StatusCode::OK)
 }
+
+/// Defines a front-end's getters of the state arrays, each an entry point of
+/// [`get_array`]: `fn_name: "fmiXFunctionName", the front-end's call, StateArray
+/// variant;` for front-end `$frontend` with its handle and status types.
+macro_rules! state_array_getters {
+    ($frontend:ty, $handle:ty, $status:ty; $($name:ident: $function:literal, $call:expr, $array:ident;)*) => {
+        $(
+            #[doc = concat!("`", $function, "`: [`get_array`](crate::core::model_exchange_calls::get_array).")]
+            pub unsafe fn $name<M: Model>(c: $handle, values: *mut f64, n: usize) -> $status {
+                use $crate::core::model_exchange_calls::{StateArray, get_array};
+                unsafe { get_array::<$frontend, M>(c, ($function, $call), StateArray::$array, values, n) }
+            }
+        )*
+    };
+}
+pub(crate) use state_array_getters;

@@ -3,7 +3,7 @@
 use super::{output_ref, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
-use crate::core::model_exchange_calls::{self as calls, StateArray, get_array};
+use crate::core::model_exchange_calls::{self as calls, state_array_getters};
 use crate::fmi2::instance::Instance;
 use crate::fmi2::mode::{Call, Fmi2, Mode};
 use crate::fmi2::types::*;
@@ -103,69 +103,11 @@ pub unsafe fn set_continuous_states<M: Model>(
     }
 }
 
-pub unsafe fn get_derivatives<M: Model>(
-    c: Fmi2Component,
-    dx: *mut Fmi2Real,
-    nx: usize,
-) -> Fmi2Status {
-    unsafe {
-        get_array::<Fmi2, M>(
-            c,
-            ("fmi2GetDerivatives", Call::GetDerivatives),
-            StateArray::Derivatives,
-            dx,
-            nx,
-        )
-    }
-}
-
-pub unsafe fn get_event_indicators<M: Model>(
-    c: Fmi2Component,
-    z: *mut Fmi2Real,
-    nz: usize,
-) -> Fmi2Status {
-    unsafe {
-        get_array::<Fmi2, M>(
-            c,
-            ("fmi2GetEventIndicators", Call::GetEventIndicators),
-            StateArray::EventIndicators,
-            z,
-            nz,
-        )
-    }
-}
-
-pub unsafe fn get_continuous_states<M: Model>(
-    c: Fmi2Component,
-    x: *mut Fmi2Real,
-    nx: usize,
-) -> Fmi2Status {
-    unsafe {
-        get_array::<Fmi2, M>(
-            c,
-            ("fmi2GetContinuousStates", Call::GetContinuousStates),
-            StateArray::ContinuousStates,
-            x,
-            nx,
-        )
-    }
-}
-
-pub unsafe fn get_nominals_of_continuous_states<M: Model>(
-    c: Fmi2Component,
-    x_nominal: *mut Fmi2Real,
-    nx: usize,
-) -> Fmi2Status {
-    unsafe {
-        get_array::<Fmi2, M>(
-            c,
-            (
-                "fmi2GetNominalsOfContinuousStates",
-                Call::GetNominalsOfContinuousStates,
-            ),
-            StateArray::Nominals,
-            x_nominal,
-            nx,
-        )
-    }
+state_array_getters! {
+    Fmi2, Fmi2Component, Fmi2Status;
+    get_derivatives: "fmi2GetDerivatives", Call::GetDerivatives, Derivatives;
+    get_event_indicators: "fmi2GetEventIndicators", Call::GetEventIndicators, EventIndicators;
+    get_continuous_states: "fmi2GetContinuousStates", Call::GetContinuousStates, ContinuousStates;
+    get_nominals_of_continuous_states: "fmi2GetNominalsOfContinuousStates",
+        Call::GetNominalsOfContinuousStates, Nominals;
 }

@@ -4,7 +4,7 @@
 use super::{output_ref, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
-use crate::core::model_exchange_calls::{self as calls, StateArray, get_array, indicators, states};
+use crate::core::model_exchange_calls::{self as calls, indicators, state_array_getters, states};
 use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::{Call, Fmi3, Mode};
 use crate::fmi3::types::*;
@@ -102,74 +102,14 @@ pub unsafe fn set_continuous_states<M: Model>(
     }
 }
 
-pub unsafe fn get_continuous_state_derivatives<M: Model>(
-    c: Fmi3Instance,
-    dx: *mut Fmi3Float64,
-    nx: usize,
-) -> Fmi3Status {
-    unsafe {
-        get_array::<Fmi3, M>(
-            c,
-            (
-                "fmi3GetContinuousStateDerivatives",
-                Call::ContinuousStateQuery,
-            ),
-            StateArray::Derivatives,
-            dx,
-            nx,
-        )
-    }
-}
-
-pub unsafe fn get_event_indicators<M: Model>(
-    c: Fmi3Instance,
-    z: *mut Fmi3Float64,
-    nz: usize,
-) -> Fmi3Status {
-    unsafe {
-        get_array::<Fmi3, M>(
-            c,
-            ("fmi3GetEventIndicators", Call::ContinuousStateQuery),
-            StateArray::EventIndicators,
-            z,
-            nz,
-        )
-    }
-}
-
-pub unsafe fn get_continuous_states<M: Model>(
-    c: Fmi3Instance,
-    x: *mut Fmi3Float64,
-    nx: usize,
-) -> Fmi3Status {
-    unsafe {
-        get_array::<Fmi3, M>(
-            c,
-            ("fmi3GetContinuousStates", Call::ContinuousStateQuery),
-            StateArray::ContinuousStates,
-            x,
-            nx,
-        )
-    }
-}
-
-pub unsafe fn get_nominals_of_continuous_states<M: Model>(
-    c: Fmi3Instance,
-    nominals: *mut Fmi3Float64,
-    nx: usize,
-) -> Fmi3Status {
-    unsafe {
-        get_array::<Fmi3, M>(
-            c,
-            (
-                "fmi3GetNominalsOfContinuousStates",
-                Call::ContinuousStateQuery,
-            ),
-            StateArray::Nominals,
-            nominals,
-            nx,
-        )
-    }
+state_array_getters! {
+    Fmi3, Fmi3Instance, Fmi3Status;
+    get_continuous_state_derivatives: "fmi3GetContinuousStateDerivatives",
+        Call::ContinuousStateQuery, Derivatives;
+    get_event_indicators: "fmi3GetEventIndicators", Call::ContinuousStateQuery, EventIndicators;
+    get_continuous_states: "fmi3GetContinuousStates", Call::ContinuousStateQuery, ContinuousStates;
+    get_nominals_of_continuous_states: "fmi3GetNominalsOfContinuousStates",
+        Call::ContinuousStateQuery, Nominals;
 }
 
 unsafe fn get_count<M: Model>(
