@@ -190,3 +190,22 @@ macro_rules! fmu_state_call_rows {
     };
 }
 pub(crate) use fmu_state_call_rows;
+
+/// The Model Exchange evaluations both standards have (class `matrix::pose`): the
+/// state derivatives (`$derivatives` names the getter, `$get_derivatives` its
+/// field) and the event indicators, as a `Vec<(&str, seam::Evaluate<_>)>`.
+macro_rules! me_evaluation_rows {
+    ($prefix:literal, $derivatives:literal, $get_derivatives:ident) => {
+        vec![
+            (concat!($prefix, $derivatives), |i| unsafe {
+                let mut dx = vec![0.0; i.description.number_of_states];
+                (i.binary.$get_derivatives)(i.c, dx.as_mut_ptr(), dx.len())
+            }),
+            (concat!($prefix, "GetEventIndicators"), |i| unsafe {
+                let mut z = vec![0.0; i.description.number_of_event_indicators];
+                (i.binary.get_event_indicators)(i.c, z.as_mut_ptr(), z.len())
+            }),
+        ]
+    };
+}
+pub(crate) use me_evaluation_rows;

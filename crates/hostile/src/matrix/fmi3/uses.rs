@@ -5,7 +5,7 @@
 use crate::binary::{OK, Status};
 use crate::description::{Description, Variable};
 use crate::fmi3::host::{Instance, Interface3};
-use crate::matrix::same_named::fmu_state_use_rows;
+use crate::matrix::same_named::{fmu_state_use_rows, me_evaluation_rows};
 use crate::matrix::seam::{Evaluate, Use, Value};
 use crate::matrix::values::{discarded, me_evaluate};
 
@@ -14,15 +14,12 @@ pub fn state_uses() -> Vec<(&'static str, Use<Interface3>)> {
 }
 
 pub fn evaluations() -> Vec<(&'static str, Evaluate<Interface3>)> {
-    vec![
-        ("fmi3GetContinuousStateDerivatives", |i: &Instance| unsafe {
-            let mut dx = vec![0.0; i.description.number_of_states];
-            (i.binary.get_continuous_state_derivatives)(i.c, dx.as_mut_ptr(), dx.len())
-        }),
-        ("fmi3GetEventIndicators", |i| unsafe {
-            let mut z = vec![0.0; i.description.number_of_event_indicators];
-            (i.binary.get_event_indicators)(i.c, z.as_mut_ptr(), z.len())
-        }),
+    let mut rows: Vec<(&'static str, Evaluate<Interface3>)> = me_evaluation_rows!(
+        "fmi3",
+        "GetContinuousStateDerivatives",
+        get_continuous_state_derivatives
+    );
+    rows.extend::<[(&'static str, Evaluate<Interface3>); 3]>([
         ("fmi3GetFloat64(thetaDot)", |i| {
             i.get_float64(&[i.description.by_name("thetaDot").vr]).0
         }),
@@ -32,7 +29,8 @@ pub fn evaluations() -> Vec<(&'static str, Evaluate<Interface3>)> {
         ("fmi3GetAdjointDerivative(der(theta) by theta)", |i| {
             partial(i, true)
         }),
-    ]
+    ]);
+    rows
 }
 
 fn partial(i: &Instance, adjoint: bool) -> Status {
