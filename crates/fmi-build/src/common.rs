@@ -1,13 +1,114 @@
-//! The parts of modelDescription.xml that FMI 2.0 and FMI 3.0 write alike: the
-//! generating tool, numbers, `<UnitDefinitions>` (units and display units the table
-//! uses), `<LogCategories>`, `<DefaultExperiment>`, and the drift check of a
-//! checked-in description. The front-ends' writers embed these elements.
+//! The parts of modelDescription.xml that FMI 2.0 and FMI 3.0 write alike: the root
+//! element [`ModelDescription`] with its attributes, the generating tool, numbers,
+//! `<UnitDefinitions>` (units and display units the scalars use), `<LogCategories>`
+//! and `<DefaultExperiment>`. Each standard's writer fills in its interfaces,
+//! variables and structure.
 
 use crate::units::{UNITS, UnitDefinition, unit};
 use robofmu_fmi::core::logging::LogCategory;
-use robofmu_fmi::core::model::{DefaultExperiment as Experiment, Model};
-use robofmu_fmi::core::variables::{Kind, Variable};
+use robofmu_fmi::core::model::{DefaultExperiment as Experiment, ModelInfo};
+use robofmu_fmi::description::{Description, Scalar, Value};
 use serde::Serialize;
+
+/// `<fmiModelDescription>` of either standard: the standard's interface type `I`
+/// (`<ModelExchange>`, `<CoSimulation>`), variables `V` and structure `S`.
+#[derive(Serialize)]
+#[serde(rename = "fmiModelDescription")]
+pub struct ModelDescription<I, V, S> {
+    #[serde(rename = "@fmiVersion")]
+    fmi_version: &'static str,
+    #[serde(rename = "@modelName")]
+    model_name: &'static str,
+    /// FMI 2.0.
+    #[serde(rename = "@guid", skip_serializing_if = "Option::is_none")]
+    guid: Option<String>,
+    /// FMI 3.0.
+    #[serde(
+        rename = "@instantiationToken",
+        skip_serializing_if = "Option::is_none"
+    )]
+    instantiation_token: Option<String>,
+    #[serde(rename = "@description")]
+    description: &'static str,
+    #[serde(rename = "@generationTool")]
+    generation_tool: &'static str,
+    #[serde(rename = "@variableNamingConvention")]
+    naming: &'static str,
+    /// FMI 2.0.
+    #[serde(
+        rename = "@numberOfEventIndicators",
+        skip_serializing_if = "Option::is_none"
+    )]
+    event_indicators: Option<usize>,
+    #[serde(rename = "ModelExchange")]
+    model_exchange: I,
+    #[serde(rename = "CoSimulation")]
+    co_simulation: I,
+    #[serde(rename = "UnitDefinitions", skip_serializing_if = "Option::is_none")]
+    unit_definitions: Option<UnitDefinitions>,
+    #[serde(rename = "LogCategories")]
+    log_categories: LogCategories,
+    #[serde(rename = "DefaultExperiment")]
+    default_experiment: DefaultExperiment,
+    #[serde(rename = "ModelVariables")]
+    model_variables: V,
+    #[serde(rename = "ModelStructure")]
+    model_structure: S,
+}
+
+/// The standard a description is written for, with its instantiation token.
+pub enum Standard {
+    Fmi2,
+    Fmi3 { token: String },
+}
+
+/// What a standard's writer contributes: its two interfaces (Model Exchange,
+/// Co-Simulation), variables and structure.
+pub struct Parts<I, V, S> {
+    pub interfaces: (I, I),
+    pub variables: V,
+    pub structure: S,
+}
+
+impl<I: Serialize, V: Serialize, S: Serialize> ModelDescription<I, V, S> {
+    /// The text of the description of `d` for `standard` from that standard's parts.
+    pub fn write(
+        d: &Description,
+        standard: Standard,
+        parts: Parts<I, V, S>,
+    ) -> Result<String, String> {
+        let info = &d.info;
+        let (fmi_version, guid, instantiation_token, event_indicators, categories) = match standard
+        {
+            Standard::Fmi2 => (
+                "2.0",
+                Some(info.guid.to_string()),
+                None,
+                Some(info.number_of_event_indicators),
+                &d.log_categories[0],
+            ),
+            Standard::Fmi3 { token } => ("3.0", None, Some(token), None, &d.log_categories[1]),
+        };
+        let (model_exchange, co_simulation) = parts.interfaces;
+        xml_document(&ModelDescription {
+            fmi_version,
+            model_name: info.model_name,
+            guid,
+            instantiation_token,
+            description: info.description,
+            generation_tool: GENERATION_TOOL,
+            naming: "structured",
+            event_indicators,
+            model_exchange,
+            co_simulation,
+            unit_definitions: UnitDefinitions::of(&d.scalars)?,
+            log_categories: LogCategories::of(categories),
+            default_experiment: DefaultExperiment::of(&info.default_experiment),
+            model_variables: parts.variables,
+            model_structure: parts.structure,
+        })
+    }
+}
 
 /// Name and version of the generating tool, as written into generationTool.
 pub const GENERATION_TOOL: &str = concat!("robofmu ", env!("CARGO_PKG_VERSION"));
@@ -61,7 +162,7 @@ struct DisplayUnit {
 impl UnitDefinitions {
     /// The units `table` uses (None: no unit), in the order of the layer's unit list,
     /// after checking that every unit and display unit is defined.
-    pub fn of<M>(table: &[Variable<M>]) -> Result<Option<UnitDefinitions>, String> {
+    pub fn of(table: &[Scalar]) -> Result<Option<UnitDefinitions>, String> {
         let units = used_units(table)?;
         Ok((!units.is_empty()).then(|| UnitDefinitions {
             units: units.iter().map(|u| Unit::of(u)).collect(),
@@ -91,22 +192,22 @@ impl Unit {
     }
 }
 
-fn used_units<M>(table: &[Variable<M>]) -> Result<Vec<&'static UnitDefinition>, String> {
+fn used_units(table: &[Scalar]) -> Result<Vec<&'static UnitDefinition>, String> {
     let mut used: Vec<&'static UnitDefinition> = Vec::new();
     for v in table {
-        if let Kind::Real {
+        if let Value::Real {
             unit: Some(name),
             display_unit,
             ..
-        } = &v.kind
+        } = &v.value
         {
-            let def = unit(name).ok_or_else(|| format!("\"{}\": unknown unit {name}", v.name()))?;
+            let def = unit(name).ok_or_else(|| format!("\"{}\": unknown unit {name}", v.name))?;
             if let Some(d) = display_unit
                 && !def.display_units.iter().any(|du| du.name == *d)
             {
                 return Err(format!(
                     "\"{}\": {d} is not a display unit of {name}",
-                    v.name()
+                    v.name
                 ));
             }
             if !used.iter().any(|u| u.name == def.name) {
@@ -173,7 +274,7 @@ impl DefaultExperiment {
 
 /// The XML document of `root`: the XML declaration, `root` indented by two spaces, and
 /// a final newline.
-pub fn xml_document<T: Serialize>(root: &T) -> Result<String, String> {
+fn xml_document<T: Serialize>(root: &T) -> Result<String, String> {
     let mut xml = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let mut serializer = quick_xml::se::Serializer::new(&mut xml);
     serializer.indent(' ', 2);
@@ -183,26 +284,8 @@ pub fn xml_document<T: Serialize>(root: &T) -> Result<String, String> {
     Ok(xml)
 }
 
-/// The drift check of an FMU crate: the checked-in `<dir>/<modelName>.xml` of model M
-/// must equal `generated`. With the environment variable UPDATE_MODEL_DESCRIPTION set,
-/// the file is rewritten first.
-pub fn check_checked_in<M: Model>(dir: &std::path::Path, generated: &str) -> Result<(), String> {
-    let path = &dir.join(format!("{}.xml", M::info().model_name));
-    if std::env::var_os("UPDATE_MODEL_DESCRIPTION").is_some() {
-        std::fs::write(path, generated).map_err(|e| format!("{}: {e}", path.display()))?;
-    }
-    let on_disk = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    if on_disk != generated {
-        return Err(format!(
-            "{} drifted from the code: rerun this test with UPDATE_MODEL_DESCRIPTION=1",
-            path.display()
-        ));
-    }
-    Ok(())
-}
-
 /// The maxOutputDerivativeOrder attribute of `<CoSimulation>`: left out (default 0) when
 /// the model provides no output derivatives.
-pub fn max_output_derivative_order(info: &robofmu_fmi::core::model::ModelInfo) -> Option<u32> {
+pub fn max_output_derivative_order(info: &ModelInfo) -> Option<u32> {
     (info.max_output_derivative_order > 0).then_some(info.max_output_derivative_order)
 }
