@@ -7,14 +7,16 @@
 use crate::units::{UNITS, UnitDefinition, unit};
 use robofmu_fmi::core::logging::LogCategory;
 use robofmu_fmi::core::model::{DefaultExperiment as Experiment, ModelInfo};
+use robofmu_fmi::core::variables::{Causality, Variability};
 use robofmu_fmi::description::{Description, Scalar, Value};
 use serde::Serialize;
+use serde::ser::{SerializeMap, Serializer};
 
-/// `<fmiModelDescription>` of either standard: the standard's interface type `I`
-/// (`<ModelExchange>`, `<CoSimulation>`), variables `V` and structure `S`.
+/// `<fmiModelDescription>` of either standard, with the standard's variables `V` and
+/// structure `S`.
 #[derive(Serialize)]
 #[serde(rename = "fmiModelDescription")]
-pub struct ModelDescription<I, V, S> {
+pub struct ModelDescription<V, S> {
     #[serde(rename = "@fmiVersion")]
     fmi_version: &'static str,
     #[serde(rename = "@modelName")]
@@ -41,9 +43,9 @@ pub struct ModelDescription<I, V, S> {
     )]
     event_indicators: Option<usize>,
     #[serde(rename = "ModelExchange")]
-    model_exchange: I,
+    model_exchange: Attributes,
     #[serde(rename = "CoSimulation")]
-    co_simulation: I,
+    co_simulation: Attributes,
     #[serde(rename = "UnitDefinitions", skip_serializing_if = "Option::is_none")]
     unit_definitions: Option<UnitDefinitions>,
     #[serde(rename = "LogCategories")]
@@ -64,18 +66,49 @@ pub enum Standard {
 
 /// What a standard's writer contributes: its two interfaces (Model Exchange,
 /// Co-Simulation), variables and structure.
-pub struct Parts<I, V, S> {
-    pub interfaces: (I, I),
+pub struct Parts<V, S> {
+    pub interfaces: (Attributes, Attributes),
     pub variables: V,
     pub structure: S,
 }
 
-impl<I: Serialize, V: Serialize, S: Serialize> ModelDescription<I, V, S> {
+/// An element that has attributes only, written in the order they were added
+/// (`<ModelExchange>`, `<CoSimulation>`: each standard names its own).
+#[derive(Default)]
+pub struct Attributes(Vec<(&'static str, String)>);
+
+impl Attributes {
+    /// The attribute `name` = `value` added.
+    pub fn with(mut self, name: &'static str, value: impl ToString) -> Self {
+        self.0.push((name, value.to_string()));
+        self
+    }
+
+    /// The attribute `name` added when `value` is Some (left out otherwise).
+    pub fn with_some(self, name: &'static str, value: Option<impl ToString>) -> Self {
+        match value {
+            Some(v) => self.with(name, v),
+            None => self,
+        }
+    }
+}
+
+impl Serialize for Attributes {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(self.0.len()))?;
+        for (name, value) in &self.0 {
+            map.serialize_entry(&format!("@{name}"), value)?;
+        }
+        map.end()
+    }
+}
+
+impl<V: Serialize, S: Serialize> ModelDescription<V, S> {
     /// The text of the description of `d` for `standard` from that standard's parts.
     pub fn write(
         d: &Description,
         standard: Standard,
-        parts: Parts<I, V, S>,
+        parts: Parts<V, S>,
     ) -> Result<String, String> {
         let info = &d.info;
         let (fmi_version, guid, instantiation_token, event_indicators, categories) = match standard
@@ -116,6 +149,95 @@ pub const GENERATION_TOOL: &str = concat!("robofmu ", env!("CARGO_PKG_VERSION"))
 /// Shortest decimal text that reads back to the same f64.
 pub fn number(v: f64) -> String {
     format!("{v:?}")
+}
+
+/// The attributes every variable of either standard starts with.
+#[derive(Serialize)]
+pub struct VariableHead {
+    #[serde(rename = "@name")]
+    name: String,
+    #[serde(rename = "@valueReference")]
+    value_reference: u32,
+    #[serde(rename = "@description")]
+    description: String,
+    #[serde(rename = "@causality")]
+    causality: &'static str,
+    #[serde(rename = "@variability")]
+    variability: &'static str,
+}
+
+impl VariableHead {
+    pub fn new(
+        name: String,
+        value_reference: u32,
+        description: String,
+        (causality, variability): (Causality, Variability),
+    ) -> VariableHead {
+        VariableHead {
+            name,
+            value_reference,
+            description,
+            causality: causality.as_str(),
+            variability: variability.as_str(),
+        }
+    }
+}
+
+/// The type-specific attributes of a variable of either standard, in the schemas'
+/// order: `unit`, `displayUnit`, `min`, `max`, `start`, `derivative`; those that do
+/// not apply stay None.
+#[derive(Serialize, Default)]
+pub struct TypeAttributes {
+    #[serde(rename = "@unit", skip_serializing_if = "Option::is_none")]
+    pub unit: Option<&'static str>,
+    #[serde(rename = "@displayUnit", skip_serializing_if = "Option::is_none")]
+    pub display_unit: Option<&'static str>,
+    #[serde(rename = "@min", skip_serializing_if = "Option::is_none")]
+    pub min: Option<String>,
+    #[serde(rename = "@max", skip_serializing_if = "Option::is_none")]
+    pub max: Option<String>,
+    /// FMI 3.0: the space-separated start values of all elements.
+    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
+    pub start: Option<String>,
+    /// FMI 2.0: the 1-based index of the state; FMI 3.0: its value reference.
+    #[serde(rename = "@derivative", skip_serializing_if = "Option::is_none")]
+    pub derivative: Option<u32>,
+}
+
+impl TypeAttributes {
+    /// The unit, display unit and bounds of `value`, without start and derivative.
+    pub fn of(value: &Value) -> TypeAttributes {
+        match *value {
+            Value::Real {
+                unit,
+                display_unit,
+                min,
+                max,
+                ..
+            } => TypeAttributes {
+                unit,
+                display_unit,
+                min: min.map(number),
+                max: max.map(number),
+                ..TypeAttributes::default()
+            },
+            Value::Integer { min, max, .. } => TypeAttributes {
+                min: min.map(|m| m.to_string()),
+                max: max.map(|m| m.to_string()),
+                ..TypeAttributes::default()
+            },
+            Value::Boolean { .. } => TypeAttributes::default(),
+        }
+    }
+}
+
+/// The start value of `value` as written in modelDescription.xml.
+pub fn start(value: &Value) -> Option<String> {
+    match *value {
+        Value::Real { start, .. } => start.map(number),
+        Value::Integer { start, .. } => start.map(|s| s.to_string()),
+        Value::Boolean { start } => start.map(|s| s.to_string()),
+    }
 }
 
 /// `<UnitDefinitions>`.

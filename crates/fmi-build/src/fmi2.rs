@@ -3,41 +3,12 @@
 //! (`<Outputs>`, `<Derivatives>`, `<InitialUnknowns>` with their dependencies as
 //! 1-based indices). The root element and what both standards share: [`common`].
 
-use crate::common::{self, ModelDescription, Parts, Standard, number};
+use crate::common::{
+    self, Attributes, ModelDescription, Parts, Standard, TypeAttributes, VariableHead,
+};
 use robofmu_fmi::core::variables::{Causality, Initial};
 use robofmu_fmi::description::{Description, Scalar, Value};
 use serde::Serialize;
-
-/// Attributes of <ModelExchange> and <CoSimulation>; `None` ones are left out.
-#[derive(Serialize)]
-struct Interface {
-    #[serde(rename = "@modelIdentifier")]
-    model_identifier: &'static str,
-    #[serde(
-        rename = "@canHandleVariableCommunicationStepSize",
-        skip_serializing_if = "Option::is_none"
-    )]
-    variable_step: Option<bool>,
-    /// Co-Simulation only: the step uses the inputs' derivatives
-    /// (`Model::MAX_INPUT_DERIVATIVE_ORDER` > 0).
-    #[serde(
-        rename = "@canInterpolateInputs",
-        skip_serializing_if = "Option::is_none"
-    )]
-    interpolate_inputs: Option<bool>,
-    #[serde(rename = "@canGetAndSetFMUstate")]
-    get_set_state: bool,
-    #[serde(rename = "@canSerializeFMUstate")]
-    serialize_state: bool,
-    #[serde(rename = "@providesDirectionalDerivative")]
-    directional_derivative: bool,
-    /// Co-Simulation only, and only when the model provides output derivatives.
-    #[serde(
-        rename = "@maxOutputDerivativeOrder",
-        skip_serializing_if = "Option::is_none"
-    )]
-    max_output_derivative_order: Option<u32>,
-}
 
 #[derive(Serialize)]
 struct ModelVariables {
@@ -47,59 +18,20 @@ struct ModelVariables {
 
 #[derive(Serialize)]
 struct ScalarVariable {
-    #[serde(rename = "@name")]
-    name: String,
-    #[serde(rename = "@valueReference")]
-    value_reference: u32,
-    #[serde(rename = "@description")]
-    description: String,
-    #[serde(rename = "@causality")]
-    causality: &'static str,
-    #[serde(rename = "@variability")]
-    variability: &'static str,
+    #[serde(flatten)]
+    head: VariableHead,
     #[serde(rename = "@initial", skip_serializing_if = "Option::is_none")]
     initial: Option<&'static str>,
     #[serde(rename = "$value")]
     kind: TypeElement,
 }
 
+/// The type element, named after the type.
 #[derive(Serialize)]
 enum TypeElement {
-    Real(RealAttributes),
-    Integer(IntegerAttributes),
-    Boolean(BooleanAttributes),
-}
-
-#[derive(Serialize)]
-struct RealAttributes {
-    #[serde(rename = "@unit", skip_serializing_if = "Option::is_none")]
-    unit: Option<&'static str>,
-    #[serde(rename = "@displayUnit", skip_serializing_if = "Option::is_none")]
-    display_unit: Option<&'static str>,
-    #[serde(rename = "@min", skip_serializing_if = "Option::is_none")]
-    min: Option<String>,
-    #[serde(rename = "@max", skip_serializing_if = "Option::is_none")]
-    max: Option<String>,
-    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
-    start: Option<String>,
-    #[serde(rename = "@derivative", skip_serializing_if = "Option::is_none")]
-    derivative: Option<usize>,
-}
-
-#[derive(Serialize)]
-struct IntegerAttributes {
-    #[serde(rename = "@min", skip_serializing_if = "Option::is_none")]
-    min: Option<i32>,
-    #[serde(rename = "@max", skip_serializing_if = "Option::is_none")]
-    max: Option<i32>,
-    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
-    start: Option<i32>,
-}
-
-#[derive(Serialize)]
-struct BooleanAttributes {
-    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
-    start: Option<bool>,
+    Real(TypeAttributes),
+    Integer(TypeAttributes),
+    Boolean(TypeAttributes),
 }
 
 #[derive(Serialize)]
@@ -161,35 +93,54 @@ fn unknown(v: &Scalar, names: Option<&'static [&'static str]>, table: &[Scalar])
 }
 
 fn scalar_variable(v: &Scalar, table: &[Scalar]) -> ScalarVariable {
+    let attributes = TypeAttributes {
+        start: common::start(&v.value),
+        derivative: (v.state.as_deref())
+            .and_then(|s| index_of(table, s))
+            .map(|i| i as u32),
+        ..TypeAttributes::of(&v.value)
+    };
     let kind = match v.value {
-        Value::Real {
-            start,
-            min,
-            max,
-            unit,
-            display_unit,
-        } => TypeElement::Real(RealAttributes {
-            unit,
-            display_unit,
-            min: min.map(number),
-            max: max.map(number),
-            start: start.map(number),
-            derivative: v.state.as_deref().and_then(|s| index_of(table, s)),
-        }),
-        Value::Integer { start, min, max } => {
-            TypeElement::Integer(IntegerAttributes { min, max, start })
-        }
-        Value::Boolean { start } => TypeElement::Boolean(BooleanAttributes { start }),
+        Value::Real { .. } => TypeElement::Real(attributes),
+        Value::Integer { .. } => TypeElement::Integer(attributes),
+        Value::Boolean { .. } => TypeElement::Boolean(attributes),
     };
     ScalarVariable {
-        name: v.name.clone(),
-        value_reference: v.value_reference,
-        description: v.description.clone(),
-        causality: v.causality.as_str(),
-        variability: v.variability.as_str(),
+        head: VariableHead::new(
+            v.name.clone(),
+            v.value_reference,
+            v.description.clone(),
+            (v.causality, v.variability),
+        ),
         initial: v.initial.map(Initial::as_str),
         kind,
     }
+}
+
+/// `<ModelExchange>` and `<CoSimulation>`.
+fn interfaces(d: &Description) -> (Attributes, Attributes) {
+    let info = &d.info;
+    let identified = || Attributes::default().with("modelIdentifier", info.model_identifier);
+    let capabilities = |a: Attributes| {
+        a.with("canGetAndSetFMUstate", true)
+            .with("canSerializeFMUstate", true)
+            .with(
+                "providesDirectionalDerivative",
+                info.provides_directional_derivative,
+            )
+    };
+    let co_simulation = identified()
+        .with("canHandleVariableCommunicationStepSize", true)
+        // The step uses the inputs' derivatives.
+        .with_some(
+            "canInterpolateInputs",
+            (d.max_input_derivative_order > 0).then_some(true),
+        );
+    let co_simulation = capabilities(co_simulation).with_some(
+        "maxOutputDerivativeOrder",
+        common::max_output_derivative_order(info),
+    );
+    (capabilities(identified()), co_simulation)
 }
 
 /// The text of the FMI 2.0 modelDescription.xml of `d`.
@@ -222,22 +173,8 @@ pub fn model_description(d: &Description) -> Result<String, String> {
         })
         .map(|v| unknown(v, v.initial_dependencies, table))
         .collect();
-    let interface = |variable_step: Option<bool>| Interface {
-        model_identifier: info.model_identifier,
-        variable_step,
-        interpolate_inputs: None,
-        get_set_state: true,
-        serialize_state: true,
-        directional_derivative: info.provides_directional_derivative,
-        max_output_derivative_order: None,
-    };
-    let co_simulation = Interface {
-        interpolate_inputs: (d.max_input_derivative_order > 0).then_some(true),
-        max_output_derivative_order: common::max_output_derivative_order(info),
-        ..interface(Some(true))
-    };
     let parts = Parts {
-        interfaces: (interface(None), co_simulation),
+        interfaces: interfaces(d),
         variables: ModelVariables {
             variables: table.iter().map(|v| scalar_variable(v, table)).collect(),
         },

@@ -5,57 +5,13 @@
 //! dependencies as value references); the array view or the scalar-only one. The root
 //! element and what both standards share: [`common`].
 
-use crate::common::{self, ModelDescription, Parts, Standard, number};
+use crate::common::{
+    self, Attributes, ModelDescription, Parts, Standard, TypeAttributes, VariableHead,
+};
 use robofmu_fmi::core::variables::{Causality, Initial};
 use robofmu_fmi::description::{Description, Scalar, Value, Variable3Description};
 use robofmu_fmi::fmi3::table::Source;
 use serde::Serialize;
-
-/// Attributes of <ModelExchange> and <CoSimulation>; `None` ones are left out.
-#[derive(Serialize)]
-struct Interface {
-    #[serde(rename = "@modelIdentifier")]
-    model_identifier: &'static str,
-    #[serde(rename = "@canGetAndSetFMUState")]
-    get_set_state: bool,
-    #[serde(rename = "@canSerializeFMUState")]
-    serialize_state: bool,
-    #[serde(rename = "@providesDirectionalDerivatives")]
-    directional_derivatives: bool,
-    #[serde(rename = "@providesAdjointDerivatives")]
-    adjoint_derivatives: bool,
-    #[serde(rename = "@providesPerElementDependencies")]
-    per_element_dependencies: bool,
-    #[serde(
-        rename = "@needsCompletedIntegratorStep",
-        skip_serializing_if = "Option::is_none"
-    )]
-    needs_completed_integrator_step: Option<bool>,
-    #[serde(
-        rename = "@canHandleVariableCommunicationStepSize",
-        skip_serializing_if = "Option::is_none"
-    )]
-    variable_step: Option<bool>,
-    #[serde(rename = "@hasEventMode", skip_serializing_if = "Option::is_none")]
-    has_event_mode: Option<bool>,
-    #[serde(
-        rename = "@mightReturnEarlyFromDoStep",
-        skip_serializing_if = "Option::is_none"
-    )]
-    might_return_early: Option<bool>,
-    /// Co-Simulation only, and only when the model provides output derivatives.
-    #[serde(
-        rename = "@maxOutputDerivativeOrder",
-        skip_serializing_if = "Option::is_none"
-    )]
-    max_output_derivative_order: Option<u32>,
-    /// Co-Simulation only, and only when the model has intermediate points.
-    #[serde(
-        rename = "@providesIntermediateUpdate",
-        skip_serializing_if = "Option::is_none"
-    )]
-    provides_intermediate_update: Option<bool>,
-}
 
 #[derive(Serialize)]
 struct ModelVariables {
@@ -74,16 +30,8 @@ enum TypedVariable {
 /// The attributes of a variable; those that do not apply to its type stay None.
 #[derive(Serialize)]
 struct ModelVariable {
-    #[serde(rename = "@name")]
-    name: String,
-    #[serde(rename = "@valueReference")]
-    value_reference: u32,
-    #[serde(rename = "@description")]
-    description: String,
-    #[serde(rename = "@causality")]
-    causality: &'static str,
-    #[serde(rename = "@variability")]
-    variability: &'static str,
+    #[serde(flatten)]
+    head: VariableHead,
     #[serde(
         rename = "@intermediateUpdate",
         skip_serializing_if = "Option::is_none"
@@ -91,19 +39,8 @@ struct ModelVariable {
     intermediate_update: Option<bool>,
     #[serde(rename = "@initial", skip_serializing_if = "Option::is_none")]
     initial: Option<&'static str>,
-    #[serde(rename = "@unit", skip_serializing_if = "Option::is_none")]
-    unit: Option<&'static str>,
-    #[serde(rename = "@displayUnit", skip_serializing_if = "Option::is_none")]
-    display_unit: Option<&'static str>,
-    #[serde(rename = "@min", skip_serializing_if = "Option::is_none")]
-    min: Option<String>,
-    #[serde(rename = "@max", skip_serializing_if = "Option::is_none")]
-    max: Option<String>,
-    /// Space-separated start values of all elements.
-    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
-    start: Option<String>,
-    #[serde(rename = "@derivative", skip_serializing_if = "Option::is_none")]
-    derivative: Option<u32>,
+    #[serde(flatten)]
+    attributes: TypeAttributes,
     #[serde(rename = "Dimension", skip_serializing_if = "Option::is_none")]
     dimension: Option<Dimension>,
 }
@@ -156,62 +93,37 @@ fn scalar(d: &Description, vr: u32) -> Result<&Scalar, String> {
     Ok(&d.scalars[i])
 }
 
-/// The type-specific attributes of `v`, read from its first element (shared by all)
-/// and the start values of every element.
+/// The variable `v3`: its type-specific attributes read from its first element
+/// (shared by all), with the start values of every element.
 fn model_variable(d: &Description, v3: &Variable3Description) -> Result<TypedVariable, String> {
     let v = &v3.variable;
-    let mut out = ModelVariable {
-        name: v.name.to_string(),
-        value_reference: v.value_reference,
-        description: v3.description.clone(),
-        causality: v.causality.as_str(),
-        variability: v.variability.as_str(),
-        intermediate_update: v3.intermediate_update.then_some(true),
-        initial: v.initial.map(Initial::as_str),
-        unit: None,
-        display_unit: None,
-        min: None,
-        max: None,
-        start: None,
-        derivative: v.derivative_of,
-        dimension: v.dimension.map(|start| Dimension { start }),
-    };
     let elements: Vec<&Scalar> = v
         .elements()
         .map(|vr| scalar(d, vr))
         .collect::<Result<_, _>>()?;
-    let Some(first) = elements.first() else {
-        return Ok(TypedVariable::Float64(out));
+    let starts: Option<Vec<String>> = elements.iter().map(|e| common::start(&e.value)).collect();
+    let first = elements.first().map(|e| e.value);
+    let attributes = TypeAttributes {
+        start: starts.filter(|_| first.is_some()).map(joined),
+        derivative: v.derivative_of,
+        ..first.as_ref().map(TypeAttributes::of).unwrap_or_default()
     };
-    let starts: Option<Vec<String>> = elements
-        .iter()
-        .map(|e| match e.value {
-            Value::Real { start, .. } => start.map(number),
-            Value::Integer { start, .. } => start.map(|s| s.to_string()),
-            Value::Boolean { start } => start.map(|s| s.to_string()),
-        })
-        .collect();
-    out.start = starts.map(joined);
-    Ok(match first.value {
-        Value::Real {
-            unit,
-            display_unit,
-            min,
-            max,
-            ..
-        } => {
-            out.unit = unit;
-            out.display_unit = display_unit;
-            out.min = min.map(number);
-            out.max = max.map(number);
-            TypedVariable::Float64(out)
-        }
-        Value::Integer { min, max, .. } => {
-            out.min = min.map(|m| m.to_string());
-            out.max = max.map(|m| m.to_string());
-            TypedVariable::Int32(out)
-        }
-        Value::Boolean { .. } => TypedVariable::Boolean(out),
+    let out = ModelVariable {
+        head: VariableHead::new(
+            v.name.to_string(),
+            v.value_reference,
+            v3.description.clone(),
+            (v.causality, v.variability),
+        ),
+        intermediate_update: v3.intermediate_update.then_some(true),
+        initial: v.initial.map(Initial::as_str),
+        attributes,
+        dimension: v.dimension.map(|start| Dimension { start }),
+    };
+    Ok(match first {
+        None | Some(Value::Real { .. }) => TypedVariable::Float64(out),
+        Some(Value::Integer { .. }) => TypedVariable::Int32(out),
+        Some(Value::Boolean { .. }) => TypedVariable::Boolean(out),
     })
 }
 
@@ -259,35 +171,36 @@ fn model_structure(variables: &[Variable3Description]) -> ModelStructure {
     }
 }
 
-fn interfaces(d: &Description) -> (Interface, Interface) {
+/// `<ModelExchange>` and `<CoSimulation>`.
+fn interfaces(d: &Description) -> (Attributes, Attributes) {
     let info = &d.info;
-    let common = || Interface {
-        model_identifier: info.model_identifier,
-        get_set_state: true,
-        serialize_state: true,
-        directional_derivatives: info.provides_directional_derivative,
-        adjoint_derivatives: info.provides_directional_derivative,
-        per_element_dependencies: true,
-        needs_completed_integrator_step: None,
-        variable_step: None,
-        has_event_mode: None,
-        might_return_early: None,
-        max_output_derivative_order: None,
-        provides_intermediate_update: None,
+    let derivatives = info.provides_directional_derivative;
+    let common = || {
+        Attributes::default()
+            .with("modelIdentifier", info.model_identifier)
+            .with("canGetAndSetFMUState", true)
+            .with("canSerializeFMUState", true)
+            .with("providesDirectionalDerivatives", derivatives)
+            .with("providesAdjointDerivatives", derivatives)
+            .with("providesPerElementDependencies", true)
     };
-    let model_exchange = Interface {
-        needs_completed_integrator_step: Some(false),
-        ..common()
-    };
-    let co_simulation = Interface {
-        variable_step: Some(true),
-        has_event_mode: Some(true),
+    let model_exchange = common().with("needsCompletedIntegratorStep", false);
+    let co_simulation = common()
+        .with("canHandleVariableCommunicationStepSize", true)
+        .with("hasEventMode", true)
         // Steps end early at events (sign changes of the event indicators).
-        might_return_early: (info.number_of_event_indicators > 0).then_some(true),
-        max_output_derivative_order: common::max_output_derivative_order(info),
-        provides_intermediate_update: (d.intermediate_update_points > 0).then_some(true),
-        ..common()
-    };
+        .with_some(
+            "mightReturnEarlyFromDoStep",
+            (info.number_of_event_indicators > 0).then_some(true),
+        )
+        .with_some(
+            "maxOutputDerivativeOrder",
+            common::max_output_derivative_order(info),
+        )
+        .with_some(
+            "providesIntermediateUpdate",
+            (d.intermediate_update_points > 0).then_some(true),
+        );
     (model_exchange, co_simulation)
 }
 
