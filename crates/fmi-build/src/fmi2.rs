@@ -3,9 +3,8 @@
 //! (`<Outputs>`, `<Derivatives>`, `<InitialUnknowns>` with their dependencies as
 //! 1-based indices). The root element and what both standards share: [`common`].
 
-use crate::common::{
-    self, Attributes, ModelDescription, Parts, Standard, TypeAttributes, VariableHead,
-};
+use crate::common::{self, Attributes, ModelDescription, Parts, Standard};
+use crate::variable::{TypeAttributes, VariableHead};
 use robofmu_fmi::core::variables::{Causality, Initial};
 use robofmu_fmi::description::{Description, Scalar, Value};
 use serde::Serialize;
@@ -94,7 +93,7 @@ fn unknown(v: &Scalar, names: Option<&'static [&'static str]>, table: &[Scalar])
 
 fn scalar_variable(v: &Scalar, table: &[Scalar]) -> ScalarVariable {
     let attributes = TypeAttributes {
-        start: common::start(&v.value),
+        start: crate::variable::start(&v.value),
         derivative: (v.state.as_deref())
             .and_then(|s| index_of(table, s))
             .map(|i| i as u32),

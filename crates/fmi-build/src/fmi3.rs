@@ -5,9 +5,8 @@
 //! dependencies as value references); the array view or the scalar-only one. The root
 //! element and what both standards share: [`common`].
 
-use crate::common::{
-    self, Attributes, ModelDescription, Parts, Standard, TypeAttributes, VariableHead,
-};
+use crate::common::{self, Attributes, ModelDescription, Parts, Standard};
+use crate::variable::{TypeAttributes, VariableHead};
 use robofmu_fmi::core::variables::{Causality, Initial};
 use robofmu_fmi::description::{Description, Scalar, Value, Variable3Description};
 use robofmu_fmi::fmi3::table::Source;
@@ -101,7 +100,10 @@ fn model_variable(d: &Description, v3: &Variable3Description) -> Result<TypedVar
         .elements()
         .map(|vr| scalar(d, vr))
         .collect::<Result<_, _>>()?;
-    let starts: Option<Vec<String>> = elements.iter().map(|e| common::start(&e.value)).collect();
+    let starts: Option<Vec<String>> = elements
+        .iter()
+        .map(|e| crate::variable::start(&e.value))
+        .collect();
     let first = elements.first().map(|e| e.value);
     let attributes = TypeAttributes {
         start: starts.filter(|_| first.is_some()).map(joined),

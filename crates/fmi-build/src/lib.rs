@@ -4,8 +4,9 @@
 //!
 //! - [`fmi2::model_description`], [`fmi3::model_description`] and
 //!   [`fmi3::scalar_model_description`]: modelDescription.xml of each standard (and
-//!   of the scalar-only FMI 3.0 variant), with the root element and the parts both
-//!   share in [`common`] (units from [`units`], log categories, default experiment);
+//!   of the scalar-only FMI 3.0 variant), with what both write alike in [`common`]
+//!   (the root element), [`variable`] (a variable's attributes) and [`sections`]
+//!   (units from [`units`], log categories, default experiment);
 //! - documentation/index.html from [`documentation`];
 //! - [`package`]: the three FMU archives of a model ([`package::Variant`]), with the
 //!   platform folder names of [`platform`];
@@ -18,4 +19,6 @@ pub mod fmi2;
 pub mod fmi3;
 pub mod package;
 pub mod platform;
+pub mod sections;
 pub mod units;
+pub mod variable;
