@@ -75,8 +75,3 @@ extern "C" fn release(_: *mut c_void) {
     let tables = std::mem::take(&mut *TABLES.lock().unwrap_or_else(PoisonError::into_inner));
     drop(tables);
 }
-
-/// How many tables this library holds now (for tests).
-pub fn count() -> usize {
-    TABLES.lock().unwrap_or_else(PoisonError::into_inner).len()
-}

@@ -106,7 +106,7 @@ pub unsafe fn instantiate_requiring<M: Model>(
             }
             // SAFETY: as above.
             let given = unsafe { text(args.token, "instantiationToken") }?;
-            let scalar = given == crate::fmi3::scalar::token::<M>();
+            let scalar = crate::fmi3::scalar::is_token::<M>(given);
             if given != M::info().guid && !scalar {
                 return Err(format!(
                     "instantiationToken {given} does not match this binary ({}, {})",
