@@ -23,15 +23,19 @@ use std::sync::Arc;
 pub type Instance<M> = FmuInstance<Fmi3, M>;
 
 impl<M: Model> FmuInstance<Fmi3, M> {
-    /// An instance serving the array view, or the scalar-only one when `scalar`.
+    /// An instance serving the array view, or the scalar-only one when `scalar`, once
+    /// `check` accepts the view and the number of table variables (the instance is
+    /// built in place only then: it is large, and each move of it is a copy).
     pub fn new(
         interface: Interface,
         log: Logger,
         intermediate_update: Option<IntermediateUpdate>,
         scalar: bool,
+        check: impl FnOnce(&Table3, usize) -> Result<(), String>,
     ) -> Result<Self, String> {
         let core = core_instance::Instance::new()?;
         let table = views::<M>(core.table(), scalar)?;
+        check(&table, core.table().len())?;
         let extra = Fmi3Extra {
             table,
             intermediate_update,
