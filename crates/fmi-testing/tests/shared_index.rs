@@ -2,12 +2,17 @@
 //! by its instances (`core::shared`); a model written with `Model::variables` gets its
 //! own per instance. Truths: pointer identity of the index, the table's value
 //! references against the declarations' scheme (pinned 10, then 11 and 12 for the
-//! unpinned array), and values written to one instance not showing in another.
+//! unpinned array), and values written to one instance not showing in another. The
+//! FMI 3.0 array and scalar-only views are shared too, each under its own key: the
+//! array view has `y` as one array of 2, the scalar view `y[1]`, `y[2]`.
 
 use robofmu_fmi::core::instance::Instance;
 use robofmu_fmi::core::{
     DefaultExperiment, Log, Model, ModelInfo, StepOutcome, Variability, Variable,
 };
+use robofmu_fmi::fmi3::instance::Instance as Instance3;
+use robofmu_fmi::fmi3::logging::{Callback, Logger};
+use robofmu_fmi::fmi3::mode::Interface;
 use robofmu_fmi::prelude::Declaration;
 use std::sync::Arc;
 
@@ -125,4 +130,40 @@ fn a_model_written_with_variables_builds_its_index_per_instance() {
     let b = Instance::<Built>::new().unwrap();
     assert!(!Arc::ptr_eq(a.index(), b.index()));
     assert_eq!(Arc::strong_count(a.index()), 1);
+}
+
+/// An FMI 3.0 Model Exchange instance of the declared model (array or scalar view).
+fn instance3(scalar: bool) -> Instance3<Declared> {
+    let sink = Callback {
+        function: None,
+        environment: std::ptr::null_mut(),
+    };
+    let log = Logger::new(sink, Vec::new(), false);
+    let accept = |_: &_, _| Ok(());
+    match Instance3::<Declared>::new(Interface::ModelExchange, log, None, scalar, accept) {
+        Ok(instance) => instance,
+        Err(e) => panic!("{e}"),
+    }
+}
+
+#[test]
+fn fmi3_views_are_shared_per_view_and_kept_apart() {
+    let (arrays, arrays_too) = (instance3(false), instance3(false));
+    let (scalars, scalars_too) = (instance3(true), instance3(true));
+    assert!(Arc::ptr_eq(&arrays.extra.table, &arrays_too.extra.table));
+    assert!(Arc::ptr_eq(&scalars.extra.table, &scalars_too.extra.table));
+    assert!(Arc::ptr_eq(arrays.core.index(), scalars.core.index()));
+    let names = |t: &Instance3<Declared>| -> Vec<(String, usize)> {
+        (t.extra.table.variables.iter())
+            .map(|v| (v.name.to_string(), v.size()))
+            .collect()
+    };
+    let expected = |list: &[(&str, usize)]| -> Vec<(String, usize)> {
+        list.iter().map(|&(n, k)| (n.to_string(), k)).collect()
+    };
+    assert_eq!(names(&arrays), expected(&[("time", 1), ("k", 1), ("y", 2)]));
+    assert_eq!(
+        names(&scalars),
+        expected(&[("time", 1), ("k", 1), ("y[1]", 1), ("y[2]", 1)])
+    );
 }
