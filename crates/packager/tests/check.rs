@@ -22,8 +22,9 @@ fn every_checked_in_description_matches_the_code() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     let fmus = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../fmus"))
         .unwrap()
+        .filter(|e| e.as_ref().unwrap().path().join("Cargo.toml").is_file())
         .count();
-    // Expected: one line for all FMU crates, as many as there are folders in fmus/.
+    // Expected: one line for all FMU crates, as many as there are crates in fmus/.
     assert_eq!(
         stdout.trim(),
         format!("{fmus} FMUs: every checked-in description matches the code")
