@@ -14,12 +14,16 @@
 //!   Richardson extrapolation), about 1e-9 relative; across an end stop's edge (its
 //!   spring and damper start there) the average slope.
 
+use super::motion_cache::{Along, Point};
 use super::variables::*;
 use super::{Computed, Pss3Plant};
 use nalgebra::Vector3;
 use robofmu::pss3::rotation::euler_accelerations;
 use robofmu::pss3::{assemble, jacobian, velocity_product};
 use robofmu_fmi::prelude::OutputDerivativeError::{self, CannotEvaluate, NotProvided};
+
+#[cfg(test)]
+mod tests;
 
 /// The Euler-angle accelerations at the current state and inputs.
 fn theta_ddot(m: &Pss3Plant) -> Result<Vector3<f64>, String> {
@@ -42,56 +46,85 @@ fn l_ddot(m: &Pss3Plant) -> Result<Vector3<f64>, String> {
     Ok(j.actuator_rates(&c.outputs.omega_dot) + product)
 }
 
-/// The Real output with value reference `vr` read from `c` (the outputs of one state),
-/// for those differentiated along the local motion.
-fn value(vr: u32, c: &Computed) -> Option<f64> {
+/// The scalar outputs differentiated along the local motion, in their slots 0..4.
+const SCALARS: [u32; 4] = [DET_J, COND_J, KINETIC_ENERGY, POTENTIAL_ENERGY];
+
+/// The vector outputs differentiated along the local motion, 3 slots each after the
+/// scalars.
+const VECTORS: [u32; 7] = [
+    OMEGA,
+    THETA_DOT,
+    OMEGA_DOT,
+    L_DOT,
+    FORCE,
+    STOP_FORCE,
+    GRAVITY_COMPENSATION,
+];
+
+/// The slot in `Along` of the output with value reference `vr`, if it is one of those
+/// differentiated along the local motion.
+fn slot(vr: u32) -> Option<usize> {
+    if let Some(k) = SCALARS.iter().position(|&s| s == vr) {
+        return Some(k);
+    }
+    let (group, i) = split(vr);
+    let k = VECTORS.iter().position(|&g| g == group)?;
+    (i < 3).then_some(SCALARS.len() + 3 * k + i)
+}
+
+/// Every output differentiated along the local motion, read from `c` (the outputs of
+/// one state), in the order of `slot`.
+fn samples(c: &Computed) -> Along {
     let o = &c.outputs;
-    Some(match vr {
-        DET_J => o.jacobian_det,
-        COND_J => o.jacobian_cond,
-        KINETIC_ENERGY => o.kinetic_energy,
-        POTENTIAL_ENERGY => o.potential_energy + o.end_stop_energy,
-        _ => {
-            let (group, i) = split(vr);
-            let vector = match group {
-                OMEGA => o.omega,
-                THETA_DOT => c.euler_rates,
-                OMEGA_DOT => o.omega_dot,
-                L_DOT => o.actuator_velocities,
-                FORCE => o.actuator_forces,
-                STOP_FORCE => o.end_stop_forces,
-                GRAVITY_COMPENSATION => c.gravity_compensation,
-                _ => return None,
-            };
-            *vector.get(i)?
-        }
+    let scalars = [
+        o.jacobian_det,
+        o.jacobian_cond,
+        o.kinetic_energy,
+        o.potential_energy + o.end_stop_energy,
+    ];
+    let vectors = [
+        o.omega,
+        c.euler_rates,
+        o.omega_dot,
+        o.actuator_velocities,
+        o.actuator_forces,
+        o.end_stop_forces,
+        c.gravity_compensation,
+    ];
+    let components = vectors.iter().flat_map(|v| [v.x, v.y, v.z]);
+    Along::from_iterator(scalars.into_iter().chain(components))
+}
+
+/// The first and second derivatives of every output in `Along` along the local motion
+/// at the current point (`MotionCache`: evaluated once per point).
+fn along_all(m: &Pss3Plant) -> Result<[Along; 2], String> {
+    let point = Point {
+        params: m.params,
+        state: m.current_state()?,
+        inputs: m.inputs,
+    };
+    m.along.at(point, || {
+        let motion = m
+            .plant()?
+            .local_motion(&point.state, &point.inputs)
+            .map_err(|e| e.to_string())?;
+        motion.derivatives(|x| m.compute_at(x).map(|c| samples(&c)))
     })
 }
 
 /// The `order`-th derivative (1 or 2) of output `vr` along the local motion.
 fn along_motion(m: &Pss3Plant, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
-    let Some(_) = m.computed.as_ref().ok().and_then(|c| value(vr, c)) else {
+    let Some(k) = slot(vr) else {
         return Err(NotProvided(format!(
             "value reference {vr} is not a continuous Real output of Pss3Plant"
         )));
     };
-    let evaluate = || -> Result<[f64; 2], String> {
-        let state = m.current_state()?;
-        let motion = m
-            .plant()?
-            .local_motion(&state, &m.inputs)
-            .map_err(|e| e.to_string())?;
-        motion.derivatives(|x| {
-            let c = m.compute_at(x)?;
-            Ok(value(vr, &c).unwrap_or(f64::NAN))
-        })
-    };
-    let derivatives = evaluate().map_err(|e| {
+    let derivatives = along_all(m).map_err(|e| {
         CannotEvaluate(format!(
             "the plant cannot be evaluated near the current state: {e}"
         ))
     })?;
-    Ok(derivatives[order as usize - 1])
+    Ok(derivatives[order as usize - 1][k])
 }
 
 /// The `order`-th time derivative of the output `vr` (see the module doc).
