@@ -57,10 +57,10 @@ impl MotionCache {
     /// The derivatives at `point`: the stored ones if they belong to it, else
     /// `evaluate()`, stored.
     pub fn at(&self, point: Point, evaluate: impl FnOnce() -> Derivatives) -> Derivatives {
-        if let Some((stored, derivatives)) = self.0.borrow().as_ref() {
-            if stored.same(&point) {
-                return derivatives.clone();
-            }
+        if let Some((stored, derivatives)) = self.0.borrow().as_ref()
+            && stored.same(&point)
+        {
+            return derivatives.clone();
         }
         let derivatives = evaluate();
         *self.0.borrow_mut() = Some((point, derivatives.clone()));
