@@ -2,6 +2,8 @@
 //! differentiates that way, evaluated together and kept for the point they belong to,
 //! so that a request for several elements, both orders or a second request at the same
 //! point costs one evaluation (one local motion and five evaluations of the outputs).
+//! gravityCompensation, the slope a master asks every step, has its own cheaper pass
+//! along the same local motion (five evaluations of the gravity torque alone).
 //!
 //! The point is what the local motion and the outputs along it depend on: the
 //! parameters, the state and the inputs (the plant is time invariant; the input
@@ -10,8 +12,8 @@
 //! -0.0 and 0.0 differ), the parameters by value: no setter, step, restored FMU state
 //! or reset has to remember to invalidate it.
 
-use nalgebra::SVector;
-use robofmu::pss3::dynamics::{PlantInputs, PlantParams, PlantState};
+use nalgebra::{SVector, Vector3};
+use robofmu::pss3::dynamics::{LocalMotion, PlantInputs, PlantParams, PlantState};
 use std::cell::RefCell;
 
 /// How many outputs are differentiated along the motion: detJ, condJ, the two energies
@@ -46,24 +48,45 @@ impl Point {
     }
 }
 
-/// The first and second derivatives along the motion, or why they cannot be evaluated.
-type Derivatives = Result<[Along; 2], String>;
+/// The first and second derivatives of `V` along the motion, or why they cannot be
+/// evaluated.
+pub type Derivatives<V> = Result<[V; 2], String>;
 
-/// The last evaluation and its point (empty until the first request).
+/// What is kept for one point: its local motion and what was differentiated along it.
+#[derive(Debug, Clone)]
+pub struct Entry {
+    pub motion: Result<LocalMotion, String>,
+    /// Every output in `Along`, once one of them was asked for.
+    pub all: Option<Derivatives<Along>>,
+    /// gravityCompensation alone (a function of the Euler angles only, far cheaper than
+    /// every output), once it was asked for.
+    pub gravity: Option<Derivatives<Vector3<f64>>>,
+}
+
+/// The entry of the last point asked for (empty until the first request).
 #[derive(Debug, Clone, Default)]
-pub struct MotionCache(RefCell<Option<(Point, Derivatives)>>);
+pub struct MotionCache(RefCell<Option<(Point, Entry)>>);
 
 impl MotionCache {
-    /// The derivatives at `point`: the stored ones if they belong to it, else
-    /// `evaluate()`, stored.
-    pub fn at(&self, point: Point, evaluate: impl FnOnce() -> Derivatives) -> Derivatives {
-        if let Some((stored, derivatives)) = self.0.borrow().as_ref()
-            && stored.same(&point)
-        {
-            return derivatives.clone();
+    /// `read` of the entry of `point`: the stored one if it belongs to `point`, else a
+    /// new one with the local motion `motion(&point)`, stored.
+    pub fn with<R>(
+        &self,
+        point: Point,
+        motion: impl FnOnce(&Point) -> Result<LocalMotion, String>,
+        read: impl FnOnce(&mut Entry) -> R,
+    ) -> R {
+        let mut stored = self.0.borrow_mut();
+        match stored.as_mut() {
+            Some((p, entry)) if p.same(&point) => read(entry),
+            _ => {
+                let entry = Entry {
+                    motion: motion(&point),
+                    all: None,
+                    gravity: None,
+                };
+                read(&mut stored.insert((point, entry)).1)
+            }
         }
-        let derivatives = evaluate();
-        *self.0.borrow_mut() = Some((point, derivatives.clone()));
-        derivatives
     }
 }

@@ -14,10 +14,11 @@
 //!   Richardson extrapolation), about 1e-9 relative; across an end stop's edge (its
 //!   spring and damper start there) the average slope.
 
-use super::motion_cache::{Along, Point};
+use super::motion_cache::{Along, Derivatives, Entry, Point};
 use super::variables::*;
 use super::{Computed, Pss3Plant};
 use nalgebra::Vector3;
+use robofmu::pss3::dynamics::PlantState;
 use robofmu::pss3::rotation::euler_accelerations;
 use robofmu::pss3::{assemble, jacobian, velocity_product};
 use robofmu_fmi::prelude::OutputDerivativeError::{self, CannotEvaluate, NotProvided};
@@ -95,21 +96,49 @@ fn samples(c: &Computed) -> Along {
     Along::from_iterator(scalars.into_iter().chain(components))
 }
 
-/// The first and second derivatives of every output in `Along` along the local motion
-/// at the current point (`MotionCache`: evaluated once per point).
-fn along_all(m: &Pss3Plant) -> Result<[Along; 2], String> {
+/// `read` of the stored entry of the current point (`MotionCache`).
+fn at_point<R>(m: &Pss3Plant, read: impl FnOnce(&mut Entry) -> R) -> Result<R, String> {
     let point = Point {
         params: m.params,
         state: m.current_state()?,
         inputs: m.inputs,
     };
-    m.along.at(point, || {
-        let motion = m
-            .plant()?
-            .local_motion(&point.state, &point.inputs)
-            .map_err(|e| e.to_string())?;
-        motion.derivatives(|x| m.compute_at(x).map(|c| samples(&c)))
-    })
+    let motion = |p: &Point| {
+        let plant = m.plant()?;
+        plant
+            .local_motion(&p.state, &p.inputs)
+            .map_err(|e| e.to_string())
+    };
+    Ok(m.along.with(point, motion, read))
+}
+
+/// The first and second derivatives of every output in `Along` along the local motion
+/// at the current point (evaluated once per point).
+fn along_all(m: &Pss3Plant) -> Derivatives<Along> {
+    at_point(m, |e| {
+        let motion = &e.motion;
+        let evaluate = || {
+            let samples = |x: &PlantState| m.compute_at(x).map(|c| samples(&c));
+            motion.clone()?.derivatives(samples)
+        };
+        e.all.get_or_insert_with(evaluate).clone()
+    })?
+}
+
+/// The first and second derivatives of gravityCompensation along the local motion at
+/// the current point (evaluated once per point): the same numbers as in `along_all`
+/// (the same function of the same states), without the other outputs.
+fn along_gravity(m: &Pss3Plant) -> Derivatives<Vector3<f64>> {
+    at_point(m, |e| {
+        let motion = &e.motion;
+        let evaluate = || {
+            let plant = m.plant()?;
+            let gravity = |x: &PlantState| plant.gravity_compensation(&x.euler);
+            let gravity = |x: &PlantState| gravity(x).map_err(|e| e.to_string());
+            motion.clone()?.derivatives(gravity)
+        };
+        e.gravity.get_or_insert_with(evaluate).clone()
+    })?
 }
 
 /// The `order`-th derivative (1 or 2) of output `vr` along the local motion.
@@ -119,12 +148,17 @@ fn along_motion(m: &Pss3Plant, vr: u32, order: u32) -> Result<f64, OutputDerivat
             "value reference {vr} is not a continuous Real output of Pss3Plant"
         )));
     };
-    let derivatives = along_all(m).map_err(|e| {
+    let (group, i) = split(vr);
+    let derivatives = if group == GRAVITY_COMPENSATION {
+        along_gravity(m).map(|d| d[order as usize - 1][i])
+    } else {
+        along_all(m).map(|d| d[order as usize - 1][k])
+    };
+    derivatives.map_err(|e| {
         CannotEvaluate(format!(
             "the plant cannot be evaluated near the current state: {e}"
         ))
-    })?;
-    Ok(derivatives[order as usize - 1][k])
+    })
 }
 
 /// The `order`-th time derivative of the output `vr` (see the module doc).
