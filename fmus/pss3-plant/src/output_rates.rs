@@ -13,6 +13,9 @@
 //!   second order in time, then central differences of the output along it with one
 //!   Richardson extrapolation), about 1e-9 relative; across an end stop's edge (its
 //!   spring and damper start there) the average slope.
+//!   All of them are differentiated together and kept for the point
+//!   (`motion_cache`); gravityCompensation, the slope a master asks every step, in a
+//!   pass of its own over the gravity torque alone.
 
 use super::motion_cache::{Along, Derivatives, Entry, Point};
 use super::variables::*;
