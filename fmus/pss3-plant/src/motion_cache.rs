@@ -9,8 +9,9 @@
 //! parameters, the state and the inputs (the plant is time invariant; the input
 //! derivatives play no part: the inputs are held). A stored result is used only when
 //! all three equal the current ones, the state and the inputs bit for bit (so that
-//! -0.0 and 0.0 differ), the parameters by value: no setter, step, restored FMU state
-//! or reset has to remember to invalidate it.
+//! -0.0 and 0.0 differ), the parameters with `==` (a parameter that goes from 0.0 to
+//! -0.0 and nothing else keeps the stored result; a NaN never matches): no setter,
+//! step, restored FMU state or reset has to remember to invalidate it.
 
 use nalgebra::{SVector, Vector3};
 use robofmu::pss3::dynamics::{LocalMotion, PlantInputs, PlantParams, PlantState};
