@@ -52,6 +52,7 @@ static TABLE: &[Decl] = &[
     Decl::real("y", "output", |m, i| m.x[i] * m.x[i])
         .array(2)
         .output()
+        .depends_on_each(|i| [&["x[1]"][..], &["x[2]"]][i])
         .output_derivative(|m, i, order| match order {
             1 => Ok(2.0 * m.x[i]),
             _ => Err(OutputDerivativeError::NotProvided(
@@ -104,6 +105,9 @@ fn arrays_flatten_to_fmi2_scalars_with_labels_and_per_element_starts() {
     assert_eq!(table[4].state_name().as_deref(), Some("x[2]"));
     assert_eq!(table[4].state_key(), Some(("x", Some(1))));
     assert_eq!(table[2].key(), ("x", Some(1)));
+    // y[i] = x[i]^2 depends on x[i] alone (the per-element hook, called with the index).
+    assert_eq!(table[7].dependencies, Some(&["x[1]"][..]));
+    assert_eq!(table[8].dependencies, Some(&["x[2]"][..]));
     let element = table[4].element().expect("declared");
     assert_eq!((element.name, element.index), ("der(x)", 1));
     let mut sorted = table;

@@ -38,7 +38,7 @@ fn element<M>(d: &'static Declaration<M>, first: u32, i: usize) -> Variable<M> {
         variability: d.variability,
         initial: d.initial,
         kind: kind(&d.value, i),
-        dependencies: d.dependencies,
+        dependencies: d.dependencies.map(|x| x.of(i)),
         initial_dependencies: d.initial_dependencies.map(|f| f(i)),
         array,
         declared: Some((d, i)),

@@ -35,3 +35,23 @@ pub type InputDerivative<M> = for<'a> fn(&'a mut M, usize, u32) -> Option<&'a mu
 /// "exact", "time" for the independent variable) that initial unknown element i
 /// depends on (InitialUnknowns `dependencies`).
 pub type InitialDependencies = fn(usize) -> &'static [&'static str];
+
+/// The names (FMI 2.0) that element i of a declaration depends on.
+pub type ElementDependencies = fn(usize) -> &'static [&'static str];
+
+/// The dependencies of a declaration's elements: the same for all, or element by element.
+#[derive(Debug, Clone, Copy)]
+pub enum Dependencies {
+    All(&'static [&'static str]),
+    Each(ElementDependencies),
+}
+
+impl Dependencies {
+    /// The names element i depends on.
+    pub fn of(self, i: usize) -> &'static [&'static str] {
+        match self {
+            Dependencies::All(names) => names,
+            Dependencies::Each(f) => f(i),
+        }
+    }
+}
