@@ -87,8 +87,9 @@ pub struct Pss3Plant {
     inputs: PlantInputs,
     /// Derivatives of the inputs at the start of a step (zero: held).
     ramp: InputRamp,
-    /// The plant of the current parameters, or why they are invalid.
+    /// The plant of the parameters `built_from`, or why they are invalid.
     plant: Result<Plant, String>,
+    built_from: Option<PlantParams>,
     /// The state; meaningful once `started` (after initialization).
     state: PlantState,
     started: bool,
@@ -161,9 +162,14 @@ pub fn default_start_pose() -> Vector3<f64> {
 }
 
 impl Pss3Plant {
-    /// Rebuilds the plant after a parameter changed.
+    /// Rebuilds the plant after a parameter was written, if the parameters changed (a
+    /// write of a parameter's current value, as every start value at instantiation,
+    /// rebuilds nothing: the plant is a function of the parameters).
     fn rebuild(&mut self) {
-        self.plant = Plant::new(self.params).map_err(|e| parameters::fmu_message(&e));
+        if self.built_from != Some(self.params) {
+            self.plant = Plant::new(self.params).map_err(|e| parameters::fmu_message(&e));
+            self.built_from = Some(self.params);
+        }
     }
 
     fn plant(&self) -> Result<&Plant, String> {
@@ -320,6 +326,7 @@ impl Model for Pss3Plant {
             inputs: PlantInputs::default(),
             ramp: InputRamp::default(),
             plant: Err("not built yet".to_string()),
+            built_from: None,
             state: PlantState {
                 euler: Vector3::zeros(),
                 omega: Vector3::zeros(),
