@@ -34,7 +34,6 @@ pub mod fmi3;
 
 /// The names a model author uses: `use robofmu_fmi::prelude::*;`.
 pub mod prelude {
-    pub use crate::core::arrays::{Array, BooleanArray, IntegerArray, RealArray, Role};
     pub use crate::core::{
         Declaration, DefaultExperiment, Element, EventUpdate, Log, LogCategory, Model, ModelInfo,
         OutputDerivativeError, StepOutcome, Variability, Variable,

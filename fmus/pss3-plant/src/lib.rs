@@ -438,13 +438,12 @@ impl Model for Pss3Plant {
 
     fn directional_derivative(
         &self,
-        table: &[Variable<Self>],
-        unknowns: &[u32],
-        knowns: &[u32],
+        unknowns: &[Element],
+        knowns: &[Element],
         seed: &[f64],
         out: &mut [f64],
     ) -> Result<(), String> {
-        partials::directional_derivative(self, table, unknowns, knowns, seed, out)
+        partials::directional_derivative(self, unknowns, knowns, seed, out)
     }
 
     fn write_extra_state(&self, out: &mut Vec<u8>) {

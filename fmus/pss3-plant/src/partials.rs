@@ -16,7 +16,6 @@ use super::variables::real_getter;
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{Linearization, PlantInputs, PlantState};
 use robofmu::pss3::rotation::moment_from_generalized_force;
-use robofmu_fmi::core::variables::find;
 use robofmu_fmi::prelude::*;
 
 /// Finite-difference step for a state (rad, rad/s), scaled by 1 + |value|.
@@ -47,30 +46,17 @@ fn known(e: Element) -> Option<Known> {
     })
 }
 
-/// The declared elements of the value references `vrs` in the instance's `table`.
-fn elements(table: &[Variable<Pss3Plant>], vrs: &[u32]) -> Result<Vec<Element>, String> {
-    vrs.iter()
-        .map(|&vr| {
-            find(table, vr)
-                .and_then(Variable::element)
-                .ok_or_else(|| format!("value reference {vr} is no declared variable"))
-        })
-        .collect()
-}
-
 /// dvUnknown = J dvKnown for the unknowns and knowns given (see the module doc).
 pub fn directional_derivative(
     m: &Pss3Plant,
-    table: &[Variable<Pss3Plant>],
-    unknown_vrs: &[u32],
-    known_vrs: &[u32],
+    unknowns: &[Element],
+    knowns: &[Element],
     seed: &[f64],
     out: &mut [f64],
 ) -> Result<(), String> {
-    let unknowns = elements(table, unknown_vrs)?;
-    let knowns = elements(table, known_vrs)?
-        .into_iter()
-        .map(|e| known(e).ok_or_else(|| format!("\"{}\" is neither a state nor an input", e.name)))
+    let knowns = knowns
+        .iter()
+        .map(|&e| known(e).ok_or_else(|| format!("\"{}\" is neither a state nor an input", e.name)))
         .collect::<Result<Vec<_>, _>>()?;
     let seeded: Vec<(Known, f64)> = knowns
         .into_iter()
@@ -79,7 +65,7 @@ pub fn directional_derivative(
         .collect();
     let mut linearization = None;
     let mut by_differences = Vec::new();
-    for (o, &unknown) in out.iter_mut().zip(&unknowns) {
+    for (o, &unknown) in out.iter_mut().zip(unknowns) {
         let i = unknown.index;
         let row = match unknown.name {
             "der(theta)" | "thetaDot" => Some(i),
@@ -114,7 +100,7 @@ pub fn directional_derivative(
     }
     for &(k, s) in &seeded {
         let column = output_partials(m, &by_differences, k)?;
-        for (o, &unknown) in out.iter_mut().zip(&unknowns) {
+        for (o, &unknown) in out.iter_mut().zip(unknowns) {
             if let Some(at) = by_differences.iter().position(|&u| u == unknown) {
                 *o += column[at] * s;
             }

@@ -2,6 +2,7 @@
 //! time of the experiment, and typed, checked access to the variables. A front-end
 //! adds its mode, logger and C entry points around it.
 
+use super::flatten::flatten;
 use super::log::Log;
 use super::model::{Model, StepOutcome};
 use super::value_check::{self, Value, wrong_type};
@@ -102,7 +103,7 @@ pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, Str
 /// references (all the runtime relies on; the full `check_table` runs where the
 /// modelDescription is written, in every FMU crate's drift test).
 pub fn sorted_table<M: Model>() -> Result<Vec<Variable<M>>, String> {
-    let table = by_value_reference(M::variables());
+    let table = by_value_reference(flatten(M::declarations()));
     if let Some(pair) = table
         .windows(2)
         .find(|p| p[0].value_reference == p[1].value_reference)
