@@ -21,11 +21,11 @@
 //! is FMI 3.0's `time`), elements consecutive. Appending a declaration therefore never
 //! moves an existing value reference.
 
+use super::attributes::{Causality, Initial, Variability};
 pub use super::hooks::{
     Dependencies, Element, ElementDependencies, InitialDependencies, InputDerivative,
     OutputDerivative,
 };
-use super::variables::{Causality, Initial, Variability};
 
 /// Reads element i (0 for a scalar).
 pub type Get<M, T> = fn(&M, usize) -> T;

@@ -13,6 +13,7 @@
 //! of both standards (handle, mode, logCalls, errors and panics) and holds the bodies
 //! they share, with [`fmu_state_calls`] and [`model_exchange_calls`].
 
+pub mod attributes;
 pub mod check;
 pub mod declare;
 pub mod directional;

@@ -7,6 +7,7 @@
 //! labelled description and state are formatted from its declaration when asked
 //! ([`Variable::name`]), for messages and the description writers.
 
+pub use super::attributes::{Causality, Initial, Variability};
 use super::declare::Declaration;
 use super::hooks::{Element, InputDerivative, OutputDerivative};
 use std::borrow::Cow;
@@ -32,67 +33,6 @@ impl<M, T> Getter<M, T> {
 impl<M, T> Setter<M, T> {
     pub fn call(&self, model: &mut M, value: T) -> Result<(), String> {
         (self.f)(model, self.index, value)
-    }
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Causality {
-    Parameter,
-    CalculatedParameter,
-    Input,
-    Output,
-    Local,
-    Independent,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Variability {
-    Constant,
-    Fixed,
-    Tunable,
-    Discrete,
-    Continuous,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Initial {
-    Exact,
-    Approx,
-    Calculated,
-}
-
-impl Causality {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Causality::Parameter => "parameter",
-            Causality::CalculatedParameter => "calculatedParameter",
-            Causality::Input => "input",
-            Causality::Output => "output",
-            Causality::Local => "local",
-            Causality::Independent => "independent",
-        }
-    }
-}
-
-impl Variability {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Variability::Constant => "constant",
-            Variability::Fixed => "fixed",
-            Variability::Tunable => "tunable",
-            Variability::Discrete => "discrete",
-            Variability::Continuous => "continuous",
-        }
-    }
-}
-
-impl Initial {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Initial::Exact => "exact",
-            Initial::Approx => "approx",
-            Initial::Calculated => "calculated",
-        }
     }
 }
 
