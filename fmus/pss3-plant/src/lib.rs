@@ -14,6 +14,7 @@
 //! an invalid value is refused with a message that names the FMU parameter.
 
 mod initial_dependencies;
+mod motion_cache;
 mod output_rates;
 mod parameters;
 mod partials;
@@ -98,6 +99,9 @@ pub struct Pss3Plant {
     /// Values computed by `calculate_values` for the current state and inputs, or why
     /// the model cannot be evaluated there.
     computed: Result<Computed, String>,
+    /// The derivatives along the local motion of the last point asked for
+    /// (`output_rates`).
+    along: motion_cache::MotionCache,
 }
 
 /// Everything the outputs show, computed once per change.
@@ -334,6 +338,7 @@ impl Model for Pss3Plant {
             started: false,
             contacts: [StopContact::Free; 3],
             computed: Err("not computed yet".to_string()),
+            along: motion_cache::MotionCache::default(),
         };
         model.rebuild();
         model
