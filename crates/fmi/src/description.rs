@@ -18,7 +18,7 @@ use crate::core::instance::sorted_table;
 use crate::core::log::LogCategory;
 use crate::core::model::{Model, ModelInfo};
 use crate::core::variables::{Causality, Initial, Kind, Variability, Variable};
-use crate::fmi3::table::{self, Variable3, build};
+use crate::fmi3::table::{self, Variable3};
 use crate::fmi3::{declared, scalar};
 use std::any::TypeId;
 use std::hash::{Hash, Hasher};
@@ -187,12 +187,6 @@ pub fn describe<M: Model>() -> Result<Description, String> {
     let table = sorted_table::<M>()?;
     check_table(&table)?;
     let arrays = declared::view::<M>(&table)?;
-    if arrays.variables != build(&table)?.variables {
-        return Err(
-            "the declared FMI 3.0 view differs from the one parsed from the FMI 2.0 names"
-                .to_string(),
-        );
-    }
     let scalars3 = scalar::view(&table, &arrays)?;
     Ok(Description {
         info: *M::info(),
