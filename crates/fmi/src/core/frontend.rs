@@ -149,10 +149,9 @@ impl<F: Frontend, M: Model> FmuInstance<F, M> {
     }
 
     /// Reset: back to the state right after instantiation.
-    pub fn reset(&mut self) -> Result<(), String> {
-        self.core.reset()?;
+    pub fn reset(&mut self) {
+        self.core.reset();
         self.mode = F::INSTANTIATED;
-        Ok(())
     }
 
     /// The FMU state of the instance now.
