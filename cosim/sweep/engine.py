@@ -17,6 +17,7 @@ import os
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from . import scratch
 from .runner import FmuStore, execute, run_on_worker, warm, worker_plugin
 
 RUN_STEP_S = 2e-5  # CPU per closed-loop step of the three FMUs (cosim bench sweep: ~20 ms/run)
@@ -162,6 +163,7 @@ def _run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, rea
             _gather(client, rest, fmus, record, retries, size)
     finally:
         _close(client, cluster)
+        scratch.reclaim()  # the folders of workers that died during the sweep
 
 
 def _gather(client, todo, fmus, record, retries, size) -> None:

@@ -18,7 +18,6 @@ from __future__ import annotations
 import hashlib
 import math
 import shutil
-import tempfile
 import time
 from pathlib import Path
 
@@ -27,6 +26,7 @@ import numpy as np
 from ..errors import CosimError
 from ..master import Master
 from ..scenario import ScenarioError, Signal, parse_document
+from . import scratch
 
 FORCE_LIMIT_N = 400.0
 SETTLING_BAND = 0.02  # settling: the error stays within 2 % of its initial value
@@ -70,7 +70,7 @@ class FmuStore:
         self.pool = InstancePool()
 
     def setup(self) -> None:
-        self.folder = Path(tempfile.mkdtemp(prefix="cosim-fmus-"))
+        self.folder = scratch.make()
         for digest, data in self.blobs.items():
             (self.folder / f"{digest}.fmu").write_bytes(data)
 

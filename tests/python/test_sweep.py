@@ -123,6 +123,10 @@ def test_a_killed_workers_runs_are_retried(tmp_path, monkeypatch):
     # which once made as_completed track the sweep's futures on the caller's event loop
     # (a result lost with the worker was then awaited on the sweep's loop: "bound to a
     # different event loop", issue 19): the futures must be tracked on the sweep's loop.
+    # The killed worker ran no clean-up: its folder of FMU files (cosim.sweep.scratch)
+    # must be gone after the sweep all the same, and so every worker's.
+    import tempfile
+
     import distributed
     from distributed import Client, LocalCluster
     from distributed.diagnostics.plugin import WorkerPlugin
@@ -138,6 +142,8 @@ def test_a_killed_workers_runs_are_retried(tmp_path, monkeypatch):
 
     monkeypatch.setattr(distributed, "as_completed", tracked)
     plugin = type("KillOncePlugin", (KillOnce, WorkerPlugin), {})(str(marker))
+    scratch = Path(tempfile.gettempdir())
+    folders_before = set(scratch.glob("cosim-fmus-*"))
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                       dashboard_address=":0") as cluster, Client(cluster) as client:
         client.register_plugin(plugin)
@@ -146,6 +152,7 @@ def test_a_killed_workers_runs_are_retried(tmp_path, monkeypatch):
         assert loops and loops[0] is not None and loops[0] is not client.loop
     assert marker.exists() and outcome.failed == 0 and outcome.runs == 8
     assert rows(outcome.table) == rows(serial.table)
+    assert set(scratch.glob("cosim-fmus-*")) <= folders_before
 
 
 def test_resume_runs_only_what_is_missing(tmp_path):
