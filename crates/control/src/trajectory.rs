@@ -124,6 +124,16 @@ impl Polynomial {
         self.coefficients
     }
 
+    /// Whether the coefficients and the samples at 21 equally spaced times of [t0, tf]
+    /// are finite.
+    fn is_finite(&self) -> bool {
+        let times = (0..=20).map(|k| self.t0 + (self.tf - self.t0) * f64::from(k) / 20.0);
+        self.coefficients.iter().all(|c| c.is_finite())
+            && times
+                .map(|t| self.sample(t))
+                .all(|s| s.q.is_finite() && s.qdot.is_finite() && s.qddot.is_finite())
+    }
+
     /// Position, velocity and acceleration at time t (held outside [t0, tf]).
     pub fn sample(&self, t: f64) -> Sample {
         Sample {
@@ -174,6 +184,45 @@ fn quintic_coefficients(duration: f64, b: &Boundary) -> [f64; 6] {
     let c4 = (-30.0 * dq + (14.0 * vf + 16.0 * v0) * t + (3.0 * a0 - 2.0 * af) * t2) / (2.0 * t4);
     let c5 = (12.0 * dq - 6.0 * (vf + v0) * t + (af - a0) * t2) / (2.0 * t5);
     [b.q0, v0, 0.5 * a0, c3, c4, c5]
+}
+
+/// The trajectories of `N` axes that share the order and the times t0, tf: what a
+/// planner of several joints evaluates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan<const N: usize> {
+    axes: [Polynomial; N],
+}
+
+impl<const N: usize> Plan<N> {
+    /// Every axis's polynomial of degree `degree` (3 or 5). Err: the first reason, also
+    /// where t0, tf and an axis's boundary values make the trajectory overflow (its
+    /// coefficients or its samples at 21 equally spaced times of [t0, tf] are not
+    /// finite, e.g. tf - t0 = 5e-324 s), naming the axis (from 1).
+    pub fn new(degree: i32, t0: f64, tf: f64, boundary: &[Boundary; N]) -> Result<Self, String> {
+        let order = Order::from_degree(degree)
+            .ok_or_else(|| format!("order {degree} is neither 3 nor 5"))?;
+        let mut axes = Vec::with_capacity(N);
+        for (a, b) in boundary.iter().enumerate() {
+            let p = Polynomial::new(order, t0, tf, b).map_err(|e| e.to_string())?;
+            if !p.is_finite() {
+                return Err(format!(
+                    "t0 = {t0:e} s, tf = {tf:e} s and the boundary values of axis {} ({b:?}) \
+                     make the trajectory overflow (its coefficients or samples are not finite)",
+                    a + 1
+                ));
+            }
+            axes.push(p);
+        }
+        let axes = axes
+            .try_into()
+            .unwrap_or_else(|_| unreachable!("one per axis"));
+        Ok(Plan { axes })
+    }
+
+    /// The polynomial of axis `a` (from 0).
+    pub fn axis(&self, a: usize) -> &Polynomial {
+        &self.axes[a]
+    }
 }
 
 #[cfg(test)]
@@ -362,5 +411,41 @@ mod tests {
             Err(TrajectoryError::NonFinite("qdotf"))
         );
         assert_eq!(Order::from_degree(4), None);
+    }
+
+    #[test]
+    fn a_plan_is_one_polynomial_per_axis_and_names_the_axis_that_overflows() {
+        // Truth: Polynomial::new axis by axis (the plan adds only the finiteness check).
+        let b = [
+            Boundary {
+                qf: 0.5,
+                ..Boundary::default()
+            },
+            Boundary {
+                qf: -0.3,
+                qdotf: 0.1,
+                ..Boundary::default()
+            },
+        ];
+        let plan = Plan::new(5, 1.0, 3.0, &b).unwrap();
+        for (a, b) in b.iter().enumerate() {
+            let p = Polynomial::new(Order::Quintic, 1.0, 3.0, b).unwrap();
+            assert_eq!(plan.axis(a), &p);
+        }
+        assert_eq!(
+            Plan::new(4, 1.0, 3.0, &b).unwrap_err(),
+            "order 4 is neither 3 nor 5"
+        );
+        // tf - t0 = 1e-100 s: the cubic's c3 = -2 (qf - q0) / T^3 is -2e300 for a
+        // step of 1 (finite) and -2e310 for a step of 1e10 (overflows): axis 2 only.
+        let steps = [1.0, 1e10].map(|qf| Boundary {
+            qf,
+            ..Boundary::default()
+        });
+        let message = Plan::new(3, 0.0, 1e-100, &steps).unwrap_err();
+        assert!(
+            message.contains("axis 2") && message.contains("overflow"),
+            "{message}"
+        );
     }
 }

@@ -3,7 +3,7 @@
 //! q / qdot / qddot per axis as outputs. Axis positions are angles (rad, shown in deg);
 //! the planner itself is unit-agnostic.
 
-use robofmu_control::trajectory::{Boundary, Order, Polynomial};
+use robofmu_control::trajectory::{Boundary, Order, Plan};
 use robofmu_fmi::prelude::*;
 
 pub const AXES: usize = 3;
@@ -38,72 +38,31 @@ pub struct Planner {
     tf: f64,
     boundary: [Boundary; AXES],
     time: f64,
-    /// Polynomials of the current parameters, or why there are none.
-    axes: Result<[Polynomial; AXES], String>,
+    /// The trajectories of the current parameters, or why there are none.
+    plan: Result<Plan<AXES>, String>,
 }
 
 impl Planner {
-    fn rebuild(&mut self) {
-        let order = Order::from_degree(self.degree);
-        self.axes = match order {
-            None => Err(format!("order {} is neither 3 nor 5", self.degree)),
-            Some(order) => (0..AXES)
-                .map(|a| Polynomial::new(order, self.t0, self.tf, &self.boundary[a]))
-                .collect::<Result<Vec<_>, _>>()
-                .map(|v| [v[0].clone(), v[1].clone(), v[2].clone()])
-                .map_err(|e| e.to_string()),
-        };
-    }
-
-    /// Every axis's coefficients and its samples at 21 equally spaced times of
-    /// [t0, tf] finite: otherwise t0, tf and that axis's boundary values make the
-    /// trajectory overflow (e.g. tf - t0 = 5e-324 s), named in the message.
-    fn check_overflow(&self, axes: &[Polynomial; AXES]) -> Result<(), String> {
-        for (a, p) in axes.iter().enumerate() {
-            let times = (0..=20).map(|k| self.t0 + (self.tf - self.t0) * f64::from(k) / 20.0);
-            let finite = p.shifted_coefficients().iter().all(|c| c.is_finite())
-                && times
-                    .map(|t| p.sample(t))
-                    .all(|s| s.q.is_finite() && s.qdot.is_finite() && s.qddot.is_finite());
-            if !finite {
-                return Err(format!(
-                    "t0 = {:e} s, tf = {:e} s and the boundary values of axis {} ({:?}) make \
-                     the trajectory overflow (its coefficients or samples are not finite)",
-                    self.t0,
-                    self.tf,
-                    a + 1,
-                    self.boundary[a]
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    fn sample(&self, axis: usize) -> Option<robofmu_control::trajectory::Sample> {
-        self.axes.as_ref().ok().map(|p| p[axis].sample(self.time))
-    }
-
-    /// Applies a change of the parameters and rebuilds the polynomials.
+    /// Applies a change of the parameters and plans again.
     fn change(&mut self, f: impl FnOnce(&mut Self)) -> Result<(), String> {
         f(self);
-        self.rebuild();
+        self.plan = Plan::new(self.degree, self.t0, self.tf, &self.boundary);
         Ok(())
     }
 
-    /// Output `k` (0 q, 1 qdot, 2 qddot) of `axis` (NaN until the parameters are valid).
-    fn output(&self, axis: usize, k: usize) -> f64 {
-        self.sample(axis)
-            .map_or(f64::NAN, |s| [s.q, s.qdot, s.qddot][k])
+    /// Exact: order n of output k (0 q, 1 qdot, 2 qddot) of `axis` is the derivative
+    /// of order k + n of its polynomial (`Polynomial::derivative`: one-sided from inside
+    /// the motion at t0 and tf, zero while held), so the first derivative of q equals
+    /// the output qdot and that of qdot the output qddot at every time.
+    fn derivative(&self, axis: usize, k: usize, n: u32) -> Result<f64, OutputDerivativeError> {
+        let plan = self.plan.as_ref();
+        let plan = plan.map_err(|e| OutputDerivativeError::CannotEvaluate(e.clone()))?;
+        Ok(plan.axis(axis).derivative(self.time, k + n as usize))
     }
 
-    /// Exact: order n of output k (q, qdot, qddot) is the derivative of order k + n of
-    /// the axis's polynomial (`Polynomial::derivative`: one-sided from inside the
-    /// motion at t0 and tf, zero while held), so the first derivative of q equals the
-    /// output qdot and that of qdot the output qddot at every time.
-    fn derivative(&self, axis: usize, k: usize, n: u32) -> Result<f64, OutputDerivativeError> {
-        let axes = self.axes.as_ref();
-        let axes = axes.map_err(|e| OutputDerivativeError::CannotEvaluate(e.clone()))?;
-        Ok(axes[axis].derivative(self.time, k + n as usize))
+    /// Output k of `axis` (NaN until the parameters are valid).
+    fn output(&self, axis: usize, k: usize) -> f64 {
+        self.derivative(axis, k, 0).unwrap_or(f64::NAN)
     }
 }
 
@@ -229,7 +188,7 @@ impl Model for Planner {
             tf: 1.0,
             boundary: [Boundary::default(); AXES],
             time: 0.0,
-            axes: Err("not yet initialized".to_string()),
+            plan: Err("not yet initialized".to_string()),
         }
     }
 
@@ -238,19 +197,16 @@ impl Model for Planner {
     }
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
-        self.rebuild();
-        let axes = self.axes.as_ref().map_err(String::clone)?;
-        self.check_overflow(axes)?;
-        for (a, p) in axes.iter().enumerate() {
-            log.debug(
-                "logTrajectory",
-                &format!(
-                    "axis {}: q(t) = sum c_k (t - {})^k, c = {:?}",
-                    a + 1,
-                    self.t0,
-                    p.shifted_coefficients()
-                ),
+        self.change(|_| ())?;
+        let plan = self.plan.as_ref().map_err(String::clone)?;
+        for a in 0..AXES {
+            let c = plan.axis(a).shifted_coefficients();
+            let message = format!(
+                "axis {}: q(t) = sum c_k (t - {})^k, c = {c:?}",
+                a + 1,
+                self.t0
             );
+            log.debug("logTrajectory", &message);
         }
         Ok(())
     }
