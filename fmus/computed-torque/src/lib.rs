@@ -9,6 +9,7 @@
 //! Co-Simulation it is stepped exactly under a zero-order hold of the inputs (I + e h),
 //! with the PID's conditional-integration anti-windup decided at the start of the step.
 
+mod initial_dependencies;
 mod variables;
 
 use nalgebra::Vector3;
