@@ -15,7 +15,6 @@
 //! differences at initialization in tests/python/test_initial_dependencies.py.
 
 use robofmu::computed_torque::MODEL_PARAMETERS;
-use std::sync::OnceLock;
 
 /// The gains, inputs and integral of every axis.
 const COUPLED: [&str; 27] = [
@@ -68,21 +67,69 @@ const UNSEEN: [&[&str]; 3] = [
     ],
 ];
 
-/// The knowns u[k + 1] and der(integral)[k + 1] depend on (k from 0).
-pub fn of_axis(k: usize) -> &'static [&'static str] {
-    static KNOWNS: OnceLock<[Vec<&'static str>; 3]> = OnceLock::new();
-    &KNOWNS.get_or_init(|| std::array::from_fn(knowns))[k]
+/// How many knowns u[k + 1] lists.
+const fn count(k: usize) -> usize {
+    COUPLED.len() + LIMITS[k].len() + MODEL_PARAMETERS.len() - UNSEEN[k].len()
 }
 
-fn knowns(k: usize) -> Vec<&'static str> {
-    let model = MODEL_PARAMETERS
-        .iter()
-        .map(|p| p.name)
-        .filter(|name| !UNSEEN[k].contains(name));
-    COUPLED
-        .iter()
-        .chain(&LIMITS[k])
-        .copied()
-        .chain(model)
-        .collect()
+/// Static tables (no allocation: a per-load allocation would leak on every dlclose).
+static AXIS_1: [&str; count(0)] = knowns(0);
+static AXIS_2: [&str; count(1)] = knowns(1);
+static AXIS_3: [&str; count(2)] = knowns(2);
+
+/// The knowns u[k + 1] and der(integral)[k + 1] depend on (k from 0).
+pub fn of_axis(k: usize) -> &'static [&'static str] {
+    [&AXIS_1[..], &AXIS_2, &AXIS_3][k]
+}
+
+/// COUPLED, the limits of axis k + 1 and the model parameters but UNSEEN[k].
+const fn knowns<const N: usize>(k: usize) -> [&'static str; N] {
+    let mut out = [""; N];
+    let mut n = 0;
+    let mut i = 0;
+    while i < COUPLED.len() {
+        out[n] = COUPLED[i];
+        (n, i) = (n + 1, i + 1);
+    }
+    i = 0;
+    while i < LIMITS[k].len() {
+        out[n] = LIMITS[k][i];
+        (n, i) = (n + 1, i + 1);
+    }
+    i = 0;
+    while i < MODEL_PARAMETERS.len() {
+        let name = MODEL_PARAMETERS[i].name;
+        if !contains(UNSEEN[k], name) {
+            out[n] = name;
+            n += 1;
+        }
+        i += 1;
+    }
+    assert!(n == N, "every UNSEEN name is a model parameter");
+    out
+}
+
+const fn contains(names: &[&str], name: &str) -> bool {
+    let mut i = 0;
+    while i < names.len() {
+        if same(names[i].as_bytes(), name.as_bytes()) {
+            return true;
+        }
+        i += 1;
+    }
+    false
+}
+
+const fn same(a: &[u8], b: &[u8]) -> bool {
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
 }
