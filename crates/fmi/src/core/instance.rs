@@ -4,8 +4,10 @@
 
 use super::log::Log;
 use super::model::{Model, StepOutcome};
+use super::shared::shared;
 use super::value_check::{self, Value, wrong_type};
 use super::variables::{Initial, Kind, Variable, VariableType, find};
+use std::sync::Arc;
 
 /// Does not log: the model's checks on a copy are not the instance's.
 pub struct Silent;
@@ -42,10 +44,10 @@ impl Standard {
 /// The version-neutral part of an instance. The model is private so that every change
 /// goes through [`Instance::model_mut`], which marks the computed values stale.
 pub struct Instance<M: Model> {
-    /// The variable table, built for this instance and sorted by value reference.
-    table: Vec<Variable<M>>,
-    /// `calculated_flags` of the table.
-    calculated: Vec<bool>,
+    /// The variable table sorted by value reference, with its calculated flags: shared
+    /// by every instance of a declared model, built per instance for one written with
+    /// `Model::variables`.
+    index: Arc<Index<M>>,
     model: M,
     /// Computed values are stale (`Model::calculate_values` not called since a change).
     dirty: bool,
@@ -153,6 +155,35 @@ pub fn calculated_flags<M>(table: &[Variable<M>]) -> Vec<bool> {
         .collect()
 }
 
+/// What lookups by value reference need: the FMI 2.0 scalars sorted by value
+/// reference and, per scalar, whether reading it needs the computed values.
+pub struct Index<M: 'static> {
+    pub table: Vec<Variable<M>>,
+    /// [`calculated_flags`] of the table.
+    pub calculated: Vec<bool>,
+}
+
+impl<M: Model> Index<M> {
+    /// The index of model M: built once per loaded library for a declared model (its
+    /// declarations are static, so every instance has the same), per instance for a
+    /// model written with `Model::variables` (whose closures may differ).
+    pub fn of() -> Result<Arc<Self>, String> {
+        if M::declarations().is_empty() {
+            Self::build().map(Arc::new)
+        } else {
+            shared::<M, Self>(Self::build)
+        }
+    }
+
+    fn build() -> Result<Self, String> {
+        let table = sorted_table::<M>()?;
+        Ok(Index {
+            calculated: calculated_flags(&table),
+            table,
+        })
+    }
+}
+
 pub use super::value_check::MAX_MAGNITUDE;
 
 /// Largest accepted difference between the master's communication point and the
@@ -163,13 +194,12 @@ pub const TIME_MATCH: f64 = 1e-9;
 impl<M: Model> Instance<M> {
     /// The model with its start values, at the default experiment's start time.
     pub fn new() -> Result<Self, String> {
-        let table = sorted_table::<M>()?;
-        let mut model = model_with_start_values::<M>(&table)?;
+        let index = Index::of()?;
+        let mut model = model_with_start_values::<M>(&index.table)?;
         let time = M::info().default_experiment.start_time;
         model.set_time(time);
         Ok(Instance {
-            calculated: calculated_flags(&table),
-            table,
+            index,
             model,
             dirty: true,
             evaluation_error: None,
@@ -182,7 +212,7 @@ impl<M: Model> Instance<M> {
 
     /// Back to the state right after instantiation (the table is kept).
     pub fn reset(&mut self) -> Result<(), String> {
-        self.model = model_with_start_values::<M>(&self.table)?;
+        self.model = model_with_start_values::<M>(&self.index.table)?;
         self.dirty = true;
         self.stop_time = None;
         self.terminated_by_model = false;
@@ -192,7 +222,12 @@ impl<M: Model> Instance<M> {
     }
 
     pub fn table(&self) -> &[Variable<M>] {
-        &self.table
+        &self.index.table
+    }
+
+    /// The index (shared with the other instances of a declared model).
+    pub fn index(&self) -> &Arc<Index<M>> {
+        &self.index
     }
 
     pub fn model(&self) -> &M {
@@ -225,7 +260,7 @@ impl<M: Model> Instance<M> {
     }
 
     fn check_calculated_finite(&self) -> Result<(), String> {
-        let calculated = self.table.iter().zip(&self.calculated);
+        let calculated = self.index.table.iter().zip(&self.index.calculated);
         for (v, _) in calculated.filter(|(_, c)| **c) {
             if let Kind::Real { get, .. } = &v.kind {
                 let value = get.call(&self.model);
@@ -244,14 +279,15 @@ impl<M: Model> Instance<M> {
     pub fn prepare_read(&mut self, vrs: &[u32]) -> Result<Option<String>, String> {
         let mut needs_values = false;
         for &vr in vrs {
-            let at = self.table.binary_search_by_key(&vr, |v| v.value_reference);
+            let table = &self.index.table;
+            let at = table.binary_search_by_key(&vr, |v| v.value_reference);
             let at = at.map_err(|_| format!("unknown value reference {vr}"))?;
-            if self.calculated[at] {
+            if self.index.calculated[at] {
                 needs_values = true;
-            } else if let Kind::Real { get, .. } = &self.table[at].kind {
+            } else if let Kind::Real { get, .. } = &table[at].kind {
                 let value = get.call(&self.model);
                 if !value.is_finite() {
-                    let name = self.table[at].shown_name();
+                    let name = table[at].shown_name();
                     return Ok(Some(format!("\"{name}\" evaluates to {value}")));
                 }
             }
@@ -370,7 +406,7 @@ impl<M: Model> Instance<M> {
 
     /// The variable `vr`, checked to be of type `wanted`.
     fn typed(&self, vr: u32, wanted: VariableType) -> Result<&Variable<M>, String> {
-        let v = variable(&self.table, vr)?;
+        let v = variable(&self.index.table, vr)?;
         if v.variable_type() == wanted {
             Ok(v)
         } else {
@@ -409,7 +445,7 @@ impl<M: Model> Instance<M> {
     /// Writes a value through its writer after the checks of [`value_check::write`]
     /// (whether the variable may be set now is the front-end's rule).
     fn write(&mut self, vr: u32, value: Value) -> Result<(), String> {
-        let v = variable(&self.table, vr)?;
+        let v = variable(&self.index.table, vr)?;
         self.dirty = true;
         value_check::write(&mut self.model, v, value)
     }

@@ -32,6 +32,7 @@ pub mod model;
 pub mod model_exchange_calls;
 pub mod output_derivatives;
 pub mod serialize;
+pub mod shared;
 pub mod status;
 pub mod value_check;
 pub mod variables;

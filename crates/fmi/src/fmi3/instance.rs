@@ -9,31 +9,33 @@ use super::extra::Fmi3Extra;
 use super::intermediate::IntermediateUpdate;
 use super::logging::Logger;
 use super::mode::{Fmi3, Interface, Mode};
-use super::table::{Source, Variable3};
+use super::table::{Source, Table3, Variable3};
 use crate::core::entry;
 use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
-use crate::core::variables::{Causality, Initial, Variability};
+use crate::core::shared::shared;
+use crate::core::variables::{Causality, Initial, Variability, Variable};
+use std::marker::PhantomData;
 use std::sync::Arc;
 
 /// Everything an FMI 3.0 instance owns. Instances share no mutable state.
 pub type Instance<M> = FmuInstance<Fmi3, M>;
 
 impl<M: Model> FmuInstance<Fmi3, M> {
-    /// An instance serving the array view, or the scalar-only one when `scalar`.
+    /// An instance serving the array view, or the scalar-only one when `scalar`, once
+    /// `check` accepts the view and the number of table variables (the instance is
+    /// built in place only then: it is large, and each move of it is a copy).
     pub fn new(
         interface: Interface,
         log: Logger,
         intermediate_update: Option<IntermediateUpdate>,
         scalar: bool,
+        check: impl FnOnce(&Table3, usize) -> Result<(), String>,
     ) -> Result<Self, String> {
         let core = core_instance::Instance::new()?;
-        let mut table = view(core.table())?;
-        if scalar {
-            table = super::scalar::view(core.table(), &table)?;
-        }
-        let table = Arc::new(table);
+        let table = views::<M>(core.table(), scalar)?;
+        check(&table, core.table().len())?;
         let extra = Fmi3Extra {
             table,
             intermediate_update,
@@ -164,5 +166,23 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 _ => false,
             };
         entry::settable(ok, &v.name, v.causality, v.variability, mode)
+    }
+}
+
+/// Key of the shared array view of model M.
+struct ArrayView<M>(PhantomData<M>);
+/// Key of the shared scalar-only view of model M.
+struct ScalarView<M>(PhantomData<M>);
+
+/// The FMI 3.0 view (array or scalar-only) of model M's `table`: shared by the
+/// instances of a declared model ([`shared`]), built per instance otherwise.
+fn views<M: Model>(table: &[Variable<M>], scalar: bool) -> Result<Arc<Table3>, String> {
+    let arrays = || view::<M>(table);
+    let scalars = || super::scalar::view(table, &arrays()?);
+    match (M::declarations().is_empty(), scalar) {
+        (true, false) => arrays().map(Arc::new),
+        (true, true) => scalars().map(Arc::new),
+        (false, false) => shared::<ArrayView<M>, Table3>(arrays),
+        (false, true) => shared::<ScalarView<M>, Table3>(scalars),
     }
 }

@@ -11,6 +11,7 @@ use crate::fmi3::instance::Instance;
 use crate::fmi3::intermediate::IntermediateUpdate;
 use crate::fmi3::logging::{Callback, Logger};
 use crate::fmi3::mode::{Call, Fmi3, Interface, Mode};
+use crate::fmi3::table::Table3;
 use crate::fmi3::types::*;
 use std::ffi::c_char;
 
@@ -39,10 +40,10 @@ pub struct Instantiation {
 /// # Safety
 /// A non-null `vrs` must be valid for `n` value references.
 unsafe fn check_required<M: Model>(
-    inst: &Instance<M>,
+    table: &Table3,
+    declared: usize,
     (vrs, n): (*const Fmi3ValueReference, usize),
 ) -> Result<(), String> {
-    let declared = inst.core.table().len();
     if n > declared {
         return Err(format!(
             "nRequiredIntermediateVariables = {n}, but the model has {declared} variables"
@@ -51,7 +52,7 @@ unsafe fn check_required<M: Model>(
     // SAFETY: by the contract above.
     let vrs = unsafe { input_slice(vrs, n, "requiredIntermediateVariables[]") }?;
     for &vr in vrs {
-        let v = inst.extra.table.find(vr).ok_or_else(|| {
+        let v = table.find(vr).ok_or_else(|| {
             format!("requiredIntermediateVariables: unknown value reference {vr}")
         })?;
         if !v.intermediate_update::<M>() {
@@ -106,7 +107,7 @@ pub unsafe fn instantiate_requiring<M: Model>(
             }
             // SAFETY: as above.
             let given = unsafe { text(args.token, "instantiationToken") }?;
-            let scalar = given == crate::fmi3::scalar::token::<M>();
+            let scalar = crate::fmi3::scalar::is_token::<M>(given);
             if given != M::info().guid && !scalar {
                 return Err(format!(
                     "instantiationToken {given} does not match this binary ({}, {})",
@@ -114,10 +115,11 @@ pub unsafe fn instantiate_requiring<M: Model>(
                     M::info().guid
                 ));
             }
-            let inst = Instance::<M>::new(args.interface, log, args.intermediate_update, scalar)?;
             // SAFETY: the host passes an array of the given length or null.
-            unsafe { check_required(&inst, required) }?;
-            Ok(inst)
+            let check = |table: &Table3, declared| unsafe {
+                check_required::<M>(table, declared, required)
+            };
+            Instance::<M>::new(args.interface, log, args.intermediate_update, scalar, check)
         },
     )
 }
