@@ -10,7 +10,6 @@ write of an array from them."""
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 from fmpy import extract, read_model_description
@@ -20,7 +19,6 @@ from .errors import FmuError
 from .fmu import LoggedCalls, status_categories
 from .intermediate import IntermediateInputs, flagged_inputs
 
-_ELEMENT = re.compile(r"^(.*)\[(\d+)\]$")
 _FMI3_DISCARD = 2
 _CONVERT = {"Float64": float, "Int32": int, "Boolean": bool}
 
@@ -28,6 +26,22 @@ _CONVERT = {"Float64": float, "Int32": int, "Boolean": bool}
 def fmi3_path(path: Path) -> Path:
     """dist/<Model>.fmu -> dist/fmi3/<Model>.fmu (the FMI 3.0 build beside it)."""
     return path.parent / "fmi3" / path.name
+
+
+def scalar_names(variables) -> dict:
+    """FMI 2.0 scalar name -> (FMI 3.0 variable, element index or None), from each
+    variable's <Dimension>: an array `x` of n elements holds `x[1]`..`x[n]`, the
+    derivative of an array state `x` holds `der(x[1])`..; a scalar keeps its name."""
+    names = {}
+    for v in variables:
+        if not v.shape:
+            names[v.name] = (v, None)
+            continue
+        state = v.derivative.name if v.derivative is not None else None
+        for k in range(int(v.shape[0])):  # one dimension: the layer declares no other
+            element = f"{state or v.name}[{k + 1}]"
+            names[f"der({element})" if state else element] = (v, k)
+    return names
 
 
 def _start(variable) -> list:
@@ -53,6 +67,7 @@ class Fmu3Instance(LoggedCalls):
         if md.coSimulation is None:
             raise FmuError(f"{alias} ({path}) does not support co-simulation")
         self.variables = {v.name: v for v in md.modelVariables}
+        self._scalars = scalar_names(md.modelVariables)
         self.can_get_state = bool(md.coSimulation.canGetAndSetFMUstate)
         # What each array holds now (a write of one element sends the whole array):
         # the start values, again after fmi3Reset.
@@ -87,12 +102,14 @@ class Fmu3Instance(LoggedCalls):
 
     def _locate(self, name: str):
         """(FMI 3.0 variable, element index or None) of an FMI 2.0 scalar name."""
-        match = _ELEMENT.match(name)
-        base, index = (match.group(1), int(match.group(2)) - 1) if match else (name, None)
-        variable = self.variables.get(base)
+        variable, index = self._scalars.get(name, (None, None))
         if variable is None or variable.type not in _CONVERT:
             raise FmuError(f"{self.alias} has no variable '{name}' of a supported type")
         return variable, index
+
+    def variable_of(self, name: str) -> str:
+        """The name of the FMI 3.0 variable that holds the FMI 2.0 scalar `name`."""
+        return self._locate(name)[0].name
 
     def get_values(self, names: tuple[str, ...]) -> list[float]:
         """Values of `names` (Int32 and Boolean as float), one FMI call per variable."""

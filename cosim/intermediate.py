@@ -13,12 +13,9 @@ at u(t_k)).
 
 from __future__ import annotations
 
-import re
 import zipfile
 from pathlib import Path
 from xml.etree import ElementTree
-
-_ELEMENT = re.compile(r"^(.*)\[\d+\]$")
 
 
 def flagged_inputs(path: Path) -> set[str]:
@@ -45,8 +42,7 @@ class IntermediateInputs:
         """Slopes of the inputs `names` for the next step (inputs not declared
         intermediateUpdate are held)."""
         for name, value in zip(names, values):
-            match = _ELEMENT.match(name)
-            if (match.group(1) if match else name) in self.flagged:
+            if self.instance.variable_of(name) in self.flagged:
                 self.slopes[name] = float(value)
 
     def begin(self, t: float) -> None:

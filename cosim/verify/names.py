@@ -1,13 +1,13 @@
 """Scalar names (``u[2]``, as in the cross-check CSVs and FMI 2.0) on the variables of
-an FMU: FMI 2.0 variables by name; FMI 3.0 arrays (``u``, element 2) by element."""
+an FMU: FMI 2.0 variables by name; FMI 3.0 arrays (``u``, element 2) by element, the
+elements taken from each array's ``<Dimension>`` (``cosim.fmi3.scalar_names``)."""
 
 from __future__ import annotations
 
-import re
-
 import numpy as np
 
-_ELEMENT = re.compile(r"^(.*)\[(\d+)\]$")
+from ..fmi3 import scalar_names
+
 _TYPES = {"Boolean": bool, "Int32": int, "Int64": int, "Integer": int}
 
 
@@ -30,17 +30,11 @@ class Names:
 
     def __init__(self, model_description):
         self.variables = {v.name: v for v in model_description.modelVariables}
+        self.scalars = scalar_names(model_description.modelVariables)
 
     def locate(self, name: str):
         """(variable, index) of `name`, or None when the FMU has no such scalar."""
-        variable = self.variables.get(name)
-        if variable is not None:
-            return (variable, None) if _size(variable) == 1 else None
-        match = _ELEMENT.match(name)
-        if match is None or match.group(1) not in self.variables:
-            return None
-        variable, index = self.variables[match.group(1)], int(match.group(2)) - 1
-        return (variable, index) if 0 <= index < _size(variable) else None
+        return self.scalars.get(name)
 
     def start_values(self, scalars: dict[str, object]) -> dict[str, object]:
         """Scalar start values -> FMPy's start_values: whole arrays, the elements left

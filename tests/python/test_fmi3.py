@@ -13,6 +13,7 @@ from fmpy.validation import validate_fmu
 
 import fmi3_names
 from conftest import INTERFACES, MODELS, fmu3_path, fmu_path
+from cosim.fmi3 import scalar_names
 from test_importers import read_options, read_signals, reference_cases
 
 # The FMI 2.0 and FMI 3.0 builds call the same model code with the same arguments in
@@ -43,6 +44,24 @@ def test_every_three_vector_is_one_array(model):
     assert md3.numberOfContinuousStates == md2.numberOfContinuousStates
     assert md3.numberOfEventIndicators == md2.numberOfEventIndicators
 
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_the_harness_finds_every_fmi2_scalar_in_the_fmi3_arrays(model):
+    # Truth: the FMI 2.0 build's description of the same table, each scalar's array
+    # and element parsed from its name here (a derivative's from its state's name), the
+    # harness's from the FMI 3.0 <Dimension> elements. FMI 3.0 adds time and the event
+    # indicators only.
+    md2 = read_model_description(fmu_path(model))
+    names = scalar_names(read_model_description(fmu3_path(model)).modelVariables)
+    for v in md2.modelVariables:
+        state = v.derivative
+        base, index = fmi3_names.split(state.name if state is not None else v.name)
+        expected = f"der({base})" if state is not None else base
+        variable, element = names[v.name]
+        assert (variable.name, element) == (expected, index), v.name
+    indicators = {f"eventIndicators[{k}]" for k in range(1, md2.numberOfEventIndicators + 1)}
+    assert set(names) - {v.name for v in md2.modelVariables} == {"time"} | indicators
 
 def simulate(path, description, case, model, interface, fmi3):
     """One reference case through FMPy; FMI 3.0 names translated to the arrays."""

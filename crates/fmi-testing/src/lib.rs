@@ -94,7 +94,7 @@ pub struct Host<M: Model> {
 
 /// Value reference of the variable `name`.
 pub fn vr<M: Model>(name: &str) -> u32 {
-    M::variables()
+    robofmu_fmi::core::flatten::flatten(M::declarations())
         .into_iter()
         .find(|v| v.name() == name)
         .unwrap_or_else(|| panic!("no variable {name}"))

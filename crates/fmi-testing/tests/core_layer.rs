@@ -3,7 +3,7 @@
 //! update result, the stop time.
 
 use robofmu_fmi::core::{
-    DefaultExperiment, EventUpdate, Log, Model, ModelInfo, StepOutcome, Variability, Variable,
+    Declaration, DefaultExperiment, EventUpdate, Log, Model, ModelInfo, StepOutcome, Variability,
 };
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::types::*;
@@ -41,19 +41,25 @@ impl Model for Doubler {
     fn info() -> &'static ModelInfo {
         &DOUBLER
     }
-    fn variables() -> Vec<Variable<Self>> {
-        // Deliberately out of order: the layer sorts the table.
-        vec![
-            Variable::real(2, "y", "output", |m: &Doubler| m.y).output(),
-            Variable::integer(3, "calculations", "count", |m: &Doubler| m.calculations).output(),
-            Variable::real(1, "u", "input", |m: &Doubler| m.u)
+    fn declarations() -> &'static [Declaration<Self>] {
+        // Deliberately out of value-reference order: the layer sorts the scalars.
+        static VARIABLES: &[Declaration<Doubler>] = &[
+            Declaration::<Doubler>::real("y", "output", |m, _| m.y)
+                .at(2)
+                .output(),
+            Declaration::<Doubler>::integer("calculations", "count", |m, _| m.calculations)
+                .at(3)
+                .output(),
+            Declaration::<Doubler>::real("u", "input", |m, _| m.u)
+                .at(1)
                 .input()
-                .start_real(0.0)
-                .set_real(|m, v| {
+                .start_real(&[0.0])
+                .set_real(|m, _, v| {
                     m.u = v;
                     Ok(())
                 }),
-        ]
+        ];
+        VARIABLES
     }
     fn new() -> Self {
         Doubler {
@@ -152,29 +158,27 @@ impl Model for Sawtooth {
     fn info() -> &'static ModelInfo {
         &SAWTOOTH
     }
-    fn variables() -> Vec<Variable<Self>> {
-        vec![
-            Variable::real(1, "x", "state", |m: &Sawtooth| m.x)
+    fn declarations() -> &'static [Declaration<Self>] {
+        static VARIABLES: &[Declaration<Sawtooth>] = &[
+            Declaration::<Sawtooth>::real("x", "state", |m, _| m.x)
                 .state()
-                .start_real(0.0)
-                .set_real(|m, v| {
+                .start_real(&[0.0])
+                .set_real(|m, _, v| {
                     m.x = v;
                     Ok(())
                 }),
-            Variable::real(2, "der(x)", "rate", |_: &Sawtooth| 1.0).derivative_of("x"),
-            Variable::integer(
-                3,
-                "maxResets",
-                "resets before terminating",
-                |m: &Sawtooth| m.max_resets,
-            )
+            Declaration::<Sawtooth>::real("der(x)", "rate", |_, _| 1.0).derivative_of("x"),
+            Declaration::<Sawtooth>::integer("maxResets", "resets before terminating", |m, _| {
+                m.max_resets
+            })
             .parameter(Variability::Fixed)
-            .start_integer(2)
-            .set_integer(|m, v| {
+            .start_integer(&[2])
+            .set_integer(|m, _, v| {
                 m.max_resets = v;
                 Ok(())
             }),
-        ]
+        ];
+        VARIABLES
     }
     fn new() -> Self {
         Sawtooth {
@@ -311,71 +315,6 @@ fn a_step_ending_at_the_stop_time_despite_round_off_is_accepted() {
         t += 0.1;
     }
     assert_eq!(h.last_successful_time(), 0.1 + 0.1 + 0.1);
-}
-
-#[test]
-fn one_array_declaration_gives_named_scalars_with_getters_setters_and_dimensions() {
-    use robofmu_fmi::core::arrays::{ArrayElement, RealArray};
-    use robofmu_fmi::core::variables::Kind;
-    // theta[1..3] at value references 101..103 over a plain [f64; 3].
-    let array = RealArray::new(101, "theta", 3, "angle", |m: &[f64; 3], i| m[i])
-        .set(|m, i, v| {
-            m[i] = v;
-            Ok(())
-        })
-        .each(|v, i| v.state().start_real(0.1 * (i + 1) as f64));
-    let table = array.variables();
-    let names: Vec<String> = table.iter().map(|v| v.name().into_owned()).collect();
-    assert_eq!(names, ["theta[1]", "theta[2]", "theta[3]"]);
-    let vrs: Vec<u32> = table.iter().map(|v| v.value_reference).collect();
-    assert_eq!(vrs, [101, 102, 103]);
-    assert_eq!(
-        table[2].array,
-        Some(ArrayElement {
-            base: "theta",
-            index: 2,
-            length: 3,
-            stride: 1,
-            derivative: false,
-        })
-    );
-    let mut model = [1.0, 2.0, 3.0];
-    let Kind::Real {
-        get,
-        set: Some(set),
-        start,
-        ..
-    } = &table[1].kind
-    else {
-        panic!("theta[2] is a settable Real");
-    };
-    assert_eq!(get.call(&model), 2.0);
-    set.call(&mut model, -4.5).unwrap();
-    assert_eq!(model, [1.0, -4.5, 3.0]);
-    assert_eq!(*start, Some(0.2));
-}
-
-#[test]
-fn an_array_with_a_missing_element_is_rejected_by_the_table_check() {
-    use robofmu_fmi::core::arrays::RealArray;
-    use robofmu_fmi::core::check::check_table;
-    let array = || {
-        RealArray::new(11, "u", 3, "input", |m: &[f64; 3], i| m[i])
-            .set(|m, i, v| {
-                m[i] = v;
-                Ok(())
-            })
-            .each(|v, _| v.input().start_real(0.0))
-            .variables()
-    };
-    assert_eq!(check_table(&array()), Ok(()));
-    let mut gap = array();
-    gap.remove(1);
-    let message = check_table(&gap).unwrap_err();
-    assert!(
-        message.contains("element 2 is not at value reference 12"),
-        "{message}"
-    );
 }
 
 #[test]

@@ -6,8 +6,8 @@
 //! tests/python/test_output_derivatives.py).
 
 use robofmu_fmi::core::{
-    DefaultExperiment, Log, Model, ModelInfo, OutputDerivativeError, StepOutcome, Variability,
-    Variable,
+    Declaration, DefaultExperiment, Log, Model, ModelInfo, OutputDerivativeError, StepOutcome,
+    Variability,
 };
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::types::*;
@@ -48,26 +48,8 @@ impl Model for Ramp {
     fn info() -> &'static ModelInfo {
         &RAMP
     }
-    fn variables() -> Vec<Variable<Self>> {
-        vec![
-            Variable::real(1, "a", "slope", |m: &Ramp| m.a)
-                .parameter(Variability::Tunable)
-                .start_real(2.0)
-                .set_real(|m, v| {
-                    m.a = v;
-                    Ok(())
-                }),
-            Variable::real(2, "u", "input", |m: &Ramp| m.u)
-                .input()
-                .start_real(0.0)
-                .set_real(|m, v| {
-                    m.u = v;
-                    Ok(())
-                }),
-            Variable::real(3, "y", "a t", |m: &Ramp| m.y).output(),
-            Variable::real(4, "w", "y^2", |m: &Ramp| m.y * m.y).output(),
-            Variable::integer(5, "n", "an Integer output", |_: &Ramp| 7).output(),
-        ]
+    fn declarations() -> &'static [Declaration<Self>] {
+        VARIABLES
     }
     fn new() -> Self {
         Ramp {
@@ -93,21 +75,47 @@ impl Model for Ramp {
         self.y = self.a * self.t;
         Ok(())
     }
-    /// Negative slopes deliberately give NaN (the layer must not pass it on); slopes
-    /// above 10 cannot be evaluated.
-    fn output_derivative(&self, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
-        match vr {
-            3 if self.a > 10.0 => Err(OutputDerivativeError::CannotEvaluate(
-                "the slope is too steep".to_string(),
-            )),
-            3 if self.a < 0.0 => Ok(f64::NAN),
-            3 => Ok(if order == 1 { self.a } else { 0.0 }),
-            _ => Err(OutputDerivativeError::NotProvided(
-                "only y is differentiated".to_string(),
-            )),
-        }
+}
+
+/// The derivatives of y: negative slopes deliberately give NaN (the layer must not
+/// pass it on); slopes above 10 cannot be evaluated.
+fn y_rates(m: &Ramp, _: usize, order: u32) -> Result<f64, OutputDerivativeError> {
+    match m.a {
+        a if a > 10.0 => Err(OutputDerivativeError::CannotEvaluate(
+            "the slope is too steep".to_string(),
+        )),
+        a if a < 0.0 => Ok(f64::NAN),
+        a => Ok(if order == 1 { a } else { 0.0 }),
     }
 }
+
+static VARIABLES: &[Declaration<Ramp>] = &[
+    Declaration::<Ramp>::real("a", "slope", |m, _| m.a)
+        .parameter(Variability::Tunable)
+        .start_real(&[2.0])
+        .set_real(|m, _, v| {
+            m.a = v;
+            Ok(())
+        }),
+    Declaration::<Ramp>::real("u", "input", |m, _| m.u)
+        .input()
+        .start_real(&[0.0])
+        .set_real(|m, _, v| {
+            m.u = v;
+            Ok(())
+        }),
+    Declaration::<Ramp>::real("y", "a t", |m, _| m.y)
+        .output()
+        .output_derivative(y_rates),
+    Declaration::<Ramp>::real("w", "y^2", |m, _| m.y * m.y)
+        .output()
+        .output_derivative(|_, _, _| {
+            Err(OutputDerivativeError::NotProvided(
+                "only y is differentiated".to_string(),
+            ))
+        }),
+    Declaration::<Ramp>::integer("n", "an Integer output", |_, _| 7).output(),
+];
 
 type H = Host<Ramp>;
 

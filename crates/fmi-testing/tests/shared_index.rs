@@ -1,15 +1,12 @@
 //! The value-reference index of a declared model is built once per library and shared
-//! by its instances (`core::shared`); a model written with `Model::variables` gets its
-//! own per instance. Truths: pointer identity of the index, the table's value
+//! by its instances (`core::shared`). Truths: pointer identity of the index, the table's value
 //! references against the declarations' scheme (pinned 10, then 11 and 12 for the
 //! unpinned array), and values written to one instance not showing in another. The
 //! FMI 3.0 array and scalar-only views are shared too, each under its own key: the
 //! array view has `y` as one array of 2, the scalar view `y[1]`, `y[2]`.
 
 use robofmu_fmi::core::instance::Instance;
-use robofmu_fmi::core::{
-    DefaultExperiment, Log, Model, ModelInfo, StepOutcome, Variability, Variable,
-};
+use robofmu_fmi::core::{DefaultExperiment, Log, Model, ModelInfo, StepOutcome, Variability};
 use robofmu_fmi::fmi3::instance::Instance as Instance3;
 use robofmu_fmi::fmi3::logging::{Callback, Logger};
 use robofmu_fmi::fmi3::mode::Interface;
@@ -61,12 +58,6 @@ static DECLARATIONS: &[Declaration<Declared>] = &[
     .output(),
 ];
 
-/// A model written with `Model::variables`: its table is built per instance.
-#[derive(Clone)]
-struct Built;
-
-static BUILT: ModelInfo = info("Built");
-
 macro_rules! trivial_model {
     () => {
         fn set_time(&mut self, _time: f64) {}
@@ -92,19 +83,6 @@ impl Model for Declared {
     trivial_model!();
 }
 
-impl Model for Built {
-    fn info() -> &'static ModelInfo {
-        &BUILT
-    }
-    fn variables() -> Vec<Variable<Self>> {
-        vec![Variable::real(1, "y", "output", |_: &Built| 1.0).output()]
-    }
-    fn new() -> Self {
-        Built
-    }
-    trivial_model!();
-}
-
 #[test]
 fn instances_of_a_declared_model_share_one_index_and_keep_their_own_values() {
     let mut a = Instance::<Declared>::new().unwrap();
@@ -122,14 +100,6 @@ fn instances_of_a_declared_model_share_one_index_and_keep_their_own_values() {
         Arc::ptr_eq(b.index(), c.index()),
         "kept after an instance is freed"
     );
-}
-
-#[test]
-fn a_model_written_with_variables_builds_its_index_per_instance() {
-    let a = Instance::<Built>::new().unwrap();
-    let b = Instance::<Built>::new().unwrap();
-    assert!(!Arc::ptr_eq(a.index(), b.index()));
-    assert_eq!(Arc::strong_count(a.index()), 1);
 }
 
 /// An FMI 3.0 Model Exchange instance of the declared model (array or scalar view).

@@ -32,12 +32,104 @@ pub mod ffi;
 pub mod fmi2;
 pub mod fmi3;
 
-/// The names a model author uses: `use robofmu_fmi::prelude::*;`.
 pub mod prelude {
-    pub use crate::core::arrays::{Array, BooleanArray, IntegerArray, RealArray, Role};
+    //! The names a model author uses: `use robofmu_fmi::prelude::*;`.
+    //!
+    //! A whole FMU in one file: a cooling body, T' = -(T - ambient) / tau, with the time
+    //! constant as a parameter, the ambient temperature as an input, the temperature as a
+    //! state and an output with its first time derivative:
+    //!
+    //! ```
+    //! use robofmu_fmi::prelude::*;
+    //!
+    //! #[derive(Clone)]
+    //! pub struct Cooling { t: f64, tau: f64, ambient: f64 }
+    //!
+    //! impl Cooling {
+    //!     fn rate(&self) -> f64 { -(self.t - self.ambient) / self.tau }
+    //! }
+    //!
+    //! // 1. What the FMU is (names, instantiation token, experiment, capabilities).
+    //! static INFO: ModelInfo = ModelInfo {
+    //!     model_name: "Cooling",
+    //!     model_identifier: "Cooling",
+    //!     guid: "{5b1f6c36-0a5e-4d43-9d1e-3f1f0c2d9a11}",
+    //!     description: "Newton's law of cooling",
+    //!     default_experiment: DefaultExperiment {
+    //!         start_time: 0.0, stop_time: 10.0, tolerance: 1e-6, step_size: 0.1,
+    //!     },
+    //!     number_of_continuous_states: 1,
+    //!     number_of_event_indicators: 0,
+    //!     provides_directional_derivative: false,
+    //!     max_output_derivative_order: 1,
+    //!     log_categories: &[],
+    //! };
+    //!
+    //! // 2. Every variable once: getter, setter, role, unit, start, hooks (value
+    //! //    references 1, 2, ... in this order; `.at(vr)` pins one).
+    //! type Decl = Declaration<Cooling>;
+    //! static VARIABLES: &[Decl] = &[
+    //!     Decl::real("tau", "time constant", |m, _| m.tau)
+    //!         .set_real(|m, _, v| if v > 0.0 { m.tau = v; Ok(()) } else { Err("tau > 0".into()) })
+    //!         .parameter(Variability::Fixed)
+    //!         .unit("s", None)
+    //!         .start_real(&[2.0]),
+    //!     Decl::real("ambient", "ambient temperature", |m, _| m.ambient)
+    //!         .set_real(|m, _, v| { m.ambient = v; Ok(()) })
+    //!         .input()
+    //!         .unit("K", None)
+    //!         .start_real(&[293.15]),
+    //!     Decl::real("T", "temperature", |m, _| m.t)
+    //!         .set_real(|m, _, v| { m.t = v; Ok(()) })
+    //!         .state()
+    //!         .unit("K", None)
+    //!         .start_real(&[350.0]),
+    //!     Decl::real("der(T)", "cooling rate", |m, _| m.rate())
+    //!         .derivative_of("T")
+    //!         .unit("K/s", None),
+    //!     Decl::real("y", "temperature seen outside", |m, _| m.t)
+    //!         .output()
+    //!         .depends_on(&["T"])
+    //!         .output_derivative(|m, _, _order| Ok(m.rate()))
+    //!         .unit("K", None),
+    //! ];
+    //!
+    //! // 3. The model's behaviour; the layer does the rest (arguments, state machine,
+    //! //    FMU states, logging, both standards' C functions).
+    //! impl Model for Cooling {
+    //!     fn info() -> &'static ModelInfo { &INFO }
+    //!     fn declarations() -> &'static [Declaration<Self>] { VARIABLES }
+    //!     fn new() -> Self { Cooling { t: 0.0, tau: 1.0, ambient: 0.0 } }
+    //!     fn set_time(&mut self, _time: f64) {}
+    //!     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> { Ok(()) }
+    //!     fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
+    //!         // Exact over a step with the input held.
+    //!         self.t = self.ambient + (self.t - self.ambient) * (-step / self.tau).exp();
+    //!         StepOutcome::Completed
+    //!     }
+    //!     fn continuous_states(&self, x: &mut [f64]) { x[0] = self.t; }
+    //!     fn set_continuous_states(&mut self, x: &[f64]) { self.t = x[0]; }
+    //!     fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
+    //!         dx[0] = self.rate();
+    //!         Ok(())
+    //!     }
+    //! }
+    //!
+    //! // 4. Both standards' C functions from this cdylib.
+    //! export_fmu!(Cooling);
+    //! # fn main() {}
+    //! ```
+    //!
+    //! Where each name is explained: [`ModelInfo`] and [`Model`] (the contract and its
+    //! optional methods: events, time events, partial derivatives by [`Element`], extra
+    //! FMU state), [`Declaration`] (roles, units, bounds, arrays, value references and the
+    //! hooks), [`StepOutcome`] and [`EventUpdate`] (what a step or an event did), [`Log`]
+    //! and [`LogCategory`] (messages), [`OutputDerivativeError`] (why a hook gives no
+    //! output derivative).
+
     pub use crate::core::{
         Declaration, DefaultExperiment, Element, EventUpdate, Log, LogCategory, Model, ModelInfo,
-        OutputDerivativeError, StepOutcome, Variability, Variable,
+        OutputDerivativeError, StepOutcome, Variability,
     };
     pub use crate::export_fmu;
 }

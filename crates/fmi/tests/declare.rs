@@ -52,6 +52,7 @@ static TABLE: &[Decl] = &[
     Decl::real("y", "output", |m, i| m.x[i] * m.x[i])
         .array(2)
         .output()
+        .depends_on_each(|i| [&["x[1]"][..], &["x[2]"]][i])
         .output_derivative(|m, i, order| match order {
             1 => Ok(2.0 * m.x[i]),
             _ => Err(OutputDerivativeError::NotProvided(
@@ -104,7 +105,10 @@ fn arrays_flatten_to_fmi2_scalars_with_labels_and_per_element_starts() {
     assert_eq!(table[4].state_name().as_deref(), Some("x[2]"));
     assert_eq!(table[4].state_key(), Some(("x", Some(1))));
     assert_eq!(table[2].key(), ("x", Some(1)));
-    let element = table[4].element().expect("declared");
+    // y[i] = x[i]^2 depends on x[i] alone (the per-element hook, called with the index).
+    assert_eq!(table[7].dependencies, Some(&["x[1]"][..]));
+    assert_eq!(table[8].dependencies, Some(&["x[2]"][..]));
+    let element = table[4].element();
     assert_eq!((element.name, element.index), ("der(x)", 1));
     let mut sorted = table;
     sorted.sort_by_key(|v| v.value_reference);
@@ -123,11 +127,15 @@ fn accessors_and_hooks_reach_their_element() {
     set.call(&mut m, 2.0).unwrap();
     assert_eq!(m.x, [0.0, 2.0]);
     assert_eq!(get.call(&m), 6.0); // d/dt x = 3 x
-    let (hook, i) = table[8].output_hook().expect("y has output derivatives");
+    let (hook, i) = (
+        table[8].output_hook().expect("y has output derivatives"),
+        table[8].index,
+    );
     assert_eq!(hook(&m, i, 1), Ok(4.0)); // d(x^2)/dx = 2 x at x = 2
-    let (slot, i) = table[6]
+    let slot = table[6]
         .input_hook()
         .expect("u has an input-derivative slot");
+    let i = table[6].index;
     *slot(&mut m, i, 1).expect("order 1 kept") = 0.5;
     assert_eq!(m.ramp, [0.0, 0.5]);
     assert!(slot(&mut m, i, 2).is_none());

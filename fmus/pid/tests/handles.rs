@@ -6,7 +6,7 @@
 
 mod support;
 
-use robofmu_fmi::core::{Log, Model, ModelInfo, StepOutcome, Variable};
+use robofmu_fmi::core::{Declaration, Log, Model, ModelInfo, StepOutcome};
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::types::*;
 use robofmu_fmi_testing::{Host, Lines};
@@ -27,8 +27,10 @@ impl Model for Other {
     fn info() -> &'static ModelInfo {
         &OTHER
     }
-    fn variables() -> Vec<Variable<Self>> {
-        vec![Variable::real(1, "y", "output", |_: &Other| 1.0).output()]
+    fn declarations() -> &'static [Declaration<Self>] {
+        static VARIABLES: &[Declaration<Other>] =
+            &[Declaration::real("y", "output", |_, _| 1.0).output()];
+        VARIABLES
     }
     fn new() -> Self {
         Other

@@ -15,12 +15,17 @@ use super::variables::concat;
 /// Geometry, and with it the forward kinematics of l0.
 const GEOMETRY: [&str; 7] = ["lp", "ld", "gamma", "lb", "alpha", "beta", "a"];
 /// The pose source besides theta0.
-const FROM_ACTUATORS: [&str; 11] =
-    concat(&[&["initFromActuators", "l0[1]", "l0[2]", "l0[3]"], &GEOMETRY]);
+const FROM_ACTUATORS: [&str; 11] = concat(
+    &[&["initFromActuators", "l0[1]", "l0[2]", "l0[3]"], &GEOMETRY],
+    "",
+);
 /// The whole initial pose.
-const POSE: [&str; 14] = concat(&[&["theta0[1]", "theta0[2]", "theta0[3]"], &FROM_ACTUATORS]);
+pub const POSE: [&str; 14] = concat(
+    &[&["theta0[1]", "theta0[2]", "theta0[3]"], &FROM_ACTUATORS],
+    "",
+);
 /// The pose and the initial angular velocity.
-const MOTION: [&str; 17] = concat(&[&POSE, &["omega0[1]", "omega0[2]", "omega0[3]"]]);
+pub const MOTION: [&str; 17] = concat(&[&POSE, &["omega0[1]", "omega0[2]", "omega0[3]"]], "");
 /// The end-stop constants.
 const STOPS: [&str; 4] = [
     "strokeMin",
@@ -68,109 +73,99 @@ const OTHER_INPUTS: [&str; 6] = [
     "disturbanceTorque[3]",
 ];
 
-static THETA: [[&str; 12]; 3] = [
-    concat(&[&["theta0[1]"], &FROM_ACTUATORS]),
-    concat(&[&["theta0[2]"], &FROM_ACTUATORS]),
-    concat(&[&["theta0[3]"], &FROM_ACTUATORS]),
+pub static THETA: [[&str; 12]; 3] = [
+    concat(&[&["theta0[1]"], &FROM_ACTUATORS], ""),
+    concat(&[&["theta0[2]"], &FROM_ACTUATORS], ""),
+    concat(&[&["theta0[3]"], &FROM_ACTUATORS], ""),
 ];
-static OMEGA: [[&str; 1]; 3] = [["omega0[1]"], ["omega0[2]"], ["omega0[3]"]];
+pub static OMEGA: [[&str; 1]; 3] = [["omega0[1]"], ["omega0[2]"], ["omega0[3]"]];
 // thetaDot = E^-1(thy, thz) omega, row by row (R = Rz Ry Rx: no row reads thx, row 2
 // neither thy nor omega_z).
-static THETA_DOT_1: [&str; 15] = concat(&[
-    &["theta0[2]", "theta0[3]", "omega0[1]", "omega0[2]"],
-    &FROM_ACTUATORS,
-]);
-static THETA_DOT_2: [&str; 14] =
-    concat(&[&["theta0[3]", "omega0[1]", "omega0[2]"], &FROM_ACTUATORS]);
-static THETA_DOT_3: [&str; 16] = concat(&[
+static THETA_DOT_1: [&str; 15] = concat(
     &[
-        "theta0[2]",
-        "theta0[3]",
-        "omega0[1]",
-        "omega0[2]",
-        "omega0[3]",
+        &["theta0[2]", "theta0[3]", "omega0[1]", "omega0[2]"],
+        &FROM_ACTUATORS,
     ],
-    &FROM_ACTUATORS,
-]);
-static ACCELERATION: [&str; 50] = concat(&[
-    &MOTION,
-    &COMMANDS,
-    &OTHER_INPUTS,
-    &INERTIA,
-    &GRAVITY,
-    &["sliderFriction", "pivotFriction"],
-    &STOPS,
-]);
-static FORCE: [[&str; 21]; 3] = [
-    concat(&[&POSE, &["actuatorForce[1]"], &COMMANDS]),
-    concat(&[&POSE, &["actuatorForce[2]"], &COMMANDS]),
-    concat(&[&POSE, &["actuatorForce[3]"], &COMMANDS]),
+    "",
+);
+static THETA_DOT_2: [&str; 14] = concat(
+    &[&["theta0[3]", "omega0[1]", "omega0[2]"], &FROM_ACTUATORS],
+    "",
+);
+static THETA_DOT_3: [&str; 16] = concat(
+    &[
+        &[
+            "theta0[2]",
+            "theta0[3]",
+            "omega0[1]",
+            "omega0[2]",
+            "omega0[3]",
+        ],
+        &FROM_ACTUATORS,
+    ],
+    "",
+);
+pub static ACCELERATION: [&str; 50] = concat(
+    &[
+        &MOTION,
+        &COMMANDS,
+        &OTHER_INPUTS,
+        &INERTIA,
+        &GRAVITY,
+        &["sliderFriction", "pivotFriction"],
+        &STOPS,
+    ],
+    "",
+);
+pub static FORCE: [[&str; 21]; 3] = [
+    concat(&[&POSE, &["actuatorForce[1]"], &COMMANDS], ""),
+    concat(&[&POSE, &["actuatorForce[2]"], &COMMANDS], ""),
+    concat(&[&POSE, &["actuatorForce[3]"], &COMMANDS], ""),
 ];
 /// A pose from l0 lies within the strokes (forward kinematics refuses any other), where
 /// the stops act on no actuator: l0 moves no stop force or flag.
-const POSE_IN_A_STOP: [&str; 11] = concat(&[
-    &["theta0[1]", "theta0[2]", "theta0[3]", "initFromActuators"],
-    &GEOMETRY,
-]);
-static STOP_FORCE: [&str; 18] = concat(&[
-    &POSE_IN_A_STOP,
-    &["omega0[1]", "omega0[2]", "omega0[3]"],
-    &STOPS,
-]);
-static AT_STOP: [&str; 13] = concat(&[&POSE_IN_A_STOP, &["strokeMin", "strokeMax"]]);
-static KINETIC_ENERGY: [&str; 27] = concat(&[&MOTION, &INERTIA]);
-static POTENTIAL_ENERGY: [&str; 25] = concat(&[
-    &POSE,
-    &GRAVITY,
+const POSE_IN_A_STOP: [&str; 11] = concat(
     &[
-        "legMass",
-        "legComFraction",
-        "sliderMass",
-        "strokeMin",
-        "strokeMax",
+        &["theta0[1]", "theta0[2]", "theta0[3]", "initFromActuators"],
+        &GEOMETRY,
     ],
-    &["endStopStiffness"],
-]);
+    "",
+);
+pub static STOP_FORCE: [&str; 18] = concat(
+    &[
+        &POSE_IN_A_STOP,
+        &["omega0[1]", "omega0[2]", "omega0[3]"],
+        &STOPS,
+    ],
+    "",
+);
+pub static AT_STOP: [&str; 13] = concat(&[&POSE_IN_A_STOP, &["strokeMin", "strokeMax"]], "");
+pub static KINETIC_ENERGY: [&str; 27] = concat(&[&MOTION, &INERTIA], "");
+pub static POTENTIAL_ENERGY: [&str; 25] = concat(
+    &[
+        &POSE,
+        &GRAVITY,
+        &[
+            "legMass",
+            "legComFraction",
+            "sliderMass",
+            "strokeMin",
+            "strokeMax",
+        ],
+        &["endStopStiffness"],
+    ],
+    "",
+);
 static GRAVITY_COMPENSATION: [&str; 21] =
-    concat(&[&POSE, &GRAVITY, &["legMass", "legComFraction"]]);
+    concat(&[&POSE, &GRAVITY, &["legMass", "legComFraction"]], "");
 
-/// The base name and the element (0-based) of `name`, unwrapping der(...).
-fn split(name: &str) -> Option<(&str, Option<usize>)> {
-    let name = match name.strip_prefix("der(") {
-        Some(inner) => inner.strip_suffix(')')?,
-        None => name,
-    };
-    let Some((base, index)) = name.split_once('[') else {
-        return Some((name, None));
-    };
-    let i: usize = index.strip_suffix(']')?.parse().ok()?;
-    (1..=3).contains(&i).then_some((base, Some(i - 1)))
+/// Element i of thetaDot and der(theta).
+pub fn theta_dot(i: usize) -> &'static [&'static str] {
+    [&THETA_DOT_1[..], &THETA_DOT_2, &THETA_DOT_3][i]
 }
 
-/// The knowns the initial unknown `name` depends on; None: not an initial unknown.
-/// gravityCompensation[3] depends on none: the moment of gravity about the vertical
-/// axis of {A} (E's third column is that axis) is 0 in every pose.
-pub fn of(name: &str) -> Option<&'static [&'static str]> {
-    let derivative = name.starts_with("der(");
-    Some(match split(name)? {
-        ("theta", Some(i)) if derivative => [&THETA_DOT_1[..], &THETA_DOT_2, &THETA_DOT_3][i],
-        ("thetaDot", Some(i)) => [&THETA_DOT_1[..], &THETA_DOT_2, &THETA_DOT_3][i],
-        ("theta", Some(i)) => &THETA[i],
-        ("omega", Some(_)) if derivative => &ACCELERATION,
-        ("omega", Some(i)) => &OMEGA[i],
-        ("yaw", None) => &THETA[0],
-        ("pitch", None) => &THETA[1],
-        ("roll", None) => &THETA[2],
-        ("omegaDot", Some(_)) => &ACCELERATION,
-        ("l" | "detJ" | "condJ", _) => &POSE,
-        ("lDot", Some(_)) => &MOTION,
-        ("force", Some(i)) => &FORCE[i],
-        ("stopForce", Some(_)) => &STOP_FORCE,
-        ("atStop", Some(_)) => &AT_STOP,
-        ("kineticEnergy", None) => &KINETIC_ENERGY,
-        ("potentialEnergy", None) => &POTENTIAL_ENERGY,
-        ("gravityCompensation", Some(2)) => &[],
-        ("gravityCompensation", Some(_)) => &GRAVITY_COMPENSATION,
-        _ => return None,
-    })
+/// Element i of gravityCompensation; the third depends on none: the moment of gravity
+/// about the vertical axis of {A} (E's third column is that axis) is 0 in every pose.
+pub fn gravity_compensation(i: usize) -> &'static [&'static str] {
+    if i == 2 { &[] } else { &GRAVITY_COMPENSATION }
 }

@@ -14,6 +14,7 @@
 //! an invalid value is refused with a message that names the FMU parameter.
 
 mod initial_dependencies;
+mod motion_cache;
 mod output_rates;
 mod parameters;
 mod partials;
@@ -60,6 +61,11 @@ static INFO: ModelInfo = ModelInfo {
 /// the stiff stop and then tries poses that cannot assemble (seen with fmusim).
 pub const START_DISPLACEMENT: f64 = 0.077;
 
+/// The default start pose (theta0), rad: every actuator at `START_DISPLACEMENT`, i.e.
+/// thx = thy = 0 and thz = 139.79 deg, the forward kinematics of the default geometry
+/// ([`default_start_pose`], equal to it in a test), as a constant for the static table.
+pub const START_POSE: [f64; 3] = [0.0, 0.0, 2.439784063985299];
+
 /// How the initial state is given.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct InitialConditions {
@@ -82,8 +88,9 @@ pub struct Pss3Plant {
     inputs: PlantInputs,
     /// Derivatives of the inputs at the start of a step (zero: held).
     ramp: InputRamp,
-    /// The plant of the current parameters, or why they are invalid.
+    /// The plant of the parameters `built_from`, or why they are invalid.
     plant: Result<Plant, String>,
+    built_from: Option<PlantParams>,
     /// The state; meaningful once `started` (after initialization).
     state: PlantState,
     started: bool,
@@ -92,6 +99,9 @@ pub struct Pss3Plant {
     /// Values computed by `calculate_values` for the current state and inputs, or why
     /// the model cannot be evaluated there.
     computed: Result<Computed, String>,
+    /// The derivatives along the local motion of the last point asked for
+    /// (`output_rates`).
+    along: motion_cache::MotionCache,
 }
 
 /// Everything the outputs show, computed once per change.
@@ -156,9 +166,14 @@ pub fn default_start_pose() -> Vector3<f64> {
 }
 
 impl Pss3Plant {
-    /// Rebuilds the plant after a parameter changed.
+    /// Rebuilds the plant after a parameter was written, if the parameters changed (a
+    /// write of a parameter's current value, as every start value at instantiation,
+    /// rebuilds nothing: the plant is a function of the parameters).
     fn rebuild(&mut self) {
-        self.plant = Plant::new(self.params).map_err(|e| parameters::fmu_message(&e));
+        if self.built_from != Some(self.params) {
+            self.plant = Plant::new(self.params).map_err(|e| parameters::fmu_message(&e));
+            self.built_from = Some(self.params);
+        }
     }
 
     fn plant(&self) -> Result<&Plant, String> {
@@ -294,8 +309,8 @@ impl Model for Pss3Plant {
         &INFO
     }
 
-    fn variables() -> Vec<Variable<Self>> {
-        variables::table()
+    fn declarations() -> &'static [Declaration<Self>] {
+        &variables::VARIABLES
     }
 
     fn new() -> Self {
@@ -303,7 +318,7 @@ impl Model for Pss3Plant {
         let mut model = Pss3Plant {
             params,
             initial: InitialConditions {
-                theta0: default_start_pose(),
+                theta0: Vector3::from(START_POSE),
                 from_actuators: false,
                 l0: Vector3::repeat(START_DISPLACEMENT),
                 omega0: Vector3::zeros(),
@@ -315,6 +330,7 @@ impl Model for Pss3Plant {
             inputs: PlantInputs::default(),
             ramp: InputRamp::default(),
             plant: Err("not built yet".to_string()),
+            built_from: None,
             state: PlantState {
                 euler: Vector3::zeros(),
                 omega: Vector3::zeros(),
@@ -322,6 +338,7 @@ impl Model for Pss3Plant {
             started: false,
             contacts: [StopContact::Free; 3],
             computed: Err("not computed yet".to_string()),
+            along: motion_cache::MotionCache::default(),
         };
         model.rebuild();
         model
@@ -382,15 +399,6 @@ impl Model for Pss3Plant {
     /// the 9 inner points (held over the next sub-interval).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
 
-    fn input_derivative_mut(&mut self, vr: u32, order: u32) -> Option<&mut f64> {
-        let part = match order {
-            1 => &mut self.ramp.rate,
-            2 => &mut self.ramp.acceleration,
-            _ => return None,
-        };
-        variables::input_component(part, vr)
-    }
-
     fn calculate_values(&mut self) -> Result<(), String> {
         self.computed = self.compute();
         self.computed.as_ref().map(|_| ()).map_err(Clone::clone)
@@ -435,17 +443,12 @@ impl Model for Pss3Plant {
 
     fn directional_derivative(
         &self,
-        table: &[Variable<Self>],
-        unknowns: &[u32],
-        knowns: &[u32],
+        unknowns: &[Element],
+        knowns: &[Element],
         seed: &[f64],
         out: &mut [f64],
     ) -> Result<(), String> {
-        partials::directional_derivative(self, table, unknowns, knowns, seed, out)
-    }
-
-    fn output_derivative(&self, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
-        output_rates::output_derivative(self, vr, order)
+        partials::directional_derivative(self, unknowns, knowns, seed, out)
     }
 
     fn write_extra_state(&self, out: &mut Vec<u8>) {

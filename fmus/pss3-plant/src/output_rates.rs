@@ -13,13 +13,21 @@
 //!   second order in time, then central differences of the output along it with one
 //!   Richardson extrapolation), about 1e-9 relative; across an end stop's edge (its
 //!   spring and damper start there) the average slope.
+//!   All of them are differentiated together and kept for the point
+//!   (`motion_cache`); gravityCompensation, the slope a master asks every step, in a
+//!   pass of its own over the gravity torque alone.
 
+use super::motion_cache::{Along, Derivatives, Entry, Point};
 use super::variables::*;
 use super::{Computed, Pss3Plant};
 use nalgebra::Vector3;
+use robofmu::pss3::dynamics::PlantState;
 use robofmu::pss3::rotation::euler_accelerations;
 use robofmu::pss3::{assemble, jacobian, velocity_product};
 use robofmu_fmi::prelude::OutputDerivativeError::{self, CannotEvaluate, NotProvided};
+
+#[cfg(test)]
+mod tests;
 
 /// The Euler-angle accelerations at the current state and inputs.
 fn theta_ddot(m: &Pss3Plant) -> Result<Vector3<f64>, String> {
@@ -42,56 +50,118 @@ fn l_ddot(m: &Pss3Plant) -> Result<Vector3<f64>, String> {
     Ok(j.actuator_rates(&c.outputs.omega_dot) + product)
 }
 
-/// The Real output with value reference `vr` read from `c` (the outputs of one state),
-/// for those differentiated along the local motion.
-fn value(vr: u32, c: &Computed) -> Option<f64> {
+/// The scalar outputs differentiated along the local motion, in their slots 0..4.
+const SCALARS: [u32; 4] = [DET_J, COND_J, KINETIC_ENERGY, POTENTIAL_ENERGY];
+
+/// The vector outputs differentiated along the local motion, 3 slots each after the
+/// scalars.
+const VECTORS: [u32; 7] = [
+    OMEGA,
+    THETA_DOT,
+    OMEGA_DOT,
+    L_DOT,
+    FORCE,
+    STOP_FORCE,
+    GRAVITY_COMPENSATION,
+];
+
+/// The slot in `Along` of the output with value reference `vr`, if it is one of those
+/// differentiated along the local motion.
+fn slot(vr: u32) -> Option<usize> {
+    if let Some(k) = SCALARS.iter().position(|&s| s == vr) {
+        return Some(k);
+    }
+    let (group, i) = split(vr);
+    let k = VECTORS.iter().position(|&g| g == group)?;
+    (i < 3).then_some(SCALARS.len() + 3 * k + i)
+}
+
+/// Every output differentiated along the local motion, read from `c` (the outputs of
+/// one state), in the order of `slot`.
+fn samples(c: &Computed) -> Along {
     let o = &c.outputs;
-    Some(match vr {
-        DET_J => o.jacobian_det,
-        COND_J => o.jacobian_cond,
-        KINETIC_ENERGY => o.kinetic_energy,
-        POTENTIAL_ENERGY => o.potential_energy + o.end_stop_energy,
-        _ => {
-            let (group, i) = split(vr);
-            let vector = match group {
-                OMEGA => o.omega,
-                THETA_DOT => c.euler_rates,
-                OMEGA_DOT => o.omega_dot,
-                L_DOT => o.actuator_velocities,
-                FORCE => o.actuator_forces,
-                STOP_FORCE => o.end_stop_forces,
-                GRAVITY_COMPENSATION => c.gravity_compensation,
-                _ => return None,
-            };
-            *vector.get(i)?
-        }
-    })
+    let scalars = [
+        o.jacobian_det,
+        o.jacobian_cond,
+        o.kinetic_energy,
+        o.potential_energy + o.end_stop_energy,
+    ];
+    let vectors = [
+        o.omega,
+        c.euler_rates,
+        o.omega_dot,
+        o.actuator_velocities,
+        o.actuator_forces,
+        o.end_stop_forces,
+        c.gravity_compensation,
+    ];
+    let components = vectors.iter().flat_map(|v| [v.x, v.y, v.z]);
+    Along::from_iterator(scalars.into_iter().chain(components))
+}
+
+/// `read` of the stored entry of the current point (`MotionCache`).
+fn at_point<R>(m: &Pss3Plant, read: impl FnOnce(&mut Entry) -> R) -> Result<R, String> {
+    let point = Point {
+        params: m.params,
+        state: m.current_state()?,
+        inputs: m.inputs,
+    };
+    let motion = |p: &Point| {
+        let plant = m.plant()?;
+        plant
+            .local_motion(&p.state, &p.inputs)
+            .map_err(|e| e.to_string())
+    };
+    Ok(m.along.with(point, motion, read))
+}
+
+/// The first and second derivatives of every output in `Along` along the local motion
+/// at the current point (evaluated once per point).
+fn along_all(m: &Pss3Plant) -> Derivatives<Along> {
+    at_point(m, |e| {
+        let motion = &e.motion;
+        let evaluate = || {
+            let samples = |x: &PlantState| m.compute_at(x).map(|c| samples(&c));
+            motion.clone()?.derivatives(samples)
+        };
+        e.all.get_or_insert_with(evaluate).clone()
+    })?
+}
+
+/// The first and second derivatives of gravityCompensation along the local motion at
+/// the current point (evaluated once per point): the same numbers as in `along_all`
+/// (the same function of the same states), without the other outputs.
+fn along_gravity(m: &Pss3Plant) -> Derivatives<Vector3<f64>> {
+    at_point(m, |e| {
+        let motion = &e.motion;
+        let evaluate = || {
+            let plant = m.plant()?;
+            let gravity = |x: &PlantState| plant.gravity_compensation(&x.euler);
+            let gravity = |x: &PlantState| gravity(x).map_err(|e| e.to_string());
+            motion.clone()?.derivatives(gravity)
+        };
+        e.gravity.get_or_insert_with(evaluate).clone()
+    })?
 }
 
 /// The `order`-th derivative (1 or 2) of output `vr` along the local motion.
 fn along_motion(m: &Pss3Plant, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
-    let Some(_) = m.computed.as_ref().ok().and_then(|c| value(vr, c)) else {
+    let Some(k) = slot(vr) else {
         return Err(NotProvided(format!(
             "value reference {vr} is not a continuous Real output of Pss3Plant"
         )));
     };
-    let evaluate = || -> Result<[f64; 2], String> {
-        let state = m.current_state()?;
-        let motion = m
-            .plant()?
-            .local_motion(&state, &m.inputs)
-            .map_err(|e| e.to_string())?;
-        motion.derivatives(|x| {
-            let c = m.compute_at(x)?;
-            Ok(value(vr, &c).unwrap_or(f64::NAN))
-        })
+    let (group, i) = split(vr);
+    let derivatives = if group == GRAVITY_COMPENSATION {
+        along_gravity(m).map(|d| d[order as usize - 1][i])
+    } else {
+        along_all(m).map(|d| d[order as usize - 1][k])
     };
-    let derivatives = evaluate().map_err(|e| {
+    derivatives.map_err(|e| {
         CannotEvaluate(format!(
             "the plant cannot be evaluated near the current state: {e}"
         ))
-    })?;
-    Ok(derivatives[order as usize - 1])
+    })
 }
 
 /// The `order`-th time derivative of the output `vr` (see the module doc).

@@ -1,15 +1,17 @@
-//! The plant's parameters as FMU variables (fixed, defaults from the library's
-//! `PlantParams::default()`, i.e. the spec) and the translation of the library's
+//! The plant's parameters as FMU variables (fixed; their start values are the spec's,
+//! `PlantParams::default()`, checked by a test) and the translation of the library's
 //! parameter errors into messages that name the FMU parameter.
+//!
+//! The robot model's parameters (geometry, masses, inertias, gravity, friction) are
+//! the entries of the library's `MODEL_PARAMETERS`, which also give the ComputedTorque
+//! FMU its model under the same names; the end stops, the integrator settings and the
+//! initial state are the plant's own.
 
-use super::Pss3Plant;
-use nalgebra::Vector3;
+use super::{Pss3Plant, START_DISPLACEMENT, START_POSE};
+use robofmu::computed_torque::MODEL_PARAMETERS;
 use robofmu::pss3::ParamError;
 use robofmu::pss3::dynamics::{EndStopMode, PlantParamError};
 use robofmu_fmi::prelude::*;
-
-/// First value reference of the parameters.
-pub const FIRST_VR: u32 = 1000;
 
 /// Library parameter names and their FMU names (the geometric ones are equal).
 const NAMES: [(&str, &str); 14] = [
@@ -54,7 +56,8 @@ pub fn fmu_message(e: &PlantParamError) -> String {
             )
         }
         E::Geometry(ParamError::EmptyStroke(min, max)) => format!(
-            "parameters strokeMin = {min} and strokeMax = {max}: strokeMin must be below strokeMax"
+            "parameters strokeMin = {min} and strokeMax = {max}: strokeMin must be below \
+         strokeMax"
         ),
         E::Geometry(inner @ ParamError::LegCannotAssemble { .. }) => {
             format!("parameter a (with lp, ld, lb, alpha, beta and the stroke): {inner}")
@@ -63,348 +66,273 @@ pub fn fmu_message(e: &PlantParamError) -> String {
     }
 }
 
-type Get = fn(&Pss3Plant) -> f64;
-type Set = fn(&mut Pss3Plant, f64);
+type Decl = Declaration<Pss3Plant>;
 
-/// One scalar Real parameter: name, unit, display unit, description, get, set.
-struct Scalar(
-    &'static str,
-    Option<&'static str>,
-    Option<&'static str>,
-    &'static str,
-    Get,
-    Set,
-);
-
-/// `scalar!(name, unit, display unit, description, field.path)`: the `Scalar` that
-/// reads and writes `m.field.path`.
-macro_rules! scalar {
-    ($name:literal, $unit:expr, $display:expr, $description:literal, $($field:ident).+) => {
-        Scalar(
-            $name,
-            $unit,
-            $display,
-            $description,
-            |m| m.$($field).+,
-            |m, v| m.$($field).+ = v,
-        )
-    };
-}
-
-/// The scalar Real parameters in table order.
-fn scalars() -> Vec<Scalar> {
-    vec![
-        scalar!(
-            "lp",
-            Some("m"),
-            Some("mm"),
-            "Height of the platform centre P above the base origin C",
-            params.geometry.lp
-        ),
-        scalar!(
-            "ld",
-            Some("m"),
-            Some("mm"),
-            "Radius of the platform joints around P",
-            params.geometry.ld
-        ),
-        scalar!(
-            "gamma",
-            Some("rad"),
-            Some("deg"),
-            "Angle of platform joint 1 in {B}",
-            params.geometry.gamma
-        ),
-        scalar!(
-            "lb",
-            Some("m"),
-            Some("mm"),
-            "Distance from C to the slider joints at l = 0",
-            params.geometry.lb
-        ),
-        scalar!(
-            "alpha",
-            Some("rad"),
-            Some("deg"),
-            "Azimuth offset of the slider joints",
-            params.geometry.alpha
-        ),
-        scalar!(
-            "beta",
-            Some("rad"),
-            Some("deg"),
-            "Polar angle of the slider joints h_i from Z",
-            params.geometry.beta
-        ),
-        scalar!(
-            "a",
-            Some("m"),
-            Some("mm"),
-            "Leg length, joint centre to joint centre",
-            params.geometry.a
-        ),
-        scalar!(
-            "strokeMin",
-            Some("m"),
-            Some("mm"),
-            "Lower end of the actuator stroke (lower end stop)",
-            params.geometry.stroke_min
-        ),
-        scalar!(
-            "strokeMax",
-            Some("m"),
-            Some("mm"),
-            "Upper end of the actuator stroke (upper end stop)",
-            params.geometry.stroke_max
-        ),
-        scalar!(
-            "platformMass",
-            Some("kg"),
-            None,
-            "Platform mass",
-            params.inertia.platform_mass
-        ),
-        scalar!(
-            "legMass",
-            Some("kg"),
-            None,
-            "Mass of each leg",
-            params.inertia.leg_mass
-        ),
-        scalar!(
-            "legComFraction",
-            None,
-            None,
-            "Leg centre of mass along the leg from the slider joint, as a fraction of a",
-            params.inertia.leg_com_fraction
-        ),
-        scalar!(
-            "legTransverseInertia",
-            Some("kg.m2"),
-            None,
-            "Leg inertia about its centre of mass, perpendicular to the leg",
-            params.inertia.leg_transverse_inertia
-        ),
-        scalar!(
-            "sliderMass",
-            Some("kg"),
-            None,
-            "Mass of each slider (rod and stud)",
-            params.inertia.slider_mass
-        ),
-        Scalar(
-            "g",
-            Some("m/s2"),
-            None,
-            "Gravitational acceleration, acting along -Z of {A}",
-            |m| -m.params.gravity.z,
-            |m, v| m.params.gravity = Vector3::new(0.0, 0.0, -v),
-        ),
-        scalar!(
-            "sliderFriction",
-            Some("N.s/m"),
-            None,
-            "Viscous friction on each slider, force -c lDot",
-            params.friction.slider
-        ),
-        scalar!(
-            "pivotFriction",
-            Some("N.m.s/rad"),
-            None,
-            "Viscous friction at the spherical joint P, moment -c omega",
-            params.friction.pivot
-        ),
-        scalar!(
-            "endStopStiffness",
-            Some("N/m"),
-            None,
-            "Stiffness of the end-stop springs (endStopMode 1)",
-            params.end_stops.stiffness
-        ),
-        scalar!(
-            "endStopDamping",
-            Some("N.s/m"),
-            None,
-            "Damping of the end stops (endStopMode 1); the stop pushes, never pulls",
-            params.end_stops.damping
-        ),
-        scalar!(
-            "tolerance",
-            None,
-            None,
-            "Relative and absolute tolerance of the co-simulation integrator (Dormand-Prince 5(4))",
-            settings.tolerance
-        ),
-        scalar!(
-            "maxStep",
-            Some("s"),
-            None,
-            "Largest internal step of the co-simulation integrator",
-            settings.max_step
-        ),
-    ]
-}
-
-/// One vector parameter `name[1..3]`: name, unit, display unit, description, read and
-/// write access to the vector.
-struct VectorParameter {
-    name: &'static str,
-    unit: &'static str,
-    display: Option<&'static str>,
-    description: &'static str,
-    read: fn(&Pss3Plant) -> &Vector3<f64>,
-    write: fn(&mut Pss3Plant) -> &mut Vector3<f64>,
-}
-
-/// `vector!(name, unit, display unit, description, field.path)`: the
-/// `VectorParameter` of `m.field.path`.
-macro_rules! vector {
-    ($name:literal, $unit:literal, $display:expr, $description:literal, $($field:ident).+) => {
-        VectorParameter {
-            name: $name,
-            unit: $unit,
-            display: $display,
-            description: $description,
-            read: |m| &m.$($field).+,
-            write: |m| &mut m.$($field).+,
-        }
-    };
-}
-
-const VECTORS: [VectorParameter; 4] = [
-    vector!(
-        "platformCom",
-        "m",
-        Some("mm"),
-        "Platform centre of mass relative to P, in {B}",
-        params.inertia.platform_com
-    ),
-    vector!(
-        "theta0",
-        "rad",
-        Some("deg"),
-        "Initial Euler angles (thx, thy, thz), used unless initFromActuators",
-        initial.theta0
-    ),
-    vector!(
-        "l0",
-        "m",
-        Some("mm"),
-        "Initial actuator displacements, used when initFromActuators",
-        initial.l0
-    ),
-    vector!(
-        "omega0",
-        "rad/s",
-        Some("deg/s"),
-        "Initial angular velocity of the platform in {A}",
-        initial.omega0
-    ),
-];
-
-/// (row, column) pairs of the platform inertia tensor that are parameters; the
-/// off-diagonal ones set both symmetric entries.
-const INERTIA_ENTRIES: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
-
-fn fixed(variable: Variable<Pss3Plant>, start: f64) -> Variable<Pss3Plant> {
-    variable.parameter(Variability::Fixed).start_real(start)
-}
-
-/// The parameter variables, value references from `FIRST_VR` on; start values are the
-/// values of `defaults`.
-pub fn variables(defaults: &Pss3Plant) -> Vec<Variable<Pss3Plant>> {
-    let mut vr = FIRST_VR;
-    let mut next = || {
-        vr += 1;
-        vr
-    };
-    let mut table = Vec::new();
-    for Scalar(name, unit, display, description, get, set) in scalars() {
-        let mut v = Variable::real(next(), name, description, get).set_real(move |m, x| {
-            set(m, x);
-            m.rebuild();
-            Ok(())
-        });
-        if let Some(unit) = unit {
-            v = v.unit(unit, display);
-        }
-        table.push(fixed(v, get(defaults)));
+/// The spec value of every entry of `MODEL_PARAMETERS`.
+const SPECS: [f64; MODEL_PARAMETERS.len()] = {
+    let mut specs = [0.0; MODEL_PARAMETERS.len()];
+    let mut k = 0;
+    while k < specs.len() {
+        specs[k] = MODEL_PARAMETERS[k].spec;
+        k += 1;
     }
-    for (row, col) in INERTIA_ENTRIES {
-        let name = format!("platformInertia[{},{}]", row + 1, col + 1);
-        let v = Variable::real(
-            next(),
-            name,
-            "Platform inertia tensor about P in {B} (symmetric: sets both entries)",
-            move |m: &Pss3Plant| m.params.inertia.platform_inertia[(row, col)],
-        )
-        .unit("kg.m2", None)
-        .set_real(move |m, x| {
-            m.params.inertia.platform_inertia[(row, col)] = x;
-            m.params.inertia.platform_inertia[(col, row)] = x;
-            m.rebuild();
-            Ok(())
-        });
-        table.push(fixed(
-            v,
-            defaults.params.inertia.platform_inertia[(row, col)],
-        ));
+    specs
+};
+
+fn get_model<const K: usize>(m: &Pss3Plant, i: usize) -> f64 {
+    (MODEL_PARAMETERS[K + i].get)(&m.params)
+}
+
+fn set_model<const K: usize>(m: &mut Pss3Plant, i: usize, v: f64) -> Result<(), String> {
+    (MODEL_PARAMETERS[K + i].set)(&mut m.params, v);
+    m.rebuild();
+    Ok(())
+}
+
+/// The robot-model parameter `MODEL_PARAMETERS[K]` at `vr` (with `length` 3: the array
+/// `name[1..3]` of three consecutive entries, named and described without the index).
+const fn model<const K: usize>(vr: u32, length: usize) -> Decl {
+    let p = &MODEL_PARAMETERS[K];
+    let specs: &'static [f64] = &SPECS;
+    let start = specs.split_at(K).1.split_at(length).0;
+    let mut d = if length > 1 {
+        let name = p.name.split_at(p.name.len() - 3).0; // "name[1]" -> "name"
+        let description = p.description.split_at(p.description.len() - 3).0; // ", x"
+        Decl::real(name, description, get_model::<K>).array(length)
+    } else {
+        Decl::real(p.name, p.description, get_model::<K>)
+    };
+    d = d
+        .at(vr)
+        .set_real(set_model::<K>)
+        .parameter(Variability::Fixed)
+        .start_real(start);
+    match p.unit {
+        Some(unit) => d.unit(unit, p.display_unit),
+        None => d,
     }
-    for p in &VECTORS {
-        let (read, write) = (p.read, p.write);
-        let start = *read(defaults);
-        let array = RealArray::new(next(), p.name, 3, p.description, move |m, i| read(m)[i])
-            .set(move |m, i, x| {
-                write(m)[i] = x;
+}
+
+/// A fixed Real parameter `m.$field` at `$vr` with start value `$start`; a write
+/// rebuilds the plant.
+macro_rules! own {
+    ($name:literal, $vr:literal, $what:literal, $start:expr, $($field:ident).+) => {
+        Decl::real($name, $what, |m, _| m.$($field).+)
+            .at($vr)
+            .set_real(|m, _, v| {
+                m.$($field).+ = v;
                 m.rebuild();
                 Ok(())
             })
-            .each(move |v, i| fixed(v.unit(p.unit, p.display), start[i]));
-        next();
-        next();
-        table.extend(array.variables());
-    }
-    table.push(
-        Variable::boolean(
-            next(),
-            "initFromActuators",
-            "Initial pose from l0 by forward kinematics instead of theta0",
-            |m: &Pss3Plant| m.initial.from_actuators,
-        )
-        .parameter(Variability::Fixed)
-        .start_boolean(defaults.initial.from_actuators)
-        .set_boolean(|m, v| {
-            m.initial.from_actuators = v;
-            Ok(())
-        }),
-    );
-    table.push(
-        Variable::integer(
-            next(),
-            "endStopMode",
-            "End stops: 1 = spring-damper (contacts flagged in atStop), 2 = error (a \
-             step that leaves the stroke is discarded)",
-            |m: &Pss3Plant| mode_code(m.params.end_stops.mode),
-        )
-        .parameter(Variability::Fixed)
-        .start_integer(mode_code(defaults.params.end_stops.mode))
-        .integer_range(1, 2)
-        .set_integer(|m, v| {
-            m.params.end_stops.mode = if v == 2 {
-                EndStopMode::Error
-            } else {
-                EndStopMode::Spring
-            };
-            m.rebuild();
-            Ok(())
-        }),
-    );
-    table
+            .parameter(Variability::Fixed)
+            .start_real(&[$start])
+    };
 }
+
+/// A part of the initial state, `m.initial.$field[1..3]` at `$vr`.
+macro_rules! initial {
+    ($name:literal, $vr:literal, $what:literal, $start:expr, $field:ident) => {
+        Decl::real($name, $what, |m, i| m.initial.$field[i])
+            .array(3)
+            .at($vr)
+            .set_real(|m, i, v| {
+                m.initial.$field[i] = v;
+                Ok(())
+            })
+            .parameter(Variability::Fixed)
+            .start_real($start)
+    };
+}
+
+/// Number of parameter declarations.
+pub const COUNT: usize = 33;
+
+/// The parameters, value references 1001 to 1041.
+pub const PARAMETERS: [Decl; COUNT] = [
+    model::<0>(1001, 1), // lp, ld, gamma, lb, alpha, beta, a
+    model::<1>(1002, 1),
+    model::<2>(1003, 1),
+    model::<3>(1004, 1),
+    model::<4>(1005, 1),
+    model::<5>(1006, 1),
+    model::<6>(1007, 1),
+    own!(
+        "strokeMin",
+        1008,
+        "Lower end of the actuator stroke (lower end stop)",
+        0.002,
+        params.geometry.stroke_min
+    )
+    .unit("m", Some("mm")),
+    own!(
+        "strokeMax",
+        1009,
+        "Upper end of the actuator stroke (upper end stop)",
+        0.152,
+        params.geometry.stroke_max
+    )
+    .unit("m", Some("mm")),
+    model::<7>(1010, 1),  // platformMass
+    model::<17>(1011, 1), // legMass, legComFraction, legTransverseInertia, sliderMass, g
+    model::<18>(1012, 1),
+    model::<19>(1013, 1),
+    model::<20>(1014, 1),
+    model::<21>(1015, 1),
+    model::<22>(1016, 1), // sliderFriction, pivotFriction
+    model::<23>(1017, 1),
+    own!(
+        "endStopStiffness",
+        1018,
+        "Stiffness of the end-stop springs (endStopMode 1)",
+        1e6,
+        params.end_stops.stiffness
+    )
+    .unit("N/m", None),
+    own!(
+        "endStopDamping",
+        1019,
+        "Damping of the end stops (endStopMode 1); the stop pushes, never pulls",
+        2000.0,
+        params.end_stops.damping
+    )
+    .unit("N.s/m", None),
+    own!(
+        "tolerance",
+        1020,
+        "Relative and absolute tolerance of the co-simulation integrator \
+         (Dormand-Prince 5(4))",
+        1e-8,
+        settings.tolerance
+    ),
+    own!(
+        "maxStep",
+        1021,
+        "Largest internal step of the co-simulation integrator",
+        1e-3,
+        settings.max_step
+    )
+    .unit("s", None),
+    model::<11>(1022, 1), // platformInertia[1,1] ... [2,3]
+    model::<12>(1023, 1),
+    model::<13>(1024, 1),
+    model::<14>(1025, 1),
+    model::<15>(1026, 1),
+    model::<16>(1027, 1),
+    model::<8>(1028, 3), // platformCom[1..3]
+    initial!(
+        "theta0",
+        1031,
+        "Initial Euler angles (thx, thy, thz), used unless initFromActuators",
+        &START_POSE,
+        theta0
+    )
+    .unit("rad", Some("deg")),
+    initial!(
+        "l0",
+        1034,
+        "Initial actuator displacements, used when initFromActuators",
+        &[START_DISPLACEMENT],
+        l0
+    )
+    .unit("m", Some("mm")),
+    initial!(
+        "omega0",
+        1037,
+        "Initial angular velocity of the platform in {A}",
+        &[0.0],
+        omega0
+    )
+    .unit("rad/s", Some("deg/s")),
+    Decl::boolean(
+        "initFromActuators",
+        "Initial pose from l0 by forward kinematics instead of theta0",
+        |m, _| m.initial.from_actuators,
+    )
+    .at(1040)
+    .set_boolean(|m, _, v| {
+        m.initial.from_actuators = v;
+        Ok(())
+    })
+    .parameter(Variability::Fixed)
+    .start_boolean(&[false]),
+    Decl::integer(
+        "endStopMode",
+        "End stops: 1 = spring-damper (contacts flagged in atStop), 2 = error (a step \
+         that leaves the stroke is discarded)",
+        |m, _| mode_code(m.params.end_stops.mode),
+    )
+    .at(1041)
+    .set_integer(|m, _, v| {
+        m.params.end_stops.mode = if v == 2 {
+            EndStopMode::Error
+        } else {
+            EndStopMode::Spring
+        };
+        m.rebuild();
+        Ok(())
+    })
+    .parameter(Variability::Fixed)
+    .integer_range(1, 2)
+    .start_integer(&[1]),
+];
 
 fn mode_code(mode: EndStopMode) -> i32 {
     match mode {
         EndStopMode::Spring => 1,
         EndStopMode::Error => 2,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{START_POSE, default_start_pose, variables::VARIABLES};
+    use super::*;
+    use robofmu_fmi::core::declare::Value;
+
+    #[test]
+    fn the_start_pose_is_the_forward_kinematics_of_the_start_displacement() {
+        // Truth: forward kinematics of the default geometry with every actuator at
+        // START_DISPLACEMENT (computed, not the constant).
+        let pose = default_start_pose();
+        for k in 0..3 {
+            assert!((START_POSE[k] - pose[k]).abs() <= 1e-12, "{k}: {pose}");
+        }
+    }
+
+    #[test]
+    fn every_start_value_is_the_library_default() {
+        // Truth: a model built from the library's defaults (PlantParams::default(),
+        // StepSettings::default().tolerance, the start pose by forward kinematics),
+        // read through each declaration's getter.
+        let mut m = Pss3Plant::new();
+        m.initial.theta0 = default_start_pose();
+        let mut checked = 0;
+        for d in &VARIABLES {
+            for i in 0..d.size() {
+                let pick = |s: &[f64]| s.get(i).or(s.first()).copied();
+                match d.value {
+                    Value::Real { get, start, .. } => {
+                        if let Some(s) = pick(start) {
+                            assert!((get(&m, i) - s).abs() <= 1e-12, "{}[{i}]", d.name);
+                            checked += 1;
+                        }
+                    }
+                    Value::Integer { get, start, .. } => {
+                        if let [s] = start {
+                            assert_eq!(get(&m, i), *s, "{}", d.name);
+                            checked += 1;
+                        }
+                    }
+                    Value::Boolean { get, start, .. } => {
+                        if let [s] = start {
+                            assert_eq!(get(&m, i), *s, "{}", d.name);
+                            checked += 1;
+                        }
+                    }
+                }
+            }
+        }
+        // 12 input elements, 29 scalar parameters, 4 parameter arrays of 3.
+        assert_eq!(checked, 12 + 29 + 12);
     }
 }

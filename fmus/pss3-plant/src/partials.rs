@@ -12,11 +12,10 @@
 //!   of the output itself (steps below).
 
 use super::Pss3Plant;
-use super::variables::*;
+use super::variables::real_getter;
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::{Linearization, PlantInputs, PlantState};
 use robofmu::pss3::rotation::moment_from_generalized_force;
-use robofmu_fmi::core::variables::{Kind, find};
 use robofmu_fmi::prelude::*;
 
 /// Finite-difference step for a state (rad, rad/s), scaled by 1 + |value|.
@@ -34,18 +33,15 @@ enum Known {
     Input(usize),
 }
 
-fn known(vr: u32) -> Option<Known> {
-    let (group, i) = split(vr);
-    if i > 2 {
-        return None;
-    }
-    Some(match group {
-        THETA => Known::State(i),
-        OMEGA => Known::State(3 + i),
-        ACTUATOR_FORCE => Known::Input(i),
-        DISTURBANCE_TORQUE => Known::Input(3 + i),
-        TORQUE_COMMAND => Known::Input(6 + i),
-        GENERALIZED_FORCE_COMMAND => Known::Input(9 + i),
+fn known(e: Element) -> Option<Known> {
+    let i = e.index;
+    Some(match e.name {
+        "theta" => Known::State(i),
+        "omega" => Known::State(3 + i),
+        "actuatorForce" => Known::Input(i),
+        "disturbanceTorque" => Known::Input(3 + i),
+        "torqueCommand" => Known::Input(6 + i),
+        "generalizedForceCommand" => Known::Input(9 + i),
         _ => return None,
     })
 }
@@ -53,17 +49,14 @@ fn known(vr: u32) -> Option<Known> {
 /// dvUnknown = J dvKnown for the unknowns and knowns given (see the module doc).
 pub fn directional_derivative(
     m: &Pss3Plant,
-    table: &[Variable<Pss3Plant>],
-    unknowns: &[u32],
-    known_vrs: &[u32],
+    unknowns: &[Element],
+    knowns: &[Element],
     seed: &[f64],
     out: &mut [f64],
 ) -> Result<(), String> {
-    let knowns = known_vrs
+    let knowns = knowns
         .iter()
-        .map(|&vr| {
-            known(vr).ok_or_else(|| format!("value reference {vr} is neither a state nor an input"))
-        })
+        .map(|&e| known(e).ok_or_else(|| format!("\"{}\" is neither a state nor an input", e.name)))
         .collect::<Result<Vec<_>, _>>()?;
     let seeded: Vec<(Known, f64)> = knowns
         .into_iter()
@@ -73,13 +66,13 @@ pub fn directional_derivative(
     let mut linearization = None;
     let mut by_differences = Vec::new();
     for (o, &unknown) in out.iter_mut().zip(unknowns) {
-        let (group, i) = split(unknown);
-        let row = match group {
-            DER_THETA | THETA_DOT if i < 3 => Some(i),
-            DER_OMEGA | OMEGA_DOT if i < 3 => Some(3 + i),
+        let i = unknown.index;
+        let row = match unknown.name {
+            "der(theta)" | "thetaDot" => Some(i),
+            "der(omega)" | "omegaDot" => Some(3 + i),
             _ => None,
         };
-        *o = match (group, row) {
+        *o = match (unknown.name, row) {
             (_, Some(row)) => {
                 if linearization.is_none() {
                     linearization = Some(linearize(m)?);
@@ -91,12 +84,11 @@ pub fn directional_derivative(
                 }
                 sum
             }
-            (THETA, _) if i < 3 => along(&seeded, |k| identity(Known::State(i), k)),
-            (OMEGA, _) if i < 3 => along(&seeded, |k| identity(Known::State(3 + i), k)),
-            (YAW_PITCH_ROLL, _) if i < 3 => {
-                let sign = if i == 1 { -1.0 } else { 1.0 };
-                sign * along(&seeded, |k| identity(Known::State(i), k))
-            }
+            ("theta", _) => along(&seeded, |k| identity(Known::State(i), k)),
+            ("omega", _) => along(&seeded, |k| identity(Known::State(3 + i), k)),
+            ("yaw", _) => along(&seeded, |k| identity(Known::State(0), k)),
+            ("pitch", _) => -along(&seeded, |k| identity(Known::State(1), k)),
+            ("roll", _) => along(&seeded, |k| identity(Known::State(2), k)),
             _ => {
                 by_differences.push(unknown);
                 0.0
@@ -107,7 +99,7 @@ pub fn directional_derivative(
         return Ok(());
     }
     for &(k, s) in &seeded {
-        let column = output_partials(m, table, &by_differences, k)?;
+        let column = output_partials(m, &by_differences, k)?;
         for (o, &unknown) in out.iter_mut().zip(unknowns) {
             if let Some(at) = by_differences.iter().position(|&u| u == unknown) {
                 *o += column[at] * s;
@@ -188,25 +180,20 @@ fn moved(m: &Pss3Plant, k: Known, delta: f64) -> Result<Pss3Plant, String> {
 
 /// d(output)/d(known) of every output in `unknowns` by central differences with one
 /// Richardson extrapolation: four evaluations of the moved plant for all of them.
-fn output_partials(
-    m: &Pss3Plant,
-    table: &[Variable<Pss3Plant>],
-    unknowns: &[u32],
-    k: Known,
-) -> Result<Vec<f64>, String> {
+fn output_partials(m: &Pss3Plant, unknowns: &[Element], k: Known) -> Result<Vec<f64>, String> {
     let getters = unknowns
         .iter()
-        .map(|&vr| match find(table, vr).map(|v| (v.name(), &v.kind)) {
-            Some((_, Kind::Real { get, .. })) => Ok(get),
-            Some((name, _)) => Err(format!("\"{name}\" is not a Real variable")),
-            None => Err(format!("unknown value reference {vr}")),
+        .map(|&e| {
+            real_getter(e.name)
+                .map(|get| (get, e.index))
+                .ok_or_else(|| format!("\"{}\" is not a Real variable", e.name))
         })
         .collect::<Result<Vec<_>, _>>()?;
     let values = |delta: f64| -> Result<Vec<f64>, String> {
         let mut copy = moved(m, k, delta)?;
         copy.calculate_values()
             .map_err(|e| format!("the plant cannot be evaluated near this point: {e}"))?;
-        Ok(getters.iter().map(|get| get.call(&copy)).collect())
+        Ok(getters.iter().map(|(get, i)| get(&copy, *i)).collect())
     };
     let current = *known_value(&mut m.current_state()?, &mut m.inputs.clone(), k);
     let h = match k {

@@ -1,10 +1,11 @@
-//! The variable table of Pss3Plant: inputs, outputs, state derivatives, parameters.
-//!
-//! Value references: a vector variable's group below plus i = 1..3.
+//! The variable table of Pss3Plant, declared once (a `static` slice, see
+//! `robofmu_fmi::core::declare`): the inputs, outputs and state derivatives here, the
+//! parameters in `parameters.rs`. Every value reference is pinned (`.at`) at the one
+//! it has always had: a vector variable's group below plus i = 1..3.
 
-use super::{Pss3Plant, initial_dependencies, parameters};
-use nalgebra::Vector3;
-use robofmu::pss3::dynamics::{PlantInputs, PlantOutputs};
+use super::initial_dependencies as init;
+use super::{Pss3Plant, output_rates, parameters};
+use robofmu::pss3::dynamics::PlantInputs;
 use robofmu_fmi::prelude::*;
 
 pub const ACTUATOR_FORCE: u32 = 0;
@@ -35,69 +36,7 @@ pub fn split(vr: u32) -> (u32, usize) {
     (vr - component - 1, component as usize)
 }
 
-type InputField = fn(&mut PlantInputs) -> &mut Vector3<f64>;
-
-const INPUTS: [(u32, &str, &str, InputField); 4] = [
-    (
-        ACTUATOR_FORCE,
-        "actuatorForce",
-        "Force applied by actuator i along its axis u_i",
-        |i| &mut i.forces,
-    ),
-    (
-        TORQUE_COMMAND,
-        "torqueCommand",
-        "Commanded moment about P in {A}, realised by the actuators (f = J^-T tau)",
-        |i| &mut i.commanded_torque,
-    ),
-    (
-        GENERALIZED_FORCE_COMMAND,
-        "generalizedForceCommand",
-        "Commanded generalized force in Euler-angle coordinates (thx, thy, thz), realised \
-         by the actuators (tau = E^-T Q, f = J^-T tau)",
-        |i| &mut i.generalized_force,
-    ),
-    (
-        DISTURBANCE_TORQUE,
-        "disturbanceTorque",
-        "External moment on the platform about P in {A} (not through the actuators)",
-        |i| &mut i.disturbance_torque,
-    ),
-];
-
-/// The component of `inputs` that the input with value reference `vr` sets, if `vr`
-/// is an input.
-pub fn input_component(inputs: &mut PlantInputs, vr: u32) -> Option<&mut f64> {
-    let (group, c) = split(vr);
-    let (_, _, _, field) = INPUTS.iter().find(|input| input.0 == group)?;
-    field(inputs).get_mut(c)
-}
-
-type VectorOutput = fn(&PlantOutputs) -> Vector3<f64>;
-
-/// A vector output read from `PlantOutputs`.
-struct PlantOutput {
-    group: u32,
-    name: &'static str,
-    unit: &'static str,
-    display: Option<&'static str>,
-    description: &'static str,
-    get: VectorOutput,
-    depends: Depends,
-}
-
-/// What an output or state derivative depends on (ModelStructure dependencies).
-#[derive(Clone, Copy)]
-enum Depends {
-    /// The Euler angles only (a function of the pose).
-    Theta,
-    /// The continuous states (pose and angular velocity).
-    States,
-    /// The states and every input (through the accelerations).
-    StatesAndInputs,
-    /// The pose and the actuator commands (the realised actuator force).
-    ThetaAndCommands,
-}
+type Decl = Declaration<Pss3Plant>;
 
 /// The element names `base[1]`, `base[2]`, `base[3]` of a literal `base`.
 macro_rules! elements {
@@ -110,9 +49,10 @@ macro_rules! elements {
     };
 }
 
-/// The parts one after the other, in a static table (no allocation at instantiation).
-pub const fn concat<const N: usize>(parts: &[&[&'static str]]) -> [&'static str; N] {
-    let mut out = [""; N];
+/// The parts one after the other, in a static table (`fill` only fills the array
+/// before it is overwritten).
+pub const fn concat<T: Copy, const N: usize>(parts: &[&[T]], fill: T) -> [T; N] {
+    let mut out = [fill; N];
     let (mut k, mut p) = (0, 0);
     while p < parts.len() {
         let mut i = 0;
@@ -126,291 +66,290 @@ pub const fn concat<const N: usize>(parts: &[&[&'static str]]) -> [&'static str;
     out
 }
 
+// What outputs and state derivatives depend on (ModelStructure dependencies).
 static THETA_NAMES: [&str; 3] = elements!("theta");
 static OMEGA_NAMES: [&str; 3] = elements!("omega");
-static COMMAND_NAMES: [&str; 9] = concat(&[
-    &elements!("actuatorForce"),
-    &elements!("torqueCommand"),
-    &elements!("generalizedForceCommand"),
-]);
-static STATE_NAMES: [&str; 6] = concat(&[&THETA_NAMES, &OMEGA_NAMES]);
-static THETA_AND_COMMAND_NAMES: [&str; 12] = concat(&[&THETA_NAMES, &COMMAND_NAMES]);
-static STATE_AND_INPUT_NAMES: [&str; 18] = concat(&[
-    &STATE_NAMES,
-    &COMMAND_NAMES,
-    &elements!("disturbanceTorque"),
-]);
+static COMMAND_NAMES: [&str; 9] = concat(
+    &[
+        &elements!("actuatorForce"),
+        &elements!("torqueCommand"),
+        &elements!("generalizedForceCommand"),
+    ],
+    "",
+);
+/// The continuous states (pose and angular velocity).
+static STATES: [&str; 6] = concat(&[&THETA_NAMES, &OMEGA_NAMES], "");
+/// The pose and the actuator commands (the realised actuator force).
+static THETA_AND_COMMANDS: [&str; 12] = concat(&[&THETA_NAMES, &COMMAND_NAMES], "");
+/// The states and every input (through the accelerations).
+static STATES_AND_INPUTS: [&str; 18] = concat(
+    &[&STATES, &COMMAND_NAMES, &elements!("disturbanceTorque")],
+    "",
+);
 
-impl Depends {
-    fn names(self) -> &'static [&'static str] {
-        match self {
-            Depends::Theta => &THETA_NAMES,
-            Depends::States => &STATE_NAMES,
-            Depends::StatesAndInputs => &STATE_AND_INPUT_NAMES,
-            Depends::ThetaAndCommands => &THETA_AND_COMMAND_NAMES,
-        }
+/// Where the model keeps the input derivatives of order `order`.
+fn ramp(m: &mut Pss3Plant, order: u32) -> Option<&mut PlantInputs> {
+    match order {
+        1 => Some(&mut m.ramp.rate),
+        2 => Some(&mut m.ramp.acceleration),
+        _ => None,
     }
 }
 
-/// Vector outputs read from `PlantOutputs` (omega: its metadata only).
-const PLANT_OUTPUTS: [PlantOutput; 6] = [
-    PlantOutput {
-        group: OMEGA_DOT,
-        name: "omegaDot",
-        unit: "rad/s2",
-        display: Some("deg/s2"),
-        description: "Angular acceleration of the platform in {A}",
-        get: |o| o.omega_dot,
-        depends: Depends::StatesAndInputs,
-    },
-    PlantOutput {
-        group: L,
-        name: "l",
-        unit: "m",
-        display: Some("mm"),
-        description: "Actuator displacement",
-        get: |o| o.actuator_displacements,
-        depends: Depends::Theta,
-    },
-    PlantOutput {
-        group: L_DOT,
-        name: "lDot",
-        unit: "m/s",
-        display: None,
-        description: "Actuator velocity",
-        get: |o| o.actuator_velocities,
-        depends: Depends::States,
-    },
-    PlantOutput {
-        group: FORCE,
-        name: "force",
-        unit: "N",
-        display: None,
-        description: "Total actuator force from the inputs (actuatorForce plus the mapped commands), without end-stop forces",
-        get: |o| o.actuator_forces,
-        depends: Depends::ThetaAndCommands,
-    },
-    PlantOutput {
-        group: STOP_FORCE,
-        name: "stopForce",
-        unit: "N",
-        display: None,
-        description: "End-stop force on the actuator along u_i",
-        get: |o| o.end_stop_forces,
-        depends: Depends::States,
-    },
-    PlantOutput {
-        group: OMEGA,
-        name: "omega",
-        unit: "rad/s",
-        display: Some("deg/s"),
-        description: "Angular velocity of the platform in {A} (continuous state)",
-        get: |o| o.omega,
-        depends: Depends::States,
-    },
-];
-
-type ScalarOutput = fn(&PlantOutputs) -> f64;
-
-const SCALAR_OUTPUTS: [(u32, &str, Option<&str>, &str, ScalarOutput); 4] = [
-    (
-        DET_J,
-        "detJ",
-        Some("m3"),
-        "Determinant of the actuator Jacobian J (lDot = J omega)",
-        |o| o.jacobian_det,
-    ),
-    (COND_J, "condJ", None, "2-norm condition number of J", |o| {
-        o.jacobian_cond
-    }),
-    (
-        KINETIC_ENERGY,
-        "kineticEnergy",
-        Some("J"),
-        "Kinetic energy of platform, legs and sliders",
-        |o| o.kinetic_energy,
-    ),
-    (
-        POTENTIAL_ENERGY,
-        "potentialEnergy",
-        Some("J"),
-        "Potential energy of gravity (zero at the height of C) plus the energy in the \
-         end-stop springs",
-        |o| o.potential_energy + o.end_stop_energy,
-    ),
-];
-
-fn vr(group: u32, i: usize) -> u32 {
-    group + i as u32 + 1
-}
-
-fn inputs(table: &mut Vec<Variable<Pss3Plant>>) {
-    for (group, name, description, field) in INPUTS {
-        let unit = if group == ACTUATOR_FORCE { "N" } else { "N.m" };
-        let read = move |m: &Pss3Plant, i: usize| {
-            let mut inputs = m.inputs;
-            field(&mut inputs)[i]
-        };
-        let array = RealArray::new(vr(group, 0), name, 3, description, read)
-            .set(move |m, i, v| {
-                field(&mut m.inputs)[i] = v;
+/// An input `m.inputs.$field` of three elements at `$group + 1..3`, held or ramped
+/// over a step (input derivatives up to order 2).
+macro_rules! input {
+    ($name:literal, $group:expr, $unit:literal, $what:literal, $field:ident) => {
+        Decl::real($name, $what, |m, i| m.inputs.$field[i])
+            .array(3)
+            .at($group + 1)
+            .set_real(|m, i, v| {
+                m.inputs.$field[i] = v;
                 Ok(())
             })
-            .each(move |v, _| v.unit(unit, None).input().start_real(0.0));
-        table.extend(array.variables());
-    }
+            .input()
+            .unit($unit, None)
+            .start_real(&[0.0])
+            .input_derivative(|m, i, order| Some(&mut ramp(m, order)?.$field[i]))
+    };
 }
 
-/// The output `base[1..3]` read by `get`, with `unit` and display unit `display`, element
-/// i depending on `depends(i)`.
-fn vector_output(
-    group: u32,
-    base: &'static str,
-    description: &'static str,
-    (unit, display): (&'static str, Option<&'static str>),
-    get: impl Fn(&Pss3Plant, usize) -> f64 + Clone + Send + Sync + 'static,
-    depends: impl Fn(usize) -> &'static [&'static str] + 'static,
-) -> Vec<Variable<Pss3Plant>> {
-    RealArray::new(vr(group, 0), base, 3, description, get)
-        .each(move |v, i| v.unit(unit, display).output().depends_on(depends(i)))
-        .variables()
+/// The output-derivative hook of the output whose element i has the value reference
+/// `G + 1 + i` (`output_rates` serves orders 1 and 2 of every Real output).
+fn rates<const G: u32>(m: &Pss3Plant, i: usize, order: u32) -> Result<f64, OutputDerivativeError> {
+    output_rates::output_derivative(m, G + 1 + i as u32, order)
 }
 
-fn state_outputs(table: &mut Vec<Variable<Pss3Plant>>) {
-    table.extend(vector_output(
-        THETA,
-        "theta",
-        "Euler angle (thx, thy, thz) of R = Rz Ry Rx (continuous state)",
-        ("rad", Some("deg")),
-        |m, i| m.current_state().map_or(f64::NAN, |s| s.euler[i]),
-        |i| &THETA_NAMES[i..=i],
-    ));
-    // omega (a state) is read from the state itself, not through the outputs.
-    let omega = &PLANT_OUTPUTS[5];
-    table.extend(vector_output(
-        omega.group,
-        omega.name,
-        omega.description,
-        (omega.unit, omega.display),
-        |m, i| m.current_state().map_or(f64::NAN, |s| s.omega[i]),
-        |i| &OMEGA_NAMES[i..=i],
-    ));
-    table.extend(vector_output(
-        THETA_DOT,
-        "thetaDot",
-        "Euler-angle rate",
-        ("rad/s", Some("deg/s")),
-        |m, i| m.computed(|c| c.euler_rates[i]),
-        |_| Depends::States.names(),
-    ));
-}
-
-fn outputs(table: &mut Vec<Variable<Pss3Plant>>) {
-    state_outputs(table);
-    plant_vector_output(table, &PLANT_OUTPUTS[0]);
-    let names = [
-        ("yaw", "Yaw as in the thesis: thx"),
-        ("pitch", "Pitch as in the thesis: -thy"),
-        ("roll", "Roll as in the thesis: thz"),
-    ];
-    for (i, (name, description)) in names.into_iter().enumerate() {
-        let sign = if i == 1 { -1.0 } else { 1.0 };
-        table.push(
-            Variable::real(
-                vr(YAW_PITCH_ROLL, i),
-                name,
-                description,
-                move |m: &Pss3Plant| m.current_state().map_or(f64::NAN, |s| sign * s.euler[i]),
-            )
-            .unit("rad", Some("deg"))
+/// A Real output of three elements at `$group + 1..3`, element i read by `$get`.
+macro_rules! vector {
+    ($name:literal, $group:expr, $what:literal, |$m:ident, $i:ident| $get:expr) => {
+        Decl::real($name, $what, |$m, $i| $get)
+            .array(3)
+            .at($group + 1)
             .output()
-            .depends_on(&THETA_NAMES[i..=i]),
-        );
-    }
-    for output in &PLANT_OUTPUTS[1..5] {
-        plant_vector_output(table, output);
-    }
-    let at_stop = IntegerArray::new(
-        vr(AT_STOP, 0),
-        "atStop",
-        3,
-        "End-stop contact: -1 lower stop, 0 free, +1 upper stop (changes at events)",
-        |m: &Pss3Plant, i| m.contact(i),
+            .output_derivative(rates::<{ $group }>)
+    };
+}
+
+/// A scalar Real output at `$vr` read by `$get`.
+macro_rules! scalar {
+    ($name:literal, $vr:expr, $what:literal, |$m:ident| $get:expr) => {
+        Decl::real($name, $what, |$m, _| $get)
+            .at($vr)
+            .output()
+            .output_derivative(rates::<{ $vr - 1 }>)
+    };
+}
+
+/// Euler angle `axis` of the current state times `sign` (the thesis's yaw, pitch, roll).
+fn euler(m: &Pss3Plant, axis: usize, sign: f64) -> f64 {
+    m.current_state().map_or(f64::NAN, |s| sign * s.euler[axis])
+}
+
+const INPUTS_OUTPUTS: [Decl; 23] = [
+    input!(
+        "actuatorForce",
+        ACTUATOR_FORCE,
+        "N",
+        "Force applied by actuator i along its axis u_i",
+        forces
+    ),
+    input!(
+        "torqueCommand",
+        TORQUE_COMMAND,
+        "N.m",
+        "Commanded moment about P in {A}, realised by the actuators (f = J^-T tau)",
+        commanded_torque
+    ),
+    input!(
+        "generalizedForceCommand",
+        GENERALIZED_FORCE_COMMAND,
+        "N.m",
+        "Commanded generalized force in Euler-angle coordinates (thx, thy, thz), \
+         realised by the actuators (tau = E^-T Q, f = J^-T tau)",
+        generalized_force
+    ),
+    input!(
+        "disturbanceTorque",
+        DISTURBANCE_TORQUE,
+        "N.m",
+        "External moment on the platform about P in {A} (not through the actuators)",
+        disturbance_torque
+    ),
+    vector!(
+        "theta",
+        THETA,
+        "Euler angle (thx, thy, thz) of R = Rz Ry Rx (continuous state)",
+        |m, i| euler(m, i, 1.0)
     )
-    .each(|v, _| v.output().depends_on(Depends::Theta.names()));
-    table.extend(at_stop.variables());
-    for (vr, name, unit, description, get) in SCALAR_OUTPUTS {
-        let mut v = Variable::real(vr, name, description, move |m: &Pss3Plant| m.output(get));
-        if let Some(unit) = unit {
-            v = v.unit(unit, None);
-        }
-        let depends = if vr == KINETIC_ENERGY {
-            Depends::States
-        } else {
-            Depends::Theta
-        };
-        table.push(v.output().depends_on(depends.names()));
-    }
-    table.extend(vector_output(
-        GRAVITY_COMPENSATION,
-        "gravityCompensation",
-        "Euler-angle generalized force G = E^T g(theta) that holds the current pose \
-         at rest against gravity (feedforward for generalizedForceCommand)",
-        ("N.m", None),
-        |m, i| m.computed(|c| c.gravity_compensation[i]),
-        |_| Depends::Theta.names(),
-    ));
-}
-
-fn plant_vector_output(table: &mut Vec<Variable<Pss3Plant>>, output: &PlantOutput) {
-    let (get, depends) = (output.get, output.depends);
-    table.extend(vector_output(
-        output.group,
-        output.name,
-        output.description,
-        (output.unit, output.display),
-        move |m, i| m.output(|o| get(o)[i]),
-        move |_| depends.names(),
-    ));
-}
-
-fn derivatives(table: &mut Vec<Variable<Pss3Plant>>) {
-    let der_theta = RealArray::derivatives(vr(DER_THETA, 0), "theta", 3, "Euler-angle rate", {
-        |m: &Pss3Plant, i| m.computed(|c| c.euler_rates[i])
-    })
-    .each(|v, _| {
-        v.unit("rad/s", Some("deg/s"))
-            .depends_on(Depends::States.names())
-    });
-    let der_omega = RealArray::derivatives(
-        vr(DER_OMEGA, 0),
+    .unit("rad", Some("deg"))
+    .depends_on_each(|i| &THETA_NAMES[i..=i])
+    .initial_depends_on(|i| &init::THETA[i]),
+    vector!(
         "omega",
-        3,
-        "Angular acceleration in {A}",
-        |m: &Pss3Plant, i| m.output(|o| o.omega_dot[i]),
+        OMEGA,
+        "Angular velocity of the platform in {A} (continuous state)",
+        |m, i| m.current_state().map_or(f64::NAN, |s| s.omega[i])
     )
-    .each(|v, _| {
-        v.unit("rad/s2", Some("deg/s2"))
-            .depends_on(Depends::StatesAndInputs.names())
-    });
-    table.extend(
-        der_theta
-            .variables()
-            .into_iter()
-            .chain(der_omega.variables()),
-    );
-}
+    .unit("rad/s", Some("deg/s"))
+    .depends_on_each(|i| &OMEGA_NAMES[i..=i])
+    .initial_depends_on(|i| &init::OMEGA[i]),
+    vector!("thetaDot", THETA_DOT, "Euler-angle rate", |m, i| m
+        .computed(|c| c.euler_rates[i]))
+    .unit("rad/s", Some("deg/s"))
+    .depends_on(&STATES)
+    .initial_depends_on(init::theta_dot),
+    vector!(
+        "omegaDot",
+        OMEGA_DOT,
+        "Angular acceleration of the platform in {A}",
+        |m, i| m.output(|o| o.omega_dot[i])
+    )
+    .unit("rad/s2", Some("deg/s2"))
+    .depends_on(&STATES_AND_INPUTS)
+    .initial_depends_on(|_| &init::ACCELERATION),
+    scalar!(
+        "yaw",
+        YAW_PITCH_ROLL + 1,
+        "Yaw as in the thesis: thx",
+        |m| euler(m, 0, 1.0)
+    )
+    .unit("rad", Some("deg"))
+    .depends_on(&["theta[1]"])
+    .initial_depends_on(|_| &init::THETA[0]),
+    scalar!(
+        "pitch",
+        YAW_PITCH_ROLL + 2,
+        "Pitch as in the thesis: -thy",
+        |m| euler(m, 1, -1.0)
+    )
+    .unit("rad", Some("deg"))
+    .depends_on(&["theta[2]"])
+    .initial_depends_on(|_| &init::THETA[1]),
+    scalar!(
+        "roll",
+        YAW_PITCH_ROLL + 3,
+        "Roll as in the thesis: thz",
+        |m| euler(m, 2, 1.0)
+    )
+    .unit("rad", Some("deg"))
+    .depends_on(&["theta[3]"])
+    .initial_depends_on(|_| &init::THETA[2]),
+    vector!("l", L, "Actuator displacement", |m, i| m
+        .output(|o| o.actuator_displacements[i]))
+    .unit("m", Some("mm"))
+    .depends_on(&THETA_NAMES)
+    .initial_depends_on(|_| &init::POSE),
+    vector!("lDot", L_DOT, "Actuator velocity", |m, i| m
+        .output(|o| o.actuator_velocities[i]))
+    .unit("m/s", None)
+    .depends_on(&STATES)
+    .initial_depends_on(|_| &init::MOTION),
+    vector!(
+        "force",
+        FORCE,
+        "Total actuator force from the inputs (actuatorForce plus the mapped commands), \
+         without end-stop forces",
+        |m, i| m.output(|o| o.actuator_forces[i])
+    )
+    .unit("N", None)
+    .depends_on(&THETA_AND_COMMANDS)
+    .initial_depends_on(|i| &init::FORCE[i]),
+    vector!(
+        "stopForce",
+        STOP_FORCE,
+        "End-stop force on the actuator along u_i",
+        |m, i| m.output(|o| o.end_stop_forces[i])
+    )
+    .unit("N", None)
+    .depends_on(&STATES)
+    .initial_depends_on(|_| &init::STOP_FORCE),
+    Decl::integer(
+        "atStop",
+        "End-stop contact: -1 lower stop, 0 free, +1 upper stop (changes at events)",
+        |m, i| m.contact(i),
+    )
+    .array(3)
+    .at(AT_STOP + 1)
+    .output()
+    .depends_on(&THETA_NAMES)
+    .initial_depends_on(|_| &init::AT_STOP),
+    scalar!(
+        "detJ",
+        DET_J,
+        "Determinant of the actuator Jacobian J (lDot = J omega)",
+        |m| m.output(|o| o.jacobian_det)
+    )
+    .unit("m3", None)
+    .depends_on(&THETA_NAMES)
+    .initial_depends_on(|_| &init::POSE),
+    scalar!("condJ", COND_J, "2-norm condition number of J", |m| m
+        .output(|o| o.jacobian_cond))
+    .depends_on(&THETA_NAMES)
+    .initial_depends_on(|_| &init::POSE),
+    scalar!(
+        "kineticEnergy",
+        KINETIC_ENERGY,
+        "Kinetic energy of platform, legs and sliders",
+        |m| m.output(|o| o.kinetic_energy)
+    )
+    .unit("J", None)
+    .depends_on(&STATES)
+    .initial_depends_on(|_| &init::KINETIC_ENERGY),
+    scalar!(
+        "potentialEnergy",
+        POTENTIAL_ENERGY,
+        "Potential energy of gravity (zero at the height of C) plus the energy in the \
+         end-stop springs",
+        |m| m.output(|o| o.potential_energy + o.end_stop_energy)
+    )
+    .unit("J", None)
+    .depends_on(&THETA_NAMES)
+    .initial_depends_on(|_| &init::POTENTIAL_ENERGY),
+    vector!(
+        "gravityCompensation",
+        GRAVITY_COMPENSATION,
+        "Euler-angle generalized force G = E^T g(theta) that holds the current pose at \
+         rest against gravity (feedforward for generalizedForceCommand)",
+        |m, i| m.computed(|c| c.gravity_compensation[i])
+    )
+    .unit("N.m", None)
+    .depends_on(&THETA_NAMES)
+    .initial_depends_on(init::gravity_compensation),
+    Decl::real("der(theta)", "Euler-angle rate", |m, i| {
+        m.computed(|c| c.euler_rates[i])
+    })
+    .array(3)
+    .at(DER_THETA + 1)
+    .derivative_of("theta")
+    .unit("rad/s", Some("deg/s"))
+    .depends_on(&STATES)
+    .initial_depends_on(init::theta_dot),
+    Decl::real("der(omega)", "Angular acceleration in {A}", |m, i| {
+        m.output(|o| o.omega_dot[i])
+    })
+    .array(3)
+    .at(DER_OMEGA + 1)
+    .derivative_of("omega")
+    .unit("rad/s2", Some("deg/s2"))
+    .depends_on(&STATES_AND_INPUTS)
+    .initial_depends_on(|_| &init::ACCELERATION),
+];
 
-/// The whole table, sorted by value reference.
-pub fn table() -> Vec<Variable<Pss3Plant>> {
-    let mut table = Vec::new();
-    inputs(&mut table);
-    outputs(&mut table);
-    derivatives(&mut table);
-    table.extend(parameters::variables(&Pss3Plant::new()));
-    for v in &mut table {
-        let dependencies = initial_dependencies::of(&v.name());
-        v.initial_dependencies = dependencies;
-    }
-    table
+/// The whole table: inputs, outputs, state derivatives, parameters (value references
+/// increasing).
+pub static VARIABLES: [Decl; 23 + parameters::COUNT] = concat(
+    &[&INPUTS_OUTPUTS, &parameters::PARAMETERS],
+    INPUTS_OUTPUTS[0],
+);
+
+/// The getter of the Real declaration `name`, if there is one.
+pub fn real_getter(name: &str) -> Option<fn(&Pss3Plant, usize) -> f64> {
+    VARIABLES
+        .iter()
+        .find(|d| d.name == name)
+        .and_then(|d| match d.value {
+            robofmu_fmi::core::declare::Value::Real { get, .. } => Some(get),
+            _ => None,
+        })
 }

@@ -3,7 +3,7 @@
 //! differences of the outputs along a fine CS trajectory (the integrator's, an
 //! independent path to the same numbers).
 
-use robofmu_fmi::core::Model;
+use robofmu_fmi::core::instance::sorted_table;
 use robofmu_fmi::core::variables::{Causality, VariableType};
 use robofmu_fmi::fmi2::types::*;
 use robofmu_fmi_testing::Host;
@@ -13,7 +13,8 @@ type H = Host<Pss3Plant>;
 
 /// Every Real output of the plant, from its variable table.
 fn real_outputs() -> Vec<String> {
-    Pss3Plant::variables()
+    sorted_table::<Pss3Plant>()
+        .unwrap()
         .into_iter()
         .filter(|v| v.causality == Causality::Output && v.variable_type() == VariableType::Real)
         .map(|v| v.name().into_owned())

@@ -385,18 +385,20 @@ fn dependencies_name_only_inputs_and_states() {
     // Truth: FMI 2.0 ModelStructure, the knowns of outputs and derivatives are inputs
     // and continuous states; a dependency on a parameter is refused by the layer.
     use robofmu_fmi::core::check::check_table;
-    use robofmu_fmi::core::{Model, Variability, Variable};
-    assert_eq!(check_table(&Pss3Plant::variables()), Ok(()));
-    let table: Vec<Variable<()>> = vec![
-        Variable::real(1, "k", "a parameter", |_: &()| 1.0)
+    use robofmu_fmi::core::flatten::flatten;
+    use robofmu_fmi::core::instance::sorted_table;
+    use robofmu_fmi::core::{Declaration, Variability};
+    assert_eq!(check_table(&sorted_table::<Pss3Plant>().unwrap()), Ok(()));
+    static TABLE: &[Declaration<()>] = &[
+        Declaration::real("k", "a parameter", |_, _| 1.0)
             .parameter(Variability::Fixed)
-            .start_real(1.0)
-            .set_real(|_, _| Ok(())),
-        Variable::real(2, "y", "an output", |_: &()| 1.0)
+            .start_real(&[1.0])
+            .set_real(|_, _, _| Ok(())),
+        Declaration::real("y", "an output", |_, _| 1.0)
             .output()
             .depends_on(&["k"]),
     ];
-    let error = check_table(&table).unwrap_err();
+    let error = check_table(&flatten(TABLE)).unwrap_err();
     assert!(
         error.contains("neither an input nor a continuous state"),
         "{error}"

@@ -1,13 +1,13 @@
-//! The check of a whole variable table: each variable ([`variables`](super::variables))
-//! and each array's elements ([`arrays`](super::arrays)).
+//! The check of a whole variable table against the rules of the standard that
+//! importers enforce (run where modelDescription.xml is written; an instance relies
+//! only on unique value references).
 
-use super::arrays::check_arrays;
 use super::variables::{Variable, check_variables};
 
-/// Checks a table against the rules of the standard that importers enforce: the rules
-/// of every variable ([`check_variables`]) and the arrays' elements (consecutive
-/// indices from 1, one type, causality and unit per array).
+/// Checks a table: unique names, value references strictly increasing, legal
+/// (causality, variability, initial) combinations, start values and writers exactly
+/// where required, derivatives of existing continuous states, dependencies on inputs
+/// and states only ([`check_variables`]).
 pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
-    check_variables(table)?;
-    check_arrays(table)
+    check_variables(table)
 }

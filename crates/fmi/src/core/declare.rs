@@ -21,8 +21,11 @@
 //! is FMI 3.0's `time`), elements consecutive. Appending a declaration therefore never
 //! moves an existing value reference.
 
-pub use super::hooks::{Element, InitialDependencies, InputDerivative, OutputDerivative};
-use super::variables::{Causality, Initial, Variability};
+use super::attributes::{Causality, Initial, Variability};
+pub use super::hooks::{
+    Dependencies, Element, ElementDependencies, InitialDependencies, InputDerivative,
+    OutputDerivative,
+};
 
 /// Reads element i (0 for a scalar).
 pub type Get<M, T> = fn(&M, usize) -> T;
@@ -98,7 +101,7 @@ pub struct Declaration<M: 'static> {
     /// The state (scalar or array) this declaration is the time derivative of.
     pub derivative_of: Option<&'static str>,
     /// The inputs and continuous states an output or derivative depends on.
-    pub dependencies: Option<&'static [&'static str]>,
+    pub dependencies: Option<Dependencies>,
     /// Hook: the knowns at initialization an initial unknown depends on, by element.
     pub initial_dependencies: Option<InitialDependencies>,
     /// Hook: time derivatives of an output.
@@ -269,7 +272,15 @@ impl<M> Declaration<M> {
     /// The inputs and continuous states (by FMI 2.0 name) this output or derivative
     /// depends on; without it, on all of them.
     pub const fn depends_on(mut self, names: &'static [&'static str]) -> Self {
-        self.dependencies = Some(names);
+        self.dependencies = Some(Dependencies::All(names));
+        self
+    }
+
+    /// Hook: the inputs and continuous states (by FMI 2.0 name) element i of this
+    /// output or derivative depends on, when the elements differ (`theta[i]` on
+    /// `theta[i]` alone).
+    pub const fn depends_on_each(mut self, f: ElementDependencies) -> Self {
+        self.dependencies = Some(Dependencies::Each(f));
         self
     }
 

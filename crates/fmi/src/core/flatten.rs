@@ -4,9 +4,7 @@
 //! declaration when asked ([`Variable::name`]).
 
 use super::declare::{Declaration, Value, value_references};
-use super::element::ArrayElement;
 use super::variables::{Getter, Kind, Setter, Variable};
-use std::borrow::Cow;
 
 /// The FMI 2.0 scalars of the declarations, in declaration order (the layer sorts them
 /// by value reference).
@@ -22,26 +20,16 @@ pub fn flatten<M>(declarations: &'static [Declaration<M>]) -> Vec<Variable<M>> {
 
 /// Element i of declaration `d` as an FMI 2.0 scalar.
 fn element<M>(d: &'static Declaration<M>, first: u32, i: usize) -> Variable<M> {
-    let vr = first + i as u32 * d.stride;
-    let array = d.length.map(|length| ArrayElement {
-        base: d.derivative_of.unwrap_or(d.name),
-        index: i,
-        length,
-        stride: d.stride,
-        derivative: d.derivative_of.is_some(),
-    });
     Variable {
-        value_reference: vr,
-        stored_name: Cow::Borrowed(d.name),
-        stored_description: Cow::Borrowed(d.description),
+        value_reference: first + i as u32 * d.stride,
         causality: d.causality,
         variability: d.variability,
         initial: d.initial,
         kind: kind(&d.value, i),
-        dependencies: d.dependencies,
+        dependencies: d.dependencies.map(|x| x.of(i)),
         initial_dependencies: d.initial_dependencies.map(|f| f(i)),
-        array,
-        declared: Some((d, i)),
+        declaration: d,
+        index: i,
     }
 }
 
@@ -57,14 +45,13 @@ fn kind<M>(value: &Value<M>, i: usize) -> Kind<M> {
             unit,
             display_unit,
         } => Kind::Real {
-            get: Getter::Element(get, i),
-            set: set.map(|s| Setter::Element(s, i)),
+            get: Getter { f: get, index: i },
+            set: set.map(|f| Setter { f, index: i }),
             start: start_of(start, i),
             min,
             max,
             unit,
             display_unit,
-            derivative_of_built: None,
         },
         Value::Integer {
             get,
@@ -73,15 +60,15 @@ fn kind<M>(value: &Value<M>, i: usize) -> Kind<M> {
             min,
             max,
         } => Kind::Integer {
-            get: Getter::Element(get, i),
-            set: set.map(|s| Setter::Element(s, i)),
+            get: Getter { f: get, index: i },
+            set: set.map(|f| Setter { f, index: i }),
             start: start_of(start, i),
             min,
             max,
         },
         Value::Boolean { get, set, start } => Kind::Boolean {
-            get: Getter::Element(get, i),
-            set: set.map(|s| Setter::Element(s, i)),
+            get: Getter { f: get, index: i },
+            set: set.map(|f| Setter { f, index: i }),
             start: start_of(start, i),
         },
     }

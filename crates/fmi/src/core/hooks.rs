@@ -26,12 +26,35 @@ pub enum OutputDerivativeError {
 pub type OutputDerivative<M> = fn(&M, usize, u32) -> Result<f64, OutputDerivativeError>;
 
 /// Where the model keeps the `order`-th time derivative (1 ..=
-/// `MAX_INPUT_DERIVATIVE_ORDER`) of continuous Real input element i; None: it keeps
-/// none (see [`Model::input_derivative_mut`](super::model::Model::input_derivative_mut)
-/// for the semantics).
+/// `MAX_INPUT_DERIVATIVE_ORDER`) of continuous Real input element i, relative to the
+/// start of the next step; None: it keeps none. The layer checks the order and the
+/// value (finite) before writing, and reads it to serialize FMU states. A derivative
+/// holds for every later step until it is set again (a field of the model: clones and
+/// FMU states carry it, a reset clears it); it changes neither the input's value nor
+/// any output read before the step (see [`input_derivatives`](super::input_derivatives)).
 pub type InputDerivative<M> = for<'a> fn(&'a mut M, usize, u32) -> Option<&'a mut f64>;
 
 /// The knowns at initialization (by FMI 2.0 name: inputs, variables with initial =
 /// "exact", "time" for the independent variable) that initial unknown element i
 /// depends on (InitialUnknowns `dependencies`).
 pub type InitialDependencies = fn(usize) -> &'static [&'static str];
+
+/// The names (FMI 2.0) that element i of a declaration depends on.
+pub type ElementDependencies = fn(usize) -> &'static [&'static str];
+
+/// The dependencies of a declaration's elements: the same for all, or element by element.
+#[derive(Debug, Clone, Copy)]
+pub enum Dependencies {
+    All(&'static [&'static str]),
+    Each(ElementDependencies),
+}
+
+impl Dependencies {
+    /// The names element i depends on.
+    pub fn of(self, i: usize) -> &'static [&'static str] {
+        match self {
+            Dependencies::All(names) => names,
+            Dependencies::Each(f) => f(i),
+        }
+    }
+}

@@ -1,6 +1,7 @@
 //! Time derivatives of continuous inputs for the co-simulation step (FMI 2.0
 //! fmi2SetRealInputDerivatives), checked here for every front-end and stored by the
-//! model ([`Model::input_derivative_mut`]).
+//! model where the input's declaration says
+//! ([`Declaration::input_derivative`](super::declare::Declaration::input_derivative)).
 //!
 //! Semantics (FMI 2.0, section 4.2.1: inputs and their derivatives are set with
 //! respect to the beginning of a communication step): over a step from t, an input u
@@ -68,25 +69,22 @@ impl<M: Model> Instance<M> {
                  of magnitude at most {MAX_MAGNITUDE:e}"
             ));
         }
-        let hook = v.input_hook();
-        let slot = slot(self.model_mut(), hook, vr, order);
+        let (hook, index) = (v.input_hook(), v.index);
+        let slot = slot(self.model_mut(), hook, index, order);
         *slot.ok_or_else(|| no_slot::<M>(&name, order))? = value;
         Ok(())
     }
 }
 
-/// The slot of the `order`-th derivative of input `vr`: the declaration's hook, if it
-/// has one (`hook` of the input's table entry), or else [`Model::input_derivative_mut`].
+/// The slot of the `order`-th derivative of element `index` of an input: its
+/// declaration's hook, if it has one.
 pub fn slot<M: Model>(
     model: &mut M,
-    hook: Option<(InputDerivative<M>, usize)>,
-    vr: u32,
+    hook: Option<InputDerivative<M>>,
+    index: usize,
     order: u32,
 ) -> Option<&mut f64> {
-    match hook {
-        Some((f, element)) => f(model, element, order),
-        None => model.input_derivative_mut(vr, order),
-    }
+    hook.and_then(|f| f(model, index, order))
 }
 
 /// The message for a model that declares an order but keeps no derivative for `name`.

@@ -2,6 +2,7 @@
 //! time of the experiment, and typed, checked access to the variables. A front-end
 //! adds its mode, logger and C entry points around it.
 
+use super::flatten::flatten;
 use super::log::Log;
 use super::model::{Model, StepOutcome};
 use super::shared::shared;
@@ -45,8 +46,7 @@ impl Standard {
 /// goes through [`Instance::model_mut`], which marks the computed values stale.
 pub struct Instance<M: Model> {
     /// The variable table sorted by value reference, with its calculated flags: shared
-    /// by every instance of a declared model, built per instance for one written with
-    /// `Model::variables`.
+    /// by every instance of the model in this library.
     index: Arc<Index<M>>,
     model: M,
     /// Computed values are stale (`Model::calculate_values` not called since a change).
@@ -104,7 +104,7 @@ pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, Str
 /// references (all the runtime relies on; the full `check_table` runs where the
 /// modelDescription is written, in every FMU crate's drift test).
 pub fn sorted_table<M: Model>() -> Result<Vec<Variable<M>>, String> {
-    let table = by_value_reference(M::variables());
+    let table = by_value_reference(flatten(M::declarations()));
     if let Some(pair) = table
         .windows(2)
         .find(|p| p[0].value_reference == p[1].value_reference)
@@ -164,15 +164,10 @@ pub struct Index<M: 'static> {
 }
 
 impl<M: Model> Index<M> {
-    /// The index of model M: built once per loaded library for a declared model (its
-    /// declarations are static, so every instance has the same), per instance for a
-    /// model written with `Model::variables` (whose closures may differ).
+    /// The index of model M: built once per loaded library (its declarations are
+    /// static, so every instance has the same).
     pub fn of() -> Result<Arc<Self>, String> {
-        if M::declarations().is_empty() {
-            Self::build().map(Arc::new)
-        } else {
-            shared::<M, Self>(Self::build)
-        }
+        shared::<M, Self>(Self::build)
     }
 
     fn build() -> Result<Self, String> {

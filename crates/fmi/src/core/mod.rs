@@ -13,10 +13,10 @@
 //! of both standards (handle, mode, logCalls, errors and panics) and holds the bodies
 //! they share, with [`fmu_state_calls`] and [`model_exchange_calls`].
 
-pub mod arrays;
+pub mod attributes;
 pub mod check;
 pub mod declare;
-pub mod element;
+pub mod directional;
 pub mod entry;
 pub mod flatten;
 pub mod fmu_state_calls;

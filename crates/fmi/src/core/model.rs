@@ -3,11 +3,9 @@
 //! enforcement, logging and unwind catching.
 
 use super::declare::Declaration;
-use super::flatten::flatten;
 use super::hooks::Element;
 pub use super::hooks::OutputDerivativeError;
 use super::log::{Log, LogCategory};
-use super::variables::{Variable, find};
 
 /// DefaultExperiment of modelDescription.xml.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -31,10 +29,10 @@ pub struct ModelInfo {
     pub default_experiment: DefaultExperiment,
     pub number_of_continuous_states: usize,
     pub number_of_event_indicators: usize,
-    /// Whether `Model::partial_derivative` is implemented.
+    /// Whether `Model::partial_derivative` (or `directional_derivative`) is implemented.
     pub provides_directional_derivative: bool,
-    /// maxOutputDerivativeOrder of Co-Simulation: the highest order `k` for which
-    /// `Model::output_derivative` may answer (0: no output derivatives).
+    /// maxOutputDerivativeOrder of Co-Simulation: the highest order `k` the
+    /// declarations' output-derivative hooks answer (0: no output derivatives).
     pub max_output_derivative_order: u32,
     /// Model-specific log categories (the layer's own come first).
     pub log_categories: &'static [LogCategory],
@@ -66,28 +64,19 @@ pub struct EventUpdate {
     pub nominals_of_continuous_states_changed: bool,
 }
 
-/// A model that can be exported as an FMU by a front-end (`export_fmi2!`).
+/// A model that can be exported as an FMU by a front-end (`export_fmu!`).
 ///
 /// Slices passed to the continuous-state methods have exactly
-/// `info().number_of_continuous_states` (or `number_of_event_indicators`) elements,
-/// and every value reference passed in belongs to the variable table.
+/// `info().number_of_continuous_states` (or `number_of_event_indicators`) elements.
+/// The model never sees a value reference: variables reach it as the accessors and
+/// hooks of its declarations, called with an element index, or as [`Element`]s.
 pub trait Model: Clone + Send + Sized + 'static {
     fn info() -> &'static ModelInfo;
 
     /// The variable table, declared once: a `static` slice of [`Declaration`]s
     /// (scalars and arrays, accessors and hooks as `fn` pointers; see
     /// [`declare`](super::declare)).
-    fn declarations() -> &'static [Declaration<Self>] {
-        &[]
-    }
-
-    /// The FMI 2.0 scalars of the table (any order: the layer sorts them by value
-    /// reference), built per instance, so nothing of it outlives the instance. The
-    /// default flattens [`Model::declarations`]; a model still written with
-    /// [`Variable`]s overrides it (to be ported to declarations).
-    fn variables() -> Vec<Variable<Self>> {
-        flatten(Self::declarations())
-    }
+    fn declarations() -> &'static [Declaration<Self>];
 
     /// A model with every field defined; the layer then applies all start values of
     /// the table through its writers, so defaults live in the table only.
@@ -102,8 +91,9 @@ pub trait Model: Clone + Send + Sized + 'static {
 
     /// Co-simulation step from `time` to `time + step`: each continuous Real input
     /// follows u(s) = u + u' s + u'' s^2/2 + ... (s the time since `time`) with the
-    /// derivatives last written to [`Model::input_derivative_mut`], i.e. it is held
-    /// when none were given.
+    /// derivatives last written to its declaration's
+    /// [`input_derivative`](Declaration::input_derivative) slot, i.e. it is held when
+    /// none were given.
     fn do_step(&mut self, time: f64, step: f64, log: &dyn Log) -> StepOutcome;
 
     /// Highest order of input time derivative that `do_step` uses (FMI 2.0
@@ -116,17 +106,6 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// points, where the importer may read outputs and set continuous inputs, which
     /// then hold until the next point). 0: no intermediate update (the default).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 0;
-
-    /// Where the model keeps the `order`-th time derivative (1 ..=
-    /// `MAX_INPUT_DERIVATIVE_ORDER`) of the continuous Real input `vr`, relative to
-    /// the start of the next step; None: it keeps none. The layer checks the value
-    /// reference, the order and the value (finite) before writing, and reads it to
-    /// serialize FMU states. A derivative holds for every later step until it is set
-    /// again (a field of the model: clones and FMU states carry it, a reset clears it); it does
-    /// not change the input's value or any output read before the step.
-    fn input_derivative_mut(&mut self, _vr: u32, _order: u32) -> Option<&mut f64> {
-        None
-    }
 
     /// Computes every calculated value (outputs, derivatives, ...) after a change of
     /// parameters, inputs, states or time, for the getters to read. The layer calls it
@@ -176,44 +155,25 @@ pub trait Model: Clone + Send + Sized + 'static {
 
     /// Directional derivative dvUnknown = J dvKnown for all `unknowns` at once, J the
     /// Jacobian d(unknowns)/d(knowns) at the current point (computed values are
-    /// current). `table` is the instance's variable table. The default sums
+    /// current), the variables given as declared elements. The default sums
     /// `partial_derivative` over the pairs; a model overrides it to linearize once
     /// per call instead of once per pair. An error (the model cannot be evaluated
     /// here) makes the call return Discard.
     fn directional_derivative(
         &self,
-        table: &[Variable<Self>],
-        unknowns: &[u32],
-        knowns: &[u32],
+        unknowns: &[Element],
+        knowns: &[Element],
         seed: &[f64],
         out: &mut [f64],
     ) -> Result<(), String> {
-        let element = |vr: u32| {
-            find(table, vr)
-                .and_then(|v| v.element())
-                .ok_or_else(|| format!("value reference {vr} is no declared variable"))
-        };
         for (o, &u) in out.iter_mut().zip(unknowns) {
             let mut sum = 0.0;
             for (&k, &s) in knowns.iter().zip(seed) {
-                sum += self.partial_derivative(element(u)?, element(k)?)? * s;
+                sum += self.partial_derivative(u, k)? * s;
             }
             *o = sum;
         }
         Ok(())
-    }
-
-    /// Only for outputs declared without an [`output_derivative`](Declaration::output_derivative)
-    /// hook (a hook is the way to give them). The `order`-th time derivative (1 ..=
-    /// `max_output_derivative_order`) of the Real output with value reference `vr` at the current time and state, with the inputs
-    /// held (after a co-simulation step: at the end of the communication step). The
-    /// layer has checked `vr` (a Real output) and `order`, and the computed values are
-    /// current.
-    fn output_derivative(&self, _vr: u32, _order: u32) -> Result<f64, OutputDerivativeError> {
-        Err(OutputDerivativeError::NotProvided(format!(
-            "{} provides no output derivatives",
-            Self::info().model_name
-        )))
     }
 
     /// Internal state that is neither a settable variable nor a continuous state,

@@ -85,12 +85,13 @@ fn evaluate<M: Model>(inst: &mut Instance<M>, requests: &[Request]) -> Result<Ve
     for &r in requests {
         let (name, order) = check(inst, r).map_err(Refusal::Error)?;
         let what = format!("derivative of order {order} of \"{name}\"");
-        let hook = variable(inst.table(), r.vr)
-            .map_err(Refusal::Error)?
-            .output_hook();
-        let value = match hook {
-            Some((f, element)) => f(inst.model(), element, order),
-            None => inst.model().output_derivative(r.vr, order),
+        let v = variable(inst.table(), r.vr).map_err(Refusal::Error)?;
+        let value = match v.output_hook() {
+            Some(f) => f(inst.model(), v.index, order),
+            None => Err(OutputDerivativeError::NotProvided(format!(
+                "{} declares no output derivatives for it",
+                M::info().model_name
+            ))),
         }
         .map_err(|e| match e {
             OutputDerivativeError::NotProvided(why) => {

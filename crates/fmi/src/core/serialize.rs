@@ -64,10 +64,10 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
     // The slots are reached through `&mut`: read them from a copy (only for a model
     // that takes derivatives).
     let mut model = (!slots.is_empty()).then(|| s.model.clone());
-    for (vr, hook, order) in slots {
+    for (_, hook, index, order) in slots {
         let value = model
             .as_mut()
-            .and_then(|m| slot(m, hook, vr, order).copied());
+            .and_then(|m| slot(m, hook, index, order).copied());
         payload.extend_from_slice(&value.unwrap_or(0.0).to_le_bytes());
     }
     let n = M::info().number_of_continuous_states;
@@ -96,15 +96,17 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
 }
 
 /// (value reference, hook, order) of every input derivative a state of M holds.
-type Slot<M> = (u32, Option<(InputDerivative<M>, usize)>, u32);
+type Slot<M> = (u32, Option<InputDerivative<M>>, usize, u32);
 
 fn input_derivative_slots<M: Model>(table: &[Variable<M>]) -> Vec<Slot<M>> {
     let orders = 1..=M::MAX_INPUT_DERIVATIVE_ORDER;
     let inputs = table.iter().filter(|v| interpolated_input(v));
     inputs
         .flat_map(|v| {
-            let hook = v.input_hook();
-            orders.clone().map(move |o| (v.value_reference, hook, o))
+            let (hook, index) = (v.input_hook(), v.index);
+            orders
+                .clone()
+                .map(move |o| (v.value_reference, hook, index, o))
         })
         .collect()
 }
@@ -282,12 +284,12 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
     let terminated_by_model = r.flag("terminated flag")?;
     let mut model = model_with_start_values::<M>(table)?;
     read_values(table, &mut r, &mut model)?;
-    for (vr, hook, order) in input_derivative_slots(table) {
+    for (vr, hook, index, order) in input_derivative_slots(table) {
         let value = r.f64("an input derivative")?;
         if value == 0.0 {
             continue; // a fresh model holds zeros
         }
-        match slot(&mut model, hook, vr, order) {
+        match slot(&mut model, hook, index, order) {
             Some(slot) if value.is_finite() && value.abs() <= MAX_MAGNITUDE => *slot = value,
             _ => {
                 return Err(refused(

@@ -1,110 +1,38 @@
-//! The variable table of a model: for every variable its metadata (what
-//! modelDescription.xml says about it) and its accessors (how the layer reads and writes
-//! it). It is the single source of truth for both.
+//! The FMI 2.0 scalars of a model's declared table ([`declare`](super::declare)):
+//! for every scalar its metadata (what modelDescription.xml says about it) and its
+//! accessors (how the layer reads and writes it), each pointing back at its
+//! declaration and element index ([`flatten`](super::flatten)).
 //!
-//! Every instance builds its own table (nothing of it may outlive the instance: a
-//! table kept by the loaded library would leak at dlclose), so building one is kept
-//! cheap: names, descriptions and dependency lists are static strings wherever the
-//! declaration allows (`Cow<'static, str>`); an element of a declared array is named
-//! and described from its declaration only when asked ([`Variable::name`]).
+//! Nothing here is formatted or allocated per scalar: an element's name (`q[2]`),
+//! labelled description and state are formatted from its declaration when asked
+//! ([`Variable::name`]), for messages and the description writers.
 
+pub use super::attributes::{Causality, Initial, Variability};
 use super::declare::Declaration;
-use super::element::{ArrayElement, numbered};
 use super::hooks::{Element, InputDerivative, OutputDerivative};
 use std::borrow::Cow;
 
-/// Reads a variable: a declared element (`fn` and element index: nothing allocated per
-/// instance) or a closure (a `Variable` built per instance).
-pub enum Getter<M, T> {
-    Element(fn(&M, usize) -> T, usize),
-    Closure(Box<dyn Fn(&M) -> T + Send + Sync>),
+/// Reads element `index` of a declaration (a `fn` and the index: nothing boxed).
+pub struct Getter<M, T> {
+    pub f: fn(&M, usize) -> T,
+    pub index: usize,
 }
 
-/// A writer closure of a variable built per instance.
-pub type SetClosure<M, T> = Box<dyn Fn(&mut M, T) -> Result<(), String> + Send + Sync>;
-
-/// Writes a variable, like [`Getter`]; Err: the value is refused, with the reason.
-pub enum Setter<M, T> {
-    Element(fn(&mut M, usize, T) -> Result<(), String>, usize),
-    Closure(SetClosure<M, T>),
+/// Writes element `index` of a declaration; Err: the value is refused, with the reason.
+pub struct Setter<M, T> {
+    pub f: fn(&mut M, usize, T) -> Result<(), String>,
+    pub index: usize,
 }
 
 impl<M, T> Getter<M, T> {
     pub fn call(&self, model: &M) -> T {
-        match self {
-            Getter::Element(f, i) => f(model, *i),
-            Getter::Closure(f) => f(model),
-        }
+        (self.f)(model, self.index)
     }
 }
 
 impl<M, T> Setter<M, T> {
     pub fn call(&self, model: &mut M, value: T) -> Result<(), String> {
-        match self {
-            Setter::Element(f, i) => f(model, *i, value),
-            Setter::Closure(f) => f(model, value),
-        }
-    }
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Causality {
-    Parameter,
-    CalculatedParameter,
-    Input,
-    Output,
-    Local,
-    Independent,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Variability {
-    Constant,
-    Fixed,
-    Tunable,
-    Discrete,
-    Continuous,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Initial {
-    Exact,
-    Approx,
-    Calculated,
-}
-
-impl Causality {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Causality::Parameter => "parameter",
-            Causality::CalculatedParameter => "calculatedParameter",
-            Causality::Input => "input",
-            Causality::Output => "output",
-            Causality::Local => "local",
-            Causality::Independent => "independent",
-        }
-    }
-}
-
-impl Variability {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Variability::Constant => "constant",
-            Variability::Fixed => "fixed",
-            Variability::Tunable => "tunable",
-            Variability::Discrete => "discrete",
-            Variability::Continuous => "continuous",
-        }
-    }
-}
-
-impl Initial {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Initial::Exact => "exact",
-            Initial::Approx => "approx",
-            Initial::Calculated => "calculated",
-        }
+        (self.f)(model, self.index, value)
     }
 }
 
@@ -118,9 +46,6 @@ pub enum Kind<M> {
         max: Option<f64>,
         unit: Option<&'static str>,
         display_unit: Option<&'static str>,
-        /// Name of the state this variable (built per instance, not declared) is the
-        /// time derivative of; a declared one says it in its declaration.
-        derivative_of_built: Option<Cow<'static, str>>,
     },
     Integer {
         get: Getter<M, i32>,
@@ -154,14 +79,9 @@ impl VariableType {
     }
 }
 
-/// One scalar variable.
+/// One FMI 2.0 scalar: element `index` of its declaration.
 pub struct Variable<M: 'static> {
     pub value_reference: u32,
-    /// The name ([`Variable::name`]; of a declared array: the declaration's).
-    pub(crate) stored_name: Cow<'static, str>,
-    /// The description ([`Variable::description`]; of a declared array: the
-    /// declaration's).
-    pub(crate) stored_description: Cow<'static, str>,
     pub causality: Causality,
     pub variability: Variability,
     pub initial: Option<Initial>,
@@ -173,322 +93,87 @@ pub struct Variable<M: 'static> {
     /// "exact") an initial unknown depends on (InitialUnknowns `dependencies`); None:
     /// on all of them.
     pub initial_dependencies: Option<&'static [&'static str]>,
-    /// Set for the elements declared by [`RealArray`](super::arrays::RealArray).
-    pub array: Option<ArrayElement>,
-    /// The declaration this scalar is element i of, if it was declared
-    /// ([`declare`](super::declare)).
-    pub declared: Option<(&'static Declaration<M>, usize)>,
+    /// The declaration this scalar is an element of.
+    pub declaration: &'static Declaration<M>,
+    /// The element's index (0 for a scalar).
+    pub index: usize,
 }
 
 impl<M: 'static> Variable<M> {
-    fn with_kind(
-        vr: u32,
-        name: impl Into<Cow<'static, str>>,
-        description: impl Into<Cow<'static, str>>,
-        kind: Kind<M>,
-    ) -> Self {
-        let variability = match kind {
-            Kind::Real { .. } => Variability::Continuous,
-            _ => Variability::Discrete,
-        };
-        Variable {
-            value_reference: vr,
-            stored_name: name.into(),
-            stored_description: description.into(),
-            causality: Causality::Local,
-            variability,
-            initial: None,
-            kind,
-            dependencies: None,
-            initial_dependencies: None,
-            array: None,
-            declared: None,
-        }
-    }
-
-    /// Replaces the description (e.g. per element of an array).
-    pub fn describe(mut self, description: impl Into<Cow<'static, str>>) -> Self {
-        self.stored_description = description.into();
-        self
-    }
-
-    /// A Real variable read by `get` (a local until a role is given).
-    pub fn real(
-        vr: u32,
-        name: impl Into<Cow<'static, str>>,
-        description: impl Into<Cow<'static, str>>,
-        get: impl Fn(&M) -> f64 + Send + Sync + 'static,
-    ) -> Self {
-        let kind = Kind::Real {
-            get: Getter::Closure(Box::new(get)),
-            set: None,
-            start: None,
-            min: None,
-            max: None,
-            unit: None,
-            display_unit: None,
-            derivative_of_built: None,
-        };
-        Self::with_kind(vr, name, description, kind)
-    }
-
-    /// An Integer variable read by `get`.
-    pub fn integer(
-        vr: u32,
-        name: impl Into<Cow<'static, str>>,
-        description: impl Into<Cow<'static, str>>,
-        get: impl Fn(&M) -> i32 + Send + Sync + 'static,
-    ) -> Self {
-        let kind = Kind::Integer {
-            get: Getter::Closure(Box::new(get)),
-            set: None,
-            start: None,
-            min: None,
-            max: None,
-        };
-        Self::with_kind(vr, name, description, kind)
-    }
-
-    /// A Boolean variable read by `get`.
-    pub fn boolean(
-        vr: u32,
-        name: impl Into<Cow<'static, str>>,
-        description: impl Into<Cow<'static, str>>,
-        get: impl Fn(&M) -> bool + Send + Sync + 'static,
-    ) -> Self {
-        let kind = Kind::Boolean {
-            get: Getter::Closure(Box::new(get)),
-            set: None,
-            start: None,
-        };
-        Self::with_kind(vr, name, description, kind)
-    }
-
-    /// Role: parameter (initial exact), fixed after initialization or tunable.
-    pub fn parameter(mut self, variability: Variability) -> Self {
-        self.causality = Causality::Parameter;
-        self.variability = variability;
-        self.initial = Some(Initial::Exact);
-        self
-    }
-
-    /// Role: input (no initial attribute; a start value is required).
-    pub fn input(mut self) -> Self {
-        self.causality = Causality::Input;
-        self
-    }
-
-    /// Role: output computed by the model (initial calculated, no start value).
-    pub fn output(mut self) -> Self {
-        self.causality = Causality::Output;
-        self.initial = Some(Initial::Calculated);
-        self
-    }
-
-    /// Role: continuous state (local, initial exact with a start value).
-    pub fn state(mut self) -> Self {
-        self.causality = Causality::Local;
-        self.initial = Some(Initial::Exact);
-        self
-    }
-
-    /// Role: time derivative of the state named `state` (local, calculated).
-    pub fn derivative_of(mut self, state: impl Into<Cow<'static, str>>) -> Self {
-        self.causality = Causality::Local;
-        self.initial = Some(Initial::Calculated);
-        if let Kind::Real {
-            derivative_of_built,
-            ..
-        } = &mut self.kind
-        {
-            *derivative_of_built = Some(state.into());
-        }
-        self
-    }
-
-    /// The inputs and continuous states (by name) this output or derivative depends on;
-    /// declared so that importers see which outputs have no direct feedthrough.
-    /// A static list: building it costs nothing at instantiation.
-    pub fn depends_on(mut self, names: &'static [&'static str]) -> Self {
-        self.dependencies = Some(names);
-        self
-    }
-
-    /// Start value of a Real variable.
-    pub fn start_real(mut self, value: f64) -> Self {
-        if let Kind::Real { start, .. } = &mut self.kind {
-            *start = Some(value);
-        }
-        self
-    }
-
-    /// Start value of an Integer variable.
-    pub fn start_integer(mut self, value: i32) -> Self {
-        if let Kind::Integer { start, .. } = &mut self.kind {
-            *start = Some(value);
-        }
-        self
-    }
-
-    /// Start value of a Boolean variable.
-    pub fn start_boolean(mut self, value: bool) -> Self {
-        if let Kind::Boolean { start, .. } = &mut self.kind {
-            *start = Some(value);
-        }
-        self
-    }
-
-    /// Unit (and optionally display unit) of a Real variable.
-    pub fn unit(mut self, name: &'static str, display: Option<&'static str>) -> Self {
-        if let Kind::Real {
-            unit, display_unit, ..
-        } = &mut self.kind
-        {
-            *unit = Some(name);
-            *display_unit = display;
-        }
-        self
-    }
-
-    /// Bounds of a Real variable, enforced on every set.
-    pub fn real_range(mut self, lower: Option<f64>, upper: Option<f64>) -> Self {
-        if let Kind::Real { min, max, .. } = &mut self.kind {
-            *min = lower;
-            *max = upper;
-        }
-        self
-    }
-
-    /// Bounds of an Integer variable, enforced on every set.
-    pub fn integer_range(mut self, lower: i32, upper: i32) -> Self {
-        if let Kind::Integer { min, max, .. } = &mut self.kind {
-            *min = Some(lower);
-            *max = Some(upper);
-        }
-        self
-    }
-
-    /// Writer of a Real variable.
-    pub fn set_real(
-        mut self,
-        f: impl Fn(&mut M, f64) -> Result<(), String> + Send + Sync + 'static,
-    ) -> Self {
-        if let Kind::Real { set, .. } = &mut self.kind {
-            *set = Some(Setter::Closure(Box::new(f)));
-        }
-        self
-    }
-
-    /// Writer of an Integer variable.
-    pub fn set_integer(
-        mut self,
-        f: impl Fn(&mut M, i32) -> Result<(), String> + Send + Sync + 'static,
-    ) -> Self {
-        if let Kind::Integer { set, .. } = &mut self.kind {
-            *set = Some(Setter::Closure(Box::new(f)));
-        }
-        self
-    }
-
-    /// Writer of a Boolean variable.
-    pub fn set_boolean(
-        mut self,
-        f: impl Fn(&mut M, bool) -> Result<(), String> + Send + Sync + 'static,
-    ) -> Self {
-        if let Kind::Boolean { set, .. } = &mut self.kind {
-            *set = Some(Setter::Closure(Box::new(f)));
-        }
-        self
-    }
-
-    /// The FMI 2.0 name; an element of a declared array is named when asked (`q[2]`),
-    /// so that nothing is formatted at instantiation.
+    /// The FMI 2.0 name: the declaration's, `q[2]` for element 2 of an array, and
+    /// `der(x[2])` for element 2 of the derivative of an array state `x`.
     pub fn name(&self) -> Cow<'_, str> {
-        match (&self.array, self.declared) {
-            (Some(array), Some((_, i))) => array.name(i).into(),
-            _ => Cow::Borrowed(&self.stored_name),
+        match self.shown_name() {
+            ShownName::Plain(name) => Cow::Borrowed(name),
+            element => Cow::Owned(element.to_string()),
         }
     }
 
     /// The FMI 2.0 name as [`Display`](std::fmt::Display), written without an
     /// allocation (for messages formatted only on a refusal).
-    pub fn shown_name(&self) -> ShownName<'_> {
-        match (self.array, self.declared) {
-            (Some(array), Some((_, i))) => ShownName::Element(array, i),
-            _ => ShownName::Plain(&self.stored_name),
+    pub fn shown_name(&self) -> ShownName<'static> {
+        let d = self.declaration;
+        match (d.length, d.derivative_of) {
+            (None, _) => ShownName::Plain(d.name),
+            (Some(_), Some(state)) => ShownName::Derivative(state, self.index),
+            (Some(_), None) => ShownName::Element(d.name, self.index),
         }
     }
 
-    /// The FMI 2.0 description; element i of a labelled declared array is described
-    /// when asked ("`label` i: description").
-    pub fn description(&self) -> Cow<'_, str> {
-        match self.declared {
-            Some((d, i)) => match (d.label, d.length) {
-                (Some(label), Some(_)) => format!("{label} {}: {}", i + 1, d.description).into(),
-                _ => d.description.into(),
-            },
-            None => Cow::Borrowed(&self.stored_description),
+    /// The FMI 2.0 description; element i of a labelled array is described as
+    /// "`label` i: description".
+    pub fn description(&self) -> Cow<'static, str> {
+        let d = self.declaration;
+        match (d.label, d.length) {
+            (Some(label), Some(_)) => {
+                format!("{label} {}: {}", self.index + 1, d.description).into()
+            }
+            _ => d.description.into(),
         }
     }
 
-    /// The scalar as (name, element index): a declared element by its declaration's
-    /// name and index (None for a scalar), any other by its name. Compared with
-    /// [`Variable::state_key`] without formatting a name.
-    pub fn key(&self) -> (&str, Option<usize>) {
-        match self.declared {
-            Some((d, i)) => (d.name, d.length.map(|_| i)),
-            None => (&self.stored_name, None),
-        }
+    /// The scalar as (declaration name, element index; None for a scalar), compared
+    /// with [`Variable::state_key`] without formatting a name.
+    pub fn key(&self) -> (&'static str, Option<usize>) {
+        let d = self.declaration;
+        (d.name, d.length.map(|_| self.index))
     }
 
     /// The [`key`](Variable::key) of the state this scalar is the time derivative of.
-    pub fn state_key(&self) -> Option<(&str, Option<usize>)> {
-        match (self.declared, &self.kind) {
-            (Some((d, i)), _) => Some((d.derivative_of?, d.length.map(|_| i))),
-            (
-                None,
-                Kind::Real {
-                    derivative_of_built: Some(state),
-                    ..
-                },
-            ) => Some((state, None)),
-            _ => None,
-        }
+    pub fn state_key(&self) -> Option<(&'static str, Option<usize>)> {
+        let d = self.declaration;
+        Some((d.derivative_of?, d.length.map(|_| self.index)))
     }
 
-    /// The name of the state this scalar is the time derivative of (formatted when
-    /// asked for an element of a declared array).
-    pub fn state_name(&self) -> Option<Cow<'_, str>> {
+    /// The FMI 2.0 name of the state this scalar is the time derivative of.
+    pub fn state_name(&self) -> Option<Cow<'static, str>> {
         Some(match self.state_key()? {
             (state, None) => Cow::Borrowed(state),
-            (state, Some(i)) => numbered(&[state, "["], i + 1, "]").into(),
+            (state, Some(i)) => Cow::Owned(ShownName::Element(state, i).to_string()),
         })
     }
 
     /// Whether this scalar is the time derivative of a state.
     pub fn is_derivative(&self) -> bool {
-        self.state_key().is_some()
+        self.declaration.derivative_of.is_some()
     }
 
-    /// The declared element this scalar is, if it was declared.
-    pub fn element(&self) -> Option<Element> {
-        let (d, index) = self.declared?;
-        Some(Element {
-            name: d.name,
-            index,
-        })
+    /// The declared element this scalar is.
+    pub fn element(&self) -> Element {
+        Element {
+            name: self.declaration.name,
+            index: self.index,
+        }
     }
 
-    /// The declaration's output-derivative hook and the element index, if any.
-    pub fn output_hook(&self) -> Option<(OutputDerivative<M>, usize)> {
-        let (d, index) = self.declared?;
-        Some((d.output_derivative?, index))
+    /// The declaration's output-derivative hook, if any.
+    pub fn output_hook(&self) -> Option<OutputDerivative<M>> {
+        self.declaration.output_derivative
     }
 
-    /// The declaration's input-derivative slot and the element index, if any.
-    pub fn input_hook(&self) -> Option<(InputDerivative<M>, usize)> {
-        let (d, index) = self.declared?;
-        Some((d.input_derivative?, index))
+    /// The declaration's input-derivative slot, if any.
+    pub fn input_hook(&self) -> Option<InputDerivative<M>> {
+        self.declaration.input_derivative
     }
 
     pub fn variable_type(&self) -> VariableType {
@@ -520,16 +205,18 @@ impl<M: 'static> Variable<M> {
 #[derive(Debug, Clone, Copy)]
 pub enum ShownName<'a> {
     Plain(&'a str),
-    /// Element i of a declared array.
-    Element(ArrayElement, usize),
+    /// Element i of an array: `base[i + 1]`.
+    Element(&'a str, usize),
+    /// Element i of the derivative of an array state: `der(state[i + 1])`.
+    Derivative(&'a str, usize),
 }
 
 impl std::fmt::Display for ShownName<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match *self {
             ShownName::Plain(name) => f.write_str(name),
-            ShownName::Element(a, i) if a.derivative => write!(f, "der({}[{}])", a.base, i + 1),
-            ShownName::Element(a, i) => write!(f, "{}[{}]", a.base, i + 1),
+            ShownName::Element(base, i) => write!(f, "{base}[{}]", i + 1),
+            ShownName::Derivative(state, i) => write!(f, "der({state}[{}])", i + 1),
         }
     }
 }
@@ -547,7 +234,6 @@ pub fn find<M>(table: &[Variable<M>], vr: u32) -> Option<&Variable<M>> {
 /// enforce: unique names, value references strictly increasing, legal (causality,
 /// variability, initial) combinations, start values exactly where required, a writer
 /// for every variable that may be set, derivatives that name an existing Real state.
-/// The whole check, arrays included, is [`check_table`](super::check::check_table).
 pub fn check_variables<M>(table: &[Variable<M>]) -> Result<(), String> {
     use Causality as C;
     use Variability as V;

@@ -1,21 +1,26 @@
-//! The FMI 3.0 view of a declared model: one [`Variable3`] per
-//! [`Declaration`], taken from the declaration as it
-//! is (a scalar, or an array with its length), without parsing names or descriptions.
-//! [`view`] falls back to the name-parsing [`build`] for a model still written with
-//! `Model::variables`.
+//! The FMI 3.0 view of a declared model: one [`Variable3`] per [`Declaration`], taken
+//! from the declaration as it is (a scalar, or an array with its length), without
+//! parsing names or descriptions.
 
-use super::table::{Source, Table3, Variable3, build, event_indicator_variable, time_variable};
+use super::table::{
+    Source, TIME_VALUE_REFERENCE, Table3, Variable3, event_indicator_variable, time_variable,
+};
 use crate::core::declare::{Declaration, Value, value_references};
 use crate::core::model::Model;
-use crate::core::variables::{Variable, VariableType};
+use crate::core::variables::{Variable, VariableType, derivative_variables};
 use std::borrow::Cow;
 
 /// The FMI 3.0 view of model M, whose instance holds the flattened `table`.
 pub fn view<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
-    let declarations = M::declarations();
-    if declarations.is_empty() {
-        return build(table);
+    if table
+        .iter()
+        .any(|v| v.value_reference == TIME_VALUE_REFERENCE)
+    {
+        return Err(format!(
+            "value reference {TIME_VALUE_REFERENCE} is reserved for time in FMI 3.0"
+        ));
     }
+    let declarations = M::declarations();
     let firsts = value_references(declarations);
     let mut variables = Vec::with_capacity(declarations.len() + 2);
     variables.push(time_variable());
@@ -27,7 +32,27 @@ pub fn view<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
         let last = table.iter().map(|v| v.value_reference).max().unwrap_or(0);
         variables.push(event_indicator_variable(last + 1, n_indicators));
     }
+    check_state_order(table, &variables)?;
     Ok(Table3::new(variables))
+}
+
+/// The FMI 3.0 state vector (the derivative arrays' elements in description order)
+/// must be the model's state vector (the FMI 2.0 derivatives in value-reference order).
+fn check_state_order<M>(table: &[Variable<M>], variables: &[Variable3]) -> Result<(), String> {
+    let derivatives = derivative_variables(table);
+    let fmi2 = derivatives.iter().map(|v| v.value_reference);
+    let fmi3 = variables
+        .iter()
+        .filter(|v| v.derivative_of.is_some())
+        .flat_map(Variable3::elements);
+    if fmi2.eq(fmi3) {
+        Ok(())
+    } else {
+        Err(
+            "the derivative declarations do not list the states in value-reference order"
+                .to_string(),
+        )
+    }
 }
 
 fn variable3<M>(

@@ -175,14 +175,12 @@ struct ArrayView<M>(PhantomData<M>);
 struct ScalarView<M>(PhantomData<M>);
 
 /// The FMI 3.0 view (array or scalar-only) of model M's `table`: shared by the
-/// instances of a declared model ([`shared`]), built per instance otherwise.
+/// instances of the model in this library ([`shared`]).
 fn views<M: Model>(table: &[Variable<M>], scalar: bool) -> Result<Arc<Table3>, String> {
     let arrays = || view::<M>(table);
-    let scalars = || super::scalar::view(table, &arrays()?);
-    match (M::declarations().is_empty(), scalar) {
-        (true, false) => arrays().map(Arc::new),
-        (true, true) => scalars().map(Arc::new),
-        (false, false) => shared::<ArrayView<M>, Table3>(arrays),
-        (false, true) => shared::<ScalarView<M>, Table3>(scalars),
+    if scalar {
+        shared::<ScalarView<M>, Table3>(|| super::scalar::view(table, &arrays()?))
+    } else {
+        shared::<ArrayView<M>, Table3>(arrays)
     }
 }

@@ -2,7 +2,7 @@
 //! front-end (included by the FMI 2.0 and FMI 3.0 layer tests).
 
 use crate::support::test_info;
-use robofmu_fmi::core::{Log, Model, ModelInfo, StepOutcome, Variability, Variable};
+use robofmu_fmi::core::{Declaration, Log, Model, ModelInfo, StepOutcome, Variability};
 
 #[derive(Clone)]
 pub struct Panicky;
@@ -13,13 +13,13 @@ impl Model for Panicky {
     fn info() -> &'static ModelInfo {
         &PANICKY_INFO
     }
-    fn variables() -> Vec<Variable<Self>> {
-        vec![
-            Variable::real(1, "k", "a parameter", |_: &Panicky| 1.0)
+    fn declarations() -> &'static [Declaration<Self>] {
+        static VARIABLES: &[Declaration<Panicky>] =
+            &[Declaration::real("k", "a parameter", |_, _| 1.0)
                 .parameter(Variability::Fixed)
-                .start_real(1.0)
-                .set_real(|_, _| Ok(())),
-        ]
+                .start_real(&[1.0])
+                .set_real(|_, _, _| Ok(()))];
+        VARIABLES
     }
     fn new() -> Self {
         Panicky

@@ -43,9 +43,7 @@ pub unsafe fn get_directional_derivative<M: Model>(
                     return Err(format!("dvKnown contains {bad}"));
                 }
                 let evaluated = inst.core.update_values().and_then(|()| {
-                    let core = &inst.core;
-                    core.model()
-                        .directional_derivative(core.table(), unknowns, knowns, seeds, out)
+                    (inst.core).directional_derivative(unknowns, knowns, seeds, out)
                 });
                 let reason = match evaluated {
                     Ok(()) => match out.iter().find(|v| !v.is_finite()) {

@@ -50,15 +50,15 @@ fn evaluate<M: Model>(
     out: &mut [f64],
 ) -> Result<(), String> {
     inst.core.update_values()?;
-    let (model, table) = (inst.core.model(), inst.core.table());
+    let core = &inst.core;
     if !adjoint {
-        return model.directional_derivative(table, rows, columns, seed, out);
+        return core.directional_derivative(rows, columns, seed, out);
     }
     let mut unit = vec![0.0; columns.len()];
     let mut column = vec![0.0; rows.len()];
     for (k, o) in out.iter_mut().enumerate() {
         unit[k] = 1.0;
-        model.directional_derivative(table, rows, columns, &unit, &mut column)?;
+        core.directional_derivative(rows, columns, &unit, &mut column)?;
         unit[k] = 0.0;
         *o = column.iter().zip(seed).map(|(j, s)| j * s).sum();
     }

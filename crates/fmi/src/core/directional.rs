@@ -1,0 +1,31 @@
+//! Directional derivatives (fmi2GetDirectionalDerivative, fmi3GetDirectionalDerivative,
+//! fmi3GetAdjointDerivative), independent of the standard: the value references become
+//! declared [`Element`]s before the model is asked, so the model decodes none.
+
+use super::hooks::Element;
+use super::instance::{Instance, variable};
+use super::model::Model;
+use super::variables::Variable;
+
+impl<M: Model> Instance<M> {
+    /// dvUnknown = J dvKnown at the current point for the table scalars `unknowns` and
+    /// `knowns` ([`Model::directional_derivative`]); the computed values must be
+    /// current.
+    pub fn directional_derivative(
+        &self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        seed: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), String> {
+        let (unknowns, knowns) = (self.elements(unknowns)?, self.elements(knowns)?);
+        self.model()
+            .directional_derivative(&unknowns, &knowns, seed, out)
+    }
+
+    fn elements(&self, vrs: &[u32]) -> Result<Vec<Element>, String> {
+        vrs.iter()
+            .map(|&vr| variable(self.table(), vr).map(Variable::element))
+            .collect()
+    }
+}
