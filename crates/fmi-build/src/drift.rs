@@ -1,29 +1,35 @@
-//! The drift check of an FMU crate: the three checked-in descriptions of model M,
-//! `modelDescription/<modelName>.xml` (FMI 2.0),
-//! `modelDescription/fmi3/<modelName>.xml` (FMI 3.0) and
-//! `modelDescription/fmi3-scalar/<modelName>.xml` (FMI 3.0, scalars only), must equal
-//! what the code generates. With the environment variable UPDATE_MODEL_DESCRIPTION set,
-//! the files are rewritten first.
+//! The drift check: the three checked-in descriptions of an FMU,
+//! `<dir>/<modelName>.xml` (FMI 2.0), `<dir>/fmi3/<modelName>.xml` (FMI 3.0) and
+//! `<dir>/fmi3-scalar/<modelName>.xml` (FMI 3.0, scalars only), must equal what its
+//! [`Description`] generates; the workspace packager runs it (`--check`) and rewrites
+//! them (`--update`).
 
-use robofmu_fmi::core::model::Model;
-use std::path::Path;
+use crate::package::Variant;
+use robofmu_fmi::description::Description;
+use std::path::{Path, PathBuf};
 
-/// Checks the three descriptions of M for the FMU crate at `manifest_dir` (its
-/// `CARGO_MANIFEST_DIR`, two levels below the workspace root); the error names every
-/// file that drifted.
-pub fn check_checked_in<M: Model>(manifest_dir: &str) -> Result<(), String> {
-    let dir = Path::new(manifest_dir).join("../../modelDescription");
-    let errors: Vec<String> = [
-        crate::fmi2::check_checked_in::<M>(&dir),
-        crate::fmi3::check_checked_in::<M>(&dir.join("fmi3")),
-        crate::fmi3::check_scalar_checked_in::<M>(&dir.join("fmi3-scalar")),
-    ]
-    .into_iter()
-    .filter_map(Result::err)
-    .collect();
-    if errors.is_empty() {
-        Ok(())
-    } else {
-        Err(errors.join("; "))
+/// The checked-in description files of `d` under `dir` that differ from the generated
+/// ones (a missing file differs).
+pub fn drifted(d: &Description, dir: &Path) -> Result<Vec<PathBuf>, String> {
+    let mut drifted = Vec::new();
+    for variant in Variant::ALL {
+        let path = variant.description_path(dir, d);
+        if std::fs::read_to_string(&path).ok() != Some(variant.model_description(d)?) {
+            drifted.push(path);
+        }
     }
+    Ok(drifted)
+}
+
+/// Writes the three descriptions of `d` under `dir`; the paths written.
+pub fn update(d: &Description, dir: &Path) -> Result<Vec<PathBuf>, String> {
+    let mut written = Vec::new();
+    for variant in Variant::ALL {
+        let path = variant.description_path(dir, d);
+        crate::package::create_parent(&path)?;
+        std::fs::write(&path, variant.model_description(d)?)
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        written.push(path);
+    }
+    Ok(written)
 }

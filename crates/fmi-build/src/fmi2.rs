@@ -1,78 +1,13 @@
-//! modelDescription.xml generated from a model's `ModelInfo` and variable table.
+//! modelDescription.xml of FMI 2.0, generated from a model's [`Description`]: its
+//! `ModelInfo` and FMI 2.0 scalars (`<ScalarVariable>`), and the ModelStructure
+//! (`<Outputs>`, `<Derivatives>`, `<InitialUnknowns>` with their dependencies as
+//! 1-based indices). The root element and what both standards share: [`common`].
 
-use crate::common::{
-    self, DefaultExperiment, GENERATION_TOOL, LogCategories, UnitDefinitions, number,
-};
-use robofmu_fmi::core::check::check_table;
-use robofmu_fmi::core::frontend::log_categories;
-use robofmu_fmi::core::model::Model;
-use robofmu_fmi::core::variables::{Causality, Initial, Kind, Variable, derivative_variables};
-use robofmu_fmi::fmi2::mode::Fmi2;
+use crate::common::{self, Attributes, ModelDescription, Parts, Standard};
+use crate::variable::{TypeAttributes, VariableHead};
+use robofmu_fmi::core::variables::{Causality, Initial};
+use robofmu_fmi::description::{Description, Scalar, Value};
 use serde::Serialize;
-
-#[derive(Serialize)]
-#[serde(rename = "fmiModelDescription")]
-struct ModelDescription {
-    #[serde(rename = "@fmiVersion")]
-    fmi_version: &'static str,
-    #[serde(rename = "@modelName")]
-    model_name: &'static str,
-    #[serde(rename = "@guid")]
-    guid: &'static str,
-    #[serde(rename = "@description")]
-    description: &'static str,
-    #[serde(rename = "@generationTool")]
-    generation_tool: &'static str,
-    #[serde(rename = "@variableNamingConvention")]
-    naming: &'static str,
-    #[serde(rename = "@numberOfEventIndicators")]
-    event_indicators: usize,
-    #[serde(rename = "ModelExchange")]
-    model_exchange: Interface,
-    #[serde(rename = "CoSimulation")]
-    co_simulation: Interface,
-    #[serde(rename = "UnitDefinitions", skip_serializing_if = "Option::is_none")]
-    unit_definitions: Option<UnitDefinitions>,
-    #[serde(rename = "LogCategories")]
-    log_categories: LogCategories,
-    #[serde(rename = "DefaultExperiment")]
-    default_experiment: DefaultExperiment,
-    #[serde(rename = "ModelVariables")]
-    model_variables: ModelVariables,
-    #[serde(rename = "ModelStructure")]
-    model_structure: ModelStructure,
-}
-
-/// Attributes of <ModelExchange> and <CoSimulation>; `None` ones are left out.
-#[derive(Serialize)]
-struct Interface {
-    #[serde(rename = "@modelIdentifier")]
-    model_identifier: &'static str,
-    #[serde(
-        rename = "@canHandleVariableCommunicationStepSize",
-        skip_serializing_if = "Option::is_none"
-    )]
-    variable_step: Option<bool>,
-    /// Co-Simulation only: the step uses the inputs' derivatives
-    /// (`Model::MAX_INPUT_DERIVATIVE_ORDER` > 0).
-    #[serde(
-        rename = "@canInterpolateInputs",
-        skip_serializing_if = "Option::is_none"
-    )]
-    interpolate_inputs: Option<bool>,
-    #[serde(rename = "@canGetAndSetFMUstate")]
-    get_set_state: bool,
-    #[serde(rename = "@canSerializeFMUstate")]
-    serialize_state: bool,
-    #[serde(rename = "@providesDirectionalDerivative")]
-    directional_derivative: bool,
-    /// Co-Simulation only, and only when the model provides output derivatives.
-    #[serde(
-        rename = "@maxOutputDerivativeOrder",
-        skip_serializing_if = "Option::is_none"
-    )]
-    max_output_derivative_order: Option<u32>,
-}
 
 #[derive(Serialize)]
 struct ModelVariables {
@@ -82,59 +17,20 @@ struct ModelVariables {
 
 #[derive(Serialize)]
 struct ScalarVariable {
-    #[serde(rename = "@name")]
-    name: String,
-    #[serde(rename = "@valueReference")]
-    value_reference: u32,
-    #[serde(rename = "@description")]
-    description: String,
-    #[serde(rename = "@causality")]
-    causality: &'static str,
-    #[serde(rename = "@variability")]
-    variability: &'static str,
+    #[serde(flatten)]
+    head: VariableHead,
     #[serde(rename = "@initial", skip_serializing_if = "Option::is_none")]
     initial: Option<&'static str>,
     #[serde(rename = "$value")]
     kind: TypeElement,
 }
 
+/// The type element, named after the type.
 #[derive(Serialize)]
 enum TypeElement {
-    Real(RealAttributes),
-    Integer(IntegerAttributes),
-    Boolean(BooleanAttributes),
-}
-
-#[derive(Serialize)]
-struct RealAttributes {
-    #[serde(rename = "@unit", skip_serializing_if = "Option::is_none")]
-    unit: Option<&'static str>,
-    #[serde(rename = "@displayUnit", skip_serializing_if = "Option::is_none")]
-    display_unit: Option<&'static str>,
-    #[serde(rename = "@min", skip_serializing_if = "Option::is_none")]
-    min: Option<String>,
-    #[serde(rename = "@max", skip_serializing_if = "Option::is_none")]
-    max: Option<String>,
-    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
-    start: Option<String>,
-    #[serde(rename = "@derivative", skip_serializing_if = "Option::is_none")]
-    derivative: Option<usize>,
-}
-
-#[derive(Serialize)]
-struct IntegerAttributes {
-    #[serde(rename = "@min", skip_serializing_if = "Option::is_none")]
-    min: Option<i32>,
-    #[serde(rename = "@max", skip_serializing_if = "Option::is_none")]
-    max: Option<i32>,
-    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
-    start: Option<i32>,
-}
-
-#[derive(Serialize)]
-struct BooleanAttributes {
-    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
-    start: Option<bool>,
+    Real(TypeAttributes),
+    Integer(TypeAttributes),
+    Boolean(TypeAttributes),
 }
 
 #[derive(Serialize)]
@@ -167,20 +63,20 @@ fn unknown_list(unknowns: Vec<Unknown>) -> Option<UnknownList> {
     (!unknowns.is_empty()).then_some(UnknownList { unknowns })
 }
 
+/// The 1-based index of the scalar `name` in `table`.
+fn index_of(table: &[Scalar], name: &str) -> Option<usize> {
+    table.iter().position(|s| s.name == name).map(|i| i + 1)
+}
+
 /// The unknown `v` with its declared dependencies as ascending 1-based indices.
-fn with_dependencies<M>(v: &Variable<M>, table: &[Variable<M>]) -> Unknown {
+fn with_dependencies(v: &Scalar, table: &[Scalar]) -> Unknown {
     unknown(v, v.dependencies, table)
 }
 
 /// The unknown `v` with the knowns `names` as ascending 1-based indices (None: all).
-fn unknown<M>(
-    v: &Variable<M>,
-    names: Option<&'static [&'static str]>,
-    table: &[Variable<M>],
-) -> Unknown {
-    let index_of = |name: &str| table.iter().position(|s| s.name() == name).map(|i| i + 1);
+fn unknown(v: &Scalar, names: Option<&'static [&'static str]>, table: &[Scalar]) -> Unknown {
     let dependencies = names.map(|names| {
-        let mut indices: Vec<usize> = names.iter().filter_map(|n| index_of(n)).collect();
+        let mut indices: Vec<usize> = names.iter().filter_map(|n| index_of(table, n)).collect();
         indices.sort_unstable();
         indices.dedup();
         indices
@@ -190,56 +86,67 @@ fn unknown<M>(
             .join(" ")
     });
     Unknown {
-        index: index_of(&v.name()).unwrap_or(0),
+        index: index_of(table, &v.name).unwrap_or(0),
         dependencies,
     }
 }
 
-fn scalar_variable<M>(v: &Variable<M>, table: &[Variable<M>]) -> ScalarVariable {
-    let index_of = |name: &str| table.iter().position(|s| s.name() == name).map(|i| i + 1);
-    let kind = match &v.kind {
-        Kind::Real {
-            start,
-            min,
-            max,
-            unit,
-            display_unit,
-            ..
-        } => TypeElement::Real(RealAttributes {
-            unit: *unit,
-            display_unit: *display_unit,
-            min: min.map(number),
-            max: max.map(number),
-            start: start.map(number),
-            derivative: v.state_name().as_deref().and_then(index_of),
-        }),
-        Kind::Integer {
-            start, min, max, ..
-        } => TypeElement::Integer(IntegerAttributes {
-            min: *min,
-            max: *max,
-            start: *start,
-        }),
-        Kind::Boolean { start, .. } => TypeElement::Boolean(BooleanAttributes { start: *start }),
+fn scalar_variable(v: &Scalar, table: &[Scalar]) -> ScalarVariable {
+    let attributes = TypeAttributes {
+        start: crate::variable::start(&v.value),
+        derivative: (v.state.as_deref())
+            .and_then(|s| index_of(table, s))
+            .map(|i| i as u32),
+        ..TypeAttributes::of(&v.value)
+    };
+    let kind = match v.value {
+        Value::Real { .. } => TypeElement::Real(attributes),
+        Value::Integer { .. } => TypeElement::Integer(attributes),
+        Value::Boolean { .. } => TypeElement::Boolean(attributes),
     };
     ScalarVariable {
-        name: v.name().into_owned(),
-        value_reference: v.value_reference,
-        description: v.description().into_owned(),
-        causality: v.causality.as_str(),
-        variability: v.variability.as_str(),
+        head: VariableHead::new(
+            v.name.clone(),
+            v.value_reference,
+            v.description.clone(),
+            (v.causality, v.variability),
+        ),
         initial: v.initial.map(Initial::as_str),
         kind,
     }
 }
 
-/// The text of modelDescription.xml for model M.
-pub fn model_description<M: Model>() -> Result<String, String> {
-    let info = M::info();
-    let sorted = robofmu_fmi::core::instance::sorted_table::<M>()?;
-    let table = &sorted[..];
-    check_table(table)?;
-    let derivatives = derivative_variables(table);
+/// `<ModelExchange>` and `<CoSimulation>`.
+fn interfaces(d: &Description) -> (Attributes, Attributes) {
+    let info = &d.info;
+    let identified = || Attributes::default().with("modelIdentifier", info.model_identifier);
+    let capabilities = |a: Attributes| {
+        a.with("canGetAndSetFMUstate", true)
+            .with("canSerializeFMUstate", true)
+            .with(
+                "providesDirectionalDerivative",
+                info.provides_directional_derivative,
+            )
+    };
+    let co_simulation = identified()
+        .with("canHandleVariableCommunicationStepSize", true)
+        // The step uses the inputs' derivatives.
+        .with_some(
+            "canInterpolateInputs",
+            (d.max_input_derivative_order > 0).then_some(true),
+        );
+    let co_simulation = capabilities(co_simulation).with_some(
+        "maxOutputDerivativeOrder",
+        common::max_output_derivative_order(info),
+    );
+    (capabilities(identified()), co_simulation)
+}
+
+/// The text of the FMI 2.0 modelDescription.xml of `d`.
+pub fn model_description(d: &Description) -> Result<String, String> {
+    let info = &d.info;
+    let table = &d.scalars[..];
+    let derivatives: Vec<&Scalar> = table.iter().filter(|v| v.state.is_some()).collect();
     if derivatives.len() != info.number_of_continuous_states {
         return Err(format!(
             "{} derivative variables but {} continuous states",
@@ -265,36 +172,12 @@ pub fn model_description<M: Model>() -> Result<String, String> {
         })
         .map(|v| unknown(v, v.initial_dependencies, table))
         .collect();
-    let interface = |variable_step: Option<bool>| Interface {
-        model_identifier: info.model_identifier,
-        variable_step,
-        interpolate_inputs: None,
-        get_set_state: true,
-        serialize_state: true,
-        directional_derivative: info.provides_directional_derivative,
-        max_output_derivative_order: None,
-    };
-    let description = ModelDescription {
-        fmi_version: "2.0",
-        model_name: info.model_name,
-        guid: info.guid,
-        description: info.description,
-        generation_tool: GENERATION_TOOL,
-        naming: "structured",
-        event_indicators: info.number_of_event_indicators,
-        model_exchange: interface(None),
-        co_simulation: Interface {
-            interpolate_inputs: (M::MAX_INPUT_DERIVATIVE_ORDER > 0).then_some(true),
-            max_output_derivative_order: common::max_output_derivative_order(info),
-            ..interface(Some(true))
-        },
-        unit_definitions: UnitDefinitions::of(table)?,
-        log_categories: LogCategories::of(&log_categories::<Fmi2, M>()),
-        default_experiment: DefaultExperiment::of(&info.default_experiment),
-        model_variables: ModelVariables {
+    let parts = Parts {
+        interfaces: interfaces(d),
+        variables: ModelVariables {
             variables: table.iter().map(|v| scalar_variable(v, table)).collect(),
         },
-        model_structure: ModelStructure {
+        structure: ModelStructure {
             outputs: unknown_list(outputs),
             derivatives: unknown_list(
                 derivatives
@@ -305,14 +188,7 @@ pub fn model_description<M: Model>() -> Result<String, String> {
             initial_unknowns: unknown_list(initial_unknowns),
         },
     };
-    common::xml_document(&description)
-}
-
-/// The drift check of an FMU crate: the checked-in `<dir>/<modelName>.xml` must equal
-/// what the code generates. With the environment variable UPDATE_MODEL_DESCRIPTION
-/// set, the file is rewritten first.
-pub fn check_checked_in<M: Model>(dir: &std::path::Path) -> Result<(), String> {
-    common::check_checked_in::<M>(dir, &model_description::<M>()?)
+    ModelDescription::write(d, Standard::Fmi2, parts)
 }
 
 /// Number of `<Unknown>` entries in one ModelStructure section (`Outputs`,

@@ -1,15 +1,16 @@
-//! robofmu-fmi-build: what turns a model of the runtime layer
-//! ([`robofmu_fmi`]) into files, at build time only. An FMU's cdylib never links it.
+//! robofmu-fmi-build: what turns the [`Description`](robofmu_fmi::description::Description)
+//! an FMU's cdylib gives of itself into files, at build time only. An FMU's cdylib
+//! never links it; the workspace packager (`crates/packager`) does.
 //!
-//! - [`fmi2::model_description`] and [`fmi3::model_description`]: modelDescription.xml
-//!   of each standard from the model's `ModelInfo` and variable table, with the parts
-//!   both share in [`common`] (units from [`units`], log categories, default experiment),
-//!   (and [`fmi3::scalar_model_description`], the scalar-only FMI 3.0 variant),
-//!   and [`drift::check_checked_in`], the drift test of the checked-in descriptions;
+//! - [`fmi2::model_description`], [`fmi3::model_description`] and
+//!   [`fmi3::scalar_model_description`]: modelDescription.xml of each standard (and
+//!   of the scalar-only FMI 3.0 variant), with what both write alike in [`common`]
+//!   (the root element), [`variable`] (a variable's attributes) and [`sections`]
+//!   (units from [`units`], log categories, default experiment);
 //! - documentation/index.html from [`documentation`];
-//! - [`package`]: the FMU archive and the packager entry point an FMU crate's
-//!   `examples/package.rs` calls ([`package::packager_main`]), with the platform
-//!   folder names of [`platform`].
+//! - [`package`]: the three FMU archives of a model ([`package::Variant`]), with the
+//!   platform folder names of [`platform`];
+//! - [`drift`]: the check of the checked-in descriptions, and their regeneration.
 
 pub mod common;
 pub mod documentation;
@@ -18,4 +19,6 @@ pub mod fmi2;
 pub mod fmi3;
 pub mod package;
 pub mod platform;
+pub mod sections;
 pub mod units;
+pub mod variable;

@@ -31,105 +31,45 @@ const fn base(kg: i32, m: i32, s: i32, rad: i32) -> BaseUnit {
     BaseUnit { kg, m, s, rad }
 }
 
+const fn def(
+    name: &'static str,
+    base: BaseUnit,
+    display_units: &'static [DisplayUnit],
+) -> UnitDefinition {
+    UnitDefinition {
+        name,
+        base,
+        display_units,
+    }
+}
+
+const fn display(name: &'static str, factor: f64) -> DisplayUnit {
+    DisplayUnit { name, factor }
+}
+
 /// Every unit a model may use.
 pub const UNITS: &[UnitDefinition] = &[
-    UnitDefinition {
-        name: "s",
-        base: base(0, 0, 1, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "rad",
-        base: base(0, 0, 0, 1),
-        display_units: &[DisplayUnit {
-            name: "deg",
-            factor: DEG_PER_RAD,
-        }],
-    },
-    UnitDefinition {
-        name: "rad/s",
-        base: base(0, 0, -1, 1),
-        display_units: &[DisplayUnit {
-            name: "deg/s",
-            factor: DEG_PER_RAD,
-        }],
-    },
-    UnitDefinition {
-        name: "rad/s2",
-        base: base(0, 0, -2, 1),
-        display_units: &[DisplayUnit {
-            name: "deg/s2",
-            factor: DEG_PER_RAD,
-        }],
-    },
-    UnitDefinition {
-        name: "m",
-        base: base(0, 1, 0, 0),
-        display_units: &[DisplayUnit {
-            name: "mm",
-            factor: 1000.0,
-        }],
-    },
-    UnitDefinition {
-        name: "m/s",
-        base: base(0, 1, -1, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "m/s2",
-        base: base(0, 1, -2, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "kg",
-        base: base(1, 0, 0, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "kg.m2",
-        base: base(1, 2, 0, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "N",
-        base: base(1, 1, -2, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "N.m",
-        base: base(1, 2, -2, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "m3",
-        base: base(0, 3, 0, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "J",
-        base: base(1, 2, -2, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "N/m",
-        base: base(1, 0, -2, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "N.s/m",
-        base: base(1, 0, -1, 0),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "N.m.s/rad",
-        base: base(1, 2, -1, -1),
-        display_units: &[],
-    },
-    UnitDefinition {
-        name: "1/s",
-        base: base(0, 0, -1, 0),
-        display_units: &[],
-    },
+    def("s", base(0, 0, 1, 0), &[]),
+    def("rad", base(0, 0, 0, 1), &[display("deg", DEG_PER_RAD)]),
+    def("rad/s", base(0, 0, -1, 1), &[display("deg/s", DEG_PER_RAD)]),
+    def(
+        "rad/s2",
+        base(0, 0, -2, 1),
+        &[display("deg/s2", DEG_PER_RAD)],
+    ),
+    def("m", base(0, 1, 0, 0), &[display("mm", 1000.0)]),
+    def("m/s", base(0, 1, -1, 0), &[]),
+    def("m/s2", base(0, 1, -2, 0), &[]),
+    def("kg", base(1, 0, 0, 0), &[]),
+    def("kg.m2", base(1, 2, 0, 0), &[]),
+    def("N", base(1, 1, -2, 0), &[]),
+    def("N.m", base(1, 2, -2, 0), &[]),
+    def("m3", base(0, 3, 0, 0), &[]),
+    def("J", base(1, 2, -2, 0), &[]),
+    def("N/m", base(1, 0, -2, 0), &[]),
+    def("N.s/m", base(1, 0, -1, 0), &[]),
+    def("N.m.s/rad", base(1, 2, -1, -1), &[]),
+    def("1/s", base(0, 0, -1, 0), &[]),
 ];
 
 /// The definition of a unit by name.

@@ -329,6 +329,63 @@ fn a_model_that_takes_no_input_derivatives_refuses_them_naming_itself() {
         "fmi2SetRealInputDerivatives: Doubler takes no input derivatives (its inputs are \
          held over a step)"
     );
-    let xml = robofmu_fmi_build::fmi2::model_description::<Doubler>().unwrap();
+    let d = robofmu_fmi::description::describe::<Doubler>().unwrap();
+    let xml = robofmu_fmi_build::fmi2::model_description(&d).unwrap();
     assert!(!xml.contains("canInterpolateInputs"), "{xml}");
+}
+
+/// The header `export_fmu!` exports for Doubler, as the packager reads it.
+fn header() -> robofmu_fmi::description::Header {
+    robofmu_fmi::description::Header::of::<Doubler>()
+}
+
+#[test]
+fn the_description_header_lends_the_description_of_its_own_build() {
+    // Expected: the header of this build passes its own check and lends Doubler's
+    // ModelInfo (the static the model declares) and its scalars by value reference.
+    let lend = header().check().unwrap();
+    let mut seen = None;
+    lend(&mut |d| {
+        let d = d.unwrap();
+        let names: Vec<&str> = d.scalars.iter().map(|s| s.name.as_str()).collect();
+        seen = Some((d.info.model_name, names.len()));
+    });
+    let table = robofmu_fmi::core::instance::sorted_table::<Doubler>().unwrap();
+    assert_eq!(seen, Some((Doubler::info().model_name, table.len())));
+}
+
+#[test]
+fn the_description_header_refuses_another_layer_build_naming_the_fix() {
+    // Expected: a header from another layer version, another build (fingerprint) or
+    // no header at all is refused before its Rust function is called.
+    let mut other_version = header();
+    other_version.layer_version = [0; 32];
+    other_version.layer_version[..5].copy_from_slice(b"0.0.9");
+    let e = other_version.check().err().unwrap();
+    assert!(
+        e.starts_with("built with FMI layer 0.0.9 but the packager has "),
+        "{e}"
+    );
+    assert!(e.ends_with("rebuild both with one `cargo build --release --workspace`"));
+    extern "C" fn another_build() -> u64 {
+        7
+    }
+    let other_build = robofmu_fmi::description::Header {
+        fingerprint: another_build,
+        ..header()
+    };
+    let e = other_build.check().err().unwrap();
+    assert!(
+        e.starts_with("built from other sources or by another build of the FMI layer"),
+        "{e}"
+    );
+    let not_a_header = robofmu_fmi::description::Header {
+        magic: *b"notours\0",
+        ..header()
+    };
+    let e = not_a_header.check().err().unwrap();
+    assert_eq!(
+        e,
+        "robofmu_fmu_description is not a robofmu description header"
+    );
 }

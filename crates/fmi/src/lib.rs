@@ -28,6 +28,7 @@
 //! [`ffi`] (checked reads of the host's pointers).
 
 pub mod core;
+pub mod description;
 pub mod ffi;
 pub mod fmi2;
 pub mod fmi3;
@@ -135,12 +136,22 @@ pub mod prelude {
 }
 
 /// Exports one model as an FMU of both standards: the FMI 2.0 functions
-/// ([`export_fmi2!`]) and the FMI 3.0 functions ([`export_fmi3!`]) from one cdylib.
+/// ([`export_fmi2!`]) and the FMI 3.0 functions ([`export_fmi3!`]) from one cdylib,
+/// and the symbol `robofmu_fmu_description` through which the workspace packager
+/// reads the model's [`Description`](description::Description) (see [`description`]).
 /// Call it once per FMU crate, at the crate root: `robofmu_fmi::export_fmu!(Planner);`.
 #[macro_export]
 macro_rules! export_fmu {
     ($model:ty) => {
         $crate::export_fmi2!($model);
         $crate::export_fmi3!($model);
+
+        /// The FMU's description header, for the workspace packager (not an FMI function).
+        #[unsafe(no_mangle)]
+        pub extern "C" fn robofmu_fmu_description() -> *const $crate::description::Header {
+            static HEADER: $crate::description::Header =
+                $crate::description::Header::of::<$model>();
+            &HEADER
+        }
     };
 }

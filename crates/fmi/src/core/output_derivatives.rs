@@ -6,7 +6,6 @@
 use super::instance::{Instance, variable};
 use super::model::{Model, OutputDerivativeError};
 use super::variables::{Causality, VariableType};
-use std::borrow::Cow;
 
 /// The derivative of order `order` of the table element `vr` (FMI 2.0 value reference).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -15,9 +14,9 @@ pub struct Request {
     pub order: i32,
 }
 
-/// The name of the requested variable once it is checked to be a Real output, and the
-/// order once it is checked to be within 1 ..= maxOutputDerivativeOrder.
-fn check<M: Model>(inst: &Instance<M>, r: Request) -> Result<(Cow<'_, str>, u32), String> {
+/// The order once the requested variable is checked to be a Real output and the order
+/// to be within 1 ..= maxOutputDerivativeOrder (names are formatted only for a refusal).
+fn check<M: Model>(inst: &Instance<M>, r: Request) -> Result<u32, String> {
     let v = variable(inst.table(), r.vr)?;
     if v.causality != Causality::Output || v.variable_type() != VariableType::Real {
         return Err(format!(
@@ -29,7 +28,7 @@ fn check<M: Model>(inst: &Instance<M>, r: Request) -> Result<(Cow<'_, str>, u32)
     }
     let max = M::info().max_output_derivative_order;
     match u32::try_from(r.order) {
-        Ok(order) if (1..=max).contains(&order) => Ok((v.name(), order)),
+        Ok(order) if (1..=max).contains(&order) => Ok(order),
         _ if max == 0 => Err(format!(
             "{} provides no output derivatives (maxOutputDerivativeOrder=\"0\"); \
              asked for order {} of \"{}\"",
@@ -83,9 +82,9 @@ fn evaluate<M: Model>(inst: &mut Instance<M>, requests: &[Request]) -> Result<Ve
         .map_err(|e| Refusal::Discard(format!("the outputs cannot be evaluated here: {e}")))?;
     let mut values = Vec::with_capacity(requests.len());
     for &r in requests {
-        let (name, order) = check(inst, r).map_err(Refusal::Error)?;
-        let what = format!("derivative of order {order} of \"{name}\"");
+        let order = check(inst, r).map_err(Refusal::Error)?;
         let v = variable(inst.table(), r.vr).map_err(Refusal::Error)?;
+        let what = || format!("derivative of order {order} of \"{}\"", v.name());
         let value = match v.output_hook() {
             Some(f) => f(inst.model(), v.index, order),
             None => Err(OutputDerivativeError::NotProvided(format!(
@@ -95,14 +94,14 @@ fn evaluate<M: Model>(inst: &mut Instance<M>, requests: &[Request]) -> Result<Ve
         }
         .map_err(|e| match e {
             OutputDerivativeError::NotProvided(why) => {
-                Refusal::Error(format!("{what} is not provided: {why}"))
+                Refusal::Error(format!("{} is not provided: {why}", what()))
             }
             OutputDerivativeError::CannotEvaluate(why) => {
-                Refusal::Discard(format!("{what} cannot be evaluated here: {why}"))
+                Refusal::Discard(format!("{} cannot be evaluated here: {why}", what()))
             }
         })?;
         if !value.is_finite() {
-            return Err(Refusal::Discard(format!("{what} evaluates to {value}")));
+            return Err(Refusal::Discard(format!("{} evaluates to {value}", what())));
         }
         values.push(value);
     }

@@ -1,0 +1,105 @@
+//! robofmu-packager: the one packager of the workspace. It finds every FMU crate
+//! under `fmus/` and the cdylib `cargo build --release --workspace` wrote for it
+//! beside this binary, reads the description the cdylib gives of itself (the symbol
+//! `robofmu_fmu_description` of `export_fmu!`), and
+//!
+//! - writes `<out>/<Model>.fmu` (FMI 2.0), `<out>/fmi3/<Model>.fmu` and
+//!   `<out>/fmi3-scalar/<Model>.fmu` (default out: `dist`);
+//! - with `--check`, compares every generated modelDescription with the checked-in
+//!   one under `modelDescription/` (exit 1 when one drifted);
+//! - with `--update`, rewrites the checked-in descriptions.
+//!
+//! Run it from the repository root. Errors: one line naming the file and the fix,
+//! exit 2.
+
+mod fmus;
+mod load;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+const USAGE: &str = "usage: robofmu-packager [--out DIR] | --check | --update \
+                     (from the repository root)";
+const DESCRIPTIONS: &str = "modelDescription";
+
+enum Command {
+    Package { out: PathBuf },
+    Check,
+    Update,
+}
+
+fn parse(args: &[String]) -> Result<Command, String> {
+    match args {
+        [] => Ok(Command::Package {
+            out: PathBuf::from("dist"),
+        }),
+        [flag, dir] if flag == "--out" => Ok(Command::Package {
+            out: PathBuf::from(dir),
+        }),
+        [flag] if flag == "--check" => Ok(Command::Check),
+        [flag] if flag == "--update" => Ok(Command::Update),
+        _ => Err(USAGE.to_string()),
+    }
+}
+
+/// What went wrong: a user error (exit 2) or drifted descriptions (exit 1).
+enum Failure {
+    User(String),
+    Drift(Vec<PathBuf>),
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure::User(e)) => {
+            eprintln!("robofmu-packager: {e}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Drift(paths)) => {
+            for path in paths {
+                eprintln!(
+                    "robofmu-packager: {}: drifted from the code; regenerate it with \
+                     `target/release/robofmu-packager --update` after \
+                     `cargo build --release --workspace`",
+                    path.display()
+                );
+            }
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn run(args: &[String]) -> Result<(), Failure> {
+    let command = parse(args).map_err(Failure::User)?;
+    let exe = std::env::current_exe()
+        .map_err(|e| Failure::User(format!("cannot locate this packager: {e}")))?;
+    let target_dir = exe.parent().unwrap_or(Path::new("."));
+    let crates = fmus::fmu_crates(Path::new("."), target_dir).map_err(Failure::User)?;
+    let mut drifted = Vec::new();
+    for fmu in &crates {
+        let descriptions = Path::new(DESCRIPTIONS);
+        let done = load::with_description(&fmu.library, |d| match &command {
+            Command::Package { out } => robofmu_fmi_build::package::package(d, &fmu.library, out),
+            Command::Check => robofmu_fmi_build::drift::drifted(d, descriptions).map(|paths| {
+                drifted.extend(paths);
+                Vec::new()
+            }),
+            Command::Update => robofmu_fmi_build::drift::update(d, descriptions),
+        })
+        .map_err(|e| Failure::User(format!("{e} (FMU crate {})", fmu.manifest.display())))?;
+        for path in done {
+            println!("wrote {}", path.display());
+        }
+    }
+    if !drifted.is_empty() {
+        return Err(Failure::Drift(drifted));
+    }
+    if let Command::Check = command {
+        println!(
+            "{} FMUs: every checked-in description matches the code",
+            crates.len()
+        );
+    }
+    Ok(())
+}
