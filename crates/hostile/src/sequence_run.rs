@@ -7,6 +7,7 @@
 
 use crate::Loaded;
 use crate::binary::{DISCARD, OK, Status, status_name};
+use crate::description::{Description, VarType, Variable};
 use crate::host::{Probed, take};
 use crate::rng::SplitMix64;
 use crate::standard_interface::{StandardInterface, Transition};
@@ -96,6 +97,31 @@ impl<I: StandardInterface> Run<'_, I> {
         Ok(())
     }
 
+    /// Err when a call that returned OK delivered a value that is not finite.
+    pub fn finite(&self, what: &str, s: Status, x: &[f64]) -> Result<(), String> {
+        match x.iter().position(|v| !v.is_finite()) {
+            Some(i) if s == OK => Err(format!("{what} returned OK with element {i} = {}", x[i])),
+            _ => Ok(()),
+        }
+    }
+
+    /// The state derivatives and the event indicators of model `d` (Model
+    /// Exchange): Discard accepted, finite when OK.
+    pub fn derivatives_and_indicators(&mut self, d: &Description) -> Result<(), String> {
+        let mut dx = vec![0.0; d.number_of_states];
+        let mut z = vec![0.0; d.number_of_event_indicators];
+        let (binary, handle) = I::raw(&self.inst);
+        let (_, derivatives, indicators) = I::me_evaluation(binary);
+        // SAFETY: arrays of the declared sizes.
+        let s = unsafe { derivatives(handle.into(), dx.as_mut_ptr(), dx.len()) };
+        let s = self.check(I::DERIVATIVES, s, true)?;
+        self.finite(I::DERIVATIVES, s, &dx)?;
+        let s = unsafe { indicators(handle.into(), z.as_mut_ptr(), z.len()) };
+        let what = format!("{}GetEventIndicators", I::PREFIX);
+        let s = self.check(&what, s, true)?;
+        self.finite(&what, s, &z)
+    }
+
     /// Advances the time of Model Exchange by a random step.
     pub fn advance_time(&mut self) -> Result<(), String> {
         self.time += self.rng.uniform(1e-4, 1e-2);
@@ -105,6 +131,17 @@ impl<I: StandardInterface> Run<'_, I> {
         self.check(&format!("{}SetTime", I::PREFIX), s, false)?;
         Ok(())
     }
+}
+
+/// A Real input of model `d` drawn with `rng` (None, and nothing drawn, when it
+/// has none).
+pub fn random_input<'d>(d: &'d Description, rng: &mut SplitMix64) -> Option<&'d Variable> {
+    let inputs: Vec<&Variable> = d
+        .variables
+        .iter()
+        .filter(|v| v.causality == "input" && v.var_type == VarType::Real)
+        .collect();
+    (!inputs.is_empty()).then(|| inputs[rng.below(inputs.len())])
 }
 
 /// Runs sequence `seed` of a standard, `label` naming it in failures: a model, an

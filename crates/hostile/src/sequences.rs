@@ -7,9 +7,9 @@
 
 use crate::Loaded;
 use crate::binary::{EventInfo, OK};
-use crate::description::{VarType, Variable};
+use crate::description::Variable;
 use crate::host::{Interface, State};
-use crate::sequence_run;
+use crate::sequence_run::{self, random_input};
 
 /// FMI 2.0 sequences run by default; ROBOFMU_HOSTILE_SEQUENCES overrides.
 pub const DEFAULT_SEQUENCES: usize = 30_000;
@@ -59,17 +59,9 @@ type Run<'a> = sequence_run::Run<'a, Interface>;
 
 impl Run<'_> {
     fn set_input(&mut self) -> Result<(), String> {
-        let inputs: Vec<&Variable> = self
-            .inst
-            .description
-            .variables
-            .iter()
-            .filter(|v| v.causality == "input" && v.var_type == VarType::Real)
-            .collect();
-        if inputs.is_empty() {
+        let Some(v) = random_input(self.inst.description, &mut self.rng) else {
             return Ok(());
-        }
-        let v = inputs[self.rng.below(inputs.len())];
+        };
         let scale = input_scale(v);
         let x = match pose_centre(&self.inst.description.model_name, v, 0) {
             Some(c) => c + self.rng.uniform(-POSE_REACH, POSE_REACH),
@@ -104,18 +96,11 @@ impl Run<'_> {
     fn evaluate(&mut self) -> Result<(), String> {
         let d = self.inst.description;
         let b = self.inst.binary;
-        let mut dx = vec![0.0; d.number_of_states];
-        let mut z = vec![0.0; d.number_of_event_indicators];
-        // SAFETY: arrays of the declared sizes.
-        let s = unsafe { (b.get_derivatives)(self.inst.c, dx.as_mut_ptr(), dx.len()) };
-        if self.check("fmi2GetDerivatives", s, true)? == OK && dx.iter().any(|v| !v.is_finite()) {
-            return Err("fmi2GetDerivatives returned fmi2OK with a non-finite value".into());
-        }
-        let s = unsafe { (b.get_event_indicators)(self.inst.c, z.as_mut_ptr(), z.len()) };
-        self.check("fmi2GetEventIndicators", s, true)?;
+        self.derivatives_and_indicators(d)?;
         if d.provides_directional_derivative && !d.state_derivative_pairs().is_empty() {
             let (x, der) = d.state_derivative_pairs()[self.rng.below(d.number_of_states)];
             let mut out = 0.0;
+            // SAFETY: one reference each, one seed and one output.
             let s = unsafe {
                 (b.get_directional_derivative)(self.inst.c, &der, 1, &x, 1, &1.0, &mut out)
             };

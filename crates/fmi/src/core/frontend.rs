@@ -57,16 +57,43 @@ macro_rules! modes {
 }
 pub(crate) use modes;
 
-/// Implements [`StatusCode`] for a standard's status enum (variants `Ok`, `Warning`,
-/// `Discard`, `Error`, `Fatal`).
+/// A standard's return status enum (`#[repr(C)]`, `Ok` = 0 .. `Fatal` = 4, then the
+/// standard's own codes such as FMI 2.0's `Pending = 5`), its [`StatusCode`] and its
+/// `name()` as the standard spells it (`$prefix` "fmi2": "fmi2OK", "fmi2Warning", ..).
 macro_rules! status_code {
-    ($status:ident) => {
+    ($(#[$doc:meta])* $status:ident, $prefix:literal $(, $extra:ident = $code:literal)*) => {
+        $(#[$doc])*
+        #[repr(C)]
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+        pub enum $status {
+            Ok = 0,
+            Warning = 1,
+            Discard = 2,
+            Error = 3,
+            Fatal = 4,
+            $($extra = $code,)*
+        }
+
         impl $crate::core::frontend::StatusCode for $status {
             const OK: Self = $status::Ok;
             const WARNING: Self = $status::Warning;
             const DISCARD: Self = $status::Discard;
             const ERROR: Self = $status::Error;
             const FATAL: Self = $status::Fatal;
+        }
+
+        impl $status {
+            /// The name the standard uses, for log lines.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $status::Ok => concat!($prefix, "OK"),
+                    $status::Warning => concat!($prefix, "Warning"),
+                    $status::Discard => concat!($prefix, "Discard"),
+                    $status::Error => concat!($prefix, "Error"),
+                    $status::Fatal => concat!($prefix, "Fatal"),
+                    $($status::$extra => concat!($prefix, stringify!($extra)),)*
+                }
+            }
         }
     };
 }

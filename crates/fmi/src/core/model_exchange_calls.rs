@@ -1,13 +1,15 @@
 //! The bodies of the Model Exchange functions that FMI 2.0 and FMI 3.0 define alike
 //! (entering Event Mode, updating discrete states, setting and reading the continuous
 //! state arrays): each front-end runs them inside its `with_instance` and writes the
-//! results into its own C types.
+//! results into its own C types. The getters of the four state arrays are whole entry
+//! points here ([`get_array`]): a front-end only names the function and its call.
 
-use super::entry::discard;
+use super::entry::{self, discard};
 use super::frontend::{FmuInstance, Frontend, StatusCode};
 use super::logging::Log;
 use super::model::{EventUpdate, Model};
 use crate::ffi::{input_slice, output_ref, output_slice};
+use std::ffi::c_void;
 
 type Result<F> = std::result::Result<<F as Frontend>::Status, String>;
 
@@ -95,6 +97,66 @@ pub unsafe fn set_continuous_states<F: Frontend, M: Model>(
     Ok(StatusCode::OK)
 }
 
+/// The arrays of Model Exchange that both standards read alike.
+#[derive(Clone, Copy, Debug)]
+pub enum StateArray {
+    Derivatives,
+    EventIndicators,
+    ContinuousStates,
+    Nominals,
+}
+
+impl StateArray {
+    /// The model's length of the array.
+    fn expected<M: Model>(self) -> usize {
+        match self {
+            StateArray::EventIndicators => indicators::<M>(),
+            _ => states::<M>(),
+        }
+    }
+
+    /// The array of model `m` into `out`.
+    fn compute<M: Model>(self, m: &M, out: &mut [f64]) -> std::result::Result<(), String> {
+        match self {
+            StateArray::Derivatives => m.derivatives(out),
+            StateArray::EventIndicators => m.event_indicators(out),
+            StateArray::ContinuousStates => {
+                m.continuous_states(out);
+                Ok(())
+            }
+            StateArray::Nominals => {
+                m.nominals_of_continuous_states(out);
+                Ok(())
+            }
+        }
+    }
+}
+
+/// GetDerivatives (FMI 3.0: GetContinuousStateDerivatives), GetEventIndicators,
+/// GetContinuousStates and GetNominalsOfContinuousStates of front-end F: `array` of
+/// the instance behind `c` into `ptr` (a model error or a non-finite value:
+/// Discard), as `function`, legal where `call` is.
+///
+/// # Safety
+/// `c` is a handle the FMU issued (or anything the registry refuses); `ptr` must be
+/// null or valid for `n` values.
+pub unsafe fn get_array<F: Frontend, M: Model>(
+    c: *mut c_void,
+    (function, call): (&str, F::Call),
+    array: StateArray,
+    ptr: *mut f64,
+    n: usize,
+) -> F::Status {
+    // SAFETY: by the contract above.
+    unsafe {
+        entry::with_instance::<F, M>(c, function, call, |inst| {
+            fill(inst, function, ptr, n, array.expected::<M>(), |m, out| {
+                array.compute(m, out)
+            })
+        })
+    }
+}
+
 /// Fills the output array `ptr` of the model's count `expected` with `f`. An error of
 /// the model (it cannot be evaluated here; an integrator may retry with a smaller
 /// step) is logged and returned as Discard, leaving the instance usable, and so is a
@@ -102,7 +164,7 @@ pub unsafe fn set_continuous_states<F: Frontend, M: Model>(
 ///
 /// # Safety
 /// `ptr` must be null or valid for `n` values.
-pub unsafe fn fill<F: Frontend, M: Model>(
+unsafe fn fill<F: Frontend, M: Model>(
     inst: &mut FmuInstance<F, M>,
     function: &str,
     ptr: *mut f64,
@@ -122,3 +184,19 @@ pub unsafe fn fill<F: Frontend, M: Model>(
     }
     Ok(StatusCode::OK)
 }
+
+/// Defines a front-end's getters of the state arrays, each an entry point of
+/// [`get_array`]: `fn_name: "fmiXFunctionName", the front-end's call, StateArray
+/// variant;` for front-end `$frontend` with its handle and status types.
+macro_rules! state_array_getters {
+    ($frontend:ty, $handle:ty, $status:ty; $($name:ident: $function:literal, $call:expr, $array:ident;)*) => {
+        $(
+            #[doc = concat!("`", $function, "`: [`get_array`](crate::core::model_exchange_calls::get_array).")]
+            pub unsafe fn $name<M: Model>(c: $handle, values: *mut f64, n: usize) -> $status {
+                use $crate::core::model_exchange_calls::{StateArray, get_array};
+                unsafe { get_array::<$frontend, M>(c, ($function, $call), StateArray::$array, values, n) }
+            }
+        )*
+    };
+}
+pub(crate) use state_array_getters;

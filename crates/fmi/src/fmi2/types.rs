@@ -19,33 +19,12 @@ pub type Fmi2Byte = c_char;
 pub const FMI2_TRUE: Fmi2Boolean = 1;
 pub const FMI2_FALSE: Fmi2Boolean = 0;
 
-/// Return status of every function.
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Fmi2Status {
-    Ok = 0,
-    Warning = 1,
-    Discard = 2,
-    Error = 3,
-    Fatal = 4,
-    Pending = 5,
-}
-
-status_code!(Fmi2Status);
-
-impl Fmi2Status {
-    /// The name the standard uses, for log lines.
-    pub fn name(self) -> &'static str {
-        match self {
-            Fmi2Status::Ok => "fmi2OK",
-            Fmi2Status::Warning => "fmi2Warning",
-            Fmi2Status::Discard => "fmi2Discard",
-            Fmi2Status::Error => "fmi2Error",
-            Fmi2Status::Fatal => "fmi2Fatal",
-            Fmi2Status::Pending => "fmi2Pending",
-        }
-    }
-}
+status_code!(
+    /// Return status of every function.
+    Fmi2Status,
+    "fmi2",
+    Pending = 5
+);
 
 /// fmi2Type as passed to fmi2Instantiate (received as a C int and checked).
 pub const FMI2_MODEL_EXCHANGE: c_int = 0;

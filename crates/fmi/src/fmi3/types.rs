@@ -36,31 +36,11 @@ pub fn fmi3_bool(value: bool) -> Fmi3Boolean {
     if value { FMI3_TRUE } else { FMI3_FALSE }
 }
 
-/// Return status of every function (FMI 3.0 has no Pending).
-#[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Fmi3Status {
-    Ok = 0,
-    Warning = 1,
-    Discard = 2,
-    Error = 3,
-    Fatal = 4,
-}
-
-status_code!(Fmi3Status);
-
-impl Fmi3Status {
-    /// The name the standard uses, for log lines.
-    pub fn name(self) -> &'static str {
-        match self {
-            Fmi3Status::Ok => "fmi3OK",
-            Fmi3Status::Warning => "fmi3Warning",
-            Fmi3Status::Discard => "fmi3Discard",
-            Fmi3Status::Error => "fmi3Error",
-            Fmi3Status::Fatal => "fmi3Fatal",
-        }
-    }
-}
+status_code!(
+    /// Return status of every function (FMI 3.0 has no Pending).
+    Fmi3Status,
+    "fmi3"
+);
 
 /// fmi3DependencyKind, written by fmi3GetVariableDependencies.
 #[repr(C)]

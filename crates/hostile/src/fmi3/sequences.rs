@@ -12,9 +12,9 @@
 
 use super::host::{Interface3, State3};
 use crate::Loaded;
-use crate::binary::{DISCARD, OK, Status};
+use crate::binary::DISCARD;
 use crate::description::{VarType, Variable};
-use crate::sequence_run;
+use crate::sequence_run::{self, random_input};
 use crate::sequences::{POSE_REACH, input_scale, pose_centre};
 
 /// FMI 3.0 sequences run by default: a third of the FMI 2.0 count, because one
@@ -36,28 +36,15 @@ fn legal_integers(v: &Variable) -> &'static [i32] {
 type Run<'a> = sequence_run::Run<'a, Interface3>;
 
 impl Run<'_> {
-    fn finite(&self, what: &str, s: Status, x: &[f64]) -> Result<(), String> {
-        match x.iter().position(|v| !v.is_finite()) {
-            Some(i) if s == OK => Err(format!("{what} returned OK with element {i} = {}", x[i])),
-            _ => Ok(()),
-        }
-    }
-
     fn set_input(&mut self) -> Result<(), String> {
-        let d = self.inst.description;
-        let inputs: Vec<&Variable> = d
-            .variables
-            .iter()
-            .filter(|v| v.causality == "input" && v.var_type == VarType::Real)
-            .collect();
-        if inputs.is_empty() {
+        let Some(v) = random_input(self.inst.description, &mut self.rng) else {
             return Ok(());
-        }
-        let v = inputs[self.rng.below(inputs.len())];
+        };
         // Now and then a force far beyond what the plant's stops hold back.
         let scale = input_scale(v) * if self.rng.below(8) == 0 { 100.0 } else { 1.0 };
+        let model = &self.inst.description.model_name;
         let x: Vec<f64> = (0..v.size)
-            .map(|i| match pose_centre(&d.model_name, v, i) {
+            .map(|i| match pose_centre(model, v, i) {
                 Some(c) => c + self.rng.uniform(-POSE_REACH, POSE_REACH),
                 None => self.rng.uniform(-scale, scale),
             })
@@ -94,16 +81,7 @@ impl Run<'_> {
     fn evaluate(&mut self) -> Result<(), String> {
         let d = self.inst.description;
         let b = self.inst.binary;
-        let mut dx = vec![0.0; d.number_of_states];
-        let mut z = vec![0.0; d.number_of_event_indicators];
-        // SAFETY: arrays of the declared sizes.
-        let s =
-            unsafe { (b.get_continuous_state_derivatives)(self.inst.c, dx.as_mut_ptr(), dx.len()) };
-        let s = self.check("fmi3GetContinuousStateDerivatives", s, true)?;
-        self.finite("fmi3GetContinuousStateDerivatives", s, &dx)?;
-        let s = unsafe { (b.get_event_indicators)(self.inst.c, z.as_mut_ptr(), z.len()) };
-        let s = self.check("fmi3GetEventIndicators", s, true)?;
-        self.finite("fmi3GetEventIndicators", s, &z)?;
+        self.derivatives_and_indicators(d)?;
         let pairs = d.state_derivative_pairs();
         if d.provides_directional_derivative && !pairs.is_empty() {
             let (x, der) = pairs[self.rng.below(pairs.len())];

@@ -14,6 +14,7 @@ pub mod orders;
 pub mod pointers;
 pub mod pose;
 pub mod references;
+pub mod same_named;
 pub mod seam;
 pub mod serialized;
 pub mod states;

@@ -10,6 +10,28 @@ use super::seam::{Row, Standard};
 use super::{Case, Expect};
 use crate::Loaded;
 use crate::description::Description;
+use crate::standard_interface::StandardInterface;
+
+/// The states in which the rows of both standards apply (`seam::Applies`).
+pub fn init<I: StandardInterface>(_: &Description, _: I) -> Option<I::State> {
+    Some(I::INITIALIZATION_MODE)
+}
+pub fn instantiated<I: StandardInterface>(_: &Description, _: I) -> Option<I::State> {
+    Some(I::INSTANTIATED)
+}
+pub fn me_continuous<I: StandardInterface>(_: &Description, i: I) -> Option<I::State> {
+    (i == I::MODEL_EXCHANGE).then_some(I::CONTINUOUS_TIME_MODE)
+}
+pub fn me_with_states<I: StandardInterface>(d: &Description, i: I) -> Option<I::State> {
+    (d.number_of_states > 0).then_some(me_continuous(d, i)?)
+}
+pub fn me_with_indicators<I: StandardInterface>(d: &Description, i: I) -> Option<I::State> {
+    (d.number_of_event_indicators > 0).then_some(me_continuous(d, i)?)
+}
+pub fn with_partials<I: StandardInterface>(d: &Description, _: I) -> Option<I::State> {
+    d.provides_directional_derivative
+        .then_some(I::INITIALIZATION_MODE)
+}
 
 /// One case per row of `table` that applies to the model and interface: the call
 /// with a null pointer in the state the row names, refused with an error and a

@@ -3,9 +3,9 @@
 use super::{output_ref, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
-use crate::core::model_exchange_calls::{self as calls, indicators, states};
+use crate::core::model_exchange_calls::{self as calls, state_array_getters};
 use crate::fmi2::instance::Instance;
-use crate::fmi2::mode::{Call, Mode};
+use crate::fmi2::mode::{Call, Fmi2, Mode};
 use crate::fmi2::types::*;
 
 fn fmi2_boolean(value: bool) -> Fmi2Boolean {
@@ -103,97 +103,11 @@ pub unsafe fn set_continuous_states<M: Model>(
     }
 }
 
-/// [`calls::fill`]: an output array of the model's count `expected` filled by `f`.
-unsafe fn fill<M: Model>(
-    c: Fmi2Component,
-    function: &str,
-    call: Call,
-    ptr: *mut Fmi2Real,
-    n: usize,
-    expected: fn() -> usize,
-    f: impl FnOnce(&M, &mut [f64]) -> Result<(), String>,
-) -> Fmi2Status {
-    unsafe {
-        with_instance::<M>(c, function, call, |inst| {
-            calls::fill(inst, function, ptr, n, expected(), f)
-        })
-    }
-}
-
-pub unsafe fn get_derivatives<M: Model>(
-    c: Fmi2Component,
-    dx: *mut Fmi2Real,
-    nx: usize,
-) -> Fmi2Status {
-    unsafe {
-        fill::<M>(
-            c,
-            "fmi2GetDerivatives",
-            Call::GetDerivatives,
-            dx,
-            nx,
-            states::<M>,
-            M::derivatives,
-        )
-    }
-}
-
-pub unsafe fn get_event_indicators<M: Model>(
-    c: Fmi2Component,
-    z: *mut Fmi2Real,
-    nz: usize,
-) -> Fmi2Status {
-    unsafe {
-        fill::<M>(
-            c,
-            "fmi2GetEventIndicators",
-            Call::GetEventIndicators,
-            z,
-            nz,
-            indicators::<M>,
-            M::event_indicators,
-        )
-    }
-}
-
-pub unsafe fn get_continuous_states<M: Model>(
-    c: Fmi2Component,
-    x: *mut Fmi2Real,
-    nx: usize,
-) -> Fmi2Status {
-    unsafe {
-        fill::<M>(
-            c,
-            "fmi2GetContinuousStates",
-            Call::GetContinuousStates,
-            x,
-            nx,
-            states::<M>,
-            |m, x| {
-                m.continuous_states(x);
-                Ok(())
-            },
-        )
-    }
-}
-
-pub unsafe fn get_nominals_of_continuous_states<M: Model>(
-    c: Fmi2Component,
-    x_nominal: *mut Fmi2Real,
-    nx: usize,
-) -> Fmi2Status {
-    unsafe {
-        fill::<M>(
-            c,
-            "fmi2GetNominalsOfContinuousStates",
-            Call::GetNominalsOfContinuousStates,
-            x_nominal,
-            nx,
-            states::<M>,
-            |m, x| {
-                m.nominals_of_continuous_states(x);
-                Ok(())
-            },
-        )
-    }
+state_array_getters! {
+    Fmi2, Fmi2Component, Fmi2Status;
+    get_derivatives: "fmi2GetDerivatives", Call::GetDerivatives, Derivatives;
+    get_event_indicators: "fmi2GetEventIndicators", Call::GetEventIndicators, EventIndicators;
+    get_continuous_states: "fmi2GetContinuousStates", Call::GetContinuousStates, ContinuousStates;
+    get_nominals_of_continuous_states: "fmi2GetNominalsOfContinuousStates",
+        Call::GetNominalsOfContinuousStates, Nominals;
 }

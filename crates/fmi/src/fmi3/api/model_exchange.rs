@@ -4,9 +4,9 @@
 use super::{output_ref, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
-use crate::core::model_exchange_calls::{self as calls, indicators, states};
+use crate::core::model_exchange_calls::{self as calls, indicators, state_array_getters, states};
 use crate::fmi3::instance::Instance;
-use crate::fmi3::mode::{Call, Mode};
+use crate::fmi3::mode::{Call, Fmi3, Mode};
 use crate::fmi3::types::*;
 
 /// The outputs of fmi3UpdateDiscreteStates.
@@ -102,87 +102,14 @@ pub unsafe fn set_continuous_states<M: Model>(
     }
 }
 
-/// [`calls::fill`]: an output array of the model's count `expected` filled by `f`.
-unsafe fn fill<M: Model>(
-    c: Fmi3Instance,
-    function: &str,
-    ptr: *mut Fmi3Float64,
-    n: usize,
-    expected: fn() -> usize,
-    f: impl FnOnce(&M, &mut [f64]) -> Result<(), String>,
-) -> Fmi3Status {
-    unsafe {
-        with_instance::<M>(c, function, Call::ContinuousStateQuery, |inst| {
-            calls::fill(inst, function, ptr, n, expected(), f)
-        })
-    }
-}
-
-pub unsafe fn get_continuous_state_derivatives<M: Model>(
-    c: Fmi3Instance,
-    dx: *mut Fmi3Float64,
-    nx: usize,
-) -> Fmi3Status {
-    unsafe {
-        fill::<M>(
-            c,
-            "fmi3GetContinuousStateDerivatives",
-            dx,
-            nx,
-            states::<M>,
-            M::derivatives,
-        )
-    }
-}
-
-pub unsafe fn get_event_indicators<M: Model>(
-    c: Fmi3Instance,
-    z: *mut Fmi3Float64,
-    nz: usize,
-) -> Fmi3Status {
-    unsafe {
-        fill::<M>(
-            c,
-            "fmi3GetEventIndicators",
-            z,
-            nz,
-            indicators::<M>,
-            M::event_indicators,
-        )
-    }
-}
-
-pub unsafe fn get_continuous_states<M: Model>(
-    c: Fmi3Instance,
-    x: *mut Fmi3Float64,
-    nx: usize,
-) -> Fmi3Status {
-    unsafe {
-        fill::<M>(c, "fmi3GetContinuousStates", x, nx, states::<M>, |m, x| {
-            m.continuous_states(x);
-            Ok(())
-        })
-    }
-}
-
-pub unsafe fn get_nominals_of_continuous_states<M: Model>(
-    c: Fmi3Instance,
-    nominals: *mut Fmi3Float64,
-    nx: usize,
-) -> Fmi3Status {
-    unsafe {
-        fill::<M>(
-            c,
-            "fmi3GetNominalsOfContinuousStates",
-            nominals,
-            nx,
-            states::<M>,
-            |m, n| {
-                m.nominals_of_continuous_states(n);
-                Ok(())
-            },
-        )
-    }
+state_array_getters! {
+    Fmi3, Fmi3Instance, Fmi3Status;
+    get_continuous_state_derivatives: "fmi3GetContinuousStateDerivatives",
+        Call::ContinuousStateQuery, Derivatives;
+    get_event_indicators: "fmi3GetEventIndicators", Call::ContinuousStateQuery, EventIndicators;
+    get_continuous_states: "fmi3GetContinuousStates", Call::ContinuousStateQuery, ContinuousStates;
+    get_nominals_of_continuous_states: "fmi3GetNominalsOfContinuousStates",
+        Call::ContinuousStateQuery, Nominals;
 }
 
 unsafe fn get_count<M: Model>(

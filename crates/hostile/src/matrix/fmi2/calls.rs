@@ -7,6 +7,7 @@
 use crate::binary::{EventInfo, FmuState, Vr};
 use crate::description::{Description, VarType};
 use crate::host::{Interface, State};
+use crate::matrix::same_named::fmu_state_call_rows;
 use std::ffi::c_int;
 
 /// Well-formed arguments for the calls on one model.
@@ -143,21 +144,7 @@ pub fn calls() -> Vec<Call> {
     add("fmi2SetBoolean", discrete, |b, c, a| unsafe {
         (b.set_boolean)(c, &a.bool_vr, 1, &0)
     });
-    add("fmi2GetFMUstate", everywhere, |b, c, _| unsafe {
-        let mut s: FmuState = std::ptr::null_mut();
-        let status = (b.get_fmu_state)(c, &mut s);
-        if !s.is_null() {
-            (b.free_fmu_state)(c, &mut s);
-        }
-        status
-    });
-    add("fmi2SetFMUstate", everywhere, |b, c, a| unsafe {
-        (b.set_fmu_state)(c, a.state)
-    });
-    add("fmi2SerializedFMUstateSize", everywhere, |b, c, a| unsafe {
-        let mut n = 0usize;
-        (b.serialized_size)(c, a.state, &mut n)
-    });
+    fmu_state_call_rows!(add, everywhere, "fmi2", "FMUstate");
     add("fmi2GetDirectionalDerivative", readable, |b, c, a| unsafe {
         let mut out = 0.0;
         (b.get_directional_derivative)(c, &a.partial.0, 1, &a.partial.1, 1, &1.0, &mut out)

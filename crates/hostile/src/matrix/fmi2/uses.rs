@@ -5,43 +5,19 @@
 use crate::binary::{OK, Status};
 use crate::description::{Description, Variable};
 use crate::host::{Instance, Interface};
+use crate::matrix::same_named::{fmu_state_use_rows, me_evaluation_rows};
 use crate::matrix::seam::{Evaluate, Use, Value};
 use crate::matrix::values::{discarded, me_evaluate};
 use std::ffi::c_char;
 
 pub fn state_uses() -> Vec<(&'static str, Use<Interface>)> {
-    vec![
-        ("fmi2SetFMUstate", |i, s| unsafe {
-            (i.binary.set_fmu_state)(i.c, s)
-        }),
-        ("fmi2FreeFMUstate", |i, s| {
-            let mut slot = s;
-            unsafe { (i.binary.free_fmu_state)(i.c, &mut slot) }
-        }),
-        ("fmi2SerializedFMUstateSize", |i, s| unsafe {
-            (i.binary.serialized_size)(i.c, s, &mut 0)
-        }),
-        ("fmi2SerializeFMUstate", |i, s| unsafe {
-            let mut bytes = vec![0 as c_char; 256];
-            (i.binary.serialize)(i.c, s, bytes.as_mut_ptr(), bytes.len())
-        }),
-        ("fmi2GetFMUstate(slot holding it)", |i, s| {
-            let mut slot = s;
-            unsafe { (i.binary.get_fmu_state)(i.c, &mut slot) }
-        }),
-    ]
+    fmu_state_use_rows!("fmi2", "FMUstate", c_char)
 }
 
 pub fn evaluations() -> Vec<(&'static str, Evaluate<Interface>)> {
-    vec![
-        ("fmi2GetDerivatives", |i: &Instance| unsafe {
-            let mut dx = vec![0.0; i.description.number_of_states];
-            (i.binary.get_derivatives)(i.c, dx.as_mut_ptr(), dx.len())
-        }),
-        ("fmi2GetEventIndicators", |i| unsafe {
-            let mut z = vec![0.0; i.description.number_of_event_indicators];
-            (i.binary.get_event_indicators)(i.c, z.as_mut_ptr(), z.len())
-        }),
+    let mut rows: Vec<(&'static str, Evaluate<Interface>)> =
+        me_evaluation_rows!("fmi2", "GetDerivatives", get_derivatives);
+    rows.extend::<[(&'static str, Evaluate<Interface>); 2]>([
         ("fmi2GetReal(thetaDot[1])", |i| {
             i.get_reals(&[i.description.by_name("thetaDot[1]").vr]).0
         }),
@@ -53,7 +29,8 @@ pub fn evaluations() -> Vec<(&'static str, Evaluate<Interface>)> {
                 (i.binary.get_directional_derivative)(i.c, &unknown, 1, &known, 1, &1.0, &mut 0.0)
             },
         ),
-    ]
+    ]);
+    rows
 }
 
 /// Whether element 1 of the continuous state is `theta[2]`.

@@ -10,6 +10,7 @@
 use crate::description::{Description, VarType, Variable};
 use crate::fmi3::binary::{FmuState, Vr};
 use crate::fmi3::host::{Interface3, State3};
+use crate::matrix::same_named::fmu_state_call_rows;
 
 /// A variable's reference and well-formed values for all its elements.
 #[derive(Clone, Debug)]
@@ -209,21 +210,7 @@ fn add_values(add: &mut impl FnMut(&'static str, Legal, Invoke)) {
 }
 
 fn add_states_and_derivatives(add: &mut impl FnMut(&'static str, Legal, Invoke)) {
-    add("fmi3GetFMUState", live, |b, c, _| unsafe {
-        let mut s: FmuState = std::ptr::null_mut();
-        let status = (b.get_fmu_state)(c, &mut s);
-        if !s.is_null() {
-            (b.free_fmu_state)(c, &mut s);
-        }
-        status
-    });
-    add("fmi3SetFMUState", live, |b, c, a| unsafe {
-        (b.set_fmu_state)(c, a.state)
-    });
-    add("fmi3SerializedFMUStateSize", live, |b, c, a| unsafe {
-        let mut n = 0usize;
-        (b.serialized_size)(c, a.state, &mut n)
-    });
+    fmu_state_call_rows!(add, live, "fmi3", "FMUState");
     add("fmi3SerializeFMUState", live, |b, c, a| unsafe {
         let mut n = 0usize;
         (b.serialized_size)(c, a.state, &mut n);

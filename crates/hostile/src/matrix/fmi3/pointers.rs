@@ -7,6 +7,10 @@ use crate::binary::Status;
 use crate::description::Description;
 use crate::fmi3::binary::{Binary3, FmuState, Instance3, Vr};
 use crate::fmi3::host::{Interface3, State3};
+use crate::matrix::pointers::{
+    init, instantiated, me_continuous, me_with_indicators, me_with_states, with_partials,
+};
+use crate::matrix::same_named::{fmu_state_null_rows, model_exchange_null_rows};
 use crate::matrix::seam;
 use std::ptr::{null, null_mut};
 
@@ -14,35 +18,15 @@ type Applies = seam::Applies<Interface3>;
 type Invoke = crate::standard_interface::Invoke<Interface3>;
 type Row = seam::Row<Interface3>;
 
-fn init(_: &Description, _: Interface3) -> Option<State3> {
-    Some(State3::InitializationMode)
-}
-fn instantiated(_: &Description, _: Interface3) -> Option<State3> {
-    Some(State3::Instantiated)
-}
 fn event(_: &Description, i: Interface3) -> Option<State3> {
     (i != Interface3::CoSimulation).then_some(State3::EventMode)
 }
 fn me_instantiated(_: &Description, i: Interface3) -> Option<State3> {
     i.is_me().then_some(State3::Instantiated)
 }
-fn me_continuous(_: &Description, i: Interface3) -> Option<State3> {
-    i.is_me().then_some(State3::ContinuousTimeMode)
-}
-fn me_with_states(d: &Description, i: Interface3) -> Option<State3> {
-    (d.number_of_states > 0).then_some(me_continuous(d, i)?)
-}
-fn me_with_indicators(d: &Description, i: Interface3) -> Option<State3> {
-    (d.number_of_event_indicators > 0).then_some(me_continuous(d, i)?)
-}
 fn cs_step(_: &Description, i: Interface3) -> Option<State3> {
     (!i.is_me()).then_some(State3::StepMode)
 }
-fn with_partials(d: &Description, _: Interface3) -> Option<State3> {
-    d.provides_directional_derivative
-        .then_some(State3::InitializationMode)
-}
-
 /// A variable with dependencies and their count (for fmi3GetVariableDependencies).
 unsafe fn dependent(b: &Binary3, c: Instance3, a: &Args) -> (Vr, usize) {
     let mut n = 0usize;
@@ -122,33 +106,43 @@ fn values_table() -> Vec<Row> {
     ]
 }
 
-/// fmi3GetVariableDependencies with array `k` (0..4) null and the right count.
-fn dependencies_row(k: usize) -> Row {
-    const NAMES: [&str; 4] = [
+/// The rows of fmi3GetVariableDependencies with one of its four arrays null.
+fn dependencies_table() -> Vec<Row> {
+    let names = [
         "fmi3GetVariableDependencies(elementIndicesOfDependent=null)",
         "fmi3GetVariableDependencies(independents=null)",
         "fmi3GetVariableDependencies(elementIndicesOfIndependents=null)",
         "fmi3GetVariableDependencies(dependencyKinds=null)",
     ];
     let invoke: [Invoke; 4] = [
-        |b, c, a| unsafe { dependencies_with_null(b, c, a, 0) },
-        |b, c, a| unsafe { dependencies_with_null(b, c, a, 1) },
-        |b, c, a| unsafe { dependencies_with_null(b, c, a, 2) },
-        |b, c, a| unsafe { dependencies_with_null(b, c, a, 3) },
+        dependencies_with_null::<0>,
+        dependencies_with_null::<1>,
+        dependencies_with_null::<2>,
+        dependencies_with_null::<3>,
     ];
-    (NAMES[k], with_dependencies, invoke[k])
+    rows(&names, with_dependencies, &invoke)
 }
 
-unsafe fn dependencies_with_null(b: &Binary3, c: Instance3, a: &Args, k: usize) -> Status {
+/// A row per name, all applying where `applies` says.
+fn rows(names: &[&'static str], applies: Applies, invoke: &[Invoke]) -> Vec<Row> {
+    names
+        .iter()
+        .zip(invoke)
+        .map(|(&n, &f)| (n, applies, f))
+        .collect()
+}
+
+/// fmi3GetVariableDependencies with array `K` (0..4) null and the right count.
+unsafe fn dependencies_with_null<const K: usize>(b: &Binary3, c: Instance3, a: &Args) -> Status {
     // SAFETY: arrays of the announced count, one of them replaced by null.
     unsafe {
         let (vr, n) = dependent(b, c, a);
         let (mut e, mut v, mut ei) = (vec![0usize; n], vec![0u32; n], vec![0usize; n]);
         let mut kinds = vec![0i32; n];
-        let e = if k == 0 { null_mut() } else { e.as_mut_ptr() };
-        let v = if k == 1 { null_mut() } else { v.as_mut_ptr() };
-        let ei = if k == 2 { null_mut() } else { ei.as_mut_ptr() };
-        let kinds = if k == 3 {
+        let e = if K == 0 { null_mut() } else { e.as_mut_ptr() };
+        let v = if K == 1 { null_mut() } else { v.as_mut_ptr() };
+        let ei = if K == 2 { null_mut() } else { ei.as_mut_ptr() };
+        let kinds = if K == 3 {
             null_mut()
         } else {
             kinds.as_mut_ptr()
@@ -158,73 +152,16 @@ unsafe fn dependencies_with_null(b: &Binary3, c: Instance3, a: &Args, k: usize) 
 }
 
 fn state_table() -> Vec<Row> {
-    vec![
-        ("fmi3GetFMUState(FMUState=null)", init, |b, c, _| unsafe {
-            (b.get_fmu_state)(c, null_mut())
-        }),
-        ("fmi3FreeFMUState(FMUState=null)", init, |b, c, _| unsafe {
-            (b.free_fmu_state)(c, null_mut())
-        }),
-        ("fmi3SetFMUState(FMUState=null)", init, |b, c, _| unsafe {
-            (b.set_fmu_state)(c, null_mut())
-        }),
-        (
-            "fmi3SerializedFMUStateSize(FMUState=null)",
-            init,
-            |b, c, _| unsafe { (b.serialized_size)(c, null_mut(), &mut 0) },
-        ),
-        (
-            "fmi3SerializedFMUStateSize(size=null)",
-            init,
-            |b, c, a| unsafe { (b.serialized_size)(c, a.state, null_mut()) },
-        ),
-        (
-            "fmi3SerializeFMUState(FMUState=null)",
-            init,
-            |b, c, _| unsafe {
-                let mut bytes = [0u8; 16];
-                (b.serialize)(c, null_mut(), bytes.as_mut_ptr(), 16)
-            },
-        ),
-        (
-            "fmi3SerializeFMUState(serializedState=null)",
-            init,
-            |b, c, a| unsafe {
-                let mut n = 0usize;
-                (b.serialized_size)(c, a.state, &mut n);
-                (b.serialize)(c, a.state, null_mut(), n)
-            },
-        ),
-        (
-            "fmi3DeserializeFMUState(serializedState=null, size=64)",
-            init,
-            |b, c, _| unsafe {
-                let mut s: FmuState = null_mut();
-                (b.deserialize)(c, null(), 64, &mut s)
-            },
-        ),
-        (
-            "fmi3DeserializeFMUState(FMUState=null)",
-            init,
-            |b, c, a| unsafe {
-                let mut n = 0usize;
-                (b.serialized_size)(c, a.state, &mut n);
-                let mut bytes = vec![0u8; n];
-                (b.serialize)(c, a.state, bytes.as_mut_ptr(), n);
-                (b.deserialize)(c, bytes.as_ptr(), n, null_mut())
-            },
-        ),
-    ]
+    fmu_state_null_rows!("fmi3", "FMUState", "Deserialize", u8, init::<Interface3>)
 }
 
-/// Directional (adjoint = false) or adjoint derivative with argument `k` null.
-unsafe fn derivative_with_null(
+/// Directional (ADJOINT = false) or adjoint derivative with argument `K` null.
+unsafe fn derivative_with_null<const ADJOINT: bool, const K: usize>(
     b: &Binary3,
     c: Instance3,
     a: &Args,
-    adjoint: bool,
-    k: usize,
 ) -> Status {
+    let (adjoint, k) = (ADJOINT, K);
     let (u, x) = &a.partial;
     let (n_seed, n_out) = if adjoint {
         (u.size, x.size)
@@ -256,70 +193,59 @@ unsafe fn derivative_with_null(
 }
 
 fn derivative_table() -> Vec<Row> {
-    vec![
-        (
-            "fmi3GetDirectionalDerivative(unknowns=null)",
-            with_partials,
-            |b, c, a| unsafe { derivative_with_null(b, c, a, false, 0) },
-        ),
-        (
-            "fmi3GetDirectionalDerivative(knowns=null)",
-            with_partials,
-            |b, c, a| unsafe { derivative_with_null(b, c, a, false, 1) },
-        ),
-        (
-            "fmi3GetDirectionalDerivative(seed=null)",
-            with_partials,
-            |b, c, a| unsafe { derivative_with_null(b, c, a, false, 2) },
-        ),
-        (
-            "fmi3GetDirectionalDerivative(sensitivity=null)",
-            with_partials,
-            |b, c, a| unsafe { derivative_with_null(b, c, a, false, 3) },
-        ),
-        (
-            "fmi3GetAdjointDerivative(unknowns=null)",
-            with_partials,
-            |b, c, a| unsafe { derivative_with_null(b, c, a, true, 0) },
-        ),
-        (
-            "fmi3GetAdjointDerivative(knowns=null)",
-            with_partials,
-            |b, c, a| unsafe { derivative_with_null(b, c, a, true, 1) },
-        ),
-        (
-            "fmi3GetAdjointDerivative(seed=null)",
-            with_partials,
-            |b, c, a| unsafe { derivative_with_null(b, c, a, true, 2) },
-        ),
-        (
-            "fmi3GetAdjointDerivative(sensitivity=null)",
-            with_partials,
-            |b, c, a| unsafe { derivative_with_null(b, c, a, true, 3) },
-        ),
-    ]
+    let names = [
+        "fmi3GetDirectionalDerivative(unknowns=null)",
+        "fmi3GetDirectionalDerivative(knowns=null)",
+        "fmi3GetDirectionalDerivative(seed=null)",
+        "fmi3GetDirectionalDerivative(sensitivity=null)",
+        "fmi3GetAdjointDerivative(unknowns=null)",
+        "fmi3GetAdjointDerivative(knowns=null)",
+        "fmi3GetAdjointDerivative(seed=null)",
+        "fmi3GetAdjointDerivative(sensitivity=null)",
+    ];
+    let invoke: [Invoke; 8] = [
+        derivative_with_null::<false, 0>,
+        derivative_with_null::<false, 1>,
+        derivative_with_null::<false, 2>,
+        derivative_with_null::<false, 3>,
+        derivative_with_null::<true, 0>,
+        derivative_with_null::<true, 1>,
+        derivative_with_null::<true, 2>,
+        derivative_with_null::<true, 3>,
+    ];
+    rows(&names, with_partials::<Interface3>, &invoke)
 }
 
-/// fmi3UpdateDiscreteStates with output `k` (0..6) null.
-unsafe fn update_with_null(b: &Binary3, c: Instance3, k: usize) -> Status {
-    let mut flags = [0u8; 5];
+/// `N` flags and a time to fill, output `k` null (k = N: the time), passed to
+/// `call`.
+fn outputs_with_null<const N: usize>(
+    k: usize,
+    call: impl FnOnce([*mut u8; N], *mut f64) -> Status,
+) -> Status {
+    let mut flags = [0u8; N];
     let mut time = 0.0;
-    let p: Vec<*mut u8> = (0..5)
-        .map(|i| {
-            if i == k {
-                null_mut()
-            } else {
-                &mut flags[i] as *mut u8
-            }
-        })
-        .collect();
-    let t = if k == 5 {
+    let base = flags.as_mut_ptr();
+    let p: [*mut u8; N] = std::array::from_fn(|i| {
+        if i == k {
+            null_mut()
+        } else {
+            base.wrapping_add(i)
+        }
+    });
+    let t = if k == N {
         null_mut()
     } else {
         &mut time as *mut f64
     };
-    // SAFETY: valid outputs except the one replaced by null.
-    unsafe { (b.update_discrete_states)(c, p[0], p[1], p[2], p[3], p[4], t) }
+    call(p, t)
+}
+
+/// fmi3UpdateDiscreteStates with output `K` (0..6) null.
+unsafe fn update_with_null<const K: usize>(b: &Binary3, c: Instance3, _: &Args) -> Status {
+    outputs_with_null::<5>(K, |p, t| unsafe {
+        // SAFETY: valid outputs except the one replaced by null.
+        (b.update_discrete_states)(c, p[0], p[1], p[2], p[3], p[4], t)
+    })
 }
 
 fn event_table() -> Vec<Row> {
@@ -332,57 +258,24 @@ fn event_table() -> Vec<Row> {
         "fmi3UpdateDiscreteStates(nextEventTime=null)",
     ];
     let invoke: [Invoke; 6] = [
-        |b, c, _| unsafe { update_with_null(b, c, 0) },
-        |b, c, _| unsafe { update_with_null(b, c, 1) },
-        |b, c, _| unsafe { update_with_null(b, c, 2) },
-        |b, c, _| unsafe { update_with_null(b, c, 3) },
-        |b, c, _| unsafe { update_with_null(b, c, 4) },
-        |b, c, _| unsafe { update_with_null(b, c, 5) },
+        update_with_null::<0>,
+        update_with_null::<1>,
+        update_with_null::<2>,
+        update_with_null::<3>,
+        update_with_null::<4>,
+        update_with_null::<5>,
     ];
-    names
-        .into_iter()
-        .zip(invoke)
-        .map(|(n, f)| (n, event as Applies, f))
-        .collect()
+    rows(&names, event, &invoke)
 }
 
 fn model_exchange_table() -> Vec<Row> {
-    vec![
-        (
-            "fmi3CompletedIntegratorStep(enterEventMode=null)",
-            me_continuous,
-            |b, c, _| unsafe { (b.completed_integrator_step)(c, 1, null_mut(), &mut 0) },
-        ),
-        (
-            "fmi3CompletedIntegratorStep(terminateSimulation=null)",
-            me_continuous,
-            |b, c, _| unsafe { (b.completed_integrator_step)(c, 1, &mut 0, null_mut()) },
-        ),
-        (
-            "fmi3SetContinuousStates(x=null)",
-            me_with_states,
-            |b, c, a| unsafe { (b.set_continuous_states)(c, null(), a.nx) },
-        ),
-        (
-            "fmi3GetContinuousStates(x=null)",
-            me_with_states,
-            |b, c, a| unsafe { (b.get_continuous_states)(c, null_mut(), a.nx) },
-        ),
-        (
-            "fmi3GetContinuousStateDerivatives(derivatives=null)",
-            me_with_states,
-            |b, c, a| unsafe { (b.get_continuous_state_derivatives)(c, null_mut(), a.nx) },
-        ),
-        (
-            "fmi3GetNominalsOfContinuousStates(nominals=null)",
-            me_with_states,
-            |b, c, a| unsafe { (b.get_nominals)(c, null_mut(), a.nx) },
-        ),
-        (
-            "fmi3GetEventIndicators(eventIndicators=null)",
-            me_with_indicators,
-            |b, c, a| unsafe { (b.get_event_indicators)(c, null_mut(), a.nz) },
-        ),
+    let mut t: Vec<Row> = model_exchange_null_rows!(
+        "fmi3",
+        "GetContinuousStateDerivatives(derivatives",
+        "nominals",
+        get_continuous_state_derivatives
+    );
+    t.extend::<[Row; 2]>([
         (
             "fmi3GetNumberOfEventIndicators(nEventIndicators=null)",
             me_instantiated,
@@ -393,29 +286,16 @@ fn model_exchange_table() -> Vec<Row> {
             me_instantiated,
             |b, c, _| unsafe { (b.get_number_of_continuous_states)(c, null_mut()) },
         ),
-    ]
+    ]);
+    t
 }
 
-/// fmi3DoStep with output `k` (0..4) null.
-unsafe fn step_with_null(b: &Binary3, c: Instance3, k: usize) -> Status {
-    let mut flags = [0u8; 3];
-    let mut last = 0.0;
-    let p: Vec<*mut u8> = (0..3)
-        .map(|i| {
-            if i == k {
-                null_mut()
-            } else {
-                &mut flags[i] as *mut u8
-            }
-        })
-        .collect();
-    let t = if k == 3 {
-        null_mut()
-    } else {
-        &mut last as *mut f64
-    };
-    // SAFETY: valid outputs except the one replaced by null.
-    unsafe { (b.do_step)(c, 0.0, 1e-3, 1, p[0], p[1], p[2], t) }
+/// fmi3DoStep with output `K` (0..4) null.
+unsafe fn step_with_null<const K: usize>(b: &Binary3, c: Instance3, _: &Args) -> Status {
+    outputs_with_null::<3>(K, |p, t| unsafe {
+        // SAFETY: valid outputs except the one replaced by null.
+        (b.do_step)(c, 0.0, 1e-3, 1, p[0], p[1], p[2], t)
+    })
 }
 
 fn co_simulation_table() -> Vec<Row> {
@@ -443,34 +323,33 @@ fn co_simulation_table() -> Vec<Row> {
                 (b.get_output_derivatives)(c, &a.float.vr, 1, &1, null_mut(), a.float.size)
             },
         ),
-        (
-            "fmi3DoStep(eventHandlingNeeded=null)",
-            cs_step,
-            |b, c, _| unsafe { step_with_null(b, c, 0) },
-        ),
-        (
-            "fmi3DoStep(terminateSimulation=null)",
-            cs_step,
-            |b, c, _| unsafe { step_with_null(b, c, 1) },
-        ),
-        ("fmi3DoStep(earlyReturn=null)", cs_step, |b, c, _| unsafe {
-            step_with_null(b, c, 2)
-        }),
-        (
-            "fmi3DoStep(lastSuccessfulTime=null)",
-            cs_step,
-            |b, c, _| unsafe { step_with_null(b, c, 3) },
-        ),
     ]
+}
+
+fn step_table() -> Vec<Row> {
+    let names = [
+        "fmi3DoStep(eventHandlingNeeded=null)",
+        "fmi3DoStep(terminateSimulation=null)",
+        "fmi3DoStep(earlyReturn=null)",
+        "fmi3DoStep(lastSuccessfulTime=null)",
+    ];
+    let invoke: [Invoke; 4] = [
+        step_with_null::<0>,
+        step_with_null::<1>,
+        step_with_null::<2>,
+        step_with_null::<3>,
+    ];
+    rows(&names, cs_step, &invoke)
 }
 
 pub fn table() -> Vec<Row> {
     let mut t = values_table();
-    t.extend((0..4).map(dependencies_row));
+    t.extend(dependencies_table());
     t.extend(state_table());
     t.extend(derivative_table());
     t.extend(event_table());
     t.extend(model_exchange_table());
     t.extend(co_simulation_table());
+    t.extend(step_table());
     t
 }

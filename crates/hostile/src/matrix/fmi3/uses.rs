@@ -5,39 +5,21 @@
 use crate::binary::{OK, Status};
 use crate::description::{Description, Variable};
 use crate::fmi3::host::{Instance, Interface3};
+use crate::matrix::same_named::{fmu_state_use_rows, me_evaluation_rows};
 use crate::matrix::seam::{Evaluate, Use, Value};
 use crate::matrix::values::{discarded, me_evaluate};
 
 pub fn state_uses() -> Vec<(&'static str, Use<Interface3>)> {
-    vec![
-        ("fmi3SetFMUState", |i, s| unsafe {
-            (i.binary.set_fmu_state)(i.c, s)
-        }),
-        ("fmi3FreeFMUState", |i, s| i.free_state(s)),
-        ("fmi3SerializedFMUStateSize", |i, s| unsafe {
-            (i.binary.serialized_size)(i.c, s, &mut 0)
-        }),
-        ("fmi3SerializeFMUState", |i, s| unsafe {
-            let mut bytes = vec![0u8; 256];
-            (i.binary.serialize)(i.c, s, bytes.as_mut_ptr(), bytes.len())
-        }),
-        ("fmi3GetFMUState(slot holding it)", |i, s| {
-            let mut slot = s;
-            unsafe { (i.binary.get_fmu_state)(i.c, &mut slot) }
-        }),
-    ]
+    fmu_state_use_rows!("fmi3", "FMUState", u8)
 }
 
 pub fn evaluations() -> Vec<(&'static str, Evaluate<Interface3>)> {
-    vec![
-        ("fmi3GetContinuousStateDerivatives", |i: &Instance| unsafe {
-            let mut dx = vec![0.0; i.description.number_of_states];
-            (i.binary.get_continuous_state_derivatives)(i.c, dx.as_mut_ptr(), dx.len())
-        }),
-        ("fmi3GetEventIndicators", |i| unsafe {
-            let mut z = vec![0.0; i.description.number_of_event_indicators];
-            (i.binary.get_event_indicators)(i.c, z.as_mut_ptr(), z.len())
-        }),
+    let mut rows: Vec<(&'static str, Evaluate<Interface3>)> = me_evaluation_rows!(
+        "fmi3",
+        "GetContinuousStateDerivatives",
+        get_continuous_state_derivatives
+    );
+    rows.extend::<[(&'static str, Evaluate<Interface3>); 3]>([
         ("fmi3GetFloat64(thetaDot)", |i| {
             i.get_float64(&[i.description.by_name("thetaDot").vr]).0
         }),
@@ -47,7 +29,8 @@ pub fn evaluations() -> Vec<(&'static str, Evaluate<Interface3>)> {
         ("fmi3GetAdjointDerivative(der(theta) by theta)", |i| {
             partial(i, true)
         }),
-    ]
+    ]);
+    rows
 }
 
 fn partial(i: &Instance, adjoint: bool) -> Status {
