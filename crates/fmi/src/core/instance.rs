@@ -49,7 +49,9 @@ pub struct Instance<M: Model> {
     /// The variable table sorted by value reference, with its calculated flags: shared
     /// by every instance of the model in this library.
     index: Arc<Index<M>>,
-    model: M,
+    /// Boxed: an instance is moved several times while it is built (a model such as the
+    /// plant's is kilobytes; a move of the box is a pointer).
+    model: Box<M>,
     /// Computed values are stale (`Model::calculate_values` not called since a change).
     dirty: bool,
     /// Why the model could not be evaluated at the last calculation, if it could not.
@@ -231,7 +233,7 @@ impl<M: Model> Instance<M> {
         model.set_time(time);
         Ok(Instance {
             index,
-            model,
+            model: Box::new(model),
             dirty: true,
             evaluation_error: None,
             time,
@@ -243,7 +245,7 @@ impl<M: Model> Instance<M> {
 
     /// Back to the state right after instantiation (the table is kept).
     pub fn reset(&mut self) {
-        self.model = self.index.fresh_model();
+        *self.model = self.index.fresh_model();
         self.dirty = true;
         self.stop_time = None;
         self.terminated_by_model = false;
@@ -331,12 +333,12 @@ impl<M: Model> Instance<M> {
     /// Why ExitInitializationMode would refuse the parameters now, if it would (the
     /// model's check on a copy).
     pub fn parameters_refused(&self) -> Option<String> {
-        self.model.clone().exit_initialization(&Silent).err()
+        (*self.model).clone().exit_initialization(&Silent).err()
     }
 
     pub fn snapshot(&self, standard: Standard) -> Snapshot<M> {
         Snapshot {
-            model: self.model.clone(),
+            model: (*self.model).clone(),
             time: self.time,
             stop_time: self.stop_time,
             last_successful_time: self.last_successful_time,
@@ -346,7 +348,7 @@ impl<M: Model> Instance<M> {
     }
 
     pub fn restore(&mut self, s: &Snapshot<M>) {
-        self.model = s.model.clone();
+        *self.model = s.model.clone();
         self.dirty = true;
         self.time = s.time;
         self.stop_time = s.stop_time;
@@ -410,7 +412,7 @@ impl<M: Model> Instance<M> {
     /// A discarded step leaves the instance as it was before the step.
     pub fn do_step(&mut self, t: f64, h: f64, log: &dyn Log) -> Result<StepOutcome, String> {
         self.check_step(t, h)?;
-        let before = self.model.clone();
+        let before = (*self.model).clone();
         self.set_time(t);
         let mut outcome = self.model_mut().do_step(t, h, log);
         if outcome == StepOutcome::Completed {
@@ -425,7 +427,7 @@ impl<M: Model> Instance<M> {
         match &outcome {
             StepOutcome::Completed => self.last_successful_time = t + h,
             StepOutcome::Discarded { terminate, .. } => {
-                self.model = before;
+                *self.model = before;
                 self.dirty = true;
                 self.set_time(t);
                 self.terminated_by_model = *terminate;
@@ -477,7 +479,7 @@ impl<M: Model> Instance<M> {
     fn write(&mut self, vr: u32, value: Value) -> Result<(), String> {
         let v = variable(&self.index.table, vr)?;
         self.dirty = true;
-        value_check::write(&mut self.model, v, value)
+        value_check::write(&mut *self.model, v, value)
     }
 
     pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
