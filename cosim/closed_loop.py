@@ -28,8 +28,10 @@ Example (every quantity states its unit; see cosim/units.py for the units)::
     omega = "0, 0, 0 rad/s"
 
     [gains]                             # design rule ...
-    omega = "30 rad/s"                  # triple pole at -omega on the nominal plant
+    omega = "30 rad/s"                  # triple pole at -omega on this scenario's plant
     # design_poses = ["0, 0, 138 deg"]  # optional, see below
+    # design_plant = { legMass = "1 kg" }  # optional: the plant the design assumes
+    #                                    # (default: the [plant] table below)
     # ... or explicit gains: Kp = "800, 600, 640 N m/rad", Ki = "... N m/(rad s)",
     # Kd = "... N m s/rad"
 
@@ -64,10 +66,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .controllers import LOOPS, Loop, kind_of, model_parameters, pole_placement
-from .design import design_gains, euler_accelerations, euler_rates
+from .design import (PlantRefused, check_bandwidth, design_gains, euler_accelerations,
+                     euler_rates)
 from .fmu_check import describe
 from .preflight import initialize_alone
-from .errors import ScenarioError
+from .errors import CosimError, ScenarioError
 from .schedule import PlanSwitch
 from .workspace import check_poses
 from .units import UNITS, exponents, quantity, quantity_vector, unit_in
@@ -166,10 +169,23 @@ def design_poses(start: list[float], points: list[Waypoint]) -> list[list[float]
     return poses
 
 
-def _gains(raw: dict, plant_fmu: Path, poses, plant: dict) -> list[tuple[float, float, float]]:
+def _design_plant(raw: dict, plant_fmu: Path, plant_values: dict) -> dict:
+    """The plant parameters the design rule assumes: `gains.design_plant` (a table like
+    `plant`; a sweep that draws plant parameters at random keeps the base scenario's
+    there) or else the scenario's own `plant` values."""
+    if "design_plant" not in raw:
+        return plant_values
+    table = _table(raw, "design_plant", "gains.")
+    _refuse_start_parameters(table, "gains.design_plant")
+    return {k: _plant_value(v, k, plant_fmu, "gains.design_plant")
+            for k, v in table.items()}
+
+
+def _gains(raw: dict, plant_fmu: Path, poses, plant_values: dict,
+           preflight: bool) -> list[tuple[float, float, float]]:
     explicit = {"Kp": "stiffness gain", "Ki": "integral gain", "Kd": "damping gain"}
     if "omega" in raw:
-        unknown = sorted(set(raw) - {"omega", "design_poses"})
+        unknown = sorted(set(raw) - {"omega", "design_poses", "design_plant"})
         if unknown:
             raise ScenarioError(f"field 'gains.{unknown[0]}' cannot be combined with the "
                                 "design rule 'gains.omega'")
@@ -181,11 +197,21 @@ def _gains(raw: dict, plant_fmu: Path, poses, plant: dict) -> list[tuple[float, 
             poses = [quantity_vector(p, "angle", f"gains.design_poses[{k}]", 3)
                      for k, p in enumerate(listed)]
         bandwidth = quantity(raw["omega"], "angular velocity", "gains.omega")
-        if plant is not None:
-            check_poses(plant_fmu, plant, [(f"gains.design_poses[{k}]", None, p)
-                                           for k, p in enumerate(poses)],
-                        "design the gains at poses inside the workspace")
-        return design_gains(plant_fmu, poses, bandwidth)
+        check_bandwidth(bandwidth, poses)
+        design_plant = _design_plant(raw, plant_fmu, plant_values)
+        if not preflight:
+            # A sweep's run: a plant the FMU refuses fails that run (with the plant's
+            # reason), as it would in the run itself, not the whole SPEC.
+            try:
+                return design_gains(plant_fmu, poses, bandwidth, design_plant)
+            except PlantRefused as e:
+                raise CosimError(f"plant: {e.reason} (in the gain design)") from None
+        if design_plant is not plant_values:
+            initialize_alone(plant_fmu, "plant", design_plant, "gains.design_plant")
+        check_poses(plant_fmu, design_plant, [(f"gains.design_poses[{k}]", None, p)
+                                              for k, p in enumerate(poses)],
+                    "design the gains at poses inside the workspace")
+        return design_gains(plant_fmu, poses, bandwidth, design_plant)
     if set(raw) != set(explicit):
         raise ScenarioError("field 'gains' needs either 'omega' (design rule) or all of "
                             "'Kp', 'Ki', 'Kd'")
@@ -243,12 +269,12 @@ def _plant_value(value, name: str, plant_fmu: Path, table: str = "plant",
     return check_value(md, alias, name, value, field)
 
 
-def _refuse_start_parameters(plant: dict) -> None:
+def _refuse_start_parameters(plant: dict, table: str = "plant") -> None:
     """The plant's start parameters belong to `start`: set under `plant`, they would
     override the start that the workspace check and the gain design used."""
     for name in plant:
         if name.startswith(("theta0[", "omega0[")) or name == "initFromActuators":
-            raise ScenarioError(f"field 'plant.{name}': the start state is the field 'start' "
+            raise ScenarioError(f"field '{table}.{name}': the start state is the field 'start' "
                                 "(start.angles, start.omega), which the gain design and "
                                 "the workspace check use; set it there")
 
@@ -264,8 +290,7 @@ def _controller(data: dict, kind: str, fmu: Path, plant_fmu: Path, plant_values:
                                  _table(data, "model"),
                                  lambda v, name: _plant_value(v, name, fmu, "model", "ct"))
         return gains | model
-    gains = _gains(_table(data, "gains"), plant_fmu, poses,
-                   plant_values if preflight else None)
+    gains = _gains(_table(data, "gains"), plant_fmu, poses, plant_values, preflight)
     pid = {}
     for i, (kp, ki, kd) in enumerate(gains):
         n = i + 1

@@ -6,9 +6,10 @@
   library's pss3::rotation, which the Rust reference uses on the same file);
 - PID gains by the triple-pole rule (Kd = 3 m w, Kp = 3 m w^2, Ki = m w^3, the Rust
   closed_loop::gains design): m per Euler axis is the largest diagonal entry of the
-  Euler-angle mass matrix M_x over the design poses. M_x is measured on the nominal
-  plant FMU itself (Model Exchange, at rest): th_ddot = M_x^-1 (u - G_x), linear in the
-  generalized force u, so three unit forces give the columns of M_x^-1 exactly.
+  Euler-angle mass matrix M_x over the design poses. M_x is measured on the plant FMU
+  itself with the scenario's plant parameters (Model Exchange, at rest):
+  th_ddot = M_x^-1 (u - G_x), linear in the generalized force u, so three unit forces
+  give the columns of M_x^-1 exactly.
 """
 
 from __future__ import annotations
@@ -22,6 +23,14 @@ import numpy as np
 from .errors import ScenarioError
 
 EULER_SINGULAR_COS = 1e-9
+
+
+class PlantRefused(ScenarioError):
+    """The plant FMU refuses the design's parameters or pose; `reason` is its own line."""
+
+    def __init__(self, message: str, reason: str):
+        super().__init__(message)
+        self.reason = reason
 
 
 def euler_rate_matrix(th) -> np.ndarray:
@@ -61,29 +70,40 @@ def triple_pole_gains(inertia: float, bandwidth: float) -> tuple[float, float, f
     return 3.0 * m * w * w, m * w * w * w, 3.0 * m * w
 
 
-def design_gains(plant_fmu: Path, poses, bandwidth: float) -> list[tuple[float, float, float]]:
-    """(Kp, Ki, Kd) per Euler axis for the largest inertia over `poses` (rad)."""
-    if not (math.isfinite(bandwidth) and bandwidth > 0.0) or not poses:
-        raise ScenarioError(f"field 'gains.omega' must be positive, got {bandwidth}")
+def design_gains(plant_fmu: Path, poses, bandwidth: float,
+                 plant: dict | None = None) -> list[tuple[float, float, float]]:
+    """(Kp, Ki, Kd) per Euler axis for the largest inertia over `poses` (rad) of the
+    plant FMU with the parameters `plant` ({name: SI value}; default: its own)."""
+    check_bandwidth(bandwidth, poses)
+    parameters = tuple(sorted((plant or {}).items()))
     inertia = np.zeros(3)
     for pose in poses:
-        inertia = np.maximum(inertia, euler_inertia(str(plant_fmu), tuple(pose)))
+        inertia = np.maximum(inertia, euler_inertia(str(plant_fmu), tuple(pose), parameters))
     return [triple_pole_gains(float(m), bandwidth) for m in inertia]
 
 
+def check_bandwidth(bandwidth: float, poses) -> None:
+    """ScenarioError unless the design rule has a positive bandwidth and poses."""
+    if not (math.isfinite(bandwidth) and bandwidth > 0.0) or not poses:
+        raise ScenarioError(f"field 'gains.omega' must be positive, got {bandwidth}")
+
+
 @lru_cache(maxsize=256)
-def euler_inertia(plant_fmu: str, pose: tuple[float, float, float]) -> np.ndarray:
-    """Diagonal of M_x at `pose` (rad), from the plant FMU at rest (Model Exchange).
-    A pose the plant refuses raises ScenarioError with the plant's own reason."""
+def euler_inertia(plant_fmu: str, pose: tuple[float, float, float],
+                  parameters: tuple = ()) -> np.ndarray:
+    """Diagonal of M_x at `pose` (rad), from the plant FMU at rest (Model Exchange) with
+    `parameters` ((name, value) pairs) set. A pose the plant refuses raises
+    ScenarioError with the plant's own reason."""
     from .model_exchange import ModelExchangeInstance
     with ModelExchangeInstance(plant_fmu, "design") as fmu:
         try:
+            fmu.set_values(dict(parameters))
             return _euler_inertia(fmu, pose)
         except fmu.Failed as e:
             deg = ", ".join(f"{math.degrees(x):.6g}" for x in pose)
-            raise ScenarioError(f"field 'gains': the plant cannot be linearised at the "
-                                f"design pose ({deg}) deg: {fmu.reason(e)}; choose design "
-                                "poses inside the workspace") from None
+            raise PlantRefused(f"field 'gains': the plant cannot be linearised at the "
+                               f"design pose ({deg}) deg: {fmu.reason(e)}; choose design "
+                               "poses inside the workspace", fmu.reason(e)) from None
 
 
 def _euler_inertia(fmu, pose) -> np.ndarray:

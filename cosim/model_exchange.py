@@ -33,6 +33,7 @@ class ModelExchangeInstance:
                 "Exchange (the project's dist/Pss3Plant.fmu) or give 'gains.Kp', 'gains.Ki' "
                 "and 'gains.Kd'")
         self.refs = {v.name: v.valueReference for v in md.modelVariables}
+        self.types = {v.name: v.type for v in md.modelVariables}
         self._unzip = extract(self.path)
         self._initialized = False
         self._fmu = None
@@ -62,6 +63,13 @@ class ModelExchangeInstance:
 
     def set_real(self, names, values) -> None:
         self._fmu.setReal([self.refs[n] for n in names], list(values))
+
+    def set_values(self, values: dict) -> None:
+        """Sets {name: value} by each variable's declared type (Real, Integer, Boolean)."""
+        for name, value in values.items():
+            setter = {"Integer": self._fmu.setInteger, "Enumeration": self._fmu.setInteger,
+                      "Boolean": self._fmu.setBoolean}.get(self.types[name], self._fmu.setReal)
+            setter([self.refs[name]], [value])
 
     def get_real(self, names) -> list[float]:
         return list(self._fmu.getReal([self.refs[n] for n in names]))

@@ -2,7 +2,7 @@
 forms evaluated with numpy, independently of the Rust code and without running any FMU:
 
 * Planner: the boundary-condition system of the spec (4x4 cubic, 6x6 quintic) in
-  absolute time, solved with numpy.linalg.solve, evaluated with numpy.polyval; at
+  absolute time, solved exactly (rational arithmetic), evaluated with numpy.polyval; at
   rest (q0 / qf, zero rates) outside [t0, tf].
 * PID: the response to constant inputs from a zero state, by Laplace inversion:
   u(t) = Kp e + Ki e t + Kd e / Tf exp(-t/Tf) + ff (filtered error path) or
@@ -20,15 +20,35 @@ by inputs also holds <Model>_input.csv. The "defaults" cases have no start value
 FMUs' default parameters and inputs (the FMI cross-check layout, scripts/cross-check.sh,
 can express no other).
 
-Run: .venv/bin/python scripts/make_references.py
+The files are the same bytes on every machine (tests/python/test_make_references.py
+regenerates them and compares): the only operations whose last bit could depend on the
+CPU are done exactly instead. The boundary-condition system is solved in rational
+arithmetic (numpy.linalg.solve goes through OpenBLAS, whose kernels are chosen per
+CPU, and its round-off differed in the last digits between machines), and exp is the
+correctly rounded one of Python's decimal module (numpy's vectorised exp has CPU-specific
+implementations: a 1-ulp difference between machines was seen). The rest is IEEE
+arithmetic (+, -, *, / element by element), the same everywhere.
+
+Run: .venv/bin/python scripts/make_references.py [--out DIRECTORY]
+(default tests/references).
 """
 
+import argparse
 import json
+from decimal import Context, Decimal
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent / "tests" / "references"
+# 40 digits, then rounded once to double: the same double on every machine.
+_EXP_CONTEXT = Context(prec=40)
+
+
+def exp(x):
+    """exp of every element of x, correctly rounded to 40 digits, then to double."""
+    return np.array([float(Decimal(float(v)).exp(_EXP_CONTEXT)) for v in np.ravel(x)])
 
 
 def write_signals(path, columns):
@@ -69,9 +89,10 @@ def grid(options):
 def polynomial(order, t0, tf, b):
     """Coefficients (highest power first) from the boundary-condition system."""
     def row(t, derivative, n):
-        out = np.zeros(n)
+        out = [Fraction(0)] * n
         for k in range(derivative, n):
-            out[k] = np.prod(np.arange(k - derivative + 1, k + 1)) * t ** (k - derivative)
+            factor = int(np.prod(np.arange(k - derivative + 1, k + 1)))
+            out[k] = factor * Fraction(t) ** (k - derivative)
         return out
 
     n = order + 1
@@ -80,8 +101,23 @@ def polynomial(order, t0, tf, b):
     if order == 5:
         rows += [row(t0, 2, n), row(tf, 2, n)]
         rhs += [b["qddot0"], b["qddotf"]]
-    c = np.linalg.solve(np.array(rows), np.array(rhs))
-    return c[::-1]
+    c = solve_exactly(rows, rhs)
+    return np.array([float(x) for x in c[::-1]])
+
+
+def solve_exactly(rows, rhs):
+    """The solution of rows x = rhs in rational arithmetic (Gauss-Jordan elimination
+    with a nonzero pivot; the inputs are doubles, hence exact fractions)."""
+    a = [[Fraction(v) for v in r] + [Fraction(y)] for r, y in zip(rows, rhs)]
+    n = len(a)
+    for col in range(n):
+        pivot = next(r for r in range(col, n) if a[r][col] != 0)
+        a[col], a[pivot] = a[pivot], a[col]
+        for r in range(n):
+            if r != col and a[r][col] != 0:
+                f = a[r][col] / a[col][col]
+                a[r] = [x - f * y for x, y in zip(a[r], a[col])]
+    return [a[r][n] / a[r][r] for r in range(n)]
 
 
 def planner_case(case, order, t0, tf, boundaries, stop, at_defaults=False):
@@ -110,9 +146,9 @@ def planner_case(case, order, t0, tf, boundaries, stop, at_defaults=False):
 
 def pid_channel(t, kp, ki, kd, tf, e, ff=0.0, rate_error=None, limits=None):
     if rate_error is None:
-        d = kd * e / tf * np.exp(-t / tf) if kd != 0.0 else 0.0 * t
+        d = kd * e / tf * exp(-t / tf) if kd != 0.0 else 0.0 * t
     else:
-        d = kd * rate_error * (1.0 - np.exp(-t / tf))
+        d = kd * rate_error * (1.0 - exp(-t / tf))
     u = kp * e + ki * e * t + d + ff
     if limits is not None:
         u = np.clip(u, *limits)
@@ -209,6 +245,11 @@ def computed_torque_case():
 
 
 def main():
+    global ROOT
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", type=Path, default=ROOT,
+                        help="directory of the <Model>/<case>/ folders (default: %(default)s)")
+    ROOT = parser.parse_args().out
     planner_case("quintic_t0_0.5", 5, 0.5, 2.0, [
         {"q0": 0.1, "qf": 0.9, "qdot0": 0.2, "qdotf": -0.1, "qddot0": 0.5, "qddotf": -0.3},
         {"q0": -0.4, "qf": 0.0, "qdot0": 0.0, "qdotf": 0.0, "qddot0": 0.0, "qddotf": 0.0},

@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# valgrind memcheck over the lifecycle of every packaged FMU (dist/*.fmu and
-# dist/fmi3/*.fmu, built by scripts/build-fmus.sh): load, instantiate, initialize,
-# steps, FMU states, reset, free, unload, through the FMI 2.0 interface (Model
-# Exchange, Co-Simulation) and the FMI 3.0 interface (Model Exchange,
+# valgrind memcheck over the lifecycle of every packaged FMU (dist/*.fmu,
+# dist/fmi3/*.fmu and dist/fmi3-scalar/*.fmu, built by scripts/build-fmus.sh): load,
+# instantiate, initialize, steps, FMU states, reset, free, unload, through the FMI 2.0
+# interface (Model Exchange, Co-Simulation) and the FMI 3.0 interface (Model Exchange,
 # Co-Simulation with and without event mode, partial derivatives, variable
-# dependencies). Then the issue 20 probes (robofmu-hostile-reentry): loggers that
-# free, reset, set states and re-enter, reused handles, a second thread on a busy
-# instance, forged states, both standards, every FMU. Fails on any memcheck error
-# and on any definite leak. Installs valgrind from Debian when it is missing and
-# this runs as root (CI); otherwise asks for it.
+# dependencies), the latter twice: the array view and the scalar-only view (the same
+# binary, instantiated with the scalar token). Then the issue 20 probes
+# (robofmu-hostile-reentry): loggers that free, reset, set states and re-enter, reused
+# handles, a second thread on a busy instance, forged states, both standards, every
+# FMU. Fails on any memcheck error and on any definite leak. Installs valgrind from
+# Debian when it is missing and this runs as root (CI); otherwise asks for it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v valgrind >/dev/null 2>&1; then

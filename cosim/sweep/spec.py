@@ -46,6 +46,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import CosimError
 from ..scenario import ScenarioError
 
 DISTRIBUTIONS = {"normal": ("mean", "sd"), "uniform": ("low", "high")}
@@ -314,9 +315,22 @@ def workspace_targets(table, reachable) -> list[list[float]] | None:
     return targets
 
 
+def _design_on_the_base_plant(document: dict, varied: list[Varied]) -> None:
+    """A plant parameter drawn at random is the robot's uncertainty, which the PID's
+    gain design cannot know: the design rule then keeps the base scenario's plant
+    (gains.design_plant), as it would for the real robot. A grid over a plant parameter
+    is a family of robots, each designed for."""
+    gains = document.get("gains")
+    if (isinstance(gains, dict) and "omega" in gains and "design_plant" not in gains
+            and document.get("controller", "pid") == "pid"
+            and any(v.kind == "random" and v.path.startswith("plant.") for v in varied)):
+        gains["design_plant"] = dict(document.get("plant", {}))
+
+
 def document_for(spec: Spec, values: dict) -> dict:
     """The scenario document of one run: the base with the varied values written in."""
     document = json.loads(json.dumps(spec.document))
+    _design_on_the_base_plant(document, spec.varied)
     for v in spec.varied:
         set_path(document, v.path, written(values[v.path], v.unit))
     return document
@@ -324,9 +338,12 @@ def document_for(spec: Spec, values: dict) -> dict:
 
 def check_document(spec: Spec, values: dict) -> None:
     """Resolves one run's scenario on the client, so that a bad path or unit is refused
-    before anything is sent to the cluster."""
+    before anything is sent to the cluster. Values the plant FMU refuses (the gain design
+    cannot measure such a plant) are no SPEC error: that run fails with the FMU's reason."""
     from ..scenario import parse_document
     try:
         parse_document(document_for(spec, values), spec.scenario.parent, spec.fmu_dir)
     except ScenarioError as e:
         raise SpecError(f"the varied scenario is invalid: {e}") from e
+    except CosimError:
+        pass

@@ -122,6 +122,13 @@ def _check(tmp_path, capsys, change) -> tuple[int, str]:
      "field 'model.legMass': '1 m' is a length, but legMass is declared in kg"),
     (lambda d: d.update(model={"Kp[1]": 1.0}), "field 'model.Kp[1]': not a model parameter"),
     (lambda d: d.update(model={"legMass": -1.0}), "legMass = -1"),
+    # Legs of 0.35 m assemble somewhere over the stroke but cannot reach the start pose
+    # (the FMU's default measurement, roll 122.07 deg): the FMU's own reason, which
+    # names the pose (issue 20's rule).
+    (lambda d: d.update(model={"a": "0.35 m"}),
+     "field 'model': ct refuses these parameters: measurement = (0.0000, 0.0000, "
+     "122.0700) deg: the controller's model (the geometry lp, ld, gamma, lb, alpha, beta, "
+     "a) cannot be evaluated at this pose: leg 1 cannot reach its platform joint"),
     (lambda d: (d.pop("controller"), d["fmus"].update(pid=d["fmus"].pop("ct")),
                 d.update(model={"legMass": 1.0})),
      "field 'model' (the controller's model of the robot) needs controller"),

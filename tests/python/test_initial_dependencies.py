@@ -1,10 +1,11 @@
-"""The initialization dependencies of Planner, PID and Pss3Plant (FMI 2.0 ModelStructure
+"""The initialization dependencies of Planner, PID, ComputedTorque and Pss3Plant (FMI 2.0 ModelStructure
 InitialUnknowns, FMI 3.0 <InitialUnknown dependencies>) against finite differences at
 initialization (initial_probe.py): each known is moved in Initialization Mode, in
 several configurations chosen to make every path of the models act (a tilted moving
 plant with every input set, each end stop engaged, the pose from the actuators; the
-PID with and without rate inputs, limits and derivative gain; the planner inside its
-motion).
+PID with and without rate inputs, limits and derivative gain; the computed-torque law
+off its plan at a tilted moving pose, free and on either limit of each axis; the
+planner inside its motion).
 
 - Sound, both standards, every element: an initial unknown that moves lists the known.
 - Exact, FMI 3.0 (arrays, where each known and unknown is one variable): every listed
@@ -12,7 +13,7 @@ motion).
   configurations would have to put every actuator on both of its stops; the lists of
   both standards come from the same declarations. Exempt: unknowns that the knowns
   move only across a switch (the plant's end-stop flags atStop, the PID's conditional
-  integration dI/dt), which a small move does not cross.
+  integration dI/dt, and the computed-torque law's), which a small move does not cross.
 Without dependencies an importer must assume every start value depends on every input
 (OMSimulator then reports an algebraic loop plant/pid, issue 21)."""
 
@@ -28,7 +29,20 @@ MOVING = {"omega0": [0.3, -0.5, 0.8]}
 PID_INPUTS = {"measurement": [0.2, 0.1, 0.3], "setpointRate": [0.5, 0.4, 0.3],
               "measuredRate": [0.1, 0.2, -0.1], "feedforward": [0.1, 0.2, 0.3],
               "integral": [0.3, -0.2, 0.1], "filter": [0.05, -0.03, 0.02]}
+# Off the plan (the default setpoint), tilted and turning, every input and the integral
+# set; the raw outputs are then (8.2, 2.6, -105) N m, and with the accelerations of
+# CT_REVERSED (-582, -594, 518) N m: limits of 1 N m hold each axis on both of its limits.
+CT_INPUTS = {"setpointRate": [0.05, -0.04, 0.03], "setpointAcceleration": [0.2, 0.1, -0.3],
+             "measurement": [0.01, -0.02, 2.37], "measuredRate": [0.03, 0.02, -0.05],
+             "integral": [0.002, -0.001, 0.003]}
+CT_REVERSED = {**CT_INPUTS, "setpointAcceleration": [-3000.0, -3000.0, 3000.0]}
+CT_LIMITED = {"limitOutput": [True] * 3, "uMin": [-1.0] * 3, "uMax": [1.0] * 3}
 CONFIGS = {
+    "ComputedTorque": [
+        CT_INPUTS,
+        {**CT_INPUTS, **CT_LIMITED},
+        {**CT_REVERSED, **CT_LIMITED},
+    ],
     "Pss3Plant": [
         # Tilted and turning, every input set.
         {"theta0": [0.05, -0.04, 2.35], **MOVING, **PLANT_INPUTS},
@@ -54,7 +68,8 @@ CONFIGS = {
          "qddot0": [0.3, 0.2, 0.1], "qddotf": [-0.1, 0.2, 0.3]},
     ],
 }
-SWITCHED = {"Pss3Plant": ("atStop",), "PID": ("der(integral",), "Planner": ()}
+SWITCHED = {"Pss3Plant": ("atStop",), "PID": ("der(integral",),
+            "ComputedTorque": ("der(integral",), "Planner": ()}
 
 
 def observed(probe, model):

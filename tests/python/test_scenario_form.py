@@ -118,3 +118,46 @@ def test_multi_segment_motions_pass_every_waypoint_continuously(profile):
     assert (jump < 1e-6) if profile == "quintic" else (jump > 1e-2), jump
     theta = vector(r.columns, "plant", "theta")
     assert math.degrees(np.abs(theta - q).max()) < 0.05  # the loop tracks it
+
+
+# Every mass and inertia of the plant (the off-diagonal inertias are 0 by default).
+MASSES = ["platformMass", "legMass", "legTransverseInertia", "sliderMass",
+          "platformInertia[1,1]", "platformInertia[2,2]", "platformInertia[3,3]"]
+
+
+def _pid_gains(document) -> list[float]:
+    pid = parse_document(document, ROOT / "scenarios").parameters["pid"]
+    return [pid[f"{k}[{i}]"] for k in ("Kp", "Ki", "Kd") for i in (1, 2, 3)]
+
+
+def test_the_gain_design_uses_the_scenarios_plant_as_the_closed_form_says():
+    # Truth: the rigid-body dynamics are homogeneous in mass: every mass and inertia
+    # doubled doubles M and so the Euler-angle mass matrix M_x (gravity is subtracted by
+    # the design, friction vanishes at rest), and the triple-pole gains Kp = 3 m w^2,
+    # Ki = m w^3, Kd = 3 m w are linear in m: every gain doubles.
+    from fmpy import read_model_description
+    md = read_model_description(str(ROOT / "dist" / "Pss3Plant.fmu"))
+    start = {v.name: float(v.start) for v in md.modelVariables if v.name in MASSES}
+    document = tomllib.loads((ROOT / "scenarios" / "regulation.toml").read_text())
+    nominal = _pid_gains(document)
+    document["plant"] = {name: 2.0 * value for name, value in start.items()}
+    doubled = _pid_gains(document)
+    assert doubled == pytest.approx([2.0 * g for g in nominal], rel=1e-9)
+    # The design assumes another plant only when told: gains.design_plant (empty: the
+    # FMU's defaults) gives the nominal gains back for the doubled plant.
+    document["gains"]["design_plant"] = {}
+    assert _pid_gains(document) == pytest.approx(nominal, rel=1e-12)
+
+
+def test_a_sweep_drawing_plant_parameters_designs_on_the_base_plant():
+    # Truth: sweeps/demo_gains.toml draws plant.legMass at random (the robot's
+    # uncertainty): each run's gains are those of the base scenario's plant at its omega.
+    from cosim.sweep.spec import document_for, load_spec
+    spec = load_spec(ROOT / "sweeps" / "demo_gains.toml")
+    run = spec.runs[0]
+    document = document_for(spec, run)
+    assert document["gains"]["design_plant"] == {}
+    assert document["plant"]["legMass"] != "0.9467 kg"
+    base = tomllib.loads((ROOT / "scenarios" / "regulation.toml").read_text())
+    base["gains"]["omega"] = document["gains"]["omega"]
+    assert _pid_gains(document) == pytest.approx(_pid_gains(base), rel=1e-12)

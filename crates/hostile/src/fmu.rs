@@ -89,9 +89,17 @@ impl Fmu {
     /// Unpacks `dist/<model>.fmu` (FMI 2.0) or `dist/fmi3/<model>.fmu` (FMI 3.0);
     /// an error says how to build it.
     pub fn unpack(model: &str, standard: Standard) -> Result<Fmu, String> {
-        let archive = dist_dir()
-            .join(standard.folder())
-            .join(format!("{model}.fmu"));
+        Fmu::unpack_from(model, standard, standard.folder())
+    }
+
+    /// Unpacks `dist/fmi3-scalar/<model>.fmu`: the FMI 3.0 binary's scalar-only view
+    /// (instantiationToken `<guid>-scalar`, read from its description like any token).
+    pub fn unpack_scalar(model: &str) -> Result<Fmu, String> {
+        Fmu::unpack_from(model, Standard::Fmi3, "fmi3-scalar")
+    }
+
+    fn unpack_from(model: &str, standard: Standard, folder: &str) -> Result<Fmu, String> {
+        let archive = dist_dir().join(folder).join(format!("{model}.fmu"));
         if !archive.is_file() {
             return Err(format!(
                 "{} is missing: run `bash scripts/build-fmus.sh` first",
@@ -109,13 +117,11 @@ impl Fmu {
             standard.platform(),
             description.model_identifier
         );
-        let folder = workspace_root().join("target/hostile").join(format!(
-            "{}-{model}{}",
-            std::process::id(),
-            standard.folder()
-        ));
-        std::fs::create_dir_all(&folder).map_err(|e| e.to_string())?;
-        let library = folder.join(format!("{}.so", description.model_identifier));
+        let unpacked = workspace_root()
+            .join("target/hostile")
+            .join(format!("{}-{model}{folder}", std::process::id()));
+        std::fs::create_dir_all(&unpacked).map_err(|e| e.to_string())?;
+        let library = unpacked.join(format!("{}.so", description.model_identifier));
         std::fs::write(&library, entry(&mut zip, &binary)?).map_err(|e| e.to_string())?;
         Ok(Fmu {
             description,

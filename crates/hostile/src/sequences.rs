@@ -33,6 +33,28 @@ pub(crate) fn input_scale(v: &Variable) -> f64 {
     }
 }
 
+/// The start pose of the robot, rad: (0, 0, 139.79 deg).
+const START_POSE: [f64; 3] = [0.0, 0.0, 2.439_788];
+/// How far a plausible measured pose lies from the start pose, per angle, rad (3 deg).
+pub(crate) const POSE_REACH: f64 = 0.05;
+
+/// The centre of element `i` of input `v` of `model` when the input is a measured pose:
+/// the ComputedTorque's `measurement` (Euler angles). Its model cannot be evaluated
+/// where the legs cannot reach (Discard from every getter, issue 20), so a plausible
+/// one lies within POSE_REACH of the start pose; None for every other input.
+pub(crate) fn pose_centre(model: &str, v: &Variable, i: usize) -> Option<f64> {
+    let (base, index) = v.name.split_once('[').unwrap_or((&v.name, ""));
+    if model != "ComputedTorque" || base != "measurement" {
+        return None;
+    }
+    // FMI 2.0 names the element ("measurement[3]"); FMI 3.0 passes its index.
+    let element = index
+        .trim_end_matches(']')
+        .parse::<usize>()
+        .map_or(i, |k| k - 1);
+    START_POSE.get(element).copied()
+}
+
 type Run<'a> = sequence_run::Run<'a, Interface>;
 
 impl Run<'_> {
@@ -41,7 +63,10 @@ impl Run<'_> {
             return Ok(());
         };
         let scale = input_scale(v);
-        let x = self.rng.uniform(-scale, scale);
+        let x = match pose_centre(&self.inst.description.model_name, v, 0) {
+            Some(c) => c + self.rng.uniform(-POSE_REACH, POSE_REACH),
+            None => self.rng.uniform(-scale, scale),
+        };
         let s = self.inst.set_real(v.vr, x);
         self.check(&format!("fmi2SetReal({} = {x})", v.name), s, false)?;
         Ok(())

@@ -6,16 +6,20 @@
 
 use crate::Loaded;
 use crate::binary::OK;
+use crate::description::Variable;
 use crate::fmi3::host::{Instance as Instance3, Interface3};
 use crate::fmi3::lifecycle::{co_simulation_step, running};
 use crate::host::{Instance, Interface, State};
+use crate::sequences::{POSE_REACH, pose_centre};
 
 /// Simulation k of model m: every output of every step, as bits.
 pub type Simulation = fn(&Loaded, usize, usize) -> Result<Vec<u64>, String>;
 
-/// Input j of simulation k at time t: a sinusoid of a k-dependent frequency.
-fn input(k: usize, j: usize, t: f64) -> f64 {
-    (t * (1.0 + k as f64) + j as f64).sin()
+/// Input j of simulation k at time t: a sinusoid of a k-dependent frequency (element i
+/// of a measured pose: that sinusoid times POSE_REACH about the pose's centre).
+fn input(k: usize, j: usize, t: f64, pose: Option<f64>) -> f64 {
+    let x = (t * (1.0 + k as f64) + j as f64).sin();
+    pose.map_or(x, |c| c + POSE_REACH * x)
 }
 
 /// The FMI 3.0 version of `simulate`: Co-Simulation with event mode, the inputs
@@ -25,21 +29,22 @@ pub fn simulate3(l: &Loaded, m: usize, k: usize) -> Result<Vec<u64>, String> {
     let interface = Interface3::CoSimulationEvents;
     let inst = Instance3::new(&l.binaries3[m], d, interface);
     inst.reach(running(interface))?;
-    let inputs: Vec<(u32, usize)> = d
+    let inputs: Vec<&Variable> = d
         .variables
         .iter()
         .filter(|v| v.causality == "input" && v.var_type == crate::description::VarType::Real)
-        .map(|v| (v.vr, v.size))
         .collect();
     let mut bits = Vec::new();
     let h = 1e-3;
     for step in 0..STEPS {
         let t = step as f64 * h;
         let mut j = 0;
-        for &(vr, size) in &inputs {
-            let values: Vec<f64> = (j..j + size).map(|j| input(k, j, t)).collect();
-            j += size;
-            inst.set_float64(&[vr], &values);
+        for v in &inputs {
+            let values: Vec<f64> = (0..v.size)
+                .map(|i| input(k, j + i, t, pose_centre(&d.model_name, v, i)))
+                .collect();
+            j += v.size;
+            inst.set_float64(&[v.vr], &values);
         }
         co_simulation_step(&inst, t, h)?;
         let (g, values) = inst.get_all();
@@ -60,21 +65,20 @@ pub fn simulate(l: &Loaded, m: usize, k: usize) -> Result<Vec<u64>, String> {
     let d = &l.fmus[m].description;
     let inst = Instance::new(&l.binaries[m], d, Interface::CoSimulation);
     inst.reach(State::StepComplete)?;
-    let inputs: Vec<u32> = d
+    let inputs: Vec<&Variable> = d
         .variables
         .iter()
         .filter(|v| v.causality == "input")
         .filter(|v| v.var_type == crate::description::VarType::Real)
-        .map(|v| v.vr)
         .collect();
     let outputs = d.real_vrs();
     let mut bits = Vec::with_capacity(STEPS * outputs.len());
     let h = 1e-3;
     for step in 0..STEPS {
         let t = step as f64 * h;
-        for (j, &vr) in inputs.iter().enumerate() {
-            let value = input(k, j, t);
-            inst.set_real(vr, value);
+        for (j, v) in inputs.iter().enumerate() {
+            let value = input(k, j, t, pose_centre(&d.model_name, v, 0));
+            inst.set_real(v.vr, value);
         }
         let s = inst.do_step(t, h);
         let (g, values) = inst.get_reals(&outputs);

@@ -9,11 +9,12 @@
 //! Co-Simulation it is stepped exactly under a zero-order hold of the inputs (I + e h),
 //! with the PID's conditional-integration anti-windup decided at the start of the step.
 
+mod initial_dependencies;
 mod variables;
 
 use nalgebra::Vector3;
 use robofmu::computed_torque::{
-    AxisGains, ComputedTorque, Inputs, controller_message, pole_placement,
+    AxisGains, ComputedTorque, GEOMETRY, Inputs, controller_message, pole_placement,
 };
 use robofmu::pss3::dynamics::{DynamicsError, PlantParams};
 use robofmu_fmi::prelude::*;
@@ -83,10 +84,9 @@ impl ComputedTorqueFmu {
 
     /// The output at the current inputs and integral. Where the controller's model
     /// cannot be evaluated at the measured pose (its legs cannot reach it, or the
-    /// Euler angles are singular), the law has no inverse dynamics: the output is then
-    /// zero force (within the limits) and the integral holds, so that a getter never
-    /// fails on an input value (a plant cannot be there: its own step is discarded
-    /// first).
+    /// Euler angles are singular), the law has no inverse dynamics: Err names the pose
+    /// and the reason, which the layer returns as Discard from every getter and step
+    /// (one status for a value the model cannot evaluate, docs/reliability.md).
     fn evaluate(&self) -> Result<Evaluation, String> {
         let built;
         let law = match &self.law {
@@ -101,13 +101,14 @@ impl ComputedTorqueFmu {
                 u: output.u,
                 integral_rate: law.integral_rate(&output),
             }),
-            Err(DynamicsError::Kinematics(_)) => Ok(Evaluation {
-                u: Vector3::from_fn(|k, _| match law.gains()[k].limits {
-                    Some((min, max)) => 0f64.clamp(min, max),
-                    None => 0.0,
-                }),
-                integral_rate: Vector3::zeros(),
-            }),
+            Err(DynamicsError::Kinematics(e)) => {
+                let theta = self.inputs.measurement.map(f64::to_degrees);
+                Err(format!(
+                    "measurement = ({:.4}, {:.4}, {:.4}) deg: the controller's model \
+                     ({GEOMETRY}) cannot be evaluated at this pose: {e}",
+                    theta[0], theta[1], theta[2]
+                ))
+            }
             Err(e) => Err(format!("the law cannot be evaluated: {e}")),
         }
     }
@@ -164,7 +165,10 @@ impl Model for ComputedTorqueFmu {
             &format!("gains {:?}, model {:?}", law.gains(), self.model),
         );
         self.law = Some(law);
-        Ok(())
+        // The model must be evaluable at the start inputs: a geometry whose legs cannot
+        // reach the measured pose is refused here, so that a getter in Initialization
+        // Mode gives this reason as the parameters' (as ExitInitializationMode does).
+        self.evaluate().map(|_| ())
     }
 
     fn calculate_values(&mut self) -> Result<(), String> {

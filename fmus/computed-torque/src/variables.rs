@@ -4,7 +4,7 @@
 //! `computed_torque::MODEL_PARAMETERS`), the inputs, the output and the error integral
 //! (state).
 
-use super::{AXES, ComputedTorqueFmu, DEFAULT_BANDWIDTH};
+use super::{AXES, ComputedTorqueFmu, DEFAULT_BANDWIDTH, initial_dependencies};
 use robofmu::computed_torque::{AxisGains, MODEL_PARAMETERS, pole_placement};
 use robofmu::pss3::START_ROLL_DEG;
 use robofmu_fmi::prelude::*;
@@ -220,7 +220,8 @@ static VARIABLES: &[Decl] = &[
     .at(201)
     .label("Axis")
     .output()
-    .unit("N.m", None),
+    .unit("N.m", None)
+    .initial_depends_on(initial_dependencies::of_axis),
     axes!(
         real,
         set_real,
@@ -238,7 +239,8 @@ static VARIABLES: &[Decl] = &[
     )
     .array(AXES)
     .at(311)
-    .derivative_of("integral"),
+    .derivative_of("integral")
+    .initial_depends_on(initial_dependencies::of_axis),
     model::<0>(1), // lp
     model::<1>(1),
     model::<2>(1),

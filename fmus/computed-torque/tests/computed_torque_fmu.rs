@@ -9,7 +9,7 @@ use robofmu::pss3::dynamics::{EndStopMode, Friction, Plant, PlantInputs, PlantPa
 use robofmu::pss3::rotation::{euler_accelerations, euler_rate_matrix};
 use robofmu_computed_torque_fmu::ComputedTorqueFmu;
 use robofmu_fmi::fmi2::types::{FMI2_CO_SIMULATION, FMI2_MODEL_EXCHANGE, Fmi2Status};
-use robofmu_fmi_testing::Host;
+use robofmu_fmi_testing::{Host, vr};
 
 type Fmu = Host<ComputedTorqueFmu>;
 
@@ -202,22 +202,82 @@ fn a_model_that_is_no_robot_is_refused_by_its_fmu_name() {
     );
 }
 
+/// At thx = 80 deg the legs cannot reach the platform joints (the workspace is |thx|,
+/// |thy| < 12 deg or so): the controller's model has no inverse dynamics there.
+const OUTSIDE: [f64; 3] = [80f64.to_radians(), 0.0, 2.13];
+
+/// The reason the FMU must give at `OUTSIDE`: the pose in degrees and the library's own
+/// refusal of it (its inverse dynamics evaluated apart from the FMU).
+fn reason_outside() -> String {
+    let gains = robofmu::computed_torque::pole_placement(30.0, true).unwrap();
+    let law = ComputedTorque::new(PlantParams::default(), [gains; 3]).unwrap();
+    let inputs = Inputs {
+        measurement: OUTSIDE.into(),
+        ..Inputs::default()
+    };
+    let refusal = law.output(&Vector3::zeros(), &inputs).unwrap_err();
+    format!(
+        "measurement = (80.0000, 0.0000, 122.0400) deg: the controller's model (the \
+         geometry lp, ld, gamma, lb, alpha, beta, a) cannot be evaluated at this pose: \
+         {refusal}"
+    )
+}
+
 #[test]
-fn outside_the_models_workspace_the_output_is_zero_force_and_the_integral_holds() {
-    // Truth: the documented fallback. At thx = 80 deg the legs cannot reach the
-    // platform joints (the workspace is |thx|, |thy| < 12 deg or so): no inverse
-    // dynamics, so u = 0 (clamped into the limits) and d(integral)/dt = 0; every call
-    // returns OK (a getter never fails on an input value).
+fn outside_the_models_workspace_every_getter_discards_with_the_pose_and_the_reason() {
+    // Truth: issue 20's rule, one status for a value the model cannot evaluate: Discard
+    // with the model's reason from every getter, derivatives included.
     let h = Fmu::new(FMI2_MODEL_EXCHANGE);
-    assert_eq!(h.set_boolean("limitOutput[2]", true), Fmi2Status::Ok);
-    assert_eq!(h.set_real("uMin[2]", 0.25), Fmi2Status::Ok);
-    assert_eq!(h.set_real("uMax[2]", 1.0), Fmi2Status::Ok);
-    h.set_vector("measurement", [80f64.to_radians(), 0.0, 2.13]);
     assert_eq!(h.initialize(), Fmi2Status::Ok, "{}", h.last_message());
     h.enter_continuous_time_mode();
-    assert_eq!(h.vector("u"), [0.0, 0.25, 0.0]);
-    assert_eq!(h.derivatives(), (Fmi2Status::Ok, vec![0.0; 3]));
+    h.set_vector("measurement", OUTSIDE);
+    assert_eq!(
+        h.real_at(vr::<ComputedTorqueFmu>("u[2]")).0,
+        Fmi2Status::Discard
+    );
+    let reason = format!("at t = 0 s: {}", reason_outside());
+    assert_eq!(h.last_message(), format!("fmi2GetReal: {reason}"));
+    assert_eq!(h.derivatives().0, Fmi2Status::Discard);
+    assert_eq!(h.last_message(), format!("fmi2GetDerivatives: {reason}"));
     // Back inside, the law acts again.
     h.set_vector("measurement", [0.0, 0.0, 2.13]);
     assert_ne!(h.real("u[1]"), 0.0);
+    assert_eq!(h.derivatives().0, Fmi2Status::Ok);
+}
+
+#[test]
+fn outside_the_models_workspace_at_the_start_initialization_is_refused_naming_it() {
+    // Truth: the layer's rule for the start (computed values must exist when
+    // initialization ends, docs/reliability.md): Error with the same reason.
+    let h = Fmu::new(FMI2_MODEL_EXCHANGE);
+    h.set_vector("measurement", OUTSIDE);
+    assert_eq!(h.initialize(), Fmi2Status::Error);
+    assert!(
+        h.last_message().ends_with(&reason_outside()),
+        "{}",
+        h.last_message()
+    );
+}
+
+#[test]
+fn outside_the_models_workspace_a_step_is_discarded_with_the_reason_and_terminates() {
+    // Truth: as above for Co-Simulation; a smaller step cannot help with held inputs,
+    // so the FMU asks to terminate (fmi2Terminated) and its integral stays as it was.
+    let h = Fmu::new(FMI2_CO_SIMULATION);
+    assert_eq!(h.initialize(), Fmi2Status::Ok);
+    assert_eq!(h.step(0.0, 1e-3), Fmi2Status::Ok);
+    let integral = h.vector("integral");
+    h.set_vector("measurement", OUTSIDE);
+    assert_eq!(
+        h.real_at(vr::<ComputedTorqueFmu>("u[1]")).0,
+        Fmi2Status::Discard
+    );
+    assert_eq!(h.step(1e-3, 1e-3), Fmi2Status::Discard);
+    let logged = h.messages(Fmi2Status::Discard);
+    assert!(
+        logged.last().unwrap().ends_with(&reason_outside()),
+        "{logged:?}"
+    );
+    assert!(h.terminated());
+    assert_eq!(h.vector("integral"), integral);
 }

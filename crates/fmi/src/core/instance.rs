@@ -5,10 +5,11 @@
 use super::flatten::flatten;
 use super::log::Log;
 use super::model::{Model, StepOutcome};
-use super::shared::shared;
+use super::shared::{downcast, shared};
 use super::value_check::{self, Value, wrong_type};
 use super::variables::{Initial, Kind, Variable, VariableType, find};
-use std::sync::{Arc, Mutex, PoisonError};
+use std::any::Any;
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
 /// Does not log: the model's checks on a copy are not the instance's.
 pub struct Silent;
@@ -165,6 +166,9 @@ pub struct Index<M: 'static> {
     /// [`model_with_start_values`] of the table, built once (a clone costs a copy; the
     /// setters of every start value cost about 1,700 instructions for the PID).
     fresh: Mutex<M>,
+    /// The two views a front-end derives from the table (FMI 3.0: the array view and
+    /// the scalar-only view), each built the first time it is asked for.
+    derived: [OnceLock<Arc<dyn Any + Send + Sync>>; 2],
 }
 
 impl<M: Model> Index<M> {
@@ -179,8 +183,27 @@ impl<M: Model> Index<M> {
         Ok(Index {
             calculated: calculated_flags(&table),
             fresh: Mutex::new(model_with_start_values::<M>(&table)?),
+            derived: [OnceLock::new(), OnceLock::new()],
             table,
         })
+    }
+
+    /// View `slot` (0 or 1; one type per slot) derived from the table by `build`: built
+    /// once and shared like the index (an error is returned, not kept).
+    pub fn derived<T: Send + Sync + 'static>(
+        &self,
+        slot: usize,
+        build: impl FnOnce(&[Variable<M>]) -> Result<T, String>,
+    ) -> Result<Arc<T>, String> {
+        let cell = &self.derived[slot];
+        let view = match cell.get() {
+            Some(view) => view,
+            None => {
+                let built: Arc<dyn Any + Send + Sync> = Arc::new(build(&self.table)?);
+                cell.get_or_init(|| built)
+            }
+        };
+        Ok(downcast(Arc::clone(view)))
     }
 
     /// The model with every start value applied (a clone of the one built once).

@@ -63,7 +63,7 @@ fn find(key: TypeId) -> Option<Arc<dyn Any + Send + Sync>> {
 
 /// The table as its type (one type per key: the key types are private to their
 /// callers, each used with one table type).
-fn downcast<T: Send + Sync + 'static>(table: Arc<dyn Any + Send + Sync>) -> Arc<T> {
+pub(crate) fn downcast<T: Send + Sync + 'static>(table: Arc<dyn Any + Send + Sync>) -> Arc<T> {
     match table.downcast::<T>() {
         Ok(table) => table,
         Err(_) => unreachable!("a key type is used with one table type"),

@@ -14,9 +14,8 @@ use crate::core::entry;
 use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
-use crate::core::shared::shared;
 use crate::core::variables::{Causality, Initial, Variability, Variable};
-use std::marker::PhantomData;
+
 use std::sync::Arc;
 
 /// Everything an FMI 3.0 instance owns. Instances share no mutable state.
@@ -34,7 +33,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         check: impl FnOnce(&Table3, usize) -> Result<(), String>,
     ) -> Result<Self, String> {
         let core = core_instance::Instance::new()?;
-        let table = views::<M>(core.table(), scalar)?;
+        let table = views::<M>(core.index(), scalar)?;
         check(&table, core.table().len())?;
         let extra = Fmi3Extra {
             table,
@@ -169,18 +168,13 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     }
 }
 
-/// Key of the shared array view of model M.
-struct ArrayView<M>(PhantomData<M>);
-/// Key of the shared scalar-only view of model M.
-struct ScalarView<M>(PhantomData<M>);
-
-/// The FMI 3.0 view (array or scalar-only) of model M's `table`: shared by the
-/// instances of the model in this library ([`shared`]).
-fn views<M: Model>(table: &[Variable<M>], scalar: bool) -> Result<Arc<Table3>, String> {
-    let arrays = || view::<M>(table);
+/// The FMI 3.0 view (array or scalar-only) of model M's table: derived once from the
+/// index shared by the instances of the model in this library (`Index::derived`).
+fn views<M: Model>(index: &core_instance::Index<M>, scalar: bool) -> Result<Arc<Table3>, String> {
+    let arrays = |table: &[Variable<M>]| view::<M>(table);
     if scalar {
-        shared::<ScalarView<M>, Table3>(|| super::scalar::view(table, &arrays()?))
+        index.derived(1, |table| super::scalar::view(table, &arrays(table)?))
     } else {
-        shared::<ArrayView<M>, Table3>(arrays)
+        index.derived(0, arrays)
     }
 }

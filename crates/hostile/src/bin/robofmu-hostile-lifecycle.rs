@@ -1,5 +1,6 @@
 //! The lifecycle of every packaged FMU (or of the models named as arguments)
-//! through dlopen, without forking, FMI 2.0 and FMI 3.0: the program
+//! through dlopen, without forking, FMI 2.0, FMI 3.0 and the FMI 3.0 scalar-only view
+//! (dist/fmi3-scalar: the same binary, instantiated with the scalar token): the program
 //! scripts/memcheck.sh runs under valgrind memcheck. Exits 1 if a call fails.
 
 use robofmu_hostile::fmu::{Fmu, Standard, models};
@@ -13,20 +14,25 @@ fn main() {
         args.iter().map(String::as_str).collect()
     };
     let mut failed = false;
+    let mut report = |model: &str, view: &str, result: Result<(), String>| match result {
+        Ok(()) => println!("{model} ({view}): lifecycle ok"),
+        Err(e) => {
+            println!("{model} ({view}): {e}");
+            failed = true;
+        }
+    };
     for standard in Standard::BOTH {
         for &model in &models {
             let result = Fmu::unpack(model, standard).and_then(|fmu| match standard {
                 Standard::Fmi2 => lifecycle::run(&fmu),
                 Standard::Fmi3 => fmi3::lifecycle::run(&fmu),
             });
-            match result {
-                Ok(()) => println!("{model} ({}): lifecycle ok", standard.name()),
-                Err(e) => {
-                    println!("{model} ({}): {e}", standard.name());
-                    failed = true;
-                }
-            }
+            report(model, standard.name(), result);
         }
+    }
+    for &model in &models {
+        let result = Fmu::unpack_scalar(model).and_then(|fmu| fmi3::lifecycle::run(&fmu));
+        report(model, "FMI 3.0 scalar", result);
     }
     if failed {
         std::process::exit(1);

@@ -15,7 +15,7 @@ use crate::Loaded;
 use crate::binary::DISCARD;
 use crate::description::{VarType, Variable};
 use crate::sequence_run::{self, random_input};
-use crate::sequences::input_scale;
+use crate::sequences::{POSE_REACH, input_scale, pose_centre};
 
 /// FMI 3.0 sequences run by default: a third of the FMI 2.0 count, because one
 /// costs about 4 times the CPU time of an FMI 2.0 sequence (measured: 20,000 took
@@ -42,8 +42,12 @@ impl Run<'_> {
         };
         // Now and then a force far beyond what the plant's stops hold back.
         let scale = input_scale(v) * if self.rng.below(8) == 0 { 100.0 } else { 1.0 };
+        let model = &self.inst.description.model_name;
         let x: Vec<f64> = (0..v.size)
-            .map(|_| self.rng.uniform(-scale, scale))
+            .map(|i| match pose_centre(model, v, i) {
+                Some(c) => c + self.rng.uniform(-POSE_REACH, POSE_REACH),
+                None => self.rng.uniform(-scale, scale),
+            })
             .collect();
         let s = self.inst.set_float64(&[v.vr], &x);
         self.check(&format!("fmi3SetFloat64({} = {x:?})", v.name), s, false)?;
