@@ -18,7 +18,6 @@
 //!   pass of its own over the gravity torque alone.
 
 use super::motion_cache::{Along, Derivatives, Entry, Point};
-use super::variables::*;
 use super::{Computed, Pss3Plant};
 use nalgebra::Vector3;
 use robofmu::pss3::dynamics::PlantState;
@@ -28,6 +27,27 @@ use robofmu_fmi::prelude::OutputDerivativeError::{self, CannotEvaluate, NotProvi
 
 #[cfg(test)]
 mod tests;
+
+/// A Real output of Pss3Plant, named for its derivatives (element i passed with it:
+/// 0..2 of a vector, the axis of yaw, pitch, roll, 0 for the other scalars).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Output {
+    Theta,
+    Omega,
+    ThetaDot,
+    OmegaDot,
+    YawPitchRoll,
+    L,
+    LDot,
+    Force,
+    StopForce,
+    GravityCompensation,
+    DetJ,
+    CondJ,
+    KineticEnergy,
+    PotentialEnergy,
+}
+use Output::*;
 
 /// The Euler-angle accelerations at the current state and inputs.
 fn theta_ddot(m: &Pss3Plant) -> Result<Vector3<f64>, String> {
@@ -51,28 +71,27 @@ fn l_ddot(m: &Pss3Plant) -> Result<Vector3<f64>, String> {
 }
 
 /// The scalar outputs differentiated along the local motion, in their slots 0..4.
-const SCALARS: [u32; 4] = [DET_J, COND_J, KINETIC_ENERGY, POTENTIAL_ENERGY];
+const SCALARS: [Output; 4] = [DetJ, CondJ, KineticEnergy, PotentialEnergy];
 
 /// The vector outputs differentiated along the local motion, 3 slots each after the
 /// scalars.
-const VECTORS: [u32; 7] = [
-    OMEGA,
-    THETA_DOT,
-    OMEGA_DOT,
-    L_DOT,
-    FORCE,
-    STOP_FORCE,
-    GRAVITY_COMPENSATION,
+const VECTORS: [Output; 7] = [
+    Omega,
+    ThetaDot,
+    OmegaDot,
+    LDot,
+    Force,
+    StopForce,
+    GravityCompensation,
 ];
 
-/// The slot in `Along` of the output with value reference `vr`, if it is one of those
+/// The slot in `Along` of element `i` of `output`, if it is one of those
 /// differentiated along the local motion.
-fn slot(vr: u32) -> Option<usize> {
-    if let Some(k) = SCALARS.iter().position(|&s| s == vr) {
+fn slot(output: Output, i: usize) -> Option<usize> {
+    if let Some(k) = SCALARS.iter().position(|&s| s == output) {
         return Some(k);
     }
-    let (group, i) = split(vr);
-    let k = VECTORS.iter().position(|&g| g == group)?;
+    let k = VECTORS.iter().position(|&v| v == output)?;
     (i < 3).then_some(SCALARS.len() + 3 * k + i)
 }
 
@@ -144,15 +163,20 @@ fn along_gravity(m: &Pss3Plant) -> Derivatives<Vector3<f64>> {
     })?
 }
 
-/// The `order`-th derivative (1 or 2) of output `vr` along the local motion.
-fn along_motion(m: &Pss3Plant, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
-    let Some(k) = slot(vr) else {
+/// The `order`-th derivative (1 or 2) of element `i` of `output` along the local
+/// motion.
+fn along_motion(
+    m: &Pss3Plant,
+    output: Output,
+    i: usize,
+    order: u32,
+) -> Result<f64, OutputDerivativeError> {
+    let Some(k) = slot(output, i) else {
         return Err(NotProvided(format!(
-            "value reference {vr} is not a continuous Real output of Pss3Plant"
+            "{output:?} element {i} is not differentiated along the motion in Pss3Plant"
         )));
     };
-    let (group, i) = split(vr);
-    let derivatives = if group == GRAVITY_COMPENSATION {
+    let derivatives = if output == GravityCompensation {
         along_gravity(m).map(|d| d[order as usize - 1][i])
     } else {
         along_all(m).map(|d| d[order as usize - 1][k])
@@ -164,9 +188,13 @@ fn along_motion(m: &Pss3Plant, vr: u32, order: u32) -> Result<f64, OutputDerivat
     })
 }
 
-/// The `order`-th time derivative of the output `vr` (see the module doc).
-pub fn output_derivative(m: &Pss3Plant, vr: u32, order: u32) -> Result<f64, OutputDerivativeError> {
-    let (group, i) = split(vr);
+/// The `order`-th time derivative of element `i` of `output` (see the module doc).
+pub fn output_derivative(
+    m: &Pss3Plant,
+    output: Output,
+    i: usize,
+    order: u32,
+) -> Result<f64, OutputDerivativeError> {
     let c = m.computed.as_ref().map_err(|e| CannotEvaluate(e.clone()))?;
     let component = |f: fn(&Pss3Plant) -> Result<Vector3<f64>, String>| {
         f(m).map(|v| v[i]).map_err(CannotEvaluate)
@@ -175,13 +203,13 @@ pub fn output_derivative(m: &Pss3Plant, vr: u32, order: u32) -> Result<f64, Outp
         1 => Ok(c.euler_rates[i]),
         _ => component(theta_ddot),
     };
-    match (group, order) {
-        (THETA, _) => theta_rate(order),
-        (YAW_PITCH_ROLL, _) => theta_rate(order).map(|r| if i == 1 { -r } else { r }),
+    match (output, order) {
+        (Theta, _) => theta_rate(order),
+        (YawPitchRoll, _) => theta_rate(order).map(|r| if i == 1 { -r } else { r }),
         (L, 1) => Ok(c.outputs.actuator_velocities[i]),
-        (L, _) | (L_DOT, 1) => component(l_ddot),
-        (THETA_DOT, 1) => component(theta_ddot),
-        (OMEGA, 1) => Ok(c.outputs.omega_dot[i]),
-        _ => along_motion(m, vr, order),
+        (L, _) | (LDot, 1) => component(l_ddot),
+        (ThetaDot, 1) => component(theta_ddot),
+        (Omega, 1) => Ok(c.outputs.omega_dot[i]),
+        _ => along_motion(m, output, i, order),
     }
 }

@@ -4,7 +4,8 @@
 //! it has always had: a vector variable's group below plus i = 1..3.
 
 use super::initial_dependencies as init;
-use super::{Pss3Plant, output_rates, parameters};
+use super::output_rates::{Output, output_derivative};
+use super::{Pss3Plant, parameters};
 use robofmu::pss3::dynamics::PlantInputs;
 use robofmu_fmi::prelude::*;
 
@@ -29,12 +30,6 @@ pub const POTENTIAL_ENERGY: u32 = 204;
 pub const GRAVITY_COMPENSATION: u32 = 210;
 pub const DER_THETA: u32 = 300;
 pub const DER_OMEGA: u32 = 310;
-
-/// Group and component (0..2) of a value reference of a vector variable.
-pub fn split(vr: u32) -> (u32, usize) {
-    let component = (vr + 9) % 10;
-    (vr - component - 1, component as usize)
-}
 
 type Decl = Declaration<Pss3Plant>;
 
@@ -114,30 +109,36 @@ macro_rules! input {
     };
 }
 
-/// The output-derivative hook of the output whose element i has the value reference
-/// `G + 1 + i` (`output_rates` serves orders 1 and 2 of every Real output).
-fn rates<const G: u32>(m: &Pss3Plant, i: usize, order: u32) -> Result<f64, OutputDerivativeError> {
-    output_rates::output_derivative(m, G + 1 + i as u32, order)
+/// The output-derivative hook of element `i` of `$output` (`output_rates` serves
+/// orders 1 and 2 of every Real output); `$i` fixes the element of a scalar.
+macro_rules! rates {
+    ($output:ident) => {
+        |m, i, order| output_derivative(m, Output::$output, i, order)
+    };
+    ($output:ident[$i:expr]) => {
+        |m, _, order| output_derivative(m, Output::$output, $i, order)
+    };
 }
 
 /// A Real output of three elements at `$group + 1..3`, element i read by `$get`.
 macro_rules! vector {
-    ($name:literal, $group:expr, $what:literal, |$m:ident, $i:ident| $get:expr) => {
+    ($name:literal, $group:expr, $output:ident, $what:literal, |$m:ident, $i:ident| $get:expr) => {
         Decl::real($name, $what, |$m, $i| $get)
             .array(3)
             .at($group + 1)
             .output()
-            .output_derivative(rates::<{ $group }>)
+            .output_derivative(rates!($output))
     };
 }
 
-/// A scalar Real output at `$vr` read by `$get`.
+/// A scalar Real output at `$vr` read by `$get`, element `$i` of `$output` (0 unless
+/// given).
 macro_rules! scalar {
-    ($name:literal, $vr:expr, $what:literal, |$m:ident| $get:expr) => {
+    ($name:literal, $vr:expr, $output:ident $([$i:literal])?, $what:literal, |$m:ident| $get:expr) => {
         Decl::real($name, $what, |$m, _| $get)
             .at($vr)
             .output()
-            .output_derivative(rates::<{ $vr - 1 }>)
+            .output_derivative(rates!($output[0 $(+ $i)?]))
     };
 }
 
@@ -179,6 +180,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     vector!(
         "theta",
         THETA,
+        Theta,
         "Euler angle (thx, thy, thz) of R = Rz Ry Rx (continuous state)",
         |m, i| euler(m, i, 1.0)
     )
@@ -188,20 +190,27 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     vector!(
         "omega",
         OMEGA,
+        Omega,
         "Angular velocity of the platform in {A} (continuous state)",
         |m, i| m.current_state().map_or(f64::NAN, |s| s.omega[i])
     )
     .unit("rad/s", Some("deg/s"))
     .depends_on_each(|i| &OMEGA_NAMES[i..=i])
     .initial_depends_on(|i| &init::OMEGA[i]),
-    vector!("thetaDot", THETA_DOT, "Euler-angle rate", |m, i| m
-        .computed(|c| c.euler_rates[i]))
+    vector!(
+        "thetaDot",
+        THETA_DOT,
+        ThetaDot,
+        "Euler-angle rate",
+        |m, i| m.computed(|c| c.euler_rates[i])
+    )
     .unit("rad/s", Some("deg/s"))
     .depends_on(&STATES)
     .initial_depends_on(init::theta_dot),
     vector!(
         "omegaDot",
         OMEGA_DOT,
+        OmegaDot,
         "Angular acceleration of the platform in {A}",
         |m, i| m.output(|o| o.omega_dot[i])
     )
@@ -211,6 +220,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     scalar!(
         "yaw",
         YAW_PITCH_ROLL + 1,
+        YawPitchRoll[0],
         "Yaw as in the thesis: thx",
         |m| euler(m, 0, 1.0)
     )
@@ -220,6 +230,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     scalar!(
         "pitch",
         YAW_PITCH_ROLL + 2,
+        YawPitchRoll[1],
         "Pitch as in the thesis: -thy",
         |m| euler(m, 1, -1.0)
     )
@@ -229,18 +240,19 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     scalar!(
         "roll",
         YAW_PITCH_ROLL + 3,
+        YawPitchRoll[2],
         "Roll as in the thesis: thz",
         |m| euler(m, 2, 1.0)
     )
     .unit("rad", Some("deg"))
     .depends_on(&["theta[3]"])
     .initial_depends_on(|_| &init::THETA[2]),
-    vector!("l", L, "Actuator displacement", |m, i| m
+    vector!("l", L, L, "Actuator displacement", |m, i| m
         .output(|o| o.actuator_displacements[i]))
     .unit("m", Some("mm"))
     .depends_on(&THETA_NAMES)
     .initial_depends_on(|_| &init::POSE),
-    vector!("lDot", L_DOT, "Actuator velocity", |m, i| m
+    vector!("lDot", L_DOT, LDot, "Actuator velocity", |m, i| m
         .output(|o| o.actuator_velocities[i]))
     .unit("m/s", None)
     .depends_on(&STATES)
@@ -248,6 +260,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     vector!(
         "force",
         FORCE,
+        Force,
         "Total actuator force from the inputs (actuatorForce plus the mapped commands), \
          without end-stop forces",
         |m, i| m.output(|o| o.actuator_forces[i])
@@ -258,6 +271,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     vector!(
         "stopForce",
         STOP_FORCE,
+        StopForce,
         "End-stop force on the actuator along u_i",
         |m, i| m.output(|o| o.end_stop_forces[i])
     )
@@ -277,19 +291,26 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     scalar!(
         "detJ",
         DET_J,
+        DetJ,
         "Determinant of the actuator Jacobian J (lDot = J omega)",
         |m| m.output(|o| o.jacobian_det)
     )
     .unit("m3", None)
     .depends_on(&THETA_NAMES)
     .initial_depends_on(|_| &init::POSE),
-    scalar!("condJ", COND_J, "2-norm condition number of J", |m| m
-        .output(|o| o.jacobian_cond))
+    scalar!(
+        "condJ",
+        COND_J,
+        CondJ,
+        "2-norm condition number of J",
+        |m| m.output(|o| o.jacobian_cond)
+    )
     .depends_on(&THETA_NAMES)
     .initial_depends_on(|_| &init::POSE),
     scalar!(
         "kineticEnergy",
         KINETIC_ENERGY,
+        KineticEnergy,
         "Kinetic energy of platform, legs and sliders",
         |m| m.output(|o| o.kinetic_energy)
     )
@@ -299,6 +320,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     scalar!(
         "potentialEnergy",
         POTENTIAL_ENERGY,
+        PotentialEnergy,
         "Potential energy of gravity (zero at the height of C) plus the energy in the \
          end-stop springs",
         |m| m.output(|o| o.potential_energy + o.end_stop_energy)
@@ -309,6 +331,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     vector!(
         "gravityCompensation",
         GRAVITY_COMPENSATION,
+        GravityCompensation,
         "Euler-angle generalized force G = E^T g(theta) that holds the current pose at \
          rest against gravity (feedforward for generalizedForceCommand)",
         |m, i| m.computed(|c| c.gravity_compensation[i])

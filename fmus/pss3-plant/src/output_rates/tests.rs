@@ -23,15 +23,16 @@ fn moving() -> Pss3Plant {
     m
 }
 
-/// Every value reference differentiated along the motion.
-fn along_outputs() -> Vec<u32> {
-    let vectors = VECTORS.iter().flat_map(|&g| [g + 1, g + 2, g + 3]);
-    SCALARS.into_iter().chain(vectors).collect()
+/// Every output element differentiated along the motion.
+fn along_outputs() -> Vec<(Output, usize)> {
+    let vectors = VECTORS.iter().flat_map(|&v| [(v, 0), (v, 1), (v, 2)]);
+    SCALARS.map(|s| (s, 0)).into_iter().chain(vectors).collect()
 }
 
-/// Output `vr` alone along the motion, order 1 and 2 (one local motion per output).
-fn one_at_a_time(m: &Pss3Plant, vr: u32) -> [f64; 2] {
-    let k = slot(vr).unwrap();
+/// Element `i` of `output` alone along the motion, order 1 and 2 (one local motion per
+/// output).
+fn one_at_a_time(m: &Pss3Plant, (output, i): (Output, usize)) -> [f64; 2] {
+    let k = slot(output, i).unwrap();
     let motion = m.plant.as_ref().unwrap().local_motion(&m.state, &m.inputs);
     motion
         .unwrap()
@@ -44,12 +45,13 @@ fn all_at_once_equals_one_at_a_time_bit_for_bit() {
     let m = moving();
     let outputs = along_outputs();
     assert_eq!(outputs.len(), ALONG);
-    for vr in outputs {
-        let expected = one_at_a_time(&m, vr);
+    for (output, i) in outputs {
+        let expected = one_at_a_time(&m, (output, i));
         for order in [1, 2] {
-            let got = along_motion(&m, vr, order).unwrap();
+            let got = along_motion(&m, output, i, order).unwrap();
             let want = expected[order as usize - 1];
-            assert_eq!(got.to_bits(), want.to_bits(), "vr {vr} order {order}");
+            let what = format!("{output:?} element {i} order {order}");
+            assert_eq!(got.to_bits(), want.to_bits(), "{what}");
         }
     }
 }
@@ -58,9 +60,9 @@ fn all_at_once_equals_one_at_a_time_bit_for_bit() {
 fn along_bits(m: &Pss3Plant) -> Vec<u64> {
     let orders = along_outputs()
         .into_iter()
-        .flat_map(|vr| [(vr, 1), (vr, 2)]);
+        .flat_map(|(output, i)| [(output, i, 1), (output, i, 2)]);
     orders
-        .map(|(vr, order)| along_motion(m, vr, order).unwrap().to_bits())
+        .map(|(output, i, order)| along_motion(m, output, i, order).unwrap().to_bits())
         .collect()
 }
 
