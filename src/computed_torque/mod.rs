@@ -35,5 +35,6 @@ mod model_parameters;
 pub use gains::pole_placement;
 pub use law::{AxisGains, ComputedTorque, ControllerError, Inputs, Output};
 pub use model_parameters::{
-    GEOMETRY, MODEL_PARAMETERS, ModelParameter, controller_message, model_parameter, with_fmu_names,
+    GEOMETRY, MODEL_PARAMETER_SPECS, MODEL_PARAMETERS, ModelParameter, controller_message,
+    model_parameter, with_fmu_names,
 };

@@ -244,6 +244,18 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
     ),
 ];
 
+/// The spec value of every entry of [`MODEL_PARAMETERS`], in its order (the start
+/// values an FMU declares its model parameters with).
+pub const MODEL_PARAMETER_SPECS: [f64; MODEL_PARAMETERS.len()] = {
+    let mut specs = [0.0; MODEL_PARAMETERS.len()];
+    let mut k = 0;
+    while k < specs.len() {
+        specs[k] = MODEL_PARAMETERS[k].spec;
+        k += 1;
+    }
+    specs
+};
+
 /// The model parameter named `name`, if any.
 pub fn model_parameter(name: &str) -> Option<&'static ModelParameter> {
     MODEL_PARAMETERS.iter().find(|p| p.name == name)

@@ -5,7 +5,9 @@
 //! (state).
 
 use super::{AXES, ComputedTorqueFmu, DEFAULT_BANDWIDTH, initial_dependencies};
-use robofmu::computed_torque::{AxisGains, MODEL_PARAMETERS, pole_placement};
+use robofmu::computed_torque::{
+    AxisGains, MODEL_PARAMETER_SPECS, MODEL_PARAMETERS, pole_placement,
+};
 use robofmu::pss3::START_ROLL_DEG;
 use robofmu_fmi::prelude::*;
 
@@ -25,17 +27,6 @@ const PLANNED: [f64; 3] = [
     -0.5f64.to_radians(),
     START_ROLL_DEG.to_radians() + 1f64.to_radians(),
 ];
-
-/// The spec value of every model parameter (start values of the model's declarations).
-const SPECS: [f64; MODEL_PARAMETERS.len()] = {
-    let mut specs = [0.0; MODEL_PARAMETERS.len()];
-    let mut k = 0;
-    while k < specs.len() {
-        specs[k] = MODEL_PARAMETERS[k].spec;
-        k += 1;
-    }
-    specs
-};
 
 /// The per-axis array of `m.$($place)+[k]`-like fields, at `vr`, "Axis k: ..." in FMI
 /// 2.0; writing it rebuilds the law before its next use.
@@ -83,7 +74,7 @@ macro_rules! input {
 
 /// `length` spec values from entry `k` on.
 const fn specs(k: usize, length: usize) -> &'static [f64] {
-    let all: &'static [f64] = &SPECS;
+    let all: &'static [f64] = &MODEL_PARAMETER_SPECS;
     all.split_at(k).1.split_at(length).0
 }
 

@@ -8,7 +8,7 @@
 //! initial state are the plant's own.
 
 use super::{Pss3Plant, START_DISPLACEMENT, START_POSE};
-use robofmu::computed_torque::MODEL_PARAMETERS;
+use robofmu::computed_torque::{MODEL_PARAMETER_SPECS, MODEL_PARAMETERS};
 use robofmu::pss3::ParamError;
 use robofmu::pss3::dynamics::{EndStopMode, PlantParamError};
 use robofmu_fmi::prelude::*;
@@ -68,17 +68,6 @@ pub fn fmu_message(e: &PlantParamError) -> String {
 
 type Decl = Declaration<Pss3Plant>;
 
-/// The spec value of every entry of `MODEL_PARAMETERS`.
-const SPECS: [f64; MODEL_PARAMETERS.len()] = {
-    let mut specs = [0.0; MODEL_PARAMETERS.len()];
-    let mut k = 0;
-    while k < specs.len() {
-        specs[k] = MODEL_PARAMETERS[k].spec;
-        k += 1;
-    }
-    specs
-};
-
 fn get_model<const K: usize>(m: &Pss3Plant, i: usize) -> f64 {
     (MODEL_PARAMETERS[K + i].get)(&m.params)
 }
@@ -93,7 +82,7 @@ fn set_model<const K: usize>(m: &mut Pss3Plant, i: usize, v: f64) -> Result<(), 
 /// `name[1..3]` of three consecutive entries, named and described without the index).
 const fn model<const K: usize>(vr: u32, length: usize) -> Decl {
     let p = &MODEL_PARAMETERS[K];
-    let specs: &'static [f64] = &SPECS;
+    let specs: &'static [f64] = &MODEL_PARAMETER_SPECS;
     let start = specs.split_at(K).1.split_at(length).0;
     let mut d = if length > 1 {
         let name = p.name.split_at(p.name.len() - 3).0; // "name[1]" -> "name"
