@@ -12,11 +12,11 @@
 //! instantiation, and lent to the packager's closure: nothing allocated in the cdylib
 //! is freed by the packager.
 
-use crate::core::check::check_table;
 use crate::core::frontend::log_categories;
 use crate::core::instance::sorted_table;
 use crate::core::log::LogCategory;
 use crate::core::model::{Model, ModelInfo};
+use crate::core::variables::check_table;
 use crate::core::variables::{Causality, Initial, Kind, Variability, Variable};
 use crate::fmi3::table::{self, Variable3};
 use crate::fmi3::{declared, scalar};

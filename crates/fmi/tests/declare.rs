@@ -4,10 +4,10 @@
 //! (pinned: vr + i * stride; unpinned: one after the largest before), the expected
 //! names from the FMI 2.0 convention `base[i]` / `der(state[i])`.
 
-use robofmu_fmi::core::check::check_table;
 use robofmu_fmi::core::declare::{Declaration, value_references};
 use robofmu_fmi::core::flatten::flatten;
 use robofmu_fmi::core::variables::Kind;
+use robofmu_fmi::core::variables::check_table;
 use robofmu_fmi::core::variables::{Causality, VariableType};
 use robofmu_fmi::core::{OutputDerivativeError, Variability};
 use robofmu_fmi::fmi3::table::{Source, Table3, Variable3};

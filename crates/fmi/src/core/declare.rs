@@ -12,7 +12,7 @@
 //! an Integer, a start list of the wrong length, a stride of 0) is a compile error in
 //! the `static`. What needs the whole table (unique names, legal causality and
 //! variability combinations, derivatives of existing states) is checked by
-//! [`check_table`](super::check::check_table) on the flattened table, in each FMU's
+//! [`check_table`](super::variables::check_table) on the flattened table, in each FMU's
 //! drift test.
 //!
 //! Value references: a declaration pinned with [`Declaration::at`] has its element i

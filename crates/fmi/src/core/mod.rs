@@ -14,7 +14,6 @@
 //! they share, with [`fmu_state_calls`] and [`model_exchange_calls`].
 
 pub mod attributes;
-pub mod check;
 pub mod declare;
 pub mod directional;
 pub mod entry;

@@ -230,11 +230,13 @@ pub fn find<M>(table: &[Variable<M>], vr: u32) -> Option<&Variable<M>> {
         .map(|i| &table[i])
 }
 
-/// Checks every variable of a table against the rules of the standard that importers
-/// enforce: unique names, value references strictly increasing, legal (causality,
+/// Checks a whole table against the rules of the standard that importers enforce (run
+/// where modelDescription.xml is written; an instance relies only on unique value
+/// references): unique names, value references strictly increasing, legal (causality,
 /// variability, initial) combinations, start values exactly where required, a writer
-/// for every variable that may be set, derivatives that name an existing Real state.
-pub fn check_variables<M>(table: &[Variable<M>]) -> Result<(), String> {
+/// for every variable that may be set, derivatives that name an existing Real state,
+/// dependencies on inputs and states only.
+pub fn check_table<M>(table: &[Variable<M>]) -> Result<(), String> {
     use Causality as C;
     use Variability as V;
     for pair in table.windows(2) {
