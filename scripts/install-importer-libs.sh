@@ -4,13 +4,21 @@
 # with apt-get when it is missing and this runs as root (CI); otherwise asks for it and
 # fails, so that the importer tests never run (or skip) without it.
 set -euo pipefail
-if ldconfig -p | grep -q 'libtbb\.so\.12 '; then
+# Whether the loader's cache lists libtbb.so.12. Not `ldconfig -p | grep -q`: grep -q
+# exits at the first match, ldconfig then dies of SIGPIPE and pipefail makes the test
+# fail although the library is there (it did in CI, at random).
+has_tbb() {
+    local cache
+    cache="$(ldconfig -p)"
+    [[ "$cache" == *"libtbb.so.12 "* ]]
+}
+if has_tbb; then
     exit 0
 fi
 if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null 2>&1; then
     apt-get update -qq
     DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libtbb12 >/dev/null
-    ldconfig -p | grep -q 'libtbb\.so\.12 ' && exit 0
+    has_tbb && exit 0
     echo "apt-get installed libtbb12 but libtbb.so.12 is not in the loader's cache" >&2
     exit 1
 fi
