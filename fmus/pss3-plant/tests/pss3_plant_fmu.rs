@@ -384,9 +384,9 @@ fn bad_arguments_and_sequences_are_errors() {
 fn dependencies_name_only_inputs_and_states() {
     // Truth: FMI 2.0 ModelStructure, the knowns of outputs and derivatives are inputs
     // and continuous states; a dependency on a parameter is refused by the layer.
-    use robofmu_fmi::core::variables::check_table;
     use robofmu_fmi::core::flatten::flatten;
     use robofmu_fmi::core::instance::sorted_table;
+    use robofmu_fmi::core::variables::check_table;
     use robofmu_fmi::core::{Declaration, Variability};
     assert_eq!(check_table(&sorted_table::<Pss3Plant>().unwrap()), Ok(()));
     static TABLE: &[Declaration<()>] = &[
