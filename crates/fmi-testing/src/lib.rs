@@ -101,6 +101,17 @@ pub fn vr<M: Model>(name: &str) -> u32 {
         .value_reference
 }
 
+/// The names of every Real output of `M`, in value-reference order.
+pub fn real_outputs<M: Model>() -> Vec<String> {
+    use robofmu_fmi::core::variables::{Causality, VariableType};
+    robofmu_fmi::core::instance::sorted_table::<M>()
+        .unwrap_or_else(|e| panic!("the variable table: {e}"))
+        .into_iter()
+        .filter(|v| v.causality == Causality::Output && v.variable_type() == VariableType::Real)
+        .map(|v| v.name().into_owned())
+        .collect()
+}
+
 impl<M: Model> Host<M> {
     /// Instantiated (kind FMI2_MODEL_EXCHANGE or FMI2_CO_SIMULATION), logging on.
     pub fn new(kind: i32) -> Self {

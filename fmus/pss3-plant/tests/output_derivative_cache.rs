@@ -4,8 +4,6 @@
 //! instance that never evaluated anything before: a fresh instance restored to the same
 //! FMU state. Asking again at the same point must give the same bits.
 
-use robofmu_fmi::core::instance::sorted_table;
-use robofmu_fmi::core::variables::{Causality, VariableType};
 use robofmu_fmi::fmi2::types::*;
 use robofmu_fmi_testing::Host;
 use robofmu_pss3_plant_fmu::Pss3Plant;
@@ -14,12 +12,7 @@ type H = Host<Pss3Plant>;
 
 /// Every Real output of the plant, from its variable table.
 fn real_outputs() -> Vec<String> {
-    sorted_table::<Pss3Plant>()
-        .unwrap()
-        .into_iter()
-        .filter(|v| v.causality == Causality::Output && v.variable_type() == VariableType::Real)
-        .map(|v| v.name().into_owned())
-        .collect()
+    robofmu_fmi_testing::real_outputs::<Pss3Plant>()
 }
 
 /// A tilted, moving plant driven by constant actuator forces, with `sliderMass` (kg;
