@@ -166,7 +166,8 @@ pub struct Index<M: 'static> {
     /// [`calculated_flags`] of the table.
     pub calculated: Vec<bool>,
     /// [`model_with_start_values`] of the table, built once (a clone costs a copy; the
-    /// setters of every start value cost about 1,700 instructions for the PID).
+    /// setters of every start value cost about 1,700 instructions for the PID). In a
+    /// Mutex because a model need not be `Sync` (the plant keeps a `RefCell` cache).
     fresh: Mutex<M>,
     /// The two views a front-end derives from the table (FMI 3.0: the array view and
     /// the scalar-only view), each built the first time it is asked for.

@@ -82,7 +82,8 @@ fn evaluate<M: Model>(inst: &mut Instance<M>, requests: &[Request]) -> Result<Ve
         .map_err(|e| Refusal::Discard(format!("the outputs cannot be evaluated here: {e}")))?;
     let mut values = Vec::with_capacity(requests.len());
     for &r in requests {
-        let order = check(inst, r).map_err(Refusal::Error)?;
+        // Every request passed `check` above: its order is within 1..=max.
+        let order = r.order as u32;
         let v = variable(inst.table(), r.vr).map_err(Refusal::Error)?;
         let what = || format!("derivative of order {order} of \"{}\"", v.name());
         let value = match v.output_hook() {

@@ -172,9 +172,13 @@ impl<M: Model> FmuInstance<Fmi3, M> {
 /// index shared by the instances of the model in this library (`Index::derived`).
 fn views<M: Model>(index: &core_instance::Index<M>, scalar: bool) -> Result<Arc<Table3>, String> {
     let arrays = |table: &[Variable<M>]| view::<M>(table);
+    const ARRAY_VIEW: usize = 0;
+    const SCALAR_VIEW: usize = 1;
     if scalar {
-        index.derived(1, |table| super::scalar::view(table, &arrays(table)?))
+        index.derived(SCALAR_VIEW, |table| {
+            super::scalar::view(table, &arrays(table)?)
+        })
     } else {
-        index.derived(0, arrays)
+        index.derived(ARRAY_VIEW, arrays)
     }
 }
