@@ -73,17 +73,24 @@ class Transfer:
 _SLOPES = ctypes.CFUNCTYPE(c_int, c_void_p, c_void_p, c_size_t, c_void_p, c_void_p)
 
 
+def _orders(n: int, order: int) -> ctypes.Array:
+    """Derivative orders 1..order of n values each, as the value references repeat."""
+    return (c_int * (n * order))(*(k for k in range(1, order + 1) for _ in range(n)))
+
+
 class SlopeTransfer:
-    """One prepared fmi2GetRealOutputDerivatives (source, order 1) + fmi2SetRealInput-
-    Derivatives (target) through a shared buffer: the input slopes over the next step."""
+    """One prepared fmi2GetRealOutputDerivatives (source, orders 1..order) +
+    fmi2SetRealInputDerivatives (target) through a shared buffer: the input derivatives
+    over the next step (all of order 1, then all of order 2)."""
 
     ok = True
 
-    def __init__(self, source, variables, target, inputs):
+    def __init__(self, source, variables, target, inputs, order):
         self.source, self.target = source, target
-        self.src_refs, self.dst_refs = _refs(source, variables), _refs(target, inputs)
-        n = len(variables)
-        self.orders = (c_int * n)(*([1] * n))
+        self.src_refs = _refs(source, tuple(variables) * order)
+        self.dst_refs = _refs(target, tuple(inputs) * order)
+        n = len(variables) * order
+        self.orders = _orders(len(variables), order)
         self.buffer = (c_double * n)()
         self.get = _function(source, "fmi2GetRealOutputDerivatives", _SLOPES)
         self.set = _function(target, "fmi2SetRealInputDerivatives", _SLOPES)
@@ -105,21 +112,21 @@ class SlopeTransfer:
 
 
 class HistorySlope:
-    """The slope through the last two samples (cosim.slopes.History) of the values a
+    """The derivatives through the last samples (cosim.slopes.History) of the values a
     value Transfer just moved, set as the target's input derivatives."""
 
     def __init__(self, transfer: Transfer, history):
         self.transfer, self.history = transfer, history
-        n = len(transfer.names[0])
+        n, order = len(transfer.names[0]), history.order
         self.values = np.frombuffer(transfer.buffer, dtype=np.float64)
-        self.orders = (c_int * n)(*([1] * n))
-        self.slope = np.zeros(n)
+        self.orders = _orders(n, order)
+        self.refs = (c_uint * (n * order))(*(list(transfer.dst_refs) * order))
         self.set = _function(transfer.target, "fmi2SetRealInputDerivatives", _SLOPES)
-        self.args = (transfer.target._fmu.component, ctypes.addressof(transfer.dst_refs), n,
-                     ctypes.addressof(self.orders), self.slope.ctypes.data)
+        self.args = (transfer.target._fmu.component, ctypes.addressof(self.refs), n * order,
+                     ctypes.addressof(self.orders), history.out.ctypes.data)
 
     def __call__(self, t: float) -> None:
-        self.slope[:] = self.history.slopes(t, self.values)
+        self.history.derivatives(t, self.values)
         if self.set(*self.args) > 1:
             raise FmuError(f"{self.transfer.target.alias}: fmi2SetRealInputDerivatives("
                            f"{', '.join(self.transfer.names[1])}) failed: "
@@ -159,9 +166,10 @@ class Kernel:
         for transfer in self.transfers[alias]:
             transfer()
 
-    def _slope(self, alias, source, variables, targets, history):
+    def _slope(self, alias, source, variables, targets, history, order):
         if history is None:
-            return SlopeTransfer(self.fmus[source], variables, self.fmus[alias], targets)
+            return SlopeTransfer(self.fmus[source], variables, self.fmus[alias], targets,
+                                 order)
         # The values are those the pair's value Transfer moved just before in the same
         # propagation (a Transfer of the subset when the pair has other variables too).
         for values in self.transfers[alias]:

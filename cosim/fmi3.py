@@ -76,7 +76,7 @@ class Fmu3Instance(LoggedCalls):
         self._written = dict(self._starts)
         self._start_time, self._stop_time = start_time, stop_time
         self._unzip = extract(str(path))
-        # Linear input extrapolation through the intermediate update (cosim.intermediate).
+        # Input extrapolation through the intermediate update (cosim.intermediate).
         self.intermediate = (IntermediateInputs(self, flagged_inputs(path))
                              if extrapolate and md.coSimulation.providesIntermediateUpdate
                              else None)
@@ -132,8 +132,11 @@ class Fmu3Instance(LoggedCalls):
         located = [self._locate(name) for name in names]
         return [float(self._written[v.name][0 if i is None else i]) for v, i in located]
 
-    def set_input_slopes(self, names: tuple[str, ...], values) -> None:
-        self.intermediate.set_slopes(names, values)
+    #: The intermediate update applies derivatives up to the second (cosim.intermediate).
+    max_input_derivative_order = 2
+
+    def set_input_derivatives(self, names: tuple[str, ...], values, order: int) -> None:
+        self.intermediate.set_derivatives(names, values, order)
 
     def do_step(self, time: float, step: float) -> None:
         if self.intermediate is None:
@@ -177,4 +180,4 @@ class Fmu3Instance(LoggedCalls):
 def open_fmi3(alias, path, scenario):
     """The master's `open_fmu` for the FMI 3.0 builds of the scenario's FMUs."""
     return Fmu3Instance(alias, fmi3_path(Path(path)), scenario.start_time, scenario.stop_time,
-                        extrapolate=getattr(scenario, "input_extrapolation", "") == "linear")
+                        extrapolate=getattr(scenario, "input_extrapolation", "hold") != "hold")

@@ -223,18 +223,22 @@ class FmuInstance(LoggedCalls):
     def is_real(self, name: str) -> bool:
         return self.variables[name].type == "Real"
 
-    def get_output_slopes(self, names: tuple[str, ...]) -> list[float]:
-        """First time derivatives of Real outputs (fmi2GetRealOutputDerivatives)."""
+    def get_output_derivatives(self, names: tuple[str, ...], order: int) -> list[float]:
+        """Time derivatives of orders 1..order of Real outputs in one
+        fmi2GetRealOutputDerivatives call: all of order 1 (in the order of `names`),
+        then all of order 2, ..."""
         refs = [self.variables[n].valueReference for n in names]
-        return self._call(f"fmi2GetRealOutputDerivatives({', '.join(names)})",
-                          lambda: self._fmu.getRealOutputDerivatives(refs, [1] * len(refs)))
+        orders = [k for k in range(1, order + 1) for _ in refs]
+        return self._call(f"fmi2GetRealOutputDerivatives({', '.join(names)}, orders 1..{order})",
+                          lambda: self._fmu.getRealOutputDerivatives(refs * order, orders))
 
-    def set_input_slopes(self, names: tuple[str, ...], values) -> None:
-        """First time derivatives of Real inputs over the next step
-        (fmi2SetRealInputDerivatives)."""
+    def set_input_derivatives(self, names: tuple[str, ...], values, order: int) -> None:
+        """Time derivatives of orders 1..order of Real inputs over the next step
+        (fmi2SetRealInputDerivatives), laid out as get_output_derivatives returns them."""
         refs = [self.variables[n].valueReference for n in names]
-        self._call(f"fmi2SetRealInputDerivatives({', '.join(names)})",
-                   lambda: self._fmu.setRealInputDerivatives(refs, [1] * len(refs),
+        orders = [k for k in range(1, order + 1) for _ in refs]
+        self._call(f"fmi2SetRealInputDerivatives({', '.join(names)}, orders 1..{order})",
+                   lambda: self._fmu.setRealInputDerivatives(refs * order, orders,
                                                              list(values)))
 
     def reset(self, start_time: float, stop_time: float) -> None:

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import CosimError, FmuError, StepDiscarded
-from .fastpath import HistorySlope, Kernel, SlopeTransfer
+from .fastpath import Kernel, SlopeTransfer
 
 ROOT = Path(__file__).resolve().parent.parent
 KINDS = ("fmi2GetReal", "fmi2SetReal", "fmi2DoStep", "fmi2GetRealOutputDerivatives",
@@ -36,7 +36,8 @@ class _Slope(Structure):
     _fields_ = [("get", c_void_p), ("source", c_void_p), ("source_refs", c_void_p),
                 ("set", c_void_p), ("target", c_void_p), ("target_refs", c_void_p),
                 ("n", c_size_t), ("orders", c_void_p), ("slopes", c_void_p),
-                ("values", c_void_p), ("previous", c_void_p), ("state", c_void_p)]
+                ("order", c_size_t), ("values", c_void_p), ("past", c_void_p),
+                ("state", c_void_p)]
 
 
 class _Stepper(Structure):
@@ -94,13 +95,10 @@ class NativeKernel(Kernel):
         self.lib = library()
         self.exchanges = [t for alias in order for t in self.transfers[alias]]
         self.slope_calls = [x for alias in order for x in self.slopes[alias]]
-        self.history = [(np.zeros(len(x.values)), np.zeros(2)) if isinstance(x, HistorySlope)
-                        else None for x in self.slope_calls]
         self.steppers_c = _array(_Stepper, [_Stepper(_address(f), _address(c))
                                             for _, f, c in self.steppers])
         self.exchanges_c = _array(_Exchange, [self._exchange(t) for t in self.exchanges])
-        self.slopes_c = _array(_Slope, [self._slope_c(x, h) for x, h in
-                                        zip(self.slope_calls, self.history)])
+        self.slopes_c = _array(_Slope, [self._slope_c(x) for x in self.slope_calls])
         self.recorders_c = _array(_Recorder, [
             _Recorder(_address(get), _address(args[0]), args[1], args[2], columns.start)
             for get, args, _refs, _buffer, columns, _alias in self.recorders])
@@ -118,17 +116,20 @@ class NativeKernel(Kernel):
                          t.args_get[2], t.args_get[3])
 
     @staticmethod
-    def _slope_c(x, history) -> _Slope:
+    def _slope_c(x) -> _Slope:
+        """A served slope exchange, or a history one whose state is the History's arrays
+        (cosim.slopes): the native loop and the Python one update the same numbers."""
         if isinstance(x, SlopeTransfer):
             component, refs, n, orders, buffer = x.args_get
             target, target_refs = x.args_set[0], x.args_set[1]
             return _Slope(_address(x.get), _address(component), refs, _address(x.set),
-                          _address(target), target_refs, n, orders, buffer, None, None, None)
+                          _address(target), target_refs, n, orders, buffer, 0, None, None,
+                          None)
         target, target_refs, n, orders, slopes = x.args
-        previous, state = history
+        h = x.history
         return _Slope(None, None, None, _address(x.set), _address(target), target_refs, n,
-                      orders, slopes, x.values.ctypes.data, previous.ctypes.data,
-                      state.ctypes.data)
+                      orders, slopes, h.order, x.values.ctypes.data, h.past.ctypes.data,
+                      h.state.ctypes.data)
 
     def propagate(self, t: float) -> None:
         if self.lib.cosim_kernel_propagate(ctypes.byref(self.plan), t,

@@ -11,7 +11,8 @@ Schema (TOML shown; JSON has the same structure)::
     coupling = "sampled"               # or "gauss-seidel" (optional, default "sampled")
     controller = "pid"                 # or "computed-torque": the closed loop's controller,
                                        # for the Rust reference (optional, default "pid")
-    input_extrapolation = "hold"       # or "linear": input slopes where the FMUs allow
+    input_extrapolation = "quadratic"  # or "linear", "hold" (or the order 2, 1, 0): input
+                                       # derivatives up to that order where the FMUs allow
 
     [fmus]                             # alias -> FMU path (relative to this file)
     planner = "../dist/Planner.fmu"
@@ -49,7 +50,7 @@ __all__ = ["PlanSwitch", "Scenario", "ScenarioError", "Signal", "Connection",
 
 
 COUPLINGS = ("sampled", "gauss-seidel")
-EXTRAPOLATIONS = ("hold", "linear")
+EXTRAPOLATIONS = ("hold", "linear", "quadratic")  # index: the order of the input derivatives
 DEFAULT_STEP = 0.001  # s
 MAX_STEPS = 1_000_000  # communication steps of one run (the results are held in memory)
 MAX_SIGNALS = 1000  # connections and recorded signals
@@ -89,7 +90,7 @@ class Scenario:
     record: list[Signal] = field(default_factory=list)
     max_step_halvings: int = 0
     coupling: str = "sampled"
-    input_extrapolation: str = "linear"
+    input_extrapolation: str = "quadratic"
     # Plan switches of a multi-segment motion (PlanSwitch), in order.
     schedule: list = field(default_factory=list)
     # Limits the run is judged against (cosim.limits), SI.
@@ -218,10 +219,12 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     coupling = data.get("coupling", "sampled")
     if coupling not in COUPLINGS:
         raise ScenarioError(f"field 'coupling' must be one of {COUPLINGS}, got {coupling!r}")
-    extrapolation = data.get("input_extrapolation", "linear")
+    extrapolation = data.get("input_extrapolation", "quadratic")
+    if type(extrapolation) is int and 0 <= extrapolation < len(EXTRAPOLATIONS):
+        extrapolation = EXTRAPOLATIONS[extrapolation]
     if extrapolation not in EXTRAPOLATIONS:
-        raise ScenarioError(f"field 'input_extrapolation' must be one of {EXTRAPOLATIONS}, "
-                            f"got {extrapolation!r}")
+        raise ScenarioError(f"field 'input_extrapolation' must be one of {EXTRAPOLATIONS} "
+                            f"or the order 0, 1 or 2, got {extrapolation!r}")
     from .controllers import kind_of
     from .limits import parse_limits
     return Scenario(controller=kind_of(data), name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
@@ -230,6 +233,11 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
                     input_extrapolation=extrapolation, description=data.get("description"),
                     limits=parse_limits(data.get("limits", {})),
                     schedule=_plan_switches(data.get("plan_switches", []), fmus, round(steps)))
+
+
+def extrapolation_order(name: str) -> int:
+    """The order of the input derivatives of input_extrapolation `name` (hold: 0)."""
+    return EXTRAPOLATIONS.index(name)
 
 
 def _plan_switches(raw, fmus, steps: int) -> list[PlanSwitch]:

@@ -73,7 +73,7 @@ def test_reset_instances_give_the_runs_of_fresh_instances():
     assert reused.columns == fresh.columns
 
 
-@pytest.mark.parametrize("extrapolation", ["hold", "linear"])
+@pytest.mark.parametrize("extrapolation", ["hold", "linear", "quadratic"])
 def test_fast_path_matches_fmpy_calls_bit_for_bit(extrapolation):
     # Truth: the same master through FMPy's wrappers (FmuInstance.get/set_values,
     # get_output_slopes / set_input_slopes).
@@ -318,7 +318,7 @@ def test_grid_plots_show_the_spread_of_the_draws(tmp_path):
     assert [p.name for p in written] == ["s_grid.png"]  # 3 draws at w = 3: no histogram
 
 
-@pytest.mark.parametrize("extrapolation", ["hold", "linear"])
+@pytest.mark.parametrize("extrapolation", ["hold", "linear", "quadratic"])
 def test_native_loop_matches_the_python_loop_bit_for_bit(extrapolation):
     # Truth: the Python loop over the same prepared calls (cosim.fastpath). The
     # waypoint scenario has plan switches, where the native runs of steps are split.

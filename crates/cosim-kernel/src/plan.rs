@@ -32,34 +32,37 @@ pub struct Exchange {
     pub buffer: *mut f64,
 }
 
-/// The input slopes of one connected pair: the source's first output derivatives
-/// (`get` set) or, when the source gives none, the slope through the pair's values at
-/// the last two communication points (`values`: the value [`Exchange`]'s buffer).
+/// The input derivatives of one connected pair (orders 1..k, all of order 1 first):
+/// the source's output derivatives (`get` set) or, when the source gives none, the
+/// derivatives through the pair's values at the last communication points
+/// (`cosim.slopes.History`; `values`: the value [`Exchange`]'s buffer).
 #[repr(C)]
 pub struct SlopeExchange {
-    /// fmi2GetRealOutputDerivatives of the source, or None for the history slope.
+    /// fmi2GetRealOutputDerivatives of the source, or None for the history.
     pub get: Option<Slopes>,
     /// The source instance.
     pub source: Handle,
-    /// The source's value references.
+    /// The source's value references (repeated for each order).
     pub source_refs: *const u32,
     /// fmi2SetRealInputDerivatives of the target.
     pub set: Slopes,
     /// The target instance.
     pub target: Handle,
-    /// The target's value references.
+    /// The target's value references (repeated for each order).
     pub target_refs: *const u32,
-    /// Number of values.
+    /// Number of values passed: signals times orders.
     pub n: usize,
-    /// Derivative orders (all 1).
+    /// Derivative order of each value passed.
     pub orders: *const i32,
-    /// The slopes passed.
+    /// The derivatives passed (order rows of n / order values).
     pub slopes: *mut f64,
-    /// History: the values just propagated.
+    /// History: its order k (1 or 2; 0 for served derivatives).
+    pub order: usize,
+    /// History: the values just propagated (n / k).
     pub values: *const f64,
-    /// History: the values at the previous point.
-    pub previous: *mut f64,
-    /// History: [time of the previous point, 1.0 once there is one].
+    /// History: the values at the last k points, newest first (n values).
+    pub past: *mut f64,
+    /// History: [points known (at most k), their times newest first] (k + 1 values).
     pub state: *mut f64,
 }
 
@@ -264,33 +267,47 @@ impl SlopeExchange {
         check(status, kind::SET_SLOPES, i, k)
     }
 
-    /// (x_k - x_{k-1}) / (t_k - t_{k-1}); zero at the first point, the last slope at a
-    /// time already seen (cosim.slopes.History).
+    /// The derivatives at `t` of the polynomial through the last points (Newton's
+    /// divided differences; as `cosim.slopes.History.derivatives`, operation for
+    /// operation): zero at the first point, the last derivatives at a time already seen.
     ///
     /// # Safety
     ///
     /// As [`SlopeExchange::pass`].
     unsafe fn history(&self, t: f64) {
+        let order = self.order;
+        let m = self.n / order;
         // SAFETY: the caller's contract.
-        let (values, previous, slopes, state) = unsafe {
+        let (values, past, out, state) = unsafe {
             (
-                std::slice::from_raw_parts(self.values, self.n),
-                std::slice::from_raw_parts_mut(self.previous, self.n),
+                std::slice::from_raw_parts(self.values, m),
+                std::slice::from_raw_parts_mut(self.past, self.n),
                 std::slice::from_raw_parts_mut(self.slopes, self.n),
-                std::slice::from_raw_parts_mut(self.state, 2),
+                std::slice::from_raw_parts_mut(self.state, order + 1),
             )
         };
-        if state[1] == 0.0 {
-            slopes.fill(0.0);
-        } else if t > state[0] {
-            for ((s, v), p) in slopes.iter_mut().zip(values).zip(previous.iter()) {
-                *s = (v - p) / (t - state[0]);
-            }
-        } else {
+        let count = state[0] as usize;
+        if count > 0 && t <= state[1] {
             return;
         }
-        previous.copy_from_slice(values);
-        state[0] = t;
-        state[1] = 1.0;
+        out.fill(0.0);
+        if count >= 1 {
+            let (d, second) = out.split_at_mut(m);
+            for i in 0..m {
+                let d1 = (values[i] - past[i]) / (t - state[1]);
+                d[i] = d1;
+                if order >= 2 && count >= 2 {
+                    let back = (past[i] - past[m + i]) / (state[1] - state[2]);
+                    let d2 = (d1 - back) / (t - state[2]);
+                    d[i] = d1 + d2 * (t - state[1]);
+                    second[i] = 2.0 * d2;
+                }
+            }
+        }
+        past.copy_within(0..self.n - m, m);
+        state.copy_within(1..order, 2);
+        past[..m].copy_from_slice(values);
+        state[1] = t;
+        state[0] = (count + 1).min(order) as f64;
     }
 }

@@ -1,6 +1,7 @@
-//! The native loop on two stand-in FMUs with closed-form results: a ramp y = t (no
-//! output derivatives) feeding an integrator x' = u that interpolates its input
-//! (u + u' s over the step), the slope taken through the ramp's last two samples.
+//! The native loop on two stand-in FMUs with closed-form results: a ramp y = t or a
+//! parabola y = t^2 (no output derivatives) feeding an integrator x' = u that
+//! interpolates its input (u + u' s + u'' s^2 / 2 over the step), the derivatives taken
+//! through the source's last samples (order 1 or 2).
 
 use std::ffi::c_void;
 use std::os::raw::c_int;
@@ -16,6 +17,8 @@ struct Fake {
     x: f64,
     u: f64,
     slope: f64,
+    curvature: f64,
+    square: bool,
     fail_at_step: Option<u32>,
     steps: u32,
 }
@@ -26,8 +29,9 @@ fn fake<'a>(c: *mut c_void) -> &'a mut Fake {
 }
 
 unsafe extern "C" fn ramp_get(c: *mut c_void, _r: *const u32, _n: usize, v: *mut f64) -> c_int {
+    let f = fake(c);
     // SAFETY: one value.
-    unsafe { *v = fake(c).t };
+    unsafe { *v = if f.square { f.t * f.t } else { f.t } };
     0
 }
 
@@ -46,12 +50,24 @@ unsafe extern "C" fn int_set(c: *mut c_void, _r: *const u32, _n: usize, v: *mut 
 unsafe extern "C" fn int_set_slope(
     c: *mut c_void,
     _r: *const u32,
-    _n: usize,
-    _o: *const i32,
+    n: usize,
+    o: *const i32,
     v: *mut f64,
 ) -> c_int {
-    // SAFETY: one value.
-    fake(c).slope = unsafe { *v };
+    // SAFETY: n values and orders: one signal, orders 1..n.
+    let (values, orders) = unsafe {
+        (
+            std::slice::from_raw_parts(v, n),
+            std::slice::from_raw_parts(o, n),
+        )
+    };
+    for (value, order) in values.iter().zip(orders) {
+        match order {
+            1 => fake(c).slope = *value,
+            2 => fake(c).curvature = *value,
+            _ => return 3,
+        }
+    }
     0
 }
 
@@ -61,15 +77,19 @@ unsafe extern "C" fn step(c: *mut c_void, t: f64, h: f64, _no_set: c_int) -> c_i
         return 3;
     }
     assert!((f.t - t).abs() < 1e-12, "steps are contiguous");
-    f.x += f.u * h + f.slope * h * h / 2.0;
+    f.x += f.u * h + f.slope * h * h / 2.0 + f.curvature * h * h * h / 6.0;
     f.t = t + h;
     f.steps += 1;
     0
 }
 
-/// Runs 10 steps of 0.1 s; the integrator's x per row, or the failure.
-fn run(fail_at_step: Option<u32>) -> Result<Vec<f64>, Failure> {
-    let mut ramp = Fake::default();
+/// Runs 10 steps of 0.1 s with derivatives of `order` through the source's samples;
+/// the integrator's x per row, or the failure.
+fn run(fail_at_step: Option<u32>, square: bool, order: usize) -> Result<Vec<f64>, Failure> {
+    let mut ramp = Fake {
+        square,
+        ..Fake::default()
+    };
     let mut int = Fake {
         fail_at_step,
         ..Fake::default()
@@ -78,9 +98,9 @@ fn run(fail_at_step: Option<u32>) -> Result<Vec<f64>, Failure> {
         &mut ramp as *mut Fake as *mut c_void,
         &mut int as *mut Fake as *mut c_void,
     );
-    let refs = [0u32];
-    let orders = [1i32];
-    let (mut buffer, mut slopes, mut previous, mut state) = ([0.0], [0.0], [0.0], [0.0; 2]);
+    let refs = [0u32; 2];
+    let orders = [1i32, 2];
+    let (mut buffer, mut slopes, mut past, mut state) = ([0.0], [0.0; 2], [0.0; 2], [0.0; 3]);
     let exchange = Exchange {
         get: ramp_get,
         source: r,
@@ -98,11 +118,12 @@ fn run(fail_at_step: Option<u32>) -> Result<Vec<f64>, Failure> {
         set: int_set_slope,
         target: i,
         target_refs: refs.as_ptr(),
-        n: 1,
+        n: order,
         orders: orders.as_ptr(),
         slopes: slopes.as_mut_ptr(),
+        order,
         values: buffer.as_ptr(),
-        previous: previous.as_mut_ptr(),
+        past: past.as_mut_ptr(),
         state: state.as_mut_ptr(),
     };
     let steppers = [
@@ -146,7 +167,7 @@ fn run(fail_at_step: Option<u32>) -> Result<Vec<f64>, Failure> {
 fn history_slopes_integrate_a_ramp_exactly_after_the_first_step() {
     // Closed form: the input over step k is k h + s_k (t - t_k) with s_0 = 0 (no
     // history) and s_k = 1 after: x_k = h^2 k (k - 1) / 2 + (k - 1) h^2 / 2 for k >= 1.
-    let rows = run(None).unwrap();
+    let rows = run(None, false, 1).unwrap();
     for (k, x) in rows.iter().enumerate().skip(1) {
         let k = k as f64;
         let expected = 0.01 * k * (k - 1.0) / 2.0 + (k - 1.0) * 0.01 / 2.0;
@@ -156,8 +177,22 @@ fn history_slopes_integrate_a_ramp_exactly_after_the_first_step() {
 }
 
 #[test]
+fn second_order_history_integrates_a_parabola_exactly_after_the_second_step() {
+    // Closed form for y = t^2: step 0 holds 0 (no history; the exact integral is
+    // h^3 / 3), step 1 takes the slope (h^2 - 0) / h = h and no curvature
+    // (integral 3 h^3 / 2 against 7 h^3 / 3), then the parabola through the last
+    // three samples is y itself: x_k = t_k^3 / 3 - (1/3 + 5/6) h^3 for k >= 2.
+    let rows = run(None, true, 2).unwrap();
+    for (k, x) in rows.iter().enumerate().skip(2) {
+        let t = 0.1 * k as f64;
+        let expected = t * t * t / 3.0 - 7.0 / 6.0 * 0.001;
+        assert!((x - expected).abs() < 1e-14, "row {k}: {x} vs {expected}");
+    }
+}
+
+#[test]
 fn a_failing_step_is_reported_with_its_call_fmu_status_and_step() {
-    let failure = run(Some(4)).unwrap_err();
+    let failure = run(Some(4), false, 1).unwrap_err();
     let expected = Failure {
         kind: kind::DO_STEP,
         index: 1,
