@@ -1,14 +1,14 @@
-"""Coupling error against step size, held inputs vs linear input extrapolation:
-``python -m cosim.coupling_study [scenario ...]``.
+"""Coupling error against step size for each order of input extrapolation (held inputs,
+linear, quadratic): ``python -m cosim.coupling_study [scenario ...]``.
 
 For each scenario (names under scenarios/) and each step h = 4, 2, 1 ms, the master
-runs with input_extrapolation = "hold" and "linear"; the error is the largest
-|theta - theta_ref| (deg, any axis, at every 4 ms) against a reference run of the same
-master at h = 1/16 ms with linear extrapolation (its own distance to the hold
-reference at 1/16 ms is printed: the reference's accuracy). The step each needs for
-0.05 deg follows from the error's order, fitted on the two smallest steps, and the
-cost per step is the master's median loop time per step (interleaved runs); the last
-column is the run time at that step relative to hold.
+runs with input_extrapolation = "hold", "linear" and "quadratic"; the error is the
+largest |theta - theta_ref| (any axis, at every 4 ms) against a reference run of the
+same master at h = 1/16 ms with quadratic extrapolation (its own distance to the linear
+reference at 1/16 ms is printed: the reference's accuracy). The step each order needs
+for 0.05 deg and for 1e-5 rad follows from the error's order, fitted on the two
+smallest steps, and the cost per step is the master's median loop time per step
+(interleaved runs); the run time at the step for 0.05 deg is given relative to hold.
 """
 
 from __future__ import annotations
@@ -30,6 +30,8 @@ STEPS = (4e-3, 2e-3, 1e-3)
 REFERENCE_STEP = 1e-3 / 16
 SAMPLE = 4e-3
 TARGET_DEG = 0.05
+TARGET_RAD = 1e-5
+MODES = ("hold", "linear", "quadratic")
 
 
 def theta_at_samples(name: str, h: float, extrapolation: str) -> tuple[np.ndarray, float]:
@@ -46,41 +48,49 @@ def theta_at_samples(name: str, h: float, extrapolation: str) -> tuple[np.ndarra
     return theta[::every], master.loop_seconds / s.steps
 
 
-def step_for(errors: dict[float, float]) -> float:
-    """The step giving TARGET_DEG from error = C h^p fitted on the two smallest steps."""
+def step_for(errors: dict[float, float], target: float) -> float:
+    """The step giving `target` from error = C h^p fitted on the two smallest steps."""
     (h1, e1), (h2, e2) = sorted(errors.items())[:2]
     p = math.log(e2 / e1) / math.log(h2 / h1)
-    return h1 * (TARGET_DEG / e1) ** (1.0 / p)
+    return h1 * (target / e1) ** (1.0 / p)
 
 
 def study(name: str, repeats: int) -> None:
-    ref, _ = theta_at_samples(name, REFERENCE_STEP, "linear")
-    ref_hold, _ = theta_at_samples(name, REFERENCE_STEP, "hold")
-    print(f"{name}: reference h = {1e3 * REFERENCE_STEP:.4f} ms (linear); hold at that "
-          f"step differs by {math.degrees(np.abs(ref_hold - ref).max()):.2e} deg")
-    errors = {"hold": {}, "linear": {}}
-    costs = {"hold": [], "linear": []}
+    ref, _ = theta_at_samples(name, REFERENCE_STEP, "quadratic")
+    ref_linear, _ = theta_at_samples(name, REFERENCE_STEP, "linear")
+    print(f"{name}: reference h = {1e3 * REFERENCE_STEP:.4f} ms (quadratic); linear at that "
+          f"step differs by {np.abs(ref_linear - ref).max():.2e} rad")
+    errors: dict[str, dict[float, float]] = {mode: {} for mode in MODES}  # rad
+    costs: dict[str, list[float]] = {mode: [] for mode in MODES}
     for h in STEPS:
-        for mode in errors:
+        for mode in MODES:
             theta, _ = theta_at_samples(name, h, mode)
-            errors[mode][h] = math.degrees(float(np.abs(theta - ref).max()))
-    for _ in range(repeats):  # interleaved: the machine's load hits both alike
-        for mode in costs:
+            errors[mode][h] = float(np.abs(theta - ref).max())
+    for _ in range(repeats):  # interleaved: the machine's load hits every order alike
+        for mode in MODES:
             costs[mode].append(theta_at_samples(name, 1e-3, mode)[1])
     cost = {mode: statistics.median(c) for mode, c in costs.items()}
-    print(f"  {'h (ms)':>8} {'hold (deg)':>12} {'linear (deg)':>13} {'ratio':>7}")
+    print(f"  {'h (ms)':>8}" + "".join(f" {m + ' (deg)':>17}" for m in MODES)
+          + f" {'hold/quadratic':>15}")
     for h in STEPS:
-        e0, e1 = errors["hold"][h], errors["linear"][h]
-        print(f"  {1e3 * h:8.1f} {e0:12.3e} {e1:13.3e} {e0 / e1:7.1f}")
-    need = {mode: step_for(errors[mode]) for mode in errors}
-    if max(errors["hold"].values()) < TARGET_DEG and max(errors["linear"].values()) < TARGET_DEG:
-        print(f"  both meet {TARGET_DEG} deg at every step up to {1e3 * max(STEPS):.0f} ms; "
-              f"per step: hold {1e6 * cost['hold']:.1f} us, linear {1e6 * cost['linear']:.1f} us")
+        e = [math.degrees(errors[m][h]) for m in MODES]
+        print(f"  {1e3 * h:8.1f}" + "".join(f" {x:17.3e}" for x in e)
+              + f" {e[0] / e[-1]:15.1f}")
+    target_rad = math.radians(TARGET_DEG)
+    for mode in MODES:
+        need = {label: (f"every step up to {1e3 * max(STEPS):.0f} ms"
+                        if max(errors[mode].values()) < target
+                        else f"h = {1e3 * step_for(errors[mode], target):.2f} ms")
+                for label, target in ((f"{TARGET_DEG} deg", target_rad),
+                                      (f"{TARGET_RAD:g} rad", TARGET_RAD))}
+        print(f"  {mode:>9}: {1e6 * cost[mode]:5.1f} us per step; "
+              + "; ".join(f"{label} needs {text}" for label, text in need.items()))
+    if all(max(errors[m].values()) < target_rad for m in MODES):
         return
-    for mode in errors:
-        time = cost[mode] / need[mode] / (cost["hold"] / need["hold"])
-        print(f"  {mode:>6}: {1e6 * cost[mode]:.1f} us per step; {TARGET_DEG} deg needs "
-              f"h = {1e3 * need[mode]:.2f} ms; run time relative to hold {time:.2f}")
+    hold = cost["hold"] / step_for(errors["hold"], target_rad)
+    relative = {m: cost[m] / step_for(errors[m], target_rad) / hold for m in MODES}
+    print(f"  run time at {TARGET_DEG} deg relative to hold: "
+          + ", ".join(f"{m} {r:.2f}" for m, r in relative.items()))
 
 
 def main(argv=None) -> int:

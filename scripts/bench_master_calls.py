@@ -3,7 +3,7 @@
 
     python scripts/bench_master_calls.py [--steps 200,1200] [--scenario regulation]
 
-For each input_extrapolation (hold, linear) and each of two run lengths it runs the
+For each input_extrapolation (hold, linear, quadratic) and each of two run lengths it runs the
 master under callgrind and counts every instruction of the process and, apart, the
 inclusive cost of every call from outside the FMUs' libraries into them (the FMU calls
 alone: the FMU's own work with what it calls, libm and the allocator included). The
@@ -88,7 +88,7 @@ def main(argv=None) -> int:
     scenario = ROOT / "scenarios" / f"{args.scenario}.toml"
     print(f"{args.scenario}: instructions per step (callgrind, runs of {long} - {short} steps)")
     with tempfile.TemporaryDirectory() as work:
-        for mode in ("hold", "linear"):
+        for mode in ("hold", "linear", "quadratic"):
             (t0, f0), (t1, f1) = (instructions(mode, n, scenario, Path(work))
                                   for n in (short, long))
             total, fmu = (t1 - t0) / (long - short), (f1 - f0) / (long - short)

@@ -11,7 +11,7 @@ use cosim_kernel::{
     Exchange, Failure, Plan, Recorder, SlopeExchange, Stepper, cosim_kernel_run, kind,
 };
 
-#[derive(Default)]
+#[derive(Default, Clone)]
 struct Fake {
     t: f64,
     x: f64,
@@ -21,6 +21,8 @@ struct Fake {
     square: bool,
     fail_at_step: Option<u32>,
     steps: u32,
+    /// Longest step taken; a longer one is discarded (fmi2Discard).
+    h_max: Option<f64>,
 }
 
 fn fake<'a>(c: *mut c_void) -> &'a mut Fake {
@@ -76,6 +78,9 @@ unsafe extern "C" fn step(c: *mut c_void, t: f64, h: f64, _no_set: c_int) -> c_i
     if f.fail_at_step == Some(f.steps) {
         return 3;
     }
+    if f.h_max.is_some_and(|m| h > m) {
+        return 2;
+    }
     assert!((f.t - t).abs() < 1e-12, "steps are contiguous");
     f.x += f.u * h + f.slope * h * h / 2.0 + f.curvature * h * h * h / 6.0;
     f.t = t + h;
@@ -83,17 +88,67 @@ unsafe extern "C" fn step(c: *mut c_void, t: f64, h: f64, _no_set: c_int) -> c_i
     0
 }
 
+unsafe extern "C" fn get_state(c: *mut c_void, state: *mut *mut c_void) -> c_int {
+    // SAFETY: a writable state pointer.
+    unsafe { *state = Box::into_raw(Box::new(fake(c).clone())) as *mut c_void };
+    0
+}
+
+unsafe extern "C" fn set_state(c: *mut c_void, state: *mut c_void) -> c_int {
+    // SAFETY: a state get_state made.
+    *fake(c) = unsafe { &*(state as *const Fake) }.clone();
+    0
+}
+
+unsafe extern "C" fn free_state(_c: *mut c_void, state: *mut *mut c_void) -> c_int {
+    // SAFETY: a state get_state made, freed once.
+    drop(unsafe { Box::from_raw(*state as *mut Fake) });
+    0
+}
+
+fn stepper(component: *mut c_void, exchanges: usize, slopes: usize) -> Stepper {
+    Stepper {
+        do_step: step,
+        component,
+        get_state: Some(get_state),
+        set_state: Some(set_state),
+        free_state: Some(free_state),
+        first_exchange: 0,
+        n_exchanges: exchanges,
+        first_slope: 0,
+        n_slopes: slopes,
+    }
+}
+
+unsafe extern "C" fn count_discard(context: *mut c_void, _i: usize, _t: f64, _h: f64) {
+    // SAFETY: the tests pass a counter.
+    unsafe { *(context as *mut u32) += 1 };
+}
+
 /// Runs 10 steps of 0.1 s with derivatives of `order` through the source's samples;
 /// the integrator's x per row, or the failure.
 fn run(fail_at_step: Option<u32>, square: bool, order: usize) -> Result<Vec<f64>, Failure> {
+    run_with(fail_at_step, square, order, None).map(|(rows, _)| rows)
+}
+
+/// As [`run`], with the integrator's longest step (two halvings allowed, no slopes
+/// with a limit); also the number of discards the plan was told of.
+fn run_with(
+    fail_at_step: Option<u32>,
+    square: bool,
+    order: usize,
+    h_max: Option<f64>,
+) -> Result<(Vec<f64>, u32), Failure> {
     let mut ramp = Fake {
         square,
         ..Fake::default()
     };
     let mut int = Fake {
         fail_at_step,
+        h_max,
         ..Fake::default()
     };
+    let mut discards = 0u32;
     let (r, i) = (
         &mut ramp as *mut Fake as *mut c_void,
         &mut int as *mut Fake as *mut c_void,
@@ -126,16 +181,8 @@ fn run(fail_at_step: Option<u32>, square: bool, order: usize) -> Result<Vec<f64>
         past: past.as_mut_ptr(),
         state: state.as_mut_ptr(),
     };
-    let steppers = [
-        Stepper {
-            do_step: step,
-            component: r,
-        },
-        Stepper {
-            do_step: step,
-            component: i,
-        },
-    ];
+    let slopes_used = usize::from(h_max.is_none());
+    let steppers = [stepper(r, 0, 0), stepper(i, 1, slopes_used)];
     let recorder = Recorder {
         get: int_get,
         component: i,
@@ -147,7 +194,7 @@ fn run(fail_at_step: Option<u32>, square: bool, order: usize) -> Result<Vec<f64>
         exchanges: &exchange,
         n_exchanges: 1,
         slopes: &slope,
-        n_slopes: 1,
+        n_slopes: slopes_used,
         steppers: steppers.as_ptr(),
         n_steppers: 2,
         recorders: &recorder,
@@ -155,12 +202,20 @@ fn run(fail_at_step: Option<u32>, square: bool, order: usize) -> Result<Vec<f64>
         width: 1,
         start: 0.0,
         h: 0.1,
+        gauss_seidel: 0,
+        halvings: 2,
+        discarded: Some(count_discard),
+        context: &mut discards as *mut u32 as *mut c_void,
     };
     let mut rows = vec![0.0; 11];
     let mut failure = Failure::default();
     // SAFETY: every pointer above lives until the call returns.
     let status = unsafe { cosim_kernel_run(&plan, 0, 10, 1, rows.as_mut_ptr(), &mut failure) };
-    if status == 0 { Ok(rows) } else { Err(failure) }
+    if status == 0 {
+        Ok((rows, discards))
+    } else {
+        Err(failure)
+    }
 }
 
 #[test]
@@ -191,13 +246,25 @@ fn second_order_history_integrates_a_parabola_exactly_after_the_second_step() {
 }
 
 #[test]
+fn a_discarded_step_is_retried_in_halves_from_the_saved_states() {
+    // Closed form: with h_max = 0.03 every 0.1 s step is discarded, then its halves;
+    // the quarters (0.025 s) are taken. Sampled coupling, held input: over quarter j
+    // the integrator holds u = t_j = j h / 4, so x_M = (h/4)^2 M (M - 1) / 2 after M
+    // quarters: 0.4875 at M = 40. Per step one discard of the whole and two of halves.
+    let (rows, discards) = run_with(None, false, 1, Some(0.03)).unwrap();
+    assert!((rows[10] - 0.4875).abs() < 1e-14, "{}", rows[10]);
+    assert_eq!(discards, 10 * 3);
+}
+
+#[test]
 fn a_failing_step_is_reported_with_its_call_fmu_status_and_step() {
     let failure = run(Some(4), false, 1).unwrap_err();
+    assert!((failure.time - 0.4).abs() < 1e-15);
     let expected = Failure {
         kind: kind::DO_STEP,
         index: 1,
         status: 3,
-        step: 4,
+        time: failure.time,
     };
     assert_eq!(failure, expected);
 }
