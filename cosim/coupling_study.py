@@ -6,9 +6,10 @@ runs with input_extrapolation = "hold", "linear" and "quadratic"; the error is t
 largest |theta - theta_ref| (any axis, at every 4 ms) against a reference run of the
 same master at h = 1/16 ms with quadratic extrapolation (its own distance to the linear
 reference at 1/16 ms is printed: the reference's accuracy). The step each order needs
-for 0.05 deg and for 1e-5 rad follows from the error's order, fitted on the two
-smallest steps, and the cost per step is the master's median loop time per step
-(interleaved runs); the run time at the step for 0.05 deg is given relative to hold.
+for 0.05 deg and for 1e-5 rad follows from error = C h^p fitted between the two
+measured steps that bracket the target (or the two smallest), and the cost per step is
+the master's median loop time per step (interleaved runs); the run time at the step
+for 0.05 deg is given relative to hold.
 """
 
 from __future__ import annotations
@@ -49,8 +50,17 @@ def theta_at_samples(name: str, h: float, extrapolation: str) -> tuple[np.ndarra
 
 
 def step_for(errors: dict[float, float], target: float) -> float:
-    """The step giving `target` from error = C h^p fitted on the two smallest steps."""
-    (h1, e1), (h2, e2) = sorted(errors.items())[:2]
+    """The step giving `target` from error = C h^p between the two measured steps that
+    bracket it (the two smallest when even the smallest misses it): no extrapolation
+    beyond a step the error was measured at when a larger one misses, as a loop that
+    turns unstable does."""
+    points = sorted(errors.items())
+    pair = points[:2]
+    for low, high in zip(points, points[1:]):
+        if low[1] <= target < high[1]:
+            pair = [low, high]
+            break
+    (h1, e1), (h2, e2) = pair
     p = math.log(e2 / e1) / math.log(h2 / h1)
     return h1 * (target / e1) ** (1.0 / p)
 
