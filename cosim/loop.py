@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import ctypes
 import os
+import sys
 from ctypes import (CFUNCTYPE, POINTER, Structure, c_double, c_int, c_size_t, c_uint,
                     c_uint64, c_void_p)
 from functools import lru_cache
@@ -35,7 +36,8 @@ from .errors import CosimError, FmuError, StepDiscarded
 from .fmu import FmuInstance
 
 ROOT = Path(__file__).resolve().parent.parent
-LIBRARY = {"nt": "cosim_kernel.dll"}.get(os.name, "libcosim_kernel.so")
+LIBRARY = ("cosim_kernel.dll" if sys.platform == "win32" else
+           "libcosim_kernel.dylib" if sys.platform == "darwin" else "libcosim_kernel.so")
 KINDS = ("fmi2GetReal", "fmi2SetReal", "fmi2DoStep", "fmi2GetRealOutputDerivatives",
          "fmi2SetRealInputDerivatives", "fmi2GetReal (recorded signals)", "fmi2GetFMUstate",
          "fmi2SetFMUstate")
@@ -90,6 +92,7 @@ class _Failure(Structure):
 
 
 def library_path() -> Path:
+    """The kernel library cargo builds here, or the one COSIM_KERNEL_LIBRARY names."""
     return Path(os.environ.get("COSIM_KERNEL_LIBRARY",
                                ROOT / "target" / "release" / LIBRARY))
 

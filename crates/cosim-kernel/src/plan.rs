@@ -238,7 +238,7 @@ impl Plan {
         if result.is_ok() {
             let sampled = self.gauss_seidel == 0;
             // SAFETY: the caller's contract.
-            result = unsafe { self.step_all(t, h, sampled && !inputs_set) };
+            result = unsafe { self.step_all(t, h, sampled && !inputs_set, halvings_left == 0) };
         }
         if let Err(f) = result
             && f.kind == kind::DO_STEP
@@ -295,11 +295,19 @@ impl Plan {
 
     /// Every FMU's step from t by h, in order: the sampled propagation first when
     /// `propagate`, with Gauss-Seidel coupling each FMU's inputs just before its step.
+    /// `final_step`: no state from before t will be set again (fmi2DoStep's
+    /// noSetFMUStatePriorToCurrentPoint; false while the step may be retried).
     ///
     /// # Safety
     ///
     /// As [`Plan::advance`].
-    unsafe fn step_all(&self, t: f64, h: f64, propagate: bool) -> Result<(), Failure> {
+    unsafe fn step_all(
+        &self,
+        t: f64,
+        h: f64,
+        propagate: bool,
+        final_step: bool,
+    ) -> Result<(), Failure> {
         if propagate {
             // SAFETY: the caller's contract.
             unsafe { self.propagate(t) }?;
@@ -312,7 +320,7 @@ impl Plan {
             }
             // SAFETY: a valid fmi2DoStep and its instance.
             check(
-                unsafe { (s.do_step)(s.component, t, h, 1) },
+                unsafe { (s.do_step)(s.component, t, h, c_int::from(final_step)) },
                 kind::DO_STEP,
                 i,
                 t,
