@@ -1,5 +1,6 @@
 """The master's stepping loop: one loop, in native code (crates/cosim-kernel, built by
-cargo into target/release/, or the library named by COSIM_KERNEL_LIBRARY).
+cargo into target/release/; or shipped inside the package; or the library named by
+COSIM_KERNEL_LIBRARY).
 
 `Loop` prepares every call of a step once and hands the kernel a C plan; the kernel
 makes whole runs of steps in one call: per step every FMU's step (sampled or
@@ -92,9 +93,13 @@ class _Failure(Structure):
 
 
 def library_path() -> Path:
-    """The kernel library cargo builds here, or the one COSIM_KERNEL_LIBRARY names."""
-    return Path(os.environ.get("COSIM_KERNEL_LIBRARY",
-                               ROOT / "target" / "release" / LIBRARY))
+    """The kernel library: the one COSIM_KERNEL_LIBRARY names, else one shipped inside
+    the package (cosim/<library>), else the one cargo builds in this checkout."""
+    named = os.environ.get("COSIM_KERNEL_LIBRARY")
+    if named:
+        return Path(named)
+    shipped = Path(__file__).resolve().parent / LIBRARY
+    return shipped if shipped.is_file() else ROOT / "target" / "release" / LIBRARY
 
 
 @lru_cache(maxsize=1)

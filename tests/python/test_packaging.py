@@ -11,6 +11,8 @@ from pathlib import Path
 
 from conftest import package_source
 
+from cosim.loop import library_path
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
@@ -26,7 +28,10 @@ def test_installed_console_command_runs_a_scenario_anywhere(tmp_path):
                     str(prefix), str(source)], check=True, capture_output=True)
     command = prefix / "bin" / "cosim"
     site = next(prefix.glob("lib/python*/site-packages"))
-    env = {"PYTHONPATH": str(site), "PATH": "/usr/bin:/bin"}
+    # The master's stepping loop is this checkout's build, as the FMUs are (the
+    # package ships no binaries).
+    env = {"PYTHONPATH": str(site), "PATH": "/usr/bin:/bin",
+           "COSIM_KERNEL_LIBRARY": str(library_path())}
     work = tmp_path / "elsewhere"
     work.mkdir()
     # A scenario away from the repository: FMUs by file name from --fmu-dir ...
