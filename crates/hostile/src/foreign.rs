@@ -29,10 +29,13 @@ use std::ffi::c_void;
 /// What a case saw, or why the FMU failed it.
 pub type Outcome = Result<String, String>;
 
-/// One case: its name and what it runs with the loaded FMUs and their copies.
+/// What a case runs, given the loaded FMUs and their copies.
+pub type Run = Box<dyn Fn(&Loaded, &Loaded) -> Outcome + Sync>;
+
+/// One case: its name and what it runs.
 pub struct ForeignCase {
     pub name: String,
-    pub run: Box<dyn Fn(&Loaded, &Loaded) -> Outcome + Sync>,
+    pub run: Run,
 }
 
 /// Every Real value of an instance, or why it no longer answers.
@@ -235,7 +238,7 @@ fn other_standard(l: &Loaded, m: usize, interface: Interface) -> Outcome {
     let own = crate::host::Instance::new(&fmi2, &l.fmus[m].description, interface);
     Interface::reach(&own, Interface::INITIALIZATION_MODE)?;
     mark::<Interface>(&own, &l.fmus[m].description, 0.5e-3);
-    let victim_handle = Interface3::raw(&victim).1.into();
+    let victim_handle = Interface3::raw(&victim).1;
     let n = instance_sweep::<Interface>(&own, victim_handle, &|| {
         values::<Interface3>(&victim, "the FMI 3.0")
     })?;
