@@ -71,7 +71,7 @@ enum Scope {
 type Entry = (&'static str, &'static str, fn(&dyn Api) -> Outcome, Scope);
 
 /// The fixed probes: class, name, probe, scope.
-const PROBES: [Entry; 14] = [
+const PROBES: [Entry; 15] = [
     (
         "callbacks",
         "logger frees on Error",
@@ -131,6 +131,12 @@ const PROBES: [Entry; 14] = [
         "second thread inside a call, then free",
         threads::second_thread_then_free,
         Scope::All,
+    ),
+    (
+        "threads",
+        "another thread inside when intermediateUpdate returns",
+        threads::get_while_resuming,
+        Scope::Fmi3,
     ),
     ("time", "step to +inf", forged::step_to_infinity, Scope::All),
     (
