@@ -10,6 +10,7 @@ import sys
 import time
 from pathlib import Path
 
+from .errors import output_path
 from .demo_controllers import print_comparison
 from .master import Master
 from .outputs import write_outputs
@@ -35,7 +36,7 @@ def boundary_mismatch(cubic: dict, quintic_file: Path) -> float:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--out", type=Path, default=ROOT / "results",
+    parser.add_argument("--out", type=output_path, default=ROOT / "results",
                         help="directory for the CSVs and plots (default: results/ of the "
                         "repository)")
 

@@ -10,6 +10,7 @@ import sys
 import time
 from pathlib import Path
 
+from .errors import output_path
 from .scenario import ScenarioError, load_scenario
 
 
@@ -22,7 +23,7 @@ def add_common(parser: argparse.ArgumentParser) -> None:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common(parser)
-    parser.add_argument("--out", type=Path, default=Path("results"),
+    parser.add_argument("--out", type=output_path, default=Path("results"),
                         help="directory for the results (default: results)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.add_argument("--fmi3", action="store_true",

@@ -18,6 +18,7 @@ import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
+from .errors import output_path
 from .scenario import Scenario, ScenarioError, load_scenario, schedule_field
 from .ssp_annotations import default_experiment, system_annotations
 from .ssp_annotations import tag as _tag
@@ -152,7 +153,7 @@ def fmpy_parameter_set(path: Path):
 def add_arguments(parser) -> None:
     """``cosim ssp SCENARIO --out X.ssp``."""
     parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
-    parser.add_argument("--out", type=Path, required=True, help="SSP file to write (.ssp)")
+    parser.add_argument("--out", type=output_path, required=True, help="SSP file to write (.ssp)")
     parser.add_argument("--fmu-dir", type=Path, help="find the FMUs by file name here")
 
 

@@ -8,6 +8,7 @@ import sys
 import time
 from pathlib import Path
 
+from ..errors import output_path
 from .case import load_case
 from .compare import judge_all
 from .errors import COMMAND_LINE, RunFailed, VerifyError
@@ -39,10 +40,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--step", type=float,
                         help="communication step and output interval in s (default: the "
                         "case's StepSize)")
-    parser.add_argument("--out", type=Path, default=Path("results/verify"),
+    parser.add_argument("--out", type=output_path, default=Path("results/verify"),
                         help=f"folder for {REPORT} and the PNG of each failing signal "
                         "(default: results/verify)")
-    parser.add_argument("--junit", type=Path, help="also write JUnit XML to this file")
+    parser.add_argument("--junit", type=output_path, help="also write JUnit XML to this file")
 
 
 def _title(args, interface, case) -> str:
