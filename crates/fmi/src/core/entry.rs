@@ -300,7 +300,10 @@ pub fn setup_experiment<M: Model>(
     if let Some(tolerance) = tolerance
         && !(tolerance.is_finite() && tolerance > 0.0)
     {
-        return Err(format!("tolerance = {tolerance} is not a positive number"));
+        return Err(format!(
+            "tolerance = {tolerance} is not a positive number (toleranceDefined = true): pass \
+             a positive relative tolerance or toleranceDefined = false (these FMUs use none)"
+        ));
     }
     if let Some(stop) = stop_time {
         let stop = check_finite(stop, "stopTime")?;

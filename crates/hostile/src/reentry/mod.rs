@@ -71,7 +71,7 @@ enum Scope {
 type Entry = (&'static str, &'static str, fn(&dyn Api) -> Outcome, Scope);
 
 /// The fixed probes: class, name, probe, scope.
-const PROBES: [Entry; 15] = [
+const PROBES: [Entry; 16] = [
     (
         "callbacks",
         "logger frees on Error",
@@ -143,6 +143,12 @@ const PROBES: [Entry; 15] = [
         "time",
         "step that does not advance the time",
         forged::step_that_does_not_advance,
+        Scope::All,
+    ),
+    (
+        "status",
+        "the experiment's tolerance",
+        status::tolerances,
         Scope::All,
     ),
     (
