@@ -9,7 +9,7 @@
 //! model is refused with an error instead of being used.
 //!
 //! The numbers are this loaded copy's own: the counter goes through a bijection keyed
-//! by a random number drawn when the copy issues its first handle ([`number`]), so
+//! by a random number drawn when the copy issues its first handle (`number`), so
 //! another FMU, or another copy of this very binary loaded from another path, issues
 //! other numbers, and a handle given to the wrong library is not one of its live
 //! handles (docs/reliability.md, "Handles of several loaded FMUs", argues the choice).

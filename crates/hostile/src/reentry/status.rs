@@ -159,7 +159,7 @@ const TOLERANCES: [(bool, f64, Status); 8] = [
     (true, f64::INFINITY, ERROR),
 ];
 
-/// Each row of [`TOLERANCES`] on a fresh instance. The standards give the tolerance a
+/// Each row of `TOLERANCES` on a fresh instance. The standards give the tolerance a
 /// meaning only when it is defined, as the relative tolerance of an error-controlled
 /// integration; a defined one that is not a positive finite number is refused with
 /// Error and a log line naming it and the fix, a positive one accepted (unused: the
