@@ -94,9 +94,10 @@ class Point:
 
 class Pss3Pinocchio:
     """The mechanism in Pinocchio for the FMU parameter values `p` (a dict of
-    PARAMETERS, e.g. start_values(fmu))."""
+    PARAMETERS, e.g. start_values(fmu)). `slider_mass_factors` scales each slider's
+    mass: only for the deliberately wrong model of the tests."""
 
-    def __init__(self, p):
+    def __init__(self, p, slider_mass_factors=(1.0, 1.0, 1.0)):
         self.p = dict(p)
         lb, beta = p["lb"], p["beta"]
         self.u = np.array([[np.cos(t), np.sin(t), 0.0] for t in ACTUATOR_AZIMUTH])
@@ -125,7 +126,7 @@ class Pss3Pinocchio:
         for i in range(3):
             slider = model.addJoint(0, pin.JointModelPrismaticUnaligned(self.u[i]),
                                     pin.SE3(np.eye(3), self.h[i]), f"slider{i + 1}")
-            model.appendBodyToJoint(slider, pin.Inertia(p["sliderMass"], np.zeros(3),
+            model.appendBodyToJoint(slider, pin.Inertia(p["sliderMass"] * slider_mass_factors[i], np.zeros(3),
                                                         np.zeros((3, 3))),
                                     pin.SE3.Identity())
             n0 = level[1][i]
