@@ -121,8 +121,8 @@ class Pss3Pinocchio:
         # Each leg's universal joint is built about its direction n0 at the level,
         # mid-stroke pose, so its gimbal singularity (the leg along the first axis) is
         # 90 deg away from every pose of the workspace.
-        level = self._legs(np.eye(3))
-        self.sliders, self.legs, self.tips, self.anchors, self.closures = [], [], [], [], []
+        level = self.legs(np.eye(3))
+        self.sliders, self.leg_joints, self.tips, self.anchors, self.closures = [], [], [], [], []
         for i in range(3):
             slider = model.addJoint(0, pin.JointModelPrismaticUnaligned(self.u[i]),
                                     pin.SE3(np.eye(3), self.h[i]), f"slider{i + 1}")
@@ -148,7 +148,7 @@ class Pss3Pinocchio:
             self.anchors.append(model.addFrame(pin.Frame(f"anchor{i + 1}", platform, anchor,
                                                          pin.FrameType.OP_FRAME)))
             self.sliders.append(slider)
-            self.legs.append((first, leg, frame))
+            self.leg_joints.append((first, leg, frame))
             self.closures.append(pin.RigidConstraintModel(
                 pin.ContactType.CONTACT_3D, model, leg, tip, platform, anchor,
                 pin.ReferenceFrame.LOCAL))
@@ -169,7 +169,7 @@ class Pss3Pinocchio:
         self.iv_rest = np.setdiff1d(np.arange(model.nv), self.iv_platform)
 
     # -- kinematics -------------------------------------------------------------------
-    def _legs(self, R):
+    def legs(self, R):
         """Slider coordinates l and leg directions n at platform orientation R: the leg
         constraint |P + R b_i - h_i - l_i u_i| = a solved for l_i (the smaller root, this
         robot's assembly; docs/3pss-model.md)."""
@@ -189,13 +189,13 @@ class Pss3Pinocchio:
         """Pinocchio's q at Euler angles theta (rad): the platform quaternion, the
         sliders and the legs' universal-joint angles."""
         R = pin.rpy.rpyToMatrix(np.asarray(theta, float))
-        l, n = self._legs(R)
+        l, n = self.legs(R)
         q = np.zeros(self.model.nq)
         j = self.model.joints[self.platform]
         q[j.idx_q:j.idx_q + 4] = pin.Quaternion(R).coeffs()  # (x, y, z, w)
         for i in range(3):
             q[self.model.joints[self.sliders[i]].idx_q] = l[i]
-            first, leg, frame = self.legs[i]
+            first, leg, frame = self.leg_joints[i]
             # R_frame Rx(q1) Ry(q2) e_z = n: Rx(q1) Ry(q2) e_z = (s2, -s1 c2, c1 c2).
             x, y, z = frame.T @ n[i]
             q[self.model.joints[leg].idx_q] = np.arcsin(x)
@@ -320,9 +320,15 @@ class Pss3Pinocchio:
         )
 
     def rhs(self, theta, omega, inputs):
-        """(thetaDot, omegaDot) as one 6-vector (the plant's state derivative)."""
-        d = self.derivatives(theta, omega, inputs)
-        return np.concatenate([d["thetaDot"], d["omegaDot"]])
+        """(thetaDot, omegaDot) as one 6-vector (the plant's state derivative), by
+        pin.constraintDynamics only."""
+        pt = self.point(theta, omega)
+        a = pin.constraintDynamics(self.model, self.data, pt.q, pt.v,
+                                   self.loads(pt, inputs)["tau"], self.closure_models,
+                                   self.closure_datas, self.prox)
+        omega_a = pt.R @ pt.v[self.iv_platform]
+        return np.concatenate([np.linalg.solve(pt.E, omega_a),
+                               pt.R @ np.asarray(a)[self.iv_platform]])
 
     def computed_torque(self, theta, theta_dot, theta_ddot):
         """The Euler-angle generalized force that gives the platform the Euler-angle
