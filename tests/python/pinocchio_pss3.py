@@ -315,6 +315,9 @@ class Pss3Pinocchio:
             kineticEnergy=pin.computeKineticEnergy(self.model, self.data, pt.q, pt.v),
             potentialEnergy=pin.computePotentialEnergy(self.model, self.data, pt.q)
             + loads["stop_energy"],
+            detJ=np.linalg.det(pt.J), condJ=np.linalg.cond(pt.J),
+            # The Euler-angle generalized force that holds the pose at rest.
+            gravityCompensation=self.computed_torque(theta, np.zeros(3), np.zeros(3)),
             closure_gap=self.closure_gap(pt.q),
             closure_velocity=np.max(np.abs(pt.Jc @ pt.v)),
         )
