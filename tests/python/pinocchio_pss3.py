@@ -118,15 +118,18 @@ class Pss3Pinocchio:
         inertia_com = tensor(p) - p["platformMass"] * (com @ com * np.eye(3) - np.outer(com, com))
         model.appendBodyToJoint(platform, pin.Inertia(p["platformMass"], com, inertia_com),
                                 pin.SE3.Identity())
-        # Each leg's universal joint is built about its direction n0 at the level,
-        # mid-stroke pose, so its gimbal singularity (the leg along the first axis) is
-        # 90 deg away from every pose of the workspace.
+        # Each leg's universal joint: a horizontal first axis a1 perpendicular to the
+        # leg's direction n0 at R = 1 (thz = 0: outside the stroke, but assembled), the
+        # second axis n0 x a1. The joint is singular with the leg along a1; the legs
+        # are steep (n_z > 0.7 over the workspace), so |n . a1| stays below 0.3 there
+        # (configuration() refuses 0.9).
         level = self.legs(np.eye(3))
         self.sliders, self.leg_joints, self.tips, self.anchors, self.closures = [], [], [], [], []
         for i in range(3):
             slider = model.addJoint(0, pin.JointModelPrismaticUnaligned(self.u[i]),
                                     pin.SE3(np.eye(3), self.h[i]), f"slider{i + 1}")
-            model.appendBodyToJoint(slider, pin.Inertia(p["sliderMass"] * slider_mass_factors[i], np.zeros(3),
+            slider_mass = p["sliderMass"] * slider_mass_factors[i]
+            model.appendBodyToJoint(slider, pin.Inertia(slider_mass, np.zeros(3),
                                                         np.zeros((3, 3))),
                                     pin.SE3.Identity())
             n0 = level[1][i]
@@ -198,6 +201,8 @@ class Pss3Pinocchio:
             first, leg, frame = self.leg_joints[i]
             # R_frame Rx(q1) Ry(q2) e_z = n: Rx(q1) Ry(q2) e_z = (s2, -s1 c2, c1 c2).
             x, y, z = frame.T @ n[i]
+            if abs(x) > 0.9:
+                raise ValueError(f"leg {i + 1} near its universal joint's singularity")
             q[self.model.joints[leg].idx_q] = np.arcsin(x)
             q[self.model.joints[first].idx_q] = np.arctan2(-y, z)
         return q, R, l

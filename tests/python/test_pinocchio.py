@@ -7,8 +7,9 @@ own parameters (their modelDescription start values, then non-default sets). Com
 with the Pss3Plant FMU's Model Exchange state derivatives for every input, with friction
 on and inside the end stops, its energies and directional derivatives; the
 ComputedTorque FMU's output with Pinocchio's constrained inverse dynamics; a 1 s
-Co-Simulation run with Pinocchio integrated at tight tolerance. A model with one wrong
-term (slider 1 1 % heavy) must fail the same checks. The figures are in
+Co-Simulation run with Pinocchio integrated at tight tolerance. A Pinocchio model with
+one wrong term (1 %: slider 1's mass, the legs' mass, centre of mass or inertia, the
+platform's mass or inertia, friction, g) must fail the same checks. The figures are in
 docs/pinocchio.md."""
 
 import ctypes
@@ -421,7 +422,7 @@ def test_computed_torque_is_pinocchio_constrained_inverse_dynamics(tmp_path, nam
                       "uMax": [1.0, 0.5, 1.0]}
         ct = Controller(tmp_path / f"ct{k}", p, gains, limits)
         for theta, omega in workspace_states(model, rng, 8, stroke=(0.002, 0.152)):
-            E = pin_rpy_jacobian(theta)
+            E = pin.rpy.computeRpyJacobian(theta, pin.ReferenceFrame.WORLD)
             theta_dot = np.linalg.solve(E, omega)
             q = theta + rng.normal(0.0, 0.02, 3)
             qd = theta_dot + rng.normal(0.0, 0.3, 3)
@@ -440,10 +441,6 @@ def test_computed_torque_is_pinocchio_constrained_inverse_dynamics(tmp_path, nam
     print(f"\n{name}: ComputedTorque u vs Pinocchio, largest relative error {worst:.1e}")
     assert clamped >= 3, "the limit was exercised"
     assert worst < TOL
-
-
-def pin_rpy_jacobian(theta):
-    return pin.rpy.computeRpyJacobian(np.asarray(theta, float), pin.ReferenceFrame.WORLD)
 
 
 def test_a_one_second_run_follows_pinocchio(tmp_path):
