@@ -33,9 +33,11 @@ KEPT_MESSAGES = 20
 
 
 class _Log:
-    """The FMU's logger callback (FMI 2.0: environment, instance, status, category,
-    message; FMI 3.0: environment, status, category, message): keeps the last
-    messages, to tell why the FMU ended a run."""
+    """The FMU's logger callback (FMI 3.0: environment, status, category, message):
+    keeps the last messages, to tell why the FMU ended a run. FMI 2.0 FMUs keep FMPy's
+    own logger: FMPy routes an FMI 2.0 logger through a proxy that keeps the last one
+    given in a global of its C library, which would point at a freed callback once
+    this run is over (the next FMPy run in the process would crash)."""
 
     def __init__(self):
         self.messages: list[str] = []
@@ -120,7 +122,8 @@ def simulate(fmu: Path, description, case: Case, interface: str) -> Run:
                 relative_tolerance=case.rel_tol,
                 set_stop_time=case.options is None or case.options.stop_time_defined,
                 start_values=names.start_values(case.start_values),
-                input=inputs, output=names.outputs(case.signals()), logger=log)
+                input=inputs, output=names.outputs(case.signals()),
+                logger=log if description.fmiVersion.startswith("3.") else None)
     except Exception as e:  # FMPy raises plain exceptions for a failed FMI call
         said = f" (its log: {log.messages[-1]})" if log.messages else ""
         raise RunFailed(f"{fmu}: the {interface} run failed: {e}{said}") from e

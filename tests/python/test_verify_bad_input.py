@@ -11,6 +11,7 @@ from conftest import DIST, REFERENCES
 from verify_cli import verify, verify_process
 
 REF, INPUT, CASE = "Pss3Plant_ref.csv", "Pss3Plant_input.csv", "case.json"
+OPT = "Pss3Plant_ref.opt"
 
 
 def edit_lines(path, change):
@@ -55,7 +56,12 @@ MISTAKES = {
     # name: (file, edit, words the message must contain); file: [(file, edit), ...]
     # where one mistake needs two edits
     "unsorted times": (REF, swap_rows, [REF, "line 5, column 'time'", "goes back", "sort"]),
-    "duplicate time": (REF, lambda x: x[:3] + x[2:], [REF, "line 4, column 'time'", "repeats"]),
+    # A time written twice is an event (test_verify_conventions.py), not a mistake.
+    "negative step": (OPT, lambda x: [("StepSize, -0.001" if line.startswith("StepSize") else line)
+                                      for line in x], [OPT, "StepSize", "negative", "0 for a variable-step"]),
+    "option given twice": (OPT, lambda x: x + ["RelTol, 1e-3"], [OPT, "RelTol", "given twice"]),
+    "option without its value": (OPT, lambda x: [("StopTime," if line.startswith("StopTime") else line)
+                                                 for line in x], [OPT, "StopTime", "missing"]),
     "reference ends early": (REF, cut_after(1.5), [REF, "column 'time'", "covers 0 to 1.5 s",
                                                    "experiment 0 to 2 s"]),
     "reference starts late": (REF, lambda x: x[:1] + x[3:], [REF, "covers 0.002 to 2 s"]),
