@@ -196,7 +196,8 @@ def read_options(path: Path) -> Options:
     if "SolverType" in values and values["SolverType"][1]:
         options.solver_type = values["SolverType"][1]
     if "StopTimeDefined" in values and values["StopTimeDefined"][1]:
-        options.stop_time_defined = _flag(path, *values["StopTimeDefined"])
+        options.stop_time_defined = _flag(path, values["StopTimeDefined"][0],
+                                          "StopTimeDefined", values["StopTimeDefined"][1])
     if not options.stop > options.start:
         raise VerifyError(path, "StopTime", f"{options.stop:g} s is not after StartTime "
                           f"{options.start:g} s", "give StartTime < StopTime")
