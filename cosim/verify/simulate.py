@@ -33,20 +33,39 @@ KEPT_MESSAGES = 20
 
 
 class _Log:
-    """The FMU's logger callback (FMI 3.0: environment, status, category, message):
-    keeps the last messages, to tell why the FMU ended a run. FMI 2.0 FMUs keep FMPy's
-    own logger: FMPy routes an FMI 2.0 logger through a proxy that keeps the last one
-    given in a global of its C library, which would point at a freed callback once
-    this run is over (the next FMPy run in the process would crash)."""
+    """The FMU's log messages, the last ones kept, to tell why the FMU ended a run.
+
+    As FMI 3.0 logger callback (environment, status, category, message) it is given to
+    FMPy. FMI 2.0 FMUs keep FMPy's own logger, which prints "[STATUS] message" lines:
+    FMPy routes an FMI 2.0 logger of ours through a proxy that keeps the last one given
+    in a global of its C library, which would point at a freed callback once this run is
+    over (the next FMPy run in the process crashed). So the run's stdout comes here as
+    a file (``write``): everything goes on to stderr, the "[STATUS] ..." lines are kept."""
 
     def __init__(self):
         self.messages: list[str] = []
+        self._line = ""
+
+    def _keep(self, text: str) -> None:
+        self.messages = (self.messages + [text.strip()])[-KEPT_MESSAGES:]
 
     def __call__(self, *args):
         status, message = args[-3], args[-1]
         text = message.decode("utf-8", "replace") if isinstance(message, bytes) else str(message)
         label = STATUS[status] if isinstance(status, int) and 0 <= status < len(STATUS) else status
-        self.messages = (self.messages + [f"[{label}] {text.strip()}"])[-KEPT_MESSAGES:]
+        self._keep(f"[{label}] {text}")
+
+    def write(self, text: str) -> int:
+        sys.stderr.write(text)
+        self._line += text
+        *lines, self._line = self._line.split("\n")
+        for line in lines:
+            if any(line.startswith(f"[{label}] ") for label in STATUS):
+                self._keep(line)
+        return len(text)
+
+    def flush(self) -> None:
+        sys.stderr.flush()
 
 
 def read_description(fmu: Path):
@@ -114,7 +133,7 @@ def simulate(fmu: Path, description, case: Case, interface: str) -> Run:
     try:
         # FMPy prints its warnings (an input the file leaves out, ...): to stderr, so
         # that stdout holds the verdicts only.
-        with contextlib.redirect_stdout(sys.stderr):
+        with contextlib.redirect_stdout(log):
             result = simulate_fmu(
                 unzipped, validate=False, fmi_type=interface, start_time=case.start,
                 stop_time=case.stop, output_interval=case.output_interval,
