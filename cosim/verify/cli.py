@@ -6,7 +6,6 @@ of an FMI cross-check tree (cosim.verify.tree)."""
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -44,8 +43,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--allow-early-end", action="store_true",
                         help="pass a case whose FMU ends the run before StopTime when its "
                         "signals are within tolerance up to that time")
-    parser.add_argument("--jobs", type=int, default=None,
-                        help="cases run at once in a tree (default: the CPU count, at most 4)")
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="cases run at once in a tree, each in its own process "
+                        "(default: 1)")
     parser.add_argument("--out", type=Path, default=Path("results/verify"),
                         help=f"folder for {REPORT} and the PNG of each failing signal; for "
                         "a tree, the results tree (default: results/verify)")
@@ -75,7 +75,7 @@ def _verify(args) -> int:
     if args.step is not None and not args.step > 0:
         raise VerifyError(COMMAND_LINE, "--step", f"{args.step:g} is not positive",
                           "give the step in seconds, e.g. --step 0.001")
-    if args.jobs is not None and args.jobs < 1:
+    if args.jobs < 1:
         raise VerifyError(COMMAND_LINE, "--jobs", f"{args.jobs} is not positive",
                           "give the number of cases to run at once, e.g. --jobs 2")
     if args.fmu.is_dir():
@@ -107,7 +107,3 @@ def run(args: argparse.Namespace) -> int:
             raise
         print(f"cosim: {e}", file=sys.stderr)
         return 1
-
-
-def default_jobs() -> int:
-    return max(1, min(4, os.cpu_count() or 1))

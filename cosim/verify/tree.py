@@ -30,7 +30,7 @@ from .runner import CaseResult, verify_case
 
 TOOL = "cosim"
 FMI_VERSIONS = ("1.0", "2.0", "3.0")
-TYPES = {"cs": "cs", "me": "me"}
+TYPES = ("cs", "me")
 
 
 def tool_version() -> str:
@@ -150,7 +150,6 @@ def _clear_markers(case: TreeCase, out: Path) -> None:
 
 
 def verify_tree(args) -> int:
-    from .cli import default_jobs
     tree = args.fmu
     if args.case is not None or args.reference is not None or args.input is not None:
         raise VerifyError(COMMAND_LINE, "CASE/--reference/--input", "a tree gives each "
@@ -163,7 +162,7 @@ def verify_tree(args) -> int:
     runnable = [(c, skip_reason(c)) for c in cases]
     todo = [c for c, why in runnable if why is None]
     skipped = [(c, why) for c, why in runnable if why is not None]
-    jobs = min(args.jobs or default_jobs(), max(1, len(todo)))
+    jobs = min(args.jobs, max(1, len(todo)))
     started = time.perf_counter()
     suites, counts = {}, {"passed": 0, "failed": 0, "rejected": 0}
     print(f"{tree}: {len(cases)} cases, {len(todo)} to run here ({jobs} at once), "
