@@ -167,20 +167,64 @@ def test_the_band_at_an_event_against_fmpys(tmp_path):
     assert not verdict.passed  # 51 of 201 samples outside: more than 10 %
 
 
-def test_an_input_written_with_a_repeated_time_is_passed_to_fmpy_as_an_event(tmp_path):
-    # The rules' CSV example writes an input step as a repeated time; FMPy applies the
-    # value after the event from that time on (fmpy.simulation.Input.findEvents). The
-    # PID defaults' setpoint is constant: written with an "event" of no jump at 1 s the
-    # result must equal the reference as before.
+def pid_u(t, e):
+    """The PID's defaults (Kp 1, Ki 0.5, Kd 0.1, Tf 0.05) on a constant error e from a
+    zero state, by Laplace inversion (as scripts/make_references.py writes the PID cases):
+    u = Kp e + Ki e t + Kd e / Tf exp(-t / Tf)."""
+    return 1.0 * e + 0.5 * e * t + 0.1 * e / 0.05 * np.exp(-t / 0.05)
+
+
+def write_pid_reference(case, t_jump):
+    """The closed form of the three channels every 0.01 s, u[1] with 0.5 added from
+    t_jump on, the time t_jump on two rows (before and after the jump)."""
+    t = np.round(np.arange(0, 201) * 0.01, 12)
+    before, after = t[t <= t_jump], t[t > t_jump]
+    rows = [(ti, 0.0) for ti in before] + [(t_jump, 0.5)] + [(ti, 0.5) for ti in after]
+    lines = ['"time","u[1]","u[2]","u[3]"'] + [
+        ",".join(repr(float(x)) for x in (ti, pid_u(ti, 1.0) + ff, pid_u(ti, 0.5),
+                                          pid_u(ti, -0.25)))
+        for ti, ff in rows]
+    (case / "PID_ref.csv").write_text("\n".join(lines) + "\n")
+
+
+def feedforward_step_case(tmp_path):
+    """The PID's defaults with feedforward[1] stepping from 0 to 0.5 at 1 s, written as
+    the rules write an event: time 1 on two rows, in the input and in the reference
+    (the feedforward adds to u[1] directly: u[1] = pid_u + feedforward)."""
     case = pid_case(tmp_path)
     inputs = case / "PID_input.csv"
-    lines = inputs.read_text().splitlines()
-    at_one = lines[1].split(",", 1)[1]
-    inputs.write_text("\n".join([lines[0], lines[1], f"1.0,{at_one}", f"1.0,{at_one}"] + lines[2:]) + "\n")
-    assert read_table(inputs).event_times() == [1.0]
-    out = tmp_path / "out"
-    outcome = verify(PID, case, "--out", out)
+    header, first, last = inputs.read_text().splitlines()
+    column = header.split(",").index('"feedforward[1]"')
+
+    def row(time, feedforward, line):
+        fields = line.split(",")
+        fields[0], fields[column] = repr(time), repr(feedforward)
+        return ",".join(fields)
+    inputs.write_text("\n".join([header, row(0.0, 0.0, first), row(1.0, 0.0, first),
+                                 row(1.0, 0.5, last), row(2.0, 0.5, last)]) + "\n")
+    write_pid_reference(case, 1.0)
+    return case
+
+
+@pytest.mark.parametrize("interface", ["cs", "me"])
+def test_an_input_event_applies_its_value_after_the_event(interface, tmp_path):
+    # The rules' CSV example writes an input step as a repeated time; the value after
+    # the event applies from the event on (FMPy: Input.findEvents, apply(after_event)).
+    # Within the case's tolerances (Co-Simulation 1e-9, exact but for round-off; Model
+    # Exchange 1e-5, CVode at RelTol 1e-8) of the closed form with the jump at 1 s.
+    case = feedforward_step_case(tmp_path)
+    assert read_table(case / "PID_input.csv").event_times() == [1.0]
+    assert read_table(case / "PID_ref.csv").event_times() == [1.0]
+    outcome = verify(PID, case, "--interface", interface, "--out", tmp_path / "out")
+    print(outcome.out)
     assert outcome.code == 0, outcome.out + outcome.err
+    # Not trivially passing: against a reference whose jump comes one output step
+    # early (0.99 s) the result fails u[1] at 1 s by the jump's 0.5.
+    write_pid_reference(case, 0.99)
+    early = verify(PID, case, "--interface", interface, "--out", tmp_path / "early")
+    failing = [line for line in early.out.splitlines() if line.startswith("FAIL")]
+    assert early.code == 1 and len(failing) == 1, early.out
+    assert failing[0].startswith("FAIL u[1]: max |error| 0.5 at t = 1 s")
 
 
 def test_an_fmu_that_ends_the_run_early(tmp_path, monkeypatch):
