@@ -25,6 +25,9 @@ from cosim.verify.table import Table, read_options, read_table
 from cosim.verify.tolerance import CrossCheckBand, Deviation
 
 PID = DIST / "PID.fmu"
+# FMPy 0.3.32 imports its band filters from scipy.ndimage.filters, deprecated in SciPy 1.17.
+pytestmark = pytest.mark.filterwarnings(
+    "ignore:Please import .* from the `scipy.ndimage` namespace:DeprecationWarning")
 
 
 def pid_case(tmp_path, opt_lines=None):
