@@ -194,3 +194,16 @@ def test_a_junit_path_that_is_a_folder_writes_nothing(tmp_path):
     assert f"cosim: {folder}: --out/--junit:" in outcome.err and "nothing was written" in outcome.err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["junit"]
     assert list(folder.iterdir()) == []
+
+
+def test_a_tree_without_cases_and_a_tree_with_a_case_folder_are_refused(tmp_path):
+    # A folder as FMU|TREE is a cross-check tree: one with no case is bad input, and a
+    # tree gives each case its own files, so CASE (or --reference) with it is too.
+    empty, out = tmp_path / "empty", tmp_path / "out"
+    empty.mkdir()
+    assert_user_error(verify(empty, "--out", out), [str(empty), "TREE", "holds no case",
+                                                    "cross-check tree"], out)
+    assert_user_error(verify(empty, REFERENCES / "PID" / "defaults", "--out", out),
+                      ["command line: CASE/--reference/--input", "leave them out"], out)
+    assert_user_error(verify(empty, "--jobs", "0", "--out", out), ["--jobs", "not positive"],
+                      out)
