@@ -75,10 +75,11 @@ class TreeCase:
 
 
 def find_cases(tree: Path) -> list[TreeCase]:
-    """Every ``<Model>/<Model>.fmu`` six folders below an FMI version folder."""
+    """Every ``<Model>/<Model>.fmu`` below `tree` six folders below an FMI version folder
+    (the folders above `tree` count: TREE may be any folder of the layout)."""
     cases = []
     for fmu in sorted(tree.rglob("*.fmu")):
-        parts = fmu.parent.relative_to(tree).parts
+        parts = fmu.parent.resolve().parts
         if len(parts) < 6 or fmu.stem != parts[-1]:
             continue
         version, kind, plat, tool, tool_ver, model = parts[-6:]
@@ -142,10 +143,15 @@ def _run_one(case: TreeCase, args) -> tuple[str, list[str], str, dict, bytes]:
     return status, lines, summary, files, suite
 
 
-def _clear_markers(case: TreeCase, out: Path) -> None:
-    for marker in ("passed", "failed", "rejected"):
-        path = case.results(out) / marker
-        if path.is_file():
+def _clear_stale(case: TreeCase, out: Path, files: dict) -> None:
+    """Removes what an earlier run wrote in the case's results folder and this one does
+    not (its marker, plots, result): only the names verify writes there."""
+    folder = case.results(out)
+    if not folder.is_dir():
+        return
+    names = ["passed", "failed", "rejected", "verify.json", f"{case.model}_out.csv"]
+    for path in [folder / n for n in names] + sorted(folder.glob("*.png")):
+        if path not in files and path.is_file():
             path.unlink()
 
 
@@ -170,8 +176,8 @@ def verify_tree(args) -> int:
 
     def finish(k, case, outcome):
         status, lines, summary, files, suite = outcome
-        _clear_markers(case, args.out)
         try:
+            _clear_stale(case, args.out, files)
             write_all(files)
         except OSError as e:
             raise VerifyError(e.filename or args.out, "--out", f"cannot be written "

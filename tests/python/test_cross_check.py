@@ -149,6 +149,7 @@ def test_cosim_verify_runs_a_whole_tree(tree, tmp_path):
     # suite per case, the rules' results layout; checked against FMPy: its cross-check
     # procedure gives the same verdict on every FMI 2.0 case, and its repository check
     # (validate_cross_check_result) re-validates each result we marked passed.
+    import shutil
     import sys
     from fmpy.cross_check.validate_vendor_repo import validate_cross_check_result
     from cosim.verify.tree import tool_version
@@ -194,5 +195,18 @@ def test_cosim_verify_runs_a_whole_tree(tree, tmp_path):
                                                t_stop=options["StopTime"])
                 assert (fmpy_verdict is None) == (expected == "passed"), (folder, fmpy_verdict)
     readme = (xc / "results/2.0/cs/linux64/cosim" / tool_version() / "wrong").glob("*/Planner/README.md")
-    text = next(readme).read_text()
+    folder = next(readme).parent
+    text = (folder / "README.md").read_text()
     assert text.startswith("# Planner: failed") and "FAIL q[3]" in text
+    assert (folder / "q_3.png").is_file()
+    # The wrong case put right and run again, alone (TREE a folder inside the layout):
+    # its marker is now passed, and the earlier run's failure marker and plot are gone.
+    wrong = next((xc / "fmus/2.0/cs/linux64/wrong").glob("*/Planner"))
+    shutil.copy(next((xc / "fmus/2.0/cs/linux64/robofmu").glob("*/Planner/Planner_ref.csv")),
+                wrong)
+    again = subprocess.run([sys.executable, "-m", "cosim", "verify", str(wrong.parent),
+                            "--out", str(xc)], cwd=ROOT, capture_output=True, text=True)
+    assert again.returncode == 0, again.stdout + again.stderr
+    assert "1 passed, 0 failed, 0 rejected, 0 skipped of 1 cases" in again.stdout
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "Planner_out.csv", "README.md", "passed", "verify.json"]
