@@ -14,6 +14,7 @@ beside them; one JUnit file (``OUT/junit.xml`` or --junit) holds one test suite 
 
 from __future__ import annotations
 
+import os
 import platform
 import sys
 import time
@@ -27,10 +28,11 @@ from . import junit
 from .errors import COMMAND_LINE, VerifyError
 from .files import write_all
 from .runner import CaseResult, verify_case
+from .simulate import INTERFACE_NAMES
 
 TOOL = "cosim"
 FMI_VERSIONS = ("1.0", "2.0", "3.0")
-TYPES = ("cs", "me")
+TYPES = tuple(INTERFACE_NAMES)  # cs, me
 
 
 def tool_version() -> str:
@@ -107,21 +109,28 @@ def skip_reason(case: TreeCase) -> str | None:
 
 
 def _readme(case: TreeCase, status: str, lines: list[str], summary: str) -> bytes:
-    verdicts = "\n".join(f"    {line}" for line in lines) or f"    {summary}"
-    text = f"""# {case.model}: {status}
+    """The README.md the rules ask for: how the case was run, and why it did not pass;
+    file names relative to the case's folder."""
+    summary = summary.replace(f"{case.folder}{os.sep}", "")
+    head = (f"# {case.model}: {status}\n\nImported with {TOOL} {tool_version()} (`cosim verify`, "
+            f"the robofmu harness, on FMPy {_fmpy_version()}), FMI {case.fmi_version} "
+            f"{INTERFACE_NAMES[case.kind]}, {case.platform}.\n\n")
+    if status == "rejected":
+        return (head + "Not simulated: the case's files do not fit the FMU.\n\n"
+                f"    {summary}\n").encode()
+    how = (f"The FMU was simulated with its default parameters, the experiment of "
+           f"`{case.model}_ref.opt` and the inputs of `{case.model}_in.csv` where present, "
+           f"and each signal of `{case.model}_ref.csv` compared with the result "
+           f"(`{case.model}_out.csv`), each within the tolerance its line below names (the "
+           "FMI cross-check band: at most 10 % of the samples outside a band of 10 % of "
+           "the signal's range; docs/verify.md of robofmu).\n\n")
+    verdicts = "".join(f"    {line}\n" for line in lines)
+    return (head + how + f"{summary}\n\n" + verdicts).encode()
 
-Imported with {TOOL} {tool_version()} (`cosim verify`, the robofmu harness, on FMPy),
-FMI {case.fmi_version} {'Co-Simulation' if case.kind == 'cs' else 'Model Exchange'}, {case.platform}.
-The FMU was simulated with the experiment of `{case.model}_ref.opt` and the inputs of
-`{case.model}_in.csv` where present, and each signal of `{case.model}_ref.csv` compared
-with the result (`{case.model}_out.csv`) by the FMI cross-check band rule (at most 10 %
-of the samples outside a band of 10 % of the signal's range).
 
-{summary}
-
-{verdicts}
-"""
-    return text.encode()
+def _fmpy_version() -> str:
+    import fmpy
+    return fmpy.__version__
 
 
 def _run_one(case: TreeCase, args) -> tuple[str, list[str], str, dict, bytes]:
@@ -136,8 +145,9 @@ def _run_one(case: TreeCase, args) -> tuple[str, list[str], str, dict, bytes]:
                                                 dict(result.files), result.suite)
     except VerifyError as e:
         status, lines, summary, files = "rejected", [], f"{name}: rejected: {e}", {}
-        suite = ET.tostring(junit.error_suite(f"{case.fmu.name} against {name}",
-                                              f"{case.model}.{case.kind}", str(e), "rejected"))
+        interface = INTERFACE_NAMES[case.kind]
+        suite = ET.tostring(junit.error_suite(f"{case.fmu.name} ({interface}) against {name}",
+                                              f"{case.model}.{interface}", str(e), "rejected"))
     files[out / status] = b""
     files[out / "README.md"] = _readme(case, status, lines, summary)
     return status, lines, summary, files, suite
