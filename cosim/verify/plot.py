@@ -27,7 +27,7 @@ def _signal_panel(axes, case: Case, verdict: Verdict, outside, unit) -> None:
     axes.fill_between(limits.plot_time, limits.plot_lower, limits.plot_upper, color="0.85",
                       label=f"band: {verdict.tolerance}")
     ref = case.reference
-    inside = (ref.time >= case.start) & (ref.time <= verdict.time[-1])
+    inside = (ref.time >= case.start) & (ref.time <= case.stop)
     axes.plot(ref.time[inside], ref.columns[verdict.signal][inside], color="0.3", lw=1,
               label="reference")
     axes.plot(verdict.time, verdict.value, color="tab:blue", lw=1, label="result")
@@ -63,8 +63,9 @@ def plot_png(case: Case, verdict: Verdict, title: str, unit: str | None = None,
         for axes in (top, bottom):
             axes.axvline(verdict.first_exit, color="tab:red", ls="--", lw=1,
                          label=f"first exit t = {verdict.first_exit:.6g} s")
-    if end is not None:
+    if end is not None:  # the whole experiment shown: the part the run never reached
         for axes in (top, bottom):
+            axes.set_xlim(case.start, case.stop)
             axes.axvline(end.time, color="0.2", ls=":", lw=1.5,
                          label=f"the FMU ended the run, t = {end.time:.6g} s")
     top.set_title(f"{title}\n{verdict.signal}: {'PASS' if verdict.passed else 'FAIL'}",
