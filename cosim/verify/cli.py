@@ -35,8 +35,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="a signal's tolerance: ABS, ABS,REL (x range) or cross-check; "
                         "NAME * for every signal without one (repeatable)")
     parser.add_argument("--interface", choices=["cs", "me"],
-                        help="Co-Simulation or Model Exchange (default: cs when supported; "
-                        "in a tree: the case's folder)")
+                        help="Co-Simulation or Model Exchange (default: cs when supported); "
+                        "in a tree: run only the cases of this interface")
     parser.add_argument("--step", type=float,
                         help="communication step and output interval in s (default: the "
                         "case's StepSize; StepSize 0: docs/verify.md)")

@@ -90,8 +90,11 @@ def find_cases(tree: Path) -> list[TreeCase]:
     return cases
 
 
-def skip_reason(case: TreeCase) -> str | None:
-    """Why this machine cannot run the case, or None."""
+def skip_reason(case: TreeCase, interface: str | None) -> str | None:
+    """Why the case is not run here (another interface than --interface asks for, a
+    platform or FMI version this machine cannot run), or None."""
+    if interface is not None and case.kind != interface:
+        return f"interface {case.kind} (--interface {interface})"
     names, fmi2, fmi3 = platforms()
     if case.fmi_version == "1.0":
         return "FMI 1.0 (cosim verify runs FMI 2.0 and 3.0)"
@@ -175,9 +178,14 @@ def verify_tree(args) -> int:
         raise VerifyError(tree, "TREE", "holds no case <FMI version>/<cs|me>/<platform>/"
                           "<tool>/<version>/<Model>/<Model>.fmu", "give an FMI cross-check "
                           "tree (its fmus/ folder or a folder above it)")
-    runnable = [(c, skip_reason(c)) for c in cases]
+    runnable = [(c, skip_reason(c, args.interface)) for c in cases]
     todo = [c for c, why in runnable if why is None]
     skipped = [(c, why) for c, why in runnable if why is not None]
+    if not todo:  # a CI job that ran nothing must not pass
+        case, why = skipped[0]
+        raise VerifyError(tree, "TREE", f"none of its {len(cases)} cases runs here "
+                          f"({case.label()}: {why}, ...)", "give a tree with cases for this "
+                          "platform (or leave out --interface)")
     jobs = min(args.jobs, max(1, len(todo)))
     started = time.perf_counter()
     suites, counts = {}, {"passed": 0, "failed": 0, "rejected": 0}

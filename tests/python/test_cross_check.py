@@ -210,3 +210,11 @@ def test_cosim_verify_runs_a_whole_tree(tree, tmp_path):
     assert "1 passed, 0 failed, 0 rejected, 0 skipped of 1 cases" in again.stdout
     assert sorted(p.name for p in folder.iterdir()) == [
         "Planner_out.csv", "README.md", "passed", "verify.json"]
+    # --interface picks the cases of one interface; a tree where none runs is refused
+    # (exit 2, nothing written), not passed.
+    nothing = subprocess.run([sys.executable, "-m", "cosim", "verify", str(wrong.parent),
+                              "--interface", "me", "--out", str(tmp_path / "none")],
+                             cwd=ROOT, capture_output=True, text=True)
+    assert nothing.returncode == 2 and "none of its 1 cases runs here" in nothing.stderr
+    assert "interface cs (--interface me)" in nothing.stderr
+    assert not (tmp_path / "none").exists()
