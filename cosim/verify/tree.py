@@ -36,11 +36,18 @@ TYPES = tuple(INTERFACE_NAMES)  # cs, me
 
 
 def tool_version() -> str:
+    """The installed package's version (the results' {Importing_Tool_Version}); run from
+    a checkout without installing it, the checkout's pyproject.toml."""
     from importlib.metadata import PackageNotFoundError, version
     try:
         return version("robofmu-cosim")
     except PackageNotFoundError:
-        return "0.1.0"
+        import tomllib
+        pyproject = Path(__file__).resolve().parents[2] / "pyproject.toml"
+        try:
+            return tomllib.loads(pyproject.read_text())["project"]["version"]
+        except (OSError, KeyError, tomllib.TOMLDecodeError):
+            return "unknown"
 
 
 def platforms() -> tuple[tuple[str, ...], str, str]:
