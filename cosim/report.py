@@ -31,6 +31,12 @@ def vector(result: dict, alias: str, name: str) -> np.ndarray:
     return np.stack([result[f"{alias}.{name}[{i}]"] for i in (1, 2, 3)], axis=1)
 
 
+def sig(x: float, digits: int = 4) -> str:
+    """`x` with `digits` significant digits (1.234e-05, 0.01234, 123.4, 1.234e+05):
+    fixed decimals would print a small error as 0.00000."""
+    return f"{x:.{digits}g}"
+
+
 @dataclass
 class Metrics:
     rms_error_deg: float
@@ -48,10 +54,9 @@ class Metrics:
                 "peak_angular_acceleration": self.peak_angular_acceleration}
 
     def row(self) -> list[str]:
-        return [f"{self.rms_error_deg:.5f}", f"{self.max_error_deg:.5f}",
-                f"{self.peak_force_n:.3f}",
-                f"{math.degrees(self.peak_planned_acceleration):.3f}",
-                f"{math.degrees(self.peak_angular_acceleration):.3f}"]
+        return [sig(self.rms_error_deg), sig(self.max_error_deg), sig(self.peak_force_n),
+                sig(math.degrees(self.peak_planned_acceleration)),
+                sig(math.degrees(self.peak_angular_acceleration))]
 
 
 HEADER = ["RMS error (deg)", "max error (deg)", "peak |f| (N)",
