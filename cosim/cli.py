@@ -106,7 +106,9 @@ def main(argv=None) -> int:
     try:
         return int(importlib.import_module(args.module).run(args))
     except KeyboardInterrupt:
-        return _fail("interrupted", 130)
+        more = ("; the table keeps every finished run: the same command with --resume "
+                "continues" if args.module == "cosim.sweep.cli" else "")
+        return _fail("interrupted" + more, 130)
     except BrokenPipeError:
         sys.stderr.close()  # the reader went away: end quietly
         return 0

@@ -163,3 +163,60 @@ def test_the_run_summary_prints_significant_digits(tmp_path):
         assert p == pytest.approx(t, rel=5e-4), line
     # What each number is: the RMS of the error's norm, the largest single angle error.
     assert "(of |q - theta| over the 3 angles)" in line and "(one angle)" in line, line
+
+
+def _session_processes(sid: int) -> int:
+    """How many processes belong to session `sid` (Linux /proc)."""
+    count = 0
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        count += int(fields[3]) == sid  # field 6 of stat: the session id
+    return count
+
+
+def _table_rows(path: Path) -> int:
+    return max(0, len(path.read_text().splitlines()) - 1) if path.exists() else 0
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads /proc (Linux)")
+@pytest.mark.parametrize("workers", [0, 2])
+def test_ctrl_c_during_a_sweep_prints_one_line_and_resume_finishes(tmp_path, workers):
+    # A real SIGINT to the whole process group, as a terminal's Ctrl-C sends it: with two
+    # workers once the cluster's worker processes run and the table holds some runs
+    # (formerly 69 lines with four Dask tracebacks), serially once some runs are in.
+    # Then --resume makes the rest: every run in the table once.
+    import signal
+    import time
+    spec = _spec(tmp_path, "name = \"c\"\n[grid.'gains.omega']\nfrom = 10\nto = 50\n"
+                 "steps = 80\nunit = \"rad/s\"\n")
+    out = tmp_path / "out"
+    argv = [str(PYTHON), "-m", "cosim", "sweep", str(spec), "--out", str(out), "--quiet",
+            "--workers", str(workers)]
+    process = subprocess.Popen(argv, cwd=ROOT, start_new_session=True, text=True,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 240
+    # The session: this command, and with workers the forkserver, its resource tracker
+    # and the two worker processes.
+    wanted = 5 if workers else 1
+    while time.monotonic() < deadline and process.poll() is None:
+        if _table_rows(out / "c.csv") >= 3 and _session_processes(process.pid) >= wanted:
+            break
+        time.sleep(0.05)
+    assert process.poll() is None, process.communicate()
+    os.killpg(process.pid, signal.SIGINT)
+    stdout, stderr = process.communicate(timeout=120)
+    assert process.returncode == 130, stderr
+    assert stderr.splitlines() == [
+        "cosim: interrupted; the table keeps every finished run: the same command with "
+        "--resume continues"], stderr
+    done = _table_rows(out / "c.csv")
+    assert 3 <= done < 80, done
+    result = subprocess.run(argv + ["--resume"], cwd=ROOT, capture_output=True, text=True,
+                            timeout=300)
+    assert result.returncode == 0, result.stderr
+    assert f"(0 failed, {done} done before)" in result.stdout, result.stdout
+    ids = [line.split(",")[0] for line in (out / "c.csv").read_text().splitlines()[1:]]
+    assert len(ids) == 80 and len(set(ids)) == 80
