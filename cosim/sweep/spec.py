@@ -81,6 +81,25 @@ class Spec:
     varied: list[Varied]
     runs: list[dict] = field(default_factory=list)  # column -> value (float or list)
     fmu_dir: Path | None = None
+    randoms: dict = field(default_factory=dict)  # path -> its [random] table
+
+    def about(self) -> str:
+        """A title: the sweep's name, its runs and what is drawn at random, how."""
+        text = f"sweep {self.name}: {len(self.runs)} runs"
+        for path, t in self.randoms.items():
+            u = f" {t['unit']}" if "unit" in t else ""
+            law = (f"normal, mean {t['mean']:g}{u}, sd {t['sd']:g}{u}"
+                   if t.get("distribution") == "normal"
+                   else f"uniform in [{t.get('low'):g}, {t.get('high'):g}]{u}")
+            if "min" in t or "max" in t:
+                law += (f", truncated to [{t.get('min', -math.inf):g}, "
+                        f"{t.get('max', math.inf):g}]{u}")
+            text += f"; random {path}: {law}"
+        if self.randoms:
+            draws = len({run_id({k: v for k, v in r.items()
+                                 if k not in self.randoms}) for r in self.runs})
+            text += f" ({len(self.runs) // max(draws, 1)} draws per grid point, the same at each)"
+        return text
 
 
 def _unknown(table: dict, allowed: set, where: str) -> None:
@@ -296,7 +315,7 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
         for draw in draws:
             runs.append({v.path: value for v, value in zip(varied, [*point, *draw])})
     spec = Spec(name, scenario, document, varied, runs,
-                Path(fmu_dir).resolve() if fmu_dir is not None else None)
+                Path(fmu_dir).resolve() if fmu_dir is not None else None, dict(randoms))
     if runs:
         check_document(spec, runs[0])
     return spec

@@ -220,3 +220,70 @@ def test_ctrl_c_during_a_sweep_prints_one_line_and_resume_finishes(tmp_path, wor
     assert f"(0 failed, {done} done before)" in result.stdout, result.stdout
     ids = [line.split(",")[0] for line in (out / "c.csv").read_text().splitlines()[1:]]
     assert len(ids) == 80 and len(set(ids)) == 80
+
+
+def test_equal_curves_say_that_they_hide_one_another():
+    # Truth by construction: a symmetric motion's three actuator forces are equal; the
+    # regulation's thy and thz errors differ by 0.0118 deg on a 5 deg panel.
+    sys.path.insert(0, str(ROOT))
+    import numpy as np
+
+    from cosim.report import hidden_labels
+    f = np.linspace(0.0, -0.009, 50)
+    assert hidden_labels([f, f, f], ["a1", "a2", "a3"], "N", float(np.ptp(f))) == [
+        "a1 (hidden under a3: equal)", "a2 (hidden under a3: equal)", "a3"]
+    e = np.linspace(2.0, 0.0, 50)
+    labels = hidden_labels([-1.5 * e, e + 0.0118 * e / 2.0, e], ["thx", "thy", "thz"], "deg",
+                           5.0)
+    assert labels == ["thx", "thy (hidden under thz: within 0.01 deg)", "thz"]
+
+
+def test_the_sweep_figure_names_what_is_drawn_at_random():
+    sys.path.insert(0, str(ROOT))
+    from cosim.sweep.spec import load_spec
+    about = load_spec(ROOT / "sweeps" / "demo_gains.toml").about()
+    assert about == ("sweep demo_gains: 15 runs; random plant.legMass: normal, mean 0.9467 "
+                     "kg, sd 0.09467 kg, truncated to [0.75, 1.15] kg (3 draws per grid "
+                     "point, the same at each)")
+
+
+def test_a_metric_equal_in_every_run_is_said_not_drawn_flat(tmp_path):
+    # The regulation's max error is its 3 deg start offset in every run: a text, not a
+    # line magnified into a panel; a 0.6 % spread gets an axis of +-5 % and a note.
+    sys.path.insert(0, str(ROOT))
+    import matplotlib
+    matplotlib.use("Agg")
+    from cosim.sweep import plots
+    rows = [{"status": "ok", "g [rad/s]": float(w), "rms_error_deg": 1.0 / w,
+             "max_error_deg": 3.0000000000000004, "peak_force_n": 100.0 * (1 + 0.006 * (w % 2)),
+             "settling_time_s": 4.0 / w, "wall_s": 0.2} for w in (10, 20, 30, 41)]
+    import matplotlib.axes
+    said = []
+    real_text = matplotlib.axes.Axes.text
+    real_ylim = matplotlib.axes.Axes.set_ylim
+
+    def text(self, x, y, s, *a, **k):
+        said.append((self.get_title(), s))
+        return real_text(self, x, y, s, *a, **k)
+
+    limits = []
+
+    def set_ylim(self, *a, **k):
+        limits.append(a)
+        return real_ylim(self, *a, **k)
+
+    matplotlib.axes.Axes.text = text
+    matplotlib.axes.Axes.set_ylim = set_ylim
+    try:
+        written = plots.plot_sweep(["g [rad/s]"], rows, ["g [rad/s]"], False, tmp_path, "x",
+                                   "sweep x")
+    finally:
+        matplotlib.axes.Axes.text = real_text
+        matplotlib.axes.Axes.set_ylim = real_ylim
+    assert written
+    constant = [s for _, s in said if "in every run" in s]
+    assert len(constant) == 1 and constant[0].startswith("3 deg in every run\nthe start offset")
+    assert any("spread 0.6 % of the median; axis +-5 %" in s for _, s in said), said
+    import numpy as np
+    assert any(np.allclose(np.ravel(a).astype(float), [95.0, 105.0]) for a in limits
+               if np.size(a) == 2), limits
