@@ -318,7 +318,8 @@ def resolve(data: dict, base_dir: Path,
                             "controller = \"computed-torque\"; remove it for the PID")
     order, points = waypoints(_table(data, "motion"))
     stop_time = quantity(data.get("stop_time"), "time", "stop_time")
-    if points[-1].time > stop_time:
+    start = quantity(data["start_time"], "time", "start_time") if "start_time" in data else 0.0
+    if start < stop_time < points[-1].time:  # else parse_scenario names stop_time
         k = len(points) - 1
         raise ScenarioError(
             f"field 'motion.waypoints[{k}].time': the motion ends at {points[-1].time:g} s, "
