@@ -1,4 +1,4 @@
-"""The main demo: every closed-loop scenario through the FMUs, with CSVs, plots and a
+"""The main demo: the six PID scenarios of SCENARIOS through the FMUs, with CSVs, plots and a
 summary table, then the PID against the computed-torque controller on each
 (cosim.demo_controllers).  ``python -m cosim.demo [--out results]``."""
 
