@@ -287,3 +287,13 @@ def test_a_metric_equal_in_every_run_is_said_not_drawn_flat(tmp_path):
     import numpy as np
     assert any(np.allclose(np.ravel(a).astype(float), [95.0, 105.0]) for a in limits
                if np.size(a) == 2), limits
+
+
+def test_ssp_refusing_a_multi_segment_motion_says_the_way_forward(tmp_path):
+    result = cosim("ssp", ROOT / "scenarios" / "three_axis_waypoints.toml", "--out",
+                   tmp_path / "w.ssp")
+    assert result.returncode == 2, result.stderr
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1 and "field 'motion.waypoints'" in lines[0], lines
+    assert "export one segment at a time" in lines[0] and "'cosim run'" in lines[0], lines
+    assert not (tmp_path / "w.ssp").exists()
