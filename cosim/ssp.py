@@ -28,7 +28,9 @@ from .ssp_annotations import tag as _tag
 # component's first set when none is named.
 PARAMETER_SET = "scenario"
 NO_SCHEDULE = ("a multi-segment motion (a sequence of plans) has no SSP form: SSP parameters "
-               "are fixed for the whole run")
+               "are fixed for the whole run; export one segment at a time (a copy of the "
+               "scenario with two of its waypoints, the first as start), or run the whole "
+               "motion with 'cosim run'")
 
 
 def _variables(path: Path) -> dict:
