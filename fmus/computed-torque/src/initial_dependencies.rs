@@ -14,7 +14,7 @@
 //! which reads everything u[k] reads: it lists the same. Checked against finite
 //! differences at initialization in tests/python/test_initial_dependencies.py.
 
-use robofmu::computed_torque::MODEL_PARAMETERS;
+use robofmu_dynamics::computed_torque::MODEL_PARAMETERS;
 
 /// The gains, inputs and integral of every axis.
 const COUPLED: [&str; 27] = [

@@ -5,10 +5,10 @@
 //! (state).
 
 use super::{AXES, ComputedTorqueFmu, DEFAULT_BANDWIDTH, initial_dependencies};
-use robofmu::computed_torque::{
+use robofmu_dynamics::computed_torque::{
     AxisGains, MODEL_PARAMETER_SPECS, MODEL_PARAMETERS, pole_placement,
 };
-use robofmu::pss3::START_ROLL_DEG;
+use robofmu_dynamics::pss3::START_ROLL_DEG;
 use robofmu_fmi::prelude::*;
 
 type Decl = Declaration<ComputedTorqueFmu>;

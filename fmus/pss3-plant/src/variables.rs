@@ -6,7 +6,7 @@
 use super::initial_dependencies as init;
 use super::output_rates::{Output, output_derivative};
 use super::{Pss3Plant, parameters};
-use robofmu::pss3::dynamics::PlantInputs;
+use robofmu_dynamics::pss3::dynamics::PlantInputs;
 use robofmu_fmi::prelude::*;
 
 pub const ACTUATOR_FORCE: u32 = 0;

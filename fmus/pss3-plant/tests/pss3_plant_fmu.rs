@@ -3,9 +3,9 @@
 //! Model Exchange events and derivatives, directional derivatives, FMU state.
 
 use nalgebra::{Matrix3, Vector3};
-use robofmu::pss3::dynamics::{Plant, PlantInputs, PlantParams, PlantState};
-use robofmu::pss3::rotation::euler_rate_matrix;
-use robofmu::pss3::{assemble, jacobian};
+use robofmu_dynamics::pss3::dynamics::{Plant, PlantInputs, PlantParams, PlantState};
+use robofmu_dynamics::pss3::rotation::euler_rate_matrix;
+use robofmu_dynamics::pss3::{assemble, jacobian};
 use robofmu_fmi::fmi2::types::*;
 use robofmu_fmi_testing::Host;
 use robofmu_pss3_plant_fmu::Pss3Plant;
