@@ -15,6 +15,7 @@
 //! differences at initialization in tests/python/test_initial_dependencies.py.
 
 use robofmu_dynamics::computed_torque::MODEL_PARAMETERS;
+use robofmu_fmi::prelude::Var;
 
 /// The gains, inputs and integral of every axis.
 const COUPLED: [&str; 27] = [
@@ -73,34 +74,34 @@ const fn count(k: usize) -> usize {
 }
 
 /// Static tables (no allocation: a per-load allocation would leak on every dlclose).
-static AXIS_1: [&str; count(0)] = knowns(0);
-static AXIS_2: [&str; count(1)] = knowns(1);
-static AXIS_3: [&str; count(2)] = knowns(2);
+static AXIS_1: [Var; count(0)] = knowns(0);
+static AXIS_2: [Var; count(1)] = knowns(1);
+static AXIS_3: [Var; count(2)] = knowns(2);
 
 /// The knowns u[k + 1] and der(integral)[k + 1] depend on (k from 0).
-pub fn of_axis(k: usize) -> &'static [&'static str] {
+pub fn of_axis(k: usize) -> &'static [Var] {
     [&AXIS_1[..], &AXIS_2, &AXIS_3][k]
 }
 
 /// COUPLED, the limits of axis k + 1 and the model parameters but UNSEEN[k].
-const fn knowns<const N: usize>(k: usize) -> [&'static str; N] {
-    let mut out = [""; N];
+const fn knowns<const N: usize>(k: usize) -> [Var; N] {
+    let mut out = [Var::Time; N];
     let mut n = 0;
     let mut i = 0;
     while i < COUPLED.len() {
-        out[n] = COUPLED[i];
+        out[n] = Var::Named(COUPLED[i]);
         (n, i) = (n + 1, i + 1);
     }
     i = 0;
     while i < LIMITS[k].len() {
-        out[n] = LIMITS[k][i];
+        out[n] = Var::Named(LIMITS[k][i]);
         (n, i) = (n + 1, i + 1);
     }
     i = 0;
     while i < MODEL_PARAMETERS.len() {
         let name = MODEL_PARAMETERS[i].name;
         if !contains(UNSEEN[k], name) {
-            out[n] = name;
+            out[n] = Var::Named(name);
             n += 1;
         }
         i += 1;

@@ -212,7 +212,7 @@ static VARIABLES: &[Decl] = &[
     .label("Axis")
     .output()
     .unit("N.m", None)
-    .initial_depends_on(initial_dependencies::of_axis),
+    .initial_depends_on_each(initial_dependencies::of_axis),
     axes!(
         real,
         set_real,
@@ -231,7 +231,7 @@ static VARIABLES: &[Decl] = &[
     .array(AXES)
     .at(311)
     .derivative_of("integral")
-    .initial_depends_on(initial_dependencies::of_axis),
+    .initial_depends_on_each(initial_dependencies::of_axis),
     model::<0>(1), // lp
     model::<1>(1),
     model::<2>(1),
