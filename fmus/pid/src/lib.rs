@@ -140,7 +140,8 @@ const TF: Decl = gain!(
     "Derivative filter time constant (0 allowed only with rate inputs)",
     0.05,
     gains.tf
-);
+)
+.real_range(Some(0.0), None);
 const LIMIT: Decl = switch!(
     "limitOutput",
     41,
