@@ -104,12 +104,8 @@ pub mod prelude {
     //!         self.t = self.ambient + (self.t - self.ambient) * (-step / self.tau).exp();
     //!         StepOutcome::Completed
     //!     }
-    //!     fn continuous_states(&self, x: &mut [f64]) { x[0] = self.t; }
-    //!     fn set_continuous_states(&mut self, x: &[f64]) { self.t = x[0]; }
-    //!     fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
-    //!         dx[0] = self.rate();
-    //!         Ok(())
-    //!     }
+    //!     // Model Exchange reads and writes the state T and reads der(T) through
+    //!     // their declarations (the defaults of continuous_states, derivatives, ...).
     //! }
     //!
     //! // 4. Both standards' C functions from this cdylib.

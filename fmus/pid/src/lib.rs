@@ -407,28 +407,8 @@ impl Model for Pid {
     /// the 9 inner points (held over the next sub-interval).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
 
-    fn continuous_states(&self, x: &mut [f64]) {
-        for c in 0..CHANNELS {
-            x[c] = self.states[c].integral;
-            x[CHANNELS + c] = self.states[c].filter;
-        }
-    }
-
-    fn set_continuous_states(&mut self, x: &[f64]) {
-        for c in 0..CHANNELS {
-            self.states[c].integral = x[c];
-            self.states[c].filter = x[CHANNELS + c];
-        }
-    }
-
-    fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
-        for c in 0..CHANNELS {
-            let d = self.derivative(c);
-            dx[c] = d.integral;
-            dx[CHANNELS + c] = d.filter;
-        }
-        Ok(())
-    }
+    // The continuous states and their derivatives: the layer's defaults, through the
+    // declarations of integral, filter and their derivatives.
 
     fn partial_derivative(&self, unknown: Element, known: Element) -> Result<f64, String> {
         if unknown.index != known.index {

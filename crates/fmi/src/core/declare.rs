@@ -446,6 +446,59 @@ pub const fn continuous_states<M>(declarations: &[Declaration<M>]) -> usize {
     n
 }
 
+/// Calls `f(k, state, derivative, i)` for continuous state k: element i of the state
+/// declaration `state` whose time derivative is element i of `derivative`, in the
+/// order of the derivative declarations (the state order: the FMI 3.0 view checks at
+/// packaging that the derivatives list the states in that order).
+fn each_state<M>(
+    declarations: &[Declaration<M>],
+    mut f: impl FnMut(usize, &Declaration<M>, &Declaration<M>, usize),
+) {
+    let mut k = 0;
+    for d in declarations {
+        let Some(name) = d.derivative_of else {
+            continue;
+        };
+        let Some(state) = declarations.iter().find(|s| s.name == name) else {
+            continue;
+        };
+        for i in 0..d.size() {
+            f(k, state, d, i);
+            k += 1;
+        }
+    }
+}
+
+/// The continuous states as the table declares them: x[k] = the getter of state k.
+pub fn read_states<M>(declarations: &[Declaration<M>], model: &M, x: &mut [f64]) {
+    each_state(declarations, |k, state, _, i| {
+        if let (Value::Real { get, .. }, Some(slot)) = (&state.value, x.get_mut(k)) {
+            *slot = get(model, i);
+        }
+    });
+}
+
+/// Writes the continuous states through the state declarations' setters (the layer
+/// has checked the values).
+pub fn write_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]) {
+    each_state(declarations, |k, state, _, i| {
+        if let (Value::Real { set: Some(set), .. }, Some(&v)) = (&state.value, x.get(k)) {
+            // A state's setter refuses nothing the layer's value check lets through.
+            let _ = set(model, i, v);
+        }
+    });
+}
+
+/// The state derivatives as the table declares them: dx[k] = the getter of the
+/// derivative of state k.
+pub fn read_derivatives<M>(declarations: &[Declaration<M>], model: &M, dx: &mut [f64]) {
+    each_state(declarations, |k, _, derivative, i| {
+        if let (Value::Real { get, .. }, Some(slot)) = (&derivative.value, dx.get_mut(k)) {
+            *slot = get(model, i);
+        }
+    });
+}
+
 /// The value references of every declaration's element 1 by the scheme of the module
 /// documentation.
 pub fn value_references<M>(declarations: &[Declaration<M>]) -> Vec<u32> {

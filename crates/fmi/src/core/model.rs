@@ -174,13 +174,22 @@ pub trait Model: Clone + Send + Sized + 'static {
         Ok(())
     }
 
-    fn continuous_states(&self, _x: &mut [f64]) {}
+    /// The continuous states, by default read through the getters of the declared
+    /// states (element i of the state of each derivative declaration, in their order).
+    fn continuous_states(&self, x: &mut [f64]) {
+        super::declare::read_states(Self::declarations(), self, x);
+    }
 
-    fn set_continuous_states(&mut self, _x: &[f64]) {}
+    /// Sets the continuous states, by default through the declared states' setters.
+    fn set_continuous_states(&mut self, x: &[f64]) {
+        super::declare::write_states(Self::declarations(), self, x);
+    }
 
-    /// State derivatives; an error (the model cannot be evaluated at this point, e.g. a
+    /// State derivatives, by default read through the getters of the derivative
+    /// declarations; an error (the model cannot be evaluated at this point, e.g. a
     /// function outside its domain) makes fmi2GetDerivatives return fmi2Discard.
-    fn derivatives(&self, _dx: &mut [f64]) -> Result<(), String> {
+    fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
+        super::declare::read_derivatives(Self::declarations(), self, dx);
         Ok(())
     }
 
