@@ -22,7 +22,8 @@ COMMANDS = {
     "ssp": ("cosim.ssp", "write a scenario as an SSP archive"),
     "container": ("cosim.container", "write a scenario as a container FMU"),
     "bench": ("cosim.bench", "time the master against a minimal FMPy loop"),
-    "demo": ("cosim.demo", "run every bundled closed-loop scenario with plots and tables"),
+    "demo": ("cosim.demo", "run the six bundled PID scenarios (and each under computed "
+             "torque) with plots and tables"),
     "verify": ("cosim.verify.cli", "verify the FMUs against independent references"),
     "animate": ("cosim.animate.cli", "draw the robot of a run moving (GIF)"),
 }
@@ -106,7 +107,9 @@ def main(argv=None) -> int:
     try:
         return int(importlib.import_module(args.module).run(args))
     except KeyboardInterrupt:
-        return _fail("interrupted", 130)
+        more = ("; the table keeps every finished run: the same command with --resume "
+                "continues" if args.module == "cosim.sweep.cli" else "")
+        return _fail("interrupted" + more, 130)
     except BrokenPipeError:
         sys.stderr.close()  # the reader went away: end quietly
         return 0

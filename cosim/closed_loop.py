@@ -317,6 +317,15 @@ def resolve(data: dict, base_dir: Path,
         raise ScenarioError("field 'model' (the controller's model of the robot) needs "
                             "controller = \"computed-torque\"; remove it for the PID")
     order, points = waypoints(_table(data, "motion"))
+    stop_time = quantity(data.get("stop_time"), "time", "stop_time")
+    start = quantity(data["start_time"], "time", "start_time") if "start_time" in data else 0.0
+    if start < stop_time < points[-1].time:  # else parse_scenario names stop_time
+        k = len(points) - 1
+        raise ScenarioError(
+            f"field 'motion.waypoints[{k}].time': the motion ends at {points[-1].time:g} s, "
+            f"after stop_time = {stop_time:g} s (the run would stop before the platform gets "
+            f"there); set stop_time to at least {points[-1].time:g} s or end the motion "
+            "earlier")
     start_raw = _table(data, "start")
     unknown = sorted(set(start_raw) - {"angles", "omega"})
     if unknown:
@@ -344,7 +353,7 @@ def resolve(data: dict, base_dir: Path,
                   if "start_time" in data else 0.0)
     step = quantity(data["step_size"], "time", "step_size") if "step_size" in data else 1e-3
     plain = {"start_time": start_time,
-             "stop_time": quantity(data.get("stop_time"), "time", "stop_time"),
+             "stop_time": stop_time,
              "step_size": step, "order": ["planner", loop.alias, "plant"],
              "fmus": dict(fmus),
              "parameters": {"planner": segment_parameters(order, points[0], points[1]),

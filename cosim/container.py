@@ -32,6 +32,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from .errors import output_path
 from .scenario import Scenario, ScenarioError, load_scenario, schedule_field
 
 TOOLBOX_LOGGER = "fmu_manipulation_toolbox"
@@ -160,7 +161,7 @@ def build_container(scenario: Scenario, out: Path) -> list[str]:
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """``cosim container SCENARIO --out X.fmu``."""
     parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
-    parser.add_argument("--out", type=Path, required=True, help="container FMU to write (.fmu)")
+    parser.add_argument("--out", type=output_path, required=True, help="container FMU to write (.fmu)")
     parser.add_argument("--fmu-dir", type=Path, help="find the FMUs by file name here")
 
 

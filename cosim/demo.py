@@ -1,4 +1,4 @@
-"""The main demo: every closed-loop scenario through the FMUs, with CSVs, plots and a
+"""The main demo: the six PID scenarios of SCENARIOS through the FMUs, with CSVs, plots and a
 summary table, then the PID against the computed-torque controller on each
 (cosim.demo_controllers).  ``python -m cosim.demo [--out results]``."""
 
@@ -10,10 +10,11 @@ import sys
 import time
 from pathlib import Path
 
+from .errors import output_path
 from .demo_controllers import print_comparison
 from .master import Master
 from .outputs import write_outputs
-from .report import (HEADER, format_table, metrics, plot_cubic_vs_quintic, plot_tracking,
+from .report import (HEADER, format_table, metrics, sig, plot_cubic_vs_quintic, plot_tracking,
                      read_csv)
 from .scenario import load_scenario
 
@@ -35,7 +36,7 @@ def boundary_mismatch(cubic: dict, quintic_file: Path) -> float:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--out", type=Path, default=ROOT / "results",
+    parser.add_argument("--out", type=output_path, default=ROOT / "results",
                         help="directory for the CSVs and plots (default: results/ of the "
                         "repository)")
 
@@ -72,11 +73,11 @@ def run(args: argparse.Namespace) -> int:
         plot_cubic_vs_quintic(cubic, quintic, motion, args.out)
         mismatch = boundary_mismatch(cubic, ROOT / "scenarios" / f"{motion}_quintic.toml")
         mc, mq = metrics(cubic), metrics(quintic)
-        comparison.append([motion, f"{math.degrees(mismatch):.3f}",
-                           f"{mc.peak_force_n:.3f} / {mq.peak_force_n:.3f}",
-                           f"{math.degrees(mc.peak_angular_acceleration):.2f} / "
-                           f"{math.degrees(mq.peak_angular_acceleration):.2f}",
-                           f"{mc.rms_error_deg:.5f} / {mq.rms_error_deg:.5f}"])
+        comparison.append([motion, sig(math.degrees(mismatch)),
+                           f"{sig(mc.peak_force_n)} / {sig(mq.peak_force_n)}",
+                           f"{sig(math.degrees(mc.peak_angular_acceleration))} / "
+                           f"{sig(math.degrees(mq.peak_angular_acceleration))}",
+                           f"{sig(mc.rms_error_deg)} / {sig(mq.rms_error_deg)}"])
     print(format_table(["motion", "cubic accel jump at ends (deg/s^2)",
                         "peak |f| cubic / quintic (N)",
                         "peak |omega_dot| cubic / quintic (deg/s^2)",

@@ -12,7 +12,7 @@ import numpy as np
 
 from .fmu_check import describe
 from .master import Master
-from .report import format_table, metrics
+from .report import format_table, metrics, sig
 from .scenario import parse_document, read_document
 
 MISMATCH = (0.8, 1.2)  # factors on the model's leg mass
@@ -53,11 +53,11 @@ def comparison_rows(paths: list[Path], pid_results: dict) -> list[list[str]]:
         ct = metrics(_run(ct_doc, path.parent))
         off = [metrics(_run(computed_torque_document(data, {"legMass": f * leg_mass}),
                             path.parent)).rms_error_deg for f in MISMATCH]
-        rows.append([path.stem, "PID", f"{pid.rms_error_deg:.2e}", f"{pid.max_error_deg:.2e}",
-                     f"{pid.peak_force_n:.3f}", "model-free"])
-        rows.append([path.stem, "computed torque", f"{ct.rms_error_deg:.2e}",
-                     f"{ct.max_error_deg:.2e}", f"{ct.peak_force_n:.3f}",
-                     " / ".join(f"{x:.2e}" for x in off)])
+        rows.append([path.stem, "PID", sig(pid.rms_error_deg), sig(pid.max_error_deg),
+                     sig(pid.peak_force_n), "model-free"])
+        rows.append([path.stem, "computed torque", sig(ct.rms_error_deg),
+                     sig(ct.max_error_deg), sig(ct.peak_force_n),
+                     " / ".join(sig(x) for x in off)])
     return rows
 
 

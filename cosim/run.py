@@ -10,6 +10,7 @@ import sys
 import time
 from pathlib import Path
 
+from .errors import output_path
 from .scenario import ScenarioError, load_scenario
 
 
@@ -22,7 +23,7 @@ def add_common(parser: argparse.ArgumentParser) -> None:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common(parser)
-    parser.add_argument("--out", type=Path, default=Path("results"),
+    parser.add_argument("--out", type=output_path, default=Path("results"),
                         help="directory for the results (default: results)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.add_argument("--fmi3", action="store_true",
@@ -69,9 +70,11 @@ def run(args: argparse.Namespace) -> int:
           f"wall time -> {out}/")
     human = summary.get("metrics_human", {})
     if human:
-        print(f"  RMS tracking error {human['rms_error_deg']:.5f} deg, max "
-              f"{human['max_error_deg']:.5f} deg, peak |actuator force| "
-              f"{human['peak_force_N']:.3f} N")
+        from .report import sig
+        print(f"  RMS tracking error {sig(human['rms_error_deg'])} deg (of |q - theta| over "
+              f"the 3 angles), max {sig(human['max_error_deg'])} deg (one angle), peak "
+              f"|actuator force| "
+              f"{sig(human['peak_force_N'])} N")
     for row in summary["limits"]:
         verdict = "ok" if row["passed"] else "EXCEEDED"
         print(f"  limit {row['limit']}: {row['measured']:.6g} {row['unit']} <= "

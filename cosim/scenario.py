@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import tomllib
 from dataclasses import dataclass, field
@@ -275,6 +276,10 @@ def _find_fmus(data: dict, base_dir: Path, fmu_dir) -> dict:
         path = (Path(fmu_dir) / Path(f).name if fmu_dir is not None else base_dir / f).absolute()
         fallback = REPOSITORY_DIST / Path(f).name
         if fmu_dir is None and not path.exists() and fallback.is_file():
+            from .notes import say
+            say(f"field 'fmus.{alias}': {os.path.normpath(path)} is not there; running the repository's "
+                f"{fallback} instead (found by file name in its dist/); give the right "
+                "path or --fmu-dir DIR to run your own FMU")
             path = fallback
         found[alias] = str(path)
     return dict(data, fmus=found)

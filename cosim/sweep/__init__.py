@@ -107,7 +107,7 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
         header, rows = read_table(table.path)
         axes = [c for c, v in zip(header[3:], _kinds(spec)) if v != "random"]
         written = plot_sweep(header, rows, axes, any(v.kind == "random" for v in spec.varied),
-                             out, spec.name)
+                             out, spec.name, spec.about())
     return SweepOutcome(table.path, written, len(todo), len(spec.runs) - len(todo),
                         bar.failed, time.perf_counter() - started, completed_at, reasons,
                         setup["batch"], setup["ready_s"], started, client_cpu)

@@ -10,13 +10,14 @@ import argparse
 import sys
 from pathlib import Path
 
+from ..errors import output_path
 from . import SpecError, load_spec, reachable_on, run_sweep
 from .spec import MAX_RUNS
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("spec", type=Path, help="sweep specification (.toml)")
-    parser.add_argument("--out", type=Path, default=Path("results"),
+    parser.add_argument("--out", type=output_path, default=Path("results"),
                         help="directory for the table and plots (default: results)")
     parser.add_argument("--scheduler", help="address of an existing Dask scheduler, e.g. "
                         "tcp://host:8786 (default: a LocalCluster with one worker process "

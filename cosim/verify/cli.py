@@ -10,6 +10,7 @@ import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from ..errors import output_path
 from . import junit
 from .errors import COMMAND_LINE, RunFailed, VerifyError
 from .files import write_all
@@ -46,10 +47,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--jobs", type=int, default=1,
                         help="cases run at once in a tree, each in its own process "
                         "(default: 1)")
-    parser.add_argument("--out", type=Path, default=Path("results/verify"),
+    parser.add_argument("--out", type=output_path, default=Path("results/verify"),
                         help=f"folder for {REPORT} and the PNG of each failing signal; for "
                         "a tree, the results tree (default: results/verify)")
-    parser.add_argument("--junit", type=Path, help="also write JUnit XML to this file")
+    parser.add_argument("--junit", type=output_path, help="also write JUnit XML to this file")
 
 
 def _write(files: dict[Path, bytes], out: Path, signals) -> None:

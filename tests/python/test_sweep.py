@@ -171,14 +171,16 @@ def test_resume_runs_only_what_is_missing(tmp_path):
 
 
 def test_a_failing_run_is_recorded_with_its_reason(tmp_path):
-    # A negative platform mass: the plant FMU answers NaN (an FMI error), the sweep goes on.
-    text = BASE + "[grid.'plant.platformMass']\nvalues = [-1.0, 0.8]\nunit = \"kg\"\n"
+    # A plant whose spherical joint P sits at the base (lp = 0, within the declared
+    # min = 0 but refused by the model: it must be positive): the run fails with the
+    # plant's reason, the sweep goes on.
+    text = BASE + "[grid.'plant.lp']\nvalues = [0.0, 0.632187]\nunit = \"m\"\n"
     outcome = run_sweep(load_spec(write_spec(tmp_path, text)), tmp_path, workers=0,
                         progress=False, plots=False)
-    by_mass = {r["plant.platformMass [kg]"]: r for r in rows(outcome.table).values()}
+    by_lp = {r["plant.lp [m]"]: r for r in rows(outcome.table).values()}
     assert outcome.failed == 1
-    assert by_mass["-1.0"]["status"] == "failed" and "plant" in by_mass["-1.0"]["reason"]
-    assert by_mass["0.8"]["status"] == "ok"
+    assert by_lp["0.0"]["status"] == "failed" and "lp" in by_lp["0.0"]["reason"]
+    assert by_lp["0.632187"]["status"] == "ok"
 
 
 def test_settling_time_follows_the_triple_pole_closed_form(tmp_path):
@@ -346,10 +348,10 @@ def test_native_loop_reports_a_failure_as_the_python_loop_does():
 
 
 def test_the_command_exits_1_with_the_reasons_of_failed_runs(tmp_path, capsys):
-    # A negative platform mass: the plant refuses it (its own reason in the table's
-    # 'reason' column); the command says how many runs failed and why, exit status 1.
+    # lp = 0: the plant refuses it (its own reason in the table's 'reason' column); the
+    # command says how many runs failed and why, exit status 1.
     from cosim.sweep.cli import main
-    text = BASE + "[grid.'plant.platformMass']\nvalues = [-1.0, 0.8]\nunit = \"kg\"\n"
+    text = BASE + "[grid.'plant.lp']\nvalues = [0.0, 0.632187]\nunit = \"m\"\n"
     spec = write_spec(tmp_path, text)
     status = main([str(spec), "--out", str(tmp_path), "--workers", "0", "--quiet"])
     err = capsys.readouterr().err.splitlines()
