@@ -469,7 +469,7 @@ fn each_state<M>(
     }
 }
 
-/// The continuous states as the table declares them: x[k] = the getter of state k.
+/// The continuous states as the table declares them: `x[k]` = the getter of state k.
 pub fn read_states<M>(declarations: &[Declaration<M>], model: &M, x: &mut [f64]) {
     each_state(declarations, |k, state, _, i| {
         if let (Value::Real { get, .. }, Some(slot)) = (&state.value, x.get_mut(k)) {
@@ -489,7 +489,7 @@ pub fn write_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]
     });
 }
 
-/// The state derivatives as the table declares them: dx[k] = the getter of the
+/// The state derivatives as the table declares them: `dx[k]` = the getter of the
 /// derivative of state k.
 pub fn read_derivatives<M>(declarations: &[Declaration<M>], model: &M, dx: &mut [f64]) {
     each_state(declarations, |k, _, derivative, i| {
