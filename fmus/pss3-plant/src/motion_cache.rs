@@ -15,7 +15,7 @@
 //! step, restored FMU state or reset has to remember to invalidate it.
 
 use nalgebra::{SVector, Vector3};
-use robofmu::pss3::dynamics::{LocalMotion, PlantInputs, PlantParams, PlantState};
+use robofmu_dynamics::pss3::dynamics::{LocalMotion, PlantInputs, PlantParams, PlantState};
 use std::cell::RefCell;
 
 /// How many outputs are differentiated along the motion: detJ, condJ, the two energies

@@ -5,11 +5,11 @@
 //!   theta (and yaw, pitch, roll = thx, -thy, thz): order 1 the Euler-angle rates
 //!   E^-1 omega, order 2 the Euler-angle accelerations E^-1 (omegaDot - E_dot thetaDot);
 //!   l: order 1 lDot = J omega, order 2 the actuator accelerations J omegaDot +
-//!   J_dot omega (`robofmu::pss3::motion`); thetaDot and lDot: order 1 those
+//!   J_dot omega (`robofmu_dynamics::pss3::motion`); thetaDot and lDot: order 1 those
 //!   accelerations; omega: order 1 omegaDot (the dynamics).
 //! - Every other (order 2 of omega, thetaDot, lDot; omegaDot, force, stopForce, detJ,
 //!   condJ, the energies, gravityCompensation): the output's derivatives along the
-//!   plant's local motion (`robofmu::pss3::dynamics::LocalMotion`: the state to
+//!   plant's local motion (`robofmu_dynamics::pss3::dynamics::LocalMotion`: the state to
 //!   second order in time, then central differences of the output along it with one
 //!   Richardson extrapolation), about 1e-9 relative; across an end stop's edge (its
 //!   spring and damper start there) the average slope.
@@ -22,9 +22,9 @@
 use super::motion_cache::{Along, Derivatives, Entry, Point};
 use super::{Computed, Pss3Plant};
 use nalgebra::Vector3;
-use robofmu::pss3::dynamics::PlantState;
-use robofmu::pss3::rotation::{euler_accelerations, euler_rates};
-use robofmu::pss3::{assemble, jacobian, velocity_product};
+use robofmu_dynamics::pss3::dynamics::PlantState;
+use robofmu_dynamics::pss3::rotation::{euler_accelerations, euler_rates};
+use robofmu_dynamics::pss3::{assemble, jacobian, velocity_product};
 use robofmu_fmi::prelude::OutputDerivativeError::{self, CannotEvaluate, NotProvided};
 
 #[cfg(test)]
