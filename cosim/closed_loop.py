@@ -8,9 +8,9 @@ Example (every quantity states its unit; see cosim/units.py for the units)::
     step_size = "1 ms"
 
     [fmus]
-    planner = "../dist/Planner.fmu"
-    pid = "../dist/PID.fmu"
-    plant = "../dist/Pss3Plant.fmu"
+    planner = "Planner"
+    pid = "PID"
+    plant = "Pss3Plant"
 
     [motion]
     profile = "quintic"                 # or "cubic"; the same for every segment

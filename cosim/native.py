@@ -1,5 +1,6 @@
 """The master's stepping loop in native code (crates/cosim-kernel, built by cargo into
-target/release/libcosim_kernel.so, or the library named by COSIM_KERNEL_LIBRARY).
+target/release/libcosim_kernel.so and bundled in the wheel for the platform it was built
+on, or the library named by COSIM_KERNEL_LIBRARY).
 
 NativeKernel takes the calls cosim.fastpath prepared (function pointers, instance
 handles, value references, buffers) into a C plan, and makes whole runs of steps in one
@@ -12,6 +13,8 @@ from __future__ import annotations
 
 import ctypes
 import os
+import platform
+import sys
 from ctypes import POINTER, Structure, c_double, c_int, c_size_t, c_uint64, c_void_p
 from functools import lru_cache
 from pathlib import Path
@@ -59,12 +62,29 @@ class _Failure(Structure):
     _fields_ = [("kind", c_int), ("index", c_size_t), ("status", c_int), ("step", c_uint64)]
 
 
+# The kernel bundled in the wheel for this machine (hatch_build.py: kernel_platform, KERNEL).
+PLATFORM = f"{sys.platform}-{platform.machine().lower()}"
+LIBRARY_NAME = {"linux": "libcosim_kernel.so", "darwin": "libcosim_kernel.dylib",
+                "win32": "cosim_kernel.dll"}.get(sys.platform, "libcosim_kernel.so")
+
+
+def library_path() -> Path:
+    """COSIM_KERNEL_LIBRARY, else the wheel's kernel for this platform, else the
+    checkout's build (target/release/)."""
+    if "COSIM_KERNEL_LIBRARY" in os.environ:
+        return Path(os.environ["COSIM_KERNEL_LIBRARY"])
+    bundled = Path(__file__).resolve().parent / "_native" / PLATFORM / LIBRARY_NAME
+    return bundled if bundled.is_file() else ROOT / "target" / "release" / LIBRARY_NAME
+
+
 @lru_cache(maxsize=1)
 def library():
-    """The kernel library, or None when it is not built."""
-    path = Path(os.environ.get("COSIM_KERNEL_LIBRARY",
-                               ROOT / "target" / "release" / "libcosim_kernel.so"))
+    """The kernel library, or None when it is not there (said once, on stderr: the
+    Python loop then runs, with the same results)."""
+    path = library_path()
     if not path.is_file():
+        print(f"cosim: no native stepping loop for {PLATFORM} ({path.name} not built); "
+              "using the Python loop (same results, slower)", file=sys.stderr)
         return None
     lib = ctypes.CDLL(str(path))
     lib.cosim_kernel_run.argtypes = [POINTER(_Plan), c_uint64, c_uint64, c_int, c_void_p,

@@ -13,8 +13,8 @@ Schema (TOML shown; JSON has the same structure)::
                                        # for the Rust reference (optional, default "pid")
     input_extrapolation = "hold"       # or "linear": input slopes where the FMUs allow
 
-    [fmus]                             # alias -> FMU path (relative to this file)
-    planner = "../dist/Planner.fmu"
+    [fmus]                             # alias -> FMU path (relative to this file), or
+    planner = "Planner"                # the name of a bundled FMU (cosim fmus lists them)
 
     [parameters.planner]               # start values set before initialisation
     "tf" = 2.0
@@ -41,6 +41,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from . import bundle
 from .errors import ScenarioError
 from .schedule import PlanSwitch
 
@@ -261,16 +262,33 @@ def _plan_switches(raw, fmus, steps: int) -> list[PlanSwitch]:
     return switches
 
 
+def _bundled_fmu(alias: str, name: str, fmu_dir) -> Path:
+    """The FMU a scenario names without a path: `name`.fmu in `fmu_dir` (fmi3/ in front
+    kept), else the bundled one (the wheel's; in a checkout, dist/'s)."""
+    if fmu_dir is not None:
+        return (Path(fmu_dir) / f"{name}.fmu").absolute()
+    path = bundle.fmu(name)
+    if path is None:
+        raise ScenarioError(f"field 'fmus.{alias}': '{name}' is not a bundled FMU "
+                            f"({bundle.where_fmus_come_from()}); name one of those or a "
+                            "path to an .fmu file")
+    return path
+
+
 def _find_fmus(data: dict, base_dir: Path, fmu_dir) -> dict:
-    """The document with its FMU paths found: by file name in `fmu_dir`, else relative
-    to the scenario, else (a file that is not there) by file name in the repository's
-    dist/ when this package runs from a checkout."""
+    """The document with its FMU paths found: a name without .fmu among the bundled
+    FMUs (_bundled_fmu); a path by file name in `fmu_dir`, else relative to the
+    scenario, else (a file that is not there) by file name in the repository's dist/
+    when this package runs from a checkout."""
     if not isinstance(data, dict) or not isinstance(data.get("fmus"), dict):
         return data
     found = {}
     for alias, f in data["fmus"].items():
         if not isinstance(f, str) or not f:
             found[alias] = f  # parse_scenario names the field
+            continue
+        if bundle.is_name(f):  # "Pss3Plant", "fmi3/PID": a bundled FMU (cosim.bundle)
+            found[alias] = str(_bundled_fmu(alias, f, fmu_dir))
             continue
         path = (Path(fmu_dir) / Path(f).name if fmu_dir is not None else base_dir / f).absolute()
         fallback = REPOSITORY_DIST / Path(f).name
