@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # The wheel as a user gets it: builds the sdist and the wheel (python -m build, after
-# scripts/build-fmus.sh and scripts/setup-venv.sh), installs the wheel into a fresh venv
-# in an empty temporary folder (no checkout there or on sys.path, no Rust on PATH; the
-# dependencies from PyPI, pinned by scripts/python-requirements.txt as constraints) and
-# runs from that folder:
+# scripts/build-fmus.sh and scripts/setup-venv.sh), puts the wheel alone into an empty
+# temporary folder and there, in a shell with nothing of this one (no checkout on a path,
+# no Rust on PATH; dependencies from PyPI at the versions pinned by
+# scripts/python-requirements.txt, as constraints), runs README.md's install commands
+# (its block ```text wheel: a venv, pip install of the wheel, a bundled scenario,
+# fmpy info) as written, then checks:
 #   cosim --version                = the workspace version (Cargo.toml) = every bundled
 #                                    FMU's modelDescription version (read by FMPy)
-#   fmpy info <bundled FMU>
-#   cosim run <a bundled example scenario, copied here: it names bundled FMUs>
+#   cosim run <a bundled example scenario copied there: it names bundled FMUs>, with the
+#                                    native loop (no fallback line)
 #   cosim verify <bundled Pss3Plant> <bundled reference case> --junit  (0 failures)
-# Run by scripts/test.sh (CI); about a minute, most of it pip.
+# Run by scripts/test.sh (CI); about a minute and a half, most of it pip.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -18,7 +20,8 @@ version=$(sed -n '/^\[workspace\.package\]/,/^\[/s/^version = "\(.*\)"$/\1/p' Ca
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-.venv/bin/python -m build --no-isolation --outdir "$work/packages" . >/dev/null
+.venv/bin/python -m build --no-isolation --outdir "$work/packages" . >"$work/build.log" 2>&1 ||
+    { cat "$work/build.log" >&2; exit 1; }
 wheel="$work/packages/robofmu-$version-py3-none-any.whl"
 [[ -f "$wheel" ]] || { echo "test-wheel: no $wheel" >&2; ls "$work/packages" >&2; exit 1; }
 # pip refuses extras in constraints: dask[distributed]==X constrains dask==X.
@@ -26,25 +29,38 @@ sed 's/\[[^]]*\]//' scripts/python-requirements.txt >"$work/constraints.txt"
 
 user="$work/user"
 mkdir "$user"
-base=$(.venv/bin/python -c 'import sys; print(sys._base_executable)')
-"$base" -m venv "$user/venv"
-# The user's environment: nothing of this shell's (no cargo, no PYTHONPATH, no checkout).
-as_user() {
-    (cd "$user" && env -i HOME="$user" LANG=C.UTF-8 MPLBACKEND=Agg \
-        PATH="$user/venv/bin:/usr/bin:/bin" "$@")
-}
-as_user python -m pip install --quiet --disable-pip-version-check \
-    --constraint "$work/constraints.txt" "$wheel"
-
-as_user bash -euo pipefail -s "$version" <<'EOF'
-version=$1
+cp "$wheel" "$user/"  # as downloaded from the release page
+# The user's shell script: checks of the folder, the README's install commands (its
+# block ```text wheel) as written, then the checks below the line `checks=...`.
+readme=$(awk '/^```text wheel$/ { inside = 1; next } /^```$/ { inside = 0 } inside' README.md)
+[[ -n "$readme" ]] || { echo "test-wheel: README.md: no block \`\`\`text wheel" >&2; exit 1; }
+{
+    cat <<'EOF'
 fail() { echo "test-wheel: $*" >&2; exit 1; }
 if command -v cargo >/dev/null || command -v rustc >/dev/null; then
     fail "Rust is on the user's PATH ($PATH)"
 fi
-[[ -z "$(ls -A | grep -v '^venv$')" ]] || fail "the user's folder is not empty"
+[[ "$(ls -A)" == "$WHEEL" ]] || fail "the user's folder holds more than the wheel: $(ls -A)"
+set -x
+EOF
+    printf '%s\nset +x\n' "$readme"
+    sed -n '/^checks=/,$p' "$root/scripts/test-wheel.sh" | tail -n +2
+} >"$work/user.sh"
+base=$(.venv/bin/python -c 'import sys; print(sys._base_executable)')
+# The user's environment: nothing of this shell's (no cargo, no PYTHONPATH, no checkout);
+# pip takes the dependencies from PyPI at the versions pinned for CI (PIP_CONSTRAINT).
+(cd "$user" && env -i HOME="$user" LANG=C.UTF-8 MPLBACKEND=Agg VERSION="$version" \
+    WHEEL="$(basename "$wheel")" PIP_CONSTRAINT="$work/constraints.txt" \
+    PIP_DISABLE_PIP_VERSION_CHECK=1 PATH="$(dirname "$base"):/usr/bin:/bin" \
+    bash -euo pipefail "$work/user.sh")
+echo "test-wheel: $(basename "$wheel") ($(du -k "$wheel" | cut -f1) KiB) runs outside the checkout"
+exit 0
+
+# The checks, in the user's shell after the README's commands (their venv active):
+checks=
+version=$VERSION
 where=$(python -c 'import cosim; print(cosim.__file__)')
-[[ "$where" == "$PWD/venv/"* ]] || fail "cosim imported from $where, not the venv"
+[[ "$where" == "$PWD/robofmu-env/"* ]] || fail "cosim imported from $where, not the venv"
 
 said=$(cosim --version)
 [[ "$said" == "cosim $version" ]] || fail "cosim --version says '$said', Cargo.toml $version"
@@ -62,12 +78,10 @@ PY
 done
 echo "cosim --version = Cargo.toml = every bundled FMU's version: $version (12 FMUs)"
 
-fmpy info "$(cosim fmus --path PID)" >info.txt
-grep -q "Model Name *PID" info.txt || fail "fmpy info: $(cat info.txt)"
 
-cp "$(cosim examples --path regulation)" regulation.toml
-grep -q '^plant = "Pss3Plant"$' regulation.toml || fail "the example names no bundled FMU"
-cosim run regulation.toml --out out --quiet >run.txt 2>run.err || fail "cosim run: $(cat run.err)"
+cp "$(cosim examples --path regulation)" my_scenario.toml
+grep -q '^plant = "Pss3Plant"$' my_scenario.toml || fail "the example names no bundled FMU"
+cosim run my_scenario.toml --out out --quiet >run.txt 2>run.err || fail "cosim run: $(cat run.err)"
 grep -q "1000 steps" run.txt && [[ -s out/regulation.csv ]] || fail "cosim run: $(cat run.txt)"
 # The wheel carries the native loop of the platform it was built on (this one).
 [[ ! -s run.err ]] || fail "cosim run said: $(cat run.err)"
@@ -83,5 +97,3 @@ counts = {k: int(suite.get(k)) for k in ("tests", "failures", "errors")}
 assert counts["tests"] > 0 and counts["failures"] == counts["errors"] == 0, counts
 print(f"JUnit: {counts}")
 PY
-EOF
-echo "test-wheel: the wheel $(basename "$wheel") ($(du -k "$wheel" | cut -f1) KiB) runs outside the checkout"

@@ -17,3 +17,7 @@ bash scripts/install-importer-libs.sh
 # (pytest exits 5 when it collects nothing; that counts as a failure too).
 bash scripts/setup-venv.sh
 .venv/bin/python -m pytest tests/python -q
+# The wheel as a user installs it: built, installed into a fresh venv in an empty folder
+# (no checkout, no Rust on PATH), a bundled scenario and a bundled `cosim verify` case run
+# there; cosim --version = Cargo.toml's version = every FMU's (about a minute, mostly pip).
+bash scripts/test-wheel.sh
