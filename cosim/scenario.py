@@ -46,7 +46,7 @@ from .errors import ScenarioError
 from .schedule import PlanSwitch
 
 __all__ = ["PlanSwitch", "Scenario", "ScenarioError", "Signal", "Connection",
-           "load_scenario", "parse_document", "parse_scenario"]
+           "fmu_file", "load_scenario", "parse_document", "parse_scenario"]
 
 
 COUPLINGS = ("sampled", "gauss-seidel")
@@ -273,6 +273,15 @@ def _bundled_fmu(alias: str, name: str, fmu_dir) -> Path:
                             f"({bundle.where_fmus_come_from()}); name one of those or a "
                             "path to an .fmu file")
     return path
+
+
+def fmu_file(alias: str, entry: str, base_dir: Path, fmu_dir=None) -> Path:
+    """The file a scenario's FMU entry names: a bundled FMU's name (_bundled_fmu), else a
+    path by file name in `fmu_dir`, else relative to the scenario's folder `base_dir`
+    (for readers of the raw document, such as the sweeps; no fallback to dist/)."""
+    if bundle.is_name(entry):
+        return _bundled_fmu(alias, entry, fmu_dir)
+    return Path(fmu_dir) / Path(entry).name if fmu_dir is not None else Path(base_dir) / entry
 
 
 def _find_fmus(data: dict, base_dir: Path, fmu_dir) -> dict:

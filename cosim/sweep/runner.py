@@ -92,10 +92,11 @@ class FmuStore:
 
 def read_fmus(document: dict, base: Path, fmu_dir: Path | None) -> tuple[dict, dict]:
     """(alias -> digest, digest -> bytes) of a scenario document's FMUs."""
+    from ..scenario import fmu_file
     from .spec import SpecError
     by_alias, blobs = {}, {}
     for alias, name in document.get("fmus", {}).items():
-        path = (fmu_dir / Path(str(name)).name) if fmu_dir is not None else base / str(name)
+        path = fmu_file(alias, str(name), base, fmu_dir)
         try:
             data = Path(path).read_bytes()
         except OSError as e:

@@ -47,7 +47,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import CosimError
-from ..scenario import ScenarioError
+from ..scenario import ScenarioError, fmu_file
 
 DISTRIBUTIONS = {"normal": ("mean", "sd"), "uniform": ("low", "high")}
 MAX_RUNS = 1_000_000  # runs of one sweep (grid points x workspace targets x draws)
@@ -279,10 +279,7 @@ def check_fmus(document: dict, scenario: Path, fmu_dir) -> None:
     modelDescription.xml), before anything loads it."""
     fmus = document.get("fmus", {})
     for alias, name in (fmus.items() if isinstance(fmus, dict) else []):
-        if fmu_dir is not None:
-            path = Path(fmu_dir) / Path(str(name)).name
-        else:
-            path = scenario.parent / str(name)
+        path = fmu_file(alias, str(name), scenario.parent, fmu_dir)
         fix = "build the FMUs (scripts/build-fmus.sh) or give --fmu-dir"
         if not path.is_file():
             raise SpecError(f"field 'fmus.{alias}' of the scenario: {path} is not a file; "

@@ -30,6 +30,10 @@ DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 SKIPPED = {
     "bash scripts/test.sh": "the test suite itself: CI runs it (.ci/run), and this test is part of it",
     "bash scripts/memcheck.sh": "run by scripts/test.sh in CI",
+    "bash scripts/release.sh --out results/release": (
+        "run into a temporary folder by tests/python/test_release.py, which compares its "
+        "files with docs/release.md"
+    ),
     "cargo test --release -p robofmu-hostile --test matrix": (
         "run by `cargo test --workspace --release` in scripts/test.sh"
     ),
