@@ -290,9 +290,9 @@ def _controller(data: dict, kind: str, fmu: Path, plant_fmu: Path, plant_values:
                                  _table(data, "model"),
                                  lambda v, name: _plant_value(v, name, fmu, "model", "ct"))
         return gains | model
-    gains = _gains(_table(data, "gains"), plant_fmu, poses, plant_values, preflight)
-    pid = {}
-    for i, (kp, ki, kd) in enumerate(gains):
+    pid_gains = _gains(_table(data, "gains"), plant_fmu, poses, plant_values, preflight)
+    pid: dict[str, float | bool] = {}
+    for i, (kp, ki, kd) in enumerate(pid_gains):
         n = i + 1
         pid |= {f"Kp[{n}]": kp, f"Ki[{n}]": ki, f"Kd[{n}]": kd, f"Tf[{n}]": 0.0,
                 f"useRateInputs[{n}]": True}

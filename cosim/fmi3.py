@@ -11,6 +11,7 @@ write of an array from them."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from fmpy import extract, read_model_description
 from fmpy.fmi3 import FMU3Slave
@@ -32,7 +33,7 @@ def scalar_names(variables) -> dict:
     """FMI 2.0 scalar name -> (FMI 3.0 variable, element index or None), from each
     variable's <Dimension>: an array `x` of n elements holds `x[1]`..`x[n]`, the
     derivative of an array state `x` holds `der(x[1])`..; a scalar keeps its name."""
-    names = {}
+    names: dict[str, tuple[Any, int | None]] = {}
     for v in variables:
         if not v.shape:
             names[v.name] = (v, None)
@@ -133,6 +134,9 @@ class Fmu3Instance(LoggedCalls):
         return [float(self._written[v.name][0 if i is None else i]) for v, i in located]
 
     def set_input_slopes(self, names: tuple[str, ...], values) -> None:
+        if self.intermediate is None:  # the master asks only where can_interpolate_inputs
+            raise FmuError(f"{self.alias}: input slopes need the intermediate update, which "
+                           "this instance does not use")
         self.intermediate.set_slopes(names, values)
 
     def do_step(self, time: float, step: float) -> None:
@@ -147,7 +151,7 @@ class Fmu3Instance(LoggedCalls):
 
     def set_values(self, names: tuple[str, ...], values) -> None:
         """Sets `names` to `values`: whole arrays, completed from the last written."""
-        changed = {}
+        changed: dict[str, list] = {}
         for name, value in zip(names, values):
             variable, index = self._locate(name)
             array = changed.setdefault(variable.name, list(self._written[variable.name]))

@@ -12,7 +12,7 @@ import numpy as np
 from .case import Case
 from .errors import RunFailed
 from .simulate import Run
-from .tolerance import Limits
+from .tolerance import Limits, Rule
 
 EVENT_SLACK = 1e-9
 
@@ -22,7 +22,7 @@ class Verdict:
     """One signal: passed or not, where it is worst and where it first leaves its band."""
 
     signal: str
-    rule: object
+    rule: Rule
     tolerance: str
     passed: bool
     max_error: float
