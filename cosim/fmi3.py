@@ -10,6 +10,7 @@ write of an array from them."""
 
 from __future__ import annotations
 
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -122,7 +123,7 @@ class Fmu3Instance(LoggedCalls):
                 getter = getattr(self._fmu, "get" + variable.type)
                 arrays[variable.name] = self._call(
                     f"fmi3Get{variable.type}({variable.name})",
-                    lambda: getter([variable.valueReference], size))
+                    partial(getter, [variable.valueReference], size))
         return [float(arrays[v.name][0 if i is None else i]) for v, i in located]
 
     def is_real(self, name: str) -> bool:
@@ -160,7 +161,7 @@ class Fmu3Instance(LoggedCalls):
             variable = self.variables[base]
             setter = getattr(self._fmu, "set" + variable.type)
             self._call(f"fmi3Set{variable.type}({base})",
-                       lambda: setter([variable.valueReference], array))
+                       partial(setter, [variable.valueReference], array))
             self._written[base] = array
 
     def enter_initialization(self) -> None:

@@ -4,6 +4,7 @@ FMU and the FMI call, and the FMU's log messages kept for error reports."""
 from __future__ import annotations
 
 import shutil
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -214,7 +215,7 @@ class FmuInstance(LoggedCalls):
         for kind, positions, refs in self._groups(names):
             getter = getattr(self._fmu, _GETTERS[kind])
             values = self._call(f"fmi2Get{kind}({', '.join(names[k] for k in positions)})",
-                                lambda: getter(refs))
+                                partial(getter, refs))
             for k, value in zip(positions, values):
                 out[k] = float(value)
         return out
@@ -226,7 +227,7 @@ class FmuInstance(LoggedCalls):
             convert = _CONVERT[kind]
             typed = [convert(values[k]) for k in positions]
             self._call(f"fmi2Set{kind}({', '.join(names[k] for k in positions)})",
-                       lambda: setter(refs, typed))
+                       partial(setter, refs, typed))
 
     def enter_initialization(self) -> None:
         self._call("fmi2EnterInitializationMode", self._fmu.enterInitializationMode)

@@ -33,7 +33,8 @@ import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
+from typing import Any
+from collections.abc import Callable
 
 import numpy as np
 
@@ -86,7 +87,8 @@ class Master:
         self.progress = progress
         self.fast = fast
         self.native = native  # the native loop (cosim.native) where it applies
-        self.kernel = None
+        # cosim.fastpath.Kernel, or cosim.native.NativeKernel (which has run_steps)
+        self.kernel: Any = None
         self.loop_seconds = float("nan")  # wall time of the stepping loop (recording included)
         # Per target FMU and source FMU: the source variables and the target inputs, so
         # that each pair is one get and one set call per step.
@@ -234,6 +236,7 @@ class Master:
             from .fastpath import Kernel
             from .native import NativeKernel, library
             s = self.scenario
+            kernel: Kernel | NativeKernel
             if self.native and self._native_applies() and library() is not None:
                 kernel = NativeKernel(self.fmus, self.inputs, self.recorded_by_fmu, s.order,
                                       self.slopes, s.start_time, s.step_size)

@@ -26,7 +26,7 @@ class ModelExchangeInstance:
         self.path, self.name = str(path), name
         self.messages: list[str] = []
 
-    def __enter__(self) -> "ModelExchangeInstance":
+    def __enter__(self) -> ModelExchangeInstance:
         md = read_model_description(self.path)
         if md.modelExchange is None:
             raise ScenarioError(

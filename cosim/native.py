@@ -96,7 +96,7 @@ def library():
 
 
 def _address(x) -> int:
-    return x if isinstance(x, int) else ctypes.cast(x, c_void_p).value
+    return x if isinstance(x, int) else ctypes.cast(x, c_void_p).value or 0  # NULL: 0
 
 
 def _array(kind, items) -> tuple:

@@ -140,8 +140,8 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if not isinstance(data, dict):
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
-             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits", "plan_switches",
-             "input_extrapolation", "controller"}
+             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits",
+             "plan_switches", "input_extrapolation", "controller"}
     unknown = sorted(set(data) - known, key=str)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
@@ -225,7 +225,8 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
                             f"got {extrapolation!r}")
     from .controllers import kind_of
     from .limits import parse_limits
-    return Scenario(controller=kind_of(data), name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
+    return Scenario(controller=kind_of(data), name=name, fmus=fmus, order=list(order),
+                    start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
                     record=record, max_step_halvings=halvings, coupling=coupling,
                     input_extrapolation=extrapolation, description=data.get("description"),

@@ -60,6 +60,7 @@ class History:
         elif t > self.t:
             self.last = (values - self.values) / (t - self.t)
         else:
+            assert self.last is not None  # set with self.t
             return self.last
         self.t, self.values = t, values.copy()
         return self.last

@@ -231,7 +231,8 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
         fmu_dir = base / str(data["fmu_dir"])
     check_fmus(document, scenario, fmu_dir)
     grid, randoms = _tables(data, "grid"), _tables(data, "random")
-    varied, axes = [], []
+    varied: list[Varied] = []
+    axes: list[list] = []  # the values of each grid axis, then the workspace targets
     for p, table in grid.items():
         axes.append(grid_values(table, f"grid.{p}"))
         varied.append(Varied(p, _unit(table, f"grid.{p}"), "grid"))
@@ -241,7 +242,7 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
         varied.append(Varied(data["workspace"]["path"], unit, "workspace"))
         axes.append(targets)
     _check_size(axes, data.get("samples") if randoms else 1)
-    draws = [[]]
+    draws: list[list] = [[]]
     if randoms:
         draws = random_draws(randoms, data.get("seed"), data.get("samples"))
         varied += [Varied(p, _unit(t, f"random.{p}"), "random") for p, t in randoms.items()]
