@@ -54,3 +54,25 @@ def test_fmus_and_examples_print_paths_other_tools_can_use(capsys):
     assert main(["fmus", "--path", "Nope"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("cosim: --path: 'Nope' is not a bundled FMU") and err.count("\n") == 1
+
+
+def test_without_the_native_kernel_one_line_says_so_and_the_results_are_the_same(tmp_path):
+    # Truth: the native run of the same scenario (the master's two loops are bit-identical,
+    # docs/co-simulation-master.md); a wheel on a platform without a bundled kernel runs so.
+    import os
+    import subprocess
+    import sys
+    command = [sys.executable, "-m", "cosim", "run", str(ROOT / "scenarios" / "regulation.toml"),
+               "--quiet", "--no-plots", "--out"]
+    native = subprocess.run([*command, str(tmp_path / "native")], capture_output=True, text=True)
+    assert native.returncode == 0 and native.stderr == "", native.stderr
+    env = dict(os.environ, COSIM_KERNEL_LIBRARY=str(tmp_path / "no_such_kernel.so"))
+    python = subprocess.run([*command, str(tmp_path / "python")], capture_output=True,
+                            text=True, env=env)
+    assert python.returncode == 0, python.stderr
+    from cosim.native import PLATFORM
+    assert python.stderr == (f"cosim: no native stepping loop for {PLATFORM} "
+                             "(no_such_kernel.so not built); using the Python loop (same "
+                             "results, slower)\n")
+    assert (tmp_path / "python" / "regulation.csv").read_bytes() == \
+        (tmp_path / "native" / "regulation.csv").read_bytes()
