@@ -45,7 +45,7 @@ SKIPPED = {
 BUILDS = {"bash scripts/demo.sh", "bash scripts/build-fmus.sh"}
 BUILD_OUTPUTS = ("dist", "target", ".venv", "results")
 # Paths the snapshot leaves out: git's, the build's, the environment's, Python's caches.
-UNWATCHED = {".git", "target", ".venv", "__pycache__", ".pytest_cache"}
+UNWATCHED = {".git", "target", ".venv", "__pycache__", ".pytest_cache", ".mypy_cache", ".ruff_cache"}
 # A hang guard, not a speed assertion: the build may compile on a fresh machine.
 TIMEOUT_S = {"build": 1800, "command": 300}
 
