@@ -41,9 +41,10 @@ if command -v cargo >/dev/null || command -v rustc >/dev/null; then
     fail "Rust is on the user's PATH ($PATH)"
 fi
 [[ "$(ls -A)" == "$WHEEL" ]] || fail "the user's folder holds more than the wheel: $(ls -A)"
-set -x
 EOF
-    printf '%s\nset +x\n' "$readme"
+    while IFS= read -r line; do  # each README line shown, then run
+        printf 'echo %q\n%s\n' "\$ $line" "$line"
+    done <<<"$readme"
     sed -n '/^checks=/,$p' "$root/scripts/test-wheel.sh" | tail -n +2
 } >"$work/user.sh"
 base=$(.venv/bin/python -c 'import sys; print(sys._base_executable)')
@@ -51,7 +52,7 @@ base=$(.venv/bin/python -c 'import sys; print(sys._base_executable)')
 # pip takes the dependencies from PyPI at the versions pinned for CI (PIP_CONSTRAINT).
 (cd "$user" && env -i HOME="$user" LANG=C.UTF-8 MPLBACKEND=Agg VERSION="$version" \
     WHEEL="$(basename "$wheel")" PIP_CONSTRAINT="$work/constraints.txt" \
-    PIP_DISABLE_PIP_VERSION_CHECK=1 PATH="$(dirname "$base"):/usr/bin:/bin" \
+    PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_QUIET=1 PATH="$(dirname "$base"):/usr/bin:/bin" \
     bash -euo pipefail "$work/user.sh")
 echo "test-wheel: $(basename "$wheel") ($(du -k "$wheel" | cut -f1) KiB) runs outside the checkout"
 exit 0
