@@ -126,7 +126,11 @@ class _Collector(logging.Handler):
 def build_container(scenario: Scenario, out: Path) -> list[str]:
     """Writes the scenario as a container FMU at `out` (a .fmu path). Returns the
     toolbox's warnings; raises ContainerError on any error it logs."""
-    from fmu_manipulation_toolbox.container import FMUContainer, FMUContainerError
+    try:
+        from fmu_manipulation_toolbox.container import FMUContainer, FMUContainerError
+    except ImportError:
+        raise ContainerError("cosim container needs fmu-manipulation-toolbox, which the wheel "
+                             "leaves optional; pip install 'robofmu[container]'") from None
     out = Path(out)
     if out.suffix != ".fmu":
         raise ContainerError(f"{out}: the container's file name must end with .fmu")
