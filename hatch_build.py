@@ -11,7 +11,8 @@
 - editable installs: nothing (cosim.bundle finds dist/, tests/references/ and
   scenarios/ in the checkout).
 
-A build without the twelve FMUs stops with one line naming the command that builds them.
+A build without the FMUs (the same models in each folder) stops with one line naming
+the command that builds them.
 """
 
 from __future__ import annotations
@@ -23,7 +24,6 @@ from pathlib import Path
 from hatchling.builders.hooks.plugin.interface import BuildHookInterface
 
 FMU_FOLDERS = ("", "fmi3", "fmi3-scalar")
-MODELS = 4
 KERNEL = {"linux": "libcosim_kernel.so", "darwin": "libcosim_kernel.dylib",
           "win32": "cosim_kernel.dll"}
 
@@ -40,11 +40,13 @@ class BundleHook(BuildHookInterface):
         if self.target_name == "wheel" and version == "editable":
             return
         root = Path(self.root)
-        fmus = [p for folder in FMU_FOLDERS for p in sorted((root / "dist" / folder).glob("*.fmu"))]
-        if len(fmus) != MODELS * len(FMU_FOLDERS):
-            raise SystemExit(f"hatch_build.py: dist/: {len(fmus)} FMUs, expected "
-                             f"{MODELS * len(FMU_FOLDERS)} (dist/, dist/fmi3/, "
-                             "dist/fmi3-scalar/); run 'bash scripts/build-fmus.sh' first")
+        models = [sorted(p.stem for p in (root / "dist" / folder).glob("*.fmu"))
+                  for folder in FMU_FOLDERS]
+        if not models[0] or any(m != models[0] for m in models):
+            raise SystemExit("hatch_build.py: dist/, dist/fmi3/, dist/fmi3-scalar/ must hold "
+                             f"the same FMUs (found {', '.join(map(str, map(len, models)))}); "
+                             "run 'bash scripts/build-fmus.sh' first")
+        fmus = [root / "dist" / folder / f"{m}.fmu" for folder in FMU_FOLDERS for m in models[0]]
         kernel = root / "target" / "release" / KERNEL.get(sys.platform, "")
         include = build_data["force_include"]
         if self.target_name == "sdist":
