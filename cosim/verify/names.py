@@ -73,6 +73,15 @@ class Names:
             out[base] = values
         return out
 
+    def unit(self, name: str) -> str | None:
+        """The unit of scalar `name` (its own or its type's), None when it has none."""
+        found = self.locate(name)
+        if found is None:
+            return None
+        variable = found[0]
+        declared = getattr(variable, "declaredType", None)
+        return variable.unit or (declared.unit if declared is not None else None)
+
     def outputs(self, scalars: list[str]) -> list[str]:
         """The variables to record for `scalars` (order kept, each once)."""
         return list(dict.fromkeys(self.locate(name)[0].name for name in scalars))
