@@ -25,6 +25,7 @@ import sys
 import time
 from pathlib import Path
 
+from . import bundle
 from .bench_container import print_container_lines
 from .master import Master
 from .scenario import load_scenario
@@ -94,7 +95,7 @@ def sweep_throughput(runs: int) -> None:
     from .sweep import run_sweep
     from .sweep.spec import parse_spec
     omegas = [10.0 + 40.0 * k / max(runs - 1, 1) for k in range(runs)]
-    data = {"scenario": str(ROOT / "scenarios" / "regulation.toml"), "name": "bench",
+    data = {"scenario": str(bundle.scenarios_dir() / "regulation.toml"), "name": "bench",
             "grid": {"gains.omega": {"values": omegas, "unit": "rad/s"}}}
     spec = parse_spec(data, ROOT, "bench")
     steps = load_scenario(spec.scenario).steps
@@ -111,7 +112,7 @@ def sweep_throughput(runs: int) -> None:
 
 def _scenario_path(name: str) -> Path:
     """A scenario file path, or the name of one under scenarios/."""
-    return Path(name) if name.endswith(".toml") else ROOT / "scenarios" / f"{name}.toml"
+    return Path(name) if name.endswith(".toml") else bundle.scenarios_dir() / f"{name}.toml"
 
 
 def _count(low: int):

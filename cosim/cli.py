@@ -14,6 +14,8 @@ import importlib
 import sys
 import traceback
 
+from . import bundle
+
 COMMANDS = {
     "run": ("cosim.run", "simulate one scenario: CSV (SI, units sidecar), plots, metrics"),
     "check": ("cosim.check", "validate a scenario against its FMUs and the workspace, "
@@ -26,6 +28,9 @@ COMMANDS = {
              "torque) with plots and tables"),
     "verify": ("cosim.verify.cli", "verify the FMUs against independent references"),
     "animate": ("cosim.animate.cli", "draw the robot of a run moving (GIF)"),
+    "fmus": ("cosim.list_fmus", "list the bundled FMUs (--path NAME: one FMU's path)"),
+    "examples": ("cosim.list_examples", "list the bundled example scenarios and reference "
+                 "cases (--path NAME: one's path)"),
 }
 USER_ERROR, FAILED = 2, 1
 DESCRIPTION = """The co-simulation harness of the robofmu FMUs (also: python -m cosim).
@@ -55,6 +60,8 @@ def build_parser(command: str | None) -> Parser:
                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--debug", action="store_true",
                         help="show the traceback of an error (for bug reports)")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {bundle.version()}",
+                        help="the version (of the FMUs too: one number for the project)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
                                 parser_class=Parser)
     for name, (module, text) in COMMANDS.items():

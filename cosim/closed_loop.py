@@ -8,9 +8,9 @@ Example (every quantity states its unit; see cosim/units.py for the units)::
     step_size = "1 ms"
 
     [fmus]
-    planner = "../dist/Planner.fmu"
-    pid = "../dist/PID.fmu"
-    plant = "../dist/Pss3Plant.fmu"
+    planner = "Planner"
+    pid = "PID"
+    plant = "Pss3Plant"
 
     [motion]
     profile = "quintic"                 # or "cubic"; the same for every segment
@@ -290,9 +290,9 @@ def _controller(data: dict, kind: str, fmu: Path, plant_fmu: Path, plant_values:
                                  _table(data, "model"),
                                  lambda v, name: _plant_value(v, name, fmu, "model", "ct"))
         return gains | model
-    gains = _gains(_table(data, "gains"), plant_fmu, poses, plant_values, preflight)
-    pid = {}
-    for i, (kp, ki, kd) in enumerate(gains):
+    pid_gains = _gains(_table(data, "gains"), plant_fmu, poses, plant_values, preflight)
+    pid: dict[str, float | bool] = {}
+    for i, (kp, ki, kd) in enumerate(pid_gains):
         n = i + 1
         pid |= {f"Kp[{n}]": kp, f"Ki[{n}]": ki, f"Kd[{n}]": kd, f"Tf[{n}]": 0.0,
                 f"useRateInputs[{n}]": True}

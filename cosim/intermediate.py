@@ -25,7 +25,7 @@ def flagged_inputs(path: Path) -> set[str]:
     with zipfile.ZipFile(path) as archive:
         root = ElementTree.fromstring(archive.read("modelDescription.xml"))
     variables = root.find("ModelVariables")
-    return {v.get("name") for v in (variables if variables is not None else [])
+    return {v.get("name", "") for v in (variables if variables is not None else [])
             if v.get("intermediateUpdate") == "true"}
 
 

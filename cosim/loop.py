@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import ctypes
 import os
+import platform
 import sys
 from ctypes import (CFUNCTYPE, POINTER, Structure, c_double, c_int, c_size_t, c_uint,
                     c_uint64, c_void_p)
@@ -92,13 +93,18 @@ class _Failure(Structure):
     _fields_ = [("kind", c_int), ("index", c_size_t), ("status", c_int), ("time", c_double)]
 
 
+# The folder of the kernel the wheel bundles for this machine (hatch_build.py's rule).
+PLATFORM = f"{sys.platform}-{platform.machine().lower()}"
+
+
 def library_path() -> Path:
-    """The kernel library: the one COSIM_KERNEL_LIBRARY names, else one shipped inside
-    the package (cosim/<library>), else the one cargo builds in this checkout."""
+    """The kernel library: the one COSIM_KERNEL_LIBRARY names, else the one the wheel
+    ships for this platform (cosim/_native/<platform>/), else the one cargo builds in
+    this checkout."""
     named = os.environ.get("COSIM_KERNEL_LIBRARY")
     if named:
         return Path(named)
-    shipped = Path(__file__).resolve().parent / LIBRARY
+    shipped = Path(__file__).resolve().parent / "_native" / PLATFORM / LIBRARY
     return shipped if shipped.is_file() else ROOT / "target" / "release" / LIBRARY
 
 
@@ -107,8 +113,8 @@ def library():
     """The kernel library; CosimError when it is not built."""
     path = library_path()
     if not path.is_file():
-        raise CosimError(f"the master's stepping loop {path} is not built: run "
-                         "scripts/build-fmus.sh (or cargo build --release -p "
+        raise CosimError(f"no stepping loop for {PLATFORM}: {path} is not there; in a "
+                         "checkout run scripts/build-fmus.sh (or cargo build --release -p "
                          "robofmu-cosim-kernel), or name the library in COSIM_KERNEL_LIBRARY")
     lib = ctypes.CDLL(str(path))
     lib.cosim_kernel_run.argtypes = [POINTER(_Plan), c_uint64, c_uint64, c_int, c_void_p,
@@ -204,13 +210,13 @@ class Loop:
             refs.append(v.valueReference)
         return self._keep((c_uint * len(refs))(*refs))
 
-    def _function(self, alias, name) -> int:
+    def _function(self, alias, name) -> int | None:
         return ctypes.cast(getattr(self.fmus[alias]._fmu.dll, name), c_void_p).value
 
     def _handle(self, alias):
         return self.fmus[alias]._fmu.component if self.direct[alias] else None
 
-    def _callback(self, prototype, body, failing=_ERROR) -> int:
+    def _callback(self, prototype, body, failing=_ERROR) -> int | None:
         """A C callback that runs `body(*args)`; an exception is kept for run() and the
         kernel told `failing`."""
         def call(*args):
@@ -314,7 +320,7 @@ class Loop:
         return _Stepper(do_step, _address(self._handle(alias)), *states, first, count,
                         first_slope, n_slopes)
 
-    def _bridged_states(self, fmu) -> list[int]:
+    def _bridged_states(self, fmu) -> list[int | None]:
         """get/set/free_state of a Python adapter as FMI 2.0's state calls: the state
         crosses the kernel as a key of self._states."""
         def get(_c, pointer):

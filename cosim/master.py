@@ -31,9 +31,9 @@ from __future__ import annotations
 import csv
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 
@@ -83,7 +83,6 @@ class Master:
         self.open_fmu = open_fmu
         self.close_fmu = close_fmu
         self.progress = progress
-        self.loop: Loop | None = None
         self.loop_seconds = float("nan")  # wall time of the stepping loop (recording included)
         # Per target FMU and source FMU: the source variables and the target inputs, so
         # that each pair is one get and one set call per step.
@@ -155,7 +154,7 @@ class Master:
                           History(n, len(keep)) if history else None, n))
         return parts
 
-    def _start_up(self, rows: np.ndarray) -> None:
+    def _start_up(self, rows: np.ndarray, loop: Loop) -> None:
         """The multistep start-up of the derivatives through past values (History) of
         order 2: the first steps would extrapolate with a lower order (no past points
         yet), and with sampled coupling their error dominates a run's (the regulation
@@ -174,13 +173,13 @@ class Master:
                 or any(switch.step <= order for switch in s.schedule)
                 or not all(getattr(f, "can_get_state", False) for f in self.fmus.values())):
             return
-        discards = len(self.loop.discards)
+        discards = len(loop.discards)
         for _ in range(2):
             points = [[h.past[0].copy()] for h in histories]
             saved = {a: f.get_state() for a, f in self.fmus.items()}
             try:
                 for k in range(order):
-                    self.loop.run_steps(k, k + 1, rows, False)
+                    loop.run_steps(k, k + 1, rows, False)
                     for h, p in zip(histories, points):
                         p.append(h.past[0].copy())
                 for alias, state in saved.items():
@@ -190,8 +189,8 @@ class Master:
                     self.fmus[alias].free_state(state)
             for h, p in zip(histories, points):
                 h.seed(s.start_time, s.step_size, p)
-            self.loop.propagate(s.start_time)
-        del self.loop.discards[discards:]
+            loop.propagate(s.start_time)
+        del loop.discards[discards:]
 
     def _initialize(self, alias: str, parameters: dict) -> None:
         for name, value in parameters.items():
@@ -206,7 +205,7 @@ class Master:
         fmu.enter_initialization()
         fmu.exit_initialization()
 
-    def _run_steps(self, rows: np.ndarray, switches: dict) -> None:
+    def _run_steps(self, rows: np.ndarray, switches: dict, loop: Loop) -> None:
         """The stepping loop (cosim.loop), split at plan switches and for progress."""
         s, k = self.scenario, 0
         chunk = max(1, s.steps // 100) if self.progress is not None else s.steps
@@ -215,7 +214,7 @@ class Master:
             if switched:
                 self._switch_plan(switches[k])
             stop = min([b for b in switches if b > k] + [s.steps, k + chunk])
-            self.loop.run_steps(k, stop, rows, propagate_first=switched)
+            loop.run_steps(k, stop, rows, propagate_first=switched)
             k = stop
             if self.progress is not None:
                 self.progress(k / s.steps)
@@ -234,22 +233,20 @@ class Master:
             for alias in s.order:
                 self.fmus[alias].enter_initialization()
             self.slopes = self._slope_pairs()
-            self.loop = Loop(self.fmus, self.inputs, self.recorded_by_fmu, s.order,
-                             self.slopes, s)
+            loop = Loop(self.fmus, self.inputs, self.recorded_by_fmu, s.order, self.slopes, s)
             for index in range(len(s.order)):  # consistent inputs at the start, in order
-                self.loop.set_inputs(index, s.start_time)
+                loop.set_inputs(index, s.start_time)
             for alias in s.order:
                 self.fmus[alias].exit_initialization()
             if s.coupling == "sampled":  # the slopes of the first step (values are set)
-                self.loop.propagate(s.start_time)
-                self._start_up(rows)
-            self.loop.record(rows[0], s.start_time)
+                loop.propagate(s.start_time)
+                self._start_up(rows, loop)
+            loop.record(rows[0], s.start_time)
             loop_started = time.perf_counter()
-            self._run_steps(rows, switches)
+            self._run_steps(rows, switches, loop)
             self.loop_seconds = time.perf_counter() - loop_started
-            self.discards = self.loop.discards
+            self.discards = loop.discards
         finally:
-            self.loop = None
             for fmu in self.fmus.values():
                 self.close_fmu(fmu)
         times = [self._time(k, 1) for k in range(s.steps + 1)]

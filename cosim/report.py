@@ -220,5 +220,8 @@ def plot_cubic_vs_quintic(cubic: dict, quintic: dict, motion: str, out_dir: Path
 
 def format_table(header: list[str], rows: list[list[str]]) -> str:
     widths = [max(len(r[k]) for r in [header, *rows]) for k in range(len(header))]
-    line = lambda r: "  ".join(c.rjust(w) if k else c.ljust(w) for k, (c, w) in enumerate(zip(r, widths)))
+
+    def line(r: list[str]) -> str:
+        return "  ".join(c.rjust(w) if k else c.ljust(w) for k, (c, w) in enumerate(zip(r, widths)))
+
     return "\n".join([line(header), line(["-" * w for w in widths]), *map(line, rows)])

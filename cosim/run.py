@@ -50,7 +50,7 @@ def run(args: argparse.Namespace) -> int:
     from .outputs import write_outputs
     out = output_dir(args.out)
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
-    options = {}
+    open_fmu = None  # the master's FMI 2.0 default
     if args.fmi3:
         from .fmi3 import fmi3_path, open_fmi3
         for alias, path in scenario.fmus.items():
@@ -58,10 +58,12 @@ def run(args: argparse.Namespace) -> int:
                 raise ScenarioError(f"--fmi3: {fmi3_path(path)} (the FMI 3.0 build of "
                                     f"fmus.{alias}) does not exist; build it with bash "
                                     "scripts/build-fmus.sh or run without --fmi3")
-        options["open_fmu"] = open_fmi3
+        open_fmu = open_fmi3
     progress = None if args.quiet else text_progress()
     started = time.perf_counter()
-    result = Master(scenario, progress=progress, **options).run()
+    master = (Master(scenario, progress=progress) if open_fmu is None
+              else Master(scenario, open_fmu=open_fmu, progress=progress))
+    result = master.run()
     wall = time.perf_counter() - started
     for line in result.discards:
         print(f"cosim: {line}")

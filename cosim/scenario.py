@@ -14,8 +14,8 @@ Schema (TOML shown; JSON has the same structure)::
     input_extrapolation = "quadratic"  # or "linear", "hold" (or the order 2, 1, 0): input
                                        # derivatives up to that order where the FMUs allow
 
-    [fmus]                             # alias -> FMU path (relative to this file)
-    planner = "../dist/Planner.fmu"
+    [fmus]                             # alias -> FMU path (relative to this file), or
+    planner = "Planner"                # the name of a bundled FMU (cosim fmus lists them)
 
     [parameters.planner]               # start values set before initialisation
     "tf" = 2.0
@@ -43,11 +43,12 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from . import bundle
 from .errors import ScenarioError
 from .schedule import PlanSwitch
 
 __all__ = ["PlanSwitch", "Scenario", "ScenarioError", "Signal", "Connection",
-           "load_scenario", "parse_document", "parse_scenario"]
+           "fmu_file", "load_scenario", "parse_document", "parse_scenario"]
 
 
 COUPLINGS = ("sampled", "gauss-seidel")
@@ -141,8 +142,8 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if not isinstance(data, dict):
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
-             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits", "plan_switches",
-             "input_extrapolation", "controller"}
+             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits",
+             "plan_switches", "input_extrapolation", "controller"}
     unknown = sorted(set(data) - known, key=str)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
@@ -228,7 +229,8 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
                             f"or the order 0, 1 or 2, got {extrapolation!r}")
     from .controllers import kind_of
     from .limits import parse_limits
-    return Scenario(controller=kind_of(data), name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
+    return Scenario(controller=kind_of(data), name=name, fmus=fmus, order=list(order),
+                    start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
                     record=record, max_step_halvings=halvings, coupling=coupling,
                     input_extrapolation=extrapolation, description=data.get("description"),
@@ -270,16 +272,42 @@ def _plan_switches(raw, fmus, steps: int) -> list[PlanSwitch]:
     return switches
 
 
+def _bundled_fmu(alias: str, name: str, fmu_dir) -> Path:
+    """The FMU a scenario names without a path: `name`.fmu in `fmu_dir` (fmi3/ in front
+    kept), else the bundled one (the wheel's; in a checkout, dist/'s)."""
+    if fmu_dir is not None:
+        return (Path(fmu_dir) / f"{name}.fmu").absolute()
+    path = bundle.fmu(name)
+    if path is None:
+        raise ScenarioError(f"field 'fmus.{alias}': '{name}' is not a bundled FMU "
+                            f"({bundle.where_fmus_come_from()}); name one of those or a "
+                            "path to an .fmu file")
+    return path
+
+
+def fmu_file(alias: str, entry: str, base_dir: Path, fmu_dir=None) -> Path:
+    """The file a scenario's FMU entry names: a bundled FMU's name (_bundled_fmu), else a
+    path by file name in `fmu_dir`, else relative to the scenario's folder `base_dir`
+    (for readers of the raw document, such as the sweeps; no fallback to dist/)."""
+    if bundle.is_name(entry):
+        return _bundled_fmu(alias, entry, fmu_dir)
+    return Path(fmu_dir) / Path(entry).name if fmu_dir is not None else Path(base_dir) / entry
+
+
 def _find_fmus(data: dict, base_dir: Path, fmu_dir) -> dict:
-    """The document with its FMU paths found: by file name in `fmu_dir`, else relative
-    to the scenario, else (a file that is not there) by file name in the repository's
-    dist/ when this package runs from a checkout."""
+    """The document with its FMU paths found: a name without .fmu among the bundled
+    FMUs (_bundled_fmu); a path by file name in `fmu_dir`, else relative to the
+    scenario, else (a file that is not there) by file name in the repository's dist/
+    when this package runs from a checkout."""
     if not isinstance(data, dict) or not isinstance(data.get("fmus"), dict):
         return data
     found = {}
     for alias, f in data["fmus"].items():
         if not isinstance(f, str) or not f:
             found[alias] = f  # parse_scenario names the field
+            continue
+        if bundle.is_name(f):  # "Pss3Plant", "fmi3/PID": a bundled FMU (cosim.bundle)
+            found[alias] = str(_bundled_fmu(alias, f, fmu_dir))
             continue
         path = (Path(fmu_dir) / Path(f).name if fmu_dir is not None else base_dir / f).absolute()
         fallback = REPOSITORY_DIST / Path(f).name

@@ -13,7 +13,6 @@ modelDescription.xml. docs/interoperability.md says which tool reads what.
 
 from __future__ import annotations
 
-import sys
 import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
@@ -126,9 +125,11 @@ def write_ssp(scenario: Scenario, path: Path) -> None:
     variables = {alias: _variables(p) for alias, p in scenario.fmus.items()}
     tree = system_structure(scenario, variables)
     ET.indent(tree)
+    root = tree.getroot()
+    assert root is not None  # system_structure builds the document from its root
     path.parent.mkdir(parents=True, exist_ok=True)
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
-        z.writestr("SystemStructure.ssd", ET.tostring(tree.getroot(), encoding="unicode",
+        z.writestr("SystemStructure.ssd", ET.tostring(root, encoding="unicode",
                                                       xml_declaration=True))
         written = set()
         for alias, name in resources(scenario.fmus).items():

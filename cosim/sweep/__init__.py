@@ -14,7 +14,6 @@ written next to it at the end. See cosim.sweep.spec for the SPEC format.
 
 from __future__ import annotations
 
-import os
 from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -110,7 +109,7 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
                              out, spec.name, spec.about())
     return SweepOutcome(table.path, written, len(todo), len(spec.runs) - len(todo),
                         bar.failed, time.perf_counter() - started, completed_at, reasons,
-                        setup["batch"], setup["ready_s"], started, client_cpu)
+                        int(setup["batch"]), setup["ready_s"], started, client_cpu)
 
 
 def _kinds(spec: Spec) -> list[str]:

@@ -95,7 +95,11 @@ def _reachable(args):
             return None
     except (OSError, KeyError, TypeError, ValueError, tomllib.TOMLDecodeError):
         return None
-    path = (args.fmu_dir / Path(plant).name) if args.fmu_dir else scenario.parent / plant
+    from ..scenario import ScenarioError, fmu_file
+    try:
+        path = fmu_file("plant", plant, scenario.parent, args.fmu_dir)
+    except ScenarioError:
+        return None  # not a bundled FMU: load_spec names the field
     return reachable_on(path)
 
 

@@ -48,7 +48,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import CosimError
-from ..scenario import ScenarioError
+from ..scenario import ScenarioError, fmu_file
 
 DISTRIBUTIONS = {"normal": ("mean", "sd"), "uniform": ("low", "high")}
 MAX_RUNS = 1_000_000  # runs of one sweep (grid points x workspace targets x draws)
@@ -282,7 +282,8 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
         fmu_dir = base / str(data["fmu_dir"])
     check_fmus(document, scenario, fmu_dir)
     grid, randoms = _tables(data, "grid"), _tables(data, "random")
-    varied, axes = [], []
+    varied: list[Varied] = []
+    axes: list[list] = []  # the values of each grid axis, then the workspace targets
     for p, table in grid.items():
         axes.append(grid_values(table, f"grid.{p}"))
         varied.append(Varied(p, _unit(table, f"grid.{p}"), "grid"))
@@ -292,7 +293,7 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
         varied.append(Varied(data["workspace"]["path"], unit, "workspace"))
         axes.append(targets)
     _check_size(axes, data.get("samples") if randoms else 1)
-    draws = [[]]
+    draws: list[list] = [[]]
     if randoms:
         draws = random_draws(randoms, data.get("seed"), data.get("samples"))
         varied += [Varied(p, _unit(t, f"random.{p}"), "random") for p, t in randoms.items()]
@@ -340,10 +341,7 @@ def check_fmus(document: dict, scenario: Path, fmu_dir) -> None:
     modelDescription.xml), before anything loads it."""
     fmus = document.get("fmus", {})
     for alias, name in (fmus.items() if isinstance(fmus, dict) else []):
-        if fmu_dir is not None:
-            path = Path(fmu_dir) / Path(str(name)).name
-        else:
-            path = scenario.parent / str(name)
+        path = fmu_file(alias, str(name), scenario.parent, fmu_dir)
         fix = "build the FMUs (scripts/build-fmus.sh) or give --fmu-dir"
         if not path.is_file():
             raise SpecError(f"field 'fmus.{alias}' of the scenario: {path} is not a file; "

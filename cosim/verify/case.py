@@ -34,7 +34,7 @@ class Case:
     rel_tol: float
     start_values: dict[str, object] = field(default_factory=dict)
     event_times: list[float] = field(default_factory=list)
-    rules: dict[str | None, dict[str, object]] = field(default_factory=dict)
+    rules: dict[str | None, dict[str, tolerance.Rule]] = field(default_factory=dict)
     options: Options | None = None  # the _ref.opt file's, when the case has one
     allow_early_end: bool = False
 
@@ -64,8 +64,9 @@ class Case:
 def _model_files(folder: Path | None, reference: Path | None) -> tuple[str, Path | None]:
     """The model's name and its reference: the folder's one <Model>_ref.csv, or with
     --reference, the folder's one <Model>_ref.opt (no folder: the file's name)."""
-    if folder is None:
-        return Path(reference).stem.removesuffix("_ref"), None
+    if folder is None:  # load_case: then --reference is given
+        assert reference is not None
+        return reference.stem.removesuffix("_ref"), None
     suffix = "_ref.csv" if reference is None else "_ref.opt"
     found = sorted(folder.glob(f"*{suffix}"))
     if len(found) != 1:
@@ -140,20 +141,23 @@ def load_case(folder: Path | None, options) -> Case:
                           "give a case folder or --reference FILE")
     folder = None if folder is None else Path(folder)
     model, reference_path = _model_files(folder, options.reference)
-    reference = read_table(options.reference or reference_path)
+    reference_file = options.reference or reference_path
+    assert reference_file is not None  # _model_files: the folder's, or --reference
+    reference = read_table(reference_file)
     input_path = options.input or (_input_file(folder, model) if folder else None)
     data = {}
     case_path = folder / CASE_FILE if folder else None
     if case_path is not None and case_path.exists():
         data = casefile.read_case_file(case_path)
+    source = case_path if case_path is not None else COMMAND_LINE  # where a value is wrong
     start, stop, step, rel_tol, opt = _experiment(folder, model, reference, options.step)
     case = Case(
         name=f"{folder.parent.name}/{folder.name}" if folder else model,
         reference=reference, inputs=read_table(input_path) if input_path else None,
         start=float(start), stop=float(stop), step=float(step), rel_tol=float(rel_tol),
-        start_values=casefile.start_values(case_path, data.get("start_values", {})),
-        event_times=casefile.event_times(case_path, data.get("event_times", [])),
-        rules=casefile.tolerances(case_path, data.get("tolerances", {})),
+        start_values=casefile.start_values(source, data.get("start_values", {})),
+        event_times=casefile.event_times(source, data.get("event_times", [])),
+        rules=casefile.tolerances(source, data.get("tolerances", {})),
         options=opt, allow_early_end=bool(getattr(options, "allow_early_end", False)))
     _check_coverage(case)
     opt_path = folder / f"{model}_ref.opt" if folder else COMMAND_LINE
@@ -163,7 +167,7 @@ def load_case(folder: Path | None, options) -> Case:
         _check_step(case.step, case, opt_path, "StepSize" if folder else "--step")
     elif case.output_interval is not None:
         _check_step(case.output_interval, case, opt_path, "OutputIntervalLength")
-    _check_rule_names(case, case_path)
+    _check_rule_names(case, source)
     apply_options(case, options)
     return case
 

@@ -18,7 +18,7 @@ from .case import Case
 from .errors import RunFailed
 from .events import EITHER, LEFT, RIGHT, interp, sides
 from .simulate import Run
-from .tolerance import Limits
+from .tolerance import Limits, Rule
 
 EVENT_SLACK = 1e-9
 
@@ -28,7 +28,7 @@ class Verdict:
     """One signal: passed or not, where it is worst and where it first leaves its band."""
 
     signal: str
-    rule: object
+    rule: Rule
     tolerance: str
     passed: bool
     max_error: float

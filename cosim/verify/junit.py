@@ -48,7 +48,7 @@ def error_suite(name: str, classname: str, message: str, kind: str = "run") -> E
 def document(suites: list[ET.Element], seconds: float | None = None) -> bytes:
     root = ET.Element("testsuites", name="cosim verify")
     for key in ("tests", "failures", "errors"):
-        root.set(key, str(sum(int(s.get(key)) for s in suites)))
+        root.set(key, str(sum(int(s.get(key, "0")) for s in suites)))
     if seconds is not None:
         root.set("time", f"{seconds:.3f}")
     root.extend(suites)

@@ -4,6 +4,8 @@ elements taken from each array's ``<Dimension>`` (``cosim.fmi3.scalar_names``)."
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ..fmi3 import scalar_names
@@ -39,7 +41,7 @@ class Names:
     def start_values(self, scalars: dict[str, object]) -> dict[str, object]:
         """Scalar start values -> FMPy's start_values: whole arrays, the elements left
         out at the FMU's start values."""
-        out = {}
+        out: dict[str, Any] = {}  # a scalar, or a whole array (list)
         for name, value in scalars.items():
             variable, index = self.locate(name)
             if index is None:
@@ -55,7 +57,7 @@ class Names:
         for name, values in columns.items():
             variable, index = self.locate(name)
             grouped.setdefault(variable.name, {})[index] = values
-        dtype = [("time", np.float64)]
+        dtype: list[tuple] = [("time", np.float64)]
         for base, elements in grouped.items():
             size = _size(self.variables[base])
             dtype.append((base, np.float64, (size,)) if None not in elements else (base, np.float64))

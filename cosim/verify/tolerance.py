@@ -120,7 +120,10 @@ def _check(value, what: str) -> float:
     return float(value)
 
 
-def from_json(spec):
+Rule = Deviation | CrossCheckBand  # a signal's tolerance rule
+
+
+def from_json(spec) -> Rule:
     """A rule from the case file: a number (absolute), {"abs": A, "rel": R} (either may
     be left out, 0 then) or "cross-check". ValueError names what is wrong."""
     if spec == CROSS_CHECK:
@@ -133,7 +136,7 @@ def from_json(spec):
     return Deviation(_check(spec, "the tolerance"))
 
 
-def from_text(text: str):
+def from_text(text: str) -> Rule:
     """A rule from the command line: "ABS", "ABS,REL" or "cross-check"."""
     if text.strip() == CROSS_CHECK:
         return CrossCheckBand()

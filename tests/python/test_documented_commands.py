@@ -33,6 +33,10 @@ DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 SKIPPED = {
     "bash scripts/test.sh": "the test suite itself: CI runs it (.ci/run), and this test is part of it",
     "bash scripts/memcheck.sh": "run by scripts/test.sh in CI",
+    "bash scripts/release.sh --out results/release": (
+        "run into a temporary folder by tests/python/test_release.py, which compares its "
+        "files with docs/release.md"
+    ),
     "cargo test --release -p robofmu-hostile --test matrix": (
         "run by `cargo test --workspace --release` in scripts/test.sh"
     ),
@@ -44,7 +48,7 @@ SKIPPED = {
 BUILDS = {"bash scripts/demo.sh", "bash scripts/build-fmus.sh"}
 BUILD_OUTPUTS = ("dist", "target", ".venv", "results")
 # Paths the snapshot leaves out: git's, the build's, the environment's, Python's caches.
-UNWATCHED = {".git", "target", ".venv", "__pycache__", ".pytest_cache"}
+UNWATCHED = {".git", "target", ".venv", "__pycache__", ".pytest_cache", ".mypy_cache", ".ruff_cache"}
 # A hang guard, not a speed assertion: the build may compile on a fresh machine.
 TIMEOUT_S = {"build": 1800, "command": 300}
 

@@ -1,5 +1,6 @@
 """Coupling error against step size for each order of input extrapolation (held inputs,
-linear, quadratic): ``python -m cosim.coupling_study [scenario ...]``.
+linear, quadratic): ``python scripts/coupling_study.py [scenario ...]`` (a study, not part of
+the package).
 
 For each scenario (names under scenarios/) and each step h = 8, 4, 2, 1 ms, the master
 runs with input_extrapolation = "hold", "linear" and "quadratic"; the error is the
@@ -24,8 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .master import Master
-from .scenario import parse_document
+from cosim.master import Master
+from cosim.scenario import parse_document
 
 ROOT = Path(__file__).resolve().parent.parent
 STEPS = (8e-3, 4e-3, 2e-3, 1e-3)
@@ -107,7 +108,7 @@ def study(name: str, repeats: int) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m cosim.coupling_study",
+    parser = argparse.ArgumentParser(prog="python scripts/coupling_study.py",
                                      description=__doc__)
     parser.add_argument("scenarios", nargs="*", default=["regulation", "three_axis_quintic"])
     parser.add_argument("--repeats", type=int, default=5)
