@@ -83,7 +83,7 @@ build_platform() {
     for ((i = 1; i < ${#packages[@]}; i += 2)); do
         name="${packages[i]//-/_}"
         env MACOSX_DEPLOYMENT_TARGET="$minimum" "$variable=-C link-arg=-Wl,-dead_strip_dylibs" \
-            cargo zigbuild rustc --profile fmu --target "$target" -p "${packages[i]}" --lib -- \
+            cargo-zigbuild rustc --profile fmu --target "$target" -p "${packages[i]}" --lib -- \
             -C "link-arg=-Wl,-install_name,@rpath/lib$name.dylib" || return 1
     done
 }

@@ -18,8 +18,8 @@ reported here as skipped with its reason, never as passed.
   crates/platform-host, cross-built for each platform: natively on x86_64 Linux (whose
   result must match the reference within the case's Co-Simulation tolerance: the
   host is right), under Wine (x86_64-windows) and qemu-aarch64 (aarch64-linux), whose
-  results must equal x86_64 Linux's bit for bit (measured: they do; the case
-  tolerance is the fallback the assertion message reports against).
+  results must equal x86_64 Linux's bit for bit, except the plant's on Windows (to
+  1e-12; measured 1.9e-18: see NOT_BIT_IDENTICAL).
 """
 
 import csv
@@ -40,7 +40,6 @@ from fmpy import read_model_description
 from conftest import DIST, MODELS, REFERENCES, ROOT
 
 RECORD = ROOT / "target" / "toolchain" / "platforms.txt"
-ZIG = ROOT / "target" / "toolchain" / "venv" / "bin" / "python"
 VARIANTS = {"fmi2": "", "fmi3": "fmi3", "fmi3-scalar": "fmi3-scalar"}
 # tuple -> (Rust target, llvm-objdump's file format, Mach-O architecture)
 PLATFORMS = {
@@ -342,8 +341,9 @@ def windows_folder(tmp_path_factory):
     require("x86_64-windows")
     folder = tmp_path_factory.mktemp("windows")
     shutil.copy(host("x86_64-windows"), folder / "host.exe")
-    subprocess.run([str(ZIG), "-m", "ziglang", "cc", "-target", "x86_64-windows-gnu", "-shared",
-                    "-O2", "-o", str(folder / "bcryptprimitives.dll"),
+    # MinGW-w64's gcc: scripts/build-fmus.sh links the Windows binaries with it.
+    subprocess.run(["x86_64-w64-mingw32-gcc", "-shared", "-O2", "-o",
+                    str(folder / "bcryptprimitives.dll"),
                     str(ROOT / "tests" / "platforms" / "bcryptprimitives.c"), "-ladvapi32"],
                    check=True, capture_output=True, cwd=folder)
     return folder
@@ -397,6 +397,16 @@ def test_the_x86_64_linux_host_reproduces_the_reference(model, case, tmp_path):
     assert np.all(error <= tolerances(model, case, outputs)), dict(zip(outputs, error))
 
 
+# The (model, platform) pairs whose results are not bit-identical to x86_64 Linux, and
+# why: the plant integrates trigonometric functions, which Rust takes from the C
+# runtime (glibc on Linux, msvcrt on Windows), and msvcrt rounds some sin/cos results
+# differently in the last bit. Measured: at most 1.9e-18 (angles and rates of order 1,
+# both plant cases, 2001 points); the bound is 1e-12, eight orders tighter than the
+# cases' tolerances (1e-4, 2e-4). Every other pair is asserted bit for bit.
+NOT_BIT_IDENTICAL = {("Pss3Plant", "x86_64-windows")}
+PLATFORM_TOLERANCE = 1e-12
+
+
 @pytest.mark.parametrize("platform", ["x86_64-windows", "aarch64-linux"])
 @pytest.mark.parametrize("model,case", cases())
 def test_the_platform_gives_the_x86_64_linux_result(model, case, platform, tmp_path, request):
@@ -406,9 +416,13 @@ def test_the_platform_gives_the_x86_64_linux_result(model, case, platform, tmp_p
     outputs, native = simulate("x86_64-linux", model, case, tmp_path)
     _, other = simulate(platform, model, case, tmp_path, folder)
     assert other.shape == native.shape
-    # Expected: x86_64 Linux's result bit for bit (the same Rust code, IEEE arithmetic);
-    # the message gives the largest difference against the case tolerance.
     difference = np.abs(other - native).max(axis=0)
-    assert np.array_equal(other, native), (
-        f"{platform} differs from x86_64-linux: max |diff| per column {difference} "
-        f"(case tolerance {tolerances(model, case, outputs)})")
+    message = (f"{platform} differs from x86_64-linux: max |diff| per column {difference} "
+               f"(case tolerance {tolerances(model, case, outputs)})")
+    if (model, platform) in NOT_BIT_IDENTICAL:
+        # Expected: x86_64 Linux's result to 1e-12 (see NOT_BIT_IDENTICAL).
+        assert np.all(difference <= PLATFORM_TOLERANCE), message
+    else:
+        # Expected: x86_64 Linux's result bit for bit (the same Rust code, IEEE
+        # arithmetic, the same results of the C runtime's functions).
+        assert np.array_equal(other, native), message
