@@ -62,7 +62,10 @@ pub fn update(d: &Description, dir: &Path) -> Result<Vec<PathBuf>, String> {
 fn generated(d: &Description, dir: &Path) -> Result<Vec<(PathBuf, String)>, String> {
     let mut files = Vec::new();
     for variant in Variant::ALL {
-        files.push((variant.description_path(dir, d), variant.model_description(d)?));
+        files.push((
+            variant.description_path(dir, d),
+            variant.model_description(d)?,
+        ));
     }
     files.push((layout_path(dir, d), layout(d)));
     Ok(files)

@@ -73,7 +73,10 @@ impl Platform {
             .copied()
             .ok_or_else(|| {
                 let known: Vec<&str> = PLATFORMS.iter().map(|p| p.tuple).collect();
-                format!("unknown platform {tuple:?}; use one of {}", known.join(", "))
+                format!(
+                    "unknown platform {tuple:?}; use one of {}",
+                    known.join(", ")
+                )
             })
     }
 
@@ -190,8 +193,14 @@ mod tests {
         let fat = fat_mach_o(&[&x86, &arm]).unwrap();
         let be = |at: usize| u32::from_be_bytes(fat[at..at + 4].try_into().unwrap());
         assert_eq!((be(0), be(4)), (0xcafe_babe, 2));
-        assert_eq!([be(8), be(16), be(20), be(24)], [0x0100_0007, 16384, 40, 14]);
-        assert_eq!([be(28), be(36), be(40), be(44)], [0x0100_000c, 32768, 36, 14]);
+        assert_eq!(
+            [be(8), be(16), be(20), be(24)],
+            [0x0100_0007, 16384, 40, 14]
+        );
+        assert_eq!(
+            [be(28), be(36), be(40), be(44)],
+            [0x0100_000c, 32768, 36, 14]
+        );
         assert_eq!(&fat[16384..16424], &x86[..]);
         assert_eq!(&fat[32768..], &arm[..]);
         assert!(fat_mach_o(&[b"not mach-o"]).is_err());

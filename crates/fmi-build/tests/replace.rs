@@ -44,7 +44,11 @@ fn a_reader_never_sees_a_part_of_an_archive_being_replaced() {
             let (mut reads, mut seen_large) = (0, false);
             while !stop.load(Ordering::Relaxed) {
                 let bytes = std::fs::read(&path).unwrap();
-                assert!(bytes == small || bytes == large, "a partial archive: {} bytes", bytes.len());
+                assert!(
+                    bytes == small || bytes == large,
+                    "a partial archive: {} bytes",
+                    bytes.len()
+                );
                 let mut zip = zip::ZipArchive::new(std::io::Cursor::new(&bytes)).unwrap();
                 let mut entry = Vec::new();
                 zip.by_index(0).unwrap().read_to_end(&mut entry).unwrap();
@@ -61,7 +65,10 @@ fn a_reader_never_sees_a_part_of_an_archive_being_replaced() {
     });
     assert!(reads > 0 && seen_large, "{reads} reads");
     // Nothing is left beside the archive.
-    let names: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(names, ["M.fmu"]);
 }
 
@@ -75,7 +82,12 @@ fn an_unchanged_archive_is_not_rewritten() {
     let a = archive(3, 1000);
     assert!(replace_file(&path, &a).unwrap());
     let old = std::time::SystemTime::now() - std::time::Duration::from_secs(3600);
-    std::fs::File::options().append(true).open(&path).unwrap().set_modified(old).unwrap();
+    std::fs::File::options()
+        .append(true)
+        .open(&path)
+        .unwrap()
+        .set_modified(old)
+        .unwrap();
     let before = std::fs::metadata(&path).unwrap();
     assert!(!replace_file(&path, &a).unwrap());
     let after = std::fs::metadata(&path).unwrap();

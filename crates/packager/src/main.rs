@@ -113,10 +113,7 @@ fn run(args: &[String]) -> Result<(), Failure> {
                 let libraries: Vec<Library> = platforms
                     .iter()
                     .zip(&paths)
-                    .map(|(p, path)| Library {
-                        platform: *p,
-                        path,
-                    })
+                    .map(|(p, path)| Library { platform: *p, path })
                     .collect();
                 robofmu_fmi_build::package::package(d, &libraries, out)
             }

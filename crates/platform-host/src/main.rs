@@ -96,7 +96,11 @@ fn load(path: &Path) -> Result<Library, String> {
     if handle.is_null() {
         // SAFETY: dlerror returns a NUL-terminated string after a failed dlopen.
         let e = unsafe { std::ffi::CStr::from_ptr(libc::dlerror()) };
-        return Err(format!("{}: cannot load: {}", path.display(), e.to_string_lossy()));
+        return Err(format!(
+            "{}: cannot load: {}",
+            path.display(),
+            e.to_string_lossy()
+        ));
     }
     Ok(Library(handle))
 }
@@ -135,56 +139,65 @@ fn symbol(library: &Library, name: &CString) -> *mut c_void {
     unsafe { GetProcAddress(library.0, name.as_ptr()) }
 }
 
+type Instantiate = extern "C" fn(
+    *const c_char,
+    c_int,
+    *const c_char,
+    *const c_char,
+    *const CallbackFunctions,
+    c_int,
+    c_int,
+) -> Component;
+type SetupExperiment = extern "C" fn(Component, c_int, f64, f64, c_int, f64) -> Status;
+type OfComponent = extern "C" fn(Component) -> Status;
+type SetReal = extern "C" fn(Component, *const u32, usize, *const f64) -> Status;
+type SetInteger = extern "C" fn(Component, *const u32, usize, *const c_int) -> Status;
+type GetReal = extern "C" fn(Component, *const u32, usize, *mut f64) -> Status;
+type DoStep = extern "C" fn(Component, f64, f64, c_int) -> Status;
+type FreeInstance = extern "C" fn(Component);
+
 /// The FMI 2.0 functions this host calls.
 struct Fmi2 {
-    instantiate: extern "C" fn(
-        *const c_char,
-        c_int,
-        *const c_char,
-        *const c_char,
-        *const CallbackFunctions,
-        c_int,
-        c_int,
-    ) -> Component,
-    setup_experiment: extern "C" fn(Component, c_int, f64, f64, c_int, f64) -> Status,
-    enter_initialization_mode: extern "C" fn(Component) -> Status,
-    exit_initialization_mode: extern "C" fn(Component) -> Status,
-    set_real: extern "C" fn(Component, *const u32, usize, *const f64) -> Status,
-    set_integer: extern "C" fn(Component, *const u32, usize, *const c_int) -> Status,
-    set_boolean: extern "C" fn(Component, *const u32, usize, *const c_int) -> Status,
-    get_real: extern "C" fn(Component, *const u32, usize, *mut f64) -> Status,
-    do_step: extern "C" fn(Component, f64, f64, c_int) -> Status,
-    terminate: extern "C" fn(Component) -> Status,
-    free_instance: extern "C" fn(Component),
+    instantiate: Instantiate,
+    setup_experiment: SetupExperiment,
+    enter_initialization_mode: OfComponent,
+    exit_initialization_mode: OfComponent,
+    set_real: SetReal,
+    set_integer: SetInteger,
+    set_boolean: SetInteger,
+    get_real: GetReal,
+    do_step: DoStep,
+    terminate: OfComponent,
+    free_instance: FreeInstance,
 }
 
 macro_rules! bind {
-    ($library:expr, $name:literal) => {{
+    ($library:expr, $name:literal, $type:ty) => {{
         let name = CString::new($name).expect("a name without NUL");
         let address = symbol($library, &name);
         if address.is_null() {
             return Err(format!("the library exports no {}", $name));
         }
         // SAFETY: the FMI 2.0 standard fixes the signature of the named function,
-        // the type of the field this initializes.
-        unsafe { std::mem::transmute::<*mut c_void, _>(address) }
+        // `$type`.
+        unsafe { std::mem::transmute::<*mut c_void, $type>(address) }
     }};
 }
 
 impl Fmi2 {
     fn bind(library: &Library) -> Result<Fmi2, String> {
         Ok(Fmi2 {
-            instantiate: bind!(library, "fmi2Instantiate"),
-            setup_experiment: bind!(library, "fmi2SetupExperiment"),
-            enter_initialization_mode: bind!(library, "fmi2EnterInitializationMode"),
-            exit_initialization_mode: bind!(library, "fmi2ExitInitializationMode"),
-            set_real: bind!(library, "fmi2SetReal"),
-            set_integer: bind!(library, "fmi2SetInteger"),
-            set_boolean: bind!(library, "fmi2SetBoolean"),
-            get_real: bind!(library, "fmi2GetReal"),
-            do_step: bind!(library, "fmi2DoStep"),
-            terminate: bind!(library, "fmi2Terminate"),
-            free_instance: bind!(library, "fmi2FreeInstance"),
+            instantiate: bind!(library, "fmi2Instantiate", Instantiate),
+            setup_experiment: bind!(library, "fmi2SetupExperiment", SetupExperiment),
+            enter_initialization_mode: bind!(library, "fmi2EnterInitializationMode", OfComponent),
+            exit_initialization_mode: bind!(library, "fmi2ExitInitializationMode", OfComponent),
+            set_real: bind!(library, "fmi2SetReal", SetReal),
+            set_integer: bind!(library, "fmi2SetInteger", SetInteger),
+            set_boolean: bind!(library, "fmi2SetBoolean", SetInteger),
+            get_real: bind!(library, "fmi2GetReal", GetReal),
+            do_step: bind!(library, "fmi2DoStep", DoStep),
+            terminate: bind!(library, "fmi2Terminate", OfComponent),
+            free_instance: bind!(library, "fmi2FreeInstance", FreeInstance),
         })
     }
 }
@@ -224,7 +237,9 @@ fn parse(text: &str) -> Result<Plan, String> {
         let pair = || -> Result<(u32, &str), String> {
             match words.as_slice() {
                 [vr, value] => Ok((number(vr, n)?, *value)),
-                _ => Err(format!("line {n}: `{key}` takes a value reference and a value")),
+                _ => Err(format!(
+                    "line {n}: `{key}` takes a value reference and a value"
+                )),
             }
         };
         match key {
@@ -246,20 +261,30 @@ fn parse(text: &str) -> Result<Plan, String> {
                 plan.starts.push(Start::Boolean(vr, number(v, n)?));
             }
             "inputs" => {
-                plan.inputs = words.iter().map(|w| number(w, n)).collect::<Result<_, _>>()?
+                plan.inputs = words
+                    .iter()
+                    .map(|w| number(w, n))
+                    .collect::<Result<_, _>>()?
             }
             "outputs" => {
-                plan.outputs = words.iter().map(|w| number(w, n)).collect::<Result<_, _>>()?
+                plan.outputs = words
+                    .iter()
+                    .map(|w| number(w, n))
+                    .collect::<Result<_, _>>()?
             }
-            "at" => plan
-                .rows
-                .push(words.iter().map(|w| number(w, n)).collect::<Result<_, _>>()?),
+            "at" => plan.rows.push(
+                words
+                    .iter()
+                    .map(|w| number(w, n))
+                    .collect::<Result<_, _>>()?,
+            ),
             "" => {}
             other => return Err(format!("line {n}: unknown directive {other:?}")),
         }
     }
-    if plan.library.is_empty() || !(plan.step > 0.0) || !(plan.stop >= plan.start) {
-        return Err("needs `library`, `start`, `stop` <= start and `step` > 0".to_string());
+    let valid = !plan.library.is_empty() && plan.step > 0.0 && plan.stop >= plan.start;
+    if !valid {
+        return Err("needs `library`, `step` > 0 and `stop` >= `start`".to_string());
     }
     Ok(plan)
 }
@@ -309,8 +334,14 @@ fn simulate(plan: &Plan) -> Result<Vec<String>, String> {
         };
         check(status, call)?;
     }
-    check((f.enter_initialization_mode)(c), "fmi2EnterInitializationMode")?;
-    check((f.exit_initialization_mode)(c), "fmi2ExitInitializationMode")?;
+    check(
+        (f.enter_initialization_mode)(c),
+        "fmi2EnterInitializationMode",
+    )?;
+    check(
+        (f.exit_initialization_mode)(c),
+        "fmi2ExitInitializationMode",
+    )?;
     let steps = ((plan.stop - plan.start) / plan.step).round() as usize;
     let mut lines = Vec::with_capacity(steps + 1);
     let mut y = vec![0.0; plan.outputs.len()];
@@ -321,7 +352,12 @@ fn simulate(plan: &Plan) -> Result<Vec<String>, String> {
                 .rows
                 .get(k)
                 .filter(|r| r.len() == plan.inputs.len())
-                .ok_or_else(|| format!("the plan has no `at` line of {} inputs for step {k}", plan.inputs.len()))?;
+                .ok_or_else(|| {
+                    format!(
+                        "the plan has no `at` line of {} inputs for step {k}",
+                        plan.inputs.len()
+                    )
+                })?;
             check(
                 (f.set_real)(c, plan.inputs.as_ptr(), row.len(), row.as_ptr()),
                 "fmi2SetReal (inputs)",
