@@ -122,7 +122,7 @@ def check_value(md, alias: str, name: str, value, field: str):
     low = _bound(v.min if v.min is not None else getattr(v.declaredType, "min", None))
     high = _bound(v.max if v.max is not None else getattr(v.declaredType, "max", None))
     if (low is not None and value < low) or (high is not None and value > high):
-        span = f"[{'-inf' if low is None else low:g}, {'inf' if high is None else high:g}]"
+        span = f"[{-math.inf if low is None else low:g}, {math.inf if high is None else high:g}]"
         raise ScenarioError(f"field '{field}': {value!r} is outside the range {span} that "
                             f"{alias}.{name} declares; write a value in range")
     return value

@@ -20,6 +20,11 @@ pub struct ModelParameter {
     pub unit: Option<&'static str>,
     pub display_unit: Option<&'static str>,
     pub description: &'static str,
+    /// The bounds the robot model enforces (FMU `min`/`max`, inclusive; `None`: only
+    /// finite). A quantity that must be positive has `min` 0: the model refuses 0
+    /// itself when it is built.
+    pub min: Option<f64>,
+    pub max: Option<f64>,
     /// The spec's value (`PlantParams::default()`, checked by a test), as a constant for
     /// the FMU's static variable table.
     pub spec: f64,
@@ -38,11 +43,27 @@ macro_rules! parameter {
             unit: $unit,
             display_unit: $display,
             description: $description,
+            min: None,
+            max: None,
             spec: $spec,
             get: |p| p.$($field).+,
             set: |p, v| p.$($field).+ = v,
         }
     };
+}
+
+impl ModelParameter {
+    /// These bounds instead of none.
+    const fn bounded(mut self, min: Option<f64>, max: Option<f64>) -> Self {
+        self.min = min;
+        self.max = max;
+        self
+    }
+
+    /// Bounded below by 0 (a length, mass, inertia or friction coefficient).
+    const fn non_negative(self) -> Self {
+        self.bounded(Some(0.0), None)
+    }
 }
 
 /// `inertia!(name, row, column, spec value)`: an entry of the symmetric platform inertia tensor
@@ -54,7 +75,10 @@ macro_rules! inertia {
             library_name: "platform_inertia",
             unit: Some("kg.m2"),
             display_unit: None,
-            description: "Platform inertia tensor about P in {B} (symmetric: sets both entries)",
+            description: "Platform inertia tensor about the fixed point P, in the platform \
+                          frame {B} (symmetric: sets both entries)",
+            min: if $r == $c { Some(0.0) } else { None },
+            max: None,
             spec: $spec,
             get: |p| p.inertia.platform_inertia[($r, $c)],
             set: |p, v| {
@@ -78,25 +102,27 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "lp",
         M,
         MM,
-        "Height of the platform centre P above the base origin C",
+        "Height of the fixed point P (the platform's spherical joint) above the base origin C",
         0.632187,
         geometry.lp
-    ),
+    )
+    .non_negative(),
     parameter!(
         "ld",
         "ld",
         M,
         MM,
-        "Radius of the platform joints around P",
+        "Radius of the circle of the platform joints around P",
         0.245396,
         geometry.ld
-    ),
+    )
+    .non_negative(),
     parameter!(
         "gamma",
         "gamma",
         RAD,
         DEG,
-        "Angle of platform joint 1 in {B}",
+        "Azimuth of platform joint 1 in the platform frame {B} (joints 2 and 3 at +120 and -120 deg from it)",
         (-150.0f64).to_radians(),
         geometry.gamma
     ),
@@ -105,16 +131,17 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "lb",
         M,
         MM,
-        "Distance from C to the slider joints at l = 0",
+        "Distance from the base origin C to each slider joint at actuator displacement l = 0",
         0.344098,
         geometry.lb
-    ),
+    )
+    .non_negative(),
     parameter!(
         "alpha",
         "alpha",
         RAD,
         DEG,
-        "Azimuth offset of the slider joints",
+        "Azimuth offset of the slider joints: h_i lies at azimuth alpha + (-120, 0, +120) deg about Z of the base frame {A}",
         8.674f64.to_radians(),
         geometry.alpha
     ),
@@ -123,7 +150,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "beta",
         RAD,
         DEG,
-        "Polar angle of the slider joints h_i from Z",
+        "Polar angle of the slider joints h_i from Z of the base frame {A}",
         66.242f64.to_radians(),
         geometry.beta
     ),
@@ -132,25 +159,27 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "a",
         M,
         MM,
-        "Leg length, joint centre to joint centre",
+        "Leg length, slider joint centre to platform joint centre",
         0.619598,
         geometry.a
-    ),
+    )
+    .non_negative(),
     parameter!(
         "platformMass",
         "platform_mass",
         KG,
         None,
-        "Platform mass",
+        "Mass of the platform",
         0.80057,
         inertia.platform_mass
-    ),
+    )
+    .non_negative(),
     parameter!(
         "platformCom[1]",
         "platform_com",
         M,
         MM,
-        "Platform centre of mass relative to P, in {B}, x",
+        "Platform centre of mass relative to P, in the platform frame {B}, x",
         0.0,
         inertia.platform_com.x
     ),
@@ -159,7 +188,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "platform_com",
         M,
         MM,
-        "Platform centre of mass relative to P, in {B}, y",
+        "Platform centre of mass relative to P, in the platform frame {B}, y",
         0.0,
         inertia.platform_com.y
     ),
@@ -168,7 +197,7 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "platform_com",
         M,
         MM,
-        "Platform centre of mass relative to P, in {B}, z",
+        "Platform centre of mass relative to P, in the platform frame {B}, z",
         0.01955,
         inertia.platform_com.z
     ),
@@ -186,7 +215,8 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "Mass of each leg",
         0.9467,
         inertia.leg_mass
-    ),
+    )
+    .non_negative(),
     parameter!(
         "legComFraction",
         "leg_com_fraction",
@@ -195,7 +225,8 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "Leg centre of mass along the leg from the slider joint, as a fraction of a",
         0.5,
         inertia.leg_com_fraction
-    ),
+    )
+    .bounded(Some(0.0), Some(1.0)),
     parameter!(
         "legTransverseInertia",
         "leg_transverse_inertia",
@@ -204,7 +235,8 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "Leg inertia about its centre of mass, perpendicular to the leg",
         0.036458,
         inertia.leg_transverse_inertia
-    ),
+    )
+    .non_negative(),
     parameter!(
         "sliderMass",
         "slider_mass",
@@ -213,13 +245,16 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "Mass of each slider (rod and stud)",
         0.26272,
         inertia.slider_mass
-    ),
+    )
+    .non_negative(),
     ModelParameter {
         name: "g",
         library_name: "gravity",
         unit: Some("m/s2"),
         display_unit: None,
-        description: "Gravitational acceleration, acting along -Z of {A}",
+        description: "Gravitational acceleration, acting along -Z of the base frame {A}",
+        min: None,
+        max: None,
         spec: 9.81,
         get: |p| -p.gravity.z,
         set: |p, v| p.gravity = nalgebra::Vector3::new(0.0, 0.0, -v),
@@ -232,7 +267,8 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "Viscous friction on each slider, force -c lDot",
         0.0,
         friction.slider
-    ),
+    )
+    .non_negative(),
     parameter!(
         "pivotFriction",
         "pivot_friction",
@@ -241,7 +277,8 @@ pub const MODEL_PARAMETERS: [ModelParameter; 24] = [
         "Viscous friction at the spherical joint P, moment -c omega",
         0.0,
         friction.pivot
-    ),
+    )
+    .non_negative(),
 ];
 
 /// The spec value of every entry of [`MODEL_PARAMETERS`], in its order (the start
@@ -317,6 +354,40 @@ mod tests {
         (model_parameter("platformInertia[1,3]").unwrap().set)(&mut params, 0.01);
         assert_eq!(params.inertia.platform_inertia[(2, 0)], 0.01);
         assert_eq!((model_parameter("g").unwrap().get)(&params), 9.81);
+    }
+
+    #[test]
+    fn every_declared_bound_is_one_the_model_enforces() {
+        // Truth: the library's own validation (Plant::new). A value just outside a
+        // declared bound is refused by the model, the bound itself is accepted unless
+        // the quantity must be positive (then the model refuses it, which the FMU
+        // description says by min = 0 and the parameter's refusal at build time).
+        use crate::pss3::dynamics::Plant;
+        let build = |p: &ModelParameter, v: f64| {
+            let mut params = PlantParams::default();
+            (p.set)(&mut params, v);
+            Plant::new(params)
+        };
+        let mut bounded = 0;
+        for p in &MODEL_PARAMETERS {
+            if let Some(min) = p.min {
+                assert!(build(p, min - 1e-6).is_err(), "{} below {min}", p.name);
+                bounded += 1;
+            }
+            if let Some(max) = p.max {
+                assert!(build(p, max + 1e-6).is_err(), "{} above {max}", p.name);
+                assert!(build(p, max).is_ok(), "{} at {max}", p.name);
+                bounded += 1;
+            }
+        }
+        // lp, ld, lb, a, three masses, legComFraction (both ends), legTransverseInertia,
+        // the three diagonal inertias and the two frictions.
+        assert_eq!(bounded, 15);
+        // Unbounded ones take a value far out (angles, centre of mass, gravity).
+        for name in ["gamma", "platformCom[1]", "g"] {
+            let p = model_parameter(name).unwrap();
+            assert!(build(p, p.spec - 0.01).is_ok(), "{name}");
+        }
     }
 
     #[test]

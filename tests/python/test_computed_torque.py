@@ -121,7 +121,10 @@ def _check(tmp_path, capsys, change) -> tuple[int, str]:
     (lambda d: d.update(model={"legMass": "1 m"}),
      "field 'model.legMass': '1 m' is a length, but legMass is declared in kg"),
     (lambda d: d.update(model={"Kp[1]": 1.0}), "field 'model.Kp[1]': not a model parameter"),
-    (lambda d: d.update(model={"legMass": -1.0}), "legMass = -1"),
+    # Below the min = 0 the FMU declares (the mass of a leg cannot be negative).
+    (lambda d: d.update(model={"legMass": -1.0}),
+     "field 'model.legMass': -1.0 is outside the range [0, inf] that ct.legMass "
+     "declares; write a value in range"),
     # Legs of 0.35 m assemble somewhere over the stroke but cannot reach the start pose
     # (the FMU's default measurement, roll 122.07 deg): the FMU's own reason, which
     # names the pose (issue 20's rule).

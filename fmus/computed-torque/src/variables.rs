@@ -105,7 +105,8 @@ const fn model<const K: usize>(length: usize) -> Decl {
     d = d
         .set_real(set_model::<K>)
         .parameter(Variability::Fixed)
-        .start_real(specs(K, length));
+        .start_real(specs(K, length))
+        .real_range(p.min, p.max);
     if let Some(unit) = p.unit {
         d = d.unit(unit, p.display_unit);
     }

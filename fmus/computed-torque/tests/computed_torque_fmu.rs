@@ -193,11 +193,21 @@ fn a_step_integrates_the_held_error_and_stops_at_a_limit_pushing_out() {
 #[test]
 fn a_model_that_is_no_robot_is_refused_by_its_fmu_name() {
     let h = Fmu::with_logging(FMI2_CO_SIMULATION, false);
-    assert_eq!(h.set_real("legMass", -1.0), Fmi2Status::Ok);
+    // Below the declared min: refused by the set, naming the range.
+    assert_eq!(h.set_real("legMass", -1.0), Fmi2Status::Error);
+    let message = h.last_message();
+    assert!(
+        message.contains("\"legMass\" = -1 is outside [0, inf]"),
+        "{message}"
+    );
+    // Within the declared range but no robot (legs too short to reach the platform):
+    // refused at initialization by the model, naming the geometry.
+    let h = Fmu::with_logging(FMI2_CO_SIMULATION, false);
+    assert_eq!(h.set_real("a", 0.35), Fmi2Status::Ok);
     assert_eq!(h.initialize(), Fmi2Status::Error);
     let message = h.last_message();
     assert!(
-        message.contains("parameter legMass = -1 must not be negative"),
+        message.contains("parameter a") || message.contains("lp, ld"),
         "{message}"
     );
 }

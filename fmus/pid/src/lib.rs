@@ -196,7 +196,8 @@ static VARIABLES: &[Decl] = &[
         "Derivative filter time constant (0 allowed only with rate inputs)",
         0.05,
         gains.tf
-    ),
+    )
+    .real_range(Some(0.0), None),
     switch!(
         "limitOutput",
         41,

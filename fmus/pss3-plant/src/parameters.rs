@@ -95,7 +95,8 @@ const fn model<const K: usize>(vr: u32, length: usize) -> Decl {
         .at(vr)
         .set_real(set_model::<K>)
         .parameter(Variability::Fixed)
-        .start_real(start);
+        .start_real(start)
+        .real_range(p.min, p.max);
     match p.unit {
         Some(unit) => d.unit(unit, p.display_unit),
         None => d,
@@ -172,10 +173,11 @@ pub const PARAMETERS: [Decl; COUNT] = [
     own!(
         "endStopStiffness",
         1018,
-        "Stiffness of the end-stop springs (endStopMode 1)",
+        "Stiffness of the end-stop springs (endStopMode 1: positive)",
         1e6,
         params.end_stops.stiffness
     )
+    .real_range(Some(0.0), None)
     .unit("N/m", None),
     own!(
         "endStopDamping",
@@ -184,22 +186,25 @@ pub const PARAMETERS: [Decl; COUNT] = [
         2000.0,
         params.end_stops.damping
     )
+    .real_range(Some(0.0), None)
     .unit("N.s/m", None),
     own!(
         "tolerance",
         1020,
         "Relative and absolute tolerance of the co-simulation integrator \
-         (Dormand-Prince 5(4))",
+         (Dormand-Prince 5(4)), positive",
         1e-8,
         settings.tolerance
-    ),
+    )
+    .real_range(Some(0.0), None),
     own!(
         "maxStep",
         1021,
-        "Largest internal step of the co-simulation integrator",
+        "Largest internal step of the co-simulation integrator, positive",
         1e-3,
         settings.max_step
     )
+    .real_range(Some(0.0), None)
     .unit("s", None),
     model::<11>(1022, 1), // platformInertia[1,1] ... [2,3]
     model::<12>(1023, 1),

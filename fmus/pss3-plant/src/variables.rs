@@ -221,7 +221,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
         "yaw",
         YAW_PITCH_ROLL + 1,
         YawPitchRoll[0],
-        "Yaw as in the thesis: thx",
+        "Yaw: thx, the Euler angle about X of R = Rz(thz) Ry(thy) Rx(thx) (the source thesis's name, docs/3pss-model.md)",
         |m| euler(m, 0, 1.0)
     )
     .unit("rad", Some("deg"))
@@ -231,7 +231,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
         "pitch",
         YAW_PITCH_ROLL + 2,
         YawPitchRoll[1],
-        "Pitch as in the thesis: -thy",
+        "Pitch: -thy, the Euler angle about Y of R = Rz(thz) Ry(thy) Rx(thx) with its sign flipped (as the source thesis's tables print it, docs/3pss-model.md)",
         |m| euler(m, 1, -1.0)
     )
     .unit("rad", Some("deg"))
@@ -241,7 +241,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
         "roll",
         YAW_PITCH_ROLL + 3,
         YawPitchRoll[2],
-        "Roll as in the thesis: thz",
+        "Roll: thz, the Euler angle about Z of R = Rz(thz) Ry(thy) Rx(thx) (the source thesis's name, docs/3pss-model.md)",
         |m| euler(m, 2, 1.0)
     )
     .unit("rad", Some("deg"))

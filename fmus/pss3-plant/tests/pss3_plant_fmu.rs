@@ -138,7 +138,7 @@ fn invalid_parameters_are_refused_naming_the_parameter() {
     // Truth: the physical domain of each parameter (spec: SI values, positive lengths
     // and masses, a realisable inertia, a non-empty stroke, a pose that assembles).
     let cases: [(&str, f64, &str); 7] = [
-        ("platformMass", -1.0, "platformMass"),
+        ("lp", 0.0, "parameter lp = 0 must be positive"),
         ("strokeMin", 0.2, "strokeMin"),
         ("a", 2.5, "parameter a"),
         ("platformInertia[1,1]", 0.001, "platformInertia"),
@@ -162,6 +162,23 @@ fn invalid_parameters_are_refused_naming_the_parameter() {
     // endStopMode is 1 or 2.
     let h = H::new(CS);
     assert_eq!(h.set_integer("endStopMode", 3), Fmi2Status::Error);
+    // A value below a declared min is refused by the set itself, naming the range
+    // (the modelDescription's min = 0 of the masses, stiffness and tolerance).
+    for name in [
+        "platformMass",
+        "legMass",
+        "endStopStiffness",
+        "tolerance",
+        "sliderFriction",
+    ] {
+        let h = H::new(CS);
+        assert_eq!(h.set_real(name, -1.0), Fmi2Status::Error, "{name}");
+        let message = h.last_message();
+        assert!(
+            message.contains(name) && message.contains("outside [0,"),
+            "{message}"
+        );
+    }
 }
 
 #[test]
