@@ -67,6 +67,13 @@ done
 
 # Builds the FMU crates (and the test host) for $tuple/$target with "${build[@]}".
 build_platform() {
+    if [[ "$tuple" == *-linux ]]; then
+        # scripts/toolchain/finalize.c: the unload-time __cxa_finalize that gcc's C
+        # runtime objects give a shared library and zig's link does not.
+        env "CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_RUSTFLAGS=-C link-arg=$PWD/scripts/toolchain/finalize.c" \
+            "${build[@]}" --profile fmu --target "$target" "${packages[@]}" "${host[@]}"
+        return
+    fi
     if [[ "$tuple" != *-darwin ]]; then
         "${build[@]}" --profile fmu --target "$target" "${packages[@]}" "${host[@]}"
         return
