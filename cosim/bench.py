@@ -5,10 +5,9 @@ paths to .toml files).
 Per scenario and run, in one process:
 - minimal loop: FMPy's own calls alone, per step one getReal and one setReal per
   connected FMU pair and one doStep per FMU, nothing recorded;
-- master: cosim.master.Master with its prepared ctypes calls (cosim.fastpath), every
-  connection and recorded signal stored each step;
-- master (FMPy calls): the same master through FmuInstance's FMPy wrappers;
-- ctypes loop: the minimal loop's calls through the prepared prototypes (no recording).
+- master: cosim.master.Master (its native stepping loop, cosim.loop), every
+  connection and recorded signal stored each step, inputs held as the minimal loop
+  holds them; then with linear and with quadratic input extrapolation.
 Times are the stepping loops only (instantiation and initialisation excluded), medians
 over the runs. Then the sweep throughput (``--sweep-runs``, 0 to skip): the same
 closed-loop runs (the regulation scenario over a grid of bandwidths) serially in this
@@ -26,6 +25,7 @@ import sys
 import time
 from pathlib import Path
 
+from . import bundle
 from .bench_container import print_container_lines
 from .master import Master
 from .scenario import load_scenario
@@ -38,10 +38,7 @@ class _Timed(Master):
 
     def __init__(self, scenario, loop):
         super().__init__(scenario)
-        self.loop = loop
-
-    def _advance(self, numerator, denominator, halvings_left):
-        raise AssertionError("not used")
+        self.stepping = loop
 
     def run(self):
         s = self.scenario
@@ -52,11 +49,13 @@ class _Timed(Master):
             for alias in s.order:
                 self.fmus[alias].enter_initialization()
             for alias in s.order:
-                self._set_inputs(alias)
+                for source, variables, inputs in self.inputs[alias]:
+                    self.fmus[alias].set_values(inputs,
+                                                self.fmus[source].get_values(variables))
             for alias in s.order:
                 self.fmus[alias].exit_initialization()
             started = time.perf_counter()
-            self.loop(self)
+            self.stepping(self)
             self.loop_seconds = time.perf_counter() - started
         finally:
             for fmu in self.fmus.values():
@@ -81,16 +80,6 @@ def minimal_loop(master: Master) -> None:
             slave.doStep(t, h)
 
 
-def ctypes_loop(master: Master) -> None:
-    """The minimal loop's calls through cosim.fastpath's prepared prototypes."""
-    from .fastpath import Kernel
-    s = master.scenario
-    kernel = Kernel(master.fmus, master.inputs, {}, s.order)
-    h = s.step_size
-    for k in range(s.steps):
-        kernel.step_all(s.start_time + k * h, h, True, True)
-
-
 def _median_per_step(scenario, make, runs: int) -> float:
     per_step = []
     for _ in range(runs):
@@ -106,7 +95,7 @@ def sweep_throughput(runs: int) -> None:
     from .sweep import run_sweep
     from .sweep.spec import parse_spec
     omegas = [10.0 + 40.0 * k / max(runs - 1, 1) for k in range(runs)]
-    data = {"scenario": str(ROOT / "scenarios" / "regulation.toml"), "name": "bench",
+    data = {"scenario": str(bundle.scenarios_dir() / "regulation.toml"), "name": "bench",
             "grid": {"gains.omega": {"values": omegas, "unit": "rad/s"}}}
     spec = parse_spec(data, ROOT, "bench")
     steps = load_scenario(spec.scenario).steps
@@ -123,7 +112,7 @@ def sweep_throughput(runs: int) -> None:
 
 def _scenario_path(name: str) -> Path:
     """A scenario file path, or the name of one under scenarios/."""
-    return Path(name) if name.endswith(".toml") else ROOT / "scenarios" / f"{name}.toml"
+    return Path(name) if name.endswith(".toml") else bundle.scenarios_dir() / f"{name}.toml"
 
 
 def _count(low: int):
@@ -168,16 +157,17 @@ def run(args: argparse.Namespace) -> int:
         return 2
     ratio = None
     for name in args.scenarios:
-        # Held inputs for the loops that compare with the minimal loop (which holds);
-        # the master with linear extrapolation (the default) on a line of its own.
+        # Held inputs for the master that compares with the minimal loop (which holds);
+        # the master with linear and quadratic extrapolation (the default) on lines of
+        # their own.
         scenario = replace(load_scenario(_scenario_path(name)), input_extrapolation="hold")
-        linear = replace(scenario, input_extrapolation="linear")
         cases = {
             "minimal FMPy loop": (scenario, lambda s: _Timed(s, minimal_loop)),
             "master": (scenario, Master),
-            "master (FMPy calls)": (scenario, lambda s: Master(s, fast=False)),
-            "ctypes loop (no recording)": (scenario, lambda s: _Timed(s, ctypes_loop)),
-            "master, linear extrapolation": (linear, Master),
+            "master, linear extrapolation": (replace(scenario, input_extrapolation="linear"),
+                                             Master),
+            "master, quadratic extrapolation": (
+                replace(scenario, input_extrapolation="quadratic"), Master),
         }
         medians = {label: _median_per_step(s, make, args.runs)
                    for label, (s, make) in cases.items()}

@@ -21,6 +21,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from . import bundle
+
 ROOT = Path(__file__).resolve().parent.parent
 
 
@@ -44,7 +46,7 @@ def add_sweep_options(parser: argparse.ArgumentParser) -> None:
 
 def bench_spec(runs: int):
     from .sweep.spec import parse_spec
-    data = {"scenario": str(ROOT / "scenarios" / "regulation.toml"), "name": "bench",
+    data = {"scenario": str(bundle.scenarios_dir() / "regulation.toml"), "name": "bench",
             "seed": 1, "samples": runs,
             "random": {"plant.legMass": {"distribution": "normal", "mean": 0.9467,
                                          "sd": 0.09467, "min": 0.75, "max": 1.15,

@@ -6,23 +6,36 @@ path against the workspace."""
 from __future__ import annotations
 
 import argparse
+import os
 from pathlib import Path
 
+from .errors import output_path
 from .run import add_common, fmu_dir
 from .scenario import ScenarioError, load_scenario
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common(parser)
-    parser.add_argument("--expanded", type=Path, metavar="FILE.toml",
+    parser.add_argument("--expanded", type=output_path, metavar="FILE.toml",
                         help="also write the expanded (plain, SI) form that the harness "
                         "runs and the Rust reference reads")
+
+
+def same_file(a: Path, b: Path) -> bool:
+    """Whether `a` names the file `b` (a link, another spelling of its path)."""
+    try:
+        return a.exists() and b.exists() and os.path.samefile(a, b)
+    except OSError:
+        return a.resolve() == b.resolve()
 
 
 def run(args: argparse.Namespace) -> int:
     if args.expanded is not None and (args.expanded.suffix != ".toml"
                                       or args.expanded.is_dir()):
         raise ScenarioError(f"--expanded: {args.expanded}: name a .toml file to write")
+    if args.expanded is not None and same_file(args.expanded, args.scenario):
+        raise ScenarioError(f"--expanded: {args.expanded} is the scenario being checked; name "
+                            "another file (e.g. --expanded results/expanded.toml)")
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
     if args.expanded is not None:
         from .expand import expanded_toml

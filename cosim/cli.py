@@ -14,6 +14,8 @@ import importlib
 import sys
 import traceback
 
+from . import bundle
+
 COMMANDS = {
     "run": ("cosim.run", "simulate one scenario: CSV (SI, units sidecar), plots, metrics"),
     "check": ("cosim.check", "validate a scenario against its FMUs and the workspace, "
@@ -22,9 +24,13 @@ COMMANDS = {
     "ssp": ("cosim.ssp", "write a scenario as an SSP archive"),
     "container": ("cosim.container", "write a scenario as a container FMU"),
     "bench": ("cosim.bench", "time the master against a minimal FMPy loop"),
-    "demo": ("cosim.demo", "run every bundled closed-loop scenario with plots and tables"),
+    "demo": ("cosim.demo", "run the six bundled PID scenarios (and each under computed "
+             "torque) with plots and tables"),
     "verify": ("cosim.verify.cli", "verify the FMUs against independent references"),
     "animate": ("cosim.animate.cli", "draw the robot of a run moving (GIF)"),
+    "fmus": ("cosim.list_fmus", "list the bundled FMUs (--path NAME: one FMU's path)"),
+    "examples": ("cosim.list_examples", "list the bundled example scenarios and reference "
+                 "cases (--path NAME: one's path)"),
 }
 USER_ERROR, FAILED = 2, 1
 DESCRIPTION = """The co-simulation harness of the robofmu FMUs (also: python -m cosim).
@@ -54,6 +60,8 @@ def build_parser(command: str | None) -> Parser:
                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--debug", action="store_true",
                         help="show the traceback of an error (for bug reports)")
+    parser.add_argument("--version", action="version", version=f"%(prog)s {bundle.version()}",
+                        help="the version (of the FMUs too: one number for the project)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
                                 parser_class=Parser)
     for name, (module, text) in COMMANDS.items():
@@ -106,7 +114,9 @@ def main(argv=None) -> int:
     try:
         return int(importlib.import_module(args.module).run(args))
     except KeyboardInterrupt:
-        return _fail("interrupted", 130)
+        more = ("; the table keeps every finished run: the same command with --resume "
+                "continues" if args.module == "cosim.sweep.cli" else "")
+        return _fail("interrupted" + more, 130)
     except BrokenPipeError:
         sys.stderr.close()  # the reader went away: end quietly
         return 0

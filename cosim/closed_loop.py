@@ -8,9 +8,9 @@ Example (every quantity states its unit; see cosim/units.py for the units)::
     step_size = "1 ms"
 
     [fmus]
-    planner = "../dist/Planner.fmu"
-    pid = "../dist/PID.fmu"
-    plant = "../dist/Pss3Plant.fmu"
+    planner = "Planner"
+    pid = "PID"
+    plant = "Pss3Plant"
 
     [motion]
     profile = "quintic"                 # or "cubic"; the same for every segment
@@ -290,9 +290,9 @@ def _controller(data: dict, kind: str, fmu: Path, plant_fmu: Path, plant_values:
                                  _table(data, "model"),
                                  lambda v, name: _plant_value(v, name, fmu, "model", "ct"))
         return gains | model
-    gains = _gains(_table(data, "gains"), plant_fmu, poses, plant_values, preflight)
-    pid = {}
-    for i, (kp, ki, kd) in enumerate(gains):
+    pid_gains = _gains(_table(data, "gains"), plant_fmu, poses, plant_values, preflight)
+    pid: dict[str, float | bool] = {}
+    for i, (kp, ki, kd) in enumerate(pid_gains):
         n = i + 1
         pid |= {f"Kp[{n}]": kp, f"Ki[{n}]": ki, f"Kd[{n}]": kd, f"Tf[{n}]": 0.0,
                 f"useRateInputs[{n}]": True}
@@ -317,6 +317,15 @@ def resolve(data: dict, base_dir: Path,
         raise ScenarioError("field 'model' (the controller's model of the robot) needs "
                             "controller = \"computed-torque\"; remove it for the PID")
     order, points = waypoints(_table(data, "motion"))
+    stop_time = quantity(data.get("stop_time"), "time", "stop_time")
+    start = quantity(data["start_time"], "time", "start_time") if "start_time" in data else 0.0
+    if start < stop_time < points[-1].time:  # else parse_scenario names stop_time
+        k = len(points) - 1
+        raise ScenarioError(
+            f"field 'motion.waypoints[{k}].time': the motion ends at {points[-1].time:g} s, "
+            f"after stop_time = {stop_time:g} s (the run would stop before the platform gets "
+            f"there); set stop_time to at least {points[-1].time:g} s or end the motion "
+            "earlier")
     start_raw = _table(data, "start")
     unknown = sorted(set(start_raw) - {"angles", "omega"})
     if unknown:
@@ -344,7 +353,7 @@ def resolve(data: dict, base_dir: Path,
                   if "start_time" in data else 0.0)
     step = quantity(data["step_size"], "time", "step_size") if "step_size" in data else 1e-3
     plain = {"start_time": start_time,
-             "stop_time": quantity(data.get("stop_time"), "time", "stop_time"),
+             "stop_time": stop_time,
              "step_size": step, "order": ["planner", loop.alias, "plant"],
              "fmus": dict(fmus),
              "parameters": {"planner": segment_parameters(order, points[0], points[1]),

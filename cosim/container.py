@@ -18,8 +18,8 @@ would step with a PID output computed from inputs one step old. The container ha
 rollback: the scenario's coupling and max_step_halvings are our master's options only.
 
 The connected signals are the container's locals, named "alias.variable" as in our
-master's results (the toolbox lower-cases the alias); every output of the embedded FMUs is also a container output, under
-its variable name (prefixed with the FMU alias where two FMUs share a name).
+master's results (the toolbox lower-cases the alias); every output of the embedded FMUs
+is also a container output, under its variable name (prefixed with the FMU alias where two FMUs share a name).
 """
 
 from __future__ import annotations
@@ -32,6 +32,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from .errors import output_path
 from .scenario import Scenario, ScenarioError, load_scenario, schedule_field
 
 TOOLBOX_LOGGER = "fmu_manipulation_toolbox"
@@ -76,7 +77,7 @@ def exposed_ports(scenario: Scenario) -> dict[str, dict[tuple[str, str], str]]:
     "alias_variable" where another FMU has a port of the same name."""
     from fmpy import read_model_description
     fed = {(c.target.alias, c.target.variable) for c in scenario.connections}
-    ports = {"output": [], "input": []}
+    ports: dict[str, list] = {"output": [], "input": []}
     for alias, path in scenario.fmus.items():
         for v in read_model_description(str(path)).modelVariables:
             if v.causality == "output" or (v.causality == "input" and (alias, v.name) not in fed):
@@ -126,7 +127,11 @@ class _Collector(logging.Handler):
 def build_container(scenario: Scenario, out: Path) -> list[str]:
     """Writes the scenario as a container FMU at `out` (a .fmu path). Returns the
     toolbox's warnings; raises ContainerError on any error it logs."""
-    from fmu_manipulation_toolbox.container import FMUContainer, FMUContainerError
+    try:
+        from fmu_manipulation_toolbox.container import FMUContainer, FMUContainerError
+    except ImportError:
+        raise ContainerError("cosim container needs fmu-manipulation-toolbox, which the wheel "
+                             "leaves optional; pip install 'robofmu[container]'") from None
     out = Path(out)
     if out.suffix != ".fmu":
         raise ContainerError(f"{out}: the container's file name must end with .fmu")
@@ -135,8 +140,8 @@ def build_container(scenario: Scenario, out: Path) -> list[str]:
     logger.addHandler(collector)
     logger.propagate = False
     try:
-        with tempfile.TemporaryDirectory(prefix="cosim-container-") as work:
-            work = Path(work)
+        with tempfile.TemporaryDirectory(prefix="cosim-container-") as scratch:
+            work = Path(scratch)
             # Embedded FMUs are named after their file: one file per alias, so that the
             # container's variables read "alias.variable".
             for alias, path in scenario.fmus.items():
@@ -160,7 +165,7 @@ def build_container(scenario: Scenario, out: Path) -> list[str]:
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """``cosim container SCENARIO --out X.fmu``."""
     parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
-    parser.add_argument("--out", type=Path, required=True, help="container FMU to write (.fmu)")
+    parser.add_argument("--out", type=output_path, required=True, help="container FMU to write (.fmu)")
     parser.add_argument("--fmu-dir", type=Path, help="find the FMUs by file name here")
 
 

@@ -74,7 +74,7 @@ def pole_placement(raw: dict, quantity) -> dict:
     if not isinstance(integral, bool):
         raise ScenarioError(f"field 'gains.integral' must be true or false, got {integral!r}")
     kp, kd, ki = (3.0 * w * w, 3.0 * w, w ** 3) if integral else (w * w, 2.0 * w, 0.0)
-    gains = {}
+    gains: dict[str, float] = {}
     for i in (1, 2, 3):
         gains |= {f"Kp[{i}]": kp, f"Kd[{i}]": kd, f"Ki[{i}]": ki}
     return gains

@@ -1,4 +1,4 @@
-"""The main demo: every closed-loop scenario through the FMUs, with CSVs, plots and a
+"""The main demo: the six PID scenarios of SCENARIOS through the FMUs, with CSVs, plots and a
 summary table, then the PID against the computed-torque controller on each
 (cosim.demo_controllers).  ``python -m cosim.demo [--out results]``."""
 
@@ -10,10 +10,12 @@ import sys
 import time
 from pathlib import Path
 
+from .errors import output_path
+from . import bundle
 from .demo_controllers import print_comparison
 from .master import Master
 from .outputs import write_outputs
-from .report import (HEADER, format_table, metrics, plot_cubic_vs_quintic, plot_tracking,
+from .report import (HEADER, format_table, metrics, sig, plot_cubic_vs_quintic, plot_tracking,
                      read_csv)
 from .scenario import load_scenario
 
@@ -35,9 +37,8 @@ def boundary_mismatch(cubic: dict, quintic_file: Path) -> float:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--out", type=Path, default=ROOT / "results",
-                        help="directory for the CSVs and plots (default: results/ of the "
-                        "repository)")
+    parser.add_argument("--out", type=output_path, default=Path("results"),
+                        help="directory for the CSVs and plots (default: results/ here)")
 
 
 def main(argv=None) -> int:
@@ -50,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     results, rows, walls = {}, [], {}
     for name in SCENARIOS:
-        path = ROOT / "scenarios" / f"{name}.toml"
+        path = bundle.scenarios_dir() / f"{name}.toml"
         scenario = load_scenario(path)  # errors: one line and exit code by cosim.cli
         started = time.perf_counter()
         result = Master(scenario).run()
@@ -64,24 +65,24 @@ def run(args: argparse.Namespace) -> int:
         rows.append([name, *metrics(results[name]).row(), f"{walls[name]:.2f}"])
     print(format_table(["scenario", *HEADER, "wall (s)"], rows))
     print()
-    print_comparison([ROOT / "scenarios" / f"{n}.toml" for n in SCENARIOS], results)
+    print_comparison([bundle.scenarios_dir() / f"{n}.toml" for n in SCENARIOS], results)
     print()
     comparison = []
     for motion in ("path1", "three_axis"):
         cubic, quintic = results[f"{motion}_cubic"], results[f"{motion}_quintic"]
         plot_cubic_vs_quintic(cubic, quintic, motion, args.out)
-        mismatch = boundary_mismatch(cubic, ROOT / "scenarios" / f"{motion}_quintic.toml")
+        mismatch = boundary_mismatch(cubic, bundle.scenarios_dir() / f"{motion}_quintic.toml")
         mc, mq = metrics(cubic), metrics(quintic)
-        comparison.append([motion, f"{math.degrees(mismatch):.3f}",
-                           f"{mc.peak_force_n:.3f} / {mq.peak_force_n:.3f}",
-                           f"{math.degrees(mc.peak_angular_acceleration):.2f} / "
-                           f"{math.degrees(mq.peak_angular_acceleration):.2f}",
-                           f"{mc.rms_error_deg:.5f} / {mq.rms_error_deg:.5f}"])
+        comparison.append([motion, sig(math.degrees(mismatch)),
+                           f"{sig(mc.peak_force_n)} / {sig(mq.peak_force_n)}",
+                           f"{sig(math.degrees(mc.peak_angular_acceleration))} / "
+                           f"{sig(math.degrees(mq.peak_angular_acceleration))}",
+                           f"{sig(mc.rms_error_deg)} / {sig(mq.rms_error_deg)}"])
     print(format_table(["motion", "cubic accel jump at ends (deg/s^2)",
                         "peak |f| cubic / quintic (N)",
                         "peak |omega_dot| cubic / quintic (deg/s^2)",
                         "RMS error cubic / quintic (deg)"], comparison))
-    steps = load_scenario(ROOT / "scenarios" / "three_axis_quintic.toml").steps
+    steps = load_scenario(bundle.scenarios_dir() / "three_axis_quintic.toml").steps
     print(f"\nwall time of the 2 s loop at 1 kHz ({steps} steps, three FMUs, FMPy): "
           f"{walls['three_axis_quintic']:.2f} s; results in {args.out}")
     return 0

@@ -10,10 +10,11 @@ from pathlib import Path
 
 import numpy as np
 
+from . import bundle
 from .fmu_check import describe
 from .master import Master
-from .report import format_table, metrics
-from .scenario import parse_document, read_document
+from .report import format_table, metrics, sig
+from .scenario import fmu_file, parse_document, read_document
 
 MISMATCH = (0.8, 1.2)  # factors on the model's leg mass
 
@@ -23,7 +24,9 @@ def computed_torque_document(data: dict, model: dict | None = None) -> dict:
     FMU) as its controller, at the same bandwidth, with `model` as its [model] table."""
     d = copy.deepcopy(data)
     fmus = d["fmus"]
-    ct = str(Path(fmus["pid"]).with_name("ComputedTorque.fmu"))
+    pid = str(fmus["pid"])
+    ct = (pid[:len(pid) - len(Path(pid).name)] + "ComputedTorque" if bundle.is_name(pid)
+          else str(Path(pid).with_name("ComputedTorque.fmu")))
     d["fmus"] = {"planner": fmus["planner"], "ct": ct, "plant": fmus["plant"]}
     d["controller"] = "computed-torque"
     d["gains"] = {"omega": d["gains"]["omega"]}
@@ -47,17 +50,17 @@ def comparison_rows(paths: list[Path], pid_results: dict) -> list[list[str]]:
         data = read_document(path)
         pid = metrics(pid_results[path.stem])
         ct_doc = computed_torque_document(data)
-        fmu = path.parent / ct_doc["fmus"]["ct"]
+        fmu = fmu_file("ct", ct_doc["fmus"]["ct"], path.parent)
         leg_mass = next(float(v.start) for v in describe(fmu, "fmus.ct").modelVariables
                         if v.name == "legMass")
         ct = metrics(_run(ct_doc, path.parent))
         off = [metrics(_run(computed_torque_document(data, {"legMass": f * leg_mass}),
                             path.parent)).rms_error_deg for f in MISMATCH]
-        rows.append([path.stem, "PID", f"{pid.rms_error_deg:.2e}", f"{pid.max_error_deg:.2e}",
-                     f"{pid.peak_force_n:.3f}", "model-free"])
-        rows.append([path.stem, "computed torque", f"{ct.rms_error_deg:.2e}",
-                     f"{ct.max_error_deg:.2e}", f"{ct.peak_force_n:.3f}",
-                     " / ".join(f"{x:.2e}" for x in off)])
+        rows.append([path.stem, "PID", sig(pid.rms_error_deg), sig(pid.max_error_deg),
+                     sig(pid.peak_force_n), "model-free"])
+        rows.append([path.stem, "computed torque", sig(ct.rms_error_deg),
+                     sig(ct.max_error_deg), sig(ct.peak_force_n),
+                     " / ".join(sig(x) for x in off)])
     return rows
 
 

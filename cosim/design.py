@@ -53,7 +53,8 @@ def euler_rates(th, omega) -> list[float]:
     sy, cy = math.sin(th[1]), math.cos(th[1])
     sz, cz = math.sin(th[2]), math.cos(th[2])
     if abs(cy) < EULER_SINGULAR_COS:
-        raise ScenarioError(f"the Euler angles ({', '.join(f'{math.degrees(x):.6g}' for x in th)}) deg are singular (thy = +-90 deg)")
+        angles = ", ".join(f"{math.degrees(x):.6g}" for x in th)
+        raise ScenarioError(f"the Euler angles ({angles}) deg are singular (thy = +-90 deg)")
     thx_dot = (cz * omega[0] + sz * omega[1]) / cy
     return [thx_dot, -sz * omega[0] + cz * omega[1], omega[2] + sy * thx_dot]
 

@@ -1,5 +1,18 @@
 """Errors of the co-simulation master (free of FMPy so the master logic stands alone)."""
 
+import argparse
+from pathlib import Path
+
+
+def output_path(text: str) -> Path:
+    """The argparse type of an argument naming where to write (--out, --expanded,
+    --junit): refuses an empty or blank name, which Path would turn into the current
+    directory (files written beside the user's own)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError(
+            f"{text!r} names nothing; name the directory or file to write")
+    return Path(text)
+
 
 class ScenarioError(ValueError):
     """A scenario file that cannot be run; the message names the field."""

@@ -60,5 +60,5 @@ def expanded_toml(scenario: Scenario, out: Path, source: str) -> str:
         lines += ["", "[[connections]]"] + _table({"from": str(c.source), "to": str(c.target)})
     for switch in s.schedule:
         lines += ["", "[[plan_switches]]"] + _table({"step": switch.step, "alias": switch.alias})
-        lines += [f"[plan_switches.parameters]"] + _table(switch.parameters)
+        lines += ["[plan_switches.parameters]"] + _table(switch.parameters)
     return "\n".join(lines) + "\n"

@@ -10,7 +10,9 @@ write of an array from them."""
 
 from __future__ import annotations
 
+from functools import partial
 from pathlib import Path
+from typing import Any
 
 from fmpy import extract, read_model_description
 from fmpy.fmi3 import FMU3Slave
@@ -32,7 +34,7 @@ def scalar_names(variables) -> dict:
     """FMI 2.0 scalar name -> (FMI 3.0 variable, element index or None), from each
     variable's <Dimension>: an array `x` of n elements holds `x[1]`..`x[n]`, the
     derivative of an array state `x` holds `der(x[1])`..; a scalar keeps its name."""
-    names = {}
+    names: dict[str, tuple[Any, int | None]] = {}
     for v in variables:
         if not v.shape:
             names[v.name] = (v, None)
@@ -76,7 +78,7 @@ class Fmu3Instance(LoggedCalls):
         self._written = dict(self._starts)
         self._start_time, self._stop_time = start_time, stop_time
         self._unzip = extract(str(path))
-        # Linear input extrapolation through the intermediate update (cosim.intermediate).
+        # Input extrapolation through the intermediate update (cosim.intermediate).
         self.intermediate = (IntermediateInputs(self, flagged_inputs(path))
                              if extrapolate and md.coSimulation.providesIntermediateUpdate
                              else None)
@@ -121,7 +123,7 @@ class Fmu3Instance(LoggedCalls):
                 getter = getattr(self._fmu, "get" + variable.type)
                 arrays[variable.name] = self._call(
                     f"fmi3Get{variable.type}({variable.name})",
-                    lambda: getter([variable.valueReference], size))
+                    partial(getter, [variable.valueReference], size))
         return [float(arrays[v.name][0 if i is None else i]) for v, i in located]
 
     def is_real(self, name: str) -> bool:
@@ -132,8 +134,14 @@ class Fmu3Instance(LoggedCalls):
         located = [self._locate(name) for name in names]
         return [float(self._written[v.name][0 if i is None else i]) for v, i in located]
 
-    def set_input_slopes(self, names: tuple[str, ...], values) -> None:
-        self.intermediate.set_slopes(names, values)
+    #: The intermediate update applies derivatives up to the second (cosim.intermediate).
+    max_input_derivative_order = 2
+
+    def set_input_derivatives(self, names: tuple[str, ...], values, order: int) -> None:
+        if self.intermediate is None:  # the master asks only where can_interpolate_inputs
+            raise FmuError(f"{self.alias}: input derivatives need the intermediate update, "
+                           "which this instance does not use")
+        self.intermediate.set_derivatives(names, values, order)
 
     def do_step(self, time: float, step: float) -> None:
         if self.intermediate is None:
@@ -147,7 +155,7 @@ class Fmu3Instance(LoggedCalls):
 
     def set_values(self, names: tuple[str, ...], values) -> None:
         """Sets `names` to `values`: whole arrays, completed from the last written."""
-        changed = {}
+        changed: dict[str, list] = {}
         for name, value in zip(names, values):
             variable, index = self._locate(name)
             array = changed.setdefault(variable.name, list(self._written[variable.name]))
@@ -156,7 +164,7 @@ class Fmu3Instance(LoggedCalls):
             variable = self.variables[base]
             setter = getattr(self._fmu, "set" + variable.type)
             self._call(f"fmi3Set{variable.type}({base})",
-                       lambda: setter([variable.valueReference], array))
+                       partial(setter, [variable.valueReference], array))
             self._written[base] = array
 
     def enter_initialization(self) -> None:
@@ -177,4 +185,4 @@ class Fmu3Instance(LoggedCalls):
 def open_fmi3(alias, path, scenario):
     """The master's `open_fmu` for the FMI 3.0 builds of the scenario's FMUs."""
     return Fmu3Instance(alias, fmi3_path(Path(path)), scenario.start_time, scenario.stop_time,
-                        extrapolate=getattr(scenario, "input_extrapolation", "") == "linear")
+                        extrapolate=getattr(scenario, "input_extrapolation", "hold") != "hold")

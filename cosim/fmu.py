@@ -4,7 +4,9 @@ FMU and the FMI call, and the FMU's log messages kept for error reports."""
 from __future__ import annotations
 
 import shutil
+from functools import partial
 from pathlib import Path
+from typing import Any
 
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
@@ -67,6 +69,8 @@ class LoggedCalls:
     alias: str
     messages: list[str]
     can_get_state: bool
+    _fmu: Any  # the FMPy slave of the standard; None before it is made and once closed
+    _initialized: bool
     #: Prefix of the C function names, status code of Discard, and the standard's
     #: spelling of "FMU state" in function names.
     _PREFIX = "fmi2"
@@ -89,6 +93,14 @@ class LoggedCalls:
                            f"{self._last_message()}") from e
         except Exception as e:  # instantiate raises a plain Exception on NULL
             raise FmuError(f"{self.alias}: {name} failed: {e}; {self._last_message()}") from e
+
+    def get_values(self, names) -> list:
+        """The values of the variables `names`, in order (each standard's adapter)."""
+        raise NotImplementedError
+
+    def set_values(self, names, values) -> None:
+        """Sets the variables `names` to `values` (each standard's adapter)."""
+        raise NotImplementedError
 
     def get_value(self, name: str) -> float:
         return self.get_values((name,))[0]
@@ -203,7 +215,7 @@ class FmuInstance(LoggedCalls):
         for kind, positions, refs in self._groups(names):
             getter = getattr(self._fmu, _GETTERS[kind])
             values = self._call(f"fmi2Get{kind}({', '.join(names[k] for k in positions)})",
-                                lambda: getter(refs))
+                                partial(getter, refs))
             for k, value in zip(positions, values):
                 out[k] = float(value)
         return out
@@ -215,7 +227,7 @@ class FmuInstance(LoggedCalls):
             convert = _CONVERT[kind]
             typed = [convert(values[k]) for k in positions]
             self._call(f"fmi2Set{kind}({', '.join(names[k] for k in positions)})",
-                       lambda: setter(refs, typed))
+                       partial(setter, refs, typed))
 
     def enter_initialization(self) -> None:
         self._call("fmi2EnterInitializationMode", self._fmu.enterInitializationMode)
@@ -223,18 +235,22 @@ class FmuInstance(LoggedCalls):
     def is_real(self, name: str) -> bool:
         return self.variables[name].type == "Real"
 
-    def get_output_slopes(self, names: tuple[str, ...]) -> list[float]:
-        """First time derivatives of Real outputs (fmi2GetRealOutputDerivatives)."""
+    def get_output_derivatives(self, names: tuple[str, ...], order: int) -> list[float]:
+        """Time derivatives of orders 1..order of Real outputs in one
+        fmi2GetRealOutputDerivatives call: all of order 1 (in the order of `names`),
+        then all of order 2, ..."""
         refs = [self.variables[n].valueReference for n in names]
-        return self._call(f"fmi2GetRealOutputDerivatives({', '.join(names)})",
-                          lambda: self._fmu.getRealOutputDerivatives(refs, [1] * len(refs)))
+        orders = [k for k in range(1, order + 1) for _ in refs]
+        return self._call(f"fmi2GetRealOutputDerivatives({', '.join(names)}, orders 1..{order})",
+                          lambda: self._fmu.getRealOutputDerivatives(refs * order, orders))
 
-    def set_input_slopes(self, names: tuple[str, ...], values) -> None:
-        """First time derivatives of Real inputs over the next step
-        (fmi2SetRealInputDerivatives)."""
+    def set_input_derivatives(self, names: tuple[str, ...], values, order: int) -> None:
+        """Time derivatives of orders 1..order of Real inputs over the next step
+        (fmi2SetRealInputDerivatives), laid out as get_output_derivatives returns them."""
         refs = [self.variables[n].valueReference for n in names]
-        self._call(f"fmi2SetRealInputDerivatives({', '.join(names)})",
-                   lambda: self._fmu.setRealInputDerivatives(refs, [1] * len(refs),
+        orders = [k for k in range(1, order + 1) for _ in refs]
+        self._call(f"fmi2SetRealInputDerivatives({', '.join(names)}, orders 1..{order})",
+                   lambda: self._fmu.setRealInputDerivatives(refs * order, orders,
                                                              list(values)))
 
     def reset(self, start_time: float, stop_time: float) -> None:

@@ -69,7 +69,7 @@ def start_value(path: Path, name: str) -> float:
     return float(variables(path)[name].start)
 
 
-def unit_of(md, variable) -> tuple[str, tuple] | None:
+def unit_of(md, variable) -> tuple[str, tuple[int, ...] | None, float, float] | None:
     """(unit name, exponents over BASE_UNITS + OTHER_BASE_UNITS, factor, offset) of a
     variable's declared unit; None when it declares none."""
     name = variable.unit or (variable.declaredType.unit if variable.declaredType else None)

@@ -4,6 +4,7 @@ design's mass matrix): logs kept, cleaned up on every path without masking the e
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from fmpy import calloc, extract, free, read_model_description
 from fmpy.fmi1 import FMICallException
@@ -19,12 +20,13 @@ class ModelExchangeInstance:
     get_real by variable name; FMI failures raise ``fmu.Failed``."""
 
     Failed = FMICallException
+    _fmu: Any  # the FMPy model: None outside the with block
 
     def __init__(self, path: str | Path, name: str):
         self.path, self.name = str(path), name
         self.messages: list[str] = []
 
-    def __enter__(self) -> "ModelExchangeInstance":
+    def __enter__(self) -> ModelExchangeInstance:
         md = read_model_description(self.path)
         if md.modelExchange is None:
             raise ScenarioError(

@@ -31,6 +31,12 @@ def vector(result: dict, alias: str, name: str) -> np.ndarray:
     return np.stack([result[f"{alias}.{name}[{i}]"] for i in (1, 2, 3)], axis=1)
 
 
+def sig(x: float, digits: int = 4) -> str:
+    """`x` with `digits` significant digits (1.234e-05, 0.01234, 123.4, 1.234e+05):
+    fixed decimals would print a small error as 0.00000."""
+    return f"{x:.{digits}g}"
+
+
 @dataclass
 class Metrics:
     rms_error_deg: float
@@ -48,10 +54,9 @@ class Metrics:
                 "peak_angular_acceleration": self.peak_angular_acceleration}
 
     def row(self) -> list[str]:
-        return [f"{self.rms_error_deg:.5f}", f"{self.max_error_deg:.5f}",
-                f"{self.peak_force_n:.3f}",
-                f"{math.degrees(self.peak_planned_acceleration):.3f}",
-                f"{math.degrees(self.peak_angular_acceleration):.3f}"]
+        return [sig(self.rms_error_deg), sig(self.max_error_deg), sig(self.peak_force_n),
+                sig(math.degrees(self.peak_planned_acceleration)),
+                sig(math.degrees(self.peak_angular_acceleration))]
 
 
 HEADER = ["RMS error (deg)", "max error (deg)", "peak |f| (N)",
@@ -101,6 +106,25 @@ def coincide_note(a, b, unit: str, span: float) -> str:
     return ""
 
 
+def hidden_labels(series: list, labels: list[str], unit: str, span: float) -> list[str]:
+    """`labels`, each of a line that a later-drawn one covers (within 0.5 % of the
+    panel's span, about a line's width) saying which and how close: identical curves
+    would otherwise hide one another without a word."""
+    tol = 5e-3 * max(span, MIN_SPAN.get(unit, 0.0))
+    out = []
+    for i, line in enumerate(series):
+        gaps = [(float(np.nanmax(np.abs(np.asarray(line) - np.asarray(series[j])))), labels[j])
+                for j in range(i + 1, len(series))]
+        covered = [(gap, label) for gap, label in gaps if gap <= tol]
+        if covered:
+            gap, label = covered[-1]
+            out.append(f"{labels[i]} (hidden under {label}: "
+                       + ("equal)" if gap == 0.0 else f"within {gap:.1g} {unit})"))
+        else:
+            out.append(labels[i])
+    return out
+
+
 def _figure(rows: int):
     import matplotlib
     matplotlib.use("Agg")
@@ -137,19 +161,28 @@ def plot_tracking(result: dict, name: str, out_dir: Path,
     plt.close(fig)
 
     plt, fig, axes = _figure(2)
+    error, force = q - theta, vector(result, "plant", "force")
+    error_labels = hidden_labels([error[:, i] for i in range(3)], list(AXES), "deg",
+                                 float(np.ptp(error)))
+    force_labels = hidden_labels([force[:, i] for i in range(3)],
+                                 [f"actuator {i + 1}" for i in range(3)], "N",
+                                 float(np.ptp(force)))
     for i in range(3):
-        axes[0].plot(t, q[:, i] - theta[:, i], label=AXES[i])
-        axes[1].plot(t, result[f"plant.force[{i + 1}]"], label=f"actuator {i + 1}")
-    steady_axis(axes[0], q - theta, "deg")
-    steady_axis(axes[1], vector(result, "plant", "force"), "N")
-    axes[0].set_ylabel("tracking error (deg)")
-    axes[0].set_title(f"{name}: tracking error and actuator forces")
+        axes[0].plot(t, error[:, i], label=error_labels[i])
+        axes[1].plot(t, force[:, i], label=force_labels[i])
+    steady_axis(axes[0], error, "deg")
+    steady_axis(axes[1], force, "N")
+    axes[0].set_ylabel("error q - theta (deg)")
+    axes[0].set_title(f"{name}: tracking error (planned q minus plant theta) and actuator "
+                      "forces", fontsize=10)
     axes[1].set_ylabel("actuator force (N)")
     axes[1].set_xlabel("time (s)")
     for ax in axes:
         ax.grid(True)
-        ax.legend(loc="best", fontsize=8)
+        # Beside the panel: a legend never covers a curve.
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
     written.append(out_dir / f"{name}_error_forces.png")
+    fig.set_size_inches(10, 4.8)
     fig.tight_layout()
     fig.savefig(written[-1], dpi=110)
     plt.close(fig)
@@ -187,5 +220,8 @@ def plot_cubic_vs_quintic(cubic: dict, quintic: dict, motion: str, out_dir: Path
 
 def format_table(header: list[str], rows: list[list[str]]) -> str:
     widths = [max(len(r[k]) for r in [header, *rows]) for k in range(len(header))]
-    line = lambda r: "  ".join(c.rjust(w) if k else c.ljust(w) for k, (c, w) in enumerate(zip(r, widths)))
+
+    def line(r: list[str]) -> str:
+        return "  ".join(c.rjust(w) if k else c.ljust(w) for k, (c, w) in enumerate(zip(r, widths)))
+
     return "\n".join([line(header), line(["-" * w for w in widths]), *map(line, rows)])

@@ -10,6 +10,7 @@ import sys
 import time
 from pathlib import Path
 
+from .errors import output_path
 from .scenario import ScenarioError, load_scenario
 
 
@@ -22,7 +23,7 @@ def add_common(parser: argparse.ArgumentParser) -> None:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_common(parser)
-    parser.add_argument("--out", type=Path, default=Path("results"),
+    parser.add_argument("--out", type=output_path, default=Path("results"),
                         help="directory for the results (default: results)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.add_argument("--fmi3", action="store_true",
@@ -49,7 +50,7 @@ def run(args: argparse.Namespace) -> int:
     from .outputs import write_outputs
     out = output_dir(args.out)
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
-    options = {}
+    open_fmu = None  # the master's FMI 2.0 default
     if args.fmi3:
         from .fmi3 import fmi3_path, open_fmi3
         for alias, path in scenario.fmus.items():
@@ -57,10 +58,12 @@ def run(args: argparse.Namespace) -> int:
                 raise ScenarioError(f"--fmi3: {fmi3_path(path)} (the FMI 3.0 build of "
                                     f"fmus.{alias}) does not exist; build it with bash "
                                     "scripts/build-fmus.sh or run without --fmi3")
-        options["open_fmu"] = open_fmi3
+        open_fmu = open_fmi3
     progress = None if args.quiet else text_progress()
     started = time.perf_counter()
-    result = Master(scenario, progress=progress, **options).run()
+    master = (Master(scenario, progress=progress) if open_fmu is None
+              else Master(scenario, open_fmu=open_fmu, progress=progress))
+    result = master.run()
     wall = time.perf_counter() - started
     for line in result.discards:
         print(f"cosim: {line}")
@@ -69,9 +72,11 @@ def run(args: argparse.Namespace) -> int:
           f"wall time -> {out}/")
     human = summary.get("metrics_human", {})
     if human:
-        print(f"  RMS tracking error {human['rms_error_deg']:.5f} deg, max "
-              f"{human['max_error_deg']:.5f} deg, peak |actuator force| "
-              f"{human['peak_force_N']:.3f} N")
+        from .report import sig
+        print(f"  RMS tracking error {sig(human['rms_error_deg'])} deg (of |q - theta| over "
+              f"the 3 angles), max {sig(human['max_error_deg'])} deg (one angle), peak "
+              f"|actuator force| "
+              f"{sig(human['peak_force_N'])} N")
     for row in summary["limits"]:
         verdict = "ok" if row["passed"] else "EXCEEDED"
         print(f"  limit {row['limit']}: {row['measured']:.6g} {row['unit']} <= "

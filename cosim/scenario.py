@@ -11,10 +11,11 @@ Schema (TOML shown; JSON has the same structure)::
     coupling = "sampled"               # or "gauss-seidel" (optional, default "sampled")
     controller = "pid"                 # or "computed-torque": the closed loop's controller,
                                        # for the Rust reference (optional, default "pid")
-    input_extrapolation = "hold"       # or "linear": input slopes where the FMUs allow
+    input_extrapolation = "quadratic"  # or "linear", "hold" (or the order 2, 1, 0): input
+                                       # derivatives up to that order where the FMUs allow
 
-    [fmus]                             # alias -> FMU path (relative to this file)
-    planner = "../dist/Planner.fmu"
+    [fmus]                             # alias -> FMU path (relative to this file), or
+    planner = "Planner"                # the name of a bundled FMU (cosim fmus lists them)
 
     [parameters.planner]               # start values set before initialisation
     "tf" = 2.0
@@ -36,20 +37,22 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from . import bundle
 from .errors import ScenarioError
 from .schedule import PlanSwitch
 
 __all__ = ["PlanSwitch", "Scenario", "ScenarioError", "Signal", "Connection",
-           "load_scenario", "parse_document", "parse_scenario"]
+           "fmu_file", "load_scenario", "parse_document", "parse_scenario"]
 
 
 COUPLINGS = ("sampled", "gauss-seidel")
-EXTRAPOLATIONS = ("hold", "linear")
+EXTRAPOLATIONS = ("hold", "linear", "quadratic")  # index: the order of the input derivatives
 DEFAULT_STEP = 0.001  # s
 MAX_STEPS = 1_000_000  # communication steps of one run (the results are held in memory)
 MAX_SIGNALS = 1000  # connections and recorded signals
@@ -89,7 +92,7 @@ class Scenario:
     record: list[Signal] = field(default_factory=list)
     max_step_halvings: int = 0
     coupling: str = "sampled"
-    input_extrapolation: str = "linear"
+    input_extrapolation: str = "quadratic"
     # Plan switches of a multi-segment motion (PlanSwitch), in order.
     schedule: list = field(default_factory=list)
     # Limits the run is judged against (cosim.limits), SI.
@@ -139,8 +142,8 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if not isinstance(data, dict):
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
-             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits", "plan_switches",
-             "input_extrapolation", "controller"}
+             "parameters", "connections", "record", "max_step_halvings", "coupling", "limits",
+             "plan_switches", "input_extrapolation", "controller"}
     unknown = sorted(set(data) - known, key=str)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
@@ -218,18 +221,26 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     coupling = data.get("coupling", "sampled")
     if coupling not in COUPLINGS:
         raise ScenarioError(f"field 'coupling' must be one of {COUPLINGS}, got {coupling!r}")
-    extrapolation = data.get("input_extrapolation", "linear")
+    extrapolation = data.get("input_extrapolation", "quadratic")
+    if type(extrapolation) is int and 0 <= extrapolation < len(EXTRAPOLATIONS):
+        extrapolation = EXTRAPOLATIONS[extrapolation]
     if extrapolation not in EXTRAPOLATIONS:
-        raise ScenarioError(f"field 'input_extrapolation' must be one of {EXTRAPOLATIONS}, "
-                            f"got {extrapolation!r}")
+        raise ScenarioError(f"field 'input_extrapolation' must be one of {EXTRAPOLATIONS} "
+                            f"or the order 0, 1 or 2, got {extrapolation!r}")
     from .controllers import kind_of
     from .limits import parse_limits
-    return Scenario(controller=kind_of(data), name=name, fmus=fmus, order=list(order), start_time=start, stop_time=stop,
+    return Scenario(controller=kind_of(data), name=name, fmus=fmus, order=list(order),
+                    start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
                     record=record, max_step_halvings=halvings, coupling=coupling,
                     input_extrapolation=extrapolation, description=data.get("description"),
                     limits=parse_limits(data.get("limits", {})),
                     schedule=_plan_switches(data.get("plan_switches", []), fmus, round(steps)))
+
+
+def extrapolation_order(name: str) -> int:
+    """The order of the input derivatives of input_extrapolation `name` (hold: 0)."""
+    return EXTRAPOLATIONS.index(name)
 
 
 def _plan_switches(raw, fmus, steps: int) -> list[PlanSwitch]:
@@ -261,10 +272,33 @@ def _plan_switches(raw, fmus, steps: int) -> list[PlanSwitch]:
     return switches
 
 
+def _bundled_fmu(alias: str, name: str, fmu_dir) -> Path:
+    """The FMU a scenario names without a path: `name`.fmu in `fmu_dir` (fmi3/ in front
+    kept), else the bundled one (the wheel's; in a checkout, dist/'s)."""
+    if fmu_dir is not None:
+        return (Path(fmu_dir) / f"{name}.fmu").absolute()
+    path = bundle.fmu(name)
+    if path is None:
+        raise ScenarioError(f"field 'fmus.{alias}': '{name}' is not a bundled FMU "
+                            f"({bundle.where_fmus_come_from()}); name one of those or a "
+                            "path to an .fmu file")
+    return path
+
+
+def fmu_file(alias: str, entry: str, base_dir: Path, fmu_dir=None) -> Path:
+    """The file a scenario's FMU entry names: a bundled FMU's name (_bundled_fmu), else a
+    path by file name in `fmu_dir`, else relative to the scenario's folder `base_dir`
+    (for readers of the raw document, such as the sweeps; no fallback to dist/)."""
+    if bundle.is_name(entry):
+        return _bundled_fmu(alias, entry, fmu_dir)
+    return Path(fmu_dir) / Path(entry).name if fmu_dir is not None else Path(base_dir) / entry
+
+
 def _find_fmus(data: dict, base_dir: Path, fmu_dir) -> dict:
-    """The document with its FMU paths found: by file name in `fmu_dir`, else relative
-    to the scenario, else (a file that is not there) by file name in the repository's
-    dist/ when this package runs from a checkout."""
+    """The document with its FMU paths found: a name without .fmu among the bundled
+    FMUs (_bundled_fmu); a path by file name in `fmu_dir`, else relative to the
+    scenario, else (a file that is not there) by file name in the repository's dist/
+    when this package runs from a checkout."""
     if not isinstance(data, dict) or not isinstance(data.get("fmus"), dict):
         return data
     found = {}
@@ -272,9 +306,16 @@ def _find_fmus(data: dict, base_dir: Path, fmu_dir) -> dict:
         if not isinstance(f, str) or not f:
             found[alias] = f  # parse_scenario names the field
             continue
+        if bundle.is_name(f):  # "Pss3Plant", "fmi3/PID": a bundled FMU (cosim.bundle)
+            found[alias] = str(_bundled_fmu(alias, f, fmu_dir))
+            continue
         path = (Path(fmu_dir) / Path(f).name if fmu_dir is not None else base_dir / f).absolute()
         fallback = REPOSITORY_DIST / Path(f).name
         if fmu_dir is None and not path.exists() and fallback.is_file():
+            from .notes import say
+            say(f"field 'fmus.{alias}': {os.path.normpath(path)} is not there; running the repository's "
+                f"{fallback} instead (found by file name in its dist/); give the right "
+                "path or --fmu-dir DIR to run your own FMU")
             path = fallback
         found[alias] = str(path)
     return dict(data, fmus=found)

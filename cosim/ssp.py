@@ -13,11 +13,11 @@ modelDescription.xml. docs/interoperability.md says which tool reads what.
 
 from __future__ import annotations
 
-import sys
 import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
+from .errors import output_path
 from .scenario import Scenario, ScenarioError, load_scenario, schedule_field
 from .ssp_annotations import default_experiment, system_annotations
 from .ssp_annotations import tag as _tag
@@ -27,7 +27,9 @@ from .ssp_annotations import tag as _tag
 # component's first set when none is named.
 PARAMETER_SET = "scenario"
 NO_SCHEDULE = ("a multi-segment motion (a sequence of plans) has no SSP form: SSP parameters "
-               "are fixed for the whole run")
+               "are fixed for the whole run; export one segment at a time (a copy of the "
+               "scenario with two of its waypoints, the first as start), or run the whole "
+               "motion with 'cosim run'")
 
 
 def _variables(path: Path) -> dict:
@@ -123,9 +125,11 @@ def write_ssp(scenario: Scenario, path: Path) -> None:
     variables = {alias: _variables(p) for alias, p in scenario.fmus.items()}
     tree = system_structure(scenario, variables)
     ET.indent(tree)
+    root = tree.getroot()
+    assert root is not None  # system_structure builds the document from its root
     path.parent.mkdir(parents=True, exist_ok=True)
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
-        z.writestr("SystemStructure.ssd", ET.tostring(tree.getroot(), encoding="unicode",
+        z.writestr("SystemStructure.ssd", ET.tostring(root, encoding="unicode",
                                                       xml_declaration=True))
         written = set()
         for alias, name in resources(scenario.fmus).items():
@@ -152,7 +156,7 @@ def fmpy_parameter_set(path: Path):
 def add_arguments(parser) -> None:
     """``cosim ssp SCENARIO --out X.ssp``."""
     parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
-    parser.add_argument("--out", type=Path, required=True, help="SSP file to write (.ssp)")
+    parser.add_argument("--out", type=output_path, required=True, help="SSP file to write (.ssp)")
     parser.add_argument("--fmu-dir", type=Path, help="find the FMUs by file name here")
 
 

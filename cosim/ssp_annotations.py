@@ -9,8 +9,12 @@ another namespace, and a tool skips the types it does not know):
   osp:FixedStepAlgorithm baseStepSize (its ssp_parser.cpp; without it, and without a
   step size from the caller, libcosim 0.11.2 crashes);
 - OMSimulator: ssd:System / ssd:Annotations / ssc:Annotation type="org.openmodelica" /
-  oms:Annotations / oms:SimulationInformation / oms:FixedStepMaster stepSize (the form
-  its own SSP export writes);
+  oms:Annotations / oms:SimulationInformation / oms:FixedStepMaster with description
+  (the master, "oms-ma"), stepSize and relativeTolerance, the three attributes its
+  reader takes (SystemWC::importFromSSD_SimulationInformation) and its own SSP export
+  writes. A missing relativeTolerance reads as 0, which OMSimulator then passes to every
+  FMU as a defined tolerance (fmi2SetupExperiment(toleranceDefined = true, 0)); the
+  FMUs here refuse that (docs/interoperability.md), so it is always written;
 - ecos and FMPy take the step size from the caller only.
 
 libcosim and ecos match element names with their prefixes (boost property_tree,
@@ -54,11 +58,18 @@ def default_experiment(start_time: float, stop_time: float, step_size: float) ->
     return experiment
 
 
+# The relative tolerance written for OMSimulator: its own default (System.h), what it
+# would use had the SSP not set one. The FMUs here take no tolerance from the importer
+# (fixed-step models; the plant's integrator has its own parameter), so the value only
+# has to be one they accept: a positive number.
+RELATIVE_TOLERANCE = 1e-4
+
+
 def system_annotations(step_size: float) -> ET.Element:
     """The ssd:Annotations of a system with OMSimulator's fixed-step master."""
     annotations, annotation = _annotations("org.openmodelica")
     info = ET.SubElement(ET.SubElement(annotation, tag("oms", "Annotations")),
                          tag("oms", "SimulationInformation"))
     ET.SubElement(info, tag("oms", "FixedStepMaster"), description="oms-ma",
-                  stepSize=repr(step_size))
+                  stepSize=repr(step_size), relativeTolerance=repr(RELATIVE_TOLERANCE))
     return annotations

@@ -44,7 +44,7 @@ class Workspace:
         self.fmu = FmuInstance("plant", Path(plant_fmu), 0.0, 1.0)
         self.fresh = True
 
-    def __enter__(self) -> "Workspace":
+    def __enter__(self) -> Workspace:
         return self
 
     def __exit__(self, *_exc) -> None:

@@ -1,19 +1,22 @@
 """Instructions per communication step of the master against the FMU calls it makes
 (callgrind: counts, not times, so the figure does not depend on the machine's load).
 
-    python scripts/bench_master_calls.py [--steps 200,1200] [--scenario regulation]
+    python scripts/bench_master_calls.py [--steps 50,1050] [--scenario regulation]
 
-For each input_extrapolation (hold, linear) and each of two run lengths it runs the
+For each input_extrapolation (hold, linear, quadratic) and each of two run lengths it runs the
 master under callgrind and counts every instruction of the process and, apart, the
 inclusive cost of every call from outside the FMUs' libraries into them (the FMU calls
 alone: the FMU's own work with what it calls, libm and the allocator included). The
 difference between the two run lengths removes start-up and initialisation; per step:
-the master's total, the FMU calls alone, their ratio.
+the master's total, the FMU calls alone, their ratio. Python's string hashing is fixed
+(PYTHONHASHSEED=0): with random seeds the interpreter's dictionary work differs from
+run to run by some million instructions, tens of thousands a step over 200 steps.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import subprocess
 import sys
@@ -74,21 +77,22 @@ def instructions(mode: str, steps: int, scenario: Path, work: Path) -> tuple[int
     out = work / f"cg.{mode}.{steps}"
     code = RUN.format(root=str(ROOT), scenario=str(scenario), stop=steps * 1e-3, mode=mode)
     subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}",
-                    sys.executable, "-c", code], check=True, capture_output=True)
+                    sys.executable, "-c", code], check=True, capture_output=True,
+                   env={**os.environ, "PYTHONHASHSEED": "0"})
     summary = re.search(r"^summary:\s+(\d+)", out.read_text(), re.MULTILINE)
     return int(summary.group(1)), fmu_call_cost(out)
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--steps", default="50,250")
+    parser.add_argument("--steps", default="50,1050")
     parser.add_argument("--scenario", default="regulation")
     args = parser.parse_args(argv)
     short, long = (int(x) for x in args.steps.split(","))
     scenario = ROOT / "scenarios" / f"{args.scenario}.toml"
     print(f"{args.scenario}: instructions per step (callgrind, runs of {long} - {short} steps)")
     with tempfile.TemporaryDirectory() as work:
-        for mode in ("hold", "linear"):
+        for mode in ("hold", "linear", "quadratic"):
             (t0, f0), (t1, f1) = (instructions(mode, n, scenario, Path(work))
                                   for n in (short, long))
             total, fmu = (t1 - t0) / (long - short), (f1 - f0) / (long - short)

@@ -22,4 +22,11 @@ bash scripts/install-platform-test-tools.sh
 # FMUs through a real importer: create the pinned venv, run pytest
 # (pytest exits 5 when it collects nothing; that counts as a failure too).
 bash scripts/setup-venv.sh
+# The harness's lint and types (configured in pyproject.toml): zero findings.
+.venv/bin/ruff check cosim
+.venv/bin/mypy
 .venv/bin/python -m pytest tests/python -q
+# The wheel as a user installs it: built, installed into a fresh venv in an empty folder
+# (no checkout, no Rust on PATH), a bundled scenario and a bundled `cosim verify` case run
+# there; cosim --version = Cargo.toml's version = every FMU's (about a minute, mostly pip).
+bash scripts/test-wheel.sh

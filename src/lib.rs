@@ -7,9 +7,9 @@
 //! (crates/cli) sits on top and owns plotting and file output.
 
 pub use robofmu_control as control;
+pub use robofmu_dynamics::computed_torque;
 
 pub mod closed_loop;
-pub mod computed_torque;
 pub mod dexterity;
 pub mod dual_arm;
 pub mod pss3;

@@ -9,6 +9,7 @@ import math
 import sys
 from pathlib import Path
 
+from ..errors import output_path
 from .errors import COMMAND_LINE, AnimateError
 from .geometry import PARAMETERS, robot
 from .motion import read_motion
@@ -25,7 +26,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                           "red) and write RESULT.gif (docs/animation.md).")
     parser.add_argument("csv", type=Path, help="result CSV of a run (cosim run writes "
                         "results/NAME.csv)")
-    parser.add_argument("--out", type=Path, default=Path("results"),
+    parser.add_argument("--out", type=output_path, default=Path("results"),
                         help="folder for NAME.gif (and NAME.mp4) (default: results)")
     parser.add_argument("--fmu", type=Path, help="the Pss3Plant FMU whose parameters drew "
                         f"the run (default: the scenario's, else {DEFAULT_FMU})")

@@ -42,8 +42,9 @@ class Canvas:
         ax.set_xlim(-reach, reach)
         ax.set_ylim(-reach, reach)
         ax.set_zlim(0.0, top)
-        # Without axes there is room to zoom in on the robot.
-        zoom = 1.3 if self.size < DETAILED_PX else 1.0
+        # Without axes there is room to zoom in on the robot; with them, the box is drawn
+        # smaller so that the x-axis label and ticks stay inside the frame.
+        zoom = 1.3 if self.size < DETAILED_PX else 0.86
         ax.set_box_aspect((1.0, 1.0, top / (2.0 * reach)), zoom=zoom)
         ax.view_init(elev=22, azim=-60)
         if self.size < DETAILED_PX:

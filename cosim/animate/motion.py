@@ -105,6 +105,7 @@ def read_motion(path: Path, plant: str | None = None, planner: str | None = None
     time = _column(path, names, rows, "time")
     if np.any(np.diff(time) < 0.0):
         raise AnimateError(str(path), "time", "goes backwards; give the CSV a run wrote")
-    return Motion(source=str(path), plant=plant, time=time, theta=triple(f"{plant}.theta"),
+    theta = np.column_stack([_column(path, names, rows, n) for n in theta_names])
+    return Motion(source=str(path), plant=plant, time=time, theta=theta,
                   planned=triple(f"{planner}.q") if planner else None,
                   l=triple(f"{plant}.l"), at_stop=triple(f"{plant}.atStop"))

@@ -25,7 +25,7 @@ class Animation:
     def summary(self) -> str:
         """One line: frames, time span and the first frame where each end stop shows."""
         first, last = self.frames[0].time, self.frames[-1].time
-        hits = {}
+        hits: dict[tuple[int, int], float] = {}  # (leg, side) -> first time at the stop
         for frame in self.frames:
             for leg, side in enumerate(frame.stops):
                 if side:

@@ -14,7 +14,6 @@ written next to it at the end. See cosim.sweep.spec for the SPEC format.
 
 from __future__ import annotations
 
-import os
 from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -107,10 +106,10 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
         header, rows = read_table(table.path)
         axes = [c for c, v in zip(header[3:], _kinds(spec)) if v != "random"]
         written = plot_sweep(header, rows, axes, any(v.kind == "random" for v in spec.varied),
-                             out, spec.name)
+                             out, spec.name, spec.about())
     return SweepOutcome(table.path, written, len(todo), len(spec.runs) - len(todo),
                         bar.failed, time.perf_counter() - started, completed_at, reasons,
-                        setup["batch"], setup["ready_s"], started, client_cpu)
+                        int(setup["batch"]), setup["ready_s"], started, client_cpu)
 
 
 def _kinds(spec: Spec) -> list[str]:

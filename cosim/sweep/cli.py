@@ -10,13 +10,14 @@ import argparse
 import sys
 from pathlib import Path
 
+from ..errors import output_path
 from . import SpecError, load_spec, reachable_on, run_sweep
 from .spec import MAX_RUNS
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("spec", type=Path, help="sweep specification (.toml)")
-    parser.add_argument("--out", type=Path, default=Path("results"),
+    parser.add_argument("--out", type=output_path, default=Path("results"),
                         help="directory for the table and plots (default: results)")
     parser.add_argument("--scheduler", help="address of an existing Dask scheduler, e.g. "
                         "tcp://host:8786 (default: a LocalCluster with one worker process "
@@ -94,7 +95,11 @@ def _reachable(args):
             return None
     except (OSError, KeyError, TypeError, ValueError, tomllib.TOMLDecodeError):
         return None
-    path = (args.fmu_dir / Path(plant).name) if args.fmu_dir else scenario.parent / plant
+    from ..scenario import ScenarioError, fmu_file
+    try:
+        path = fmu_file("plant", plant, scenario.parent, args.fmu_dir)
+    except ScenarioError:
+        return None  # not a bundled FMU: load_spec names the field
     return reachable_on(path)
 
 

@@ -15,7 +15,6 @@ from __future__ import annotations
 import contextlib
 import os
 from concurrent.futures import ThreadPoolExecutor
-from pathlib import Path
 
 from . import scratch
 from .runner import FmuStore, execute, run_on_worker, warm, worker_plugin
@@ -43,9 +42,15 @@ def auto_batch(runs: int, workers: int, steps: int) -> int:
 def _steps(todo) -> int:
     """Communication steps of a run (of the first: the runs of a sweep differ in
     parameters, rarely in length); an estimate for auto_batch only."""
-    from ..scenario import parse_document
-    try:
-        return parse_document(todo[0][2], Path(".")).steps
+    from ..units import quantity
+    document = todo[0][2]
+
+    def seconds(key, default):
+        value = document.get(key, default)
+        return float(value) if isinstance(value, (int, float)) else quantity(value, "time", key)
+    try:  # the times alone: resolving the whole document needs its FMUs (their folder)
+        span = seconds("stop_time", 0.0) - seconds("start_time", 0.0)
+        return max(1, round(span / seconds("step_size", 1e-3)))
     except Exception:  # noqa: BLE001 - an estimate; the run itself reports a problem
         return 1000
 
@@ -107,7 +112,8 @@ def _meanwhile(todo, store, fmus, record, starting) -> int:
     return made
 
 
-PRELOAD = ["distributed", "numpy", "fmpy", "cosim.sweep.runner"]
+PRELOAD = ["distributed", "numpy", "fmpy", "cosim.sweep.runner",
+           "cosim.sweep.worker_signals"]  # the last: workers leave Ctrl-C to the sweep
 
 
 def _worker_processes():

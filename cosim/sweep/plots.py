@@ -55,8 +55,9 @@ def spread(rows, keys, metric) -> dict:
 
 
 def plot_sweep(header: list[str], rows: list[dict], axes: list[str], random: bool,
-               out: Path, name: str) -> list[Path]:
-    """`axes`: the grid and workspace columns; returns the files written."""
+               out: Path, name: str, about: str = "") -> list[Path]:
+    """`axes`: the grid and workspace columns; `about`: the sweep's title (its name,
+    what is drawn at random and how); returns the files written."""
     ok = [r for r in rows if r.get("status") == "ok"]
     metrics = [m for m in PLOTTED if _finite(ok, m)]
     if not ok or not metrics:
@@ -64,10 +65,12 @@ def plot_sweep(header: list[str], rows: list[dict], axes: list[str], random: boo
     varying = [a for a in axes if len({r[a] for r in ok}) > 1]
     written = []
     if varying:
-        written.append(_grid_plot(ok, varying, metrics, out / f"{name}_grid.png"))
+        written.append(_grid_plot(ok, varying, metrics, out / f"{name}_grid.png",
+                                  about or name))
     if random and min(Counter(tuple(r[a] for a in varying) for r in ok).values()) >= \
             MIN_HISTOGRAM_DRAWS:
-        written.append(_histograms(ok, metrics, varying, out / f"{name}_histogram.png"))
+        written.append(_histograms(ok, metrics, varying, out / f"{name}_histogram.png",
+                                   about or name))
     return written
 
 
@@ -82,9 +85,57 @@ def _panels(count: int, height: float):
     return plt, fig, panels.flat
 
 
-def _grid_plot(rows, varying, metrics, path: Path) -> Path:
+SAME = 1e-9  # relative: a metric that varies less is "the same in every run"
+SMALL = 0.01  # relative spread below which a panel's axis is widened (see _unmagnified)
+
+
+def _unit(metric: str) -> str:
+    return PLOTTED[metric].rsplit("(", 1)[1].rstrip(")")
+
+
+def _constant(rows, metric) -> float | None:
+    """The metric's value when it is the same in every run (to SAME), else None."""
+    values = [r[metric] for r in rows if isinstance(r.get(metric), float)
+              and math.isfinite(r[metric])]
+    low, high = min(values), max(values)
+    return values[0] if high - low <= SAME * max(abs(low), abs(high)) else None
+
+
+def _why_constant(rows, metric) -> str:
+    """Why a metric can be the same in every run (the regulation's start offset)."""
+    regulation = any(isinstance(r.get("settling_time_s"), float)
+                     and math.isfinite(r["settling_time_s"]) for r in rows)
+    if metric == "max_error_deg" and regulation:
+        return ("\nthe start offset of the regulation (it starts away from its setpoint),\n"
+                "not a tracking error: see the RMS error and the settling time")
+    return ""
+
+
+def _unmagnified(ax, values, unit: str) -> None:
+    """A spread below SMALL of the values' magnitude is drawn on an axis of +-5 % of the
+    median, with a note, instead of filling the panel (0.6 % would look as large as
+    the error panels' factor of two)."""
+    x = np.asarray([v for v in values if math.isfinite(v)])
+    median = float(np.median(x))
+    if median == 0.0 or np.ptp(x) >= SMALL * abs(median):
+        return
+    ax.set_ylim(median - 0.05 * abs(median), median + 0.05 * abs(median))
+    ax.text(0.02, 0.04, f"spread {100 * np.ptp(x) / abs(median):.2g} % of the median; "
+            "axis +-5 %", transform=ax.transAxes, fontsize=7)
+
+
+def _grid_plot(rows, varying, metrics, path: Path, about: str) -> Path:
     plt, fig, panels = _panels(len(metrics), 3.6)
     for ax, metric in zip(panels, metrics):
+        same = _constant(rows, metric)
+        if same is not None and metric != "wall_s":
+            ax.text(0.5, 0.5, f"{same:.4g} {_unit(metric)} in every run"
+                    + _why_constant(rows, metric), ha="center", va="center",
+                    transform=ax.transAxes, fontsize=8)
+            ax.set_xticks([])
+            ax.set_yticks([])
+            ax.set_title(PLOTTED[metric], fontsize=9)
+            continue
         stats = spread(rows, varying[:2], metric)
         draws = max(n for *_, n in stats.values())
         if len(varying) == 2:
@@ -110,9 +161,12 @@ def _grid_plot(rows, varying, metrics, path: Path) -> Path:
                         ".", color="0.35", markersize=3, label="each draw")
                 ax.legend(fontsize=7)
             ax.set_ylabel(PLOTTED[metric])
+            _unmagnified(ax, [v for vs in _values_over(rows, varying[:1], metric).values()
+                              for v in vs], _unit(metric))
             note = ""
         ax.set_xlabel(varying[0])
         ax.set_title(PLOTTED[metric] + (f"\n{note}" if note else ""), fontsize=9)
+    fig.suptitle(about, fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -125,7 +179,7 @@ def _band(draws: int) -> str:
     return f"range of {draws} draws"
 
 
-def _histograms(rows, metrics, varying, path: Path) -> Path:
+def _histograms(rows, metrics, varying, path: Path, about: str) -> Path:
     """One histogram per metric over the random draws. With grid points, each run's
     value is taken relative to the median of its grid point (the spread the random
     quantities cause), in percent."""
@@ -153,8 +207,8 @@ def _histograms(rows, metrics, varying, path: Path) -> Path:
         ax.set_xlabel(PLOTTED[metric] + (": % from the grid point's median"
                                          if relative else ""), fontsize=8)
         ax.set_ylabel("runs")
-    fig.suptitle(f"Monte Carlo over the random draws ({len(rows)} runs"
-                 + (f", {len(groups)} grid points)" if relative else ")"), fontsize=10)
+    fig.suptitle(f"{about}\nMonte Carlo over the random draws ({len(rows)} runs"
+                 + (f", {len(groups)} grid points)" if relative else ")"), fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -20,6 +20,7 @@ import math
 import shutil
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -74,10 +75,15 @@ class FmuStore:
         for digest, data in self.blobs.items():
             (self.folder / f"{digest}.fmu").write_bytes(data)
 
-    def path(self, digest: str) -> Path:
+    def ready(self) -> Path:
+        """The folder of the FMUs, written on first use."""
         if self.folder is None:
             self.setup()
-        return self.folder / f"{digest}.fmu"
+        assert self.folder is not None  # setup made it
+        return self.folder
+
+    def path(self, digest: str) -> Path:
+        return self.ready() / f"{digest}.fmu"
 
     def close(self) -> None:
         """Frees the idle instances and removes the FMU files."""
@@ -92,10 +98,11 @@ class FmuStore:
 
 def read_fmus(document: dict, base: Path, fmu_dir: Path | None) -> tuple[dict, dict]:
     """(alias -> digest, digest -> bytes) of a scenario document's FMUs."""
+    from ..scenario import fmu_file
     from .spec import SpecError
     by_alias, blobs = {}, {}
     for alias, name in document.get("fmus", {}).items():
-        path = (fmu_dir / Path(str(name)).name) if fmu_dir is not None else base / str(name)
+        path = fmu_file(alias, str(name), base, fmu_dir)
         try:
             data = Path(path).read_bytes()
         except OSError as e:
@@ -113,7 +120,7 @@ def execute(store: FmuStore, document: dict, fmus: dict[str, str]) -> dict:
     local = dict(document, fmus={a: str(store.path(d)) for a, d in fmus.items()})
     pool = store.pool
     try:
-        scenario = parse_document(local, store.folder)
+        scenario = parse_document(local, store.ready())
         for i in (1, 2, 3):
             stop = Signal("plant", f"stopForce[{i}]")
             if stop not in scenario.record:
@@ -138,7 +145,10 @@ def execute(store: FmuStore, document: dict, fmus: dict[str, str]) -> dict:
 def metrics(result) -> dict:
     """Tracking error (deg), peak actuator force and limits, settling time, discards."""
     columns = {k: np.asarray(v) for k, v in result.columns.items()}
-    vec = lambda alias, n: np.stack([columns[f"{alias}.{n}[{i}]"] for i in (1, 2, 3)], 1)
+
+    def vec(alias: str, n: str) -> np.ndarray:
+        return np.stack([columns[f"{alias}.{n}[{i}]"] for i in (1, 2, 3)], 1)
+
     error = vec("planner", "q") - vec("plant", "theta")
     axis_error = np.abs(error).max(axis=1)
     peak_force = float(np.abs(vec("plant", "force")).max())
@@ -211,5 +221,5 @@ def worker_plugin(blobs: dict[str, bytes], fmus: dict[str, str]):
 def run_on_worker(batch: list[tuple[str, dict]], fmus: dict[str, str]) -> list:
     """The task function: a batch of runs on a Dask worker with the plugin's store."""
     from distributed import get_worker
-    store = get_worker().plugins[_STORE_NAME].store
-    return execute_batch(store, batch, fmus)
+    plugin: Any = get_worker().plugins[_STORE_NAME]  # worker_plugin's FmuPlugin
+    return execute_batch(plugin.store, batch, fmus)

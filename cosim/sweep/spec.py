@@ -1,6 +1,6 @@
 """Sweep specifications: a base scenario plus what varies, expanded into runs.
 
-A SPEC is a TOML file::
+A SPEC is a TOML file (every key, type, default and limit: docs/sweeps.md)::
 
     scenario = "../scenarios/three_axis_quintic.toml"   # relative to the SPEC file
     name = "gains"            # output names (optional, default: the SPEC file's stem)
@@ -26,7 +26,8 @@ A SPEC is a TOML file::
     thz = {from = 130, to = 150, steps = 3}
     unit = "deg"
 
-Every varied name is a path into the scenario document ("table.key", "list[index]").
+Every varied name is a path into the scenario document ("table.key", "list[index]",
+indices from 0, none negative).
 The runs are the product of the grid values, the reachable workspace targets and the
 random draws (common random numbers: draw j is the same at every grid point). A
 malformed SPEC raises SpecError naming the field.
@@ -47,13 +48,16 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import CosimError
-from ..scenario import ScenarioError
+from ..scenario import ScenarioError, fmu_file
 
 DISTRIBUTIONS = {"normal": ("mean", "sd"), "uniform": ("low", "high")}
 MAX_RUNS = 1_000_000  # runs of one sweep (grid points x workspace targets x draws)
 MAX_SEED = 2 ** 63 - 1
 MAX_TARGETS = 10_000  # workspace targets, each checked by initialising the plant
 KNOWN = {"scenario", "name", "seed", "samples", "grid", "random", "workspace", "fmu_dir"}
+GRID_KEYS = {"from", "to", "steps", "values", "unit"}
+RANDOM_KEYS = {"distribution", "mean", "sd", "low", "high", "min", "max", "unit"}
+WORKSPACE_KEYS = {"path", "unit", "thx", "thy", "thz"}
 
 
 class SpecError(ValueError):
@@ -77,9 +81,39 @@ class Spec:
     varied: list[Varied]
     runs: list[dict] = field(default_factory=list)  # column -> value (float or list)
     fmu_dir: Path | None = None
+    randoms: dict = field(default_factory=dict)  # path -> its [random] table
+
+    def about(self) -> str:
+        """A title: the sweep's name, its runs and what is drawn at random, how."""
+        text = f"sweep {self.name}: {len(self.runs)} runs"
+        for path, t in self.randoms.items():
+            u = f" {t['unit']}" if "unit" in t else ""
+            law = (f"normal, mean {t['mean']:g}{u}, sd {t['sd']:g}{u}"
+                   if t.get("distribution") == "normal"
+                   else f"uniform in [{t.get('low'):g}, {t.get('high'):g}]{u}")
+            if "min" in t or "max" in t:
+                law += (f", truncated to [{t.get('min', -math.inf):g}, "
+                        f"{t.get('max', math.inf):g}]{u}")
+            text += f"; random {path}: {law}"
+        if self.randoms:
+            draws = len({run_id({k: v for k, v in r.items()
+                                 if k not in self.randoms}) for r in self.runs})
+            text += f" ({len(self.runs) // max(draws, 1)} draws per grid point, the same at each)"
+        return text
+
+
+def _unknown(table: dict, allowed: set, where: str) -> None:
+    """Refuses a key of `table` outside `allowed`, naming it and the allowed ones."""
+    unknown = sorted(set(table) - allowed)
+    if unknown:
+        prefix = f"{where}." if where else ""
+        raise SpecError(f"unknown field '{prefix}{unknown[0]}'; allowed: "
+                        f"{', '.join(sorted(allowed))} (docs/sweeps.md)")
 
 
 def _number(table: dict, key: str, where: str) -> float:
+    if key not in table:
+        raise SpecError(f"missing field '{where}.{key}' (docs/sweeps.md)")
     value = table.get(key)
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise SpecError(f"field '{where}.{key}' must be a finite number, got {value!r}")
@@ -97,6 +131,10 @@ def grid_values(table, where: str) -> list[float]:
     """from/to/steps (inclusive, evenly spaced) or an explicit values list."""
     if not isinstance(table, dict):
         raise SpecError(f"field '{where}' must be a table (from/to/steps or values)")
+    _unknown(table, GRID_KEYS if where.startswith("grid.") else {"from", "to", "steps",
+                                                                 "values"}, where)
+    if "values" in table and ({"from", "to", "steps"} & set(table)):
+        raise SpecError(f"field '{where}': give from/to/steps or values, not both")
     if "values" in table:
         values = table["values"]
         if not isinstance(values, list) or not values:
@@ -122,6 +160,8 @@ def _draw(rng: np.random.Generator, table: dict, where: str) -> float:
     if kind not in DISTRIBUTIONS:
         raise SpecError(f"field '{where}.distribution' must be one of "
                         f"{sorted(DISTRIBUTIONS)}, got {kind!r}")
+    other = {k for d, keys in DISTRIBUTIONS.items() if d != kind for k in keys}
+    _unknown(table, RANDOM_KEYS - other, where)
     a, b = (_number(table, key, where) for key in DISTRIBUTIONS[kind])
     low = _number(table, "min", where) if "min" in table else -math.inf
     high = _number(table, "max", where) if "max" in table else math.inf
@@ -152,7 +192,10 @@ def random_draws(tables: dict, seed, samples) -> list[list[float]]:
             for _ in range(samples)]
 
 
-_STEP = re.compile(r"([^.\[\]]+)|\[(-?\d+)\]")
+_STEP = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
+PATH_FORM = ("a path like \"table.key\" or \"list[0].key\" (list indices count from 0, "
+             "as in the scenario's own messages: motion.waypoints[0] is the first "
+             "waypoint; no negative indices)")
 
 
 def set_path(document: dict, path: str, value) -> None:
@@ -161,19 +204,29 @@ def set_path(document: dict, path: str, value) -> None:
             for m in _STEP.finditer(path)]
     if not keys or "".join(f".{k}" if isinstance(k, str) else f"[{k}]" for k in keys
                            ).lstrip(".") != path:
-        raise SpecError(f"field '{path}' is not a path like \"table.key\" or \"list[1].key\"")
+        raise SpecError(f"field '{path}' is not {PATH_FORM}")
     node = document
     for key, following in zip(keys, keys[1:]):
-        try:
-            if isinstance(key, str) and key not in node:
-                node[key] = {} if isinstance(following, str) else []
-            node = node[key]
-        except (TypeError, IndexError, KeyError):
-            raise SpecError(f"field '{path}': '{key}' does not exist in the scenario") from None
-    try:
-        node[keys[-1]] = value
-    except (TypeError, IndexError):
-        raise SpecError(f"field '{path}': '{keys[-1]}' does not exist in the scenario") from None
+        _check_step(node, key, path)
+        if isinstance(key, str) and key not in node:
+            node[key] = {} if isinstance(following, str) else []
+        node = node[key]
+    _check_step(node, keys[-1], path)
+    node[keys[-1]] = value
+
+
+def _check_step(node, key, path: str) -> None:
+    """Refuses `node[key]` unless node is a table (key a name) or a list (key an index
+    below its length), naming the path."""
+    if isinstance(key, int):
+        if not isinstance(node, list):
+            raise SpecError(f"field '{path}': [{key}] indexes something that is not a list "
+                            "in the scenario")
+        if key >= len(node):
+            raise SpecError(f"field '{path}': index [{key}] is past the end of a list of "
+                            f"{len(node)} (indices 0 to {len(node) - 1})")
+    elif not isinstance(node, dict):
+        raise SpecError(f"field '{path}': '{key}' does not exist in the scenario")
 
 
 def written(value, unit: str | None):
@@ -214,9 +267,7 @@ def load_spec(path: str | Path, fmu_dir: str | Path | None = None,
 
 def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
                reachable=None) -> Spec:
-    unknown = sorted(set(data) - KNOWN)
-    if unknown:
-        raise SpecError(f"unknown field '{unknown[0]}'")
+    _unknown(data, KNOWN, "")
     if not isinstance(data.get("scenario"), str):
         raise SpecError("field 'scenario' must name the base scenario file")
     scenario = (base / data["scenario"]).resolve()
@@ -231,7 +282,8 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
         fmu_dir = base / str(data["fmu_dir"])
     check_fmus(document, scenario, fmu_dir)
     grid, randoms = _tables(data, "grid"), _tables(data, "random")
-    varied, axes = [], []
+    varied: list[Varied] = []
+    axes: list[list] = []  # the values of each grid axis, then the workspace targets
     for p, table in grid.items():
         axes.append(grid_values(table, f"grid.{p}"))
         varied.append(Varied(p, _unit(table, f"grid.{p}"), "grid"))
@@ -241,7 +293,7 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
         varied.append(Varied(data["workspace"]["path"], unit, "workspace"))
         axes.append(targets)
     _check_size(axes, data.get("samples") if randoms else 1)
-    draws = [[]]
+    draws: list[list] = [[]]
     if randoms:
         draws = random_draws(randoms, data.get("seed"), data.get("samples"))
         varied += [Varied(p, _unit(t, f"random.{p}"), "random") for p, t in randoms.items()]
@@ -249,12 +301,22 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
         raise SpecError("field 'samples'/'seed' needs a [random] table")
     if not varied:
         raise SpecError("nothing varies: give a [grid], [random] or [workspace] table")
+    probe = json.loads(json.dumps(document))
+    _design_on_the_base_plant(probe, varied)
+    if probe != document:
+        from ..notes import say
+        drawn = ", ".join(v.path for v in varied if v.kind == "random"
+                          and v.path.startswith("plant."))
+        say(f"the PID gains (gains.omega) are designed for the base scenario's plant, not "
+            f"for each draw of {drawn} (gains.design_plant is set to the base plant: the "
+            "drawn robot is the uncertainty the design does not know); set "
+            "gains.design_plant in the scenario to choose otherwise")
     runs = []
     for point in itertools.product(*axes):
         for draw in draws:
             runs.append({v.path: value for v, value in zip(varied, [*point, *draw])})
     spec = Spec(name, scenario, document, varied, runs,
-                Path(fmu_dir).resolve() if fmu_dir is not None else None)
+                Path(fmu_dir).resolve() if fmu_dir is not None else None, dict(randoms))
     if runs:
         check_document(spec, runs[0])
     return spec
@@ -279,10 +341,7 @@ def check_fmus(document: dict, scenario: Path, fmu_dir) -> None:
     modelDescription.xml), before anything loads it."""
     fmus = document.get("fmus", {})
     for alias, name in (fmus.items() if isinstance(fmus, dict) else []):
-        if fmu_dir is not None:
-            path = Path(fmu_dir) / Path(str(name)).name
-        else:
-            path = scenario.parent / str(name)
+        path = fmu_file(alias, str(name), scenario.parent, fmu_dir)
         fix = "build the FMUs (scripts/build-fmus.sh) or give --fmu-dir"
         if not path.is_file():
             raise SpecError(f"field 'fmus.{alias}' of the scenario: {path} is not a file; "
@@ -300,9 +359,7 @@ def workspace_targets(table, reachable) -> list[list[float]] | None:
         return None
     if not isinstance(table, dict) or not isinstance(table.get("path"), str):
         raise SpecError("field 'workspace.path' must name the angles to vary")
-    unknown = sorted(set(table) - {"path", "unit", "thx", "thy", "thz"})
-    if unknown:
-        raise SpecError(f"unknown field 'workspace.{unknown[0]}'")
+    _unknown(table, WORKSPACE_KEYS, "workspace")
     axes = [grid_values(table.get(a), f"workspace.{a}") for a in ("thx", "thy", "thz")]
     if math.prod(len(a) for a in axes) > MAX_TARGETS:
         raise SpecError(f"field 'workspace': {math.prod(len(a) for a in axes)} targets, "

@@ -13,7 +13,7 @@ import numpy as np
 
 from . import casefile, tolerance
 from .errors import COMMAND_LINE, VerifyError
-from .table import Table, read_options, read_table
+from .table import Options, Table, read_options, read_table
 from ..scenario import MAX_STEPS
 
 CASE_FILE = "case.json"
@@ -30,11 +30,23 @@ class Case:
     inputs: Table | None
     start: float
     stop: float
-    step: float
+    step: float  # 0: variable step (the rules' StepSize 0)
     rel_tol: float
     start_values: dict[str, object] = field(default_factory=dict)
     event_times: list[float] = field(default_factory=list)
-    rules: dict[str | None, dict[str, object]] = field(default_factory=dict)
+    rules: dict[str | None, dict[str, tolerance.Rule]] = field(default_factory=dict)
+    options: Options | None = None  # the _ref.opt file's, when the case has one
+    allow_early_end: bool = False
+
+    @property
+    def output_interval(self) -> float | None:
+        """The output interval: the step, else OutputIntervalLength, else None (FMPy
+        chooses: docs/verify.md)."""
+        if self.step > 0:
+            return self.step
+        if self.options is not None and self.options.output_interval:
+            return self.options.output_interval
+        return None
 
     def signals(self) -> list[str]:
         return list(self.reference.columns)
@@ -52,8 +64,9 @@ class Case:
 def _model_files(folder: Path | None, reference: Path | None) -> tuple[str, Path | None]:
     """The model's name and its reference: the folder's one <Model>_ref.csv, or with
     --reference, the folder's one <Model>_ref.opt (no folder: the file's name)."""
-    if folder is None:
-        return Path(reference).stem.removesuffix("_ref"), None
+    if folder is None:  # load_case: then --reference is given
+        assert reference is not None
+        return reference.stem.removesuffix("_ref"), None
     suffix = "_ref.csv" if reference is None else "_ref.opt"
     found = sorted(folder.glob(f"*{suffix}"))
     if len(found) != 1:
@@ -73,15 +86,18 @@ def _input_file(folder: Path, model: str) -> Path | None:
 
 
 def _experiment(folder: Path | None, model: str, reference: Table, step: float | None):
+    """(start, stop, step, relative tolerance, options): the _ref.opt file's, --step
+    over its StepSize; without a folder, the reference's span and median interval."""
     if folder is None:
-        median = float(np.median(np.diff(reference.time)))
-        return reference.time[0], reference.time[-1], step or median, DEFAULT_REL_TOL
+        intervals = np.diff(reference.time)
+        median = float(np.median(intervals[intervals > 0]))
+        return reference.time[0], reference.time[-1], step or median, DEFAULT_REL_TOL, None
     options_path = folder / f"{model}_ref.opt"
     if not options_path.exists():
         raise VerifyError(options_path, "", "is missing", "write StartTime, StopTime, "
                           "StepSize and RelTol lines (FMI cross-check _ref.opt)")
     o = read_options(options_path)
-    return o["StartTime"], o["StopTime"], step or o["StepSize"], o["RelTol"]
+    return o.start, o.stop, step or o.step, o.rel_tol, o
 
 
 def _check_coverage(case: Case) -> None:
@@ -94,13 +110,13 @@ def _check_coverage(case: Case) -> None:
                           "extend the reference or shorten the experiment (StartTime, StopTime)")
 
 
-def _check_step(case: Case, source, field: str) -> None:
+def _check_step(step: float, case: Case, source, field: str) -> None:
     """At least one step and at most MAX_STEPS over the experiment: a step longer than
     the experiment would compare the start alone, a tiny one would never end."""
     span = case.stop - case.start
-    steps = span / case.step
-    if not (math.isfinite(case.step) and 1.0 - 1e-9 <= steps <= MAX_STEPS):
-        raise VerifyError(source, field, f"a step of {case.step:g} s makes {steps:.3g} steps "
+    steps = span / step
+    if not (math.isfinite(step) and 1.0 - 1e-9 <= steps <= MAX_STEPS):
+        raise VerifyError(source, field, f"a step of {step:g} s makes {steps:.3g} steps "
                           f"of the {span:g} s experiment",
                           f"give a step from {span / MAX_STEPS:.3g} to {span:g} s")
 
@@ -125,27 +141,33 @@ def load_case(folder: Path | None, options) -> Case:
                           "give a case folder or --reference FILE")
     folder = None if folder is None else Path(folder)
     model, reference_path = _model_files(folder, options.reference)
-    reference = read_table(options.reference or reference_path)
+    reference_file = options.reference or reference_path
+    assert reference_file is not None  # _model_files: the folder's, or --reference
+    reference = read_table(reference_file)
     input_path = options.input or (_input_file(folder, model) if folder else None)
     data = {}
     case_path = folder / CASE_FILE if folder else None
     if case_path is not None and case_path.exists():
         data = casefile.read_case_file(case_path)
-    start, stop, step, rel_tol = _experiment(folder, model, reference, options.step)
+    source = case_path if case_path is not None else COMMAND_LINE  # where a value is wrong
+    start, stop, step, rel_tol, opt = _experiment(folder, model, reference, options.step)
     case = Case(
         name=f"{folder.parent.name}/{folder.name}" if folder else model,
         reference=reference, inputs=read_table(input_path) if input_path else None,
         start=float(start), stop=float(stop), step=float(step), rel_tol=float(rel_tol),
-        start_values=casefile.start_values(case_path, data.get("start_values", {})),
-        event_times=casefile.event_times(case_path, data.get("event_times", [])),
-        rules=casefile.tolerances(case_path, data.get("tolerances", {})))
+        start_values=casefile.start_values(source, data.get("start_values", {})),
+        event_times=casefile.event_times(source, data.get("event_times", [])),
+        rules=casefile.tolerances(source, data.get("tolerances", {})),
+        options=opt, allow_early_end=bool(getattr(options, "allow_early_end", False)))
     _check_coverage(case)
+    opt_path = folder / f"{model}_ref.opt" if folder else COMMAND_LINE
     if options.step is not None:
-        _check_step(case, COMMAND_LINE, "--step")
-    else:
-        _check_step(case, folder / f"{model}_ref.opt" if folder else COMMAND_LINE,
-                    "StepSize" if folder else "--step")
-    _check_rule_names(case, case_path)
+        _check_step(case.step, case, COMMAND_LINE, "--step")
+    elif case.step > 0:
+        _check_step(case.step, case, opt_path, "StepSize" if folder else "--step")
+    elif case.output_interval is not None:
+        _check_step(case.output_interval, case, opt_path, "OutputIntervalLength")
+    _check_rule_names(case, source)
     apply_options(case, options)
     return case
 

@@ -30,7 +30,7 @@ def read_case_file(path: Path) -> dict:
     return data
 
 
-def start_values(path: Path, data) -> dict[str, object]:
+def start_values(path: Path | str, data) -> dict[str, object]:
     if not isinstance(data, dict):
         raise VerifyError(path, "start_values", "is not an object",
                           "write {\"NAME\": VALUE, ...}")
@@ -42,7 +42,7 @@ def start_values(path: Path, data) -> dict[str, object]:
     return dict(data)
 
 
-def event_times(path: Path, data) -> list[float]:
+def event_times(path: Path | str, data) -> list[float]:
     if not isinstance(data, list) or not all(
             isinstance(t, (int, float)) and not isinstance(t, bool) and math.isfinite(t)
             for t in data):
@@ -51,7 +51,7 @@ def event_times(path: Path, data) -> list[float]:
     return [float(t) for t in data]
 
 
-def _rule_table(path: Path, where: str, data) -> dict[str, object]:
+def _rule_table(path: Path | str, where: str, data) -> dict[str, tolerance.Rule]:
     if not isinstance(data, dict):
         raise VerifyError(path, where, "is not an object", "write {\"SIGNAL\": TOLERANCE}")
     rules = {}
@@ -64,7 +64,7 @@ def _rule_table(path: Path, where: str, data) -> dict[str, object]:
     return rules
 
 
-def tolerances(path: Path, data) -> dict[str | None, dict[str, object]]:
+def tolerances(path: Path | str, data) -> dict[str | None, dict[str, tolerance.Rule]]:
     """{"SIGNAL": SPEC} for every interface, or {"CoSimulation": {...}, ...}."""
     if isinstance(data, dict) and data and all(k in INTERFACES for k in data):
         return {k: _rule_table(path, f"tolerances.{k}", v) for k, v in data.items()}

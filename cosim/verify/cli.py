@@ -1,29 +1,30 @@
 """``cosim verify FMU [CASE] [options]``: exit 0 when every reference column is within
-its tolerance, 1 when one is not (or the FMU run fails), 2 on bad input."""
+its tolerance, 1 when one is not (or the FMU run fails, or the FMU ends the run before
+StopTime without --allow-early-end), 2 on bad input. ``cosim verify TREE``: every case
+of an FMI cross-check tree (cosim.verify.tree)."""
 
 from __future__ import annotations
 
 import argparse
 import sys
-import time
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from .case import load_case
-from .compare import judge_all
+from ..errors import output_path
+from . import junit
 from .errors import COMMAND_LINE, RunFailed, VerifyError
 from .files import write_all
-from .junit import junit_error, junit_report
-from .plot import plot_name, plot_png
-from .report import json_report
-from .simulate import choose_interface, read_description, simulate
-
-REPORT = "verify.json"
+from .plot import plot_name
+from .runner import REPORT, verify_case
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.description = ("Run an FMU through FMPy and compare it with reference results "
-                          "(docs/verify.md).")
-    parser.add_argument("fmu", type=Path, help="the FMU (FMI 2.0 or 3.0)")
+    parser.description = ("Run an FMU through FMPy and compare it with reference results, "
+                          "or every case of an FMI cross-check tree (docs/verify.md).")
+    parser.add_argument("fmu", type=Path, metavar="FMU|TREE",
+                        help="the FMU (FMI 2.0 or 3.0), or a folder in the FMI cross-check "
+                        "layout (fmus/<FMI version>/<cs|me>/<platform>/<tool>/<version>/"
+                        "<Model>/) to verify every case of it")
     parser.add_argument("case", type=Path, nargs="?",
                         help="case folder: <Model>_ref.csv, <Model>_ref.opt, optional "
                         "<Model>_in.csv and case.json")
@@ -35,44 +36,21 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="a signal's tolerance: ABS, ABS,REL (x range) or cross-check; "
                         "NAME * for every signal without one (repeatable)")
     parser.add_argument("--interface", choices=["cs", "me"],
-                        help="Co-Simulation or Model Exchange (default: cs when supported)")
+                        help="Co-Simulation or Model Exchange (default: cs when supported); "
+                        "in a tree: run only the cases of this interface")
     parser.add_argument("--step", type=float,
                         help="communication step and output interval in s (default: the "
-                        "case's StepSize)")
-    parser.add_argument("--out", type=Path, default=Path("results/verify"),
-                        help=f"folder for {REPORT} and the PNG of each failing signal "
-                        "(default: results/verify)")
-    parser.add_argument("--junit", type=Path, help="also write JUnit XML to this file")
-
-
-def _title(args, interface, case) -> str:
-    return f"{args.fmu.name} ({interface}) against {case.name}"
-
-
-def _outputs(args, description, interface, case, verdicts, seconds) -> dict[Path, bytes]:
-    """Every file to write, by path, made before any is written."""
-    files, plots = {}, {}
-    for v in verdicts:
-        if not v.passed:
-            path = args.out / plot_name(v.signal)
-            files[path] = plot_png(case, v, _title(args, interface, case))
-            plots[v.signal] = str(path)
-    files[args.out / REPORT] = json_report(str(args.fmu), description.fmiVersion, interface,
-                                           case, verdicts, plots)
-    if args.junit is not None:
-        files[args.junit] = junit_report(_title(args, interface, case),
-                                         f"{args.fmu.stem}.{interface}", verdicts, seconds)
-    return files
-
-
-def _failure_outputs(args, description, interface, case, error: str) -> dict[Path, bytes]:
-    """The reports of a run that failed: the error, no verdicts."""
-    files = {args.out / REPORT: json_report(str(args.fmu), description.fmiVersion, interface,
-                                            case, [], {}, error)}
-    if args.junit is not None:
-        files[args.junit] = junit_error(_title(args, interface, case),
-                                        f"{args.fmu.stem}.{interface}", error)
-    return files
+                        "case's StepSize; StepSize 0: docs/verify.md)")
+    parser.add_argument("--allow-early-end", action="store_true",
+                        help="pass a case whose FMU ends the run before StopTime when its "
+                        "signals are within tolerance up to that time")
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="cases run at once in a tree, each in its own process "
+                        "(default: 1)")
+    parser.add_argument("--out", type=output_path, default=Path("results/verify"),
+                        help=f"folder for {REPORT} and the PNG of each failing signal; for "
+                        "a tree, the results tree (default: results/verify)")
+    parser.add_argument("--junit", type=output_path, help="also write JUnit XML to this file")
 
 
 def _write(files: dict[Path, bytes], out: Path, signals) -> None:
@@ -98,25 +76,23 @@ def _verify(args) -> int:
     if args.step is not None and not args.step > 0:
         raise VerifyError(COMMAND_LINE, "--step", f"{args.step:g} is not positive",
                           "give the step in seconds, e.g. --step 0.001")
-    description = read_description(args.fmu)
-    interface = choose_interface(args.fmu, description, args.interface)
-    case = load_case(args.case, args)
-    started = time.perf_counter()
-    try:
-        verdicts = judge_all(case, simulate(args.fmu, description, case, interface), interface)
-    except RunFailed as e:
-        _write(_failure_outputs(args, description, interface, case, str(e)), args.out,
-               case.reference.columns)
-        raise
-    _write(_outputs(args, description, interface, case, verdicts,
-                    time.perf_counter() - started), args.out, case.reference.columns)
-    for v in verdicts:
-        print(v.line())
-    failed = sum(not v.passed for v in verdicts)
-    print(f"{args.fmu.name} {description.fmiVersion} {interface} against {case.name}: "
-          f"{len(verdicts) - failed} of {len(verdicts)} signals within tolerance "
-          f"-> {args.out / REPORT}")
-    return 1 if failed else 0
+    if args.jobs < 1:
+        raise VerifyError(COMMAND_LINE, "--jobs", f"{args.jobs} is not positive",
+                          "give the number of cases to run at once, e.g. --jobs 2")
+    if args.fmu.is_dir():
+        from .tree import verify_tree
+        return verify_tree(args)
+    result = verify_case(args.fmu, args.case, args, args.interface, args.out)
+    files = dict(result.files)
+    if args.junit is not None:
+        files[args.junit] = junit.document([ET.fromstring(result.suite)])
+    _write(files, args.out, result.signals)
+    if result.error is not None:
+        raise RunFailed(result.error)
+    for line in result.lines:
+        print(line)
+    print(f"{result.summary} -> {args.out / REPORT}")
+    return 0 if result.status == "passed" else 1
 
 
 def run(args: argparse.Namespace) -> int:

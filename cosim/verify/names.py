@@ -4,6 +4,8 @@ elements taken from each array's ``<Dimension>`` (``cosim.fmi3.scalar_names``)."
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ..fmi3 import scalar_names
@@ -39,7 +41,7 @@ class Names:
     def start_values(self, scalars: dict[str, object]) -> dict[str, object]:
         """Scalar start values -> FMPy's start_values: whole arrays, the elements left
         out at the FMU's start values."""
-        out = {}
+        out: dict[str, Any] = {}  # a scalar, or a whole array (list)
         for name, value in scalars.items():
             variable, index = self.locate(name)
             if index is None:
@@ -55,7 +57,7 @@ class Names:
         for name, values in columns.items():
             variable, index = self.locate(name)
             grouped.setdefault(variable.name, {})[index] = values
-        dtype = [("time", np.float64)]
+        dtype: list[tuple] = [("time", np.float64)]
         for base, elements in grouped.items():
             size = _size(self.variables[base])
             dtype.append((base, np.float64, (size,)) if None not in elements else (base, np.float64))
@@ -70,6 +72,15 @@ class Names:
                 values[:, index] = column
             out[base] = values
         return out
+
+    def unit(self, name: str) -> str | None:
+        """The unit of scalar `name` (its own or its type's), None when it has none."""
+        found = self.locate(name)
+        if found is None:
+            return None
+        variable = found[0]
+        declared = getattr(variable, "declaredType", None)
+        return variable.unit or (declared.unit if declared is not None else None)
 
     def outputs(self, scalars: list[str]) -> list[str]:
         """The variables to record for `scalars` (order kept, each once)."""

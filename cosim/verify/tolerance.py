@@ -21,6 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
+from .events import LEFT, RIGHT, interp
+
 BAND_SAMPLES = 1000
 BAND_WINDOW = 21
 BAND_WIDTH = 0.1
@@ -43,7 +45,7 @@ class Limits:
 def reference_range(ref_t, ref_y, start: float, stop: float) -> float:
     """max - min of the reference, linearly interpolated, over [start, stop]."""
     inside = ref_y[(ref_t >= start) & (ref_t <= stop)]
-    ends = np.interp([start, stop], ref_t, ref_y)
+    ends = [interp(start, ref_t, ref_y, RIGHT), interp(stop, ref_t, ref_y, LEFT)]
     values = np.concatenate([inside, ends])
     return float(values.max() - values.min())
 
@@ -58,9 +60,9 @@ class Deviation:
     def width(self, ref_t, ref_y, start, stop) -> float:
         return self.abs + self.rel * reference_range(ref_t, ref_y, start, stop)
 
-    def limits(self, t, ref_t, ref_y, start, stop) -> Limits:
+    def limits(self, t, ref_t, ref_y, start, stop, side=RIGHT) -> Limits:
         w = self.width(ref_t, ref_y, start, stop)
-        at_t = np.interp(t, ref_t, ref_y)
+        at_t = interp(t, ref_t, ref_y, side)
         keep = (ref_t >= start) & (ref_t <= stop)
         return Limits(at_t - w, at_t + w, ref_t[keep], ref_y[keep] - w, ref_y[keep] + w)
 
@@ -88,9 +90,9 @@ def _running(values: np.ndarray, reduce) -> np.ndarray:
 class CrossCheckBand:
     """The FMI cross-check band rule (module docstring)."""
 
-    def limits(self, t, ref_t, ref_y, start, stop) -> Limits:
+    def limits(self, t, ref_t, ref_y, start, stop, side=RIGHT) -> Limits:
         grid = np.linspace(start, stop, BAND_SAMPLES)
-        y = np.interp(grid, ref_t, ref_y)
+        y = interp(grid, ref_t, ref_y, side)
         low, high = float(y.min()), float(y.max())
         if low == high:
             w = 0.5 if low == 0 else abs(low) * BAND_WIDTH
@@ -118,7 +120,10 @@ def _check(value, what: str) -> float:
     return float(value)
 
 
-def from_json(spec):
+Rule = Deviation | CrossCheckBand  # a signal's tolerance rule
+
+
+def from_json(spec) -> Rule:
     """A rule from the case file: a number (absolute), {"abs": A, "rel": R} (either may
     be left out, 0 then) or "cross-check". ValueError names what is wrong."""
     if spec == CROSS_CHECK:
@@ -131,7 +136,7 @@ def from_json(spec):
     return Deviation(_check(spec, "the tolerance"))
 
 
-def from_text(text: str):
+def from_text(text: str) -> Rule:
     """A rule from the command line: "ABS", "ABS,REL" or "cross-check"."""
     if text.strip() == CROSS_CHECK:
         return CrossCheckBand()

@@ -15,12 +15,18 @@ INTERFACES = ["CoSimulation", "ModelExchange"]
 
 
 def package_source(folder: Path) -> Path:
-    """`folder` made a copy of what `pip install` of the harness reads (cosim/,
-    pyproject.toml, README.md), so that an install leaves the working tree alone."""
-    shutil.copytree(ROOT / "cosim", folder / "cosim",
-                    ignore=shutil.ignore_patterns("__pycache__"))
-    for name in ("pyproject.toml", "README.md"):
+    """`folder` made a copy of what `pip install` of the harness reads (what the sdist
+    holds: cosim/, pyproject.toml, hatch_build.py, Cargo.toml for the version, the FMUs,
+    the native kernel, the reference cases, the example scenarios), so that an install
+    leaves the working tree alone."""
+    ignore = shutil.ignore_patterns("__pycache__")
+    for name in ("cosim", "scenarios", "tests/references"):
+        shutil.copytree(ROOT / name, folder / name, ignore=ignore)
+    for name in ("pyproject.toml", "README.md", "CHANGELOG.md", "Cargo.toml", "hatch_build.py",
+                 "target/release/libcosim_kernel.so"):
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(ROOT / name, folder / name)
+    shutil.copytree(DIST, folder / "dist", ignore=shutil.ignore_patterns("*.zip", "*.tmp"))
     return folder
 
 

@@ -158,7 +158,7 @@ def test_one_help_lists_every_command_and_each_command_has_its_own(capsys):
     from cosim.cli import COMMANDS, main
     assert main(["--help"]) == 0
     text = capsys.readouterr().out
-    assert all(f"    {name}" in text for name in COMMANDS) and len(COMMANDS) == 9
+    assert all(f"    {name}" in text for name in COMMANDS) and len(COMMANDS) == 11
     for name in COMMANDS:
         assert main([name, "--help"]) == 0
         assert f"usage: cosim {name}" in capsys.readouterr().out

@@ -99,7 +99,8 @@ def test_model_exchange_equals_co_simulation():
 def _check(tmp_path, capsys, change) -> tuple[int, str]:
     import tomllib
     data = tomllib.loads((ROOT / "scenarios" / "path1_cubic_ct.toml").read_text())
-    data["fmus"] = {a: str((ROOT / "scenarios" / p).resolve()) for a, p in data["fmus"].items()}
+    from cosim.scenario import fmu_file  # the FMU files the entries name, as absolute paths
+    data["fmus"] = {a: str(fmu_file(a, p, ROOT / "scenarios")) for a, p in data["fmus"].items()}
     change(data)
     import json
     path = tmp_path / "scenario.json"

@@ -134,13 +134,14 @@ class SlopedIntegrator(Integrator):
     """x' = u with u(t_k + s) = u + u' s over the step (canInterpolateInputs)."""
 
     can_interpolate_inputs = True
+    max_input_derivative_order = 1
 
     def __init__(self, alias, h_max=1.0):
         super().__init__(alias, h_max)
         self.slope = 0.0
 
-    def set_input_slopes(self, names, values):
-        assert names == ("u",)
+    def set_input_derivatives(self, names, values, order):
+        assert names == ("u",) and order == 1
         self.slope = values[0]
 
     def do_step(self, t, h):

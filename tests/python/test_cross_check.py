@@ -112,3 +112,109 @@ def test_script_verdicts_are_cosim_verify_reports(tree):
         assert all(s["rule"] == {"rule": "cross-check"} for s in report["signals"])
         suite, = list(JUnitXml.fromfile(str(report_dir / "junit.xml")))
         assert (suite.tests, suite.failures) == (len(report["signals"]), 0)
+
+
+def with_more_cases(tree: Path, to: Path) -> Path:
+    """A copy of the tree's fmus/ with the FMI 3.0 builds of the same cases, a case whose
+    reference is wrong (the planner's q[3] halved: fails), one whose reference names a
+    variable the FMU lacks (rejected) and one for another platform (skipped)."""
+    import shutil
+    shutil.copytree(tree / "fmus", to / "fmus")
+    for model_dir in model_dirs(to):
+        fmi3 = Path(str(model_dir).replace("/fmus/2.0/", "/fmus/3.0/"))
+        shutil.copytree(model_dir, fmi3)
+        shutil.copy(ROOT / "dist" / "fmi3" / f"{model_dir.name}.fmu", fmi3)
+    version = model_dirs(to)[0].parts[-2]
+    wrong = to / "fmus/2.0/cs/linux64/wrong" / version / "Planner"
+    shutil.copytree(to / "fmus/2.0/cs/linux64/robofmu" / version / "Planner", wrong)
+    lines = (wrong / "Planner_ref.csv").read_text().splitlines()
+    column = lines[0].split(",").index('"q[3]"')
+    for k in range(1, len(lines)):
+        fields = lines[k].split(",")
+        fields[column] = repr(0.5 * float(fields[column]))
+        lines[k] = ",".join(fields)
+    (wrong / "Planner_ref.csv").write_text("\n".join(lines) + "\n")
+    rejected = to / "fmus/2.0/me/linux64/wrong" / version / "PID"
+    shutil.copytree(to / "fmus/2.0/me/linux64/robofmu" / version / "PID", rejected)
+    text = (rejected / "PID_ref.csv").read_text()
+    (rejected / "PID_ref.csv").write_text(text.replace('"u[3]"', '"u[4]"', 1))
+    shutil.copytree(to / "fmus/2.0/cs/linux64/robofmu" / version / "PID",
+                    to / "fmus/2.0/cs/win64/robofmu" / version / "PID")
+    return to
+
+
+def test_cosim_verify_runs_a_whole_tree(tree, tmp_path):
+    # cosim verify TREE with the results into the tree itself (results/ beside fmus/,
+    # as an importing tool submits them): one line per case, the summary, one JUnit
+    # suite per case, the rules' results layout; checked against FMPy: its cross-check
+    # procedure gives the same verdict on every FMI 2.0 case, and its repository check
+    # (validate_cross_check_result) re-validates each result we marked passed.
+    import shutil
+    import sys
+    from fmpy.cross_check.validate_vendor_repo import validate_cross_check_result
+    from cosim.verify.tree import tool_version
+    xc = with_more_cases(tree, tmp_path)
+    done = subprocess.run([sys.executable, "-m", "cosim", "verify", str(xc), "--out", str(xc),
+                           "--jobs", "2"], cwd=ROOT, capture_output=True, text=True)
+    print(done.stdout)
+    assert done.returncode == 1, done.stderr  # one failed and one rejected case
+    lines = done.stdout.splitlines()
+    runs = 4 * len(MODELS) + 2
+    assert lines[0] == f"{xc}: {runs + 1} cases, {runs} to run here (2 at once), 1 skipped"
+    progress = [line for line in lines if line.startswith("[")]
+    assert [line.split("]")[0] for line in progress] == [f"[{k}/{runs}" for k in range(1, runs + 1)]
+    assert lines[-1].startswith(f"{xc}: {runs - 2} passed, 1 failed, 1 rejected, 1 skipped of "
+                                f"{runs + 1} cases in ")
+    assert any(line.startswith("SKIPPED  2.0/cs/win64/robofmu/") for line in lines)
+    # JUnit: one suite per case run, the failing and the rejected one marked.
+    suites = {suite.name: suite for suite in JUnitXml.fromfile(str(xc / "junit.xml"))}
+    assert len(suites) == runs
+    failing = [name for name, s in suites.items() if s.failures]
+    erring = [name for name, s in suites.items() if s.errors]
+    assert len(failing) == 1 and "wrong" in failing[0] and "Planner" in failing[0]
+    assert len(erring) == 1 and "wrong" in erring[0] and "PID" in erring[0]
+    # The results layout: results/<FMI>/<type>/<platform>/cosim/<version>/<tool>/<version>/<Model>.
+    results = sorted(p.parent for p in (xc / "results").glob("*/*/*/*/*/*/*/*/README.md"))
+    assert len(results) == runs
+    for folder in results:
+        fmi_version, kind, plat, importer, importer_version, tool, version, model = \
+            folder.parts[-8:]
+        assert (importer, importer_version, plat) == ("cosim", tool_version(), "linux64")
+        markers = [m for m in ("passed", "failed", "rejected") if (folder / m).exists()]
+        expected = ("rejected" if (tool, model) == ("wrong", "PID") else
+                    "failed" if tool == "wrong" else "passed")
+        assert markers == [expected], folder
+        assert (folder / f"{model}_out.csv").exists() == (expected != "rejected")
+        if fmi_version == "2.0":
+            assert validate_cross_check_result(str(folder)) == []
+            if expected != "rejected":
+                fmu_dir = xc / "fmus" / fmi_version / kind / plat / tool / version / model
+                result, reference, options = simulate(fmu_dir)
+                fmpy_verdict = validate_result(result=result, reference=reference,
+                                               t_start=options["StartTime"],
+                                               t_stop=options["StopTime"])
+                assert (fmpy_verdict is None) == (expected == "passed"), (folder, fmpy_verdict)
+    readme = (xc / "results/2.0/cs/linux64/cosim" / tool_version() / "wrong").glob("*/Planner/README.md")
+    folder = next(readme).parent
+    text = (folder / "README.md").read_text()
+    assert text.startswith("# Planner: failed") and "FAIL q[3]" in text
+    assert (folder / "q_3.png").is_file()
+    # The wrong case put right and run again, alone (TREE a folder inside the layout):
+    # its marker is now passed, and the earlier run's failure marker and plot are gone.
+    wrong = next((xc / "fmus/2.0/cs/linux64/wrong").glob("*/Planner"))
+    shutil.copy(next((xc / "fmus/2.0/cs/linux64/robofmu").glob("*/Planner/Planner_ref.csv")),
+                wrong)
+    again = subprocess.run([sys.executable, "-m", "cosim", "verify", str(wrong.parent),
+                            "--out", str(xc)], cwd=ROOT, capture_output=True, text=True)
+    assert again.returncode == 0, again.stdout + again.stderr
+    assert "1 passed, 0 failed, 0 rejected, 0 skipped of 1 cases" in again.stdout
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "Planner_out.csv", "README.md", "passed", "verify.json"]
+    # --interface picks the cases of one interface; a tree where none runs is refused
+    # (exit 2, nothing written), not passed.
+    nothing = subprocess.run([sys.executable, "-m", "cosim", "verify", str(wrong.parent),
+                              "--interface", "me", "--out", str(tmp_path / "none")],
+                             cwd=ROOT, capture_output=True, text=True)
+    assert nothing.returncode == 2 and "none of its 1 cases runs here" in nothing.stderr
+    assert "interface cs (--interface me)" in nothing.stderr
+    assert not (tmp_path / "none").exists()

@@ -6,6 +6,9 @@ with `.venv/bin` first on PATH; Python snippets in ```python blocks run whole, f
 repository root. A block ```toml results/PATH (or json, yaml, csv) is a file the
 reader writes: the test writes it there before the commands that follow it in the same
 document (a file block naming a path outside results/ is only shown). Blocks that must not be run use `text`.
+A block ```text prints holds lines the command just before it prints: each must be a
+line of its stdout, the words equal and each number equal to the printed one within
+one unit of its last printed digit (so a figure quoted in the docs is what runs).
 
 Each command is one test case named by its file and line, run in document order. It
 passes when it exits 0 and wrote nothing outside results/: the repository is snapshot
@@ -30,6 +33,10 @@ DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 SKIPPED = {
     "bash scripts/test.sh": "the test suite itself: CI runs it (.ci/run), and this test is part of it",
     "bash scripts/memcheck.sh": "run by scripts/test.sh in CI",
+    "bash scripts/release.sh --out results/release": (
+        "run into a temporary folder by tests/python/test_release.py, which compares its "
+        "files with docs/release.md"
+    ),
     "cargo test --release -p robofmu-hostile --test matrix": (
         "run by `cargo test --workspace --release` in scripts/test.sh"
     ),
@@ -41,7 +48,7 @@ SKIPPED = {
 BUILDS = {"bash scripts/demo.sh", "bash scripts/build-fmus.sh"}
 BUILD_OUTPUTS = ("dist", "target", ".venv", "results")
 # Paths the snapshot leaves out: git's, the build's, the environment's, Python's caches.
-UNWATCHED = {".git", "target", ".venv", "__pycache__", ".pytest_cache"}
+UNWATCHED = {".git", "target", ".venv", "__pycache__", ".pytest_cache", ".mypy_cache", ".ruff_cache"}
 # A hang guard, not a speed assertion: the build may compile on a fresh machine.
 TIMEOUT_S = {"build": 1800, "command": 300}
 
@@ -83,6 +90,7 @@ class Step:
     kind: str  # "sh" or "python"
     text: str
     files: list  # (path, content) of the document's file blocks before it
+    prints: list = field(default_factory=list)  # lines its stdout must hold (```text prints)
 
     @property
     def name(self):
@@ -106,6 +114,10 @@ def steps():
                     if text.strip() and not text.lstrip().startswith("#"):
                         line = block.line + offset
                         found.append(Step(document, line, "sh", text, list(files)))
+            elif block.language == "text" and block.argument == "prints":
+                assert found and found[-1].document == document, (
+                    f"{document}:{block.line}: a ```text prints block follows no command")
+                found[-1].prints += [x for x in block.lines if x.strip()]
             elif block.language == "python":
                 found.append(
                     Step(document, block.line, "python", "\n".join(block.lines), list(files))
@@ -194,6 +206,30 @@ def test_documented_command(step):
         f"stdout:\n{result.stdout[-3000:]}\nstderr:\n{result.stderr[-3000:]}"
     )
     assert not written, f"{step.name}: `{step.text}` wrote outside results/: {written[:20]}"
+    printed = result.stdout.splitlines()
+    for quoted in step.prints:
+        assert any(same_figures(quoted, line) for line in printed), (
+            f"{step.name}: the docs quote\n{quoted}\nbut `{step.text}` printed\n"
+            f"{result.stdout[-3000:]}")
+
+
+NUMBER = re.compile(r"[-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?")
+
+
+def same_figures(quoted: str, line: str) -> bool:
+    """Whether `line` is `quoted` with each number within one unit of the quoted one's
+    last digit (0.1178 matches 0.11781 and 0.1179, not 0.118 printed as 0.1172)."""
+    words, numbers = NUMBER.split(quoted.strip()), NUMBER.findall(quoted)
+    got_words, got = NUMBER.split(line.strip()), NUMBER.findall(line)
+    if words != got_words or len(numbers) != len(got):
+        return False
+    for text, value in zip(numbers, got):
+        mantissa = text.lower().split("e")[0]
+        decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+        exponent = int(text.lower().split("e")[1]) if "e" in text.lower() else 0
+        if abs(float(value) - float(text)) > 10.0 ** (exponent - decimals) * 1.0001:
+            return False
+    return True
 
 
 if __name__ == "__main__":

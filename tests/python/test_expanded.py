@@ -66,7 +66,8 @@ def test_the_description_is_kept_through_the_expansion(tmp_path, capsys):
     # and again in the expansion of that expanded form.
     text = "Three axes, with \"quotes\" and a \\ backslash"
     source = tomllib.loads((ROOT / "scenarios" / "three_axis_waypoints.toml").read_text())
-    source["fmus"] = {a: str((ROOT / "scenarios" / p).resolve())
+    from cosim.scenario import fmu_file  # the FMU files the entries name, as absolute paths
+    source["fmus"] = {a: str(fmu_file(a, p, ROOT / "scenarios"))
                       for a, p in source["fmus"].items()}
     source["description"] = text
     path = tmp_path / "described.json"

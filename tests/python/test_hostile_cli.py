@@ -85,6 +85,10 @@ def test_malformed_files_are_refused(sandbox, capsys, label, data, suffix, code,
     sandbox(["run", path, "--out", "out", "--quiet"], capsys, code, text, names=[path.name])
 
 
+# A scenario that `--expanded` must not overwrite (its content checked afterwards).
+SELF_TOML = "# the scenario itself\n"
+
+
 def _arguments(work: Path) -> list[tuple]:
     good = work / "good.json"
     good.write_text(json.dumps(base()))
@@ -94,6 +98,7 @@ def _arguments(work: Path) -> list[tuple]:
     (work / "fmi2").mkdir()
     os.mkfifo(work / "fifo.toml")  # reading it would block forever
     (work / "loop.toml").symlink_to(work / "loop.toml")
+    (work / "self.toml").write_text(SELF_TOML)
     for model in ("Planner", "PID", "Pss3Plant"):
         shutil.copy(DIST / f"{model}.fmu", work / "fmi2")
     waypoints = ROOT / "scenarios" / "three_axis_waypoints.toml"
@@ -126,6 +131,22 @@ def _arguments(work: Path) -> list[tuple]:
         ("scenario is a FIFO", ["run", work / "fifo.toml"], 2, "not a file"),
         ("scenario is a symlink loop", ["check", work / "loop.toml"], 2, "loop.toml"),
         ("--debug twice and a subcommand typo", ["--debug", "rnu", "x.toml"], 2, "rnu"),
+        # An empty or blank --out would be Path('.'): the results beside the user's
+        # files (issue 36); refused by every command that writes, before anything runs.
+        *[(f"{command} --out {blank!r}", [command, target, "--out", blank], 2,
+           "names nothing")
+          for command, target in [("run", good), ("ssp", good), ("container", good),
+                                  ("sweep", work / "spec.toml"), ("verify", work / "x.fmu"),
+                                  ("animate", work / "x.csv")]
+          for blank in ("", " ")],
+        ("check --expanded ''", ["check", good, "--expanded", ""], 2, "names nothing"),
+        ("verify --junit ''", ["verify", work / "x.fmu", "--junit", ""], 2, "names nothing"),
+        ("check --expanded its own scenario",
+         ["check", work / "self.toml", "--expanded", work / "." / "self.toml"], 2,
+         "is the scenario being checked"),
+        ("check --expanded its own scenario through a link",
+         ["check", work / "self.toml", "--expanded", work / "link.toml"], 2,
+         "is the scenario being checked"),
         ("--fmi3 without the FMI 3.0 builds", ["run", good, "--fmi3", "--fmu-dir", work / "fmi2"],
          2, "--fmi3"),
     ]
@@ -133,8 +154,11 @@ def _arguments(work: Path) -> list[tuple]:
 
 def test_hostile_arguments(sandbox, capsys):
     cases = _arguments(sandbox.work)
+    (sandbox.work / "link.toml").symlink_to(sandbox.work / "self.toml")
     for label, argv, code, text in cases:
         sandbox(argv, capsys, code, text)
+    # `check S --expanded S` refused: the scenario is as it was.
+    assert (sandbox.work / "self.toml").read_text() == SELF_TOML
     assert len(cases) + len(DOCUMENTS) + len(RAW) >= 120
 
 

@@ -86,7 +86,7 @@ def test_every_parameter_is_bound_in_its_component(name, tmp_path):
 
 
 @pytest.mark.parametrize("name", ["regulation", "three_axis_cubic"])
-def test_step_size_is_where_libcosim_and_omsimulator_read_it(name, tmp_path):
+def test_step_size_and_tolerance_are_where_libcosim_and_omsimulator_read_them(name, tmp_path):
     scenario, text, _ = exported(name, tmp_path)
     root = ET.fromstring(text)
     osp = root.findall("ssd:DefaultExperiment/ssd:Annotations/ssc:Annotation"
@@ -96,6 +96,12 @@ def test_step_size_is_where_libcosim_and_omsimulator_read_it(name, tmp_path):
     oms = root.findall("ssd:System/ssd:Annotations/ssc:Annotation[@type='org.openmodelica']/"
                        "oms:Annotations/oms:SimulationInformation/oms:FixedStepMaster", NS)
     assert [float(e.get("stepSize")) for e in oms] == [scenario.step_size]
+    # OMSimulator's reader (SystemWC::importFromSSD_SimulationInformation) takes
+    # description, stepSize and relativeTolerance from this element; a missing
+    # relativeTolerance reads as 0 and reaches every FMU as a defined tolerance 0,
+    # which they refuse (issue 36): it must be there and positive.
+    assert [e.get("description") for e in oms] == ["oms-ma"]
+    assert [float(e.get("relativeTolerance")) > 0 for e in oms] == [True]
     experiment = root.find("ssd:DefaultExperiment", NS)
     assert float(experiment.get("stopTime")) == scenario.stop_time
     # libcosim and ecos match prefixed names ("ssd:Component", "osp:Algorithm"): the

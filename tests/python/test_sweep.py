@@ -73,15 +73,6 @@ def test_reset_instances_give_the_runs_of_fresh_instances():
     assert reused.columns == fresh.columns
 
 
-@pytest.mark.parametrize("extrapolation", ["hold", "linear"])
-def test_fast_path_matches_fmpy_calls_bit_for_bit(extrapolation):
-    # Truth: the same master through FMPy's wrappers (FmuInstance.get/set_values,
-    # get_output_slopes / set_input_slopes).
-    scenario = load_scenario(ROOT / "scenarios" / "three_axis_quintic.toml")
-    scenario.input_extrapolation = extrapolation
-    assert Master(scenario).run().columns == Master(scenario, fast=False).run().columns
-
-
 def test_two_worker_cluster_gives_the_serial_results(tmp_path):
     spec = load_spec(write_spec(tmp_path, GRID_AND_DRAWS, samples=2, omegas="[10, 30]"))
     serial = run_sweep(spec, tmp_path / "serial", workers=0, progress=False)
@@ -171,14 +162,16 @@ def test_resume_runs_only_what_is_missing(tmp_path):
 
 
 def test_a_failing_run_is_recorded_with_its_reason(tmp_path):
-    # A negative platform mass: the plant FMU answers NaN (an FMI error), the sweep goes on.
-    text = BASE + "[grid.'plant.platformMass']\nvalues = [-1.0, 0.8]\nunit = \"kg\"\n"
+    # A plant whose spherical joint P sits at the base (lp = 0, within the declared
+    # min = 0 but refused by the model: it must be positive): the run fails with the
+    # plant's reason, the sweep goes on.
+    text = BASE + "[grid.'plant.lp']\nvalues = [0.0, 0.632187]\nunit = \"m\"\n"
     outcome = run_sweep(load_spec(write_spec(tmp_path, text)), tmp_path, workers=0,
                         progress=False, plots=False)
-    by_mass = {r["plant.platformMass [kg]"]: r for r in rows(outcome.table).values()}
+    by_lp = {r["plant.lp [m]"]: r for r in rows(outcome.table).values()}
     assert outcome.failed == 1
-    assert by_mass["-1.0"]["status"] == "failed" and "plant" in by_mass["-1.0"]["reason"]
-    assert by_mass["0.8"]["status"] == "ok"
+    assert by_lp["0.0"]["status"] == "failed" and "lp" in by_lp["0.0"]["reason"]
+    assert by_lp["0.632187"]["status"] == "ok"
 
 
 def test_settling_time_follows_the_triple_pole_closed_form(tmp_path):
@@ -318,38 +311,11 @@ def test_grid_plots_show_the_spread_of_the_draws(tmp_path):
     assert [p.name for p in written] == ["s_grid.png"]  # 3 draws at w = 3: no histogram
 
 
-@pytest.mark.parametrize("extrapolation", ["hold", "linear"])
-def test_native_loop_matches_the_python_loop_bit_for_bit(extrapolation):
-    # Truth: the Python loop over the same prepared calls (cosim.fastpath). The
-    # waypoint scenario has plan switches, where the native runs of steps are split.
-    from cosim.native import library
-    assert library() is not None, "target/release/libcosim_kernel.so: run scripts/build-fmus.sh"
-    scenario = load_scenario(ROOT / "scenarios" / "three_axis_waypoints.toml")
-    scenario.input_extrapolation = extrapolation
-    assert scenario.schedule
-    native = Master(scenario).run()
-    assert native.columns == Master(scenario, native=False).run().columns
-
-
-def test_native_loop_reports_a_failure_as_the_python_loop_does():
-    # A plant whose integrator may not take the step (maxStep = 1 ns): it discards the
-    # first step; the native loop's message is the Python loop's (FMU, time, reason).
-    from cosim.errors import CosimError
-    scenario = load_scenario(ROOT / "scenarios" / "regulation.toml")
-    scenario.parameters["plant"]["maxStep"] = 1e-9
-    with pytest.raises(CosimError) as native:
-        Master(scenario).run()
-    with pytest.raises(CosimError) as python:
-        Master(scenario, native=False).run()
-    assert str(native.value) == str(python.value)
-    assert str(native.value).startswith("plant discarded the step at t = 0 s")
-
-
 def test_the_command_exits_1_with_the_reasons_of_failed_runs(tmp_path, capsys):
-    # A negative platform mass: the plant refuses it (its own reason in the table's
-    # 'reason' column); the command says how many runs failed and why, exit status 1.
+    # lp = 0: the plant refuses it (its own reason in the table's 'reason' column); the
+    # command says how many runs failed and why, exit status 1.
     from cosim.sweep.cli import main
-    text = BASE + "[grid.'plant.platformMass']\nvalues = [-1.0, 0.8]\nunit = \"kg\"\n"
+    text = BASE + "[grid.'plant.lp']\nvalues = [0.0, 0.632187]\nunit = \"m\"\n"
     spec = write_spec(tmp_path, text)
     status = main([str(spec), "--out", str(tmp_path), "--workers", "0", "--quiet"])
     err = capsys.readouterr().err.splitlines()

@@ -11,6 +11,7 @@ from conftest import DIST, REFERENCES
 from verify_cli import verify, verify_process
 
 REF, INPUT, CASE = "Pss3Plant_ref.csv", "Pss3Plant_input.csv", "case.json"
+OPT = "Pss3Plant_ref.opt"
 
 
 def edit_lines(path, change):
@@ -55,7 +56,12 @@ MISTAKES = {
     # name: (file, edit, words the message must contain); file: [(file, edit), ...]
     # where one mistake needs two edits
     "unsorted times": (REF, swap_rows, [REF, "line 5, column 'time'", "goes back", "sort"]),
-    "duplicate time": (REF, lambda x: x[:3] + x[2:], [REF, "line 4, column 'time'", "repeats"]),
+    # A time written twice is an event (test_verify_conventions.py), not a mistake.
+    "negative step": (OPT, lambda x: [("StepSize, -0.001" if line.startswith("StepSize") else line)
+                                      for line in x], [OPT, "StepSize", "negative", "0 for a variable-step"]),
+    "option given twice": (OPT, lambda x: x + ["RelTol, 1e-3"], [OPT, "RelTol", "given twice"]),
+    "option without its value": (OPT, lambda x: [("StopTime," if line.startswith("StopTime") else line)
+                                                 for line in x], [OPT, "StopTime", "missing"]),
     "reference ends early": (REF, cut_after(1.5), [REF, "column 'time'", "covers 0 to 1.5 s",
                                                    "experiment 0 to 2 s"]),
     "reference starts late": (REF, lambda x: x[:1] + x[3:], [REF, "covers 0.002 to 2 s"]),
@@ -188,3 +194,16 @@ def test_a_junit_path_that_is_a_folder_writes_nothing(tmp_path):
     assert f"cosim: {folder}: --out/--junit:" in outcome.err and "nothing was written" in outcome.err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["junit"]
     assert list(folder.iterdir()) == []
+
+
+def test_a_tree_without_cases_and_a_tree_with_a_case_folder_are_refused(tmp_path):
+    # A folder as FMU|TREE is a cross-check tree: one with no case is bad input, and a
+    # tree gives each case its own files, so CASE (or --reference) with it is too.
+    empty, out = tmp_path / "empty", tmp_path / "out"
+    empty.mkdir()
+    assert_user_error(verify(empty, "--out", out), [str(empty), "TREE", "holds no case",
+                                                    "cross-check tree"], out)
+    assert_user_error(verify(empty, REFERENCES / "PID" / "defaults", "--out", out),
+                      ["command line: CASE/--reference/--input", "leave them out"], out)
+    assert_user_error(verify(empty, "--jobs", "0", "--out", out), ["--jobs", "not positive"],
+                      out)

@@ -1,8 +1,9 @@
 """The commands of docs/verify.md run: its `sh` blocks from the repository root, and the
 commands of its CI recipes (GitHub Actions `run:`, GitLab CI `script:`) against our PID
-FMU, with the one change the document states: the install line installs this checkout
-from its local path (no download; the pinned environment has the dependencies) into a
-scratch folder, from which the recipe's commands then import the package."""
+FMU, with the one change the document states: the install line (the release's wheel)
+installs this checkout from its local sources (no download; the pinned environment has
+the dependencies) into a scratch folder, from which the recipe's commands then import
+the package."""
 
 import os
 import re
@@ -42,11 +43,15 @@ def bash(command: str, cwd: Path, env: dict) -> subprocess.CompletedProcess:
 def test_sh_blocks_run():
     env = dict(os.environ, PATH=f"{ROOT / '.venv' / 'bin'}:{os.environ['PATH']}")
     commands = [line for body in blocks("sh") for line in body.splitlines() if line.strip()]
-    assert len(commands) == 3
+    # Three cases, then a cross-check tree of our FMUs laid out and verified whole.
+    assert len(commands) == 5 and commands[3].startswith("bash scripts/cross-check.sh")
     for command in commands:
         done = bash(command, ROOT, env)
         assert done.returncode == 0, (command, done.stdout, done.stderr)
-        assert "PASS" in done.stdout and "FAIL" not in done.stdout
+        if command.startswith("cosim verify"):
+            assert "PASS" in done.stdout and "FAIL" not in done.stdout
+    summary = done.stdout.splitlines()[-1]
+    assert " 0 failed, 0 rejected, 0 skipped of " in summary, summary
 
 
 @pytest.fixture(scope="module")
@@ -65,7 +70,9 @@ def installed(tmp_path_factory):
 def test_ci_recipe_commands_run_against_a_local_fmu(index, ci, installed, tmp_path):
     commands = recipe_commands(blocks("yaml")[index])
     install = [c for c in commands if "pip install" in c]
-    assert len(install) == 1 and "robofmu-cosim @ https://" in install[0], ci
+    assert len(install) == 1 and re.search(
+        r"pip install https://\S+/releases/download/v[\d.]+/robofmu-[\d.]+-py3-none-any\.whl$",
+        install[0]), (ci, install)
     checks = [c for c in commands if c not in install]
     assert checks and all(c.startswith("cosim verify ") for c in checks), ci
     # The user's repository: their FMU and references (ours, linked).

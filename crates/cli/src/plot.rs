@@ -85,17 +85,75 @@ fn range(values: impl Iterator<Item = f64>) -> Result<(f64, f64), PlotError> {
     Ok((lo - pad, hi + pad))
 }
 
+/// Width of the area left of the plot for the y tick labels and the y label, pixels
+/// (wide enough for "-150.0" and the rotated label beside it).
+const Y_LABEL_AREA: u32 = 90;
+/// The plot's own area, pixels (the figure less the label areas, margins and caption).
+const PLOT_AREA: (f64, f64) = (
+    (SIZE.0 - Y_LABEL_AREA - 24) as f64,
+    (SIZE.1 - 45 - 24 - 30) as f64,
+);
+
+/// Size of the legend box of `labels`, as fractions of the plot area (one 20-pixel row
+/// per label and about 7 pixels per character, with the line sample and margins).
+fn legend_size(labels: &[&str]) -> (f64, f64) {
+    let longest = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0);
+    let width = 7.0 * longest as f64 + 50.0;
+    let height = 20.0 * labels.len() as f64 + 14.0;
+    (width / PLOT_AREA.0, height / PLOT_AREA.1)
+}
+
+/// Where the legend goes so that it covers no point: the first corner (upper right,
+/// upper left, lower right, lower left) whose box of `size` (fractions of the plot)
+/// holds no point; when every corner holds points, the upper right with the top of the
+/// y range raised until the box lies above them all. Returns the corner and the y range.
+fn legend_place(
+    points: &[(f64, f64)],
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    (w, h): (f64, f64),
+) -> (SeriesLabelPosition, (f64, f64)) {
+    let (w, h) = ((w + 0.02).min(0.9), (h + 0.02).min(0.9));
+    let (dx, dy) = (w * (x1 - x0), h * (y1 - y0));
+    let corners = [
+        (SeriesLabelPosition::UpperRight, x1 - dx, x1, y1 - dy, y1),
+        (SeriesLabelPosition::UpperLeft, x0, x0 + dx, y1 - dy, y1),
+        (SeriesLabelPosition::LowerRight, x1 - dx, x1, y0, y0 + dy),
+        (SeriesLabelPosition::LowerLeft, x0, x0 + dx, y0, y0 + dy),
+    ];
+    for (corner, xa, xb, ya, yb) in corners {
+        let inside = |&(x, y): &(f64, f64)| (xa..=xb).contains(&x) && (ya..=yb).contains(&y);
+        if !points.iter().any(inside) {
+            return (corner, (y0, y1));
+        }
+    }
+    // The box spans the top fraction h of [y0, top]: its bottom y0 + (1 - h)(top - y0)
+    // at the old top y1.
+    let top = y0 + (y1 - y0) / (1.0 - h);
+    (SeriesLabelPosition::UpperRight, (y0, top))
+}
+
 fn xy_chart(path: &Path, axes: &Axes, series: &[Series], mark: Mark) -> Result<(), PlotError> {
     let points = || series.iter().flat_map(|s| s.points.iter());
     let (x0, x1) = range(points().map(|p| p.0))?;
     let (y0, y1) = range(points().map(|p| p.1))?;
+    let finite: Vec<(f64, f64)> = points()
+        .copied()
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
+    let labels: Vec<&str> = series.iter().map(|s| s.label).collect();
+    let (corner, (y0, y1)) = if series.len() > 1 {
+        legend_place(&finite, (x0, x1), (y0, y1), legend_size(&labels))
+    } else {
+        (SeriesLabelPosition::UpperRight, (y0, y1))
+    };
     let root = BitMapBackend::new(path, SIZE).into_drawing_area();
     root.fill(&WHITE).map_err(err)?;
     let mut chart = ChartBuilder::on(&root)
         .caption(axes.title, ("sans-serif", 22))
         .margin(12)
         .x_label_area_size(45)
-        .y_label_area_size(70)
+        .y_label_area_size(Y_LABEL_AREA)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(err)?;
     chart
@@ -126,6 +184,7 @@ fn xy_chart(path: &Path, axes: &Axes, series: &[Series], mark: Mark) -> Result<(
     if series.len() > 1 {
         chart
             .configure_series_labels()
+            .position(corner)
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
             .draw()
@@ -176,7 +235,7 @@ pub fn heat_map(path: &Path, axes: &Axes, grid: &Grid, value_label: &str) -> Res
         .caption(axes.title, ("sans-serif", 22))
         .margin(12)
         .x_label_area_size(45)
-        .y_label_area_size(70)
+        .y_label_area_size(Y_LABEL_AREA)
         .build_cartesian_2d(ex[0]..ex[nx], ey[0]..ey[ny])
         .map_err(err)?;
     chart
@@ -239,6 +298,28 @@ mod tests {
         let (lo, hi) = range([1.0, f64::NAN, 3.0].into_iter()).unwrap();
         assert!((lo - 0.96).abs() < 1e-12 && (hi - 3.04).abs() < 1e-12);
         assert!(range([f64::NAN].into_iter()).is_err());
+    }
+
+    #[test]
+    fn the_legend_goes_where_no_point_is_or_above_them_all() {
+        // Truth by construction: points only in the upper right quarter leave the upper
+        // left corner free; points along the whole top edge and bottom edge free no
+        // corner, and the y range is raised so that a box of 20 % (+2 % margin) lies
+        // above y = 1: top = 0 + 1 / (1 - 0.22).
+        let size = (0.2, 0.2);
+        let quarter = [(0.8, 0.9), (0.95, 0.95)];
+        let (corner, range) = legend_place(&quarter, (0.0, 1.0), (0.0, 1.0), size);
+        assert!(matches!(corner, SeriesLabelPosition::UpperLeft));
+        assert_eq!(range, (0.0, 1.0));
+        let edges: Vec<(f64, f64)> = (0..=10)
+            .flat_map(|i| [(i as f64 / 10.0, 1.0), (i as f64 / 10.0, 0.0)])
+            .collect();
+        let (corner, (low, top)) = legend_place(&edges, (0.0, 1.0), (0.0, 1.0), size);
+        assert!(matches!(corner, SeriesLabelPosition::UpperRight));
+        assert_eq!(low, 0.0);
+        assert!((top - 1.0 / 0.78).abs() < 1e-12, "{top}");
+        // The raised box: from top - 0.22 (top - low) = 1.0 up, above every point.
+        assert!((top - 0.22 * top - 1.0).abs() < 1e-12);
     }
 
     #[test]

@@ -60,7 +60,7 @@ const CASES: &[Case] = &[
     case(&["pss3", "fk", "--l", "0.05,0.1,0.15", "--tol", "1e400"], 2, "--tol"),
     case(&["pss3", "fk", "--l", "0.05,0.1"], 2, "--l"),
     case(&["pss3", "fk", "--l", "0.05,0.1,0.15", "--seed", "NaN,0,0"], 2, "--seed"),
-    case(&["pss3", "fk", "--l", "5,5,5"], 1, "stroke"),
+    case(&["pss3", "fk", "--l", "5,5,5"], 2, "--l: actuator 1 at 5 m is outside the stroke"),
     case(&["pss3", "fk", "--l", "0.05,0.1,0.15", "--max-iter", "1", "--tol", "0"], 1, "converge"),
     // pss3 actuator-path / plant-reference / workspace
     case(&[PATH[0], PATH[1], PATH[2], PATH[3], PATH[4], PATH[5], "--duration", "2", "--dt", "1e-300", "--out", "out/p.csv"], 2, "--dt"),
@@ -71,9 +71,12 @@ const CASES: &[Case] = &[
     case(&[PATH[0], PATH[1], "--l0", "0.002,0.002", PATH[4], PATH[5], "--duration", "2", "--dt", "0.1", "--out", "out/p.csv"], 2, "--l0"),
     case(&[PATH[0], PATH[1], PATH[2], PATH[3], "--lf", "inf,0.1,0.1", "--duration", "2", "--dt", "0.1", "--out", "out/p.csv"], 2, "--lf"),
     case(&[PATH[0], PATH[1], PATH[2], PATH[3], PATH[4], PATH[5], "--duration", "2", "--dt", "0.1"], 2, "--out"),
-    case(&[PATH[0], PATH[1], PATH[2], PATH[3], PATH[4], PATH[5], "--duration", "2", "--dt", "0.1", "--out", "nodir/p.csv"], 1, "nodir/p.csv"),
-    case(&[PATH[0], PATH[1], PATH[2], PATH[3], PATH[4], PATH[5], "--duration", "2", "--dt", "0.1", "--out", "."], 1, "cannot write"),
-    case(&[PATH[0], PATH[1], "--l0", "0.5,0.5,0.5", PATH[4], PATH[5], "--duration", "2", "--dt", "0.1", "--out", "out/p.csv"], 1, "stroke"),
+    case(&[PATH[0], PATH[1], PATH[2], PATH[3], PATH[4], PATH[5], "--duration", "2", "--dt", "0.1", "--out", "nodir/p.csv"], 2, "the folder nodir does not exist"),
+    case(&[PATH[0], PATH[1], PATH[2], PATH[3], PATH[4], PATH[5], "--duration", "2", "--dt", "0.1", "--out", "."], 2, "that is a folder; give a file name"),
+    case(&[PATH[0], PATH[1], "--l0", "0.5,0.5,0.5", PATH[4], PATH[5], "--duration", "2", "--dt", "0.1", "--out", "out/p.csv"], 2, "--l0: actuator 1 at 0.5 m is outside the stroke"),
+    // Displacements in mm where m are expected: the likely fix is said.
+    case(&[PATH[0], PATH[1], "--l0", "2,2,2", "--lf", "152,152,152", "--duration", "2", "--dt", "0.1", "--out", "out/p.csv"], 2, "--l0 is in m, not mm: did you mean --l0 0.002,0.002,0.002?"),
+    case(&["pss3", "fk", "--l", "50,80,100"], 2, "--l is in m, not mm: did you mean --l 0.05,0.08,0.1?"),
     case(&["pss3", "plant-reference", "--dt", "1e-300", "--out-dir", "out"], 2, "--dt"),
     case(&["pss3", "plant-reference", "--dt", "-0.001", "--out-dir", "out"], 2, "--dt"),
     case(&["pss3", "workspace", "--out", "out", "--steps", "4294967295"], 2, "--steps"),
@@ -131,6 +134,8 @@ const CASES: &[Case] = &[
     case(&["closed-loop", "reference", "--scenario", "s.toml", "--out", "out/r.csv", "--tolerance", "0"], 2, "--tolerance"),
     case(&["closed-loop", "reference", "--scenario", "s.toml", "--out", "out/r.csv", "--every", "0"], 2, "--every"),
     case(&["closed-loop", "reference", "--scenario", "s.toml", "--out", "out/r.opt"], 2, "--out out/r.opt"),
+    case(&["closed-loop", "reference", "--scenario", "s.toml", "--out", "missing/r.csv"], 2, "the folder missing does not exist"),
+    case(&["closed-loop", "reference", "--scenario", "s.toml", "--out", "."], 2, "that is a folder"),
     // the command line itself
     case(&["pss4"], 2, "pss4"),
     case(&["pss3", "ik", "--angles", "0,0,130", "--bogus"], 2, "--bogus"),
@@ -145,6 +150,9 @@ const FILE_CASES: &[(Case, &str, &[u8])] = &[
     (case(&["dual-arm", "solve", "--lock", "1", "--path", "nan.csv"], 2, "--path nan.csv"), "nan.csv", b"t,x,y\n0,NaN,0\n0.3,0,0\n0.6,0,0\n1,0,0\n"),
     (case(&["closed-loop", "reference", "--scenario", "bin.toml", "--out", "out/r.csv"], 2, "bin.toml"), "bin.toml", b"name = \"\xff\xfe\"\n"), (case(&["closed-loop", "reference", "--scenario", "junk.toml", "--out", "out/r.csv"], 2, "junk.toml"), "junk.toml", b"[[[[not toml"),
     (case(&["closed-loop", "reference", "--scenario", "deep.toml", "--out", "out/r.csv"], 2, "deep.toml"), "deep.toml", DEEP),
+    // An output folder where a file is: refused with the fix (formerly exit code 1).
+    (case(&["pss3", "workspace", "--out", "taken", "--steps", "2"], 2, "a file is in the way where a folder belongs"), "taken", b"x"),
+    (case(&["dexterity", "workspace", "--out", "taken"], 2, "a file is in the way"), "taken", b"x"),
 ];
 
 /// Hundreds of nested arrays: a parser that recurses without a limit overflows its stack.

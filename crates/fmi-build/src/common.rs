@@ -29,6 +29,9 @@ pub struct ModelDescription<V, S> {
     instantiation_token: Option<String>,
     #[serde(rename = "@description")]
     description: &'static str,
+    /// The model's version: the workspace's ([`VERSION`]).
+    #[serde(rename = "@version")]
+    version: &'static str,
     #[serde(rename = "@generationTool")]
     generation_tool: &'static str,
     #[serde(rename = "@variableNamingConvention")]
@@ -126,6 +129,7 @@ impl<V: Serialize, S: Serialize> ModelDescription<V, S> {
             guid,
             instantiation_token,
             description: info.description,
+            version: VERSION,
             generation_tool: GENERATION_TOOL,
             naming: "structured",
             event_indicators,
@@ -139,6 +143,11 @@ impl<V: Serialize, S: Serialize> ModelDescription<V, S> {
         })
     }
 }
+
+/// The version of every FMU, written into the `version` attribute: the workspace's
+/// (`[workspace.package]` of the root Cargo.toml), the version of the wheel and of
+/// `cosim --version` and `robofmu --version` too.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// Name and version of the generating tool, as written into generationTool.
 pub const GENERATION_TOOL: &str = concat!("robofmu ", env!("CARGO_PKG_VERSION"));

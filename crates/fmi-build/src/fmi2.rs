@@ -70,11 +70,11 @@ fn index_of(table: &[Scalar], name: &str) -> Option<usize> {
 
 /// The unknown `v` with its declared dependencies as ascending 1-based indices.
 fn with_dependencies(v: &Scalar, table: &[Scalar]) -> Unknown {
-    unknown(v, v.dependencies, table)
+    unknown(v, v.dependencies.as_deref(), table)
 }
 
 /// The unknown `v` with the knowns `names` as ascending 1-based indices (None: all).
-fn unknown(v: &Scalar, names: Option<&'static [&'static str]>, table: &[Scalar]) -> Unknown {
+fn unknown(v: &Scalar, names: Option<&[String]>, table: &[Scalar]) -> Unknown {
     let dependencies = names.map(|names| {
         let mut indices: Vec<usize> = names.iter().filter_map(|n| index_of(table, n)).collect();
         indices.sort_unstable();
@@ -170,7 +170,7 @@ pub fn model_description(d: &Description) -> Result<String, String> {
                         .iter()
                         .any(|d| d.value_reference == v.value_reference))
         })
-        .map(|v| unknown(v, v.initial_dependencies, table))
+        .map(|v| unknown(v, v.initial_dependencies.as_deref(), table))
         .collect();
     let parts = Parts {
         interfaces: interfaces(d),

@@ -146,9 +146,9 @@ pub struct Scalar {
     /// The name of the state this scalar is the time derivative of.
     pub state: Option<String>,
     /// Knowns this output or derivative depends on (names); None: all.
-    pub dependencies: Option<&'static [&'static str]>,
+    pub dependencies: Option<Vec<String>>,
     /// Knowns at initialization this initial unknown depends on; None: all.
-    pub initial_dependencies: Option<&'static [&'static str]>,
+    pub initial_dependencies: Option<Vec<String>>,
 }
 
 /// A scalar's type and its type-specific attributes.
@@ -241,8 +241,8 @@ fn scalar_of<M>(v: &Variable<M>) -> Scalar {
         initial: v.initial,
         value,
         state: v.state_name().map(|s| s.into_owned()),
-        dependencies: v.dependencies,
-        initial_dependencies: v.initial_dependencies,
+        dependencies: v.dependencies.clone(),
+        initial_dependencies: v.initial_dependencies.clone(),
     }
 }
 
@@ -289,9 +289,12 @@ fn scalar_dependencies<M: Model>(
     };
     let s = crate::core::variables::find(table, vr).ok_or_else(|| format!("no element {vr}"))?;
     let names = if initial {
-        s.initial_dependencies
+        &s.initial_dependencies
     } else {
-        s.dependencies
+        &s.dependencies
     };
-    names.map(|n| scalar::references(table, n)).transpose()
+    names
+        .as_deref()
+        .map(|n| scalar::references(table, n))
+        .transpose()
 }

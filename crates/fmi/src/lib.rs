@@ -50,25 +50,25 @@ pub mod prelude {
     //!     fn rate(&self) -> f64 { -(self.t - self.ambient) / self.tau }
     //! }
     //!
-    //! // 1. What the FMU is (names, instantiation token, experiment, capabilities).
-    //! static INFO: ModelInfo = ModelInfo {
-    //!     model_name: "Cooling",
-    //!     model_identifier: "Cooling",
-    //!     guid: "{5b1f6c36-0a5e-4d43-9d1e-3f1f0c2d9a11}",
-    //!     description: "Newton's law of cooling",
-    //!     default_experiment: DefaultExperiment {
-    //!         start_time: 0.0, stop_time: 10.0, tolerance: 1e-6, step_size: 0.1,
-    //!     },
-    //!     number_of_continuous_states: 1,
-    //!     number_of_event_indicators: 0,
-    //!     provides_directional_derivative: false,
-    //!     max_output_derivative_order: 1,
-    //!     log_categories: &[],
-    //! };
+    //! // 1. What the FMU is (name, instantiation token, default experiment: start, stop,
+    //! //    tolerance, step; capabilities); the count of states comes from the table.
+    //! static INFO: ModelInfo = ModelInfo::new(
+    //!     "Cooling", "{5b1f6c36-0a5e-4d43-9d1e-3f1f0c2d9a11}", "Newton's law of cooling",
+    //!     [0.0, 10.0, 1e-6, 0.1],
+    //! )
+    //! .states(continuous_states(VARIABLES))
+    //! .output_derivatives(1);
     //!
     //! // 2. Every variable once: getter, setter, role, unit, start, hooks (value
-    //! //    references 1, 2, ... in this order; `.at(vr)` pins one).
+    //! //    references 1, 2, ... in this order; `.at(vr)` pins one). A declaration
+    //! //    another one names (a state, a dependency) is a `const`: the compiler checks
+    //! //    the name.
     //! type Decl = Declaration<Cooling>;
+    //! const T: Decl = Decl::real("T", "temperature", |m, _| m.t)
+    //!     .set_real(|m, _, v| { m.t = v; Ok(()) })
+    //!     .state()
+    //!     .unit("K", None)
+    //!     .start_real(&[350.0]);
     //! static VARIABLES: &[Decl] = &[
     //!     Decl::real("tau", "time constant", |m, _| m.tau)
     //!         .set_real(|m, _, v| if v > 0.0 { m.tau = v; Ok(()) } else { Err("tau > 0".into()) })
@@ -80,17 +80,13 @@ pub mod prelude {
     //!         .input()
     //!         .unit("K", None)
     //!         .start_real(&[293.15]),
-    //!     Decl::real("T", "temperature", |m, _| m.t)
-    //!         .set_real(|m, _, v| { m.t = v; Ok(()) })
-    //!         .state()
-    //!         .unit("K", None)
-    //!         .start_real(&[350.0]),
+    //!     T,
     //!     Decl::real("der(T)", "cooling rate", |m, _| m.rate())
-    //!         .derivative_of("T")
+    //!         .derivative_of(T.name)
     //!         .unit("K/s", None),
     //!     Decl::real("y", "temperature seen outside", |m, _| m.t)
     //!         .output()
-    //!         .depends_on(&["T"])
+    //!         .depends_on(&[T.var()])
     //!         .output_derivative(|m, _, _order| Ok(m.rate()))
     //!         .unit("K", None),
     //! ];
@@ -108,12 +104,8 @@ pub mod prelude {
     //!         self.t = self.ambient + (self.t - self.ambient) * (-step / self.tau).exp();
     //!         StepOutcome::Completed
     //!     }
-    //!     fn continuous_states(&self, x: &mut [f64]) { x[0] = self.t; }
-    //!     fn set_continuous_states(&mut self, x: &[f64]) { self.t = x[0]; }
-    //!     fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
-    //!         dx[0] = self.rate();
-    //!         Ok(())
-    //!     }
+    //!     // Model Exchange reads and writes the state T and reads der(T) through
+    //!     // their declarations (the defaults of continuous_states, derivatives, ...).
     //! }
     //!
     //! // 4. Both standards' C functions from this cdylib.
@@ -126,11 +118,13 @@ pub mod prelude {
     //! FMU state), [`Declaration`] (roles, units, bounds, arrays, value references and the
     //! hooks), [`StepOutcome`] and [`EventUpdate`] (what a step or an event did), [`Log`]
     //! and [`LogCategory`] (messages), [`OutputDerivativeError`] (why a hook gives no
-    //! output derivative).
+    //! output derivative), [`Var`] (a variable in a dependency list, named by its
+    //! declaration).
 
+    pub use crate::core::declare::continuous_states;
     pub use crate::core::{
         Declaration, DefaultExperiment, Element, EventUpdate, Log, LogCategory, Model, ModelInfo,
-        OutputDerivativeError, StepOutcome, Variability,
+        OutputDerivativeError, StepOutcome, Var, Variability,
     };
     pub use crate::export_fmu;
 }

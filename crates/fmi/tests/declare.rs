@@ -9,7 +9,7 @@ use robofmu_fmi::core::flatten::flatten;
 use robofmu_fmi::core::variables::Kind;
 use robofmu_fmi::core::variables::check_table;
 use robofmu_fmi::core::variables::{Causality, VariableType};
-use robofmu_fmi::core::{OutputDerivativeError, Variability};
+use robofmu_fmi::core::{OutputDerivativeError, Var, Variability};
 use robofmu_fmi::fmi3::table::{Source, Table3, Variable3};
 
 #[derive(Clone, Default)]
@@ -21,28 +21,34 @@ struct Axes {
 
 type Decl = Declaration<Axes>;
 
+const K: Decl = Decl::integer("k", "a gain", |m, _| m.k)
+    .set_integer(|m, _, v| {
+        m.k = v;
+        Ok(())
+    })
+    .parameter(Variability::Fixed)
+    .start_integer(&[4]);
+const X: Decl = Decl::real("x", "position", |m, i| m.x[i])
+    .array(2)
+    .at(10)
+    .stride(5)
+    .label("Axis")
+    .set_real(|m, i, v| {
+        m.x[i] = v;
+        Ok(())
+    })
+    .state()
+    .start_real(&[1.5, -2.5]);
+/// y[i] depends on x[i] alone; at initialization on time, k, all of x and x[2].
+static Y_DEPENDS: [Var; 1] = [X.same()];
+static Y_KNOWNS: [Var; 4] = [Var::Time, K.var(), X.var(), X.item(1)];
+
 static TABLE: &[Decl] = &[
-    Decl::integer("k", "a gain", |m, _| m.k)
-        .set_integer(|m, _, v| {
-            m.k = v;
-            Ok(())
-        })
-        .parameter(Variability::Fixed)
-        .start_integer(&[4]),
-    Decl::real("x", "position", |m, i| m.x[i])
-        .array(2)
-        .at(10)
-        .stride(5)
-        .label("Axis")
-        .set_real(|m, i, v| {
-            m.x[i] = v;
-            Ok(())
-        })
-        .state()
-        .start_real(&[1.5, -2.5]),
+    K,
+    X,
     Decl::real("der(x)", "velocity", |m, i| 3.0 * m.x[i])
         .array(2)
-        .derivative_of("x"),
+        .derivative_of(X.name),
     Decl::real("u", "input", |m, i| m.x[i])
         .array(2)
         .set_real(|_, _, _| Ok(()))
@@ -52,7 +58,8 @@ static TABLE: &[Decl] = &[
     Decl::real("y", "output", |m, i| m.x[i] * m.x[i])
         .array(2)
         .output()
-        .depends_on_each(|i| [&["x[1]"][..], &["x[2]"]][i])
+        .depends_on(&Y_DEPENDS)
+        .initial_depends_on(&Y_KNOWNS)
         .output_derivative(|m, i, order| match order {
             1 => Ok(2.0 * m.x[i]),
             _ => Err(OutputDerivativeError::NotProvided(
@@ -106,8 +113,14 @@ fn arrays_flatten_to_fmi2_scalars_with_labels_and_per_element_starts() {
     assert_eq!(table[4].state_key(), Some(("x", Some(1))));
     assert_eq!(table[2].key(), ("x", Some(1)));
     // y[i] = x[i]^2 depends on x[i] alone (the per-element hook, called with the index).
-    assert_eq!(table[7].dependencies, Some(&["x[1]"][..]));
-    assert_eq!(table[8].dependencies, Some(&["x[2]"][..]));
+    let names = |list: &[&str]| Some(list.iter().map(|s| s.to_string()).collect::<Vec<_>>());
+    assert_eq!(table[7].dependencies, names(&["x[1]"]));
+    assert_eq!(table[8].dependencies, names(&["x[2]"]));
+    // The handles as FMI 2.0 names: time, a scalar, a whole array, one element.
+    let knowns = ["time", "k", "x[1]", "x[2]", "x[2]"];
+    assert_eq!(table[8].initial_dependencies, names(&knowns));
+    // The count of continuous states follows from the derivative declarations.
+    assert_eq!(robofmu_fmi::prelude::continuous_states(TABLE), 2);
     let element = table[4].element();
     assert_eq!((element.name, element.index), ("der(x)", 1));
     let mut sorted = table;

@@ -24,6 +24,8 @@ pub struct Variable {
     pub derivative_of: Option<usize>,
     /// Number of elements (FMI 3.0 arrays; 1 for scalars and in FMI 2.0).
     pub size: usize,
+    /// FMI 3.0 intermediateUpdate="true": readable in Intermediate Update Mode.
+    pub intermediate_update: bool,
 }
 
 impl Variable {
@@ -193,6 +195,7 @@ fn read_element(
                 start: None,
                 derivative_of: None,
                 size: 1,
+                intermediate_update: false,
             });
         }
         "Real" | "Integer" | "Boolean" => {
@@ -247,6 +250,7 @@ fn read_fmi3_element(
                 // The state's value reference for now; an index after parsing.
                 derivative_of: get("derivative").and_then(|k| k.parse().ok()),
                 size: 1,
+                intermediate_update: get("intermediateUpdate").as_deref() == Some("true"),
             })
         }
         ("Dimension", _) => {

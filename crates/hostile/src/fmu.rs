@@ -142,6 +142,26 @@ impl Fmu {
     pub fn name(&self) -> &str {
         &self.description.model_name
     }
+
+    /// The unpacked binary copied to another folder (`<folder>-copy`): loaded from
+    /// there, it is a second copy of the library in the process, with its own
+    /// statics.
+    pub fn copy(&self) -> Result<Fmu, String> {
+        let (folder, file) = match (self.library.parent(), self.library.file_name()) {
+            (Some(folder), Some(file)) => (folder, file),
+            _ => return Err(format!("{} has no folder", self.library.display())),
+        };
+        let mut name = folder.as_os_str().to_owned();
+        name.push("-copy");
+        let copied = PathBuf::from(name);
+        std::fs::create_dir_all(&copied).map_err(|e| e.to_string())?;
+        let library = copied.join(file);
+        std::fs::copy(&self.library, &library).map_err(|e| e.to_string())?;
+        Ok(Fmu {
+            description: self.description.clone(),
+            library,
+        })
+    }
 }
 
 impl Drop for Fmu {

@@ -22,6 +22,7 @@ pub mod cycles;
 pub mod description;
 pub mod fmi3;
 pub mod fmu;
+pub mod foreign;
 pub mod forged;
 pub mod host;
 pub mod isolate;
@@ -63,6 +64,25 @@ impl Loaded {
         let fmus = unpack_all(Standard::Fmi2);
         let binaries = fmus.iter().map(Fmu::open).collect();
         let fmus3 = unpack_all(Standard::Fmi3);
+        let binaries3 = fmus3.iter().map(Fmu::open3).collect();
+        Loaded {
+            fmus,
+            binaries,
+            fmus3,
+            binaries3,
+        }
+    }
+
+    /// Every binary copied to another path and loaded from there: a second copy of
+    /// each library in the process (`Fmu::copy`); panics with the reason.
+    pub fn copy(&self) -> Loaded {
+        let copy = |fmus: &[Fmu]| -> Vec<Fmu> {
+            fmus.iter()
+                .map(|f| f.copy().unwrap_or_else(|e| panic!("{e}")))
+                .collect()
+        };
+        let (fmus, fmus3) = (copy(&self.fmus), copy(&self.fmus3));
+        let binaries = fmus.iter().map(Fmu::open).collect();
         let binaries3 = fmus3.iter().map(Fmu::open3).collect();
         Loaded {
             fmus,

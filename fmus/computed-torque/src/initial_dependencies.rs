@@ -14,45 +14,28 @@
 //! which reads everything u[k] reads: it lists the same. Checked against finite
 //! differences at initialization in tests/python/test_initial_dependencies.py.
 
-use robofmu::computed_torque::MODEL_PARAMETERS;
+use super::variables::{
+    INTEGRAL, KD, KI, KP, LIMIT, MEASURED_RATE, MEASUREMENT, SETPOINT, SETPOINT_ACCELERATION,
+    SETPOINT_RATE, U_MAX, U_MIN,
+};
+use robofmu_dynamics::computed_torque::MODEL_PARAMETERS;
+use robofmu_fmi::prelude::Var;
 
 /// The gains, inputs and integral of every axis.
-const COUPLED: [&str; 27] = [
-    "Kp[1]",
-    "Kp[2]",
-    "Kp[3]",
-    "Kd[1]",
-    "Kd[2]",
-    "Kd[3]",
-    "Ki[1]",
-    "Ki[2]",
-    "Ki[3]",
-    "setpoint[1]",
-    "setpoint[2]",
-    "setpoint[3]",
-    "setpointRate[1]",
-    "setpointRate[2]",
-    "setpointRate[3]",
-    "setpointAcceleration[1]",
-    "setpointAcceleration[2]",
-    "setpointAcceleration[3]",
-    "measurement[1]",
-    "measurement[2]",
-    "measurement[3]",
-    "measuredRate[1]",
-    "measuredRate[2]",
-    "measuredRate[3]",
-    "integral[1]",
-    "integral[2]",
-    "integral[3]",
+const COUPLED: [Var; 9] = [
+    KP.var(),
+    KD.var(),
+    KI.var(),
+    SETPOINT.var(),
+    SETPOINT_RATE.var(),
+    SETPOINT_ACCELERATION.var(),
+    MEASUREMENT.var(),
+    MEASURED_RATE.var(),
+    INTEGRAL.var(),
 ];
 
-/// The output limits of each axis.
-const LIMITS: [[&str; 3]; 3] = [
-    ["limitOutput[1]", "uMin[1]", "uMax[1]"],
-    ["limitOutput[2]", "uMin[2]", "uMax[2]"],
-    ["limitOutput[3]", "uMin[3]", "uMax[3]"],
-];
+/// The output limits of the axis itself.
+const LIMITS: [Var; 3] = [LIMIT.same(), U_MIN.same(), U_MAX.same()];
 
 /// The model parameters that do not move the output of each axis (see above).
 const UNSEEN: [&[&str]; 3] = [
@@ -69,22 +52,24 @@ const UNSEEN: [&[&str]; 3] = [
 
 /// How many knowns u[k + 1] lists.
 const fn count(k: usize) -> usize {
-    COUPLED.len() + LIMITS[k].len() + MODEL_PARAMETERS.len() - UNSEEN[k].len()
+    COUPLED.len() + LIMITS.len() + MODEL_PARAMETERS.len() - UNSEEN[k].len()
 }
 
 /// Static tables (no allocation: a per-load allocation would leak on every dlclose).
-static AXIS_1: [&str; count(0)] = knowns(0);
-static AXIS_2: [&str; count(1)] = knowns(1);
-static AXIS_3: [&str; count(2)] = knowns(2);
+static AXIS_1: [Var; count(0)] = knowns(0);
+static AXIS_2: [Var; count(1)] = knowns(1);
+static AXIS_3: [Var; count(2)] = knowns(2);
 
 /// The knowns u[k + 1] and der(integral)[k + 1] depend on (k from 0).
-pub fn of_axis(k: usize) -> &'static [&'static str] {
+pub fn of_axis(k: usize) -> &'static [Var] {
     [&AXIS_1[..], &AXIS_2, &AXIS_3][k]
 }
 
-/// COUPLED, the limits of axis k + 1 and the model parameters but UNSEEN[k].
-const fn knowns<const N: usize>(k: usize) -> [&'static str; N] {
-    let mut out = [""; N];
+/// COUPLED, the limits of axis k + 1 and the model parameters but UNSEEN[k] (a model
+/// parameter by the name the library's table gives it, the table its declaration is
+/// made from).
+const fn knowns<const N: usize>(k: usize) -> [Var; N] {
+    let mut out = [Var::Time; N];
     let mut n = 0;
     let mut i = 0;
     while i < COUPLED.len() {
@@ -92,15 +77,15 @@ const fn knowns<const N: usize>(k: usize) -> [&'static str; N] {
         (n, i) = (n + 1, i + 1);
     }
     i = 0;
-    while i < LIMITS[k].len() {
-        out[n] = LIMITS[k][i];
+    while i < LIMITS.len() {
+        out[n] = LIMITS[i];
         (n, i) = (n + 1, i + 1);
     }
     i = 0;
     while i < MODEL_PARAMETERS.len() {
         let name = MODEL_PARAMETERS[i].name;
         if !contains(UNSEEN[k], name) {
-            out[n] = name;
+            out[n] = Var::Named(name);
             n += 1;
         }
         i += 1;

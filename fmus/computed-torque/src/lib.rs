@@ -1,4 +1,4 @@
-//! Binding of the computed-torque law (`robofmu::computed_torque`) as the FMU
+//! Binding of the computed-torque law (`robofmu_dynamics::computed_torque`) as the FMU
 //! "ComputedTorque": inputs the planned Euler angles, rates and accelerations and the
 //! measured angles and rates; output the Euler-angle generalized force, the plant's
 //! `generalizedForceCommand` (the input the PID drives: the controllers are
@@ -13,10 +13,10 @@ mod initial_dependencies;
 mod variables;
 
 use nalgebra::Vector3;
-use robofmu::computed_torque::{
+use robofmu_dynamics::computed_torque::{
     AxisGains, ComputedTorque, GEOMETRY, Inputs, controller_message, pole_placement,
 };
-use robofmu::pss3::dynamics::{DynamicsError, PlantParams};
+use robofmu_dynamics::pss3::dynamics::{DynamicsError, PlantParams};
 use robofmu_fmi::prelude::*;
 
 /// Euler-angle axes.

@@ -5,10 +5,10 @@
 //! (state).
 
 use super::{AXES, ComputedTorqueFmu, DEFAULT_BANDWIDTH, initial_dependencies};
-use robofmu::computed_torque::{
+use robofmu_dynamics::computed_torque::{
     AxisGains, MODEL_PARAMETER_SPECS, MODEL_PARAMETERS, pole_placement,
 };
-use robofmu::pss3::START_ROLL_DEG;
+use robofmu_dynamics::pss3::START_ROLL_DEG;
 use robofmu_fmi::prelude::*;
 
 type Decl = Declaration<ComputedTorqueFmu>;
@@ -113,126 +113,141 @@ const fn model<const K: usize>(length: usize) -> Decl {
     d
 }
 
+pub const KP: Decl = gain!(
+    "Kp",
+    1,
+    "acceleration per angle error, 1/s2",
+    GAINS.kp,
+    |m, k| m.gains[k].kp
+);
+pub const KD: Decl = gain!("Kd", 11, "acceleration per rate error", GAINS.kd, |m, k| m
+    .gains[k]
+    .kd)
+.unit("1/s", None);
+pub const KI: Decl = gain!(
+    "Ki",
+    21,
+    "acceleration per integrated error, 1/s3",
+    GAINS.ki,
+    |m, k| m.gains[k].ki
+);
+pub const LIMIT: Decl = axes!(
+    boolean,
+    set_boolean,
+    "limitOutput",
+    31,
+    "clamp the output to [uMin, uMax]",
+    |m, k| m.limited[k]
+)
+.parameter(Variability::Tunable)
+.start_boolean(&[false]);
+pub const U_MIN: Decl = gain!(
+    "uMin",
+    41,
+    "lower output limit (used when limitOutput)",
+    -1.0,
+    |m, k| m.limits[k].0
+)
+.unit("N.m", None);
+pub const U_MAX: Decl = gain!(
+    "uMax",
+    51,
+    "upper output limit (used when limitOutput)",
+    1.0,
+    |m, k| m.limits[k].1
+)
+.unit("N.m", None);
+pub const SETPOINT: Decl = input!(
+    "setpoint",
+    101,
+    "planned Euler angle q",
+    "rad",
+    "deg",
+    &PLANNED,
+    setpoint
+);
+pub const SETPOINT_RATE: Decl = input!(
+    "setpointRate",
+    111,
+    "planned Euler-angle rate qdot",
+    "rad/s",
+    "deg/s",
+    &[0.0],
+    setpoint_rate
+);
+pub const SETPOINT_ACCELERATION: Decl = input!(
+    "setpointAcceleration",
+    121,
+    "planned Euler-angle acceleration qddot",
+    "rad/s2",
+    "deg/s2",
+    &[0.0],
+    setpoint_acceleration
+);
+pub const MEASUREMENT: Decl = input!(
+    "measurement",
+    131,
+    "measured Euler angle theta",
+    "rad",
+    "deg",
+    &MEASURED,
+    measurement
+);
+pub const MEASURED_RATE: Decl = input!(
+    "measuredRate",
+    141,
+    "measured Euler-angle rate thetaDot",
+    "rad/s",
+    "deg/s",
+    &[0.0],
+    measured_rate
+);
+pub const U: Decl = Decl::real(
+    "u",
+    "Euler-angle generalized force (plant generalizedForceCommand)",
+    |m, k| m.u(k),
+)
+.array(AXES)
+.at(201)
+.label("Axis")
+.output()
+.unit("N.m", None)
+.initial_depends_on_each(initial_dependencies::of_axis);
+pub const INTEGRAL: Decl = axes!(
+    real,
+    set_real,
+    "integral",
+    301,
+    "integral of the angle error (state)",
+    |m, k| m.integral[k]
+)
+.state()
+.start_real(&[0.0]);
+pub const DER_INTEGRAL: Decl = Decl::real(
+    "der(integral)",
+    "Time derivative of the error integral",
+    |m, k| m.integral_rate(k),
+)
+.array(AXES)
+.at(311)
+.derivative_of(INTEGRAL.name)
+.initial_depends_on_each(initial_dependencies::of_axis);
+
 static VARIABLES: &[Decl] = &[
-    gain!(
-        "Kp",
-        1,
-        "acceleration per angle error, 1/s2",
-        GAINS.kp,
-        |m, k| m.gains[k].kp
-    ),
-    gain!("Kd", 11, "acceleration per rate error", GAINS.kd, |m, k| m
-        .gains[k]
-        .kd)
-    .unit("1/s", None),
-    gain!(
-        "Ki",
-        21,
-        "acceleration per integrated error, 1/s3",
-        GAINS.ki,
-        |m, k| m.gains[k].ki
-    ),
-    axes!(
-        boolean,
-        set_boolean,
-        "limitOutput",
-        31,
-        "clamp the output to [uMin, uMax]",
-        |m, k| m.limited[k]
-    )
-    .parameter(Variability::Tunable)
-    .start_boolean(&[false]),
-    gain!(
-        "uMin",
-        41,
-        "lower output limit (used when limitOutput)",
-        -1.0,
-        |m, k| m.limits[k].0
-    )
-    .unit("N.m", None),
-    gain!(
-        "uMax",
-        51,
-        "upper output limit (used when limitOutput)",
-        1.0,
-        |m, k| m.limits[k].1
-    )
-    .unit("N.m", None),
-    input!(
-        "setpoint",
-        101,
-        "planned Euler angle q",
-        "rad",
-        "deg",
-        &PLANNED,
-        setpoint
-    ),
-    input!(
-        "setpointRate",
-        111,
-        "planned Euler-angle rate qdot",
-        "rad/s",
-        "deg/s",
-        &[0.0],
-        setpoint_rate
-    ),
-    input!(
-        "setpointAcceleration",
-        121,
-        "planned Euler-angle acceleration qddot",
-        "rad/s2",
-        "deg/s2",
-        &[0.0],
-        setpoint_acceleration
-    ),
-    input!(
-        "measurement",
-        131,
-        "measured Euler angle theta",
-        "rad",
-        "deg",
-        &MEASURED,
-        measurement
-    ),
-    input!(
-        "measuredRate",
-        141,
-        "measured Euler-angle rate thetaDot",
-        "rad/s",
-        "deg/s",
-        &[0.0],
-        measured_rate
-    ),
-    Decl::real(
-        "u",
-        "Euler-angle generalized force (plant generalizedForceCommand)",
-        |m, k| m.u(k),
-    )
-    .array(AXES)
-    .at(201)
-    .label("Axis")
-    .output()
-    .unit("N.m", None)
-    .initial_depends_on(initial_dependencies::of_axis),
-    axes!(
-        real,
-        set_real,
-        "integral",
-        301,
-        "integral of the angle error (state)",
-        |m, k| m.integral[k]
-    )
-    .state()
-    .start_real(&[0.0]),
-    Decl::real(
-        "der(integral)",
-        "Time derivative of the error integral",
-        |m, k| m.integral_rate(k),
-    )
-    .array(AXES)
-    .at(311)
-    .derivative_of("integral")
-    .initial_depends_on(initial_dependencies::of_axis),
+    KP,
+    KD,
+    KI,
+    LIMIT,
+    U_MIN,
+    U_MAX,
+    SETPOINT,
+    SETPOINT_RATE,
+    SETPOINT_ACCELERATION,
+    MEASUREMENT,
+    MEASURED_RATE,
+    U,
+    INTEGRAL,
+    DER_INTEGRAL,
     model::<0>(1), // lp
     model::<1>(1),
     model::<2>(1),

@@ -4,10 +4,12 @@
 //! exactly with the PID's anti-windup, and a wrong model is refused by its FMU name.
 
 use nalgebra::Vector3;
-use robofmu::computed_torque::{AxisGains, ComputedTorque, Inputs};
-use robofmu::pss3::dynamics::{EndStopMode, Friction, Plant, PlantInputs, PlantParams, PlantState};
-use robofmu::pss3::rotation::{euler_accelerations, euler_rate_matrix};
 use robofmu_computed_torque_fmu::ComputedTorqueFmu;
+use robofmu_dynamics::computed_torque::{AxisGains, ComputedTorque, Inputs};
+use robofmu_dynamics::pss3::dynamics::{
+    EndStopMode, Friction, Plant, PlantInputs, PlantParams, PlantState,
+};
+use robofmu_dynamics::pss3::rotation::{euler_accelerations, euler_rate_matrix};
 use robofmu_fmi::fmi2::types::{FMI2_CO_SIMULATION, FMI2_MODEL_EXCHANGE, Fmi2Status};
 use robofmu_fmi_testing::{Host, vr};
 
@@ -99,7 +101,7 @@ fn gains() -> [AxisGains; 3] {
 
 #[test]
 fn the_output_is_the_library_law_for_the_parameters_set() {
-    // Truth: robofmu::computed_torque::ComputedTorque built here with the same model
+    // Truth: robofmu_dynamics::computed_torque::ComputedTorque built here with the same model
     // (leg mass 20 % above the spec's, friction) and gains; the FMU must reproduce it
     // at random states to rounding (the same arithmetic: 1e-12 relative).
     let h = model_exchange(&gains(), 1.2);
@@ -219,7 +221,7 @@ const OUTSIDE: [f64; 3] = [80f64.to_radians(), 0.0, 2.13];
 /// The reason the FMU must give at `OUTSIDE`: the pose in degrees and the library's own
 /// refusal of it (its inverse dynamics evaluated apart from the FMU).
 fn reason_outside() -> String {
-    let gains = robofmu::computed_torque::pole_placement(30.0, true).unwrap();
+    let gains = robofmu_dynamics::computed_torque::pole_placement(30.0, true).unwrap();
     let law = ComputedTorque::new(PlantParams::default(), [gains; 3]).unwrap();
     let inputs = Inputs {
         measurement: OUTSIDE.into(),

@@ -12,28 +12,19 @@ use robofmu_fmi::prelude::*;
 
 pub const CHANNELS: usize = 3;
 
-static INFO: ModelInfo = ModelInfo {
-    model_name: "PID",
-    model_identifier: "PID",
-    guid: "{9b7e2f14-3c6a-4e8d-b1f0-7a5d2c9e6b33}",
-    description: "Three-channel PID controller with filtered derivative, measured-rate \
-                  option, feedforward and output limits with conditional-integration \
-                  anti-windup",
-    default_experiment: DefaultExperiment {
-        start_time: 0.0,
-        stop_time: 2.0,
-        tolerance: 1e-8,
-        step_size: 0.01,
-    },
-    number_of_continuous_states: 2 * CHANNELS,
-    number_of_event_indicators: 0,
-    provides_directional_derivative: true,
-    max_output_derivative_order: 0,
-    log_categories: &[LogCategory {
-        name: "logController",
-        description: "Gains and options of each channel at initialization",
-    }],
-};
+static INFO: ModelInfo = ModelInfo::new(
+    "PID",
+    "{9b7e2f14-3c6a-4e8d-b1f0-7a5d2c9e6b33}",
+    "Three-channel PID controller with filtered derivative, measured-rate option, feedforward \
+     and output limits with conditional-integration anti-windup",
+    [0.0, 2.0, 1e-8, 0.01],
+)
+.states(continuous_states(VARIABLES))
+.directional_derivatives()
+.logs(&[LogCategory {
+    name: "logController",
+    description: "Gains and options of each channel at initialization",
+}]);
 
 /// Parameters, inputs and states of the three channels.
 #[derive(Clone)]
@@ -132,155 +123,159 @@ macro_rules! state {
             .state()
             .start_real(&[0.0])
     };
-    ($name:literal, $state:literal, $vr:literal, $what:literal, $field:ident) => {
+    ($name:literal, $state:ident, $vr:literal, $what:literal, $field:ident) => {
         Decl::real($name, $what, |m, c| m.derivative(c).$field)
             .array(CHANNELS)
             .at($vr)
-            .derivative_of($state)
+            .derivative_of($state.name)
     };
 }
 
-/// The knowns at initialization of channel `c` that its output u reads (the law of
-/// `control::pid`), also its dI/dt (conditional integration compares u with the limits).
-macro_rules! output_knowns {
-    ($c:literal) => {
-        [
-            concat!("Kp[", $c, "]"),
-            concat!("Ki[", $c, "]"),
-            concat!("Kd[", $c, "]"),
-            concat!("Tf[", $c, "]"),
-            concat!("limitOutput[", $c, "]"),
-            concat!("uMin[", $c, "]"),
-            concat!("uMax[", $c, "]"),
-            concat!("useRateInputs[", $c, "]"),
-            concat!("setpoint[", $c, "]"),
-            concat!("measurement[", $c, "]"),
-            concat!("setpointRate[", $c, "]"),
-            concat!("measuredRate[", $c, "]"),
-            concat!("feedforward[", $c, "]"),
-            concat!("integral[", $c, "]"),
-            concat!("filter[", $c, "]"),
-        ]
-    };
-}
+const KP: Decl = gain!("Kp", 1, "Proportional gain", 1.0, gains.kp);
+const KI: Decl = gain!("Ki", 11, "Integral gain (1/s)", 0.5, gains.ki);
+const KD: Decl = gain!("Kd", 21, "Derivative gain (s)", 0.1, gains.kd);
+const TF: Decl = gain!(
+    "Tf",
+    31,
+    "Derivative filter time constant (0 allowed only with rate inputs)",
+    0.05,
+    gains.tf
+)
+.real_range(Some(0.0), None);
+const LIMIT: Decl = switch!(
+    "limitOutput",
+    41,
+    "clamp the output to [uMin, uMax]",
+    Tunable,
+    limited
+);
+const U_MIN: Decl = gain!(
+    "uMin",
+    51,
+    "Lower output limit (used when limitOutput)",
+    -1.0,
+    limits.0
+);
+const U_MAX: Decl = gain!(
+    "uMax",
+    61,
+    "Upper output limit (used when limitOutput)",
+    1.0,
+    limits.1
+);
+const RATES: Decl = switch!(
+    "useRateInputs",
+    71,
+    "derivative from setpointRate - measuredRate instead of the filtered error",
+    Fixed,
+    gains.use_rate_inputs
+);
+const SETPOINT: Decl = input!("setpoint", 101, "Setpoint r", &[1.0, 0.5, -0.25], setpoint);
+const MEASUREMENT: Decl = input!(
+    "measurement",
+    111,
+    "Measurement y (e = r - y)",
+    &[0.0],
+    measurement
+);
+const SETPOINT_RATE: Decl = input!(
+    "setpointRate",
+    121,
+    "Setpoint rate dr/dt (used when useRateInputs)",
+    &[0.0],
+    setpoint_rate
+);
+const MEASURED_RATE: Decl = input!(
+    "measuredRate",
+    131,
+    "Measured rate dy/dt (used when useRateInputs)",
+    &[0.0],
+    measured_rate
+);
+const FEEDFORWARD: Decl = input!(
+    "feedforward",
+    141,
+    "Added to the output before the limits",
+    &[0.0],
+    feedforward
+);
+const U: Decl = channels(Decl::real("u", "control output", |m, c| m.output(c).u), 201)
+    .output()
+    .initial_depends_on(&OUTPUT_KNOWNS);
+const INTEGRAL: Decl = state!("integral", 301, "integral of the error (state)", integral);
+const FILTER: Decl = state!("filter", 311, "derivative filter state (state)", filter);
+const DER_INTEGRAL: Decl = state!(
+    "der(integral)",
+    INTEGRAL,
+    321,
+    "Time derivative of the error integral",
+    integral
+)
+.initial_depends_on(&OUTPUT_KNOWNS);
+const DER_FILTER: Decl = state!(
+    "der(filter)",
+    FILTER,
+    331,
+    "Time derivative of the derivative filter state",
+    filter
+)
+.initial_depends_on(&FILTER_KNOWNS);
 
-/// The knowns at initialization of channel `c` that the filter's dx/dt reads.
-macro_rules! filter_knowns {
-    ($c:literal) => {
-        [
-            concat!("Kd[", $c, "]"),
-            concat!("Tf[", $c, "]"),
-            concat!("useRateInputs[", $c, "]"),
-            concat!("setpoint[", $c, "]"),
-            concat!("measurement[", $c, "]"),
-            concat!("setpointRate[", $c, "]"),
-            concat!("measuredRate[", $c, "]"),
-            concat!("filter[", $c, "]"),
-        ]
-    };
-}
-
-/// InitialUnknowns dependencies per channel: of u and dI/dt, of the filter's dx/dt.
-static OUTPUT_KNOWNS: [[&str; 15]; CHANNELS] =
-    [output_knowns!(1), output_knowns!(2), output_knowns!(3)];
-static FILTER_KNOWNS: [[&str; 8]; CHANNELS] =
-    [filter_knowns!(1), filter_knowns!(2), filter_knowns!(3)];
+/// What the filter's dx/dt reads at initialization, in the same channel.
+static FILTER_KNOWNS: [Var; 8] = [
+    KD.same(),
+    TF.same(),
+    RATES.same(),
+    SETPOINT.same(),
+    MEASUREMENT.same(),
+    SETPOINT_RATE.same(),
+    MEASURED_RATE.same(),
+    FILTER.same(),
+];
+/// What u reads at initialization (the law of `control::pid`), in the same channel;
+/// also dI/dt (conditional integration compares u with the limits).
+static OUTPUT_KNOWNS: [Var; 15] = [
+    KP.same(),
+    KI.same(),
+    KD.same(),
+    TF.same(),
+    LIMIT.same(),
+    U_MIN.same(),
+    U_MAX.same(),
+    RATES.same(),
+    SETPOINT.same(),
+    MEASUREMENT.same(),
+    SETPOINT_RATE.same(),
+    MEASURED_RATE.same(),
+    FEEDFORWARD.same(),
+    INTEGRAL.same(),
+    FILTER.same(),
+];
 
 static VARIABLES: &[Decl] = &[
-    gain!("Kp", 1, "Proportional gain", 1.0, gains.kp),
-    gain!("Ki", 11, "Integral gain (1/s)", 0.5, gains.ki),
-    gain!("Kd", 21, "Derivative gain (s)", 0.1, gains.kd),
-    gain!(
-        "Tf",
-        31,
-        "Derivative filter time constant (0 allowed only with rate inputs)",
-        0.05,
-        gains.tf
-    )
-    .real_range(Some(0.0), None),
-    switch!(
-        "limitOutput",
-        41,
-        "clamp the output to [uMin, uMax]",
-        Tunable,
-        limited
-    ),
-    gain!(
-        "uMin",
-        51,
-        "Lower output limit (used when limitOutput)",
-        -1.0,
-        limits.0
-    ),
-    gain!(
-        "uMax",
-        61,
-        "Upper output limit (used when limitOutput)",
-        1.0,
-        limits.1
-    ),
-    switch!(
-        "useRateInputs",
-        71,
-        "derivative from setpointRate - measuredRate instead of the filtered error",
-        Fixed,
-        gains.use_rate_inputs
-    ),
-    input!("setpoint", 101, "Setpoint r", &[1.0, 0.5, -0.25], setpoint),
-    input!(
-        "measurement",
-        111,
-        "Measurement y (e = r - y)",
-        &[0.0],
-        measurement
-    ),
-    input!(
-        "setpointRate",
-        121,
-        "Setpoint rate dr/dt (used when useRateInputs)",
-        &[0.0],
-        setpoint_rate
-    ),
-    input!(
-        "measuredRate",
-        131,
-        "Measured rate dy/dt (used when useRateInputs)",
-        &[0.0],
-        measured_rate
-    ),
-    input!(
-        "feedforward",
-        141,
-        "Added to the output before the limits",
-        &[0.0],
-        feedforward
-    ),
-    channels(Decl::real("u", "control output", |m, c| m.output(c).u), 201)
-        .output()
-        .initial_depends_on(|c| &OUTPUT_KNOWNS[c]),
-    state!("integral", 301, "integral of the error (state)", integral),
-    state!("filter", 311, "derivative filter state (state)", filter),
-    state!(
-        "der(integral)",
-        "integral",
-        321,
-        "Time derivative of the error integral",
-        integral
-    )
-    .initial_depends_on(|c| &OUTPUT_KNOWNS[c]),
-    state!(
-        "der(filter)",
-        "filter",
-        331,
-        "Time derivative of the derivative filter state",
-        filter
-    )
-    .initial_depends_on(|c| &FILTER_KNOWNS[c]),
+    KP,
+    KI,
+    KD,
+    TF,
+    LIMIT,
+    U_MIN,
+    U_MAX,
+    RATES,
+    SETPOINT,
+    MEASUREMENT,
+    SETPOINT_RATE,
+    MEASURED_RATE,
+    FEEDFORWARD,
+    U,
+    INTEGRAL,
+    FILTER,
+    DER_INTEGRAL,
+    DER_FILTER,
 ];
 
 /// d(output or state derivative)/d(input or state) of one channel, from the law in
 /// `control::pid` (the limits make u flat, conditional integration makes dI/dt flat).
-fn channel_partial(m: &Pid, c: usize, unknown: &str, known: &str) -> Result<f64, String> {
+fn channel_partial(m: &Pid, c: usize, unknown: Element, known: Element) -> Result<f64, String> {
     let g = &m.gains[c];
     let out = m.output(c);
     // Coefficients of e (via setpoint/measurement), of the rate error and of the states
@@ -300,38 +295,47 @@ fn channel_partial(m: &Pid, c: usize, unknown: &str, known: &str) -> Result<f64,
     let saturated = g
         .limits
         .is_some_and(|(lo, hi)| out.u_raw > hi || out.u_raw < lo);
-    let sign = |k: &str| match k {
-        "setpoint" | "setpointRate" => 1.0,
-        _ => -1.0,
+    let error = SETPOINT.is(known) || MEASUREMENT.is(known);
+    let rate = SETPOINT_RATE.is(known) || MEASURED_RATE.is(known);
+    let sign = if SETPOINT.is(known) || SETPOINT_RATE.is(known) {
+        1.0
+    } else {
+        -1.0
     };
-    Ok(match unknown {
-        "u" if saturated => 0.0,
-        "u" => match known {
-            "setpoint" | "measurement" => sign(known) * (g.kp + d_e),
-            "setpointRate" | "measuredRate" => sign(known) * d_rate,
-            "feedforward" => 1.0,
-            "integral" => g.ki,
-            "filter" => d_filter,
-            _ => {
-                return Err(format!("\"{known}\" is not an input or state"));
-            }
-        },
-        "der(integral)" if pid::integration_stopped(g, &out) => 0.0,
-        "der(integral)" => match known {
-            "setpoint" | "measurement" => sign(known),
-            _ => 0.0,
-        },
-        "der(filter)" if !filter_active => 0.0,
-        "der(filter)" => match (known, g.use_rate_inputs) {
-            ("setpoint" | "measurement", false) | ("setpointRate" | "measuredRate", true) => {
-                sign(known) / g.tf
-            }
-            ("filter", _) => -1.0 / g.tf,
-            _ => 0.0,
-        },
-        _ => {
-            return Err(format!("\"{unknown}\" is not an output or derivative"));
+    Ok(if U.is(unknown) && saturated {
+        0.0
+    } else if U.is(unknown) {
+        if error {
+            sign * (g.kp + d_e)
+        } else if rate {
+            sign * d_rate
+        } else if FEEDFORWARD.is(known) {
+            1.0
+        } else if INTEGRAL.is(known) {
+            g.ki
+        } else if FILTER.is(known) {
+            d_filter
+        } else {
+            return Err(format!("\"{}\" is not an input or state", known.name));
         }
+    } else if DER_INTEGRAL.is(unknown) {
+        let stopped = pid::integration_stopped(g, &out);
+        if error && !stopped { sign } else { 0.0 }
+    } else if DER_FILTER.is(unknown) {
+        if !filter_active {
+            0.0
+        } else if (error && !g.use_rate_inputs) || (rate && g.use_rate_inputs) {
+            sign / g.tf
+        } else if FILTER.is(known) {
+            -1.0 / g.tf
+        } else {
+            0.0
+        }
+    } else {
+        return Err(format!(
+            "\"{}\" is not an output or derivative",
+            unknown.name
+        ));
     })
 }
 
@@ -403,34 +407,14 @@ impl Model for Pid {
     /// the 9 inner points (held over the next sub-interval).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
 
-    fn continuous_states(&self, x: &mut [f64]) {
-        for c in 0..CHANNELS {
-            x[c] = self.states[c].integral;
-            x[CHANNELS + c] = self.states[c].filter;
-        }
-    }
-
-    fn set_continuous_states(&mut self, x: &[f64]) {
-        for c in 0..CHANNELS {
-            self.states[c].integral = x[c];
-            self.states[c].filter = x[CHANNELS + c];
-        }
-    }
-
-    fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
-        for c in 0..CHANNELS {
-            let d = self.derivative(c);
-            dx[c] = d.integral;
-            dx[CHANNELS + c] = d.filter;
-        }
-        Ok(())
-    }
+    // The continuous states and their derivatives: the layer's defaults, through the
+    // declarations of integral, filter and their derivatives.
 
     fn partial_derivative(&self, unknown: Element, known: Element) -> Result<f64, String> {
         if unknown.index != known.index {
             return Ok(0.0);
         }
-        channel_partial(self, unknown.index, unknown.name, known.name)
+        channel_partial(self, unknown.index, unknown, known)
     }
 }
 

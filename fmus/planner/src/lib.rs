@@ -1,36 +1,27 @@
 //! Binding of the trajectory planner (`robofmu_control::trajectory`) as the FMU
 //! "Planner": three axes, cubic or quintic, boundary conditions as parameters,
 //! q / qdot / qddot per axis as outputs. Axis positions are angles (rad, shown in deg);
-//! the planner itself is unit-agnostic.
+//! the planner itself is unit-agnostic. docs/fmu-in-one-file.md walks through this file.
 
 use robofmu_control::trajectory::{Boundary, Order, Plan};
 use robofmu_fmi::prelude::*;
 
 pub const AXES: usize = 3;
 
-static INFO: ModelInfo = ModelInfo {
-    model_name: "Planner",
-    model_identifier: "Planner",
-    guid: "{5d0c3a52-8f0e-4d6b-9a51-3c2b7e41a901}",
-    description: "Cubic or quintic point-to-point trajectories of three axes from boundary \
-                  conditions at t0 and tf; at rest at q0 before t0 and at qf after tf",
-    default_experiment: DefaultExperiment {
-        start_time: 0.0,
-        stop_time: 2.5,
-        tolerance: 1e-6,
-        step_size: 0.01,
-    },
-    number_of_continuous_states: 0,
-    number_of_event_indicators: 0,
-    provides_directional_derivative: false,
-    max_output_derivative_order: 2,
-    log_categories: &[LogCategory {
-        name: "logTrajectory",
-        description: "Polynomial coefficients computed at initialization",
-    }],
-};
+static INFO: ModelInfo = ModelInfo::new(
+    "Planner",
+    "{5d0c3a52-8f0e-4d6b-9a51-3c2b7e41a901}",
+    "Cubic or quintic point-to-point trajectories of three axes from boundary conditions at t0 \
+     and tf; at rest at q0 before t0 and at qf after tf",
+    [0.0, 2.5, 1e-6, 0.01],
+)
+.output_derivatives(2)
+.logs(&[LogCategory {
+    name: "logTrajectory",
+    description: "Polynomial coefficients computed at initialization",
+}]);
 
-/// Parameters and time of the planner; the polynomials follow from them.
+/// Parameters and time of the planner (outputs are functions of them: no `do_step`).
 #[derive(Clone)]
 pub struct Planner {
     degree: i32,
@@ -50,126 +41,100 @@ impl Planner {
         Ok(())
     }
 
-    /// Exact: order n of output k (0 q, 1 qdot, 2 qddot) of `axis` is the derivative
-    /// of order k + n of its polynomial (`Polynomial::derivative`: one-sided from inside
-    /// the motion at t0 and tf, zero while held), so the first derivative of q equals
-    /// the output qdot and that of qdot the output qddot at every time.
+    /// Exact: order n of output k (0 q, 1 qdot, 2 qddot) of `axis` is the derivative of
+    /// order k + n of its polynomial (one-sided at t0 and tf, zero while held).
     fn derivative(&self, axis: usize, k: usize, n: u32) -> Result<f64, OutputDerivativeError> {
         let plan = self.plan.as_ref();
         let plan = plan.map_err(|e| OutputDerivativeError::CannotEvaluate(e.clone()))?;
         Ok(plan.axis(axis).derivative(self.time, k + n as usize))
     }
-
-    /// Output k of `axis` (NaN until the parameters are valid).
-    fn output(&self, axis: usize, k: usize) -> f64 {
-        self.derivative(axis, k, 0).unwrap_or(f64::NAN)
-    }
-}
-
-/// A boundary value of the three axes: parameter `$field` of `Boundary`, element a
-/// at value reference `$vr + 10 (a - 1)` (the value references step by axis).
-macro_rules! boundary {
-    ($field:ident, $vr:literal, $unit:literal, $display:literal, $what:literal, $start:expr) => {
-        axes(
-            Decl::real(stringify!($field), $what, |m, a| m.boundary[a].$field),
-            $vr,
-        )
-        .set_real(|m, a, v| m.change(|m| m.boundary[a].$field = v))
-        .parameter(Variability::Fixed)
-        .unit($unit, Some($display))
-        .start_real($start)
-    };
-}
-
-/// The knowns at initialization of axis `a`: the start time (FMI 3.0 only: FMI 2.0
-/// has no time variable to name), the polynomial's order, times and that axis's
-/// boundary values (InitialUnknowns dependencies of q, qdot, qddot).
-macro_rules! axis_knowns {
-    ($a:literal) => {
-        [
-            "time",
-            "order",
-            "t0",
-            "tf",
-            concat!("q0[", $a, "]"),
-            concat!("qf[", $a, "]"),
-            concat!("qdot0[", $a, "]"),
-            concat!("qdotf[", $a, "]"),
-            concat!("qddot0[", $a, "]"),
-            concat!("qddotf[", $a, "]"),
-        ]
-    };
-}
-
-static AXIS_KNOWNS: [[&str; 10]; AXES] = [axis_knowns!(1), axis_knowns!(2), axis_knowns!(3)];
-
-/// A planned output of the three axes (`k`: 0 q, 1 qdot, 2 qddot), element a at value
-/// reference `$vr + 10 (a - 1)`, with its exact time derivatives and its knowns at
-/// initialization.
-macro_rules! planned {
-    ($name:literal, $k:literal, $vr:literal, $unit:literal, $display:literal, $what:literal) => {
-        axes(Decl::real($name, $what, |m, a| m.output(a, $k)), $vr)
-            .output()
-            .unit($unit, Some($display))
-            .output_derivative(|m, a, n| m.derivative(a, $k, n))
-            .initial_depends_on(|a| &AXIS_KNOWNS[a])
-    };
-}
-
-/// The array of the three axes: element a at `vr + 10 (a - 1)`, "Axis a: ..." in FMI 2.0.
-const fn axes(d: Decl, vr: u32) -> Decl {
-    d.array(AXES).at(vr).stride(10).label("Axis")
 }
 
 type Decl = Declaration<Planner>;
 
+/// A fixed Real parameter named after the field `$field` of `$place`: setting it plans.
+macro_rules! fixed {
+    ($field:ident, $what:literal, |$m:ident, $a:ident| $place:expr) => {
+        Decl::real(stringify!($field), $what, |$m, $a| $place.$field)
+            .set_real(|$m, $a, v| $m.change(|$m| $place.$field = v))
+            .parameter(Variability::Fixed)
+    };
+}
+
+/// Unit and display unit of order k of a position: 0 q, 1 qdot, 2 qddot.
+const UNITS: [(&str, &str); 3] = [("rad", "deg"), ("rad/s", "deg/s"), ("rad/s2", "deg/s2")];
+
+/// The three axes of order k of a position: element a at `vr + 10 a`, "Axis a: ...".
+const fn axes(d: Decl, vr: u32, k: usize) -> Decl {
+    let d = d.array(AXES).at(vr).stride(10).label("Axis");
+    d.unit(UNITS[k].0, Some(UNITS[k].1))
+}
+
+/// A boundary value of the three axes, order k of a position.
+macro_rules! boundary {
+    ($field:ident, $vr:literal, $k:literal, $what:literal, $start:expr) => {
+        axes(fixed!($field, $what, |m, a| m.boundary[a]), $vr, $k).start_real($start)
+    };
+}
+
+/// Output k (0 q, 1 qdot, 2 qddot) of axis a (NaN until the parameters are valid).
+fn output<const K: usize>(m: &Planner, a: usize) -> f64 {
+    m.derivative(a, K, 0).unwrap_or(f64::NAN)
+}
+
+/// A planned output of the three axes, with exact time derivatives.
+const fn planned<const K: usize>(name: &'static str, vr: u32, what: &'static str) -> Decl {
+    let d = axes(Decl::real(name, what, output::<K>), vr, K).output();
+    d.output_derivative(|m, a, n| m.derivative(a, K, n))
+        .initial_depends_on(&KNOWNS)
+}
+
+const ORDER: Decl = Decl::integer(
+    "order",
+    "Polynomial degree: 3 (cubic) or 5 (quintic)",
+    |m, _| m.degree,
+)
+.set_integer(|m, _, v| match Order::from_degree(v) {
+    None => Err("the order must be 3 or 5".to_string()),
+    Some(_) => m.change(|m| m.degree = v),
+})
+.parameter(Variability::Fixed)
+.start_integer(&[5])
+.integer_range(3, 5)
+.at(1);
+const T0: Decl = fixed!(t0, "Start time of the motion", |m, _a| m)
+    .unit("s", None)
+    .start_real(&[0.0]);
+const TF: Decl = fixed!(tf, "End time of the motion (after t0)", |m, _a| m)
+    .unit("s", None)
+    .start_real(&[2.0]);
+const Q0: Decl = boundary!(q0, 10, 0, "position at t0", &[0.0]);
+const QF: Decl = boundary!(qf, 11, 0, "position at tf", &[0.5, -0.3, 0.8]);
+const QDOT0: Decl = boundary!(qdot0, 12, 1, "velocity at t0", &[0.0]);
+const QDOTF: Decl = boundary!(qdotf, 13, 1, "velocity at tf", &[0.0]);
+const QDDOT0: Decl = boundary!(qddot0, 14, 2, "acceleration at t0 (quintic only)", &[0.0]);
+const QDDOTF: Decl = boundary!(qddotf, 15, 2, "acceleration at tf (quintic only)", &[0.0]);
+
+/// What the outputs of axis a depend on at initialization: time, order, t0, tf and
+/// that axis's boundary values.
+static KNOWNS: [Var; 10] = [
+    Var::Time,
+    ORDER.var(),
+    T0.var(),
+    TF.var(),
+    Q0.same(),
+    QF.same(),
+    QDOT0.same(),
+    QDOTF.same(),
+    QDDOT0.same(),
+    QDDOTF.same(),
+];
+const Q: Decl = planned::<0>("q", 100, "planned position");
+const QDOT: Decl = planned::<1>("qdot", 101, "planned velocity");
+const QDDOT: Decl = planned::<2>("qddot", 102, "planned acceleration");
+
 static VARIABLES: &[Decl] = &[
-    Decl::integer(
-        "order",
-        "Polynomial degree: 3 (cubic) or 5 (quintic)",
-        |m, _| m.degree,
-    )
-    .set_integer(|m, _, v| match Order::from_degree(v) {
-        None => Err("the order must be 3 or 5".to_string()),
-        Some(_) => m.change(|m| m.degree = v),
-    })
-    .parameter(Variability::Fixed)
-    .start_integer(&[5])
-    .integer_range(3, 5)
-    .at(1),
-    Decl::real("t0", "Start time of the motion", |m, _| m.t0)
-        .set_real(|m, _, v| m.change(|m| m.t0 = v))
-        .parameter(Variability::Fixed)
-        .unit("s", None)
-        .start_real(&[0.0]),
-    Decl::real("tf", "End time of the motion (after t0)", |m, _| m.tf)
-        .set_real(|m, _, v| m.change(|m| m.tf = v))
-        .parameter(Variability::Fixed)
-        .unit("s", None)
-        .start_real(&[2.0]),
-    boundary!(q0, 10, "rad", "deg", "position at t0", &[0.0]),
-    boundary!(qf, 11, "rad", "deg", "position at tf", &[0.5, -0.3, 0.8]),
-    boundary!(qdot0, 12, "rad/s", "deg/s", "velocity at t0", &[0.0]),
-    boundary!(qdotf, 13, "rad/s", "deg/s", "velocity at tf", &[0.0]),
-    boundary!(
-        qddot0,
-        14,
-        "rad/s2",
-        "deg/s2",
-        "acceleration at t0 (quintic only)",
-        &[0.0]
-    ),
-    boundary!(
-        qddotf,
-        15,
-        "rad/s2",
-        "deg/s2",
-        "acceleration at tf (quintic only)",
-        &[0.0]
-    ),
-    planned!("q", 0, 100, "rad", "deg", "planned position"),
-    planned!("qdot", 1, 101, "rad/s", "deg/s", "planned velocity"),
-    planned!("qddot", 2, 102, "rad/s2", "deg/s2", "planned acceleration"),
+    ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF, Q, QDOT, QDDOT,
 ];
 
 impl Model for Planner {
@@ -182,13 +147,15 @@ impl Model for Planner {
     }
 
     fn new() -> Self {
+        // Placeholders: the layer writes the table's start values before any use.
+        let (plan, boundary) = (Err(String::new()), [Boundary::default(); AXES]);
         Planner {
-            degree: 5,
+            degree: 0,
             t0: 0.0,
-            tf: 1.0,
-            boundary: [Boundary::default(); AXES],
+            tf: 0.0,
+            boundary,
             time: 0.0,
-            plan: Err("not yet initialized".to_string()),
+            plan,
         }
     }
 
@@ -200,20 +167,11 @@ impl Model for Planner {
         self.change(|_| ())?;
         let plan = self.plan.as_ref().map_err(String::clone)?;
         for a in 0..AXES {
-            let c = plan.axis(a).shifted_coefficients();
-            let message = format!(
-                "axis {}: q(t) = sum c_k (t - {})^k, c = {c:?}",
-                a + 1,
-                self.t0
-            );
+            let (c, t0) = (plan.axis(a).shifted_coefficients(), self.t0);
+            let message = format!("axis {}: q(t) = sum c_k (t - {t0})^k, c = {c:?}", a + 1);
             log.debug("logTrajectory", &message);
         }
         Ok(())
-    }
-
-    fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
-        // Outputs are explicit functions of time: nothing to integrate.
-        StepOutcome::Completed
     }
 
     fn next_time_event(&self, time: f64) -> Option<f64> {
@@ -222,5 +180,4 @@ impl Model for Planner {
     }
 }
 
-// The exported fmi2* symbols of this FMU.
 export_fmu!(Planner);

@@ -11,161 +11,241 @@
 //! value).
 
 use super::variables::concat;
+use robofmu_fmi::prelude::Var;
 
 /// Geometry, and with it the forward kinematics of l0.
-const GEOMETRY: [&str; 7] = ["lp", "ld", "gamma", "lb", "alpha", "beta", "a"];
+const GEOMETRY: [Var; 7] = [
+    Var::Named("lp"),
+    Var::Named("ld"),
+    Var::Named("gamma"),
+    Var::Named("lb"),
+    Var::Named("alpha"),
+    Var::Named("beta"),
+    Var::Named("a"),
+];
 /// The pose source besides theta0.
-const FROM_ACTUATORS: [&str; 11] = concat(
-    &[&["initFromActuators", "l0[1]", "l0[2]", "l0[3]"], &GEOMETRY],
-    "",
-);
-/// The whole initial pose.
-pub const POSE: [&str; 14] = concat(
-    &[&["theta0[1]", "theta0[2]", "theta0[3]"], &FROM_ACTUATORS],
-    "",
-);
-/// The pose and the initial angular velocity.
-pub const MOTION: [&str; 17] = concat(&[&POSE, &["omega0[1]", "omega0[2]", "omega0[3]"]], "");
-/// The end-stop constants.
-const STOPS: [&str; 4] = [
-    "strokeMin",
-    "strokeMax",
-    "endStopStiffness",
-    "endStopDamping",
-];
-/// Masses and inertias of the kinetic energy.
-const INERTIA: [&str; 10] = [
-    "platformInertia[1,1]",
-    "platformInertia[2,2]",
-    "platformInertia[3,3]",
-    "platformInertia[1,2]",
-    "platformInertia[1,3]",
-    "platformInertia[2,3]",
-    "legMass",
-    "legComFraction",
-    "legTransverseInertia",
-    "sliderMass",
-];
-/// What the gravity moment reads (the sliders run on fixed rails: their weight turns
-/// no pose coordinate).
-const GRAVITY: [&str; 5] = [
-    "g",
-    "platformMass",
-    "platformCom[1]",
-    "platformCom[2]",
-    "platformCom[3]",
-];
-/// The commands mapped to actuator forces through J^-T and E^-T at the pose.
-const COMMANDS: [&str; 6] = [
-    "torqueCommand[1]",
-    "torqueCommand[2]",
-    "torqueCommand[3]",
-    "generalizedForceCommand[1]",
-    "generalizedForceCommand[2]",
-    "generalizedForceCommand[3]",
-];
-const OTHER_INPUTS: [&str; 6] = [
-    "actuatorForce[1]",
-    "actuatorForce[2]",
-    "actuatorForce[3]",
-    "disturbanceTorque[1]",
-    "disturbanceTorque[2]",
-    "disturbanceTorque[3]",
-];
-
-pub static THETA: [[&str; 12]; 3] = [
-    concat(&[&["theta0[1]"], &FROM_ACTUATORS], ""),
-    concat(&[&["theta0[2]"], &FROM_ACTUATORS], ""),
-    concat(&[&["theta0[3]"], &FROM_ACTUATORS], ""),
-];
-pub static OMEGA: [[&str; 1]; 3] = [["omega0[1]"], ["omega0[2]"], ["omega0[3]"]];
-// thetaDot = E^-1(thy, thz) omega, row by row (R = Rz Ry Rx: no row reads thx, row 2
-// neither thy nor omega_z).
-static THETA_DOT_1: [&str; 15] = concat(
-    &[
-        &["theta0[2]", "theta0[3]", "omega0[1]", "omega0[2]"],
-        &FROM_ACTUATORS,
-    ],
-    "",
-);
-static THETA_DOT_2: [&str; 14] = concat(
-    &[&["theta0[3]", "omega0[1]", "omega0[2]"], &FROM_ACTUATORS],
-    "",
-);
-static THETA_DOT_3: [&str; 16] = concat(
+const FROM_ACTUATORS: [Var; 11] = concat(
     &[
         &[
-            "theta0[2]",
-            "theta0[3]",
-            "omega0[1]",
-            "omega0[2]",
-            "omega0[3]",
+            Var::Named("initFromActuators"),
+            Var::Named("l0[1]"),
+            Var::Named("l0[2]"),
+            Var::Named("l0[3]"),
+        ],
+        &GEOMETRY,
+    ],
+    Var::Time,
+);
+/// The whole initial pose.
+pub const POSE: [Var; 14] = concat(
+    &[
+        &[
+            Var::Named("theta0[1]"),
+            Var::Named("theta0[2]"),
+            Var::Named("theta0[3]"),
         ],
         &FROM_ACTUATORS,
     ],
-    "",
+    Var::Time,
 );
-pub static ACCELERATION: [&str; 50] = concat(
+/// The pose and the initial angular velocity.
+pub const MOTION: [Var; 17] = concat(
+    &[
+        &POSE,
+        &[
+            Var::Named("omega0[1]"),
+            Var::Named("omega0[2]"),
+            Var::Named("omega0[3]"),
+        ],
+    ],
+    Var::Time,
+);
+/// The end-stop constants.
+const STOPS: [Var; 4] = [
+    Var::Named("strokeMin"),
+    Var::Named("strokeMax"),
+    Var::Named("endStopStiffness"),
+    Var::Named("endStopDamping"),
+];
+/// Masses and inertias of the kinetic energy.
+const INERTIA: [Var; 10] = [
+    Var::Named("platformInertia[1,1]"),
+    Var::Named("platformInertia[2,2]"),
+    Var::Named("platformInertia[3,3]"),
+    Var::Named("platformInertia[1,2]"),
+    Var::Named("platformInertia[1,3]"),
+    Var::Named("platformInertia[2,3]"),
+    Var::Named("legMass"),
+    Var::Named("legComFraction"),
+    Var::Named("legTransverseInertia"),
+    Var::Named("sliderMass"),
+];
+/// What the gravity moment reads (the sliders run on fixed rails: their weight turns
+/// no pose coordinate).
+const GRAVITY: [Var; 5] = [
+    Var::Named("g"),
+    Var::Named("platformMass"),
+    Var::Named("platformCom[1]"),
+    Var::Named("platformCom[2]"),
+    Var::Named("platformCom[3]"),
+];
+/// The commands mapped to actuator forces through J^-T and E^-T at the pose.
+const COMMANDS: [Var; 6] = [
+    Var::Named("torqueCommand[1]"),
+    Var::Named("torqueCommand[2]"),
+    Var::Named("torqueCommand[3]"),
+    Var::Named("generalizedForceCommand[1]"),
+    Var::Named("generalizedForceCommand[2]"),
+    Var::Named("generalizedForceCommand[3]"),
+];
+const OTHER_INPUTS: [Var; 6] = [
+    Var::Named("actuatorForce[1]"),
+    Var::Named("actuatorForce[2]"),
+    Var::Named("actuatorForce[3]"),
+    Var::Named("disturbanceTorque[1]"),
+    Var::Named("disturbanceTorque[2]"),
+    Var::Named("disturbanceTorque[3]"),
+];
+
+pub static THETA: [[Var; 12]; 3] = [
+    concat(&[&[Var::Named("theta0[1]")], &FROM_ACTUATORS], Var::Time),
+    concat(&[&[Var::Named("theta0[2]")], &FROM_ACTUATORS], Var::Time),
+    concat(&[&[Var::Named("theta0[3]")], &FROM_ACTUATORS], Var::Time),
+];
+pub static OMEGA: [[Var; 1]; 3] = [
+    [Var::Named("omega0[1]")],
+    [Var::Named("omega0[2]")],
+    [Var::Named("omega0[3]")],
+];
+// thetaDot = E^-1(thy, thz) omega, row by row (R = Rz Ry Rx: no row reads thx, row 2
+// neither thy nor omega_z).
+static THETA_DOT_1: [Var; 15] = concat(
+    &[
+        &[
+            Var::Named("theta0[2]"),
+            Var::Named("theta0[3]"),
+            Var::Named("omega0[1]"),
+            Var::Named("omega0[2]"),
+        ],
+        &FROM_ACTUATORS,
+    ],
+    Var::Time,
+);
+static THETA_DOT_2: [Var; 14] = concat(
+    &[
+        &[
+            Var::Named("theta0[3]"),
+            Var::Named("omega0[1]"),
+            Var::Named("omega0[2]"),
+        ],
+        &FROM_ACTUATORS,
+    ],
+    Var::Time,
+);
+static THETA_DOT_3: [Var; 16] = concat(
+    &[
+        &[
+            Var::Named("theta0[2]"),
+            Var::Named("theta0[3]"),
+            Var::Named("omega0[1]"),
+            Var::Named("omega0[2]"),
+            Var::Named("omega0[3]"),
+        ],
+        &FROM_ACTUATORS,
+    ],
+    Var::Time,
+);
+pub static ACCELERATION: [Var; 50] = concat(
     &[
         &MOTION,
         &COMMANDS,
         &OTHER_INPUTS,
         &INERTIA,
         &GRAVITY,
-        &["sliderFriction", "pivotFriction"],
+        &[Var::Named("sliderFriction"), Var::Named("pivotFriction")],
         &STOPS,
     ],
-    "",
+    Var::Time,
 );
-pub static FORCE: [[&str; 21]; 3] = [
-    concat(&[&POSE, &["actuatorForce[1]"], &COMMANDS], ""),
-    concat(&[&POSE, &["actuatorForce[2]"], &COMMANDS], ""),
-    concat(&[&POSE, &["actuatorForce[3]"], &COMMANDS], ""),
+pub static FORCE: [[Var; 21]; 3] = [
+    concat(
+        &[&POSE, &[Var::Named("actuatorForce[1]")], &COMMANDS],
+        Var::Time,
+    ),
+    concat(
+        &[&POSE, &[Var::Named("actuatorForce[2]")], &COMMANDS],
+        Var::Time,
+    ),
+    concat(
+        &[&POSE, &[Var::Named("actuatorForce[3]")], &COMMANDS],
+        Var::Time,
+    ),
 ];
 /// A pose from l0 lies within the strokes (forward kinematics refuses any other), where
 /// the stops act on no actuator: l0 moves no stop force or flag.
-const POSE_IN_A_STOP: [&str; 11] = concat(
+const POSE_IN_A_STOP: [Var; 11] = concat(
     &[
-        &["theta0[1]", "theta0[2]", "theta0[3]", "initFromActuators"],
+        &[
+            Var::Named("theta0[1]"),
+            Var::Named("theta0[2]"),
+            Var::Named("theta0[3]"),
+            Var::Named("initFromActuators"),
+        ],
         &GEOMETRY,
     ],
-    "",
+    Var::Time,
 );
-pub static STOP_FORCE: [&str; 18] = concat(
+pub static STOP_FORCE: [Var; 18] = concat(
     &[
         &POSE_IN_A_STOP,
-        &["omega0[1]", "omega0[2]", "omega0[3]"],
+        &[
+            Var::Named("omega0[1]"),
+            Var::Named("omega0[2]"),
+            Var::Named("omega0[3]"),
+        ],
         &STOPS,
     ],
-    "",
+    Var::Time,
 );
-pub static AT_STOP: [&str; 13] = concat(&[&POSE_IN_A_STOP, &["strokeMin", "strokeMax"]], "");
-pub static KINETIC_ENERGY: [&str; 27] = concat(&[&MOTION, &INERTIA], "");
-pub static POTENTIAL_ENERGY: [&str; 25] = concat(
+pub static AT_STOP: [Var; 13] = concat(
+    &[
+        &POSE_IN_A_STOP,
+        &[Var::Named("strokeMin"), Var::Named("strokeMax")],
+    ],
+    Var::Time,
+);
+pub static KINETIC_ENERGY: [Var; 27] = concat(&[&MOTION, &INERTIA], Var::Time);
+pub static POTENTIAL_ENERGY: [Var; 25] = concat(
     &[
         &POSE,
         &GRAVITY,
         &[
-            "legMass",
-            "legComFraction",
-            "sliderMass",
-            "strokeMin",
-            "strokeMax",
+            Var::Named("legMass"),
+            Var::Named("legComFraction"),
+            Var::Named("sliderMass"),
+            Var::Named("strokeMin"),
+            Var::Named("strokeMax"),
         ],
-        &["endStopStiffness"],
+        &[Var::Named("endStopStiffness")],
     ],
-    "",
+    Var::Time,
 );
-static GRAVITY_COMPENSATION: [&str; 21] =
-    concat(&[&POSE, &GRAVITY, &["legMass", "legComFraction"]], "");
+static GRAVITY_COMPENSATION: [Var; 21] = concat(
+    &[
+        &POSE,
+        &GRAVITY,
+        &[Var::Named("legMass"), Var::Named("legComFraction")],
+    ],
+    Var::Time,
+);
 
 /// Element i of thetaDot and der(theta).
-pub fn theta_dot(i: usize) -> &'static [&'static str] {
+pub fn theta_dot(i: usize) -> &'static [Var] {
     [&THETA_DOT_1[..], &THETA_DOT_2, &THETA_DOT_3][i]
 }
 
 /// Element i of gravityCompensation; the third depends on none: the moment of gravity
 /// about the vertical axis of {A} (E's third column is that axis) is 0 in every pose.
-pub fn gravity_compensation(i: usize) -> &'static [&'static str] {
+pub fn gravity_compensation(i: usize) -> &'static [Var] {
     if i == 2 { &[] } else { &GRAVITY_COMPENSATION }
 }

@@ -1,4 +1,4 @@
-//! Binding of the 3-PSS plant (`robofmu::pss3::dynamics::Plant`) as the FMU "Pss3Plant":
+//! Binding of the 3-PSS plant (`robofmu_dynamics::pss3::dynamics::Plant`) as the FMU "Pss3Plant":
 //! Model Exchange and Co-Simulation.
 //!
 //! Continuous states: the Euler angles theta = (thx, thy, thz) and the angular velocity
@@ -21,12 +21,12 @@ mod partials;
 mod variables;
 
 use nalgebra::Vector3;
-use robofmu::pss3::dynamics::{
+use robofmu_dynamics::pss3::dynamics::{
     DynamicsError, InputRamp, Plant, PlantInputs, PlantOutputs, PlantParams, PlantState,
     StepSettings, StopContact,
 };
-use robofmu::pss3::rotation::euler_rates;
-use robofmu::pss3::{FkOptions, assemble, forward_kinematics, start_pose};
+use robofmu_dynamics::pss3::rotation::euler_rates;
+use robofmu_dynamics::pss3::{FkOptions, assemble, forward_kinematics, start_pose};
 use robofmu_fmi::prelude::*;
 
 /// The geometry parameters that decide, with the start pose, whether the robot assembles.
@@ -409,8 +409,9 @@ impl Model for Pss3Plant {
     }
 
     fn set_continuous_states(&mut self, x: &[f64]) {
-        self.state =
-            PlantState::from_vector(&robofmu::pss3::dynamics::StateVector::from_column_slice(x));
+        self.state = PlantState::from_vector(
+            &robofmu_dynamics::pss3::dynamics::StateVector::from_column_slice(x),
+        );
     }
 
     fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {

@@ -3,7 +3,8 @@
 //! so that a request for several elements, both orders or a second request at the same
 //! point costs one evaluation (one local motion and five evaluations of the outputs).
 //! gravityCompensation, the slope a master asks every step, has its own cheaper pass
-//! along the same local motion (five evaluations of the gravity torque alone).
+//! along the same local motion (five evaluations of the gravity torque alone), and so
+//! has thetaDot (five evaluations of the Euler-angle rates alone).
 //!
 //! The point is what the local motion and the outputs along it depend on: the
 //! parameters, the state and the inputs (the plant is time invariant; the input
@@ -14,7 +15,7 @@
 //! step, restored FMU state or reset has to remember to invalidate it.
 
 use nalgebra::{SVector, Vector3};
-use robofmu::pss3::dynamics::{LocalMotion, PlantInputs, PlantParams, PlantState};
+use robofmu_dynamics::pss3::dynamics::{LocalMotion, PlantInputs, PlantParams, PlantState};
 use std::cell::RefCell;
 
 /// How many outputs are differentiated along the motion: detJ, condJ, the two energies
@@ -62,6 +63,10 @@ pub struct Entry {
     /// gravityCompensation alone (a function of the Euler angles only, far cheaper than
     /// every output), once it was asked for.
     pub gravity: Option<Derivatives<Vector3<f64>>>,
+    /// thetaDot alone (the Euler-angle rates, a function of the state without the
+    /// dynamics: order 2 is what a master passing input derivatives of order 2 asks
+    /// every step), once it was asked for.
+    pub theta_dot: Option<Derivatives<Vector3<f64>>>,
 }
 
 /// The entry of the last point asked for (empty until the first request).
@@ -85,6 +90,7 @@ impl MotionCache {
                     motion: motion(&point),
                     all: None,
                     gravity: None,
+                    theta_dot: None,
                 };
                 read(&mut stored.insert((point, entry)).1)
             }

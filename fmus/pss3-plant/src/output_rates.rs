@@ -5,24 +5,26 @@
 //!   theta (and yaw, pitch, roll = thx, -thy, thz): order 1 the Euler-angle rates
 //!   E^-1 omega, order 2 the Euler-angle accelerations E^-1 (omegaDot - E_dot thetaDot);
 //!   l: order 1 lDot = J omega, order 2 the actuator accelerations J omegaDot +
-//!   J_dot omega (`robofmu::pss3::motion`); thetaDot and lDot: order 1 those
+//!   J_dot omega (`robofmu_dynamics::pss3::motion`); thetaDot and lDot: order 1 those
 //!   accelerations; omega: order 1 omegaDot (the dynamics).
 //! - Every other (order 2 of omega, thetaDot, lDot; omegaDot, force, stopForce, detJ,
 //!   condJ, the energies, gravityCompensation): the output's derivatives along the
-//!   plant's local motion (`robofmu::pss3::dynamics::LocalMotion`: the state to
+//!   plant's local motion (`robofmu_dynamics::pss3::dynamics::LocalMotion`: the state to
 //!   second order in time, then central differences of the output along it with one
 //!   Richardson extrapolation), about 1e-9 relative; across an end stop's edge (its
 //!   spring and damper start there) the average slope.
 //!   All of them are differentiated together and kept for the point
 //!   (`motion_cache`); gravityCompensation, the slope a master asks every step, in a
-//!   pass of its own over the gravity torque alone.
+//!   pass of its own over the gravity torque alone, and thetaDot (order 2: a master
+//!   passing input derivatives of order 2 asks it every step) over the Euler-angle
+//!   rates alone.
 
 use super::motion_cache::{Along, Derivatives, Entry, Point};
 use super::{Computed, Pss3Plant};
 use nalgebra::Vector3;
-use robofmu::pss3::dynamics::PlantState;
-use robofmu::pss3::rotation::euler_accelerations;
-use robofmu::pss3::{assemble, jacobian, velocity_product};
+use robofmu_dynamics::pss3::dynamics::PlantState;
+use robofmu_dynamics::pss3::rotation::{euler_accelerations, euler_rates};
+use robofmu_dynamics::pss3::{assemble, jacobian, velocity_product};
 use robofmu_fmi::prelude::OutputDerivativeError::{self, CannotEvaluate, NotProvided};
 
 #[cfg(test)]
@@ -163,6 +165,20 @@ fn along_gravity(m: &Pss3Plant) -> Derivatives<Vector3<f64>> {
     })?
 }
 
+/// The first and second derivatives of thetaDot (the Euler-angle rates) along the
+/// local motion at the current point (evaluated once per point): the same numbers as
+/// in `along_all` (the same function of the same states), without the other outputs.
+fn along_theta_dot(m: &Pss3Plant) -> Derivatives<Vector3<f64>> {
+    at_point(m, |e| {
+        let motion = &e.motion;
+        let evaluate = || {
+            let rates = |x: &PlantState| euler_rates(&x.euler, &x.omega).map_err(|e| e.to_string());
+            motion.clone()?.derivatives(rates)
+        };
+        e.theta_dot.get_or_insert_with(evaluate).clone()
+    })?
+}
+
 /// The `order`-th derivative (1 or 2) of element `i` of `output` along the local
 /// motion.
 fn along_motion(
@@ -178,6 +194,8 @@ fn along_motion(
     };
     let derivatives = if output == GravityCompensation {
         along_gravity(m).map(|d| d[order as usize - 1][i])
+    } else if output == ThetaDot {
+        along_theta_dot(m).map(|d| d[order as usize - 1][i])
     } else {
         along_all(m).map(|d| d[order as usize - 1][k])
     };

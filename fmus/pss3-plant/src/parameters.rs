@@ -8,9 +8,9 @@
 //! initial state are the plant's own.
 
 use super::{Pss3Plant, START_DISPLACEMENT, START_POSE};
-use robofmu::computed_torque::{MODEL_PARAMETER_SPECS, MODEL_PARAMETERS};
-use robofmu::pss3::ParamError;
-use robofmu::pss3::dynamics::{EndStopMode, PlantParamError};
+use robofmu_dynamics::computed_torque::{MODEL_PARAMETER_SPECS, MODEL_PARAMETERS};
+use robofmu_dynamics::pss3::ParamError;
+use robofmu_dynamics::pss3::dynamics::{EndStopMode, PlantParamError};
 use robofmu_fmi::prelude::*;
 
 /// Library parameter names and their FMU names (the geometric ones are equal).

@@ -14,8 +14,8 @@
 use super::Pss3Plant;
 use super::variables::real_getter;
 use nalgebra::Vector3;
-use robofmu::pss3::dynamics::{Linearization, PlantInputs, PlantState};
-use robofmu::pss3::rotation::moment_from_generalized_force;
+use robofmu_dynamics::pss3::dynamics::{Linearization, PlantInputs, PlantState};
+use robofmu_dynamics::pss3::rotation::moment_from_generalized_force;
 use robofmu_fmi::prelude::*;
 
 /// Finite-difference step for a state (rad, rad/s), scaled by 1 + |value|.

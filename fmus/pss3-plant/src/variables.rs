@@ -6,7 +6,7 @@
 use super::initial_dependencies as init;
 use super::output_rates::{Output, output_derivative};
 use super::{Pss3Plant, parameters};
-use robofmu::pss3::dynamics::PlantInputs;
+use robofmu_dynamics::pss3::dynamics::PlantInputs;
 use robofmu_fmi::prelude::*;
 
 pub const ACTUATOR_FORCE: u32 = 0;
@@ -33,13 +33,13 @@ pub const DER_OMEGA: u32 = 310;
 
 type Decl = Declaration<Pss3Plant>;
 
-/// The element names `base[1]`, `base[2]`, `base[3]` of a literal `base`.
+/// The elements `base[1]`, `base[2]`, `base[3]` of a literal `base`.
 macro_rules! elements {
     ($base:literal) => {
         [
-            concat!($base, "[1]"),
-            concat!($base, "[2]"),
-            concat!($base, "[3]"),
+            Var::Named(concat!($base, "[1]")),
+            Var::Named(concat!($base, "[2]")),
+            Var::Named(concat!($base, "[3]")),
         ]
     };
 }
@@ -62,24 +62,24 @@ pub const fn concat<T: Copy, const N: usize>(parts: &[&[T]], fill: T) -> [T; N] 
 }
 
 // What outputs and state derivatives depend on (ModelStructure dependencies).
-static THETA_NAMES: [&str; 3] = elements!("theta");
-static OMEGA_NAMES: [&str; 3] = elements!("omega");
-static COMMAND_NAMES: [&str; 9] = concat(
+static THETA_NAMES: [Var; 3] = elements!("theta");
+static OMEGA_NAMES: [Var; 3] = elements!("omega");
+static COMMAND_NAMES: [Var; 9] = concat(
     &[
         &elements!("actuatorForce"),
         &elements!("torqueCommand"),
         &elements!("generalizedForceCommand"),
     ],
-    "",
+    Var::Time,
 );
 /// The continuous states (pose and angular velocity).
-static STATES: [&str; 6] = concat(&[&THETA_NAMES, &OMEGA_NAMES], "");
+static STATES: [Var; 6] = concat(&[&THETA_NAMES, &OMEGA_NAMES], Var::Time);
 /// The pose and the actuator commands (the realised actuator force).
-static THETA_AND_COMMANDS: [&str; 12] = concat(&[&THETA_NAMES, &COMMAND_NAMES], "");
+static THETA_AND_COMMANDS: [Var; 12] = concat(&[&THETA_NAMES, &COMMAND_NAMES], Var::Time);
 /// The states and every input (through the accelerations).
-static STATES_AND_INPUTS: [&str; 18] = concat(
+static STATES_AND_INPUTS: [Var; 18] = concat(
     &[&STATES, &COMMAND_NAMES, &elements!("disturbanceTorque")],
-    "",
+    Var::Time,
 );
 
 /// Where the model keeps the input derivatives of order `order`.
@@ -186,7 +186,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     )
     .unit("rad", Some("deg"))
     .depends_on_each(|i| &THETA_NAMES[i..=i])
-    .initial_depends_on(|i| &init::THETA[i]),
+    .initial_depends_on_each(|i| &init::THETA[i]),
     vector!(
         "omega",
         OMEGA,
@@ -196,7 +196,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     )
     .unit("rad/s", Some("deg/s"))
     .depends_on_each(|i| &OMEGA_NAMES[i..=i])
-    .initial_depends_on(|i| &init::OMEGA[i]),
+    .initial_depends_on_each(|i| &init::OMEGA[i]),
     vector!(
         "thetaDot",
         THETA_DOT,
@@ -206,7 +206,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     )
     .unit("rad/s", Some("deg/s"))
     .depends_on(&STATES)
-    .initial_depends_on(init::theta_dot),
+    .initial_depends_on_each(init::theta_dot),
     vector!(
         "omegaDot",
         OMEGA_DOT,
@@ -216,7 +216,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     )
     .unit("rad/s2", Some("deg/s2"))
     .depends_on(&STATES_AND_INPUTS)
-    .initial_depends_on(|_| &init::ACCELERATION),
+    .initial_depends_on(&init::ACCELERATION),
     scalar!(
         "yaw",
         YAW_PITCH_ROLL + 1,
@@ -225,8 +225,8 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
         |m| euler(m, 0, 1.0)
     )
     .unit("rad", Some("deg"))
-    .depends_on(&["theta[1]"])
-    .initial_depends_on(|_| &init::THETA[0]),
+    .depends_on(&[Var::Named("theta[1]")])
+    .initial_depends_on(&init::THETA[0]),
     scalar!(
         "pitch",
         YAW_PITCH_ROLL + 2,
@@ -235,8 +235,8 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
         |m| euler(m, 1, -1.0)
     )
     .unit("rad", Some("deg"))
-    .depends_on(&["theta[2]"])
-    .initial_depends_on(|_| &init::THETA[1]),
+    .depends_on(&[Var::Named("theta[2]")])
+    .initial_depends_on(&init::THETA[1]),
     scalar!(
         "roll",
         YAW_PITCH_ROLL + 3,
@@ -245,18 +245,18 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
         |m| euler(m, 2, 1.0)
     )
     .unit("rad", Some("deg"))
-    .depends_on(&["theta[3]"])
-    .initial_depends_on(|_| &init::THETA[2]),
+    .depends_on(&[Var::Named("theta[3]")])
+    .initial_depends_on(&init::THETA[2]),
     vector!("l", L, L, "Actuator displacement", |m, i| m
         .output(|o| o.actuator_displacements[i]))
     .unit("m", Some("mm"))
     .depends_on(&THETA_NAMES)
-    .initial_depends_on(|_| &init::POSE),
+    .initial_depends_on(&init::POSE),
     vector!("lDot", L_DOT, LDot, "Actuator velocity", |m, i| m
         .output(|o| o.actuator_velocities[i]))
     .unit("m/s", None)
     .depends_on(&STATES)
-    .initial_depends_on(|_| &init::MOTION),
+    .initial_depends_on(&init::MOTION),
     vector!(
         "force",
         FORCE,
@@ -267,7 +267,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     )
     .unit("N", None)
     .depends_on(&THETA_AND_COMMANDS)
-    .initial_depends_on(|i| &init::FORCE[i]),
+    .initial_depends_on_each(|i| &init::FORCE[i]),
     vector!(
         "stopForce",
         STOP_FORCE,
@@ -277,7 +277,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     )
     .unit("N", None)
     .depends_on(&STATES)
-    .initial_depends_on(|_| &init::STOP_FORCE),
+    .initial_depends_on(&init::STOP_FORCE),
     Decl::integer(
         "atStop",
         "End-stop contact: -1 lower stop, 0 free, +1 upper stop (changes at events)",
@@ -287,7 +287,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     .at(AT_STOP + 1)
     .output()
     .depends_on(&THETA_NAMES)
-    .initial_depends_on(|_| &init::AT_STOP),
+    .initial_depends_on(&init::AT_STOP),
     scalar!(
         "detJ",
         DET_J,
@@ -297,7 +297,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     )
     .unit("m3", None)
     .depends_on(&THETA_NAMES)
-    .initial_depends_on(|_| &init::POSE),
+    .initial_depends_on(&init::POSE),
     scalar!(
         "condJ",
         COND_J,
@@ -306,7 +306,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
         |m| m.output(|o| o.jacobian_cond)
     )
     .depends_on(&THETA_NAMES)
-    .initial_depends_on(|_| &init::POSE),
+    .initial_depends_on(&init::POSE),
     scalar!(
         "kineticEnergy",
         KINETIC_ENERGY,
@@ -316,7 +316,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     )
     .unit("J", None)
     .depends_on(&STATES)
-    .initial_depends_on(|_| &init::KINETIC_ENERGY),
+    .initial_depends_on(&init::KINETIC_ENERGY),
     scalar!(
         "potentialEnergy",
         POTENTIAL_ENERGY,
@@ -327,7 +327,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     )
     .unit("J", None)
     .depends_on(&THETA_NAMES)
-    .initial_depends_on(|_| &init::POTENTIAL_ENERGY),
+    .initial_depends_on(&init::POTENTIAL_ENERGY),
     vector!(
         "gravityCompensation",
         GRAVITY_COMPENSATION,
@@ -338,7 +338,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     )
     .unit("N.m", None)
     .depends_on(&THETA_NAMES)
-    .initial_depends_on(init::gravity_compensation),
+    .initial_depends_on_each(init::gravity_compensation),
     Decl::real("der(theta)", "Euler-angle rate", |m, i| {
         m.computed(|c| c.euler_rates[i])
     })
@@ -347,7 +347,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     .derivative_of("theta")
     .unit("rad/s", Some("deg/s"))
     .depends_on(&STATES)
-    .initial_depends_on(init::theta_dot),
+    .initial_depends_on_each(init::theta_dot),
     Decl::real("der(omega)", "Angular acceleration in {A}", |m, i| {
         m.output(|o| o.omega_dot[i])
     })
@@ -356,7 +356,7 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
     .derivative_of("omega")
     .unit("rad/s2", Some("deg/s2"))
     .depends_on(&STATES_AND_INPUTS)
-    .initial_depends_on(|_| &init::ACCELERATION),
+    .initial_depends_on(&init::ACCELERATION),
 ];
 
 /// The whole table: inputs, outputs, state derivatives, parameters (value references

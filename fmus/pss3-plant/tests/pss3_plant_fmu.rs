@@ -3,9 +3,9 @@
 //! Model Exchange events and derivatives, directional derivatives, FMU state.
 
 use nalgebra::{Matrix3, Vector3};
-use robofmu::pss3::dynamics::{Plant, PlantInputs, PlantParams, PlantState};
-use robofmu::pss3::rotation::euler_rate_matrix;
-use robofmu::pss3::{assemble, jacobian};
+use robofmu_dynamics::pss3::dynamics::{Plant, PlantInputs, PlantParams, PlantState};
+use robofmu_dynamics::pss3::rotation::euler_rate_matrix;
+use robofmu_dynamics::pss3::{assemble, jacobian};
 use robofmu_fmi::fmi2::types::*;
 use robofmu_fmi_testing::Host;
 use robofmu_pss3_plant_fmu::Pss3Plant;
@@ -406,14 +406,15 @@ fn dependencies_name_only_inputs_and_states() {
     use robofmu_fmi::core::variables::check_table;
     use robofmu_fmi::core::{Declaration, Variability};
     assert_eq!(check_table(&sorted_table::<Pss3Plant>().unwrap()), Ok(()));
+    const K: Declaration<()> = Declaration::real("k", "a parameter", |_, _| 1.0)
+        .parameter(Variability::Fixed)
+        .start_real(&[1.0])
+        .set_real(|_, _, _| Ok(()));
     static TABLE: &[Declaration<()>] = &[
-        Declaration::real("k", "a parameter", |_, _| 1.0)
-            .parameter(Variability::Fixed)
-            .start_real(&[1.0])
-            .set_real(|_, _, _| Ok(())),
+        K,
         Declaration::real("y", "an output", |_, _| 1.0)
             .output()
-            .depends_on(&["k"]),
+            .depends_on(&[K.var()]),
     ];
     let error = check_table(&flatten(TABLE)).unwrap_err();
     assert!(

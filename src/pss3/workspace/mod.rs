@@ -15,10 +15,7 @@ pub use orientation::{OrientationGrid, OrientationScan, scan_orientations};
 pub use stroke_box::{StrokeScan, scan_stroke_box};
 pub use summary::{Range, Summary, summarize};
 
-use super::error::KinematicsError;
-use super::ik::Assembly;
-use super::jacobian::jacobian;
-use super::params::Geometry;
+use super::{Assembly, Geometry, KinematicsError, jacobian};
 use nalgebra::Vector3;
 
 /// One reachable pose with its Jacobian measures.

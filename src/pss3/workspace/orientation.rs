@@ -2,8 +2,7 @@
 //! strokes reach, and the Jacobian measures there.
 
 use super::{EnvelopeBin, WorkspacePoint};
-use crate::pss3::ik::inverse_kinematics;
-use crate::pss3::params::Geometry;
+use crate::pss3::{Geometry, inverse_kinematics};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 

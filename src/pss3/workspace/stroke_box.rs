@@ -4,9 +4,7 @@
 //! grid neighbour, so Newton's method starts a few millimetres from the solution.
 
 use super::WorkspacePoint;
-use crate::pss3::error::KinematicsError;
-use crate::pss3::fk::{FkOptions, forward_kinematics, start_pose};
-use crate::pss3::params::Geometry;
+use crate::pss3::{FkOptions, Geometry, KinematicsError, forward_kinematics, start_pose};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 

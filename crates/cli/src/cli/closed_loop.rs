@@ -162,6 +162,7 @@ fn reference(args: ReferenceArgs) -> Result<(), CliError> {
         "the run (stop_time - start_time)",
     )
     .map_err(|e| usage(format!("{}: {e}", args.scenario.display())))?;
+    super::check_output_file(&args.out)?;
     let samples = simulate(&spec, args.tolerance)?;
     let (csv, rows) = reference_csv(&spec, &samples, args.every as usize)?;
     std::fs::write(&args.out, csv).map_err(io_at(&args.out))?;

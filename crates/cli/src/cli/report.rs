@@ -2,8 +2,10 @@
 //! the quiet end when the reader of standard output has gone (`robofmu ... | head`).
 //!
 //! Exit codes: 0 success; 1 the computation ran and failed (no convergence, a pose
-//! outside the workspace, a file that cannot be written); 2 a usage error (an
-//! argument refused before anything ran, with the argument named and what is allowed).
+//! outside the workspace, a disk that is full); 2 a usage error (an argument refused
+//! before anything ran, with the argument named and what is allowed, or an output path
+//! that cannot be written where it points: a missing folder, a file in the way, no
+//! permission).
 
 use clap::error::ErrorKind;
 use std::io::Write;

@@ -23,8 +23,7 @@
 
 use super::attributes::{Causality, Initial, Variability};
 pub use super::hooks::{
-    Dependencies, Element, ElementDependencies, InitialDependencies, InputDerivative,
-    OutputDerivative,
+    Dependencies, Element, ElementDependencies, InputDerivative, OutputDerivative, Var,
 };
 
 /// Reads element i (0 for a scalar).
@@ -103,7 +102,7 @@ pub struct Declaration<M: 'static> {
     /// The inputs and continuous states an output or derivative depends on.
     pub dependencies: Option<Dependencies>,
     /// Hook: the knowns at initialization an initial unknown depends on, by element.
-    pub initial_dependencies: Option<InitialDependencies>,
+    pub initial_dependencies: Option<Dependencies>,
     /// Hook: time derivatives of an output.
     pub output_derivative: Option<OutputDerivative<M>>,
     /// Hook: where the model keeps the time derivatives of a continuous input.
@@ -269,25 +268,32 @@ impl<M> Declaration<M> {
         self
     }
 
-    /// The inputs and continuous states (by FMI 2.0 name) this output or derivative
-    /// depends on; without it, on all of them.
-    pub const fn depends_on(mut self, names: &'static [&'static str]) -> Self {
-        self.dependencies = Some(Dependencies::All(names));
+    /// The inputs and continuous states this output or derivative depends on; without
+    /// it, on all of them.
+    pub const fn depends_on(mut self, vars: &'static [Var]) -> Self {
+        self.dependencies = Some(Dependencies::All(vars));
         self
     }
 
-    /// Hook: the inputs and continuous states (by FMI 2.0 name) element i of this
-    /// output or derivative depends on, when the elements differ (`theta[i]` on
-    /// `theta[i]` alone).
+    /// Hook: the inputs and continuous states element i of this output or derivative
+    /// depends on, when the elements differ (`theta[i]` on `theta[i]` alone).
     pub const fn depends_on_each(mut self, f: ElementDependencies) -> Self {
         self.dependencies = Some(Dependencies::Each(f));
         self
     }
 
-    /// Hook: the knowns at initialization (by FMI 2.0 name) element i of this output or
-    /// derivative depends on; without it, on all of them.
-    pub const fn initial_depends_on(mut self, f: InitialDependencies) -> Self {
-        self.initial_dependencies = Some(f);
+    /// The knowns at initialization this output or derivative depends on (the same
+    /// for every element; [`Var::Same`] names the element's own index); without it, on
+    /// all of them.
+    pub const fn initial_depends_on(mut self, vars: &'static [Var]) -> Self {
+        self.initial_dependencies = Some(Dependencies::All(vars));
+        self
+    }
+
+    /// Hook: the knowns at initialization element i of this output or derivative
+    /// depends on, when the elements differ otherwise than by [`Var::Same`].
+    pub const fn initial_depends_on_each(mut self, f: ElementDependencies) -> Self {
+        self.initial_dependencies = Some(Dependencies::Each(f));
         self
     }
 
@@ -375,6 +381,34 @@ impl<M> Declaration<M> {
         self
     }
 
+    /// This declaration as a dependency: the scalar, or every element of the array.
+    pub const fn var(&self) -> Var {
+        Var::Whole(self.name)
+    }
+
+    /// Element i (from 0) of this array as a dependency; out of range: a compile error
+    /// in a `static`.
+    pub const fn item(&self, i: usize) -> Var {
+        assert!(
+            self.length.is_some() && i < self.size(),
+            "item of an array, within its length"
+        );
+        Var::Item(self.name, i)
+    }
+
+    /// The element of this array with the dependent element's own index, as a
+    /// dependency.
+    pub const fn same(&self) -> Var {
+        assert!(self.length.is_some(), "same of an array");
+        Var::Same(self.name)
+    }
+
+    /// Whether `e` is an element of this declaration (a partial derivative's unknown or
+    /// known, compared by the compiler-checked declaration instead of its name).
+    pub fn is(&self, e: Element) -> bool {
+        e.name == self.name
+    }
+
     /// Number of elements (1 for a scalar).
     pub const fn size(&self) -> usize {
         match self.length {
@@ -395,6 +429,74 @@ impl<M> Declaration<M> {
         let n = self.start_count();
         n <= 1 || n == self.size()
     }
+}
+
+/// Number of continuous states of a table: the elements of its derivative declarations
+/// (`ModelInfo::number_of_continuous_states`, counted from the table so that the two
+/// cannot disagree).
+pub const fn continuous_states<M>(declarations: &[Declaration<M>]) -> usize {
+    let mut n = 0;
+    let mut k = 0;
+    while k < declarations.len() {
+        if declarations[k].derivative_of.is_some() {
+            n += declarations[k].size();
+        }
+        k += 1;
+    }
+    n
+}
+
+/// Calls `f(k, state, derivative, i)` for continuous state k: element i of the state
+/// declaration `state` whose time derivative is element i of `derivative`, in the
+/// order of the derivative declarations (the state order: the FMI 3.0 view checks at
+/// packaging that the derivatives list the states in that order).
+fn each_state<M>(
+    declarations: &[Declaration<M>],
+    mut f: impl FnMut(usize, &Declaration<M>, &Declaration<M>, usize),
+) {
+    let mut k = 0;
+    for d in declarations {
+        let Some(name) = d.derivative_of else {
+            continue;
+        };
+        let Some(state) = declarations.iter().find(|s| s.name == name) else {
+            continue;
+        };
+        for i in 0..d.size() {
+            f(k, state, d, i);
+            k += 1;
+        }
+    }
+}
+
+/// The continuous states as the table declares them: `x[k]` = the getter of state k.
+pub fn read_states<M>(declarations: &[Declaration<M>], model: &M, x: &mut [f64]) {
+    each_state(declarations, |k, state, _, i| {
+        if let (Value::Real { get, .. }, Some(slot)) = (&state.value, x.get_mut(k)) {
+            *slot = get(model, i);
+        }
+    });
+}
+
+/// Writes the continuous states through the state declarations' setters (the layer
+/// has checked the values).
+pub fn write_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]) {
+    each_state(declarations, |k, state, _, i| {
+        if let (Value::Real { set: Some(set), .. }, Some(&v)) = (&state.value, x.get(k)) {
+            // A state's setter refuses nothing the layer's value check lets through.
+            let _ = set(model, i, v);
+        }
+    });
+}
+
+/// The state derivatives as the table declares them: `dx[k]` = the getter of the
+/// derivative of state k.
+pub fn read_derivatives<M>(declarations: &[Declaration<M>], model: &M, dx: &mut [f64]) {
+    each_state(declarations, |k, _, derivative, i| {
+        if let (Value::Real { get, .. }, Some(slot)) = (&derivative.value, dx.get_mut(k)) {
+            *slot = get(model, i);
+        }
+    });
 }
 
 /// The value references of every declaration's element 1 by the scheme of the module

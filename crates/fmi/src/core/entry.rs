@@ -35,10 +35,17 @@ pub unsafe fn with_instance<F: Frontend, M: Model>(
     body: impl FnOnce(&mut FmuInstance<F, M>) -> Result<F::Status, String>,
 ) -> F::Status {
     let token = handle as usize;
-    let instance = match handles::enter::<FmuInstance<F, M>>(token) {
-        Ok(address) => address as *mut FmuInstance<F, M>,
+    let (instance, failed) = match handles::enter::<FmuInstance<F, M>>(token) {
+        Ok(entered) => (entered.address as *mut FmuInstance<F, M>, entered.failed),
         Err(refused) => return refuse::<F>(function, refused),
     };
+    if failed {
+        // SAFETY: as below; a call that could not touch it left the Error state.
+        let inst = unsafe { &mut *instance };
+        if inst.mode != F::FATAL {
+            inst.mode = F::ERROR;
+        }
+    }
     // SAFETY: a live instance, busy with this call: nothing else reaches it.
     let start = unsafe { (*instance).log.emitted() };
     let outcome = catch_unwind(AssertUnwindSafe(|| {
@@ -198,9 +205,18 @@ pub fn instantiate<F: Frontend, M: Model>(
             let report = reporter::<F>(&instance.log);
             let address = Box::into_raw(Box::new(instance));
             let kind = HandleKind::Instance;
-            let handle =
+            let registered =
                 handles::register::<FmuInstance<F, M>>(address as usize, kind, None, Some(report));
-            // SAFETY: just boxed; the host does not know the handle yet.
+            // SAFETY: just boxed; the host does not know the handle yet (or never
+            // will: then it is dropped here, once).
+            let Some(handle) = registered else {
+                let instance = unsafe { Box::from_raw(address) };
+                instance.log.status(
+                    F::Status::ERROR,
+                    &format!("{function}: this FMU has issued every handle it can"),
+                );
+                return std::ptr::null_mut();
+            };
             unsafe { (*address).handle = handle };
             handle as *mut c_void
         }
@@ -284,7 +300,10 @@ pub fn setup_experiment<M: Model>(
     if let Some(tolerance) = tolerance
         && !(tolerance.is_finite() && tolerance > 0.0)
     {
-        return Err(format!("tolerance = {tolerance} is not a positive number"));
+        return Err(format!(
+            "tolerance = {tolerance} is not a positive number (toleranceDefined = true): pass \
+             a positive relative tolerance or toleranceDefined = false (these FMUs use none)"
+        ));
     }
     if let Some(stop) = stop_time {
         let stop = check_finite(stop, "stopTime")?;

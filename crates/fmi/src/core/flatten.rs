@@ -4,6 +4,7 @@
 //! declaration when asked ([`Variable::name`]).
 
 use super::declare::{Declaration, Value, value_references};
+use super::hooks::Var;
 use super::variables::{Getter, Kind, Setter, Variable};
 
 /// The FMI 2.0 scalars of the declarations, in declaration order (the layer sorts them
@@ -13,24 +14,50 @@ pub fn flatten<M>(declarations: &'static [Declaration<M>]) -> Vec<Variable<M>> {
     let total = declarations.iter().map(Declaration::size).sum();
     let mut table = Vec::with_capacity(total);
     for (d, first) in declarations.iter().zip(firsts) {
-        table.extend((0..d.size()).map(|i| element(d, first, i)));
+        table.extend((0..d.size()).map(|i| element(declarations, d, first, i)));
     }
     table
 }
 
 /// Element i of declaration `d` as an FMI 2.0 scalar.
-fn element<M>(d: &'static Declaration<M>, first: u32, i: usize) -> Variable<M> {
+fn element<M>(
+    all: &[Declaration<M>],
+    d: &'static Declaration<M>,
+    first: u32,
+    i: usize,
+) -> Variable<M> {
     Variable {
         value_reference: first + i as u32 * d.stride,
         causality: d.causality,
         variability: d.variability,
         initial: d.initial,
         kind: kind(&d.value, i),
-        dependencies: d.dependencies.map(|x| x.of(i)),
-        initial_dependencies: d.initial_dependencies.map(|f| f(i)),
+        dependencies: d.dependencies.map(|x| names(x.of(i), all, i)),
+        initial_dependencies: d.initial_dependencies.map(|x| names(x.of(i), all, i)),
         declaration: d,
         index: i,
     }
+}
+
+/// The FMI 2.0 names of the variables `vars` of element i stands for ("time" for the
+/// independent variable); a name that no declaration has is kept as it is, for
+/// `check_table` to refuse.
+fn names<M>(vars: &[Var], all: &[Declaration<M>], i: usize) -> Vec<String> {
+    let length = |name: &str| all.iter().find(|d| d.name == name).and_then(|d| d.length);
+    let mut out = Vec::with_capacity(vars.len());
+    for var in vars {
+        match *var {
+            Var::Time => out.push("time".to_string()),
+            Var::Named(name) => out.push(name.to_string()),
+            Var::Whole(name) => match length(name) {
+                Some(n) => out.extend((1..=n).map(|k| format!("{name}[{k}]"))),
+                None => out.push(name.to_string()),
+            },
+            Var::Item(name, k) => out.push(format!("{name}[{}]", k + 1)),
+            Var::Same(name) => out.push(format!("{name}[{}]", i + 1)),
+        }
+    }
+    out
 }
 
 /// The scalar accessors of element i.

@@ -49,7 +49,12 @@ pub fn store<M: Model>(
 ) -> Result<(), String> {
     if slot.is_null() {
         let address = Box::into_raw(Box::new(s)) as usize;
-        let state = handles::register::<M>(address, HandleKind::State, Some(owner), None);
+        let Some(state) = handles::register::<M>(address, HandleKind::State, Some(owner), None)
+        else {
+            // SAFETY: boxed just above and never registered: dropped once.
+            drop(unsafe { Box::from_raw(address as *mut Snapshot<M>) });
+            return Err(format!("this FMU has issued every {noun} handle it can"));
+        };
         *slot = state as *mut c_void;
         return Ok(());
     }

@@ -8,6 +8,12 @@
 //! another FMU, a state never issued, an already freed handle or a state of another
 //! model is refused with an error instead of being used.
 //!
+//! The numbers are this loaded copy's own: the counter goes through a bijection keyed
+//! by a random number drawn when the copy issues its first handle (`number`), so
+//! another FMU, or another copy of this very binary loaded from another path, issues
+//! other numbers, and a handle given to the wrong library is not one of its live
+//! handles (docs/reliability.md, "Handles of several loaded FMUs", argues the choice).
+//!
 //! An instance is busy while a call runs on it ([`enter`] .. [`leave`]): a second
 //! call meanwhile, from a callback of the first (re-entrant) or from another thread,
 //! is refused, and a FreeInstance is deferred until the running call leaves. The
@@ -15,7 +21,8 @@
 //! the last handle is freed, so nothing of it survives unloading.
 
 use std::any::TypeId;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::collections::hash_map::RandomState;
+use std::hash::{BuildHasher, Hasher};
 use std::sync::{Arc, Mutex, MutexGuard};
 
 /// What a handle points to.
@@ -41,6 +48,9 @@ struct Entry {
     owner: usize,
     /// The thread running a call on the instance.
     busy: Option<usize>,
+    /// A call that could not touch the instance ([`fail`]) left it to the next call
+    /// that enters to put it in the Error state.
+    failed: bool,
     /// FreeInstance came while the instance was busy: the running call frees it.
     free_requested: bool,
     reporter: Option<Reporter>,
@@ -53,16 +63,64 @@ impl Entry {
     }
 }
 
-/// The live handles, sorted by handle (new handles are the largest, so a push keeps
-/// the order; a removal shifts the rest): every lookup is a binary search.
-static LIVE: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
+/// The registry of this loaded copy: its live handles, sorted by handle (every lookup
+/// is a binary search), how many handles it has issued and its key.
+struct Registry {
+    entries: Vec<Entry>,
+    /// Handles issued so far; never reset, so never reused.
+    issued: u64,
+    /// The key of [`number`] (0: not drawn yet).
+    key: u64,
+}
 
-/// The next handle number; never reset, so never reused.
-static NEXT: AtomicU64 = AtomicU64::new(1);
+static LIVE: Mutex<Registry> = Mutex::new(Registry {
+    entries: Vec::new(),
+    issued: 0,
+    key: 0,
+});
 
-/// High bits of every handle: outside the user address space of x86-64 and AArch64,
-/// so a handle is never also the address of a live heap block of the importer.
-const HANDLE_BASE: u64 = 0xF0F0_0000_0000_0000;
+/// Bits of a handle that tell handles apart: 44 on 64-bit targets, 28 on 32-bit ones
+/// (the other bits are [`HANDLE_BASE`] and four zero bits at the bottom).
+const SPREAD_BITS: u32 = if usize::BITS == 64 { 44 } else { 28 };
+const SPREAD: u64 = (1 << SPREAD_BITS) - 1;
+
+/// High bits of every handle on 64-bit targets: outside the user address space of
+/// x86-64 and AArch64 (even with a tagged top byte), so a handle is never also the
+/// address of a live heap block of the importer.
+const HANDLE_BASE: u64 = if usize::BITS == 64 {
+    0xF0F0_0000_0000_0000
+} else {
+    0
+};
+
+/// A key no other loaded copy shares: 64 bits from the operating system's random
+/// source (std's `RandomState`, seeded per copy of std, and every FMU links its own),
+/// mixed with the address of this copy's registry. Never 0.
+fn draw_key() -> u64 {
+    let mut hasher = RandomState::new().build_hasher();
+    hasher.write_usize(&LIVE as *const Mutex<Registry> as usize);
+    hasher.finish() | 1
+}
+
+/// The `n`-th handle number of the copy with key `key`: a bijection of the
+/// [`SPREAD_BITS`]-bit numbers (xor, multiplications by odd constants and xor-shifts
+/// by half the width are each invertible there), so one copy never issues a number
+/// twice, and two copies (two keys) issue unrelated numbers.
+fn number(n: u64, key: u64) -> u64 {
+    let half = SPREAD_BITS / 2;
+    let mut x = (n ^ key) & SPREAD;
+    x = x.wrapping_mul(0x9E37_79B9_7F4A_7C15) & SPREAD;
+    x ^= x >> half;
+    x = x.wrapping_add(key >> 32) & SPREAD;
+    x = x.wrapping_mul(0xBF58_476D_1CE4_E5B9) & SPREAD;
+    x ^ (x >> half)
+}
+
+/// The handle after `issued` handles of the copy with key `key`; None when every
+/// number has been issued (2^44 registrations on a 64-bit target).
+fn handle_after(issued: u64, key: u64) -> Option<usize> {
+    (issued <= SPREAD).then(|| (HANDLE_BASE | (number(issued, key) << 4)) as usize)
+}
 
 thread_local! {
     /// A byte of every thread: its address tells the live threads apart. (A native
@@ -77,7 +135,7 @@ fn this_thread() -> usize {
     MARK.with(|mark| mark as *const u8 as usize)
 }
 
-fn live() -> MutexGuard<'static, Vec<Entry>> {
+fn live() -> MutexGuard<'static, Registry> {
     // A panic while holding the lock cannot leave the list inconsistent (every
     // change is a single push, remove or field store): recover from poisoning.
     LIVE.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
@@ -99,33 +157,42 @@ fn shrink(list: &mut Vec<Entry>) {
     }
 }
 
-/// Records the object at `address`, of model `M`, and returns its new handle.
+/// Records the object at `address`, of model `M`, and returns its new handle; None
+/// when this copy has issued every number it has.
 pub fn register<M: 'static>(
     address: usize,
     kind: HandleKind,
     owner: Option<usize>,
     reporter: Option<Reporter>,
-) -> usize {
-    // Numbered under the lock, so that the list stays sorted.
-    let mut list = live();
-    let n = NEXT.fetch_add(1, Ordering::Relaxed);
-    let handle = (HANDLE_BASE | (n << 4)) as usize;
-    list.push(Entry {
-        handle,
-        address,
-        kind,
-        model: TypeId::of::<M>(),
-        owner: owner.unwrap_or(handle),
-        busy: None,
-        free_requested: false,
-        reporter,
-    });
-    handle
+) -> Option<usize> {
+    let mut registry = live();
+    if registry.key == 0 {
+        registry.key = draw_key();
+    }
+    let handle = handle_after(registry.issued, registry.key)?;
+    registry.issued += 1;
+    let list = &mut registry.entries;
+    let at = list.partition_point(|e| e.handle < handle);
+    list.insert(
+        at,
+        Entry {
+            handle,
+            address,
+            kind,
+            model: TypeId::of::<M>(),
+            owner: owner.unwrap_or(handle),
+            busy: None,
+            failed: false,
+            free_requested: false,
+            reporter,
+        },
+    );
+    Some(handle)
 }
 
 /// Whether `handle` is a live handle of `kind` for model `M`.
 pub fn is_live<M: 'static>(handle: usize, kind: HandleKind) -> bool {
-    find_is::<M>(&live(), handle, kind).is_some()
+    find_is::<M>(&live().entries, handle, kind).is_some()
 }
 
 /// Runs `f` on the address behind `handle` if it is a live handle of `kind` for model
@@ -136,22 +203,21 @@ pub fn while_live<M: 'static, R>(
     kind: HandleKind,
     f: impl FnOnce(usize) -> R,
 ) -> Option<R> {
-    let list = live();
-    let address = list
-        .iter()
-        .find(|e| e.is::<M>(handle, kind))
-        .map(|e| e.address);
+    let registry = live();
+    let list = &registry.entries;
+    let address = find_is::<M>(list, handle, kind).map(|i| list[i].address);
     let result = address.map(f);
-    drop(list);
+    drop(registry);
     result
 }
 
 /// Forgets a handle of model `M` and returns its address; None if it was not live.
 pub fn unregister<M: 'static>(handle: usize, kind: HandleKind) -> Option<usize> {
-    let mut list = live();
-    let found = find_is::<M>(&list, handle, kind);
+    let mut registry = live();
+    let list = &mut registry.entries;
+    let found = find_is::<M>(list, handle, kind);
     let address = found.map(|i| list.remove(i).address);
-    shrink(&mut list);
+    shrink(list);
     address
 }
 
@@ -180,11 +246,20 @@ pub enum Refused {
     },
 }
 
+/// A call [`enter`] let in.
+pub struct Entered {
+    /// Where the instance lives.
+    pub address: usize,
+    /// The instance is to be put in the Error state before the call runs ([`fail`]).
+    pub failed: bool,
+}
+
 /// Marks the instance `handle` of model `M` busy with a call of this thread and
 /// returns its address.
-pub fn enter<M: 'static>(handle: usize) -> Result<usize, Refused> {
-    let mut list = live();
-    let i = find_is::<M>(&list, handle, HandleKind::Instance).ok_or(Refused::Unknown)?;
+pub fn enter<M: 'static>(handle: usize) -> Result<Entered, Refused> {
+    let mut registry = live();
+    let list = &mut registry.entries;
+    let i = find_is::<M>(list, handle, HandleKind::Instance).ok_or(Refused::Unknown)?;
     let entry = &mut list[i];
     if entry.free_requested {
         return Err(Refused::Unknown);
@@ -193,7 +268,10 @@ pub fn enter<M: 'static>(handle: usize) -> Result<usize, Refused> {
     match entry.busy {
         None => {
             entry.busy = Some(me);
-            Ok(entry.address)
+            Ok(Entered {
+                address: entry.address,
+                failed: std::mem::take(&mut entry.failed),
+            })
         }
         Some(thread) => Err(Refused::Busy {
             reentrant: thread == me,
@@ -202,11 +280,23 @@ pub fn enter<M: 'static>(handle: usize) -> Result<usize, Refused> {
     }
 }
 
+/// A call on the live instance `handle` of model `M` failed without touching it (it
+/// was refused because another thread was inside a call): the next call that enters
+/// puts the instance in the Error state, as the failed call's Error status told the
+/// host. Nothing if it is not a live instance.
+pub fn fail<M: 'static>(handle: usize) {
+    let mut registry = live();
+    let list = &mut registry.entries;
+    if let Some(i) = find_is::<M>(list, handle, HandleKind::Instance) {
+        list[i].failed = true;
+    }
+}
+
 /// Whether FreeInstance was called on the busy instance `handle` (by a callback of
 /// the running call or by another thread).
 pub fn free_requested(handle: usize) -> bool {
-    let list = live();
-    find(&list, handle).is_some_and(|i| list[i].free_requested)
+    let list = &live().entries;
+    find(list, handle).is_some_and(|i| list[i].free_requested)
 }
 
 /// What freeing an instance takes: its address and those of the states it owns.
@@ -219,15 +309,16 @@ pub struct Freed {
 /// FreeInstance came during the call: the instance is unregistered with its states,
 /// and the caller frees them.
 pub fn leave(handle: usize) -> Option<Freed> {
-    let mut list = live();
-    let i = find(&list, handle).filter(|&i| list[i].kind == HandleKind::Instance)?;
+    let mut registry = live();
+    let list = &mut registry.entries;
+    let i = find(list, handle).filter(|&i| list[i].kind == HandleKind::Instance)?;
     list[i].busy = None;
     if !list[i].free_requested {
         return None;
     }
     let instance = list.remove(i).address;
-    let states = take_states_of(&mut list, handle);
-    shrink(&mut list);
+    let states = take_states_of(list, handle);
+    shrink(list);
     Some(Freed { instance, states })
 }
 
@@ -235,8 +326,9 @@ pub fn leave(handle: usize) -> Option<Freed> {
 /// unregistered with its states); None when it is not a live instance, or busy, in
 /// which case the running call frees it when it leaves ([`leave`]).
 pub fn free_instance<M: 'static>(handle: usize) -> Option<Freed> {
-    let mut list = live();
-    let i = find_is::<M>(&list, handle, HandleKind::Instance)?;
+    let mut registry = live();
+    let list = &mut registry.entries;
+    let i = find_is::<M>(list, handle, HandleKind::Instance)?;
     if list[i].free_requested {
         return None;
     }
@@ -245,8 +337,8 @@ pub fn free_instance<M: 'static>(handle: usize) -> Option<Freed> {
         return None;
     }
     let instance = list.remove(i).address;
-    let states = take_states_of(&mut list, handle);
-    shrink(&mut list);
+    let states = take_states_of(list, handle);
+    shrink(list);
     Some(Freed { instance, states })
 }
 
@@ -261,8 +353,8 @@ mod tests {
     fn handles_are_told_apart_by_number_kind_and_model_and_never_reused() {
         // Expected: a handle names one registration only; the same address registered
         // again after a free gets a new handle, and the old one stays refused.
-        let a = register::<A>(0x1000, HandleKind::Instance, None, None);
-        let s = register::<A>(0x2000, HandleKind::State, Some(a), None);
+        let a = register::<A>(0x1000, HandleKind::Instance, None, None).unwrap();
+        let s = register::<A>(0x2000, HandleKind::State, Some(a), None).unwrap();
         assert!(is_live::<A>(a, HandleKind::Instance));
         assert!(!is_live::<B>(a, HandleKind::Instance));
         assert!(!is_live::<A>(a, HandleKind::State));
@@ -270,11 +362,71 @@ mod tests {
         let freed = free_instance::<A>(a).expect("not busy: freed now");
         assert_eq!((freed.instance, freed.states), (0x1000, vec![0x2000]));
         assert!(!is_live::<A>(s, HandleKind::State));
-        let again = register::<A>(0x1000, HandleKind::Instance, None, None);
+        let again = register::<A>(0x1000, HandleKind::Instance, None, None).unwrap();
         assert_ne!(again, a);
         assert!(!is_live::<A>(a, HandleKind::Instance));
         assert_eq!(unregister::<A>(again, HandleKind::Instance), Some(0x1000));
         assert_eq!(unregister::<A>(again, HandleKind::Instance), None);
+    }
+
+    /// The inverse of [`number`], step by step: xor-shift by half the width undone by
+    /// the same shift (its square is the identity when twice the shift covers the
+    /// width), a multiplication by an odd c undone by c^-1 mod 2^bits (Newton's
+    /// iteration x <- x (2 - c x) doubles the correct low bits from x = c).
+    fn inverse(y: u64, key: u64) -> u64 {
+        fn odd_inverse(c: u64) -> u64 {
+            let mut x = c;
+            for _ in 0..6 {
+                x = x.wrapping_mul(2u64.wrapping_sub(c.wrapping_mul(x)));
+            }
+            x
+        }
+        let half = SPREAD_BITS / 2;
+        let mut x = y ^ (y >> half);
+        x = x.wrapping_mul(odd_inverse(0xBF58_476D_1CE4_E5B9)) & SPREAD;
+        x = x.wrapping_sub(key >> 32) & SPREAD;
+        x ^= x >> half;
+        x = x.wrapping_mul(odd_inverse(0x9E37_79B9_7F4A_7C15)) & SPREAD;
+        (x ^ key) & SPREAD
+    }
+
+    #[test]
+    fn numbers_are_a_bijection_and_differ_between_copies() {
+        // Expected: the explicit inverse above recovers every n (so one copy never
+        // issues a number twice); the first 4096 handles of two keys share none (a
+        // shared one would be a handle both copies accept); after 2^SPREAD_BITS
+        // handles none is left.
+        let (k1, k2) = (0x0123_4567_89AB_CDEF, 0xFEDC_BA98_7654_3211);
+        for n in (0..4096).chain([SPREAD - 1, SPREAD, 1 << 40, 0x0AAA_AAAA_AAAA]) {
+            let n = n & SPREAD;
+            assert_eq!(inverse(number(n, k1), k1), n);
+            assert_eq!(inverse(number(n, k2), k2), n);
+        }
+        let first = |k| (0..4096).map(move |n| handle_after(n, k).unwrap());
+        let one: std::collections::HashSet<usize> = first(k1).collect();
+        assert_eq!(one.len(), 4096);
+        assert!(first(k2).all(|h| !one.contains(&h)));
+        for h in first(k1) {
+            assert_eq!(h as u64 >> 48, HANDLE_BASE >> 48);
+            assert_eq!(h & 0xF, 0);
+        }
+        assert!(handle_after(SPREAD, k1).is_some());
+        assert_eq!(handle_after(SPREAD + 1, k1), None);
+        assert_ne!(draw_key(), draw_key(), "two draws (RandomState) alike");
+    }
+
+    #[test]
+    fn a_failed_call_leaves_the_error_state_to_the_next_call() {
+        // Expected: fail() on an instance marks it for exactly the next enter.
+        struct E;
+        let e = register::<E>(0x6000, HandleKind::Instance, None, None).unwrap();
+        fail::<E>(e);
+        fail::<A>(e); // another model's type: not this instance
+        assert!(enter::<E>(e).ok().unwrap().failed);
+        assert!(leave(e).is_none());
+        assert!(!enter::<E>(e).ok().unwrap().failed);
+        assert!(leave(e).is_none());
+        assert!(free_instance::<E>(e).is_some());
     }
 
     #[test]
@@ -282,8 +434,8 @@ mod tests {
         // Expected: enter marks the instance busy; a second enter from this thread is
         // re-entrant, from another thread not; a free while busy happens at leave.
         struct C;
-        let c = register::<C>(0x3000, HandleKind::Instance, None, None);
-        assert_eq!(enter::<C>(c).ok(), Some(0x3000));
+        let c = register::<C>(0x3000, HandleKind::Instance, None, None).unwrap();
+        assert_eq!(enter::<C>(c).ok().map(|e| e.address), Some(0x3000));
         assert!(matches!(
             enter::<C>(c),
             Err(Refused::Busy {
@@ -315,7 +467,7 @@ mod tests {
         // the other thread's unregister (the first step of freeing) comes after it.
         struct D;
         use std::sync::mpsc;
-        let s = register::<D>(0x5000, HandleKind::State, Some(0x4000), None);
+        let s = register::<D>(0x5000, HandleKind::State, Some(0x4000), None).unwrap();
         let order = Mutex::new(Vec::new());
         let (inside, entered) = mpsc::channel();
         std::thread::scope(|scope| {

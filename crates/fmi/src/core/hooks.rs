@@ -34,26 +34,44 @@ pub type OutputDerivative<M> = fn(&M, usize, u32) -> Result<f64, OutputDerivativ
 /// any output read before the step (see [`input_derivatives`](super::input_derivatives)).
 pub type InputDerivative<M> = for<'a> fn(&'a mut M, usize, u32) -> Option<&'a mut f64>;
 
-/// The knowns at initialization (by FMI 2.0 name: inputs, variables with initial =
-/// "exact", "time" for the independent variable) that initial unknown element i
-/// depends on (InitialUnknowns `dependencies`).
-pub type InitialDependencies = fn(usize) -> &'static [&'static str];
+/// A variable named by a compiler-checked handle in a dependency list: a declaration
+/// (`T0.var()`: the scalar, or every element of an array) or one element of an array
+/// declaration (`Q0.item(a)`), or the independent variable. The layer turns it into
+/// FMI 2.0 names (`q0[2]`) when it flattens the table; no model writes such a name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Var {
+    /// The independent variable, a known at initialization (FMI 3.0's `time`; FMI 2.0
+    /// has no variable to name).
+    Time,
+    /// The declaration of this name: a scalar, or every element of an array.
+    Whole(&'static str),
+    /// Element i (from 0) of the array declaration of this name.
+    Item(&'static str, usize),
+    /// The element of the array declaration of this name with the index of the
+    /// dependent element itself (`setpoint[c]` for `u[c]`).
+    Same(&'static str),
+    /// A scalar by its FMI 2.0 name (`platformInertia[1,2]`), for tables whose lists
+    /// are still written as names.
+    Named(&'static str),
+}
 
-/// The names (FMI 2.0) that element i of a declaration depends on.
-pub type ElementDependencies = fn(usize) -> &'static [&'static str];
+/// The variables element i of a declaration depends on: the inputs and states
+/// (ModelStructure `dependencies`), or the knowns at initialization (inputs, variables
+/// with initial = "exact", [`Var::Time`]) of an initial unknown (InitialUnknowns).
+pub type ElementDependencies = fn(usize) -> &'static [Var];
 
 /// The dependencies of a declaration's elements: the same for all, or element by element.
 #[derive(Debug, Clone, Copy)]
 pub enum Dependencies {
-    All(&'static [&'static str]),
+    All(&'static [Var]),
     Each(ElementDependencies),
 }
 
 impl Dependencies {
-    /// The names element i depends on.
-    pub fn of(self, i: usize) -> &'static [&'static str] {
+    /// The variables element i depends on.
+    pub fn of(self, i: usize) -> &'static [Var] {
         match self {
-            Dependencies::All(names) => names,
+            Dependencies::All(vars) => vars,
             Dependencies::Each(f) => f(i),
         }
     }

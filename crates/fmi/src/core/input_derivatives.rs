@@ -23,8 +23,9 @@ pub fn interpolated_input<M>(v: &Variable<M>) -> bool {
         && matches!(v.kind, Kind::Real { .. })
 }
 
-/// Why `order` is not an input derivative order model M takes, if it is not.
-fn check_order<M: Model>(name: &str, order: i32) -> Result<u32, String> {
+/// Why `order` is not an input derivative order model M takes, if it is not (`name`
+/// formats the input's name, for a refusal only).
+fn check_order<M: Model>(name: impl Fn() -> String, order: i32) -> Result<u32, String> {
     let max = M::MAX_INPUT_DERIVATIVE_ORDER;
     if max == 0 {
         return Err(format!(
@@ -35,11 +36,13 @@ fn check_order<M: Model>(name: &str, order: i32) -> Result<u32, String> {
     match u32::try_from(order) {
         Ok(o) if (1..=max).contains(&o) => Ok(o),
         _ if order < 1 => Err(format!(
-            "order {order} for \"{name}\" is not a derivative order (orders start at 1)"
+            "order {order} for \"{}\" is not a derivative order (orders start at 1)",
+            name()
         )),
         _ => Err(format!(
-            "order {order} for \"{name}\" is above {max}, the highest input derivative \
+            "order {order} for \"{}\" is above {max}, the highest input derivative \
              order {} uses",
+            name(),
             M::info().model_name
         )),
     }
@@ -61,17 +64,25 @@ impl<M: Model> Instance<M> {
                 v.causality.as_str()
             ));
         }
-        let name = v.name().into_owned();
-        let order = check_order::<M>(&name, order)?;
+        // The name is formatted for a refusal only (an array element's is built on
+        // request): a master sets every input's derivatives every step.
+        let name = || v.name().into_owned();
+        let order = check_order::<M>(name, order)?;
         if !value.is_finite() || value.abs() > MAX_MAGNITUDE {
             return Err(format!(
-                "derivative of order {order} of \"{name}\" = {value:e} is not a finite number \
-                 of magnitude at most {MAX_MAGNITUDE:e}"
+                "derivative of order {order} of \"{}\" = {value:e} is not a finite number \
+                 of magnitude at most {MAX_MAGNITUDE:e}",
+                name()
             ));
         }
         let (hook, index) = (v.input_hook(), v.index);
-        let slot = slot(self.model_mut(), hook, index, order);
-        *slot.ok_or_else(|| no_slot::<M>(&name, order))? = value;
+        match slot(self.model_mut(), hook, index, order) {
+            Some(slot) => *slot = value,
+            None => {
+                let name = variable(self.table(), vr)?.name().into_owned();
+                return Err(no_slot::<M>(&name, order));
+            }
+        }
         Ok(())
     }
 }

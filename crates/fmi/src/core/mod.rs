@@ -37,7 +37,7 @@ pub mod value_check;
 pub mod variables;
 
 pub use declare::Declaration;
-pub use hooks::Element;
+pub use hooks::{Element, Var};
 pub use instance::{Instance, Snapshot, Standard};
 pub use log::{Log, LogCategory};
 pub use model::{

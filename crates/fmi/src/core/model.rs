@@ -38,6 +38,61 @@ pub struct ModelInfo {
     pub log_categories: &'static [LogCategory],
 }
 
+impl ModelInfo {
+    /// The facts of a model named `name` (modelName and modelIdentifier) without
+    /// continuous states, event indicators, directional or output derivatives or log
+    /// categories of its own; the methods below add them.
+    pub const fn new(
+        name: &'static str,
+        guid: &'static str,
+        description: &'static str,
+        [start_time, stop_time, tolerance, step_size]: [f64; 4],
+    ) -> Self {
+        ModelInfo {
+            model_name: name,
+            model_identifier: name,
+            guid,
+            description,
+            default_experiment: DefaultExperiment {
+                start_time,
+                stop_time,
+                tolerance,
+                step_size,
+            },
+            number_of_continuous_states: 0,
+            number_of_event_indicators: 0,
+            provides_directional_derivative: false,
+            max_output_derivative_order: 0,
+            log_categories: &[],
+        }
+    }
+
+    /// The continuous states of a table: `continuous_states(VARIABLES)`, counted from
+    /// the declarations.
+    pub const fn states(mut self, n: usize) -> Self {
+        self.number_of_continuous_states = n;
+        self
+    }
+
+    /// `Model::partial_derivative` (or `directional_derivative`) is implemented.
+    pub const fn directional_derivatives(mut self) -> Self {
+        self.provides_directional_derivative = true;
+        self
+    }
+
+    /// The output-derivative hooks answer up to `order`.
+    pub const fn output_derivatives(mut self, order: u32) -> Self {
+        self.max_output_derivative_order = order;
+        self
+    }
+
+    /// The model's own log categories.
+    pub const fn logs(mut self, categories: &'static [LogCategory]) -> Self {
+        self.log_categories = categories;
+        self
+    }
+}
+
 /// Result of a co-simulation step.
 #[derive(Debug, Clone, PartialEq)]
 pub enum StepOutcome {
@@ -93,8 +148,11 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// follows u(s) = u + u' s + u'' s^2/2 + ... (s the time since `time`) with the
     /// derivatives last written to its declaration's
     /// [`input_derivative`](Declaration::input_derivative) slot, i.e. it is held when
-    /// none were given.
-    fn do_step(&mut self, time: f64, step: f64, log: &dyn Log) -> StepOutcome;
+    /// none were given. Without it, a step completes and changes nothing: a model
+    /// whose outputs are functions of time and parameters has nothing to integrate.
+    fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
+        StepOutcome::Completed
+    }
 
     /// Highest order of input time derivative that `do_step` uses (FMI 2.0
     /// canInterpolateInputs when above 0); 0: the inputs are held over a step.
@@ -116,13 +174,22 @@ pub trait Model: Clone + Send + Sized + 'static {
         Ok(())
     }
 
-    fn continuous_states(&self, _x: &mut [f64]) {}
+    /// The continuous states, by default read through the getters of the declared
+    /// states (element i of the state of each derivative declaration, in their order).
+    fn continuous_states(&self, x: &mut [f64]) {
+        super::declare::read_states(Self::declarations(), self, x);
+    }
 
-    fn set_continuous_states(&mut self, _x: &[f64]) {}
+    /// Sets the continuous states, by default through the declared states' setters.
+    fn set_continuous_states(&mut self, x: &[f64]) {
+        super::declare::write_states(Self::declarations(), self, x);
+    }
 
-    /// State derivatives; an error (the model cannot be evaluated at this point, e.g. a
+    /// State derivatives, by default read through the getters of the derivative
+    /// declarations; an error (the model cannot be evaluated at this point, e.g. a
     /// function outside its domain) makes fmi2GetDerivatives return fmi2Discard.
-    fn derivatives(&self, _dx: &mut [f64]) -> Result<(), String> {
+    fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
+        super::declare::read_derivatives(Self::declarations(), self, dx);
         Ok(())
     }
 

@@ -88,11 +88,11 @@ pub struct Variable<M: 'static> {
     pub kind: Kind<M>,
     /// Names of the inputs and continuous states an output or state derivative
     /// depends on (ModelStructure `dependencies`); None: on all of them.
-    pub dependencies: Option<&'static [&'static str]>,
+    pub dependencies: Option<Vec<String>>,
     /// Names of the knowns at initialization (inputs, variables with initial =
     /// "exact") an initial unknown depends on (InitialUnknowns `dependencies`); None:
     /// on all of them.
-    pub initial_dependencies: Option<&'static [&'static str]>,
+    pub initial_dependencies: Option<Vec<String>>,
     /// The declaration this scalar is an element of.
     pub declaration: &'static Declaration<M>,
     /// The element's index (0 for a scalar).

@@ -68,10 +68,10 @@ pub fn view<M>(table: &[Variable<M>], arrays: &Table3) -> Result<Table3, String>
 
 /// The table value references of the knowns named by `names` (table names, or "time"
 /// for value reference 0), ascending; the scalar view's dependencies.
-pub fn references<M>(table: &[Variable<M>], names: &[&str]) -> Result<Vec<u32>, String> {
+pub fn references<M>(table: &[Variable<M>], names: &[String]) -> Result<Vec<u32>, String> {
     let mut list = names
         .iter()
-        .map(|name| match *name {
+        .map(|name| match name.as_str() {
             "time" => Ok(super::table::TIME_VALUE_REFERENCE),
             _ => table
                 .iter()

@@ -291,7 +291,7 @@ pub fn dependencies<M: Model>(
     table: &[Variable<M>],
     v: &Variable3,
 ) -> Result<Option<Vec<u32>>, String> {
-    references(table, v, |scalar| scalar.dependencies)
+    references(table, v, |scalar| scalar.dependencies.as_deref())
 }
 
 /// As [`dependencies`], for the initial unknown `v` and the knowns at initialization
@@ -300,14 +300,14 @@ pub fn initial_dependencies<M: Model>(
     table: &[Variable<M>],
     v: &Variable3,
 ) -> Result<Option<Vec<u32>>, String> {
-    references(table, v, |scalar| scalar.initial_dependencies)
+    references(table, v, |scalar| scalar.initial_dependencies.as_deref())
 }
 
 /// The value references of the names `names` gives for every element of `v`, merged.
 fn references<M: Model>(
     table: &[Variable<M>],
     v: &Variable3,
-    names: impl Fn(&Variable<M>) -> Option<&'static [&'static str]>,
+    names: impl Fn(&Variable<M>) -> Option<&[String]>,
 ) -> Result<Option<Vec<u32>>, String> {
     let mut list = Vec::new();
     for e in v.elements() {

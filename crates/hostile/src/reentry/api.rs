@@ -30,8 +30,13 @@ pub trait Api: Sync {
     fn free(&self, h: Handle);
     /// Logging on with every category (logCalls included).
     fn log_all(&self, h: Handle) -> Status;
-    /// Setup (FMI 2.0) and Initialization Mode from `start`.
-    fn enter_initialization(&self, h: Handle, start: f64) -> Status;
+    /// Setup (FMI 2.0) and Initialization Mode from `start`, with the tolerance
+    /// defined when Some.
+    fn enter_initialization_with(&self, h: Handle, tolerance: Option<f64>, start: f64) -> Status;
+    /// Setup (FMI 2.0) and Initialization Mode from `start`, no tolerance.
+    fn enter_initialization(&self, h: Handle, start: f64) -> Status {
+        self.enter_initialization_with(h, None, start)
+    }
     fn exit_initialization(&self, h: Handle) -> Status;
     /// Initialization Mode from `start`, then exit.
     fn initialize(&self, h: Handle, start: f64) -> Status {
@@ -166,10 +171,11 @@ impl Api for Api2<'_> {
     fn log_all(&self, h: Handle) -> Status {
         unsafe { (self.binary.set_debug_logging)(h, 1, 0, std::ptr::null()) }
     }
-    fn enter_initialization(&self, h: Handle, start: f64) -> Status {
+    fn enter_initialization_with(&self, h: Handle, tolerance: Option<f64>, start: f64) -> Status {
         let b = self.binary;
+        let (defined, tolerance) = (i32::from(tolerance.is_some()), tolerance.unwrap_or(0.0));
         unsafe {
-            match (b.setup_experiment)(h, 0, 0.0, start, 0, 0.0) {
+            match (b.setup_experiment)(h, defined, tolerance, start, 0, 0.0) {
                 crate::binary::OK => (b.enter_initialization_mode)(h),
                 s => s,
             }
@@ -261,8 +267,9 @@ impl Api for Api3<'_> {
     fn log_all(&self, h: Handle) -> Status {
         unsafe { (self.binary.set_debug_logging)(h, 1, 0, std::ptr::null()) }
     }
-    fn enter_initialization(&self, h: Handle, start: f64) -> Status {
-        unsafe { (self.binary.enter_initialization_mode)(h, 0, 0.0, start, 0, 0.0) }
+    fn enter_initialization_with(&self, h: Handle, tolerance: Option<f64>, start: f64) -> Status {
+        let (defined, tolerance) = (u8::from(tolerance.is_some()), tolerance.unwrap_or(0.0));
+        unsafe { (self.binary.enter_initialization_mode)(h, defined, tolerance, start, 0, 0.0) }
     }
     fn exit_initialization(&self, h: Handle) -> Status {
         unsafe { (self.binary.exit_initialization_mode)(h) }

@@ -71,7 +71,7 @@ enum Scope {
 type Entry = (&'static str, &'static str, fn(&dyn Api) -> Outcome, Scope);
 
 /// The fixed probes: class, name, probe, scope.
-const PROBES: [Entry; 14] = [
+const PROBES: [Entry; 16] = [
     (
         "callbacks",
         "logger frees on Error",
@@ -132,11 +132,23 @@ const PROBES: [Entry; 14] = [
         threads::second_thread_then_free,
         Scope::All,
     ),
+    (
+        "threads",
+        "another thread inside when intermediateUpdate returns",
+        threads::get_while_resuming,
+        Scope::Fmi3,
+    ),
     ("time", "step to +inf", forged::step_to_infinity, Scope::All),
     (
         "time",
         "step that does not advance the time",
         forged::step_that_does_not_advance,
+        Scope::All,
+    ),
+    (
+        "status",
+        "the experiment's tolerance",
+        status::tolerances,
         Scope::All,
     ),
     (

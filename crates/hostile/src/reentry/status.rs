@@ -13,7 +13,7 @@
 use super::api::{Api, Handle};
 use super::host::Host;
 use super::{Outcome, expect};
-use crate::binary::{DISCARD, ERROR, OK};
+use crate::binary::{DISCARD, ERROR, OK, Status};
 use crate::description::VarType;
 
 /// Values tried for each parameter in Initialization Mode.
@@ -143,4 +143,52 @@ pub fn event_indicators_agree(api: &dyn Api) -> Outcome {
         return Err("no tried state makes the event indicators unevaluable".into());
     }
     Ok(format!("{discarded} unevaluable states: both Discard"))
+}
+
+/// The experiment's tolerance (issue 36; docs/interoperability.md, "Tolerance"):
+/// (toleranceDefined, tolerance, expected status of fmi2SetupExperiment +
+/// fmi2EnterInitializationMode, or fmi3EnterInitializationMode).
+const TOLERANCES: [(bool, f64, Status); 8] = [
+    (true, 1e-4, OK),
+    (true, 1e-300, OK),
+    (false, 0.0, OK),
+    (false, f64::NAN, OK),
+    (true, 0.0, ERROR),
+    (true, -1e-6, ERROR),
+    (true, f64::NAN, ERROR),
+    (true, f64::INFINITY, ERROR),
+];
+
+/// Each row of `TOLERANCES` on a fresh instance. The standards give the tolerance a
+/// meaning only when it is defined, as the relative tolerance of an error-controlled
+/// integration; a defined one that is not a positive finite number is refused with
+/// Error and a log line naming it and the fix, a positive one accepted (unused: the
+/// FMUs take no tolerance from the importer), an undefined one ignored whatever its
+/// value. An accepted one leaves an instance that initializes.
+pub fn tolerances(api: &dyn Api) -> Outcome {
+    for (defined, tolerance, want) in TOLERANCES {
+        let host = Host::new();
+        let h = api.instantiate(&host);
+        if h.is_null() {
+            return Err(format!("instantiate refused: {}", host.log_text()));
+        }
+        let what = format!("toleranceDefined = {defined}, tolerance = {tolerance:e}");
+        let got = api.enter_initialization_with(h, defined.then_some(tolerance), 0.0);
+        let result = expect(got, want, &what, &host).and_then(|()| {
+            if want == OK {
+                return expect(api.exit_initialization(h), OK, &what, &host);
+            }
+            if host.logged(&format!("tolerance = {tolerance}")) && host.logged("toleranceDefined") {
+                Ok(())
+            } else {
+                Err(format!(
+                    "{what}: refused without naming it: {}",
+                    host.log_text()
+                ))
+            }
+        });
+        api.free(h);
+        result?;
+    }
+    Ok(format!("{} tolerances: as documented", TOLERANCES.len()))
 }

@@ -10,7 +10,7 @@ use robofmu_fmi::prelude::Model;
 /// A started plant away from rest, tilted, driven by every kind of input.
 fn moving() -> Pss3Plant {
     let mut m = Pss3Plant::new();
-    m.state = robofmu::pss3::dynamics::PlantState {
+    m.state = robofmu_dynamics::pss3::dynamics::PlantState {
         euler: Vector3::new(0.05, -0.04, 2.35),
         omega: Vector3::new(0.3, -0.5, 0.8),
     };

@@ -106,7 +106,7 @@ pub fn joints_png(
     let axes = Axes {
         title,
         x_label: "t [s]",
-        y_label: "joint angle [deg]",
+        y_label: "angle theta [deg]",
     };
     Ok(line_chart(file, &axes, &series)?)
 }

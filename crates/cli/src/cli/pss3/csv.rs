@@ -11,7 +11,7 @@ pub fn write_csv(
     names: &[&str],
     rows: impl Iterator<Item = Vec<f64>>,
 ) -> Result<(), CliError> {
-    let fail = |e: std::io::Error| format!("cannot write {}: {e}", path.display());
+    let fail = |e| crate::cli::io_at(path)(e);
     let mut out = BufWriter::new(File::create(path).map_err(fail)?);
     let header: Vec<String> = names.iter().map(|n| format!("\"{n}\"")).collect();
     writeln!(out, "{}", header.join(",")).map_err(fail)?;

@@ -2,7 +2,7 @@
 
 use super::csv::write_csv;
 use crate::cli::CliError;
-use crate::cli::args::triple;
+use crate::cli::args::{check_stroke, triple};
 use crate::cli::bounds::{finite, positive, samples};
 use clap::Args;
 use robofmu::pss3::{FkOptions, Geometry, PathSample, Timing, linear_actuator_path};
@@ -67,7 +67,10 @@ pub fn run(args: &PathArgs) -> Result<(), CliError> {
         dt: args.dt,
     };
     let (l0, lf) = (triple(&args.l0, "l0")?, triple(&args.lf, "lf")?);
+    check_stroke(&geometry, &l0, "l0")?;
+    check_stroke(&geometry, &lf, "lf")?;
     samples(args.duration, args.dt, "--dt", "--duration")?;
+    crate::cli::check_output_file(&args.out)?;
     let path = linear_actuator_path(&geometry, &l0, &lf, &timing, &FkOptions::default())?;
     write_csv(&args.out, &COLUMNS, path.iter().map(row))?;
     outln!("wrote {} samples to {}", path.len(), args.out.display());

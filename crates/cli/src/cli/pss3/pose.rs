@@ -1,7 +1,7 @@
 //! `pss3 ik`, `pss3 fk` and `pss3 jacobian`: single poses, printed with labelled units.
 
 use crate::cli::CliError;
-use crate::cli::args::{angles_deg, triple};
+use crate::cli::args::{angles_deg, check_stroke, triple};
 use crate::cli::bounds::{count, finite, fk_tolerance};
 use clap::Args;
 use robofmu::pss3::workspace::tilt;
@@ -69,7 +69,11 @@ pub fn run_fk(args: &FkArgs) -> Result<(), CliError> {
         max_iterations: args.max_iter,
         check_stroke: !args.ignore_stroke,
     };
-    let solution = forward_kinematics(&geometry, &triple(&args.l, "l")?, &seed, &options)?;
+    let l = triple(&args.l, "l")?;
+    if !args.ignore_stroke {
+        check_stroke(&geometry, &l, "l")?;
+    }
+    let solution = forward_kinematics(&geometry, &l, &seed, &options)?;
     print_pose(&solution.assembly);
     outln!(
         "Newton: {} iterations, residual {:.3e} m",

@@ -29,8 +29,7 @@ pub struct WorkspaceArgs {
 }
 
 pub fn run(args: &WorkspaceArgs) -> Result<(), CliError> {
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    std::fs::create_dir_all(&args.out).map_err(crate::cli::io_at(&args.out))?;
     let geometry = Geometry::default();
 
     let started = Instant::now();

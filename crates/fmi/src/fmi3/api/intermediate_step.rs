@@ -16,6 +16,7 @@
 
 use super::step::{StepReport, StepResult, step};
 use super::with_instance;
+use crate::core::handles;
 use crate::core::model::Model;
 use crate::fmi3::instance::Instance;
 use crate::fmi3::intermediate::IntermediateUpdate;
@@ -147,6 +148,13 @@ impl SplitStep {
                     self.advance(inst, out)
                 })
             };
+            if status == Fmi3Status::Error {
+                // Refused (another thread was inside a call when the callback
+                // returned), the instance is still in Intermediate Update Mode: it is
+                // put in the Error state that fmi3DoStep reports as soon as it is free
+                // (after any other Error it is there already).
+                handles::fail::<Instance<M>>(c as usize);
+            }
         }
         status
     }

@@ -1,0 +1,64 @@
+"""The build hook of the `robofmu` distribution (pyproject.toml): the package data that
+.gitignore hides from hatchling or that lives outside cosim/.
+
+- sdist: the built FMUs (dist/*.fmu, dist/fmi3/*.fmu, dist/fmi3-scalar/*.fmu) and the
+  native stepping kernel (target/release/, when built) at their own paths, so that the
+  wheel builds from the sdist without Rust;
+- wheel: the FMUs as cosim/data/fmus/ (same layout as dist/), tests/references/ as
+  cosim/data/references/, scenarios/ as cosim/data/scenarios/, the kernel as
+  cosim/_native/<platform>/ (cosim.loop.PLATFORM); the wheel is py3-none-any: where
+  no kernel is bundled for the platform, cosim refuses to run with one line naming the
+  platform (the master has one stepping loop, the native one);
+- editable installs: nothing (cosim.bundle finds dist/, tests/references/ and
+  scenarios/ in the checkout).
+
+A build without the FMUs (the same models in each folder) stops with one line naming
+the command that builds them.
+"""
+
+from __future__ import annotations
+
+import platform
+import sys
+from pathlib import Path
+
+from hatchling.builders.hooks.plugin.interface import BuildHookInterface
+
+FMU_FOLDERS = ("", "fmi3", "fmi3-scalar")
+KERNEL = {"linux": "libcosim_kernel.so", "darwin": "libcosim_kernel.dylib",
+          "win32": "cosim_kernel.dll"}
+
+
+def kernel_platform() -> str:
+    """The folder name of this machine's kernel: cosim.loop.PLATFORM's rule."""
+    return f"{sys.platform}-{platform.machine().lower()}"
+
+
+class BundleHook(BuildHookInterface):
+    PLUGIN_NAME = "custom"
+
+    def initialize(self, version: str, build_data: dict) -> None:
+        if self.target_name == "wheel" and version == "editable":
+            return
+        root = Path(self.root)
+        models = [sorted(p.stem for p in (root / "dist" / folder).glob("*.fmu"))
+                  for folder in FMU_FOLDERS]
+        if not models[0] or any(m != models[0] for m in models):
+            raise SystemExit("hatch_build.py: dist/, dist/fmi3/, dist/fmi3-scalar/ must hold "
+                             f"the same FMUs (found {', '.join(map(str, map(len, models)))}); "
+                             "run 'bash scripts/build-fmus.sh' first")
+        fmus = [root / "dist" / folder / f"{m}.fmu" for folder in FMU_FOLDERS for m in models[0]]
+        kernel = root / "target" / "release" / KERNEL.get(sys.platform, "")
+        include = build_data["force_include"]
+        if self.target_name == "sdist":
+            for path in fmus:
+                include[str(path)] = str(path.relative_to(root))
+            if kernel.is_file():
+                include[str(kernel)] = str(kernel.relative_to(root))
+            return
+        for path in fmus:
+            include[str(path)] = f"cosim/data/fmus/{path.relative_to(root / 'dist').as_posix()}"
+        include[str(root / "tests" / "references")] = "cosim/data/references"
+        include[str(root / "scenarios")] = "cosim/data/scenarios"
+        if kernel.is_file():
+            include[str(kernel)] = f"cosim/_native/{kernel_platform()}/{kernel.name}"

@@ -1,0 +1,72 @@
+"""One version everywhere, and the release folder that docs/release.md lists.
+
+Truths: the workspace version is read from Cargo.toml with tomllib; each FMU's version
+is read from its modelDescription by FMPy (a second reader besides cosim's own), the
+checked-in copies under modelDescription/ with ElementTree; the release folder's files
+are those scripts/release.sh writes into a temporary folder, compared with the table of
+docs/release.md (names exactly, sizes within 25 %: the table is a measurement, to be
+rewritten when the FMUs change size, e.g. with more platforms). About 20 s."""
+
+import re
+import subprocess
+import tomllib
+from pathlib import Path
+from xml.etree import ElementTree
+
+from fmpy import read_model_description
+
+ROOT = Path(__file__).resolve().parents[2]
+ROW = re.compile(r"^\| `([^`]+)` \| (\d+) \|", re.M)
+
+
+def workspace_version() -> str:
+    with (ROOT / "Cargo.toml").open("rb") as f:
+        return tomllib.load(f)["workspace"]["package"]["version"]
+
+
+def test_one_version_in_every_crate_fmu_command_and_the_changelog():
+    version = workspace_version()
+    manifests = [ROOT / "Cargo.toml", *ROOT.glob("crates/*/Cargo.toml"),
+                 *ROOT.glob("fmus/*/Cargo.toml")]
+    assert len(manifests) >= 13
+    for manifest in manifests:
+        with manifest.open("rb") as f:
+            assert tomllib.load(f)["package"]["version"] == {"workspace": True}, manifest
+    said = subprocess.run([str(ROOT / ".venv" / "bin" / "cosim"), "--version"],
+                          capture_output=True, text=True, check=True).stdout
+    assert said == f"cosim {version}\n"
+    said = subprocess.run([str(ROOT / "target" / "release" / "robofmu"), "--version"],
+                          capture_output=True, text=True, check=True).stdout
+    assert said == f"robofmu {version}\n"
+    copies = sorted((ROOT / "modelDescription").rglob("*.xml"))
+    fmus = sorted((ROOT / "dist").rglob("*.fmu"))
+    assert len(copies) == 12 and len(fmus) >= 12
+    for copy in copies:
+        root = ElementTree.parse(copy).getroot()
+        assert root.get("version") == version, copy
+        assert root.get("generationTool") == f"robofmu {version}", copy
+    for fmu in fmus:
+        md = read_model_description(str(fmu))
+        assert (md.version, md.generationTool) == (version, f"robofmu {version}"), fmu
+    headings = re.findall(r"^## (\S+)", (ROOT / "CHANGELOG.md").read_text(), re.M)
+    assert version in headings
+
+
+def test_release_folder_holds_what_the_docs_list(tmp_path):
+    out = tmp_path / "release"
+    run = subprocess.run(["bash", str(ROOT / "scripts" / "release.sh"), "--out", str(out)],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr[-3000:]
+    written = {p.relative_to(out).as_posix(): p.stat().st_size
+               for p in out.rglob("*") if p.is_file()}
+    listed = {name: int(size) for name, size in
+              ROW.findall((ROOT / "docs" / "release.md").read_text())}
+    table = "\n".join(f"| `{n}` | {s} |" for n, s in sorted(written.items()))
+    assert written.keys() == listed.keys(), f"docs/release.md's table; now:\n{table}"
+    off = {n: (listed[n], s) for n, s in written.items() if not 0.75 <= s / listed[n] <= 1.25}
+    assert not off, f"sizes (docs, now) {off}; rewrite docs/release.md's table:\n{table}"
+    # The sums check, and the CHANGELOG section is the version's.
+    subprocess.run(["sha256sum", "--check", "--quiet", "SHA256SUMS"], cwd=out, check=True)
+    version = workspace_version()
+    section = (out / f"CHANGELOG-{version}.md").read_text()
+    assert section.startswith(f"## {version}") and "\n## 0." not in section[3:]
