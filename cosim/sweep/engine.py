@@ -16,6 +16,7 @@ import contextlib
 import os
 from concurrent.futures import ThreadPoolExecutor
 
+from ..units import quantity
 from . import scratch
 from .runner import FmuStore, execute, run_on_worker, warm, worker_plugin
 
@@ -42,7 +43,6 @@ def auto_batch(runs: int, workers: int, steps: int) -> int:
 def _steps(todo) -> int:
     """Communication steps of a run (of the first: the runs of a sweep differ in
     parameters, rarely in length); an estimate for auto_batch only."""
-    from ..units import quantity
     document = todo[0][2]
 
     def seconds(key, default):
