@@ -198,6 +198,7 @@ def execute_batch(store: FmuStore, batch: list[tuple[str, dict]],
 def worker_plugin(blobs: dict[str, bytes], fmus: dict[str, str]):
     """A Dask worker plugin that gives every worker the FMUs, unpacked and loaded
     (warm), and an instance pool."""
+    # lazy: distributed is 0.4 s of start-up (scripts/bench_startup.py) that serial runs skip
     from distributed.diagnostics.plugin import WorkerPlugin
 
     class FmuPlugin(WorkerPlugin):
@@ -219,6 +220,6 @@ def worker_plugin(blobs: dict[str, bytes], fmus: dict[str, str]):
 
 def run_on_worker(batch: list[tuple[str, dict]], fmus: dict[str, str]) -> list:
     """The task function: a batch of runs on a Dask worker with the plugin's store."""
-    from distributed import get_worker
+    from distributed import get_worker  # lazy: 0.4 s (see worker_plugin)
     plugin: Any = get_worker().plugins[_STORE_NAME]  # worker_plugin's FmuPlugin
     return execute_batch(plugin.store, batch, fmus)
