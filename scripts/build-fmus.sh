@@ -1,12 +1,154 @@
 #!/usr/bin/env bash
-# Builds the workspace in release mode and packages every FMU crate under fmus/ into
-# dist/<Model>.fmu (FMI 2.0), dist/fmi3/<Model>.fmu (FMI 3.0) and
-# dist/fmi3-scalar/<Model>.fmu (FMI 3.0, scalars only), all from the same cdylib
-# (modelDescription.xml, binaries/<platform>/<modelIdentifier>.<ext>, documentation/).
-# The workspace packager target/release/robofmu-packager (crates/packager) finds the
-# FMU crates and reads each cdylib's description of itself, so adding an FMU needs no
-# change here.
+# Builds the workspace in release mode, cross-builds every FMU crate under fmus/ for the
+# five platforms the FMUs carry, and packages them into dist/<Model>.fmu (FMI 2.0),
+# dist/fmi3/<Model>.fmu (FMI 3.0) and dist/fmi3-scalar/<Model>.fmu (FMI 3.0, scalars
+# only), all from the same cdylib of each platform (modelDescription.xml,
+# binaries/<platform>/<modelIdentifier>.<ext>, documentation/).
+#
+# Platforms (docs/interoperability.md): x86_64-linux and aarch64-linux (glibc 2.17 and
+# newer), x86_64-windows, x86_64-darwin and aarch64-darwin (macOS 10.12 / 11 and newer).
+# One cargo build per platform, `--profile fmu` (release, symbols stripped), all FMU
+# crates at once. Linux and macOS are linked by zig (`cargo zigbuild`; ziglang and
+# cargo-zigbuild come from PyPI, pinned in scripts/toolchain-requirements.txt, into
+# target/toolchain/venv); Windows by MinGW-w64's gcc (Debian's gcc-mingw-w64-x86-64,
+# installed with apt-get when this runs as root), which honours the export list rustc
+# gives it (zig's linker exported every symbol) and links libgcc and winpthread
+# statically. Each platform's standard library comes from `rustup target add`. A platform whose toolchain cannot be
+# had is left out of every FMU and named, with the reason, at the end of the output and
+# in target/toolchain/platforms.txt (the platform tests report it as skipped); nothing
+# is left out silently. The workspace packager target/release/robofmu-packager
+# (crates/packager) finds the FMU crates and reads each cdylib's description of itself,
+# so adding an FMU needs no change here.
+#
+# Usage: bash scripts/build-fmus.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
 cargo build --release --workspace
-target/release/robofmu-packager --out dist
+
+tools=target/toolchain
+record="$tools/platforms.txt"
+mkdir -p "$tools"
+: >"$record.new"
+
+# platform tuple, Rust target (with zig's glibc version for Linux).
+platforms=(
+    "x86_64-linux x86_64-unknown-linux-gnu.2.17"
+    "aarch64-linux aarch64-unknown-linux-gnu.2.17"
+    "x86_64-windows x86_64-pc-windows-gnu"
+    "x86_64-darwin x86_64-apple-darwin"
+    "aarch64-darwin aarch64-apple-darwin"
+)
+
+missing() { # tuple, reason
+    echo "$1 missing $2" >>"$record.new"
+    echo "build-fmus: $1 is MISSING from every FMU: $2" >&2
+}
+
+# zig and cargo-zigbuild.
+requirements=scripts/toolchain-requirements.txt
+stamp="$tools/venv/.requirements-installed"
+zig_error=""
+if ! { [[ -f "$stamp" ]] && cmp -s "$requirements" "$stamp"; }; then
+    if python3 -m venv "$tools/venv" >"$tools/venv.log" 2>&1 &&
+        "$tools/venv/bin/python" -m pip install --quiet --disable-pip-version-check \
+            -r "$requirements" >>"$tools/venv.log" 2>&1; then
+        cp "$requirements" "$stamp"
+    else
+        zig_error="ziglang/cargo-zigbuild could not be installed from PyPI ($(tail -n 1 "$tools/venv.log"))"
+    fi
+fi
+export PATH="$PWD/$tools/venv/bin:$PATH"
+
+packages=()
+for manifest in fmus/*/Cargo.toml; do
+    packages+=(-p "$(sed -n 's/^name = "\(.*\)"$/\1/p' "$manifest" | head -n 1)")
+done
+
+# Builds the FMU crates (and the test host) for $tuple/$target with "${build[@]}".
+build_platform() {
+    if [[ "$tuple" == *-linux ]]; then
+        # scripts/toolchain/finalize.c: the unload-time __cxa_finalize that gcc's C
+        # runtime objects give a shared library and zig's link does not.
+        env "CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_RUSTFLAGS=-C link-arg=$PWD/scripts/toolchain/finalize.c" \
+            "${build[@]}" --profile fmu --target "$target" "${packages[@]}" "${host[@]}"
+        return
+    fi
+    if [[ "$tuple" != *-darwin ]]; then
+        "${build[@]}" --profile fmu --target "$target" "${packages[@]}" "${host[@]}"
+        return
+    fi
+    # macOS: the minimum version (Rust's default for the target, stated in
+    # docs/interoperability.md); -dead_strip_dylibs drops libiconv, which the libc
+    # crate names but nothing calls, so that only libSystem is linked; the install name
+    # @rpath/<file> instead of the build folder's absolute path (one cargo call per
+    # crate: the name differs per crate).
+    local minimum=10.12 variable
+    [[ "$tuple" == aarch64-* ]] && minimum=11.0
+    variable="CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_RUSTFLAGS"
+    local i name
+    for ((i = 1; i < ${#packages[@]}; i += 2)); do
+        name="${packages[i]//-/_}"
+        env MACOSX_DEPLOYMENT_TARGET="$minimum" "$variable=-C link-arg=-Wl,-dead_strip_dylibs" \
+            cargo-zigbuild rustc --profile fmu --target "$target" -p "${packages[i]}" --lib -- \
+            -C "link-arg=-Wl,-install_name,@rpath/lib$name.dylib" || return 1
+    done
+}
+
+built=()
+for entry in "${platforms[@]}"; do
+    read -r tuple target <<<"$entry"
+    triple="${target%.2.17}"
+    if [[ -n "$zig_error" ]]; then
+        missing "$tuple" "$zig_error"
+        continue
+    fi
+    if ! rustc --print target-libdir --target "$triple" >/dev/null 2>&1 ||
+        [[ ! -d "$(rustc --print target-libdir --target "$triple")" ]]; then
+        if ! command -v rustup >/dev/null 2>&1; then
+            missing "$tuple" "Rust's standard library for $triple is not installed and there is no rustup to add it"
+            continue
+        fi
+        if ! rustup target add "$triple" >"$tools/rustup-$triple.log" 2>&1; then
+            missing "$tuple" "rustup target add $triple failed: $(tail -n 1 "$tools/rustup-$triple.log")"
+            continue
+        fi
+    fi
+    # The platform-test host runs where the tests can run it: Linux (native, qemu)
+    # and Windows (Wine); it never goes into an FMU.
+    host=()
+    [[ "$tuple" == *-darwin ]] || host=(-p robofmu-platform-host)
+    build=(cargo zigbuild)
+    if [[ "$tuple" == *-windows ]]; then
+        if ! command -v x86_64-w64-mingw32-gcc >/dev/null 2>&1 &&
+            [[ "$(id -u)" -eq 0 ]] && command -v apt-get >/dev/null 2>&1; then
+            { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+                --no-install-recommends gcc-mingw-w64-x86-64; } >"$tools/apt-mingw.log" 2>&1 || true
+        fi
+        if ! command -v x86_64-w64-mingw32-gcc >/dev/null 2>&1; then
+            missing "$tuple" "the MinGW-w64 linker x86_64-w64-mingw32-gcc is missing (Debian: apt-get install gcc-mingw-w64-x86-64)"
+            continue
+        fi
+        build=(env CARGO_TARGET_X86_64_PC_WINDOWS_GNU_LINKER=x86_64-w64-mingw32-gcc cargo build)
+    fi
+    if build_platform >"$tools/build-$tuple.log" 2>&1; then
+        built+=("$tuple")
+        echo "$tuple built" >>"$record.new"
+        echo "build-fmus: $tuple built (target/$triple/fmu/)"
+    else
+        tail -n 20 "$tools/build-$tuple.log" >&2
+        missing "$tuple" "the build for $target failed (log: $tools/build-$tuple.log)"
+    fi
+done
+mv "$record.new" "$record"
+
+if [[ ${#built[@]} -eq 0 ]]; then
+    echo "build-fmus: no platform could be built; see the messages above" >&2
+    exit 1
+fi
+list="$(IFS=,; echo "${built[*]}")"
+target/release/robofmu-packager --out dist --platforms "$list"
+if [[ ${#built[@]} -lt ${#platforms[@]} ]]; then
+    echo "build-fmus: the FMUs carry ${#built[@]} of ${#platforms[@]} platforms ($list); missing:" >&2
+    grep ' missing ' "$record" | sed 's/^/  /' >&2
+fi

@@ -6,13 +6,19 @@ cargo fmt --all -- --check
 cargo clippy --workspace --all-targets -- -D warnings
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace
 # dist/*.fmu first: the hostile importer's tests (crates/hostile) dlopen the packaged
-# binaries and fail when they are missing or older than the sources.
+# binaries and fail when they are missing or older than the sources. It builds the FMUs
+# for all five platforms (a platform it cannot build is named, and skipped with that
+# reason by tests/python/test_platforms.py).
 bash scripts/build-fmus.sh
 cargo test --workspace --release
 # valgrind memcheck over each FMU's lifecycle (installs valgrind in CI).
 bash scripts/memcheck.sh
 # libtbb12 for ecospy (installed with apt-get in CI, as valgrind is).
 bash scripts/install-importer-libs.sh
+# Wine, qemu-aarch64 and llvm-tools for tests/python/test_platforms.py (apt-get and
+# rustup in CI): the Windows and aarch64 Linux binaries run there, the macOS ones are
+# read statically.
+bash scripts/install-platform-test-tools.sh
 # FMUs through a real importer: create the pinned venv, run pytest
 # (pytest exits 5 when it collects nothing; that counts as a failure too).
 bash scripts/setup-venv.sh

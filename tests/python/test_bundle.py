@@ -71,5 +71,6 @@ def test_without_the_native_kernel_one_line_names_the_platform_and_nothing_runs(
                           "--out", str(tmp_path / "out")], capture_output=True, text=True, env=env)
     assert run.returncode != 0
     assert run.stderr.count("\n") == 1, run.stderr
-    assert run.stderr.startswith(f"cosim: no stepping loop for {PLATFORM}: "), run.stderr
+    assert run.stderr.startswith("cosim: ") and f"no stepping loop for {PLATFORM}: " in run.stderr
+    assert "COSIM_KERNEL_LIBRARY" in run.stderr  # the way out
     assert not (tmp_path / "out" / "regulation.csv").exists()

@@ -49,9 +49,13 @@ def regulation_text(stop: str = "1 s", end: str = "1 s") -> str:
 def test_an_fmu_taken_from_the_repositorys_dist_is_said(tmp_path):
     # The scenario's "../dist/Pss3Plant.fmu" relative to tmp_path/case/ does not exist;
     # the harness runs dist/Pss3Plant.fmu of this checkout instead, and must say so.
+    # (The bundled scenarios name bundled FMUs, "Pss3Plant"; a user's names a path.)
     case = tmp_path / "case"
     case.mkdir()
-    (case / "s.toml").write_text(regulation_text())
+    text = regulation_text()
+    for name in ("Planner", "PID", "Pss3Plant"):
+        text = text.replace(f'= "{name}"\n', f'= "../dist/{name}.fmu"\n')
+    (case / "s.toml").write_text(text)
     result = cosim("check", case / "s.toml")
     assert result.returncode == 0, result.stderr
     notes = [line for line in result.stderr.splitlines() if line.startswith("cosim: note:")]

@@ -63,7 +63,10 @@ def test_release_folder_holds_what_the_docs_list(tmp_path):
               ROW.findall((ROOT / "docs" / "release.md").read_text())}
     table = "\n".join(f"| `{n}` | {s} |" for n, s in sorted(written.items()))
     assert written.keys() == listed.keys(), f"docs/release.md's table; now:\n{table}"
-    off = {n: (listed[n], s) for n, s in written.items() if not 0.75 <= s / listed[n] <= 1.25}
+    # The version's CHANGELOG section grows with every change until the release: its size
+    # is listed as of the last rewrite of the table, not checked.
+    off = {n: (listed[n], s) for n, s in written.items()
+           if not n.startswith("CHANGELOG-") and not 0.75 <= s / listed[n] <= 1.25}
     assert not off, f"sizes (docs, now) {off}; rewrite docs/release.md's table:\n{table}"
     # The sums check, and the CHANGELOG section is the version's.
     subprocess.run(["sha256sum", "--check", "--quiet", "SHA256SUMS"], cwd=out, check=True)

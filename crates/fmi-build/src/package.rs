@@ -1,79 +1,114 @@
 //! Writes the three FMU archives of a [`Description`] (modelDescription.xml,
-//! `binaries/<platform>/<modelIdentifier>` with the platform's library extension,
+//! `binaries/<platform>/<modelIdentifier>` with each platform's library extension,
 //! documentation/index.html): FMI 2.0, FMI 3.0 with arrays, FMI 3.0 scalar-only, each
-//! a [`Variant`].
+//! a [`Variant`], with the libraries of every [`Platform`] given.
+//!
+//! An archive is built in memory and written beside its target, then renamed into
+//! place (atomic on one file system: a reader sees the old archive or the new one,
+//! never a part); an archive whose bytes would not change is not rewritten (only its
+//! modification time is set to now: it is as new as the sources it was compared with).
 
 use crate::documentation::documentation;
-use crate::platform::platform_tuple;
+use crate::platform::{Platform, fat_mach_o};
 use crate::{fmi2, fmi3};
 use robofmu_fmi::description::Description;
-use std::fs::File;
-use std::io::Write;
+use std::io::{Cursor, Write};
 use std::path::{Path, PathBuf};
 use zip::ZipWriter;
 use zip::write::SimpleFileOptions;
 
-/// Contents of one FMU.
-pub struct FmuContents<'a> {
-    pub model_identifier: &'a str,
-    pub model_description: &'a str,
-    pub documentation: &'a str,
-    /// The compiled cdylib of the model.
-    pub library: &'a Path,
-    /// The folder under `binaries/`: [`platform_folder`] for FMI 2.0,
-    /// [`platform_tuple`] for FMI 3.0.
-    pub platform: &'a str,
+/// The built library of one platform.
+pub struct Library<'a> {
+    pub platform: Platform,
+    pub path: &'a Path,
 }
 
-/// The FMI 2.0 platform folder of the machine this packager was built for
-/// (`binaries/<platform>/`): linux64, darwin64, win64 or their 32-bit forms.
-pub fn platform_folder() -> &'static str {
-    let bits64 = cfg!(target_pointer_width = "64");
-    match (std::env::consts::OS, bits64) {
-        ("macos", _) => "darwin64",
-        ("windows", true) => "win64",
-        ("windows", false) => "win32",
-        (_, true) => "linux64",
-        (_, false) => "linux32",
+/// The `binaries/` entries of an FMU of `variant` for `libraries`: each entry's name
+/// and the platforms whose library it holds (two for FMI 2.0's universal `darwin64`
+/// file), in [`PLATFORMS`](crate::platform::PLATFORMS) order.
+pub fn binaries_layout(
+    variant: Variant,
+    model_identifier: &str,
+    platforms: &[Platform],
+) -> Vec<(String, Vec<Platform>)> {
+    let mut entries: Vec<(String, Vec<Platform>)> = Vec::new();
+    for p in platforms {
+        let folder = match variant {
+            Variant::Fmi2 => p.fmi2_folder,
+            Variant::Fmi3 | Variant::Fmi3Scalar => p.tuple,
+        };
+        let name = format!("binaries/{folder}/{model_identifier}{}", p.extension);
+        match entries.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, holders)) => holders.push(*p),
+            None => entries.push((name, vec![*p])),
+        }
+    }
+    entries
+}
+
+/// The bytes of a `binaries/` entry holding the libraries of `holders`: the library
+/// itself, or a universal Mach-O file of several.
+fn entry_bytes(holders: &[Platform], libraries: &[Library]) -> Result<Vec<u8>, String> {
+    let mut slices = Vec::new();
+    for holder in holders {
+        let library = libraries
+            .iter()
+            .find(|l| l.platform == *holder)
+            .ok_or_else(|| format!("no library of {}", holder.tuple))?;
+        slices.push(std::fs::read(library.path).map_err(|e| {
+            format!(
+                "{}: cannot read: {e}; build it with `bash scripts/build-fmus.sh`",
+                library.path.display()
+            )
+        })?);
+    }
+    match slices.as_slice() {
+        [one] => Ok(one.clone()),
+        _ => fat_mach_o(&slices.iter().map(Vec::as_slice).collect::<Vec<_>>()),
     }
 }
 
-/// The file name cargo gives the cdylib of the crate `crate_name` on this platform
-/// (`librobofmu_pid_fmu.so` for `robofmu-pid-fmu` on Linux).
-pub fn library_file_name(crate_name: &str) -> String {
-    let stem = crate_name.replace('-', "_");
-    format!(
-        "{}{stem}{}",
-        std::env::consts::DLL_PREFIX,
-        std::env::consts::DLL_SUFFIX
-    )
-}
-
-/// Writes the FMU archive to `out`.
-pub fn write_fmu(out: &Path, c: &FmuContents) -> Result<(), String> {
-    let binary = std::fs::read(c.library)
-        .map_err(|e| format!("{}: cannot read: {e}; build it first", c.library.display()))?;
-    let file = File::create(out).map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
-    let mut zip = ZipWriter::new(file);
-    let options = SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
-    let library_entry = format!(
-        "binaries/{}/{}{}",
-        c.platform,
-        c.model_identifier,
-        std::env::consts::DLL_SUFFIX
-    );
-    let entries: [(&str, &[u8]); 3] = [
-        ("modelDescription.xml", c.model_description.as_bytes()),
-        (&library_entry, &binary),
-        ("documentation/index.html", c.documentation.as_bytes()),
-    ];
-    let zip_error = |e: &dyn std::fmt::Display| format!("{}: cannot write: {e}", out.display());
+/// The bytes of a zip archive of `entries` (name, contents), deflated, every time
+/// stamp 1980-01-01 so that the same entries give the same bytes.
+pub fn zip_bytes(entries: &[(String, Vec<u8>)]) -> Result<Vec<u8>, String> {
+    let mut zip = ZipWriter::new(Cursor::new(Vec::new()));
+    let options = SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated)
+        .last_modified_time(zip::DateTime::default());
     for (name, data) in entries {
-        zip.start_file(name, options).map_err(|e| zip_error(&e))?;
-        zip.write_all(data).map_err(|e| zip_error(&e))?;
+        zip.start_file(name.as_str(), options)
+            .map_err(|e| e.to_string())?;
+        zip.write_all(data).map_err(|e| e.to_string())?;
     }
-    zip.finish().map_err(|e| zip_error(&e))?;
-    Ok(())
+    Ok(zip.finish().map_err(|e| e.to_string())?.into_inner())
+}
+
+/// Puts `bytes` at `out`: nothing when the file already holds them (its
+/// modification time is set to now), else a write to a file beside it and a rename
+/// over it. True when the file was (re)written.
+pub fn replace_file(out: &Path, bytes: &[u8]) -> Result<bool, String> {
+    let shown = out.display();
+    if std::fs::read(out).is_ok_and(|old| old == bytes) {
+        std::fs::File::options()
+            .append(true)
+            .open(out)
+            .and_then(|f| f.set_modified(std::time::SystemTime::now()))
+            .map_err(|e| format!("{shown}: cannot touch: {e}"))?;
+        return Ok(false);
+    }
+    let name = out
+        .file_name()
+        .ok_or_else(|| format!("{shown}: not a file name"))?;
+    let mut partial = name.to_os_string();
+    partial.push(format!(".partial-{}", std::process::id()));
+    let partial = out.with_file_name(partial);
+    let written = std::fs::write(&partial, bytes)
+        .and_then(|()| std::fs::rename(&partial, out))
+        .map_err(|e| format!("{shown}: cannot write: {e}"));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&partial);
+    }
+    written.map(|()| true)
 }
 
 /// The three FMUs of a model: FMI 2.0, FMI 3.0 (arrays) and FMI 3.0 scalar-only.
@@ -111,11 +146,11 @@ impl Variant {
             .join(format!("{}.xml", d.info.model_name))
     }
 
-    /// The standard's name on the documentation page and its binaries folder.
-    fn standard_and_platform(self) -> (&'static str, String) {
+    /// The standard's name on the documentation page.
+    fn standard(self) -> &'static str {
         match self {
-            Variant::Fmi2 => ("FMI 2.0", platform_folder().to_string()),
-            Variant::Fmi3 | Variant::Fmi3Scalar => ("FMI 3.0", platform_tuple()),
+            Variant::Fmi2 => "FMI 2.0",
+            Variant::Fmi3 | Variant::Fmi3Scalar => "FMI 3.0",
         }
     }
 }
@@ -126,25 +161,34 @@ pub fn create_parent(path: &Path) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))
 }
 
-/// Writes `<out>/<folder>/<modelName>.fmu` of every variant of `d` with the cdylib
-/// `library`; the paths written.
-pub fn package(d: &Description, library: &Path, out: &Path) -> Result<Vec<PathBuf>, String> {
-    let mut written = Vec::new();
+/// Writes `<out>/<folder>/<modelName>.fmu` of every variant of `d` with the
+/// `libraries` of its platforms; each path with whether it was (re)written.
+pub fn package(
+    d: &Description,
+    libraries: &[Library],
+    out: &Path,
+) -> Result<Vec<(PathBuf, bool)>, String> {
+    let platforms: Vec<Platform> = libraries.iter().map(|l| l.platform).collect();
+    let mut done = Vec::new();
     for variant in Variant::ALL {
         let path = out
             .join(variant.folder())
             .join(format!("{}.fmu", d.info.model_name));
         create_parent(&path)?;
-        let (standard, platform) = variant.standard_and_platform();
-        let contents = FmuContents {
-            model_identifier: d.info.model_identifier,
-            model_description: &variant.model_description(d)?,
-            documentation: &documentation(d, standard),
-            library,
-            platform: &platform,
-        };
-        write_fmu(&path, &contents)?;
-        written.push(path);
+        let mut entries = vec![(
+            "modelDescription.xml".to_string(),
+            variant.model_description(d)?.into_bytes(),
+        )];
+        for (name, holders) in binaries_layout(variant, d.info.model_identifier, &platforms) {
+            entries.push((name, entry_bytes(&holders, libraries)?));
+        }
+        entries.push((
+            "documentation/index.html".to_string(),
+            documentation(d, variant.standard()).into_bytes(),
+        ));
+        let bytes = zip_bytes(&entries).map_err(|e| format!("{}: {e}", path.display()))?;
+        let written = replace_file(&path, &bytes)?;
+        done.push((path, written));
     }
-    Ok(written)
+    Ok(done)
 }

@@ -1,12 +1,28 @@
 //! The FMU crates of the workspace: every `fmus/<folder>/Cargo.toml`, by package
-//! name, with the cdylib cargo built for it beside this packager.
+//! name, with the cdylib cargo built for it beside this packager (whose description
+//! the packager reads) and those scripts/build-fmus.sh built for each platform.
 
+use robofmu_fmi_build::platform::Platform;
 use std::path::{Path, PathBuf};
 
-/// One FMU crate and its built cdylib.
+/// One FMU crate and its built cdylibs.
 pub struct FmuCrate {
     pub manifest: PathBuf,
+    /// The cdylib built for this machine with this packager (`target/release/`).
     pub library: PathBuf,
+    /// The package name (`robofmu-pid-fmu`).
+    pub name: String,
+}
+
+impl FmuCrate {
+    /// The cdylib scripts/build-fmus.sh built for `platform`:
+    /// `<target>/<triple>/fmu/<file>` beside the `target_dir` of [`fmu_crates`].
+    pub fn platform_library(&self, target_root: &Path, platform: &Platform) -> PathBuf {
+        target_root
+            .join(platform.target)
+            .join("fmu")
+            .join(platform.library_file_name(&self.name))
+    }
 }
 
 /// The FMU crates under `<root>/fmus`, sorted by folder, with their cdylibs in
@@ -35,8 +51,17 @@ pub fn fmu_crates(root: &Path, target_dir: &Path) -> Result<Vec<FmuCrate>, Strin
         .into_iter()
         .map(|manifest| {
             let name = package_name(&manifest)?;
-            let library = target_dir.join(robofmu_fmi_build::package::library_file_name(&name));
-            Ok(FmuCrate { manifest, library })
+            let library = target_dir.join(format!(
+                "{}{}{}",
+                std::env::consts::DLL_PREFIX,
+                name.replace('-', "_"),
+                std::env::consts::DLL_SUFFIX
+            ));
+            Ok(FmuCrate {
+                manifest,
+                library,
+                name,
+            })
         })
         .collect()
 }

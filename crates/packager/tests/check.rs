@@ -38,8 +38,20 @@ fn a_wrong_argument_is_refused_with_the_usage_and_exit_2() {
     assert_eq!(out.status.code(), Some(2));
     assert_eq!(
         String::from_utf8_lossy(&out.stderr),
-        "robofmu-packager: usage: robofmu-packager [--out DIR] | --check | --update \
-         (from the repository root)\n"
+        "robofmu-packager: usage: robofmu-packager [--out DIR] [--platforms TUPLE,...] \
+         | --check | --update (from the repository root)\n"
+    );
+}
+
+#[test]
+fn an_unknown_platform_is_refused_with_the_known_ones_and_exit_2() {
+    // Expected: the user-error contract, naming the flag and the five FMI 3.0 tuples.
+    let out = packager(&["--platforms", "x86_64-linux,sparc-solaris"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "robofmu-packager: --platforms: unknown platform \"sparc-solaris\"; use one of \
+         x86_64-linux, aarch64-linux, x86_64-windows, x86_64-darwin, aarch64-darwin\n"
     );
 }
 
