@@ -19,16 +19,21 @@ master's median time per step over the minimal loop's, of the first scenario.
 from __future__ import annotations
 
 import argparse
-from dataclasses import replace
 import statistics
 import sys
+import tempfile
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from . import bundle
 from .bench_container import print_container_lines
+from .bench_sweep import add_sweep_options, run as bench_sweep
+from .cli import entry
 from .master import Master
 from .scenario import load_scenario
+from .sweep import run_sweep
+from .sweep.spec import parse_spec
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -90,10 +95,7 @@ def _median_per_step(scenario, make, runs: int) -> float:
 
 
 def sweep_throughput(runs: int) -> None:
-    import tempfile
 
-    from .sweep import run_sweep
-    from .sweep.spec import parse_spec
     omegas = [10.0 + 40.0 * k / max(runs - 1, 1) for k in range(runs)]
     data = {"scenario": str(bundle.scenarios_dir() / "regulation.toml"), "name": "bench",
             "grid": {"gains.omega": {"values": omegas, "unit": "rad/s"}}}
@@ -128,7 +130,6 @@ def _count(low: int):
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    from .bench_sweep import add_sweep_options
     parser.add_argument("scenarios", nargs="*", default=["three_axis_quintic"],
                         help="scenario names or files; or 'sweep': the sweep throughput per "
                         "worker count (cosim bench sweep --runs N --workers 0,1,2)")
@@ -141,14 +142,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m cosim.bench", description=__doc__)
-    add_arguments(parser)
-    return run(parser.parse_args(argv))
+    """``python -m cosim.bench ...``: ``cosim bench ...`` (cosim.cli)."""
+    return entry("bench", argv)
 
 
 def run(args: argparse.Namespace) -> int:
     if args.scenarios == ["sweep"]:  # cosim bench sweep: throughput per worker count
-        from .bench_sweep import run as bench_sweep
         args.runs = 200 if args.runs is None else args.runs
         return bench_sweep(args)
     args.runs = 5 if args.runs is None else args.runs

@@ -13,6 +13,10 @@ import tempfile
 import time
 from pathlib import Path
 
+from fmpy import calloc, extract, free, read_model_description
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
+
 from .container import build_container, exposed_ports
 from .master import Master
 from .scenario import Scenario, load_scenario
@@ -24,9 +28,6 @@ _QUIET = None  # FMI callbacks with a logger that drops the messages, created on
 def _quiet_callbacks():
     global _QUIET
     if _QUIET is None:
-        from fmpy import calloc, free
-        from fmpy.fmi2 import (fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                               fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
         _QUIET = fmi2CallbackFunctions()
         _QUIET.logger = fmi2CallbackLoggerTYPE(lambda *_: None)
         _QUIET.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
@@ -35,8 +36,6 @@ def _quiet_callbacks():
 
 
 def _slave(path: Path, name: str, scenario: Scenario):
-    from fmpy import extract, read_model_description
-    from fmpy.fmi2 import FMU2Slave
     md = read_model_description(str(path))
     unzip = extract(str(path))
     fmu = FMU2Slave(guid=md.guid, unzipDirectory=unzip,

@@ -22,17 +22,16 @@ import tempfile
 from pathlib import Path
 
 from . import bundle
+from .scenario import load_scenario
+from .sweep import auto_batch, run_sweep
+from .sweep.spec import parse_spec
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
-def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--runs", type=int, default=200, help="runs per sweep (default 200)")
-    add_sweep_options(parser)
-
-
 def add_sweep_options(parser: argparse.ArgumentParser) -> None:
-    """The options besides --runs (cosim bench takes them too, for `cosim bench sweep`)."""
+    """The options of `cosim bench sweep` besides --runs (cosim.bench adds them: the
+    command table's `bench` command parses them)."""
     parser.add_argument("--workers", default="0,1,2",
                         help="comma-separated worker counts (0: serial; default 0,1,2)")
     parser.add_argument("--batch", type=int, default=None,
@@ -45,7 +44,6 @@ def add_sweep_options(parser: argparse.ArgumentParser) -> None:
 
 
 def bench_spec(runs: int):
-    from .sweep.spec import parse_spec
     data = {"scenario": str(bundle.scenarios_dir() / "regulation.toml"), "name": "bench",
             "seed": 1, "samples": runs,
             "random": {"plant.legMass": {"distribution": "normal", "mean": 0.9467,
@@ -55,7 +53,6 @@ def bench_spec(runs: int):
 
 
 def measure(spec, workers: int, batch: int | None, out: Path) -> dict:
-    from .sweep import run_sweep
     outcome = run_sweep(spec, out / f"w{workers}", workers=workers, progress=False,
                         plots=False, batch=batch)
     if outcome.failed:
@@ -95,7 +92,6 @@ def predict(runs: int, workers: int, t_run: float, per_task: float, startup: flo
 
 
 def run(args: argparse.Namespace) -> int:
-    from .sweep import auto_batch
     try:
         counts = [int(x) for x in args.workers.split(",")]
     except ValueError:
@@ -145,15 +141,5 @@ def run(args: argparse.Namespace) -> int:
 
 
 def spec_steps(spec) -> int:
-    from .scenario import load_scenario
     return load_scenario(spec.scenario).steps
 
-
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="cosim bench sweep", description=__doc__)
-    add_arguments(parser)
-    return run(parser.parse_args(argv))
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import tomllib
 from functools import lru_cache
+from importlib.metadata import PackageNotFoundError, version as distribution_version
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
@@ -90,8 +91,6 @@ def version() -> str:
     if not installed() and cargo.is_file():
         with cargo.open("rb") as f:
             return str(tomllib.load(f)["workspace"]["package"]["version"])
-    from importlib.metadata import PackageNotFoundError
-    from importlib.metadata import version as distribution_version
     try:
         return distribution_version("robofmu")
     except PackageNotFoundError:

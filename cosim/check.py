@@ -10,6 +10,7 @@ import os
 from pathlib import Path
 
 from .errors import output_path
+from .expand import expanded_toml
 from .run import add_common, fmu_dir
 from .scenario import ScenarioError, load_scenario
 
@@ -38,7 +39,6 @@ def run(args: argparse.Namespace) -> int:
                             "another file (e.g. --expanded results/expanded.toml)")
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
     if args.expanded is not None:
-        from .expand import expanded_toml
         args.expanded.parent.mkdir(parents=True, exist_ok=True)
         args.expanded.write_text(expanded_toml(scenario, args.expanded, args.scenario.name))
     fmus = ", ".join(f"{a} = {p.name}" for a, p in scenario.fmus.items())

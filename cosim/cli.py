@@ -1,6 +1,10 @@
 """``cosim COMMAND ...`` (also ``python -m cosim COMMAND ...``): the harness's one command
-line. Each command is a module with ``add_arguments(parser)`` and ``run(args) -> int``,
-imported only when it runs.
+line. COMMANDS is the one table of its commands: each is a module with
+``add_arguments(parser)`` and ``run(args) -> int``, imported only when its command is
+named (``cosim --help`` importing all of them took 0.58 s instead of 0.05 s: fmpy,
+numpy, matplotlib; scripts/bench_startup.py). The ``python -m cosim.MODULE`` entry
+points that the docs name (cosim.bench, cosim.demo, cosim.animate, cosim.verify) go
+through this table (``entry``).
 
 Exit codes: 0 success; 1 the simulation or verification ran and failed (a declared limit
 exceeded, failed runs, a mismatch); 2 a user error (a bad file, field or argument), told
@@ -15,6 +19,7 @@ import sys
 import traceback
 
 from . import bundle
+from .errors import CosimError, ScenarioError
 
 COMMANDS = {
     "run": ("cosim.run", "simulate one scenario: CSV (SI, units sidecar), plots, metrics"),
@@ -81,7 +86,6 @@ def _types(names) -> tuple[type, ...]:
 
 def user_error_types() -> tuple[type, ...]:
     """The exceptions that are the user's mistake (exit 2)."""
-    from .errors import ScenarioError
     return (ScenarioError,) + _types([("cosim.sweep.spec", "SpecError"),
                                       ("cosim.container", "ContainerError"),
                                       ("cosim.verify.errors", "VerifyError"),
@@ -91,6 +95,12 @@ def user_error_types() -> tuple[type, ...]:
 def _fail(message: str, code: int) -> int:
     print("cosim: " + " ".join(str(message).split()), file=sys.stderr)
     return code
+
+
+def entry(command: str, argv: list[str] | None = None) -> int:
+    """``python -m cosim.MODULE ARGS``: ``cosim COMMAND ARGS`` (the same table, errors
+    and exit codes)."""
+    return main([command, *(sys.argv[1:] if argv is None else argv)])
 
 
 def main(argv=None) -> int:
@@ -129,7 +139,6 @@ def main(argv=None) -> int:
 def classify(error: Exception, scenario=None) -> tuple[str, int]:
     """(one-line message, exit code) of an error a command raised; `scenario`: the
     file the command ran, named in a simulation failure."""
-    from .errors import CosimError
     if isinstance(error, user_error_types()):
         return str(error), USER_ERROR
     if isinstance(error, CosimError) or isinstance(error, _types([("cosim.verify.errors",

@@ -68,12 +68,12 @@ from pathlib import Path
 from .controllers import LOOPS, Loop, kind_of, model_parameters, pole_placement
 from .design import (PlantRefused, check_bandwidth, design_gains, euler_accelerations,
                      euler_rates)
-from .fmu_check import describe
-from .preflight import initialize_alone
 from .errors import CosimError, ScenarioError
+from .fmu_check import check_value, describe, unit_of
+from .preflight import initialize_alone
 from .schedule import PlanSwitch
-from .workspace import check_poses
 from .units import UNITS, exponents, quantity, quantity_vector, unit_in
+from .workspace import check_poses
 
 RECORD = ([f"plant.force[{i}]" for i in (1, 2, 3)] + [f"plant.l[{i}]" for i in (1, 2, 3)]
           + [f"plant.omegaDot[{i}]" for i in (1, 2, 3)]
@@ -244,7 +244,6 @@ def _plant_value(value, name: str, plant_fmu: Path, table: str = "plant",
     """A parameter of the FMU `alias` set in the scenario's `table`: a number (SI, in
     the unit the FMU declares) or "value unit", whose unit must have the dimension of
     the unit the FMU declares for `name`."""
-    from .fmu_check import check_value, describe, unit_of
     field = f"{table}.{name}"
     md = describe(plant_fmu, f"fmus.{alias}")
     variable = {v.name: v for v in md.modelVariables}.get(name)
@@ -284,7 +283,6 @@ def _controller(data: dict, kind: str, fmu: Path, plant_fmu: Path, plant_values:
     """The controller FMU's parameters: PID gains designed on the plant, or the
     computed-torque gains and model (cosim.controllers)."""
     if kind == "computed-torque":
-        from .fmu_check import describe
         gains = pole_placement(_table(data, "gains"), quantity)
         model = model_parameters(describe(fmu, "fmus.ct"), plant_values,
                                  _table(data, "model"),

@@ -10,9 +10,10 @@ import sys
 import time
 from pathlib import Path
 
-from .errors import output_path
 from . import bundle
+from .cli import entry
 from .demo_controllers import print_comparison
+from .errors import output_path
 from .master import Master
 from .outputs import write_outputs
 from .report import (HEADER, format_table, metrics, sig, plot_cubic_vs_quintic, plot_tracking,
@@ -43,8 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def main(argv=None) -> int:
     """``python -m cosim.demo ...``: ``cosim demo ...`` (its errors, exit codes)."""
-    from .cli import main as cosim
-    return cosim(["demo", *(sys.argv[1:] if argv is None else argv)])
+    return entry("demo", argv)
 
 
 def run(args: argparse.Namespace) -> int:

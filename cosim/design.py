@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import ScenarioError
+from .model_exchange import ModelExchangeInstance
 
 EULER_SINGULAR_COS = 1e-9
 
@@ -95,7 +96,6 @@ def euler_inertia(plant_fmu: str, pose: tuple[float, float, float],
     """Diagonal of M_x at `pose` (rad), from the plant FMU at rest (Model Exchange) with
     `parameters` ((name, value) pairs) set. A pose the plant refuses raises
     ScenarioError with the plant's own reason."""
-    from .model_exchange import ModelExchangeInstance
     with ModelExchangeInstance(plant_fmu, "design") as fmu:
         try:
             fmu.set_values(dict(parameters))

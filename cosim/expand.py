@@ -12,6 +12,7 @@ import math
 import os
 from pathlib import Path
 
+from .limits import LIMITS
 from .scenario import Scenario
 
 HEADER = "# Expanded by `cosim check {source} --expanded`: SI units, do not edit by hand.\n"
@@ -50,7 +51,6 @@ def expanded_toml(scenario: Scenario, out: Path, source: str) -> str:
                      "record": [str(r) for r in s.record]})
     lines += ["", "[fmus]"] + _table({a: os.path.relpath(p, folder) for a, p in s.fmus.items()})
     if s.limits:
-        from .limits import LIMITS
         unit = {"angle": "rad", "force": "N"}
         lines += ["", "[limits]"] + _table({k: f"{v!r} {unit[LIMITS[k][0]]}"
                                             for k, v in s.limits.items()})

@@ -10,6 +10,8 @@ import zipfile
 from functools import lru_cache
 from pathlib import Path
 
+from fmpy import read_model_description
+
 from .errors import ScenarioError
 
 BASE_UNITS = ("kg", "m", "s", "rad")
@@ -21,7 +23,6 @@ BINARY_DIR = {("Linux", "x86_64"): "linux64", ("Darwin", "x86_64"): "darwin64",
 
 @lru_cache(maxsize=32)
 def _describe(path: str, mtime: float):
-    from fmpy import read_model_description
     if not zipfile.is_zipfile(path):
         raise ValueError("is not an FMU (not a zip archive)")
     with zipfile.ZipFile(path) as z:

@@ -10,6 +10,7 @@ A run that exceeds a declared limit ends with exit code 1 (`cosim run`)."""
 from __future__ import annotations
 
 from .errors import ScenarioError
+from .units import quantity
 
 # limit -> (dimension, metric key in cosim.report.Metrics.si(), human unit)
 LIMITS = {
@@ -21,7 +22,6 @@ LIMITS = {
 
 def parse_limits(raw) -> dict[str, float]:
     """{limit: SI value} of a [limits] table."""
-    from .units import quantity
     if not isinstance(raw, dict):
         raise ScenarioError("field 'limits' must be a table of name = \"value unit\"")
     limits = {}

@@ -37,6 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .fmu import FmuInstance
 from .loop import Loop
 from .scenario import Scenario, Signal, extrapolation_order
 from .slopes import History, accepted, served
@@ -62,7 +63,6 @@ class Result:
 
 
 def _open_fmu(alias, path, scenario):
-    from .fmu import FmuInstance
     return FmuInstance(alias, path, scenario.start_time, scenario.stop_time)
 
 

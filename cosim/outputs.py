@@ -15,12 +15,13 @@ from pathlib import Path
 
 import numpy as np
 
+from .fmu_check import describe, unit_of
 from .limits import CLOSED_LOOP_COLUMNS, judge
+from .report import _figure, metrics, plot_tracking, steady_axis
 from .scenario import Scenario
 
 
 def column_units(scenario: Scenario, names) -> dict[str, str]:
-    from .fmu_check import describe, unit_of
     units = {"time": "s"}
     for name in names:
         alias, variable = name.split(".", 1)
@@ -33,7 +34,6 @@ def column_units(scenario: Scenario, names) -> dict[str, str]:
 
 def write_outputs(scenario: Scenario, result, out: Path, plots: bool = True) -> dict:
     """Writes the files above; returns {"files": [...], "metrics": {...}, "limits": [...]}."""
-    from .report import metrics, plot_tracking
     out.mkdir(parents=True, exist_ok=True)
     name = scenario.name
     csv_path = out / f"{name}.csv"
@@ -77,7 +77,6 @@ def _human(value: float, unit: str) -> float:
 
 def plot_signals(columns: dict, names, title: str, out: Path) -> Path:
     """Every recorded signal against time, one panel per FMU (at most 8 lines each)."""
-    from .report import _figure, steady_axis
     by_alias: dict[str, list[str]] = {}
     for n in names:
         by_alias.setdefault(n.split(".", 1)[0], []).append(n)

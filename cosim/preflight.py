@@ -10,7 +10,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .errors import CosimError, ScenarioError
+from .fmu import FmuInstance
 from .fmu_check import check_value, describe
+from .limits import check_measurable
 
 if TYPE_CHECKING:
     from .scenario import Scenario
@@ -19,7 +21,6 @@ if TYPE_CHECKING:
 def initialize_alone(path: Path, alias: str, parameters: dict, field: str) -> None:
     """Instantiates the FMU, sets `parameters`, initialises it and reads its outputs;
     ScenarioError with the FMU's reason when it refuses."""
-    from .fmu import FmuInstance
     md = describe(path, f"fmus.{alias}")
     outputs = tuple(v.name for v in md.modelVariables if v.causality == "output"
                     and v.type in ("Real", "Integer", "Boolean"))
@@ -53,7 +54,6 @@ def _reason(error: Exception) -> str:
 def check(scenario: Scenario, fields: dict | None = None) -> None:
     """All checks above; `fields` maps an alias to the scenario field its parameters
     come from (default 'parameters.ALIAS')."""
-    from .limits import check_measurable
     fields = fields or {}
     check_measurable(scenario)
     mds = {alias: describe(path, f"fmus.{alias}") for alias, path in scenario.fmus.items()}

@@ -11,6 +11,10 @@ import time
 from pathlib import Path
 
 from .errors import output_path
+from .fmi3 import fmi3_path, open_fmi3
+from .master import Master, text_progress
+from .outputs import write_outputs
+from .report import sig
 from .scenario import ScenarioError, load_scenario
 
 
@@ -46,13 +50,10 @@ def fmu_dir(path: Path | None) -> Path | None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .master import Master, text_progress
-    from .outputs import write_outputs
     out = output_dir(args.out)
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
     open_fmu = None  # the master's FMI 2.0 default
     if args.fmi3:
-        from .fmi3 import fmi3_path, open_fmi3
         for alias, path in scenario.fmus.items():
             if not fmi3_path(path).is_file():
                 raise ScenarioError(f"--fmi3: {fmi3_path(path)} (the FMI 3.0 build of "
@@ -72,7 +73,6 @@ def run(args: argparse.Namespace) -> int:
           f"wall time -> {out}/")
     human = summary.get("metrics_human", {})
     if human:
-        from .report import sig
         print(f"  RMS tracking error {sig(human['rms_error_deg'])} deg (of |q - theta| over "
               f"the 3 angles), max {sig(human['max_error_deg'])} deg (one angle), peak "
               f"|actuator force| "

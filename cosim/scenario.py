@@ -43,9 +43,14 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from . import bundle
+from . import bundle, preflight as checks
+from .closed_loop import FIELDS, WHERE, is_closed_loop, resolve
+from .controllers import kind_of
 from .errors import ScenarioError
+from .limits import parse_limits
+from .notes import say
 from .schedule import PlanSwitch
+from .workspace import check_plan, is_closed_loop_plant
 
 __all__ = ["PlanSwitch", "Scenario", "ScenarioError", "Signal", "Connection",
            "fmu_file", "load_scenario", "parse_document", "parse_scenario"]
@@ -227,8 +232,6 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if extrapolation not in EXTRAPOLATIONS:
         raise ScenarioError(f"field 'input_extrapolation' must be one of {EXTRAPOLATIONS} "
                             f"or the order 0, 1 or 2, got {extrapolation!r}")
-    from .controllers import kind_of
-    from .limits import parse_limits
     return Scenario(controller=kind_of(data), name=name, fmus=fmus, order=list(order),
                     start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
@@ -312,7 +315,6 @@ def _find_fmus(data: dict, base_dir: Path, fmu_dir) -> dict:
         path = (Path(fmu_dir) / Path(f).name if fmu_dir is not None else base_dir / f).absolute()
         fallback = REPOSITORY_DIST / Path(f).name
         if fmu_dir is None and not path.exists() and fallback.is_file():
-            from .notes import say
             say(f"field 'fmus.{alias}': {os.path.normpath(path)} is not there; running the repository's "
                 f"{fallback} instead (found by file name in its dist/); give the right "
                 "path or --fmu-dir DIR to run your own FMU")
@@ -329,7 +331,6 @@ def parse_document(data: dict, base_dir: Path, fmu_dir: str | Path | None = None
     closed loop, the start pose, the waypoints and the whole plan against the workspace
     (cosim.workspace)."""
     data = _find_fmus(data, base_dir, fmu_dir)
-    from .closed_loop import FIELDS, WHERE, is_closed_loop, resolve
     if not is_closed_loop(data):
         scenario = parse_scenario(data, base_dir)
         fields, where = {}, {"start": "parameters.plant", "plan": "parameters.planner"}
@@ -340,8 +341,6 @@ def parse_document(data: dict, base_dir: Path, fmu_dir: str | Path | None = None
         fields, where = FIELDS, dict(WHERE, start="start.angles" if "angles" in data.get(
             "start", {}) else "motion.waypoints[0].angles")
     if preflight:
-        from . import preflight as checks
-        from .workspace import check_plan, is_closed_loop_plant
         checks.check(scenario, fields)
         if is_closed_loop_plant(scenario):
             check_plan(scenario, where)

@@ -21,10 +21,10 @@ from pathlib import Path
 import numpy as np
 
 from .errors import CosimError
+from .fmu import FmuInstance
 
 
 def _probe(path: str, call) -> bool:
-    from .fmu import FmuInstance
     try:
         fmu = FmuInstance("probe", Path(path), 0.0, 1.0)
     except Exception:  # noqa: BLE001 - any failure: no derivatives (the run reports it)

@@ -17,7 +17,11 @@ import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
 
+from fmpy import read_model_description
+from fmpy.ssp.ssd import ParameterSet, read_ssd
+
 from .errors import output_path
+from .run import fmu_dir
 from .scenario import Scenario, ScenarioError, load_scenario, schedule_field
 from .ssp_annotations import default_experiment, system_annotations
 from .ssp_annotations import tag as _tag
@@ -33,7 +37,6 @@ NO_SCHEDULE = ("a multi-segment motion (a sequence of plans) has no SSP form: SS
 
 
 def _variables(path: Path) -> dict:
-    from fmpy import read_model_description
     return {v.name: v for v in read_model_description(str(path)).modelVariables}
 
 
@@ -142,7 +145,6 @@ def fmpy_parameter_set(path: Path):
     """The bindings of an SSP written by write_ssp as the one FMPy ParameterSet that
     FMPy's simulate_ssp(parameter_set=...) takes (it applies no binding of the SSD
     itself), with names "component.variable"."""
-    from fmpy.ssp.ssd import ParameterSet, read_ssd
     merged = ParameterSet(name=PARAMETER_SET)
     for component in read_ssd(str(path)).system.elements:
         for binding in component.parameterBindings:
@@ -161,7 +163,6 @@ def add_arguments(parser) -> None:
 
 
 def run(args) -> int:
-    from .run import fmu_dir
     if args.out.suffix != ".ssp" or args.out.is_dir():
         raise ScenarioError(f"--out: {args.out}: the SSP archive is a file whose name ends "
                             "with .ssp; name such a file")

@@ -16,6 +16,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .errors import CosimError, ScenarioError
+from .fmu import FmuInstance
+from .fmu_check import start_value, variables
+from .preflight import _reason
 
 if TYPE_CHECKING:
     from .scenario import Scenario
@@ -38,7 +41,6 @@ class Workspace:
     plant's own refusal)."""
 
     def __init__(self, plant_fmu: Path, parameters: dict):
-        from .fmu import FmuInstance
         self.parameters = {k: v for k, v in parameters.items()
                            if not k.startswith(("theta0[", "omega0["))}
         self.fmu = FmuInstance("plant", Path(plant_fmu), 0.0, 1.0)
@@ -64,7 +66,6 @@ class Workspace:
             lengths = fmu.get_values(LENGTHS)
             low, high = fmu.get_values(("strokeMin", "strokeMax"))
         except CosimError as e:
-            from .preflight import _reason
             return f"the plant refuses it: {_reason(e)}"
         for i, x in enumerate(lengths):
             if not low - STROKE_TOLERANCE <= x <= high + STROKE_TOLERANCE:
@@ -74,7 +75,6 @@ class Workspace:
 
 
 def is_closed_loop_plant(scenario: Scenario) -> bool:
-    from .fmu_check import variables
     if "plant" not in scenario.fmus or "planner" not in scenario.fmus:
         return False
     plant = variables(scenario.fmus["plant"])
@@ -85,7 +85,6 @@ def is_closed_loop_plant(scenario: Scenario) -> bool:
 
 def planned_poses(scenario: Scenario) -> list[tuple[float, list[float]]]:
     """(time, planned angles) at the communication points (strided to MAX_SAMPLES)."""
-    from .fmu import FmuInstance
     s = scenario
     stride = max(1, math.ceil(s.steps / MAX_SAMPLES))
     switches = {w.step: w for w in s.schedule}
@@ -131,7 +130,6 @@ def check_plan(scenario: Scenario, where: dict) -> int:
     """The start pose and the whole planned path against the workspace; returns the
     number of poses checked. `where`: field names for the messages ("start", "plan")."""
     plant = scenario.parameters.get("plant", {})
-    from .fmu_check import start_value
     start = [plant.get(n, start_value(scenario.fmus["plant"], n)) for n in ANGLES]
     poses = [(where["start"], scenario.start_time, start)]
     poses += [(where["plan"], t, q) for t, q in planned_poses(scenario)]

@@ -9,12 +9,15 @@ import math
 import sys
 from pathlib import Path
 
-from ..errors import output_path
+from ..cli import entry
+from ..errors import CosimError, output_path
+from ..scenario import ScenarioError, load_scenario
 from .errors import COMMAND_LINE, AnimateError
 from .geometry import PARAMETERS, robot
 from .motion import read_motion
 from .plant import plant_parameters
 from .render import render_run, write_outputs
+from .writer import ffmpeg
 
 DEFAULT_FMU = Path("dist/Pss3Plant.fmu")
 MAX_PICTURE_BYTES = 1_000_000_000
@@ -82,8 +85,6 @@ def _plant(args, alias: str):
     """The plant FMU and its parameter overrides: the scenario's, then --fmu, --param."""
     fmu, overrides = args.fmu, {}
     if args.scenario is not None:
-        from ..errors import CosimError
-        from ..scenario import ScenarioError, load_scenario
         try:
             scenario = load_scenario(args.scenario)
         except (ScenarioError, CosimError, OSError) as e:
@@ -106,7 +107,6 @@ def run(args: argparse.Namespace) -> int:
         fmu, overrides = _plant(args, motion.plant)
         rob = robot(plant_parameters(fmu, overrides))
         if args.mp4:
-            from .writer import ffmpeg
             ffmpeg()
         animation = render_run(rob, motion, args.frames, args.size, title=args.csv.stem)
         written = write_outputs(animation, args.out / args.csv.stem, args.fps, args.mp4)
@@ -121,5 +121,4 @@ def run(args: argparse.Namespace) -> int:
 
 def main(argv=None) -> int:
     """``python -m cosim.animate ...``: ``cosim animate ...`` (cosim.cli)."""
-    from ..cli import main as cosim
-    return cosim(["animate", *(sys.argv[1:] if argv is None else argv)])
+    return entry("animate", argv)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from fmpy import read_model_description
+
 from .errors import AnimateError
 from .geometry import PARAMETERS
 
@@ -12,7 +14,6 @@ from .geometry import PARAMETERS
 def plant_parameters(fmu: Path, overrides: dict[str, float] | None = None) -> dict[str, float]:
     """The start values of the geometry parameters in `fmu`'s modelDescription.xml,
     replaced by `overrides` (name -> value, SI) where given."""
-    from fmpy import read_model_description
     if not fmu.is_file():
         raise AnimateError(str(fmu), "plant FMU", "no such file; build it with "
                            "scripts/build-fmus.sh or pass --fmu")

@@ -14,12 +14,14 @@ written next to it at the end. See cosim.sweep.spec for the SPEC format.
 
 from __future__ import annotations
 
+import time
 from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .plots import plot_sweep
 from .engine import auto_batch, run_dask, run_serial
+from .plots import plot_sweep
+from .reach import reachable
 from .runner import read_fmus
 from .spec import Spec, SpecError, document_for, load_spec, run_id
 from .store import Progress, Table, columns, read_table, values_row
@@ -57,7 +59,6 @@ class SweepOutcome:
 def reachable_on(plant_fmu: Path):
     """A filter of workspace targets: the plant FMU initialises at the pose (rad) with
     every actuator within its stroke."""
-    from .reach import reachable
     return lambda pose: reachable(plant_fmu, pose)
 
 
@@ -67,7 +68,6 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
               ) -> SweepOutcome:
     """Runs every run of `spec` not done yet; workers=0 runs serially in-process;
     `batch`: runs per Dask task (None: sized by auto_batch)."""
-    import time
     started = time.perf_counter()
     header = columns(spec)
     table = Table(out / f"{spec.name}.csv", header, resume)

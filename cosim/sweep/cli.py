@@ -8,9 +8,11 @@ from __future__ import annotations
 
 import argparse
 import sys
+import tomllib
 from pathlib import Path
 
 from ..errors import output_path
+from ..scenario import ScenarioError, fmu_file
 from . import SpecError, load_spec, reachable_on, run_sweep
 from .spec import MAX_RUNS
 
@@ -77,16 +79,9 @@ def _one_line(error: Exception) -> str:
     return text if len(text) <= 400 else text[:397] + "..."
 
 
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="cosim sweep", description=__doc__)
-    add_arguments(parser)
-    return run(parser.parse_args(argv))
-
-
 def _reachable(args):
     """The workspace filter on the base scenario's plant FMU (None when the SPEC or its
     scenario cannot be read: load_spec then reports the problem by field)."""
-    import tomllib
     try:
         data = tomllib.loads(args.spec.read_text())
         scenario = (args.spec.parent / str(data.get("scenario", ""))).resolve()
@@ -95,13 +90,9 @@ def _reachable(args):
             return None
     except (OSError, KeyError, TypeError, ValueError, tomllib.TOMLDecodeError):
         return None
-    from ..scenario import ScenarioError, fmu_file
     try:
         path = fmu_file("plant", plant, scenario.parent, args.fmu_dir)
     except ScenarioError:
         return None  # not a bundled FMU: load_spec names the field
     return reachable_on(path)
 
-
-if __name__ == "__main__":
-    sys.exit(main())

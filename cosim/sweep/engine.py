@@ -13,9 +13,11 @@ in this process as the tasks complete.
 from __future__ import annotations
 
 import contextlib
+import multiprocessing
 import os
 from concurrent.futures import ThreadPoolExecutor
 
+from ..units import quantity
 from . import scratch
 from .runner import FmuStore, execute, run_on_worker, warm, worker_plugin
 
@@ -42,7 +44,6 @@ def auto_batch(runs: int, workers: int, steps: int) -> int:
 def _steps(todo) -> int:
     """Communication steps of a run (of the first: the runs of a sweep differ in
     parameters, rarely in length); an estimate for auto_batch only."""
-    from ..units import quantity
     document = todo[0][2]
 
     def seconds(key, default):
@@ -68,7 +69,7 @@ def run_serial(todo, fmus, blobs, record, ready) -> None:
 
 
 def _client(scheduler: str | None, workers: int | None):
-    from distributed import Client, LocalCluster
+    from distributed import Client, LocalCluster  # lazy: 0.4 s (see _worker_processes)
     if scheduler is not None:
         return Client(scheduler, set_as_default=False), None
     cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
@@ -122,8 +123,8 @@ def _worker_processes():
     importing them (spawn, Dask's default): 2.3 s instead of 3.8 s to two warm
     workers (medians of 4 interleaved starts on the loaded 2-core machine). Also
     for workers a nanny restarts, so it holds for the whole sweep."""
-    import multiprocessing
-
+    # dask and distributed lazily: 0.4 s of start-up (scripts/bench_startup.py) that a
+    # serial sweep (--workers 0) and `cosim sweep --help` do not pay.
     import dask
     # distributed first: its import adds its defaults to Dask's configuration, which
     # the configuration set below would otherwise drop again when it is restored.
@@ -173,7 +174,7 @@ def _run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, rea
 
 
 def _gather(client, todo, fmus, record, retries, size) -> None:
-    from distributed import as_completed
+    from distributed import as_completed  # lazy: 0.4 s (see _worker_processes)
     values_of = {rid: values for rid, values, _ in todo}
     chunks = [todo[i:i + size] for i in range(0, len(todo), size)]
     futures = {client.submit(run_on_worker, [(rid, doc) for rid, _, doc in chunk], fmus,

@@ -7,10 +7,11 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
+from ..workspace import Workspace
+
 
 @lru_cache(maxsize=4096)
 def _reachable(plant_fmu: str, pose: tuple[float, float, float]) -> bool:
-    from ..workspace import Workspace
     with Workspace(Path(plant_fmu), {}) as workspace:
         return workspace.problem(pose) is None
 

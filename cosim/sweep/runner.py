@@ -25,9 +25,11 @@ from typing import Any
 import numpy as np
 
 from ..errors import CosimError
+from ..fmu import FmuInstance
 from ..master import Master
-from ..scenario import ScenarioError, Signal, parse_document
+from ..scenario import ScenarioError, Signal, fmu_file, parse_document
 from . import scratch
+from .spec import SpecError
 
 FORCE_LIMIT_N = 400.0
 SETTLING_BAND = 0.02  # settling: the error stays within 2 % of its initial value
@@ -43,7 +45,6 @@ class InstancePool:
         self.opened = 0
 
     def open(self, alias, path, scenario):
-        from ..fmu import FmuInstance
         idle = self.idle.get((alias, str(path)))
         if idle:
             fmu = idle.pop()
@@ -98,8 +99,6 @@ class FmuStore:
 
 def read_fmus(document: dict, base: Path, fmu_dir: Path | None) -> tuple[dict, dict]:
     """(alias -> digest, digest -> bytes) of a scenario document's FMUs."""
-    from ..scenario import fmu_file
-    from .spec import SpecError
     by_alias, blobs = {}, {}
     for alias, name in document.get("fmus", {}).items():
         path = fmu_file(alias, str(name), base, fmu_dir)
@@ -199,6 +198,7 @@ def execute_batch(store: FmuStore, batch: list[tuple[str, dict]],
 def worker_plugin(blobs: dict[str, bytes], fmus: dict[str, str]):
     """A Dask worker plugin that gives every worker the FMUs, unpacked and loaded
     (warm), and an instance pool."""
+    # lazy: distributed is 0.4 s of start-up (scripts/bench_startup.py) that serial runs skip
     from distributed.diagnostics.plugin import WorkerPlugin
 
     class FmuPlugin(WorkerPlugin):
@@ -220,6 +220,6 @@ def worker_plugin(blobs: dict[str, bytes], fmus: dict[str, str]):
 
 def run_on_worker(batch: list[tuple[str, dict]], fmus: dict[str, str]) -> list:
     """The task function: a batch of runs on a Dask worker with the plugin's store."""
-    from distributed import get_worker
+    from distributed import get_worker  # lazy: 0.4 s (see worker_plugin)
     plugin: Any = get_worker().plugins[_STORE_NAME]  # worker_plugin's FmuPlugin
     return execute_batch(plugin.store, batch, fmus)

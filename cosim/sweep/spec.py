@@ -48,7 +48,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import CosimError
-from ..scenario import ScenarioError, fmu_file
+from ..notes import say
+from ..scenario import ScenarioError, fmu_file, parse_document
 
 DISTRIBUTIONS = {"normal": ("mean", "sd"), "uniform": ("low", "high")}
 MAX_RUNS = 1_000_000  # runs of one sweep (grid points x workspace targets x draws)
@@ -304,7 +305,6 @@ def parse_spec(data: dict, base: Path, default_name: str, fmu_dir=None,
     probe = json.loads(json.dumps(document))
     _design_on_the_base_plant(probe, varied)
     if probe != document:
-        from ..notes import say
         drawn = ", ".join(v.path for v in varied if v.kind == "random"
                           and v.path.startswith("plant."))
         say(f"the PID gains (gains.omega) are designed for the base scenario's plant, not "
@@ -397,7 +397,6 @@ def check_document(spec: Spec, values: dict) -> None:
     """Resolves one run's scenario on the client, so that a bad path or unit is refused
     before anything is sent to the cluster. Values the plant FMU refuses (the gain design
     cannot measure such a plant) are no SPEC error: that run fails with the FMU's reason."""
-    from ..scenario import parse_document
     try:
         parse_document(document_for(spec, values), spec.scenario.parent, spec.fmu_dir)
     except ScenarioError as e:

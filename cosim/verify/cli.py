@@ -16,6 +16,7 @@ from .errors import COMMAND_LINE, RunFailed, VerifyError
 from .files import write_all
 from .plot import plot_name
 from .runner import REPORT, verify_case
+from .tree import verify_tree
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -80,7 +81,6 @@ def _verify(args) -> int:
         raise VerifyError(COMMAND_LINE, "--jobs", f"{args.jobs} is not positive",
                           "give the number of cases to run at once, e.g. --jobs 2")
     if args.fmu.is_dir():
-        from .tree import verify_tree
         return verify_tree(args)
     result = verify_case(args.fmu, args.case, args, args.interface, args.out)
     files = dict(result.files)

@@ -51,6 +51,7 @@ def _deviation_panel(axes, verdict: Verdict, outside, unit) -> None:
 
 def plot_png(case: Case, verdict: Verdict, title: str, unit: str | None = None,
              end: EarlyEnd | None = None) -> bytes:
+    # lazy: matplotlib.figure is 0.3 s of start-up (scripts/bench_startup.py), paid by plots only
     import matplotlib
     matplotlib.use("Agg")
     from matplotlib.figure import Figure

@@ -10,7 +10,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from fmpy import extract, read_model_description, simulate_fmu
 
+from ..fmu import remove_extracted
 from .case import Case
 from .errors import RunFailed, VerifyError
 from .names import Names
@@ -69,7 +71,6 @@ class _Log:
 
 
 def read_description(fmu: Path):
-    from fmpy import read_model_description
     if not Path(fmu).is_file():
         raise VerifyError(fmu, "FMU", "no such file", "give the path of an .fmu file")
     try:
@@ -119,9 +120,7 @@ def _check(case: Case, names: Names, fmu: Path) -> None:
 
 def simulate(fmu: Path, description, case: Case, interface: str) -> Run:
     """Runs the FMU over the case's experiment through FMPy."""
-    from fmpy import extract, simulate_fmu
 
-    from ..fmu import remove_extracted
     names = Names(description)
     _check(case, names, Path(fmu))
     inputs = None if case.inputs is None else names.input_signals(case.inputs.time,

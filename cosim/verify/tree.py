@@ -18,11 +18,15 @@ import os
 import platform
 import sys
 import time
+import tomllib
 import xml.etree.ElementTree as ET
 import zipfile
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
+from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
+
+import fmpy
 
 from . import junit
 from .errors import COMMAND_LINE, VerifyError
@@ -38,11 +42,9 @@ TYPES = tuple(INTERFACE_NAMES)  # cs, me
 def tool_version() -> str:
     """The installed package's version (the results' {Importing_Tool_Version}); run from
     a checkout without installing it, the checkout's pyproject.toml."""
-    from importlib.metadata import PackageNotFoundError, version
     try:
         return version("robofmu-cosim")
     except PackageNotFoundError:
-        import tomllib
         pyproject = Path(__file__).resolve().parents[2] / "pyproject.toml"
         try:
             return tomllib.loads(pyproject.read_text())["project"]["version"]
@@ -139,7 +141,6 @@ def _readme(case: TreeCase, status: str, lines: list[str], summary: str) -> byte
 
 
 def _fmpy_version() -> str:
-    import fmpy
     return fmpy.__version__
 
 

@@ -193,11 +193,11 @@ def test_a_flat_recorded_signal_is_not_labelled_in_newtons(tmp_path, monkeypatch
     # signals are the planner's, whose unit is rad, not N.
     import matplotlib
     matplotlib.use("Agg")
-    import cosim.report
+    import cosim.outputs
     from cosim.outputs import plot_signals
     notes = []
-    original = cosim.report.steady_axis
-    monkeypatch.setattr(cosim.report, "steady_axis",
+    original = cosim.outputs.steady_axis  # cosim.report's, imported where it is used
+    monkeypatch.setattr(cosim.outputs, "steady_axis",
                         lambda ax, values, unit: notes.append(unit) or original(ax, values,
                                                                                unit))
     t = [0.0, 0.5, 1.0]

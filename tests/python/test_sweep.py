@@ -314,10 +314,10 @@ def test_grid_plots_show_the_spread_of_the_draws(tmp_path):
 def test_the_command_exits_1_with_the_reasons_of_failed_runs(tmp_path, capsys):
     # lp = 0: the plant refuses it (its own reason in the table's 'reason' column); the
     # command says how many runs failed and why, exit status 1.
-    from cosim.sweep.cli import main
+    from cosim.cli import main
     text = BASE + "[grid.'plant.lp']\nvalues = [0.0, 0.632187]\nunit = \"m\"\n"
     spec = write_spec(tmp_path, text)
-    status = main([str(spec), "--out", str(tmp_path), "--workers", "0", "--quiet"])
+    status = main(["sweep", str(spec), "--out", str(tmp_path), "--workers", "0", "--quiet"])
     err = capsys.readouterr().err.splitlines()
     reason = next(r["reason"] for r in rows(tmp_path / "small.csv").values()
                   if r["status"] == "failed")
