@@ -18,16 +18,15 @@ import os
 import platform
 import sys
 import time
-import tomllib
 import xml.etree.ElementTree as ET
 import zipfile
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
-from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
 import fmpy
 
+from .. import bundle
 from . import junit
 from .errors import COMMAND_LINE, VerifyError
 from .files import write_all
@@ -40,16 +39,9 @@ TYPES = tuple(INTERFACE_NAMES)  # cs, me
 
 
 def tool_version() -> str:
-    """The installed package's version (the results' {Importing_Tool_Version}); run from
-    a checkout without installing it, the checkout's pyproject.toml."""
-    try:
-        return version("robofmu-cosim")
-    except PackageNotFoundError:
-        pyproject = Path(__file__).resolve().parents[2] / "pyproject.toml"
-        try:
-            return tomllib.loads(pyproject.read_text())["project"]["version"]
-        except (OSError, KeyError, tomllib.TOMLDecodeError):
-            return "unknown"
+    """The importing tool's version (the results' {Importing_Tool_Version}): cosim's own,
+    the workspace's in a checkout or the installed wheel's (cosim.bundle.version)."""
+    return bundle.version()
 
 
 def platforms() -> tuple[tuple[str, ...], str, str]:
