@@ -2,13 +2,13 @@
 .gitignore hides from hatchling or that lives outside cosim/.
 
 - sdist: the built FMUs (dist/*.fmu, dist/fmi3/*.fmu, dist/fmi3-scalar/*.fmu) and the
-  native stepping kernel (target/release/, when built) at their own paths, so that the
+  native stepping kernels (target/<target>/fmu/, target/release/) at their own paths, so that the
   wheel builds from the sdist without Rust;
 - wheel: the FMUs as cosim/data/fmus/ (same layout as dist/), tests/references/ as
   cosim/data/references/, scenarios/ as cosim/data/scenarios/, the kernel as
-  cosim/_native/<platform>/ (cosim.loop.PLATFORM); the wheel is py3-none-any: where
-  no kernel is bundled for the platform, cosim refuses to run with one line naming the
-  platform (the master has one stepping loop, the native one);
+  cosim/_native/<platform>/ (cosim.loop.PLATFORM), one per platform build-fmus.sh
+  built; the wheel is py3-none-any: where no kernel is bundled for the platform, cosim
+  refuses to run with one line naming the platform (the master has one loop, the native one);
 - editable installs: nothing (cosim.bundle finds dist/, tests/references/ and
   scenarios/ in the checkout).
 
@@ -27,11 +27,32 @@ from hatchling.builders.hooks.plugin.interface import BuildHookInterface
 FMU_FOLDERS = ("", "fmi3", "fmi3-scalar")
 KERNEL = {"linux": "libcosim_kernel.so", "darwin": "libcosim_kernel.dylib",
           "win32": "cosim_kernel.dll"}
+# The kernels scripts/build-fmus.sh cross-builds beside the FMUs: (cargo target, the
+# folder cosim.loop.PLATFORM names on that platform, the library's file name).
+CROSS_KERNELS = (
+    ("x86_64-unknown-linux-gnu", "linux-x86_64", KERNEL["linux"]),
+    ("aarch64-unknown-linux-gnu", "linux-aarch64", KERNEL["linux"]),
+    ("x86_64-pc-windows-gnu", "win32-amd64", KERNEL["win32"]),
+    ("x86_64-apple-darwin", "darwin-x86_64", KERNEL["darwin"]),
+    ("aarch64-apple-darwin", "darwin-arm64", KERNEL["darwin"]),
+)
 
 
 def kernel_platform() -> str:
     """The folder name of this machine's kernel: cosim.loop.PLATFORM's rule."""
     return f"{sys.platform}-{platform.machine().lower()}"
+
+
+def kernels(root: Path) -> dict[str, Path]:
+    """The stepping kernels to bundle, by platform folder: every cross-built one (the
+    Linux ones for glibc 2.17), else this machine's release build for its own platform."""
+    found = {folder: root / "target" / target / "fmu" / name
+             for target, folder, name in CROSS_KERNELS}
+    found = {folder: path for folder, path in found.items() if path.is_file()}
+    native = root / "target" / "release" / KERNEL.get(sys.platform, "")
+    if kernel_platform() not in found and native.is_file():
+        found[kernel_platform()] = native
+    return found
 
 
 class BundleHook(BuildHookInterface):
@@ -48,17 +69,15 @@ class BundleHook(BuildHookInterface):
                              f"the same FMUs (found {', '.join(map(str, map(len, models)))}); "
                              "run 'bash scripts/build-fmus.sh' first")
         fmus = [root / "dist" / folder / f"{m}.fmu" for folder in FMU_FOLDERS for m in models[0]]
-        kernel = root / "target" / "release" / KERNEL.get(sys.platform, "")
+        bundled = kernels(root)
         include = build_data["force_include"]
         if self.target_name == "sdist":
-            for path in fmus:
+            for path in [*fmus, *bundled.values()]:
                 include[str(path)] = str(path.relative_to(root))
-            if kernel.is_file():
-                include[str(kernel)] = str(kernel.relative_to(root))
             return
         for path in fmus:
             include[str(path)] = f"cosim/data/fmus/{path.relative_to(root / 'dist').as_posix()}"
         include[str(root / "tests" / "references")] = "cosim/data/references"
         include[str(root / "scenarios")] = "cosim/data/scenarios"
-        if kernel.is_file():
-            include[str(kernel)] = f"cosim/_native/{kernel_platform()}/{kernel.name}"
+        for folder, path in bundled.items():
+            include[str(path)] = f"cosim/_native/{folder}/{path.name}"

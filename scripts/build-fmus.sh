@@ -93,6 +93,9 @@ build_platform() {
             cargo-zigbuild rustc --profile fmu --target "$target" -p "${packages[i]}" --lib -- \
             -C "link-arg=-Wl,-install_name,@rpath/lib$name.dylib" || return 1
     done
+    env MACOSX_DEPLOYMENT_TARGET="$minimum" "$variable=-C link-arg=-Wl,-dead_strip_dylibs" \
+        cargo-zigbuild rustc --profile fmu --target "$target" -p robofmu-cosim-kernel --lib -- \
+        -C "link-arg=-Wl,-install_name,@rpath/libcosim_kernel.dylib"
 }
 
 built=()
@@ -116,8 +119,10 @@ for entry in "${platforms[@]}"; do
     fi
     # The platform-test host runs where the tests can run it: Linux (native, qemu)
     # and Windows (Wine); it never goes into an FMU.
-    host=()
-    [[ "$tuple" == *-darwin ]] || host=(-p robofmu-platform-host)
+    # The master's stepping kernel (crates/cosim-kernel) goes into the wheel for every
+    # platform built (hatch_build.py), beside the FMUs.
+    host=(-p robofmu-cosim-kernel)
+    [[ "$tuple" == *-darwin ]] || host+=(-p robofmu-platform-host)
     build=(cargo zigbuild)
     if [[ "$tuple" == *-windows ]]; then
         if ! command -v x86_64-w64-mingw32-gcc >/dev/null 2>&1 &&

@@ -29,6 +29,7 @@ import json
 import os
 import re
 import shutil
+import sys
 import struct
 import subprocess
 import zipfile
@@ -171,6 +172,34 @@ def test_each_fmu_holds_the_platform_binary_of_its_layout(model, variant, platfo
         assert kind == PLATFORMS[holder][1], (entry, holder, kind)
         # The same library in the FMI 2.0, FMI 3.0 and scalar FMUs.
         assert file.read_bytes() == library(model, holder)
+
+
+@pytest.mark.parametrize("platform", PLATFORMS)
+def test_the_stepping_kernel_is_built_for_the_platform_and_goes_into_the_wheel(platform):
+    # hatch_build.py bundles, per platform, the kernel build-fmus.sh cross-built beside
+    # the FMUs; cosim.loop loads it from cosim/_native/<that platform's PLATFORM>/.
+    require(platform)
+    sys.path.insert(0, str(ROOT))
+    try:
+        from hatch_build import CROSS_KERNELS, kernels
+    finally:
+        sys.path.remove(str(ROOT))
+    target = PLATFORMS[platform][0]
+    folder = next(f for t, f, _ in CROSS_KERNELS if t == target)
+    path = kernels(ROOT)[folder]
+    assert path.parent == ROOT / "target" / target / "fmu", path
+    headers = run(llvm("llvm-readobj"), "--file-headers", str(path))
+    kind = " ".join(re.search(rf"^{k}: (.+)$", headers, re.M).group(1) for k in ("Format", "Arch"))
+    assert kind == PLATFORMS[platform][1], kind
+    # Expected: the two entry points cosim/loop.py declares (argtypes) and calls.
+    assert {"cosim_kernel_run", "cosim_kernel_propagate"} <= exported(path, platform)
+    if platform.endswith("linux"):
+        symbols = run(llvm("llvm-objdump"), "-T", str(path))
+        versions = {tuple(int(x) for x in v.split(".")) for v in re.findall(r"GLIBC_([0-9.]+)", symbols)}
+        assert max(versions, default=(0,)) <= (2, 17), sorted(versions)
+    if platform.endswith("windows"):
+        dlls = {d.lower() for d in re.findall(r"DLL Name: (\S+)", run(llvm("llvm-objdump"), "-p", str(path)))}
+        assert dlls and dlls <= WINDOWS_DLLS, dlls - WINDOWS_DLLS
 
 
 # ---------------------------------------------------------------- static checks
