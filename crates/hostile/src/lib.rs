@@ -61,16 +61,7 @@ impl Loaded {
     /// Unpacks and opens every FMU of `fmu::models()`, both standards; panics with
     /// the reason.
     pub fn all() -> Loaded {
-        let fmus = unpack_all(Standard::Fmi2);
-        let binaries = fmus.iter().map(Fmu::open).collect();
-        let fmus3 = unpack_all(Standard::Fmi3);
-        let binaries3 = fmus3.iter().map(Fmu::open3).collect();
-        Loaded {
-            fmus,
-            binaries,
-            fmus3,
-            binaries3,
-        }
+        Loaded::open(unpack_all(Standard::Fmi2), unpack_all(Standard::Fmi3))
     }
 
     /// Every binary copied to another path and loaded from there: a second copy of
@@ -81,7 +72,11 @@ impl Loaded {
                 .map(|f| f.copy().unwrap_or_else(|e| panic!("{e}")))
                 .collect()
         };
-        let (fmus, fmus3) = (copy(&self.fmus), copy(&self.fmus3));
+        Loaded::open(copy(&self.fmus), copy(&self.fmus3))
+    }
+
+    /// Opens the binaries of unpacked FMI 2.0 and FMI 3.0 FMUs.
+    fn open(fmus: Vec<Fmu>, fmus3: Vec<Fmu>) -> Loaded {
         let binaries = fmus.iter().map(Fmu::open).collect();
         let binaries3 = fmus3.iter().map(Fmu::open3).collect();
         Loaded {
