@@ -5,7 +5,8 @@ that name, with its file and line, and exits 1 when there is one.
 The names are the checked-in descriptions': every FMI 2.0 scalar of
 modelDescription/*.xml (`theta[1]`, `platformInertia[1,2]`, `der(omega[2])`) and every
 FMI 3.0 variable of modelDescription/fmi3/*.xml (`theta`, `der(omega)`), of all FMUs
-together. A literal is a declaration when it is the first string literal among the
+together, and the head of an element's name (`concat!("Kp[", ..)`). A literal is a
+declaration when it is the first string literal among the
 arguments of a declaring call: `Decl::real/integer/boolean(..)` (also
 `Declaration::`, or `Decl::$ty(..)` inside a macro), or a macro or function of the
 same crate whose definition makes such a call (`gain!("Kp", ..)`, `planned::<0>("q",
@@ -277,7 +278,8 @@ def findings(root: Path = ROOT) -> dict[str, list[tuple[str, int, str]]]:
                         declarations.add(k)
                         break
             for k, t in enumerate(toks):
-                if t.kind == "str" and t.value in names and k not in declarations:
+                named = t.value in names or (t.value.endswith("[") and t.value[:-1] in names)
+                if t.kind == "str" and named and k not in declarations:
                     found.append((str(f.relative_to(root)), t.line, t.value))
         out[crate.name] = found
     return out

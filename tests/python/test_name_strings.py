@@ -56,9 +56,9 @@ DESCRIPTION3 = """<?xml version="1.0" encoding="UTF-8"?>
 # Declarations: Decl::real's first string (even on the next line), a macro that declares
 # through Decl::$ty, a const fn that declares through Declaration::real, a macro that
 # declares through that macro. Strings that name a variable elsewhere: the dependency
-# list, the match on an element's name, the raw string, a second "mass", the message's
-# argument. Not strings: comments, the unit "rad" (not a variable), a char literal, a
-# format string that contains a name among other words.
+# list, the head of an element's name, the match on an element's name, the raw string,
+# a second "mass", the message's argument. Not counted: comments, the unit "rad" (not a
+# variable), a char literal, a format string that holds a name among other words.
 SOURCE = r'''
 //! Module doc naming "x" and "gain".
 type Decl = Declaration<M>;
@@ -82,6 +82,7 @@ const Y: Decl = Decl::real("y", "out", |m, _| m.y).depends_on(&[Var::Named("x[2]
 fn partial(e: Element) -> f64 {
     let c = 'x';
     let lifetime: &'static str = "an x and a y";
+    let element = concat!("x[", "1]");
     match e.name {
         "der(x)" => 1.0,
         _ if e.name == r#"mass"# => 2.0,
@@ -103,9 +104,10 @@ def test_a_name_outside_its_declaration_is_found(tmp_path):
     assert found == {
         "m": [
             ("fmus/m/src/lib.rs", 19, "x[2]"),
-            ("fmus/m/src/lib.rs", 25, "der(x)"),
-            ("fmus/m/src/lib.rs", 26, "mass"),
-            ("fmus/m/src/lib.rs", 27, "y"),
+            ("fmus/m/src/lib.rs", 24, "x["),
+            ("fmus/m/src/lib.rs", 26, "der(x)"),
+            ("fmus/m/src/lib.rs", 27, "mass"),
+            ("fmus/m/src/lib.rs", 28, "y"),
             ("fmus/m/src/other.rs", 1, "gain"),
         ]
     }
@@ -113,7 +115,8 @@ def test_a_name_outside_its_declaration_is_found(tmp_path):
     fixed = (SOURCE.replace('Var::Named("x[2]")', "X.item(1)")
              .replace('"der(x)" =>', "_ if DX.is(e) =>")
              .replace('r#"mass"#', "MASS.name")
-             .replace('"y", lifetime', "Y.name, lifetime"))
+             .replace('"y", lifetime', "Y.name, lifetime")
+             .replace('concat!("x[", "1]")', "X.item(0)"))
     (src / "lib.rs").write_text(fixed)
     (src / "other.rs").write_text("fn f() -> &'static str { GAIN.name }\n")
     assert name_strings.findings(tmp_path) == {"m": []}
