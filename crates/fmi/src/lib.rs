@@ -119,9 +119,10 @@ pub mod prelude {
     //! hooks), [`StepOutcome`] and [`EventUpdate`] (what a step or an event did), [`Log`]
     //! and [`LogCategory`] (messages), [`OutputDerivativeError`] (why a hook gives no
     //! output derivative), [`Var`] (a variable in a dependency list, named by its
-    //! declaration).
+    //! declaration), [`concat`] and [`every`] (static tables from named parts).
 
     pub use crate::core::declare::continuous_states;
+    pub use crate::core::tables::{concat, every};
     pub use crate::core::{
         Declaration, DefaultExperiment, Element, EventUpdate, Log, LogCategory, Model, ModelInfo,
         OutputDerivativeError, StepOutcome, Var, Variability,

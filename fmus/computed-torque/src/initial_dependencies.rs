@@ -17,9 +17,9 @@
 use super::variables::{
     FRICTION, G, GEOMETRY, INTEGRAL, KD, KI, KP, LEGS_AND_SLIDERS, LIMIT, MEASURED_RATE,
     MEASUREMENT, PLATFORM_COM, PLATFORM_INERTIA, PLATFORM_MASS, SETPOINT, SETPOINT_ACCELERATION,
-    SETPOINT_RATE, U_MAX, U_MIN, concat, every,
+    SETPOINT_RATE, U_MAX, U_MIN,
 };
-use robofmu_fmi::prelude::Var;
+use robofmu_fmi::prelude::{Var, concat, every};
 
 /// The gains, inputs and integral of every axis, and the output limits of the axis
 /// itself.
@@ -42,10 +42,10 @@ const LAW: [Var; 12] = [
 /// platformMass, platformCom).
 const MODEL: [Var; 19] = concat(
     &[
-        &every::<7>(&GEOMETRY),
-        &every::<6>(&PLATFORM_INERTIA),
-        &every::<4>(&LEGS_AND_SLIDERS),
-        &every::<2>(&FRICTION),
+        &every(&GEOMETRY),
+        &every(&PLATFORM_INERTIA),
+        &every(&LEGS_AND_SLIDERS),
+        &every(&FRICTION),
     ],
     Var::Time,
 );

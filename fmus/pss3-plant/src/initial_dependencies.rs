@@ -16,16 +16,13 @@ use super::parameters::{
     PLATFORM_MASS, SLIDER_FRICTION, SLIDER_MASS, STROKE_MAX, STROKE_MIN, THETA0,
 };
 use super::variables::{
-    ACTUATOR_FORCE, DISTURBANCE_TORQUE, GENERALIZED_FORCE_COMMAND, TORQUE_COMMAND, concat, every,
+    ACTUATOR_FORCE, DISTURBANCE_TORQUE, GENERALIZED_FORCE_COMMAND, TORQUE_COMMAND,
 };
-use robofmu_fmi::prelude::Var;
+use robofmu_fmi::prelude::{Var, concat, every};
 
 /// The pose source besides theta0: l0 and, for its forward kinematics, the geometry.
 const FROM_ACTUATORS: [Var; 9] = concat(
-    &[
-        &[INIT_FROM_ACTUATORS.var(), L0.var()],
-        &every::<7>(&GEOMETRY),
-    ],
+    &[&[INIT_FROM_ACTUATORS.var(), L0.var()], &every(&GEOMETRY)],
     Var::Time,
 );
 /// The whole initial pose.
@@ -42,7 +39,7 @@ const STOPS: [Var; 4] = [
 /// Masses and inertias of the kinetic energy.
 const INERTIA: [Var; 10] = concat(
     &[
-        &every::<6>(&PLATFORM_INERTIA),
+        &every(&PLATFORM_INERTIA),
         &[
             LEG_MASS.var(),
             LEG_COM_FRACTION.var(),
@@ -112,7 +109,7 @@ pub static FORCE: [Var; 13] = concat(&[&POSE, &[ACTUATOR_FORCE.same()], &COMMAND
 const POSE_IN_A_STOP: [Var; 9] = concat(
     &[
         &[THETA0.var(), INIT_FROM_ACTUATORS.var()],
-        &every::<7>(&GEOMETRY),
+        &every(&GEOMETRY),
     ],
     Var::Time,
 );

@@ -7,7 +7,6 @@
 //! FMU its model under the same names; the end stops, the integrator settings and the
 //! initial state are the plant's own.
 
-use super::variables::concat;
 use super::{Pss3Plant, START_DISPLACEMENT, START_POSE};
 use robofmu_dynamics::computed_torque::{MODEL_PARAMETER_SPECS, MODEL_PARAMETERS};
 use robofmu_dynamics::pss3::ParamError;

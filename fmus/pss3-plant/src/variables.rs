@@ -12,35 +12,6 @@ use robofmu_fmi::prelude::*;
 
 type Decl = Declaration<Pss3Plant>;
 
-/// The parts one after the other, in a static table (`fill` only fills the array
-/// before it is overwritten).
-pub const fn concat<T: Copy, const N: usize>(parts: &[&[T]], fill: T) -> [T; N] {
-    let mut out = [fill; N];
-    let (mut k, mut p) = (0, 0);
-    while p < parts.len() {
-        let mut i = 0;
-        while i < parts[p].len() {
-            out[k] = parts[p][i];
-            (k, i) = (k + 1, i + 1);
-        }
-        p += 1;
-    }
-    assert!(k == N, "the parts do not fill the table");
-    out
-}
-
-/// Every element of each declaration (`D.var()`), in a static table.
-pub const fn every<const N: usize>(declarations: &[Decl]) -> [Var; N] {
-    assert!(declarations.len() == N, "one entry per declaration");
-    let mut out = [Var::Time; N];
-    let mut k = 0;
-    while k < N {
-        out[k] = declarations[k].var();
-        k += 1;
-    }
-    out
-}
-
 // What outputs and state derivatives depend on (ModelStructure dependencies).
 /// The continuous states (pose and angular velocity).
 static STATES: [Var; 2] = [THETA.var(), OMEGA.var()];
