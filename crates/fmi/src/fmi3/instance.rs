@@ -14,7 +14,7 @@ use crate::core::entry;
 use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
-use crate::core::variables::{Causality, Initial, Variability, Variable};
+use crate::core::variables::{Causality, Initial, Variability};
 
 use std::sync::Arc;
 
@@ -31,8 +31,9 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         intermediate_update: Option<IntermediateUpdate>,
         scalar: bool,
         check: impl FnOnce(&Table3, usize) -> Result<(), String>,
+        index: Arc<core_instance::Index<M>>,
     ) -> Result<Self, String> {
-        let core = core_instance::Instance::new()?;
+        let core = core_instance::Instance::new(index)?;
         let table = views::<M>(core.index(), scalar)?;
         check(&table, core.table().len())?;
         let extra = Fmi3Extra {
@@ -169,16 +170,12 @@ impl<M: Model> FmuInstance<Fmi3, M> {
 }
 
 /// The FMI 3.0 view (array or scalar-only) of model M's table: derived once from the
-/// index shared by the instances of the model in this library (`Index::derived`).
+/// index shared by the instances of the model in this library (`Index::view3`).
 fn views<M: Model>(index: &core_instance::Index<M>, scalar: bool) -> Result<Arc<Table3>, String> {
-    let arrays = |table: &[Variable<M>]| view::<M>(table);
-    const ARRAY_VIEW: usize = 0;
-    const SCALAR_VIEW: usize = 1;
     if scalar {
-        index.derived(SCALAR_VIEW, |table| {
-            super::scalar::view(table, &arrays(table)?)
-        })
+        let arrays = views(index, false)?;
+        index.view3(true, |table| super::scalar::view(table, &arrays))
     } else {
-        index.derived(ARRAY_VIEW, arrays)
+        index.view3(false, view::<M>)
     }
 }
