@@ -94,7 +94,7 @@ fn instances_of_a_declared_model_share_one_index_and_keep_their_own_values() {
     let references: Vec<u32> = a.table().iter().map(|v| v.value_reference).collect();
     assert_eq!(references, [10, 11, 12]);
     a.set_real(10, 3.0).unwrap();
-    a.prepare_read(&[12]).unwrap();
+    a.prepare_read([12]).unwrap();
     assert_eq!(a.get_real(12).unwrap(), 6.0);
     assert_eq!(b.get_real(12).unwrap(), 4.0, "start value k = 2, element 2");
     drop(a);

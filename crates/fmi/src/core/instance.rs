@@ -140,6 +140,7 @@ fn by_value_reference<M>(table: Vec<Variable<M>>) -> Vec<Variable<M>> {
 }
 
 /// The variable with value reference `vr` in a sorted table.
+#[inline]
 pub fn variable<M>(table: &[Variable<M>], vr: u32) -> Result<&Variable<M>, String> {
     find(table, vr).ok_or_else(|| format!("unknown value reference {vr}"))
 }
@@ -346,9 +347,14 @@ impl<M: Model> Instance<M> {
     /// when one of them cannot be evaluated here (a calculated one where the model
     /// cannot be evaluated, or any Real that is not finite: the front-end returns
     /// Discard); Ok(None) when all can be read.
-    pub fn prepare_read(&mut self, vrs: &[u32]) -> Result<Option<String>, String> {
+    /// The value references come as an iterator (FMI 3.0: the elements of its arrays,
+    /// not collected).
+    pub fn prepare_read(
+        &mut self,
+        vrs: impl IntoIterator<Item = u32>,
+    ) -> Result<Option<String>, String> {
         let mut needs_values = false;
-        for &vr in vrs {
+        for vr in vrs {
             let table = &self.index.table;
             let at = table.binary_search_by_key(&vr, |v| v.value_reference);
             let at = at.map_err(|_| format!("unknown value reference {vr}"))?;
@@ -475,6 +481,7 @@ impl<M: Model> Instance<M> {
     }
 
     /// The variable `vr`, checked to be of type `wanted`.
+    #[inline]
     fn typed(&self, vr: u32, wanted: VariableType) -> Result<&Variable<M>, String> {
         let v = variable(&self.index.table, vr)?;
         if v.variable_type() == wanted {
@@ -485,6 +492,7 @@ impl<M: Model> Instance<M> {
     }
 
     /// Reads a Real (after `prepare_read`, so computed values are current).
+    #[inline]
     pub fn get_real(&self, vr: u32) -> Result<f64, String> {
         let v = self.typed(vr, VariableType::Real)?;
         let Kind::Real { get, .. } = &v.kind else {
@@ -498,6 +506,7 @@ impl<M: Model> Instance<M> {
         }
     }
 
+    #[inline]
     pub fn get_integer(&self, vr: u32) -> Result<i32, String> {
         match &self.typed(vr, VariableType::Integer)?.kind {
             Kind::Integer { get, .. } => Ok(get.call(&self.model)),
@@ -505,6 +514,7 @@ impl<M: Model> Instance<M> {
         }
     }
 
+    #[inline]
     pub fn get_boolean(&self, vr: u32) -> Result<bool, String> {
         match &self.typed(vr, VariableType::Boolean)?.kind {
             Kind::Boolean { get, .. } => Ok(get.call(&self.model)),

@@ -56,8 +56,8 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 v.name
             ));
         }
-        let elements: Vec<u32> = variables.iter().flat_map(|v| v.elements()).collect();
-        if let Some(reason) = self.core.prepare_read(&elements)? {
+        let elements = variables.iter().flat_map(|v| v.elements());
+        if let Some(reason) = self.core.prepare_read(elements)? {
             return Ok(Some(reason));
         }
         let indicators = variables
@@ -80,6 +80,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     }
 
     /// Reads the Float64 variable `v` into `out` (its size).
+    #[inline]
     pub fn get_float64(&self, v: &Variable3, out: &mut [f64]) -> Result<(), String> {
         match &v.source {
             Source::Time => out[0] = self.core.time,
@@ -100,6 +101,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         Ok(())
     }
 
+    #[inline]
     pub fn get_int32(&self, v: &Variable3, out: &mut [i32]) -> Result<(), String> {
         for (o, e) in out.iter_mut().zip(v.elements()) {
             *o = self.core.get_integer(e)?;
@@ -107,6 +109,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         Ok(())
     }
 
+    #[inline]
     pub fn get_boolean(&self, v: &Variable3, out: &mut [bool]) -> Result<(), String> {
         for (o, e) in out.iter_mut().zip(v.elements()) {
             *o = self.core.get_boolean(e)?;
