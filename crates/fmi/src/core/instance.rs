@@ -492,7 +492,7 @@ impl<M: Model> Instance<M> {
     }
 
     /// Reads a Real (after `prepare_read`, so computed values are current).
-    #[inline]
+    #[inline(always)]
     pub fn get_real(&self, vr: u32) -> Result<f64, String> {
         let v = self.typed(vr, VariableType::Real)?;
         let Kind::Real { get, .. } = &v.kind else {
@@ -506,7 +506,7 @@ impl<M: Model> Instance<M> {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     pub fn get_integer(&self, vr: u32) -> Result<i32, String> {
         match &self.typed(vr, VariableType::Integer)?.kind {
             Kind::Integer { get, .. } => Ok(get.call(&self.model)),
@@ -514,7 +514,7 @@ impl<M: Model> Instance<M> {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     pub fn get_boolean(&self, vr: u32) -> Result<bool, String> {
         match &self.typed(vr, VariableType::Boolean)?.kind {
             Kind::Boolean { get, .. } => Ok(get.call(&self.model)),
