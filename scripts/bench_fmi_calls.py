@@ -20,6 +20,7 @@ e.g.   python3 scripts/bench_fmi_calls.py baseline-build/ target/release/
 
 import argparse
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -250,7 +251,10 @@ def main():
     args = parser.parse_args()
     for directory in args.dirs:
         if not Path(directory).is_dir():
-            sys.exit(f"{directory}: no such directory (give folders of FMU binaries)")
+            parser.error(f"{directory}: no such directory (give folders of FMU binaries)")
+    for tool, package in (("cc", "gcc"), ("valgrind", "valgrind")):
+        if shutil.which(tool) is None:
+            parser.error(f"{tool} is missing: install it (Debian: apt-get install {package})")
     with tempfile.TemporaryDirectory() as tmp:
         drive = Path(tmp, "drive")
         Path(tmp, "drive.c").write_text(DRIVER)
