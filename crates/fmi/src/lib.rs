@@ -130,14 +130,17 @@ pub mod prelude {
     pub use crate::export_fmu;
 }
 
-/// Exports one model as an FMU of both standards: the FMI 2.0 functions
-/// ([`export_fmi2!`]) and the FMI 3.0 functions ([`export_fmi3!`]) from one cdylib,
+/// Exports one model as an FMU of both standards: the model's index cell
+/// ([`share_index!`]: built once per loaded library, shared by the instances), the FMI
+/// 2.0 functions ([`export_fmi2!`]) and the FMI 3.0 functions ([`export_fmi3!`]) from
+/// one cdylib,
 /// and the symbol `robofmu_fmu_description` through which the workspace packager
 /// reads the model's [`Description`](description::Description) (see [`description`]).
 /// Call it once per FMU crate, at the crate root: `robofmu_fmi::export_fmu!(Planner);`.
 #[macro_export]
 macro_rules! export_fmu {
     ($model:ty) => {
+        $crate::share_index!($model);
         $crate::export_fmi2!($model);
         $crate::export_fmi3!($model);
 
