@@ -102,7 +102,7 @@ fn kind<M>(value: &Value<M>, i: usize) -> Kind<M> {
 }
 
 /// Start value of element i: none, the one for all, or element i's.
-fn start_of<T: Copy>(start: &[T], i: usize) -> Option<T> {
+pub(super) fn start_of<T: Copy>(start: &[T], i: usize) -> Option<T> {
     match start {
         [] => None,
         [all] => Some(*all),

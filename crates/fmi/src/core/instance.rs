@@ -2,12 +2,13 @@
 //! time of the experiment, and typed, checked access to the variables. A front-end
 //! adds its mode, logger and C entry points around it.
 
-use super::flatten::flatten;
+use super::declare::{self, Declaration, value_references};
+use super::flatten::{flatten, start_of};
 use super::log::Log;
 use super::model::{Model, StepOutcome};
 use super::shared::Shared;
 use super::value_check::{self, Value, wrong_type};
-use super::variables::{Initial, Kind, Variable, VariableType, find};
+use super::variables::{Initial, Variable, VariableType, element_name, find, value_type};
 use crate::fmi3::table::Table3;
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
@@ -46,8 +47,8 @@ impl Standard {
 /// The version-neutral part of an instance. The model is private so that every change
 /// goes through [`Instance::model_mut`], which marks the computed values stale.
 pub struct Instance<M: Model> {
-    /// The variable table sorted by value reference, with its calculated flags: shared
-    /// by every instance of the model in this library.
+    /// The declarations with their value references and calculated flags: shared by
+    /// every instance of the model in this library.
     index: Arc<Index<M>>,
     /// Boxed: an instance is moved several times while it is built (a model such as the
     /// plant's is kilobytes; a move of the box is a pointer).
@@ -78,27 +79,36 @@ pub struct Snapshot<M: Model> {
 
 /// A new model with every start value of the table applied through its writer.
 pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, String> {
+    with_start_values(table.iter().map(|v| (v.declaration, v.index)))
+}
+
+/// A new model with the start value of every element of `elements` (a declaration and
+/// an element index, in value-reference order) applied through its writer.
+fn with_start_values<'a, M: Model>(
+    elements: impl Iterator<Item = (&'a Declaration<M>, usize)>,
+) -> Result<M, String> {
     let mut model = M::new();
-    for v in table {
-        let result = match &v.kind {
-            Kind::Real {
+    for (d, i) in elements {
+        let result = match d.value {
+            declare::Value::Real {
                 set: Some(set),
-                start: Some(s),
+                start,
                 ..
-            } => set.call(&mut model, *s),
-            Kind::Integer {
+            } => start_of(start, i).map_or(Ok(()), |s| set(&mut model, i, s)),
+            declare::Value::Integer {
                 set: Some(set),
-                start: Some(s),
+                start,
                 ..
-            } => set.call(&mut model, *s),
-            Kind::Boolean {
+            } => start_of(start, i).map_or(Ok(()), |s| set(&mut model, i, s)),
+            declare::Value::Boolean {
                 set: Some(set),
-                start: Some(s),
+                start,
                 ..
-            } => set.call(&mut model, *s),
+            } => start_of(start, i).map_or(Ok(()), |s| set(&mut model, i, s)),
             _ => Ok(()),
         };
-        result.map_err(|e| format!("start value of \"{}\" rejected: {e}", v.name()))?;
+        let name = element_name(d, i);
+        result.map_err(|e| format!("start value of \"{name}\" rejected: {e}"))?;
     }
     Ok(model)
 }
@@ -145,18 +155,13 @@ pub fn variable<M>(table: &[Variable<M>], vr: u32) -> Result<&Variable<M>, Strin
     find(table, vr).ok_or_else(|| format!("unknown value reference {vr}"))
 }
 
-/// Per variable of a table: whether reading it needs the computed values (an output,
+/// Whether reading the declaration `d` of `all` needs the computed values (an output,
 /// derivative or other calculated variable, as opposed to a parameter, an input or a
 /// continuous state, even one declared as an output).
-pub fn calculated_flags<M>(table: &[Variable<M>]) -> Vec<bool> {
-    let states: Vec<(&str, Option<usize>)> = table.iter().filter_map(Variable::state_key).collect();
-    table
-        .iter()
-        .map(|v| {
-            let calculated = matches!(v.initial, Some(Initial::Calculated | Initial::Approx));
-            v.is_derivative() || (calculated && !states.contains(&v.key()))
-        })
-        .collect()
+fn calculated<M>(all: &[Declaration<M>], d: &Declaration<M>) -> bool {
+    let is_state = || all.iter().any(|s| s.derivative_of == Some(d.name));
+    let computed = matches!(d.initial, Some(Initial::Calculated | Initial::Approx));
+    d.derivative_of.is_some() || (computed && !is_state())
 }
 
 /// A model whose index has a cell of its own in this library: implemented by
@@ -184,19 +189,64 @@ macro_rules! share_index {
     };
 }
 
-/// What lookups by value reference need: the FMI 2.0 scalars sorted by value
-/// reference and, per scalar, whether reading it needs the computed values; and the
+/// One declaration as the index holds it: the value reference of its element 0
+/// (element i at `first + i * stride`) and whether reading it needs the computed
+/// values.
+pub struct Declared<M: 'static> {
+    pub declaration: &'static Declaration<M>,
+    pub first: u32,
+    /// Reading it needs the computed values (see [`Index`]).
+    pub calculated: bool,
+}
+
+/// One element in the index's map from value reference to declaration.
+struct Slot<M: 'static> {
+    value_reference: u32,
+    /// Element index within the declaration (0 for a scalar).
+    element: u32,
+    /// The declaration's [`Declared::calculated`].
+    calculated: bool,
+    declaration: &'static Declaration<M>,
+}
+
+impl<M> Clone for Slot<M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<M> Copy for Slot<M> {}
+
+/// A calculated Real element, checked to be finite after each calculation.
+struct CalculatedReal<M: 'static> {
+    get: declare::Get<M, f64>,
+    element: usize,
+    declaration: &'static Declaration<M>,
+}
+
+/// The model's index, built once from its declarations: one record per declaration
+/// and a compact map, sorted by value reference, from every element's value reference
+/// to (declaration, element); the getters and setters call the declaration's accessor
+/// with the element index. FMI 2.0's scalars ([`Variable`]) and FMI 3.0's variables
+/// are views of it, each built the first time it is asked for. It also holds the
 /// model as instantiation makes it, which every instance and reset clones.
 pub struct Index<M: 'static> {
-    pub table: Vec<Variable<M>>,
-    /// [`calculated_flags`] of the table.
-    pub calculated: Vec<bool>,
-    /// [`model_with_start_values`] of the table, built once (a clone costs a copy; the
+    /// The model's declarations (`Model::declarations`).
+    all: &'static [Declaration<M>],
+    /// One record per declaration, in declaration order.
+    pub declarations: Vec<Declared<M>>,
+    /// Every element, sorted by value reference (unique: checked when built).
+    slots: Vec<Slot<M>>,
+    /// The calculated Real elements, in value-reference order.
+    calculated_reals: Vec<CalculatedReal<M>>,
+    /// The FMI 2.0 scalars sorted by value reference (descriptions, FMU states,
+    /// directional derivatives, messages), built the first time they are asked for.
+    table: OnceLock<Vec<Variable<M>>>,
+    /// The model with every start value applied, built once (a clone costs a copy; the
     /// setters of every start value cost about 1,700 instructions for the PID). In a
     /// Mutex because a model need not be `Sync` (the plant keeps a `RefCell` cache).
     fresh: Mutex<M>,
-    /// FMI 3.0's two views of the table (the array view and the scalar-only view),
-    /// each built the first time an FMI 3.0 instance asks for it.
+    /// FMI 3.0's two views (the array view and the scalar-only view), each built the
+    /// first time an FMI 3.0 instance asks for it.
     arrays: OnceLock<Arc<Table3>>,
     scalars: OnceLock<Arc<Table3>>,
 }
@@ -220,20 +270,69 @@ impl<M: Model> Index<M> {
         Self::build().map(Arc::new)
     }
 
+    /// The index of M's declarations; Err when two elements share a value reference
+    /// (all the runtime relies on; the full `check_table` runs where the
+    /// modelDescription is written, in every FMU crate's drift test).
     fn build() -> Result<Self, String> {
-        let table = sorted_table::<M>()?;
+        let all = M::declarations();
+        let declarations: Vec<Declared<M>> = (all.iter().zip(value_references(all)))
+            .map(|(declaration, first)| Declared {
+                declaration,
+                first,
+                calculated: calculated(all, declaration),
+            })
+            .collect();
+        let mut slots = Vec::with_capacity(all.iter().map(Declaration::size).sum());
+        for d in &declarations {
+            let stride = d.declaration.stride;
+            slots.extend((0..d.declaration.size() as u32).map(|i| Slot {
+                value_reference: d.first + i * stride,
+                element: i,
+                calculated: d.calculated,
+                declaration: d.declaration,
+            }));
+        }
+        slots.sort_unstable_by_key(|s| s.value_reference);
+        let element = |s: &Slot<M>| (s.declaration, s.element as usize);
+        if let Some(pair) = slots
+            .windows(2)
+            .find(|p| p[0].value_reference == p[1].value_reference)
+        {
+            let ((a, i), (b, j)) = (element(&pair[0]), element(&pair[1]));
+            return Err(format!(
+                "\"{}\" and \"{}\" share the value reference {}",
+                element_name(a, i),
+                element_name(b, j),
+                pair[0].value_reference
+            ));
+        }
+        let fresh = with_start_values(slots.iter().map(element))?;
+        let calculated_reals = (slots.iter())
+            .filter(|s| s.calculated)
+            .filter_map(|s| match s.declaration.value {
+                declare::Value::Real { get, .. } => Some(CalculatedReal {
+                    get,
+                    element: s.element as usize,
+                    declaration: s.declaration,
+                }),
+                _ => None,
+            })
+            .collect();
         Ok(Index {
-            calculated: calculated_flags(&table),
-            fresh: Mutex::new(model_with_start_values::<M>(&table)?),
+            all,
+            declarations,
+            slots,
+            calculated_reals,
+            table: OnceLock::new(),
+            fresh: Mutex::new(fresh),
             arrays: OnceLock::new(),
             scalars: OnceLock::new(),
-            table,
         })
     }
 
     /// FMI 3.0's scalar-only view when `scalar`, else its array view, built from the
-    /// table by `build` the first time it is asked for (an error is returned, not
-    /// kept).
+    /// FMI 2.0 view by `build` the first time it is asked for (an error is returned,
+    /// not kept).
     pub fn view3(
         &self,
         scalar: bool,
@@ -243,7 +342,7 @@ impl<M: Model> Index<M> {
         if let Some(view) = cell.get() {
             return Ok(Arc::clone(view));
         }
-        let built = Arc::new(build(&self.table)?);
+        let built = Arc::new(build(self.table())?);
         Ok(Arc::clone(cell.get_or_init(|| built)))
     }
 
@@ -253,6 +352,34 @@ impl<M: Model> Index<M> {
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
             .clone()
+    }
+}
+
+impl<M: 'static> Index<M> {
+    /// The FMI 2.0 view: every element as a scalar [`Variable`], sorted by value
+    /// reference (built the first time it is asked for).
+    pub fn table(&self) -> &[Variable<M>] {
+        (self.table).get_or_init(|| by_value_reference(flatten(self.all)))
+    }
+
+    /// Number of elements (FMI 2.0 scalars).
+    pub fn len(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// Whether the model declares no variable.
+    pub fn is_empty(&self) -> bool {
+        self.slots.is_empty()
+    }
+
+    /// The declaration, element index and calculated flag of value reference `vr`.
+    #[inline(always)]
+    pub fn element(&self, vr: u32) -> Option<(&'static Declaration<M>, usize, bool)> {
+        let k = (self.slots)
+            .binary_search_by_key(&vr, |s| s.value_reference)
+            .ok()?;
+        let s = self.slots[k];
+        Some((s.declaration, s.element as usize, s.calculated))
     }
 }
 
@@ -292,8 +419,18 @@ impl<M: Model> Instance<M> {
         self.last_successful_time = self.time;
     }
 
+    /// The FMI 2.0 view of the index ([`Index::table`]).
     pub fn table(&self) -> &[Variable<M>] {
-        &self.index.table
+        self.index.table()
+    }
+
+    /// The declaration and element index of value reference `vr`.
+    #[inline(always)]
+    pub fn element(&self, vr: u32) -> Result<(&'static Declaration<M>, usize), String> {
+        match self.index.element(vr) {
+            Some((d, i, _)) => Ok((d, i)),
+            None => Err(format!("unknown value reference {vr}")),
+        }
     }
 
     /// The index (shared with the other instances of a declared model).
@@ -330,14 +467,13 @@ impl<M: Model> Instance<M> {
         self.evaluation_error.clone().map_or(Ok(()), Err)
     }
 
+    /// Every calculated Real element, in value-reference order, is finite.
     fn check_calculated_finite(&self) -> Result<(), String> {
-        let calculated = self.index.table.iter().zip(&self.index.calculated);
-        for (v, _) in calculated.filter(|(_, c)| **c) {
-            if let Kind::Real { get, .. } = &v.kind {
-                let value = get.call(&self.model);
-                if !value.is_finite() {
-                    return Err(format!("\"{}\" evaluates to {value}", v.name()));
-                }
+        for c in &self.index.calculated_reals {
+            let value = (c.get)(&self.model, c.element);
+            if !value.is_finite() {
+                let name = element_name(c.declaration, c.element);
+                return Err(format!("\"{name}\" evaluates to {value}"));
             }
         }
         Ok(())
@@ -355,15 +491,15 @@ impl<M: Model> Instance<M> {
     ) -> Result<Option<String>, String> {
         let mut needs_values = false;
         for vr in vrs {
-            let table = &self.index.table;
-            let at = table.binary_search_by_key(&vr, |v| v.value_reference);
-            let at = at.map_err(|_| format!("unknown value reference {vr}"))?;
-            if self.index.calculated[at] {
+            let Some((d, i, calculated)) = self.index.element(vr) else {
+                return Err(format!("unknown value reference {vr}"));
+            };
+            if calculated {
                 needs_values = true;
-            } else if let Kind::Real { get, .. } = &table[at].kind {
-                let value = get.call(&self.model);
+            } else if let declare::Value::Real { get, .. } = d.value {
+                let value = get(&self.model, i);
                 if !value.is_finite() {
-                    let name = table[at].shown_name();
+                    let name = element_name(d, i);
                     return Ok(Some(format!("\"{name}\" evaluates to {value}")));
                 }
             }
@@ -480,54 +616,56 @@ impl<M: Model> Instance<M> {
         Ok(outcome)
     }
 
-    /// The variable `vr`, checked to be of type `wanted`.
-    #[inline]
-    fn typed(&self, vr: u32, wanted: VariableType) -> Result<&Variable<M>, String> {
-        let v = variable(&self.index.table, vr)?;
-        if v.variable_type() == wanted {
-            Ok(v)
-        } else {
-            Err(wrong_type(v, wanted.as_str()))
-        }
+    /// The value of declaration `d` as a `wanted` one: Err for another type.
+    #[cold]
+    fn wrong_type(d: &Declaration<M>, i: usize, vr: u32, wanted: VariableType) -> String {
+        wrong_type(
+            element_name(d, i),
+            vr,
+            value_type(&d.value),
+            wanted.as_str(),
+        )
     }
 
     /// Reads a Real (after `prepare_read`, so computed values are current).
     #[inline(always)]
     pub fn get_real(&self, vr: u32) -> Result<f64, String> {
-        let v = self.typed(vr, VariableType::Real)?;
-        let Kind::Real { get, .. } = &v.kind else {
-            unreachable!("checked by typed")
+        let (d, i) = self.element(vr)?;
+        let declare::Value::Real { get, .. } = d.value else {
+            return Err(Self::wrong_type(d, i, vr, VariableType::Real));
         };
-        let value = get.call(&self.model);
+        let value = get(&self.model, i);
         if value.is_finite() {
             Ok(value)
         } else {
-            Err(format!("\"{}\" evaluated to {value}", v.name()))
+            Err(format!("\"{}\" evaluated to {value}", element_name(d, i)))
         }
     }
 
     #[inline(always)]
     pub fn get_integer(&self, vr: u32) -> Result<i32, String> {
-        match &self.typed(vr, VariableType::Integer)?.kind {
-            Kind::Integer { get, .. } => Ok(get.call(&self.model)),
-            _ => unreachable!("checked by typed"),
+        let (d, i) = self.element(vr)?;
+        match d.value {
+            declare::Value::Integer { get, .. } => Ok(get(&self.model, i)),
+            _ => Err(Self::wrong_type(d, i, vr, VariableType::Integer)),
         }
     }
 
     #[inline(always)]
     pub fn get_boolean(&self, vr: u32) -> Result<bool, String> {
-        match &self.typed(vr, VariableType::Boolean)?.kind {
-            Kind::Boolean { get, .. } => Ok(get.call(&self.model)),
-            _ => unreachable!("checked by typed"),
+        let (d, i) = self.element(vr)?;
+        match d.value {
+            declare::Value::Boolean { get, .. } => Ok(get(&self.model, i)),
+            _ => Err(Self::wrong_type(d, i, vr, VariableType::Boolean)),
         }
     }
 
     /// Writes a value through its writer after the checks of [`value_check::write`]
     /// (whether the variable may be set now is the front-end's rule).
     fn write(&mut self, vr: u32, value: Value) -> Result<(), String> {
-        let v = variable(&self.index.table, vr)?;
+        let (d, i) = self.element(vr)?;
         self.dirty = true;
-        value_check::write(&mut *self.model, v, value)
+        value_check::write(&mut *self.model, d, i, vr, value)
     }
 
     pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {

@@ -240,7 +240,8 @@ fn read_values<M: Model>(
             Kind::Boolean { set: Some(_), .. } => Value::Boolean(r.flag(name)?),
             _ => continue,
         };
-        value_check::write(model, v, value).map_err(|e| refused(name, e))?;
+        value_check::write(model, v.declaration, v.index, v.value_reference, value)
+            .map_err(|e| refused(name, e))?;
     }
     Ok(())
 }

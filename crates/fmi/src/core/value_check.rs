@@ -3,7 +3,8 @@
 //! value read back from a serialized FMU state go through [`write()`], so a state can
 //! hold nothing that the setters would refuse.
 
-use super::variables::{Kind, ShownName, Variable};
+use super::declare::{Declaration, Value as Declared};
+use super::variables::{ShownName, VariableType, element_name, value_type};
 
 /// Largest magnitude the layer accepts for a Real value set by the host. No model
 /// quantity in SI units comes near it, and the product of two such values is still
@@ -19,13 +20,12 @@ pub enum Value {
     Boolean(bool),
 }
 
-/// The error for `v` used as a variable of type `wanted`.
-pub fn wrong_type<M>(v: &Variable<M>, wanted: &str) -> String {
+/// The error for the variable `name` (value reference `vr`, of type `is`) used as a
+/// variable of type `wanted`.
+pub fn wrong_type(name: ShownName, vr: u32, is: VariableType, wanted: &str) -> String {
     format!(
-        "\"{}\" (value reference {}) is a {} variable, not {wanted}",
-        v.shown_name(),
-        v.value_reference,
-        v.variable_type().as_str()
+        "\"{name}\" (value reference {vr}) is a {} variable, not {wanted}",
+        is.as_str()
     )
 }
 
@@ -56,37 +56,36 @@ fn check_real(
     Ok(())
 }
 
-/// Checks `value` for the variable `v` (type; Real: finite, magnitude, min/max;
-/// Integer: min/max) and writes it through the variable's writer, whose own check
-/// may still refuse it. Whether the variable may be set now is the front-end's rule.
-pub fn write<M>(model: &mut M, v: &Variable<M>, value: Value) -> Result<(), String> {
-    let name = v.shown_name();
-    let result = match (&v.kind, value) {
-        (Kind::Real { set, min, max, .. }, Value::Real(x)) => {
+/// Checks `value` for element i of the declaration `d` (value reference `vr`) (type;
+/// Real: finite, magnitude, min/max; Integer: min/max) and writes it through the
+/// declaration's writer, whose own check may still refuse it. Whether the variable
+/// may be set now is the front-end's rule.
+pub fn write<M>(
+    model: &mut M,
+    d: &Declaration<M>,
+    i: usize,
+    vr: u32,
+    value: Value,
+) -> Result<(), String> {
+    let name = element_name(d, i);
+    let no_writer = || format!("\"{name}\" has no writer");
+    let result = match (&d.value, value) {
+        (Declared::Real { set, min, max, .. }, Value::Real(x)) => {
             check_real(name, x, *min, *max)?;
-            let set = set
-                .as_ref()
-                .ok_or_else(|| format!("\"{name}\" has no writer"))?;
-            set.call(model, x)
+            set.ok_or_else(no_writer)?(model, i, x)
         }
-        (Kind::Integer { set, min, max, .. }, Value::Integer(x)) => {
+        (Declared::Integer { set, min, max, .. }, Value::Integer(x)) => {
             if min.is_some_and(|m| x < m) || max.is_some_and(|m| x > m) {
                 return Err(format!("\"{name}\" = {x} is outside its range"));
             }
-            let set = set
-                .as_ref()
-                .ok_or_else(|| format!("\"{name}\" has no writer"))?;
-            set.call(model, x)
+            set.ok_or_else(no_writer)?(model, i, x)
         }
-        (Kind::Boolean { set, .. }, Value::Boolean(x)) => {
-            let set = set
-                .as_ref()
-                .ok_or_else(|| format!("\"{name}\" has no writer"))?;
-            set.call(model, x)
+        (Declared::Boolean { set, .. }, Value::Boolean(x)) => {
+            set.ok_or_else(no_writer)?(model, i, x)
         }
-        (_, Value::Real(_)) => return Err(wrong_type(v, "Real")),
-        (_, Value::Integer(_)) => return Err(wrong_type(v, "Integer")),
-        (_, Value::Boolean(_)) => return Err(wrong_type(v, "Boolean")),
+        (is, Value::Real(_)) => return Err(wrong_type(name, vr, value_type(is), "Real")),
+        (is, Value::Integer(_)) => return Err(wrong_type(name, vr, value_type(is), "Integer")),
+        (is, Value::Boolean(_)) => return Err(wrong_type(name, vr, value_type(is), "Boolean")),
     };
     // Formatted only for a refusal (a float to text costs more than the write).
     result.map_err(|e| match value {

@@ -8,7 +8,7 @@
 //! ([`Variable::name`]), for messages and the description writers.
 
 pub use super::attributes::{Causality, Initial, Variability};
-use super::declare::Declaration;
+use super::declare::{Declaration, Value};
 use super::hooks::{Element, InputDerivative, OutputDerivative};
 use std::borrow::Cow;
 
@@ -112,12 +112,7 @@ impl<M: 'static> Variable<M> {
     /// The FMI 2.0 name as [`Display`](std::fmt::Display), written without an
     /// allocation (for messages formatted only on a refusal).
     pub fn shown_name(&self) -> ShownName<'static> {
-        let d = self.declaration;
-        match (d.length, d.derivative_of) {
-            (None, _) => ShownName::Plain(d.name),
-            (Some(_), Some(state)) => ShownName::Derivative(state, self.index),
-            (Some(_), None) => ShownName::Element(d.name, self.index),
-        }
+        element_name(self.declaration, self.index)
     }
 
     /// The FMI 2.0 description; element i of a labelled array is described as
@@ -198,6 +193,25 @@ impl<M: 'static> Variable<M> {
             Kind::Integer { start, .. } => start.is_some(),
             Kind::Boolean { start, .. } => start.is_some(),
         }
+    }
+}
+
+/// The FMI 2.0 name of element i of declaration `d` (see [`Variable::name`]), written
+/// when displayed.
+pub fn element_name<M>(d: &Declaration<M>, i: usize) -> ShownName<'static> {
+    match (d.length, d.derivative_of) {
+        (None, _) => ShownName::Plain(d.name),
+        (Some(_), Some(state)) => ShownName::Derivative(state, i),
+        (Some(_), None) => ShownName::Element(d.name, i),
+    }
+}
+
+/// The FMI type of a declaration's value.
+pub fn value_type<M>(value: &Value<M>) -> VariableType {
+    match value {
+        Value::Real { .. } => VariableType::Real,
+        Value::Integer { .. } => VariableType::Integer,
+        Value::Boolean { .. } => VariableType::Boolean,
     }
 }
 

@@ -4,11 +4,14 @@
 
 use super::logging::Logger;
 use super::mode::{Fmi2, Interface, Mode};
+use crate::core::declare::Declaration;
 use crate::core::entry;
 use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
-use crate::core::variables::{Causality, Initial, Variability, Variable, VariableType};
+use crate::core::variables::{
+    Causality, Initial, Variability, VariableType, element_name, value_type,
+};
 use std::sync::Arc;
 
 /// Everything an FMI 2.0 instance owns (nothing beyond the shared fields). Instances
@@ -25,8 +28,9 @@ impl<M: Model> FmuInstance<Fmi2, M> {
         Ok(FmuInstance::with(interface, log, (), core))
     }
 
-    /// Whether `v` may be written in the current mode (FMI 2.0 rules for fmi2Set*).
-    fn check_settable(&self, v: &Variable<M>) -> Result<(), String> {
+    /// Whether element i of `v` may be written in the current mode (FMI 2.0 rules for
+    /// fmi2Set*).
+    fn check_settable(&self, v: &Declaration<M>, i: usize) -> Result<(), String> {
         use Mode::*;
         let mode = self.mode;
         let ok = match (v.causality, v.variability) {
@@ -52,15 +56,19 @@ impl<M: Model> FmuInstance<Fmi2, M> {
                 _ => false,
             },
         };
-        entry::settable(ok, &v.name(), v.causality, v.variability, mode)
+        if ok {
+            return Ok(());
+        }
+        let name = element_name(v, i).to_string();
+        entry::settable(ok, &name, v.causality, v.variability, mode)
     }
 
     /// The mode check for writing `vr` as a `wanted` variable (a wrong type is
     /// reported by the core's writer instead).
     fn check_write(&self, vr: u32, wanted: VariableType) -> Result<(), String> {
-        let v = core_instance::variable(self.core.table(), vr)?;
-        if v.variable_type() == wanted {
-            self.check_settable(v)?;
+        let (v, i) = self.core.element(vr)?;
+        if value_type(&v.value) == wanted {
+            self.check_settable(v, i)?;
         }
         Ok(())
     }

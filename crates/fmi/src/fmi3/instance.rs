@@ -35,7 +35,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     ) -> Result<Self, String> {
         let core = core_instance::Instance::new(index)?;
         let table = views::<M>(core.index(), scalar)?;
-        check(&table, core.table().len())?;
+        check(&table, core.index().len())?;
         let extra = Fmi3Extra {
             table,
             intermediate_update,
