@@ -167,6 +167,8 @@ fn strided_array(value_reference: u32) -> Variable3 {
         source: Source::Elements {
             first: value_reference,
             stride: 10,
+            declaration: 0,
+            element: 0,
         },
         derivative_of: None,
     }

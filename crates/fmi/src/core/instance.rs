@@ -496,18 +496,132 @@ impl<M: Model> Instance<M> {
             };
             if calculated {
                 needs_values = true;
-            } else if let declare::Value::Real { get, .. } = d.value {
-                let value = get(&self.model, i);
-                if !value.is_finite() {
-                    let name = element_name(d, i);
-                    return Ok(Some(format!("\"{name}\" evaluates to {value}")));
-                }
+            } else if let Some(reason) = self.not_finite(d, i) {
+                return Ok(Some(reason));
             }
         }
+        self.prepared(needs_values)
+    }
+
+    /// [`prepare_read`](Instance::prepare_read) for FMI 3.0's variables, given as
+    /// (declaration position, first element, count) (a [`Declared`] of the index and
+    /// the elements an FMI 3.0 variable reads).
+    pub fn prepare_read_declared(
+        &mut self,
+        parts: impl IntoIterator<Item = (usize, usize, usize)>,
+    ) -> Result<Option<String>, String> {
+        let mut needs_values = false;
+        for (position, from, n) in parts {
+            let d = self.declared(position)?;
+            if d.calculated {
+                needs_values = true;
+                continue;
+            }
+            let d = d.declaration;
+            if let Some(reason) = (from..from + n).find_map(|i| self.not_finite(d, i)) {
+                return Ok(Some(reason));
+            }
+        }
+        self.prepared(needs_values)
+    }
+
+    /// Why element i of `d` cannot be read now, if it is a Real that is not finite.
+    #[inline(always)]
+    fn not_finite(&self, d: &Declaration<M>, i: usize) -> Option<String> {
+        let declare::Value::Real { get, .. } = d.value else {
+            return None;
+        };
+        let value = get(&self.model, i);
+        (!value.is_finite()).then(|| format!("\"{}\" evaluates to {value}", element_name(d, i)))
+    }
+
+    /// The end of a `prepare_read`: the computed values made current if needed.
+    fn prepared(&mut self, needs_values: bool) -> Result<Option<String>, String> {
         if needs_values {
             return Ok(self.update_values().err());
         }
         Ok(None)
+    }
+
+    /// The index's declaration at `position` (of an FMI 3.0 variable's source).
+    #[inline(always)]
+    fn declared(&self, position: usize) -> Result<&Declared<M>, String> {
+        (self.index.declarations)
+            .get(position)
+            .ok_or_else(|| format!("no declaration at position {position}"))
+    }
+
+    /// Reads elements `from..from + out.len()` of the Real declaration at `position`
+    /// (FMI 3.0's array view, after `prepare_read_declared`).
+    #[inline(always)]
+    pub fn get_reals(&self, position: usize, from: usize, out: &mut [f64]) -> Result<(), String> {
+        let d = self.declared(position)?.declaration;
+        let declare::Value::Real { get, .. } = d.value else {
+            return Err(format!("\"{}\" is not a Real", d.name));
+        };
+        for (o, i) in out.iter_mut().zip(from..) {
+            let value = get(&self.model, i);
+            if !value.is_finite() {
+                return Err(format!("\"{}\" evaluated to {value}", element_name(d, i)));
+            }
+            *o = value;
+        }
+        Ok(())
+    }
+
+    /// Reads elements `from..from + out.len()` of the Integer declaration at `position`.
+    #[inline(always)]
+    pub fn get_integers(
+        &self,
+        position: usize,
+        from: usize,
+        out: &mut [i32],
+    ) -> Result<(), String> {
+        let d = self.declared(position)?.declaration;
+        let declare::Value::Integer { get, .. } = d.value else {
+            return Err(format!("\"{}\" is not an Integer", d.name));
+        };
+        for (o, i) in out.iter_mut().zip(from..) {
+            *o = get(&self.model, i);
+        }
+        Ok(())
+    }
+
+    /// Reads elements `from..from + out.len()` of the Boolean declaration at `position`.
+    #[inline(always)]
+    pub fn get_booleans(
+        &self,
+        position: usize,
+        from: usize,
+        out: &mut [bool],
+    ) -> Result<(), String> {
+        let d = self.declared(position)?.declaration;
+        let declare::Value::Boolean { get, .. } = d.value else {
+            return Err(format!("\"{}\" is not a Boolean", d.name));
+        };
+        for (o, i) in out.iter_mut().zip(from..) {
+            *o = get(&self.model, i);
+        }
+        Ok(())
+    }
+
+    /// Writes `values` to elements `from..` of the declaration at `position`, whose
+    /// value references are `first + k * stride`, each through the checks of
+    /// [`value_check::write`], in order (the first refusal stops).
+    pub fn set_declared(
+        &mut self,
+        position: usize,
+        from: usize,
+        (first, stride): (u32, u32),
+        values: impl IntoIterator<Item = Value>,
+    ) -> Result<(), String> {
+        let d = self.declared(position)?.declaration;
+        for (k, value) in values.into_iter().enumerate() {
+            let vr = first.wrapping_add(k as u32 * stride);
+            self.dirty = true;
+            value_check::write(&mut *self.model, d, from + k, vr, value)?;
+        }
+        Ok(())
     }
 
     /// Why ExitInitializationMode would refuse the parameters now, if it would (the

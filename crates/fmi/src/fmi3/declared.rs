@@ -24,8 +24,8 @@ pub fn view<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
     let firsts = value_references(declarations);
     let mut variables = Vec::with_capacity(declarations.len() + 2);
     variables.push(time_variable());
-    for (d, &first) in declarations.iter().zip(&firsts) {
-        variables.push(variable3(declarations, &firsts, d, first)?);
+    for (position, &first) in firsts.iter().enumerate() {
+        variables.push(variable3(declarations, &firsts, position, first)?);
     }
     let n_indicators = M::info().number_of_event_indicators;
     if n_indicators > 0 {
@@ -58,9 +58,10 @@ fn check_state_order<M>(table: &[Variable<M>], variables: &[Variable3]) -> Resul
 fn variable3<M>(
     declarations: &[Declaration<M>],
     firsts: &[u32],
-    d: &Declaration<M>,
+    position: usize,
     first: u32,
 ) -> Result<Variable3, String> {
+    let d = &declarations[position];
     let derivative_of = match d.derivative_of {
         None => None,
         Some(state) => {
@@ -88,6 +89,8 @@ fn variable3<M>(
         source: Source::Elements {
             first,
             stride: d.stride,
+            declaration: position,
+            element: 0,
         },
         derivative_of,
     })

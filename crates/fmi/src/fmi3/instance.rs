@@ -14,6 +14,7 @@ use crate::core::entry;
 use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
+use crate::core::value_check::Value;
 use crate::core::variables::{Causality, Initial, Variability};
 
 use std::sync::Arc;
@@ -56,8 +57,15 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 v.name
             ));
         }
-        let elements = variables.iter().flat_map(|v| v.elements());
-        if let Some(reason) = self.core.prepare_read(elements)? {
+        let parts = variables.iter().filter_map(|v| match v.source {
+            Source::Elements {
+                declaration,
+                element,
+                ..
+            } => Some((declaration, element, v.size())),
+            _ => None,
+        });
+        if let Some(reason) = self.core.prepare_read_declared(parts)? {
             return Ok(Some(reason));
         }
         let indicators = variables
@@ -92,53 +100,66 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 }
                 out.copy_from_slice(&z[*first..*first + out.len()]);
             }
-            Source::Elements { .. } => {
-                for (o, e) in out.iter_mut().zip(v.elements()) {
-                    *o = self.core.get_real(e)?;
-                }
-            }
+            Source::Elements {
+                declaration,
+                element,
+                ..
+            } => self.core.get_reals(*declaration, *element, out)?,
         }
         Ok(())
     }
 
     #[inline]
     pub fn get_int32(&self, v: &Variable3, out: &mut [i32]) -> Result<(), String> {
-        for (o, e) in out.iter_mut().zip(v.elements()) {
-            *o = self.core.get_integer(e)?;
+        match v.source {
+            Source::Elements {
+                declaration,
+                element,
+                ..
+            } => self.core.get_integers(declaration, element, out),
+            _ => Ok(()),
         }
-        Ok(())
     }
 
     #[inline]
     pub fn get_boolean(&self, v: &Variable3, out: &mut [bool]) -> Result<(), String> {
-        for (o, e) in out.iter_mut().zip(v.elements()) {
-            *o = self.core.get_boolean(e)?;
+        match v.source {
+            Source::Elements {
+                declaration,
+                element,
+                ..
+            } => self.core.get_booleans(declaration, element, out),
+            _ => Ok(()),
         }
-        Ok(())
     }
 
     pub fn set_float64(&mut self, v: &Variable3, values: &[f64]) -> Result<(), String> {
         self.check_settable(v)?;
-        for (&x, e) in values.iter().zip(v.elements()) {
-            self.core.set_real(e, x)?;
-        }
-        Ok(())
+        self.set(v, values.iter().map(|&x| Value::Real(x)))
     }
 
     pub fn set_int32(&mut self, v: &Variable3, values: &[i32]) -> Result<(), String> {
         self.check_settable(v)?;
-        for (&x, e) in values.iter().zip(v.elements()) {
-            self.core.set_integer(e, x)?;
-        }
-        Ok(())
+        self.set(v, values.iter().map(|&x| Value::Integer(x)))
     }
 
     pub fn set_boolean(&mut self, v: &Variable3, values: &[bool]) -> Result<(), String> {
         self.check_settable(v)?;
-        for (&x, e) in values.iter().zip(v.elements()) {
-            self.core.set_boolean(e, x)?;
+        self.set(v, values.iter().map(|&x| Value::Boolean(x)))
+    }
+
+    /// Writes `values` to the elements of `v` through the core's checks (nothing for
+    /// time and the event indicators, which are not settable).
+    fn set(&mut self, v: &Variable3, values: impl Iterator<Item = Value>) -> Result<(), String> {
+        match v.source {
+            Source::Elements {
+                first,
+                stride,
+                declaration,
+                element,
+            } => (self.core).set_declared(declaration, element, (first, stride), values),
+            _ => Ok(()),
         }
-        Ok(())
     }
 
     /// Whether `v` may be written in the current mode (FMI 3.0 rules for fmi3Set*,

@@ -39,7 +39,13 @@ pub fn view<M>(table: &[Variable<M>], arrays: &Table3) -> Result<Table3, String>
             }));
             continue;
         }
-        let Source::Elements { stride, .. } = v.source else {
+        let Source::Elements {
+            stride,
+            declaration,
+            element,
+            ..
+        } = v.source
+        else {
             variables.push(v.clone());
             continue;
         };
@@ -57,7 +63,12 @@ pub fn view<M>(table: &[Variable<M>], arrays: &Table3) -> Result<Table3, String>
                 value_reference: vr,
                 name: Cow::Owned(scalar.name().into_owned()),
                 dimension: None,
-                source: Source::Elements { first: vr, stride },
+                source: Source::Elements {
+                    first: vr,
+                    stride,
+                    declaration,
+                    element: element + k,
+                },
                 derivative_of: states.get(k).copied(),
                 ..v.clone()
             });

@@ -28,9 +28,16 @@ pub const TIME_VALUE_REFERENCE: u32 = 0;
 /// What an FMI 3.0 variable reads and writes.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Source {
-    /// Elements of the model's table, by their (FMI 2.0) value references: element k
-    /// at `first + k * stride` (k below the variable's size; nothing stored per element).
-    Elements { first: u32, stride: u32 },
+    /// Elements of a declaration: element k of the variable is element `element + k`
+    /// of the declaration at position `declaration` in `Model::declarations` (read and
+    /// written through its accessors), whose (FMI 2.0) value reference is
+    /// `first + k * stride` (k below the variable's size; nothing stored per element).
+    Elements {
+        first: u32,
+        stride: u32,
+        declaration: usize,
+        element: usize,
+    },
     /// The instance's time.
     Time,
     /// The model's event indicators (`Model::event_indicators`) from index `first` on
@@ -75,7 +82,7 @@ impl Variable3 {
     /// The table's elements, in order (none for time and event indicators).
     pub fn elements(&self) -> Elements {
         match self.source {
-            Source::Elements { first, stride } => Elements {
+            Source::Elements { first, stride, .. } => Elements {
                 next: first,
                 stride,
                 left: self.size(),
