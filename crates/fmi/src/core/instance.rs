@@ -9,7 +9,7 @@ use super::model::{Model, StepOutcome};
 use super::shared::Shared;
 use super::value_check::{self, Value, wrong_type};
 use super::variables::{Initial, Variable, VariableType, element_name, find, value_type};
-use crate::fmi3::table::Table3;
+use super::view::Table3;
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
 /// Does not log: the model's checks on a copy are not the instance's.

@@ -36,6 +36,7 @@ pub mod status;
 pub mod tables;
 pub mod value_check;
 pub mod variables;
+pub mod view;
 
 pub use declare::Declaration;
 pub use hooks::{Element, Var};
