@@ -19,15 +19,13 @@ static INFO: ModelInfo = ModelInfo::new(
      and output limits with conditional-integration anti-windup",
     [0.0, 2.0, 1e-8, 0.01],
 )
-.states(continuous_states(VARIABLES))
-.directional_derivatives()
 .logs(&[LogCategory {
     name: "logController",
     description: "Gains and options of each channel at initialization",
 }]);
 
 /// Parameters, inputs and states of the three channels.
-#[derive(Clone)]
+#[derive(Clone, Default)]
 pub struct Pid {
     gains: [PidGains; CHANNELS],
     /// Limits as set; they apply only when `limited` is true.
@@ -273,9 +271,14 @@ static VARIABLES: &[Decl] = &[
     DER_FILTER,
 ];
 
-/// d(output or state derivative)/d(input or state) of one channel, from the law in
-/// `control::pid` (the limits make u flat, conditional integration makes dI/dt flat).
-fn channel_partial(m: &Pid, c: usize, unknown: Element, known: Element) -> Result<f64, String> {
+/// d(output or state derivative)/d(input or state), from the law in `control::pid`
+/// (the channels are independent; the limits make u flat, conditional integration
+/// makes dI/dt flat).
+fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
+    let c = unknown.index;
+    if known.index != c {
+        return Ok(0.0);
+    }
     let g = &m.gains[c];
     let out = m.output(c);
     // Coefficients of e (via setpoint/measurement), of the rate error and of the states
@@ -348,25 +351,6 @@ impl Model for Pid {
         VARIABLES
     }
 
-    fn new() -> Self {
-        let gains = PidGains {
-            kp: 0.0,
-            ki: 0.0,
-            kd: 0.0,
-            tf: 0.0,
-            limits: None,
-            use_rate_inputs: false,
-        };
-        Pid {
-            gains: [gains; CHANNELS],
-            limits: [(-1.0, 1.0); CHANNELS],
-            limited: [false; CHANNELS],
-            inputs: [PidInputs::default(); CHANNELS],
-            ramps: [PidInputRamp::default(); CHANNELS],
-            states: [PidState::default(); CHANNELS],
-        }
-    }
-
     fn set_time(&mut self, _time: f64) {
         // The law is time invariant.
     }
@@ -410,12 +394,7 @@ impl Model for Pid {
     // The continuous states and their derivatives: the layer's defaults, through the
     // declarations of integral, filter and their derivatives.
 
-    fn partial_derivative(&self, unknown: Element, known: Element) -> Result<f64, String> {
-        if unknown.index != known.index {
-            return Ok(0.0);
-        }
-        channel_partial(self, unknown.index, unknown, known)
-    }
+    const JACOBIAN: Option<Jacobian<Self>> = Some(Jacobian::Partial(partial));
 }
 
 // The exported fmi2* symbols of this FMU.

@@ -78,7 +78,7 @@ pub struct Snapshot<M: Model> {
 
 /// A new model with every start value of the table applied through its writer.
 pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, String> {
-    let mut model = M::new();
+    let mut model = M::default();
     for v in table {
         let result = match &v.kind {
             Kind::Real {
