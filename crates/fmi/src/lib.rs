@@ -121,6 +121,7 @@ pub mod prelude {
     //! output derivative), [`Var`] (a variable in a dependency list, named by its
     //! declaration).
 
+    pub use crate::core::declare::{same, with_time};
     pub use crate::core::{
         Declaration, DefaultExperiment, Element, EventUpdate, Jacobian, Log, LogCategory, Model,
         ModelInfo, OutputDerivativeError, StepOutcome, Var, Variability,

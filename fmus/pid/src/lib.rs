@@ -49,9 +49,7 @@ impl Pid {
     fn derivative(&self, c: usize) -> PidState {
         pid::derivatives(&self.gains[c], &self.states[c], &self.inputs[c])
     }
-}
 
-impl Pid {
     /// Applies a change of channel c (setting a limit updates the law's limits).
     fn change(&mut self, c: usize, f: impl FnOnce(&mut Self)) -> Result<(), String> {
         f(self);
@@ -169,28 +167,28 @@ const RATES: Decl = switch!(
     gains.use_rate_inputs
 );
 const SETPOINT: Decl = input!("setpoint", 101, "Setpoint r", &[1.0, 0.5, -0.25], setpoint);
-const MEASUREMENT: Decl = input!(
+const MEASURED: Decl = input!(
     "measurement",
     111,
     "Measurement y (e = r - y)",
     &[0.0],
     measurement
 );
-const SETPOINT_RATE: Decl = input!(
+const R_RATE: Decl = input!(
     "setpointRate",
     121,
     "Setpoint rate dr/dt (used when useRateInputs)",
     &[0.0],
     setpoint_rate
 );
-const MEASURED_RATE: Decl = input!(
+const Y_RATE: Decl = input!(
     "measuredRate",
     131,
     "Measured rate dy/dt (used when useRateInputs)",
     &[0.0],
     measured_rate
 );
-const FEEDFORWARD: Decl = input!(
+const FEEDFWD: Decl = input!(
     "feedforward",
     141,
     "Added to the output before the limits",
@@ -202,7 +200,7 @@ const U: Decl = channels(Decl::real("u", "control output", |m, c| m.output(c).u)
     .initial_depends_on(&OUTPUT_KNOWNS);
 const INTEGRAL: Decl = state!("integral", 301, "integral of the error (state)", integral);
 const FILTER: Decl = state!("filter", 311, "derivative filter state (state)", filter);
-const DER_INTEGRAL: Decl = state!(
+const DER_INT: Decl = state!(
     "der(integral)",
     INTEGRAL,
     321,
@@ -220,55 +218,17 @@ const DER_FILTER: Decl = state!(
 .initial_depends_on(&FILTER_KNOWNS);
 
 /// What the filter's dx/dt reads at initialization, in the same channel.
-static FILTER_KNOWNS: [Var; 8] = [
-    KD.same(),
-    TF.same(),
-    RATES.same(),
-    SETPOINT.same(),
-    MEASUREMENT.same(),
-    SETPOINT_RATE.same(),
-    MEASURED_RATE.same(),
-    FILTER.same(),
-];
+static FILTER_KNOWNS: [Var; 8] = same([KD, TF, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FILTER]);
 /// What u reads at initialization (the law of `control::pid`), in the same channel;
 /// also dI/dt (conditional integration compares u with the limits).
-static OUTPUT_KNOWNS: [Var; 15] = [
-    KP.same(),
-    KI.same(),
-    KD.same(),
-    TF.same(),
-    LIMIT.same(),
-    U_MIN.same(),
-    U_MAX.same(),
-    RATES.same(),
-    SETPOINT.same(),
-    MEASUREMENT.same(),
-    SETPOINT_RATE.same(),
-    MEASURED_RATE.same(),
-    FEEDFORWARD.same(),
-    INTEGRAL.same(),
-    FILTER.same(),
-];
+static OUTPUT_KNOWNS: [Var; 15] = same([
+    KP, KI, KD, TF, LIMIT, U_MIN, U_MAX, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FEEDFWD,
+    INTEGRAL, FILTER,
+]);
 
 static VARIABLES: &[Decl] = &[
-    KP,
-    KI,
-    KD,
-    TF,
-    LIMIT,
-    U_MIN,
-    U_MAX,
-    RATES,
-    SETPOINT,
-    MEASUREMENT,
-    SETPOINT_RATE,
-    MEASURED_RATE,
-    FEEDFORWARD,
-    U,
-    INTEGRAL,
-    FILTER,
-    DER_INTEGRAL,
-    DER_FILTER,
+    KP, KI, KD, TF, LIMIT, U_MIN, U_MAX, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FEEDFWD, U,
+    INTEGRAL, FILTER, DER_INT, DER_FILTER,
 ];
 
 /// d(output or state derivative)/d(input or state), from the law in `control::pid`
@@ -298,9 +258,9 @@ fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
     let saturated = g
         .limits
         .is_some_and(|(lo, hi)| out.u_raw > hi || out.u_raw < lo);
-    let error = SETPOINT.is(known) || MEASUREMENT.is(known);
-    let rate = SETPOINT_RATE.is(known) || MEASURED_RATE.is(known);
-    let sign = if SETPOINT.is(known) || SETPOINT_RATE.is(known) {
+    let error = SETPOINT.is(known) || MEASURED.is(known);
+    let rate = R_RATE.is(known) || Y_RATE.is(known);
+    let sign = if SETPOINT.is(known) || R_RATE.is(known) {
         1.0
     } else {
         -1.0
@@ -312,7 +272,7 @@ fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
             sign * (g.kp + d_e)
         } else if rate {
             sign * d_rate
-        } else if FEEDFORWARD.is(known) {
+        } else if FEEDFWD.is(known) {
             1.0
         } else if INTEGRAL.is(known) {
             g.ki
@@ -321,7 +281,7 @@ fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
         } else {
             return Err(format!("\"{}\" is not an input or state", known.name));
         }
-    } else if DER_INTEGRAL.is(unknown) {
+    } else if DER_INT.is(unknown) {
         let stopped = pid::integration_stopped(g, &out);
         if error && !stopped { sign } else { 0.0 }
     } else if DER_FILTER.is(unknown) {
@@ -349,10 +309,6 @@ impl Model for Pid {
 
     fn declarations() -> &'static [Declaration<Self>] {
         VARIABLES
-    }
-
-    fn set_time(&mut self, _time: f64) {
-        // The law is time invariant.
     }
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {

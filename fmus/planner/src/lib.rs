@@ -125,18 +125,7 @@ const QDDOTF: Decl = boundary!(qddotf, 15, 2, "acceleration at tf (quintic only)
 
 /// What the outputs of axis a depend on at initialization: time, order, t0, tf and
 /// that axis's boundary values.
-static KNOWNS: [Var; 10] = [
-    Var::Time,
-    ORDER.var(),
-    T0.var(),
-    TF.var(),
-    Q0.same(),
-    QF.same(),
-    QDOT0.same(),
-    QDOTF.same(),
-    QDDOT0.same(),
-    QDDOTF.same(),
-];
+static KNOWNS: [Var; 10] = with_time(same([ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF]));
 const Q: Decl = planned::<0>("q", 100, "planned position");
 const QDOT: Decl = planned::<1>("qdot", 101, "planned velocity");
 const QDDOT: Decl = planned::<2>("qddot", 102, "planned acceleration");
@@ -159,7 +148,7 @@ impl Model for Planner {
     }
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
-        self.change(|_| ())?;
+        // Every writer planned again: the plan is the one of the parameters as set.
         let plan = self.plan.0.as_ref().map_err(String::clone)?;
         for a in 0..AXES {
             let (c, t0) = (plan.axis(a).shifted_coefficients(), self.t0);

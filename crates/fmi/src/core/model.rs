@@ -153,8 +153,9 @@ pub trait Model: Clone + Default + Send + Sized + 'static {
     /// [`declare`](super::declare)).
     fn declarations() -> &'static [Declaration<Self>];
 
-    /// The layer's simulation time changed (setup, fmi2SetTime, a completed step).
-    fn set_time(&mut self, time: f64);
+    /// The layer's simulation time changed (setup, fmi2SetTime, a completed step); a
+    /// time-invariant model ignores it (the default).
+    fn set_time(&mut self, _time: f64) {}
 
     /// End of initialization: check the parameters together (a message says which
     /// one is wrong and why) and prepare for simulation.
