@@ -50,6 +50,11 @@ impl Pid {
         pid::derivatives(&self.gains[c], &self.states[c], &self.inputs[c])
     }
 
+    /// The gains of channel c are usable, or why not.
+    fn validate(&self, c: usize) -> Result<(), String> {
+        (self.gains[c].validate()).map_err(|e| format!("channel {}: {e}", c + 1))
+    }
+
     /// Applies a change of channel c (setting a limit updates the law's limits).
     fn change(&mut self, c: usize, f: impl FnOnce(&mut Self)) -> Result<(), String> {
         f(self);
@@ -313,25 +318,19 @@ impl Model for Pid {
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         for c in 0..CHANNELS {
-            self.gains[c]
-                .validate()
-                .map_err(|e| format!("channel {}: {e}", c + 1))?;
-            log.debug(
-                "logController",
-                &format!("channel {}: {:?}", c + 1, self.gains[c]),
-            );
+            self.validate(c)?;
+            let message = format!("channel {}: {:?}", c + 1, self.gains[c]);
+            log.debug("logController", &message);
         }
         Ok(())
     }
 
     fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
-        for c in 0..CHANNELS {
-            if let Err(e) = self.gains[c].validate() {
-                return StepOutcome::Discarded {
-                    reason: format!("channel {}: {e}", c + 1),
-                    terminate: true,
-                };
-            }
+        if let Err(reason) = (0..CHANNELS).try_for_each(|c| self.validate(c)) {
+            return StepOutcome::Discarded {
+                reason,
+                terminate: true,
+            };
         }
         for c in 0..CHANNELS {
             let (g, s, i) = (&self.gains[c], &self.states[c], &self.inputs[c]);
