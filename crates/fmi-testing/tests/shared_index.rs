@@ -1,11 +1,12 @@
 //! The value-reference index of a declared model is built once per library and shared
-//! by its instances (`core::shared`). Truths: pointer identity of the index, the table's value
-//! references against the declarations' scheme (pinned 10, then 11 and 12 for the
-//! unpinned array), and values written to one instance not showing in another. The
-//! FMI 3.0 array and scalar-only views are shared too, each under its own key: the
-//! array view has `y` as one array of 2, the scalar view `y[1]`, `y[2]`.
+//! by its instances (`core::shared`: the model's own cell, defined by `share_index!`).
+//! Truths: pointer identity of the index, the table's value references against the
+//! declarations' scheme (pinned 10, then 11 and 12 for the unpinned array), and values
+//! written to one instance not showing in another. The FMI 3.0 array and scalar-only
+//! views are shared too, each in its own typed cell of the index: the array view has
+//! `y` as one array of 2, the scalar view `y[1]`, `y[2]`.
 
-use robofmu_fmi::core::instance::Instance;
+use robofmu_fmi::core::instance::{Index, Instance};
 use robofmu_fmi::core::{DefaultExperiment, Log, Model, ModelInfo, StepOutcome, Variability};
 use robofmu_fmi::fmi3::instance::Instance as Instance3;
 use robofmu_fmi::fmi3::logging::{Callback, Logger};
@@ -83,19 +84,21 @@ impl Model for Declared {
     trivial_model!();
 }
 
+robofmu_fmi::share_index!(Declared);
+
 #[test]
 fn instances_of_a_declared_model_share_one_index_and_keep_their_own_values() {
-    let mut a = Instance::<Declared>::new().unwrap();
-    let b = Instance::<Declared>::new().unwrap();
+    let new = || Instance::<Declared>::new(Index::shared().unwrap()).unwrap();
+    let (mut a, b) = (new(), new());
     assert!(Arc::ptr_eq(a.index(), b.index()));
     let references: Vec<u32> = a.table().iter().map(|v| v.value_reference).collect();
     assert_eq!(references, [10, 11, 12]);
     a.set_real(10, 3.0).unwrap();
-    a.prepare_read(&[12]).unwrap();
+    a.prepare_read([12]).unwrap();
     assert_eq!(a.get_real(12).unwrap(), 6.0);
     assert_eq!(b.get_real(12).unwrap(), 4.0, "start value k = 2, element 2");
     drop(a);
-    let c = Instance::<Declared>::new().unwrap();
+    let c = new();
     assert!(
         Arc::ptr_eq(b.index(), c.index()),
         "kept after an instance is freed"
@@ -110,7 +113,8 @@ fn instance3(scalar: bool) -> Instance3<Declared> {
     };
     let log = Logger::new(sink, Vec::new(), false);
     let accept = |_: &_, _| Ok(());
-    match Instance3::<Declared>::new(Interface::ModelExchange, log, None, scalar, accept) {
+    let index = Index::shared().unwrap();
+    match Instance3::<Declared>::new(Interface::ModelExchange, log, None, scalar, accept, index) {
         Ok(instance) => instance,
         Err(e) => panic!("{e}"),
     }

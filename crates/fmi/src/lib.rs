@@ -119,9 +119,9 @@ pub mod prelude {
     //! hooks), [`StepOutcome`] and [`EventUpdate`] (what a step or an event did), [`Log`]
     //! and [`LogCategory`] (messages), [`OutputDerivativeError`] (why a hook gives no
     //! output derivative), [`Var`] (a variable in a dependency list, named by its
-    //! declaration).
+    //! declaration), [`concat`], [`every`] and [`same`] (static tables from named parts).
 
-    pub use crate::core::declare::{same, with_time};
+    pub use crate::core::tables::{concat, every, same};
     pub use crate::core::{
         Declaration, DefaultExperiment, Element, EventUpdate, Jacobian, Log, LogCategory, Model,
         ModelInfo, OutputDerivativeError, StepOutcome, Var, Variability,
@@ -129,14 +129,17 @@ pub mod prelude {
     pub use crate::export_fmu;
 }
 
-/// Exports one model as an FMU of both standards: the FMI 2.0 functions
-/// ([`export_fmi2!`]) and the FMI 3.0 functions ([`export_fmi3!`]) from one cdylib,
+/// Exports one model as an FMU of both standards: the model's index cell
+/// ([`share_index!`]: built once per loaded library, shared by the instances), the FMI
+/// 2.0 functions ([`export_fmi2!`]) and the FMI 3.0 functions ([`export_fmi3!`]) from
+/// one cdylib,
 /// and the symbol `robofmu_fmu_description` through which the workspace packager
 /// reads the model's [`Description`](description::Description) (see [`description`]).
 /// Call it once per FMU crate, at the crate root: `robofmu_fmi::export_fmu!(Planner);`.
 #[macro_export]
 macro_rules! export_fmu {
     ($model:ty) => {
+        $crate::share_index!($model);
         $crate::export_fmi2!($model);
         $crate::export_fmi3!($model);
 

@@ -15,14 +15,15 @@
 //! differences at initialization in tests/python/test_initial_dependencies.py.
 
 use super::variables::{
-    INTEGRAL, KD, KI, KP, LIMIT, MEASURED_RATE, MEASUREMENT, SETPOINT, SETPOINT_ACCELERATION,
+    FRICTION, G, GEOMETRY, INTEGRAL, KD, KI, KP, LEGS_AND_SLIDERS, LIMIT, MEASURED_RATE,
+    MEASUREMENT, PLATFORM_COM, PLATFORM_INERTIA, PLATFORM_MASS, SETPOINT, SETPOINT_ACCELERATION,
     SETPOINT_RATE, U_MAX, U_MIN,
 };
-use robofmu_dynamics::computed_torque::MODEL_PARAMETERS;
-use robofmu_fmi::prelude::Var;
+use robofmu_fmi::prelude::{Var, concat, every};
 
-/// The gains, inputs and integral of every axis.
-const COUPLED: [Var; 9] = [
+/// The gains, inputs and integral of every axis, and the output limits of the axis
+/// itself.
+const LAW: [Var; 12] = [
     KP.var(),
     KD.var(),
     KI.var(),
@@ -32,89 +33,51 @@ const COUPLED: [Var; 9] = [
     MEASUREMENT.var(),
     MEASURED_RATE.var(),
     INTEGRAL.var(),
+    LIMIT.same(),
+    U_MIN.same(),
+    U_MAX.same(),
 ];
 
-/// The output limits of the axis itself.
-const LIMITS: [Var; 3] = [LIMIT.same(), U_MIN.same(), U_MAX.same()];
-
-/// The model parameters that do not move the output of each axis (see above).
-const UNSEEN: [&[&str]; 3] = [
-    &["platformCom[1]"],
-    &[],
+/// The model parameters every axis reads: all but the gravity moment's (g,
+/// platformMass, platformCom).
+const MODEL: [Var; 19] = concat(
     &[
-        "g",
-        "platformMass",
-        "platformCom[1]",
-        "platformCom[2]",
-        "platformCom[3]",
+        &every(&GEOMETRY),
+        &every(&PLATFORM_INERTIA),
+        &every(&LEGS_AND_SLIDERS),
+        &every(&FRICTION),
     ],
-];
-
-/// How many knowns u[k + 1] lists.
-const fn count(k: usize) -> usize {
-    COUPLED.len() + LIMITS.len() + MODEL_PARAMETERS.len() - UNSEEN[k].len()
-}
+    Var::Time,
+);
 
 /// Static tables (no allocation: a per-load allocation would leak on every dlclose).
-static AXIS_1: [Var; count(0)] = knowns(0);
-static AXIS_2: [Var; count(1)] = knowns(1);
-static AXIS_3: [Var; count(2)] = knowns(2);
+/// u[1]: the gravity moment but platformCom[1].
+static AXIS_1: [Var; 35] = concat(
+    &[
+        &LAW,
+        &MODEL,
+        &[
+            G.var(),
+            PLATFORM_MASS.var(),
+            PLATFORM_COM.item(1),
+            PLATFORM_COM.item(2),
+        ],
+    ],
+    Var::Time,
+);
+/// u[2]: every model parameter.
+static AXIS_2: [Var; 34] = concat(
+    &[
+        &LAW,
+        &MODEL,
+        &[G.var(), PLATFORM_MASS.var(), PLATFORM_COM.var()],
+    ],
+    Var::Time,
+);
+/// u[3]: no gravity.
+static AXIS_3: [Var; 31] = concat(&[&LAW, &MODEL], Var::Time);
 
 /// The knowns u[k + 1] and der(integral)[k + 1] depend on (k from 0).
 pub fn of_axis(k: usize) -> &'static [Var] {
     [&AXIS_1[..], &AXIS_2, &AXIS_3][k]
-}
-
-/// COUPLED, the limits of axis k + 1 and the model parameters but UNSEEN[k] (a model
-/// parameter by the name the library's table gives it, the table its declaration is
-/// made from).
-const fn knowns<const N: usize>(k: usize) -> [Var; N] {
-    let mut out = [Var::Time; N];
-    let mut n = 0;
-    let mut i = 0;
-    while i < COUPLED.len() {
-        out[n] = COUPLED[i];
-        (n, i) = (n + 1, i + 1);
-    }
-    i = 0;
-    while i < LIMITS.len() {
-        out[n] = LIMITS[i];
-        (n, i) = (n + 1, i + 1);
-    }
-    i = 0;
-    while i < MODEL_PARAMETERS.len() {
-        let name = MODEL_PARAMETERS[i].name;
-        if !contains(UNSEEN[k], name) {
-            out[n] = Var::Named(name);
-            n += 1;
-        }
-        i += 1;
-    }
-    assert!(n == N, "every UNSEEN name is a model parameter");
-    out
-}
-
-const fn contains(names: &[&str], name: &str) -> bool {
-    let mut i = 0;
-    while i < names.len() {
-        if same(names[i].as_bytes(), name.as_bytes()) {
-            return true;
-        }
-        i += 1;
-    }
-    false
-}
-
-const fn same(a: &[u8], b: &[u8]) -> bool {
-    if a.len() != b.len() {
-        return false;
-    }
-    let mut i = 0;
-    while i < a.len() {
-        if a[i] != b[i] {
-            return false;
-        }
-        i += 1;
-    }
-    true
 }

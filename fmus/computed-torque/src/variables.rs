@@ -233,7 +233,40 @@ pub const DER_INTEGRAL: Decl = Decl::real(
 .derivative_of(INTEGRAL.name)
 .initial_depends_on_each(initial_dependencies::of_axis);
 
-static VARIABLES: &[Decl] = &[
+/// The model's geometry: lp, ld, gamma, lb, alpha, beta, a.
+pub const GEOMETRY: [Decl; 7] = [
+    model::<0>(1),
+    model::<1>(1),
+    model::<2>(1),
+    model::<3>(1),
+    model::<4>(1),
+    model::<5>(1),
+    model::<6>(1),
+];
+pub const PLATFORM_MASS: Decl = model::<7>(1);
+pub const PLATFORM_COM: Decl = model::<8>(3);
+/// platformInertia[1,1], [2,2], [3,3], [1,2], [1,3], [2,3].
+pub const PLATFORM_INERTIA: [Decl; 6] = [
+    model::<11>(1),
+    model::<12>(1),
+    model::<13>(1),
+    model::<14>(1),
+    model::<15>(1),
+    model::<16>(1),
+];
+/// legMass, legComFraction, legTransverseInertia, sliderMass.
+pub const LEGS_AND_SLIDERS: [Decl; 4] = [
+    model::<17>(1),
+    model::<18>(1),
+    model::<19>(1),
+    model::<20>(1),
+];
+pub const G: Decl = model::<21>(1);
+/// sliderFriction, pivotFriction.
+pub const FRICTION: [Decl; 2] = [model::<22>(1), model::<23>(1)];
+
+/// The law's variables.
+const LAW: [Decl; 14] = [
     KP,
     KD,
     KI,
@@ -248,31 +281,24 @@ static VARIABLES: &[Decl] = &[
     U,
     INTEGRAL,
     DER_INTEGRAL,
-    model::<0>(1), // lp
-    model::<1>(1),
-    model::<2>(1),
-    model::<3>(1),
-    model::<4>(1),
-    model::<5>(1),
-    model::<6>(1),  // a
-    model::<7>(1),  // platformMass
-    model::<8>(3),  // platformCom[1..3]
-    model::<11>(1), // platformInertia[1,1] ... [2,3]
-    model::<12>(1),
-    model::<13>(1),
-    model::<14>(1),
-    model::<15>(1),
-    model::<16>(1),
-    model::<17>(1), // legMass
-    model::<18>(1),
-    model::<19>(1),
-    model::<20>(1),
-    model::<21>(1), // g
-    model::<22>(1),
-    model::<23>(1), // pivotFriction
 ];
+
+/// The law's variables, then the model's (one declaration per entry of
+/// `MODEL_PARAMETERS`, in its order).
+static VARIABLES: [Decl; 36] = concat(
+    &[
+        &LAW,
+        &GEOMETRY,
+        &[PLATFORM_MASS, PLATFORM_COM],
+        &PLATFORM_INERTIA,
+        &LEGS_AND_SLIDERS,
+        &[G],
+        &FRICTION,
+    ],
+    KP,
+);
 
 /// The whole table.
 pub fn table() -> &'static [Decl] {
-    VARIABLES
+    &VARIABLES
 }

@@ -223,10 +223,10 @@ const DER_FILTER: Decl = state!(
 .initial_depends_on(&FILTER_KNOWNS);
 
 /// What the filter's dx/dt reads at initialization, in the same channel.
-static FILTER_KNOWNS: [Var; 8] = same([KD, TF, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FILTER]);
+static FILTER_KNOWNS: [Var; 8] = same(&[KD, TF, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FILTER]);
 /// What u reads at initialization (the law of `control::pid`), in the same channel;
 /// also dI/dt (conditional integration compares u with the limits).
-static OUTPUT_KNOWNS: [Var; 15] = same([
+static OUTPUT_KNOWNS: [Var; 15] = same(&[
     KP, KI, KD, TF, LIMIT, U_MIN, U_MAX, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FEEDFWD,
     INTEGRAL, FILTER,
 ]);

@@ -125,7 +125,8 @@ const QDDOTF: Decl = boundary!(qddotf, 15, 2, "acceleration at tf (quintic only)
 
 /// What the outputs of axis a depend on at initialization: time, order, t0, tf and
 /// that axis's boundary values.
-static KNOWNS: [Var; 10] = with_time(same([ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF]));
+static KNOWNS: [Var; 10] = concat(&[&[Var::Time], &AXIS_KNOWNS], Var::Time);
+const AXIS_KNOWNS: [Var; 9] = same(&[ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF]);
 const Q: Decl = planned::<0>("q", 100, "planned position");
 const QDOT: Decl = planned::<1>("qdot", 101, "planned velocity");
 const QDDOT: Decl = planned::<2>("qddot", 102, "planned acceleration");

@@ -10,232 +10,132 @@
 //! endStopMode (it decides whether a pose beyond a stroke end is accepted, not a
 //! value).
 
-use super::variables::concat;
-use robofmu_fmi::prelude::Var;
+use super::parameters::{
+    END_STOP_DAMPING, END_STOP_STIFFNESS, G, GEOMETRY, INIT_FROM_ACTUATORS, L0, LEG_COM_FRACTION,
+    LEG_MASS, LEG_TRANSVERSE_INERTIA, OMEGA0, PIVOT_FRICTION, PLATFORM_COM, PLATFORM_INERTIA,
+    PLATFORM_MASS, SLIDER_FRICTION, SLIDER_MASS, STROKE_MAX, STROKE_MIN, THETA0,
+};
+use super::variables::{
+    ACTUATOR_FORCE, DISTURBANCE_TORQUE, GENERALIZED_FORCE_COMMAND, TORQUE_COMMAND,
+};
+use robofmu_fmi::prelude::{Var, concat, every};
 
-/// Geometry, and with it the forward kinematics of l0.
-const GEOMETRY: [Var; 7] = [
-    Var::Named("lp"),
-    Var::Named("ld"),
-    Var::Named("gamma"),
-    Var::Named("lb"),
-    Var::Named("alpha"),
-    Var::Named("beta"),
-    Var::Named("a"),
-];
-/// The pose source besides theta0.
-const FROM_ACTUATORS: [Var; 11] = concat(
-    &[
-        &[
-            Var::Named("initFromActuators"),
-            Var::Named("l0[1]"),
-            Var::Named("l0[2]"),
-            Var::Named("l0[3]"),
-        ],
-        &GEOMETRY,
-    ],
+/// The pose source besides theta0: l0 and, for its forward kinematics, the geometry.
+const FROM_ACTUATORS: [Var; 9] = concat(
+    &[&[INIT_FROM_ACTUATORS.var(), L0.var()], &every(&GEOMETRY)],
     Var::Time,
 );
 /// The whole initial pose.
-pub const POSE: [Var; 14] = concat(
-    &[
-        &[
-            Var::Named("theta0[1]"),
-            Var::Named("theta0[2]"),
-            Var::Named("theta0[3]"),
-        ],
-        &FROM_ACTUATORS,
-    ],
-    Var::Time,
-);
+pub const POSE: [Var; 10] = concat(&[&[THETA0.var()], &FROM_ACTUATORS], Var::Time);
 /// The pose and the initial angular velocity.
-pub const MOTION: [Var; 17] = concat(
-    &[
-        &POSE,
-        &[
-            Var::Named("omega0[1]"),
-            Var::Named("omega0[2]"),
-            Var::Named("omega0[3]"),
-        ],
-    ],
-    Var::Time,
-);
+pub const MOTION: [Var; 11] = concat(&[&POSE, &[OMEGA0.var()]], Var::Time);
 /// The end-stop constants.
 const STOPS: [Var; 4] = [
-    Var::Named("strokeMin"),
-    Var::Named("strokeMax"),
-    Var::Named("endStopStiffness"),
-    Var::Named("endStopDamping"),
+    STROKE_MIN.var(),
+    STROKE_MAX.var(),
+    END_STOP_STIFFNESS.var(),
+    END_STOP_DAMPING.var(),
 ];
 /// Masses and inertias of the kinetic energy.
-const INERTIA: [Var; 10] = [
-    Var::Named("platformInertia[1,1]"),
-    Var::Named("platformInertia[2,2]"),
-    Var::Named("platformInertia[3,3]"),
-    Var::Named("platformInertia[1,2]"),
-    Var::Named("platformInertia[1,3]"),
-    Var::Named("platformInertia[2,3]"),
-    Var::Named("legMass"),
-    Var::Named("legComFraction"),
-    Var::Named("legTransverseInertia"),
-    Var::Named("sliderMass"),
-];
+const INERTIA: [Var; 10] = concat(
+    &[
+        &every(&PLATFORM_INERTIA),
+        &[
+            LEG_MASS.var(),
+            LEG_COM_FRACTION.var(),
+            LEG_TRANSVERSE_INERTIA.var(),
+            SLIDER_MASS.var(),
+        ],
+    ],
+    Var::Time,
+);
 /// What the gravity moment reads (the sliders run on fixed rails: their weight turns
 /// no pose coordinate).
-const GRAVITY: [Var; 5] = [
-    Var::Named("g"),
-    Var::Named("platformMass"),
-    Var::Named("platformCom[1]"),
-    Var::Named("platformCom[2]"),
-    Var::Named("platformCom[3]"),
-];
+const GRAVITY: [Var; 3] = [G.var(), PLATFORM_MASS.var(), PLATFORM_COM.var()];
 /// The commands mapped to actuator forces through J^-T and E^-T at the pose.
-const COMMANDS: [Var; 6] = [
-    Var::Named("torqueCommand[1]"),
-    Var::Named("torqueCommand[2]"),
-    Var::Named("torqueCommand[3]"),
-    Var::Named("generalizedForceCommand[1]"),
-    Var::Named("generalizedForceCommand[2]"),
-    Var::Named("generalizedForceCommand[3]"),
-];
-const OTHER_INPUTS: [Var; 6] = [
-    Var::Named("actuatorForce[1]"),
-    Var::Named("actuatorForce[2]"),
-    Var::Named("actuatorForce[3]"),
-    Var::Named("disturbanceTorque[1]"),
-    Var::Named("disturbanceTorque[2]"),
-    Var::Named("disturbanceTorque[3]"),
-];
+const COMMANDS: [Var; 2] = [TORQUE_COMMAND.var(), GENERALIZED_FORCE_COMMAND.var()];
 
-pub static THETA: [[Var; 12]; 3] = [
-    concat(&[&[Var::Named("theta0[1]")], &FROM_ACTUATORS], Var::Time),
-    concat(&[&[Var::Named("theta0[2]")], &FROM_ACTUATORS], Var::Time),
-    concat(&[&[Var::Named("theta0[3]")], &FROM_ACTUATORS], Var::Time),
+/// Element i of theta (and yaw, pitch, roll): theta0[i] or the pose from l0.
+pub static THETA: [[Var; 10]; 3] = [
+    concat(&[&[THETA0.item(0)], &FROM_ACTUATORS], Var::Time),
+    concat(&[&[THETA0.item(1)], &FROM_ACTUATORS], Var::Time),
+    concat(&[&[THETA0.item(2)], &FROM_ACTUATORS], Var::Time),
 ];
-pub static OMEGA: [[Var; 1]; 3] = [
-    [Var::Named("omega0[1]")],
-    [Var::Named("omega0[2]")],
-    [Var::Named("omega0[3]")],
-];
+pub static OMEGA: [Var; 1] = [OMEGA0.same()];
 // thetaDot = E^-1(thy, thz) omega, row by row (R = Rz Ry Rx: no row reads thx, row 2
 // neither thy nor omega_z).
-static THETA_DOT_1: [Var; 15] = concat(
+static THETA_DOT_1: [Var; 13] = concat(
     &[
         &[
-            Var::Named("theta0[2]"),
-            Var::Named("theta0[3]"),
-            Var::Named("omega0[1]"),
-            Var::Named("omega0[2]"),
+            THETA0.item(1),
+            THETA0.item(2),
+            OMEGA0.item(0),
+            OMEGA0.item(1),
         ],
         &FROM_ACTUATORS,
     ],
     Var::Time,
 );
-static THETA_DOT_2: [Var; 14] = concat(
+static THETA_DOT_2: [Var; 12] = concat(
     &[
-        &[
-            Var::Named("theta0[3]"),
-            Var::Named("omega0[1]"),
-            Var::Named("omega0[2]"),
-        ],
+        &[THETA0.item(2), OMEGA0.item(0), OMEGA0.item(1)],
         &FROM_ACTUATORS,
     ],
     Var::Time,
 );
-static THETA_DOT_3: [Var; 16] = concat(
+static THETA_DOT_3: [Var; 12] = concat(
     &[
-        &[
-            Var::Named("theta0[2]"),
-            Var::Named("theta0[3]"),
-            Var::Named("omega0[1]"),
-            Var::Named("omega0[2]"),
-            Var::Named("omega0[3]"),
-        ],
+        &[THETA0.item(1), THETA0.item(2), OMEGA0.var()],
         &FROM_ACTUATORS,
     ],
     Var::Time,
 );
-pub static ACCELERATION: [Var; 50] = concat(
+pub static ACCELERATION: [Var; 34] = concat(
     &[
         &MOTION,
         &COMMANDS,
-        &OTHER_INPUTS,
+        &[ACTUATOR_FORCE.var(), DISTURBANCE_TORQUE.var()],
         &INERTIA,
         &GRAVITY,
-        &[Var::Named("sliderFriction"), Var::Named("pivotFriction")],
+        &[SLIDER_FRICTION.var(), PIVOT_FRICTION.var()],
         &STOPS,
     ],
     Var::Time,
 );
-pub static FORCE: [[Var; 21]; 3] = [
-    concat(
-        &[&POSE, &[Var::Named("actuatorForce[1]")], &COMMANDS],
-        Var::Time,
-    ),
-    concat(
-        &[&POSE, &[Var::Named("actuatorForce[2]")], &COMMANDS],
-        Var::Time,
-    ),
-    concat(
-        &[&POSE, &[Var::Named("actuatorForce[3]")], &COMMANDS],
-        Var::Time,
-    ),
-];
+/// Element i of force: the pose, actuatorForce[i] and the commands.
+pub static FORCE: [Var; 13] = concat(&[&POSE, &[ACTUATOR_FORCE.same()], &COMMANDS], Var::Time);
 /// A pose from l0 lies within the strokes (forward kinematics refuses any other), where
 /// the stops act on no actuator: l0 moves no stop force or flag.
-const POSE_IN_A_STOP: [Var; 11] = concat(
+const POSE_IN_A_STOP: [Var; 9] = concat(
     &[
-        &[
-            Var::Named("theta0[1]"),
-            Var::Named("theta0[2]"),
-            Var::Named("theta0[3]"),
-            Var::Named("initFromActuators"),
-        ],
-        &GEOMETRY,
+        &[THETA0.var(), INIT_FROM_ACTUATORS.var()],
+        &every(&GEOMETRY),
     ],
     Var::Time,
 );
-pub static STOP_FORCE: [Var; 18] = concat(
-    &[
-        &POSE_IN_A_STOP,
-        &[
-            Var::Named("omega0[1]"),
-            Var::Named("omega0[2]"),
-            Var::Named("omega0[3]"),
-        ],
-        &STOPS,
-    ],
+pub static STOP_FORCE: [Var; 14] = concat(&[&POSE_IN_A_STOP, &[OMEGA0.var()], &STOPS], Var::Time);
+pub static AT_STOP: [Var; 11] = concat(
+    &[&POSE_IN_A_STOP, &[STROKE_MIN.var(), STROKE_MAX.var()]],
     Var::Time,
 );
-pub static AT_STOP: [Var; 13] = concat(
-    &[
-        &POSE_IN_A_STOP,
-        &[Var::Named("strokeMin"), Var::Named("strokeMax")],
-    ],
-    Var::Time,
-);
-pub static KINETIC_ENERGY: [Var; 27] = concat(&[&MOTION, &INERTIA], Var::Time);
-pub static POTENTIAL_ENERGY: [Var; 25] = concat(
+pub static KINETIC_ENERGY: [Var; 21] = concat(&[&MOTION, &INERTIA], Var::Time);
+pub static POTENTIAL_ENERGY: [Var; 19] = concat(
     &[
         &POSE,
         &GRAVITY,
         &[
-            Var::Named("legMass"),
-            Var::Named("legComFraction"),
-            Var::Named("sliderMass"),
-            Var::Named("strokeMin"),
-            Var::Named("strokeMax"),
+            LEG_MASS.var(),
+            LEG_COM_FRACTION.var(),
+            SLIDER_MASS.var(),
+            STROKE_MIN.var(),
+            STROKE_MAX.var(),
+            END_STOP_STIFFNESS.var(),
         ],
-        &[Var::Named("endStopStiffness")],
     ],
     Var::Time,
 );
-static GRAVITY_COMPENSATION: [Var; 21] = concat(
-    &[
-        &POSE,
-        &GRAVITY,
-        &[Var::Named("legMass"), Var::Named("legComFraction")],
-    ],
+static GRAVITY_COMPENSATION: [Var; 15] = concat(
+    &[&POSE, &GRAVITY, &[LEG_MASS.var(), LEG_COM_FRACTION.var()]],
     Var::Time,
 );
 

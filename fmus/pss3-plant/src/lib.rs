@@ -192,9 +192,9 @@ impl Pss3Plant {
             .map_err(|e| {
                 format!("l0: no initial pose for these actuator displacements with {GEOMETRY}: {e}")
             })?;
-            (solution.assembly.euler, "l0")
+            (solution.assembly.euler, parameters::L0.name)
         } else {
-            (self.initial.theta0, "theta0")
+            (self.initial.theta0, parameters::THETA0.name)
         };
         plant
             .initial_state(euler, self.initial.omega0)

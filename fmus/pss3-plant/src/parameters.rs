@@ -15,20 +15,20 @@ use robofmu_fmi::prelude::*;
 
 /// Library parameter names and their FMU names (the geometric ones are equal).
 const NAMES: [(&str, &str); 14] = [
-    ("stroke_min", "strokeMin"),
-    ("stroke_max", "strokeMax"),
-    ("platform_mass", "platformMass"),
-    ("platform_com", "platformCom"),
+    ("stroke_min", STROKE_MIN.name),
+    ("stroke_max", STROKE_MAX.name),
+    ("platform_mass", PLATFORM_MASS.name),
+    ("platform_com", PLATFORM_COM.name),
     ("platform_inertia", "platformInertia"),
-    ("leg_mass", "legMass"),
-    ("leg_com_fraction", "legComFraction"),
-    ("leg_transverse_inertia", "legTransverseInertia"),
-    ("slider_mass", "sliderMass"),
-    ("slider_friction", "sliderFriction"),
-    ("pivot_friction", "pivotFriction"),
-    ("end_stop_stiffness", "endStopStiffness"),
-    ("end_stop_damping", "endStopDamping"),
-    ("gravity", "g"),
+    ("leg_mass", LEG_MASS.name),
+    ("leg_com_fraction", LEG_COM_FRACTION.name),
+    ("leg_transverse_inertia", LEG_TRANSVERSE_INERTIA.name),
+    ("slider_mass", SLIDER_MASS.name),
+    ("slider_friction", SLIDER_FRICTION.name),
+    ("pivot_friction", PIVOT_FRICTION.name),
+    ("end_stop_stiffness", END_STOP_STIFFNESS.name),
+    ("end_stop_damping", END_STOP_DAMPING.name),
+    ("gravity", G.name),
 ];
 
 fn fmu_name(library: &str) -> &str {
@@ -134,141 +134,177 @@ macro_rules! initial {
     };
 }
 
-/// Number of parameter declarations.
-pub const COUNT: usize = 33;
-
-/// The parameters, value references 1001 to 1041.
-pub const PARAMETERS: [Decl; COUNT] = [
-    model::<0>(1001, 1), // lp, ld, gamma, lb, alpha, beta, a
+/// The geometry: lp, ld, gamma, lb, alpha, beta, a.
+pub const GEOMETRY: [Decl; 7] = [
+    model::<0>(1001, 1),
     model::<1>(1002, 1),
     model::<2>(1003, 1),
     model::<3>(1004, 1),
     model::<4>(1005, 1),
     model::<5>(1006, 1),
     model::<6>(1007, 1),
-    own!(
-        "strokeMin",
-        1008,
-        "Lower end of the actuator stroke (lower end stop)",
-        0.002,
-        params.geometry.stroke_min
-    )
-    .unit("m", Some("mm")),
-    own!(
-        "strokeMax",
-        1009,
-        "Upper end of the actuator stroke (upper end stop)",
-        0.152,
-        params.geometry.stroke_max
-    )
-    .unit("m", Some("mm")),
-    model::<7>(1010, 1),  // platformMass
-    model::<17>(1011, 1), // legMass, legComFraction, legTransverseInertia, sliderMass, g
-    model::<18>(1012, 1),
-    model::<19>(1013, 1),
-    model::<20>(1014, 1),
-    model::<21>(1015, 1),
-    model::<22>(1016, 1), // sliderFriction, pivotFriction
-    model::<23>(1017, 1),
-    own!(
-        "endStopStiffness",
-        1018,
-        "Stiffness of the end-stop springs (endStopMode 1: positive)",
-        1e6,
-        params.end_stops.stiffness
-    )
-    .real_range(Some(0.0), None)
-    .unit("N/m", None),
-    own!(
-        "endStopDamping",
-        1019,
-        "Damping of the end stops (endStopMode 1); the stop pushes, never pulls",
-        2000.0,
-        params.end_stops.damping
-    )
-    .real_range(Some(0.0), None)
-    .unit("N.s/m", None),
-    own!(
-        "tolerance",
-        1020,
-        "Relative and absolute tolerance of the co-simulation integrator \
-         (Dormand-Prince 5(4)), positive",
-        1e-8,
-        settings.tolerance
-    )
-    .real_range(Some(0.0), None),
-    own!(
-        "maxStep",
-        1021,
-        "Largest internal step of the co-simulation integrator, positive",
-        1e-3,
-        settings.max_step
-    )
-    .real_range(Some(0.0), None)
-    .unit("s", None),
-    model::<11>(1022, 1), // platformInertia[1,1] ... [2,3]
+];
+pub const STROKE_MIN: Decl = own!(
+    "strokeMin",
+    1008,
+    "Lower end of the actuator stroke (lower end stop)",
+    0.002,
+    params.geometry.stroke_min
+)
+.unit("m", Some("mm"));
+pub const STROKE_MAX: Decl = own!(
+    "strokeMax",
+    1009,
+    "Upper end of the actuator stroke (upper end stop)",
+    0.152,
+    params.geometry.stroke_max
+)
+.unit("m", Some("mm"));
+pub const PLATFORM_MASS: Decl = model::<7>(1010, 1);
+pub const LEG_MASS: Decl = model::<17>(1011, 1);
+pub const LEG_COM_FRACTION: Decl = model::<18>(1012, 1);
+pub const LEG_TRANSVERSE_INERTIA: Decl = model::<19>(1013, 1);
+pub const SLIDER_MASS: Decl = model::<20>(1014, 1);
+pub const G: Decl = model::<21>(1015, 1);
+pub const SLIDER_FRICTION: Decl = model::<22>(1016, 1);
+pub const PIVOT_FRICTION: Decl = model::<23>(1017, 1);
+pub const END_STOP_STIFFNESS: Decl = own!(
+    "endStopStiffness",
+    1018,
+    "Stiffness of the end-stop springs (endStopMode 1: positive)",
+    1e6,
+    params.end_stops.stiffness
+)
+.real_range(Some(0.0), None)
+.unit("N/m", None);
+pub const END_STOP_DAMPING: Decl = own!(
+    "endStopDamping",
+    1019,
+    "Damping of the end stops (endStopMode 1); the stop pushes, never pulls",
+    2000.0,
+    params.end_stops.damping
+)
+.real_range(Some(0.0), None)
+.unit("N.s/m", None);
+const TOLERANCE: Decl = own!(
+    "tolerance",
+    1020,
+    "Relative and absolute tolerance of the co-simulation integrator \
+     (Dormand-Prince 5(4)), positive",
+    1e-8,
+    settings.tolerance
+)
+.real_range(Some(0.0), None);
+const MAX_STEP: Decl = own!(
+    "maxStep",
+    1021,
+    "Largest internal step of the co-simulation integrator, positive",
+    1e-3,
+    settings.max_step
+)
+.real_range(Some(0.0), None)
+.unit("s", None);
+/// platformInertia[1,1], [2,2], [3,3], [1,2], [1,3], [2,3].
+pub const PLATFORM_INERTIA: [Decl; 6] = [
+    model::<11>(1022, 1),
     model::<12>(1023, 1),
     model::<13>(1024, 1),
     model::<14>(1025, 1),
     model::<15>(1026, 1),
     model::<16>(1027, 1),
-    model::<8>(1028, 3), // platformCom[1..3]
-    initial!(
-        "theta0",
-        1031,
-        "Initial Euler angles (thx, thy, thz), used unless initFromActuators",
-        &START_POSE,
-        theta0
-    )
-    .unit("rad", Some("deg")),
-    initial!(
-        "l0",
-        1034,
-        "Initial actuator displacements, used when initFromActuators",
-        &[START_DISPLACEMENT],
-        l0
-    )
-    .unit("m", Some("mm")),
-    initial!(
-        "omega0",
-        1037,
-        "Initial angular velocity of the platform in {A}",
-        &[0.0],
-        omega0
-    )
-    .unit("rad/s", Some("deg/s")),
-    Decl::boolean(
-        "initFromActuators",
-        "Initial pose from l0 by forward kinematics instead of theta0",
-        |m, _| m.initial.from_actuators,
-    )
-    .at(1040)
-    .set_boolean(|m, _, v| {
-        m.initial.from_actuators = v;
-        Ok(())
-    })
-    .parameter(Variability::Fixed)
-    .start_boolean(&[false]),
-    Decl::integer(
-        "endStopMode",
-        "End stops: 1 = spring-damper (contacts flagged in atStop), 2 = error (a step \
-         that leaves the stroke is discarded)",
-        |m, _| mode_code(m.params.end_stops.mode),
-    )
-    .at(1041)
-    .set_integer(|m, _, v| {
-        m.params.end_stops.mode = if v == 2 {
-            EndStopMode::Error
-        } else {
-            EndStopMode::Spring
-        };
-        m.rebuild();
-        Ok(())
-    })
-    .parameter(Variability::Fixed)
-    .integer_range(1, 2)
-    .start_integer(&[1]),
 ];
+pub const PLATFORM_COM: Decl = model::<8>(1028, 3);
+pub const THETA0: Decl = initial!(
+    "theta0",
+    1031,
+    "Initial Euler angles (thx, thy, thz), used unless initFromActuators",
+    &START_POSE,
+    theta0
+)
+.unit("rad", Some("deg"));
+pub const L0: Decl = initial!(
+    "l0",
+    1034,
+    "Initial actuator displacements, used when initFromActuators",
+    &[START_DISPLACEMENT],
+    l0
+)
+.unit("m", Some("mm"));
+pub const OMEGA0: Decl = initial!(
+    "omega0",
+    1037,
+    "Initial angular velocity of the platform in {A}",
+    &[0.0],
+    omega0
+)
+.unit("rad/s", Some("deg/s"));
+pub const INIT_FROM_ACTUATORS: Decl = Decl::boolean(
+    "initFromActuators",
+    "Initial pose from l0 by forward kinematics instead of theta0",
+    |m, _| m.initial.from_actuators,
+)
+.at(1040)
+.set_boolean(|m, _, v| {
+    m.initial.from_actuators = v;
+    Ok(())
+})
+.parameter(Variability::Fixed)
+.start_boolean(&[false]);
+const END_STOP_MODE: Decl = Decl::integer(
+    "endStopMode",
+    "End stops: 1 = spring-damper (contacts flagged in atStop), 2 = error (a step \
+     that leaves the stroke is discarded)",
+    |m, _| mode_code(m.params.end_stops.mode),
+)
+.at(1041)
+.set_integer(|m, _, v| {
+    m.params.end_stops.mode = if v == 2 {
+        EndStopMode::Error
+    } else {
+        EndStopMode::Spring
+    };
+    m.rebuild();
+    Ok(())
+})
+.parameter(Variability::Fixed)
+.integer_range(1, 2)
+.start_integer(&[1]);
+
+/// Number of parameter declarations.
+pub const COUNT: usize = 33;
+
+/// The parameters, value references 1001 to 1041.
+pub const PARAMETERS: [Decl; COUNT] = concat(
+    &[
+        &GEOMETRY,
+        &[
+            STROKE_MIN,
+            STROKE_MAX,
+            PLATFORM_MASS,
+            LEG_MASS,
+            LEG_COM_FRACTION,
+            LEG_TRANSVERSE_INERTIA,
+            SLIDER_MASS,
+            G,
+            SLIDER_FRICTION,
+            PIVOT_FRICTION,
+            END_STOP_STIFFNESS,
+            END_STOP_DAMPING,
+            TOLERANCE,
+            MAX_STEP,
+        ],
+        &PLATFORM_INERTIA,
+        &[
+            PLATFORM_COM,
+            THETA0,
+            L0,
+            OMEGA0,
+            INIT_FROM_ACTUATORS,
+            END_STOP_MODE,
+        ],
+    ],
+    STROKE_MIN,
+);
 
 fn mode_code(mode: EndStopMode) -> i32 {
     match mode {

@@ -12,7 +12,10 @@
 //!   of the output itself (steps below).
 
 use super::Pss3Plant;
-use super::variables::real_getter;
+use super::variables::{
+    ACTUATOR_FORCE, DER_OMEGA, DER_THETA, DISTURBANCE_TORQUE, GENERALIZED_FORCE_COMMAND, OMEGA,
+    OMEGA_DOT, PITCH, ROLL, THETA, THETA_DOT, TORQUE_COMMAND, YAW, real_getter,
+};
 use nalgebra::Vector3;
 use robofmu_dynamics::pss3::dynamics::{Linearization, PlantInputs, PlantState};
 use robofmu_dynamics::pss3::rotation::moment_from_generalized_force;
@@ -33,17 +36,22 @@ enum Known {
     Input(usize),
 }
 
+/// The states in the order of `Known::State`.
+const STATES: [Declaration<Pss3Plant>; 2] = [THETA, OMEGA];
+/// The inputs in the order of `Known::Input`.
+const INPUTS: [Declaration<Pss3Plant>; 4] = [
+    ACTUATOR_FORCE,
+    DISTURBANCE_TORQUE,
+    TORQUE_COMMAND,
+    GENERALIZED_FORCE_COMMAND,
+];
+
 fn known(e: Element) -> Option<Known> {
-    let i = e.index;
-    Some(match e.name {
-        "theta" => Known::State(i),
-        "omega" => Known::State(3 + i),
-        "actuatorForce" => Known::Input(i),
-        "disturbanceTorque" => Known::Input(3 + i),
-        "torqueCommand" => Known::Input(6 + i),
-        "generalizedForceCommand" => Known::Input(9 + i),
-        _ => return None,
-    })
+    if let Some(k) = STATES.iter().position(|d| d.is(e)) {
+        return Some(Known::State(3 * k + e.index));
+    }
+    let k = INPUTS.iter().position(|d| d.is(e))?;
+    Some(Known::Input(3 * k + e.index))
 }
 
 /// dvUnknown = J dvKnown for the unknowns and knowns given (see the module doc).
@@ -67,32 +75,36 @@ pub fn directional_derivative(
     let mut by_differences = Vec::new();
     for (o, &unknown) in out.iter_mut().zip(unknowns) {
         let i = unknown.index;
-        let row = match unknown.name {
-            "der(theta)" | "thetaDot" => Some(i),
-            "der(omega)" | "omegaDot" => Some(3 + i),
-            _ => None,
+        let row = if DER_THETA.is(unknown) || THETA_DOT.is(unknown) {
+            Some(i)
+        } else if DER_OMEGA.is(unknown) || OMEGA_DOT.is(unknown) {
+            Some(3 + i)
+        } else {
+            None
         };
-        *o = match (unknown.name, row) {
-            (_, Some(row)) => {
-                if linearization.is_none() {
-                    linearization = Some(linearize(m)?);
-                }
-                let (state, lin) = linearization.as_ref().expect("just computed");
-                let mut sum = 0.0;
-                for &(k, s) in &seeded {
-                    sum += rate_partial(state, lin, row, k)? * s;
-                }
-                sum
+        *o = if let Some(row) = row {
+            if linearization.is_none() {
+                linearization = Some(linearize(m)?);
             }
-            ("theta", _) => along(&seeded, |k| identity(Known::State(i), k)),
-            ("omega", _) => along(&seeded, |k| identity(Known::State(3 + i), k)),
-            ("yaw", _) => along(&seeded, |k| identity(Known::State(0), k)),
-            ("pitch", _) => -along(&seeded, |k| identity(Known::State(1), k)),
-            ("roll", _) => along(&seeded, |k| identity(Known::State(2), k)),
-            _ => {
-                by_differences.push(unknown);
-                0.0
+            let (state, lin) = linearization.as_ref().expect("just computed");
+            let mut sum = 0.0;
+            for &(k, s) in &seeded {
+                sum += rate_partial(state, lin, row, k)? * s;
             }
+            sum
+        } else if THETA.is(unknown) {
+            along(&seeded, |k| identity(Known::State(i), k))
+        } else if OMEGA.is(unknown) {
+            along(&seeded, |k| identity(Known::State(3 + i), k))
+        } else if YAW.is(unknown) {
+            along(&seeded, |k| identity(Known::State(0), k))
+        } else if PITCH.is(unknown) {
+            -along(&seeded, |k| identity(Known::State(1), k))
+        } else if ROLL.is(unknown) {
+            along(&seeded, |k| identity(Known::State(2), k))
+        } else {
+            by_differences.push(unknown);
+            0.0
         };
     }
     if by_differences.is_empty() {

@@ -466,36 +466,6 @@ pub const fn continuous_states<M>(declarations: &[Declaration<M>]) -> usize {
     n
 }
 
-/// A dependency list in the dependent element's own index: for each declaration, the
-/// element of that index of an array ([`Declaration::same`]) or the scalar itself
-/// ([`Declaration::var`]); `u[c]` on `[KP, SETPOINT]` depends on `Kp[c]` and
-/// `setpoint[c]`.
-pub const fn same<M, const N: usize>(declarations: [Declaration<M>; N]) -> [Var; N] {
-    let mut vars = [Var::Time; N];
-    let mut k = 0;
-    while k < N {
-        vars[k] = match declarations[k].length {
-            Some(_) => declarations[k].same(),
-            None => declarations[k].var(),
-        };
-        k += 1;
-    }
-    vars
-}
-
-/// [`Var::Time`] and then `vars`: the list of an initial unknown that depends on time
-/// (`N` is `M + 1`, checked by the compiler in a `static`).
-pub const fn with_time<const M: usize, const N: usize>(vars: [Var; M]) -> [Var; N] {
-    assert!(N == M + 1, "with_time adds one variable");
-    let mut out = [Var::Time; N];
-    let mut k = 0;
-    while k < M {
-        out[k + 1] = vars[k];
-        k += 1;
-    }
-    out
-}
-
 /// maxOutputDerivativeOrder of a table: the highest order its output-derivative hooks
 /// answer (0: none), taken from the hooks' declarations so that the two cannot disagree.
 pub const fn max_output_derivative_order<M>(declarations: &[Declaration<M>]) -> u32 {

@@ -5,10 +5,10 @@
 use super::flatten::flatten;
 use super::log::Log;
 use super::model::{Model, StepOutcome};
-use super::shared::{downcast, shared};
+use super::shared::Shared;
 use super::value_check::{self, Value, wrong_type};
 use super::variables::{Initial, Kind, Variable, VariableType, find};
-use std::any::Any;
+use crate::fmi3::table::Table3;
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
 /// Does not log: the model's checks on a copy are not the instance's.
@@ -140,6 +140,7 @@ fn by_value_reference<M>(table: Vec<Variable<M>>) -> Vec<Variable<M>> {
 }
 
 /// The variable with value reference `vr` in a sorted table.
+#[inline]
 pub fn variable<M>(table: &[Variable<M>], vr: u32) -> Result<&Variable<M>, String> {
     find(table, vr).ok_or_else(|| format!("unknown value reference {vr}"))
 }
@@ -158,6 +159,31 @@ pub fn calculated_flags<M>(table: &[Variable<M>]) -> Vec<bool> {
         .collect()
 }
 
+/// A model whose index has a cell of its own in this library: implemented by
+/// [`share_index!`](crate::share_index) for the type [`export_fmu!`](crate::export_fmu)
+/// exports (or a test names).
+pub trait Library: Model {
+    /// The model's index cell (a `static` of the FMU crate).
+    fn index() -> &'static Shared<Index<Self>>;
+}
+
+/// Defines the [`Library`] cell of a model type (called by
+/// [`export_fmu!`](crate::export_fmu); a test that instantiates a model in process
+/// calls it once per model type).
+#[macro_export]
+macro_rules! share_index {
+    ($model:ty) => {
+        impl $crate::core::instance::Library for $model {
+            fn index()
+            -> &'static $crate::core::shared::Shared<$crate::core::instance::Index<$model>> {
+                static INDEX: $crate::core::shared::Shared<$crate::core::instance::Index<$model>> =
+                    $crate::core::shared::Shared::new();
+                &INDEX
+            }
+        }
+    };
+}
+
 /// What lookups by value reference need: the FMI 2.0 scalars sorted by value
 /// reference and, per scalar, whether reading it needs the computed values; and the
 /// model as instantiation makes it, which every instance and reset clones.
@@ -169,16 +195,29 @@ pub struct Index<M: 'static> {
     /// setters of every start value cost about 1,700 instructions for the PID). In a
     /// Mutex because a model need not be `Sync` (the plant keeps a `RefCell` cache).
     fresh: Mutex<M>,
-    /// The two views a front-end derives from the table (FMI 3.0: the array view and
-    /// the scalar-only view), each built the first time it is asked for.
-    derived: [OnceLock<Arc<dyn Any + Send + Sync>>; 2],
+    /// FMI 3.0's two views of the table (the array view and the scalar-only view),
+    /// each built the first time an FMI 3.0 instance asks for it.
+    arrays: OnceLock<Arc<Table3>>,
+    scalars: OnceLock<Arc<Table3>>,
+}
+
+/// Where an instantiation takes the model's index from: [`Index::shared`] (the exported
+/// C functions) or [`Index::own`] (an in-process host calling the generic functions).
+pub type IndexOf<M> = fn() -> Result<Arc<Index<M>>, String>;
+
+impl<M: Library> Index<M> {
+    /// The index of model M: built once per loaded library (its declarations are
+    /// static, so every instance has the same), in M's own cell.
+    pub fn shared() -> Result<Arc<Self>, String> {
+        M::index().get(Self::build)
+    }
 }
 
 impl<M: Model> Index<M> {
-    /// The index of model M: built once per loaded library (its declarations are
-    /// static, so every instance has the same).
-    pub fn of() -> Result<Arc<Self>, String> {
-        shared::<M, Self>(Self::build)
+    /// An index of its own: what an in-process host gets, which calls the generic
+    /// instantiate functions with a model type that has no library cell.
+    pub fn own() -> Result<Arc<Self>, String> {
+        Self::build().map(Arc::new)
     }
 
     fn build() -> Result<Self, String> {
@@ -186,27 +225,26 @@ impl<M: Model> Index<M> {
         Ok(Index {
             calculated: calculated_flags(&table),
             fresh: Mutex::new(model_with_start_values::<M>(&table)?),
-            derived: [OnceLock::new(), OnceLock::new()],
+            arrays: OnceLock::new(),
+            scalars: OnceLock::new(),
             table,
         })
     }
 
-    /// View `slot` (0 or 1; one type per slot) derived from the table by `build`: built
-    /// once and shared like the index (an error is returned, not kept).
-    pub fn derived<T: Send + Sync + 'static>(
+    /// FMI 3.0's scalar-only view when `scalar`, else its array view, built from the
+    /// table by `build` the first time it is asked for (an error is returned, not
+    /// kept).
+    pub fn view3(
         &self,
-        slot: usize,
-        build: impl FnOnce(&[Variable<M>]) -> Result<T, String>,
-    ) -> Result<Arc<T>, String> {
-        let cell = &self.derived[slot];
-        let view = match cell.get() {
-            Some(view) => view,
-            None => {
-                let built: Arc<dyn Any + Send + Sync> = Arc::new(build(&self.table)?);
-                cell.get_or_init(|| built)
-            }
-        };
-        Ok(downcast(Arc::clone(view)))
+        scalar: bool,
+        build: impl FnOnce(&[Variable<M>]) -> Result<Table3, String>,
+    ) -> Result<Arc<Table3>, String> {
+        let cell = if scalar { &self.scalars } else { &self.arrays };
+        if let Some(view) = cell.get() {
+            return Ok(Arc::clone(view));
+        }
+        let built = Arc::new(build(&self.table)?);
+        Ok(Arc::clone(cell.get_or_init(|| built)))
     }
 
     /// The model with every start value applied (a clone of the one built once).
@@ -226,9 +264,9 @@ pub use super::value_check::MAX_MAGNITUDE;
 pub const TIME_MATCH: f64 = 1e-9;
 
 impl<M: Model> Instance<M> {
-    /// The model with its start values, at the default experiment's start time.
-    pub fn new() -> Result<Self, String> {
-        let index = Index::<M>::of()?;
+    /// The model with its start values (those of `index`), at the default experiment's
+    /// start time.
+    pub fn new(index: Arc<Index<M>>) -> Result<Self, String> {
         let mut model = index.fresh_model();
         let time = M::info().default_experiment.start_time;
         model.set_time(time);
@@ -309,9 +347,14 @@ impl<M: Model> Instance<M> {
     /// when one of them cannot be evaluated here (a calculated one where the model
     /// cannot be evaluated, or any Real that is not finite: the front-end returns
     /// Discard); Ok(None) when all can be read.
-    pub fn prepare_read(&mut self, vrs: &[u32]) -> Result<Option<String>, String> {
+    /// The value references come as an iterator (FMI 3.0: the elements of its arrays,
+    /// not collected).
+    pub fn prepare_read(
+        &mut self,
+        vrs: impl IntoIterator<Item = u32>,
+    ) -> Result<Option<String>, String> {
         let mut needs_values = false;
-        for &vr in vrs {
+        for vr in vrs {
             let table = &self.index.table;
             let at = table.binary_search_by_key(&vr, |v| v.value_reference);
             let at = at.map_err(|_| format!("unknown value reference {vr}"))?;
@@ -438,6 +481,7 @@ impl<M: Model> Instance<M> {
     }
 
     /// The variable `vr`, checked to be of type `wanted`.
+    #[inline]
     fn typed(&self, vr: u32, wanted: VariableType) -> Result<&Variable<M>, String> {
         let v = variable(&self.index.table, vr)?;
         if v.variable_type() == wanted {
@@ -448,6 +492,7 @@ impl<M: Model> Instance<M> {
     }
 
     /// Reads a Real (after `prepare_read`, so computed values are current).
+    #[inline(always)]
     pub fn get_real(&self, vr: u32) -> Result<f64, String> {
         let v = self.typed(vr, VariableType::Real)?;
         let Kind::Real { get, .. } = &v.kind else {
@@ -461,6 +506,7 @@ impl<M: Model> Instance<M> {
         }
     }
 
+    #[inline(always)]
     pub fn get_integer(&self, vr: u32) -> Result<i32, String> {
         match &self.typed(vr, VariableType::Integer)?.kind {
             Kind::Integer { get, .. } => Ok(get.call(&self.model)),
@@ -468,6 +514,7 @@ impl<M: Model> Instance<M> {
         }
     }
 
+    #[inline(always)]
     pub fn get_boolean(&self, vr: u32) -> Result<bool, String> {
         match &self.typed(vr, VariableType::Boolean)?.kind {
             Kind::Boolean { get, .. } => Ok(get.call(&self.model)),

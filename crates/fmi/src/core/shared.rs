@@ -3,21 +3,29 @@
 //! the first instantiation builds them and later ones take a reference (an atomic
 //! increment instead of a table per instance).
 //!
-//! Nothing here outlives the library: the first table registers a release function with
+//! Each model type has its own typed `static` [`Shared`] cell, defined for it by
+//! [`share_index!`](crate::share_index) (which [`export_fmu!`](crate::export_fmu)
+//! calls) as its `Library` implementation (`core/instance.rs`): no type-erased
+//! table, no lookup by type.
+//!
+//! Nothing here outlives the library: a cell that is filled registers its release with
 //! `__cxa_atexit` under this library's `__dso_handle`, which the C runtime calls when
 //! the library is unloaded (dlclose) or the process exits, so a dlopen / dlclose cycle
 //! leaves nothing behind and valgrind finds nothing still reachable. An instance still
 //! alive at that point keeps its own reference (its table is freed with it).
 
-use std::any::{Any, TypeId};
 use std::ffi::c_void;
 use std::sync::{Arc, Mutex, PoisonError};
 
-type Entry = (TypeId, Arc<dyn Any + Send + Sync>);
+/// One table of this library, built the first time it is asked for and dropped when
+/// the library is unloaded.
+pub struct Shared<T>(Mutex<Option<Arc<T>>>);
 
-/// The tables of this library, by key type. A handful at most (one model per library:
-/// its index and its two FMI 3.0 views), searched linearly.
-static TABLES: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
+impl<T> Default for Shared<T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
 
 unsafe extern "C" {
     /// This library's handle for `__cxa_atexit` (defined by the C runtime's crtbegin).
@@ -29,49 +37,34 @@ unsafe extern "C" {
     ) -> libc::c_int;
 }
 
-/// The table of key `K`, built by `build` the first time it is asked for in this
-/// library (an error is returned, not kept: the next call builds again).
-pub fn shared<K: 'static, T: Send + Sync + 'static>(
-    build: impl FnOnce() -> Result<T, String>,
-) -> Result<Arc<T>, String> {
-    let key = TypeId::of::<K>();
-    if let Some(table) = find(key) {
-        return Ok(downcast(table));
+impl<T> Shared<T> {
+    pub const fn new() -> Self {
+        Shared(Mutex::new(None))
     }
-    let built: Arc<dyn Any + Send + Sync> = Arc::new(build()?);
-    let mut tables = TABLES.lock().unwrap_or_else(PoisonError::into_inner);
-    // Another thread may have built it meanwhile: keep the first one.
-    if let Some((_, table)) = tables.iter().find(|(k, _)| *k == key) {
-        return Ok(downcast(Arc::clone(table)));
-    }
-    if tables.is_empty() {
-        // SAFETY: `release` is a function of this library, registered under this
-        // library's handle, so the C runtime calls it before unmapping the library.
-        unsafe { __cxa_atexit(release, std::ptr::null_mut(), &raw const __dso_handle) };
-    }
-    tables.push((key, Arc::clone(&built)));
-    Ok(downcast(built))
-}
 
-fn find(key: TypeId) -> Option<Arc<dyn Any + Send + Sync>> {
-    let tables = TABLES.lock().unwrap_or_else(PoisonError::into_inner);
-    tables
-        .iter()
-        .find(|(k, _)| *k == key)
-        .map(|(_, t)| Arc::clone(t))
-}
-
-/// The table as its type (one type per key: the key types are private to their
-/// callers, each used with one table type).
-pub(crate) fn downcast<T: Send + Sync + 'static>(table: Arc<dyn Any + Send + Sync>) -> Arc<T> {
-    match table.downcast::<T>() {
-        Ok(table) => table,
-        Err(_) => unreachable!("a key type is used with one table type"),
+    /// The table, built by `build` the first time it is asked for in this library (an
+    /// error is returned, not kept: the next call builds again). Built under the lock,
+    /// so concurrent first instantiations build it once.
+    pub fn get(&'static self, build: impl FnOnce() -> Result<T, String>) -> Result<Arc<T>, String> {
+        let mut slot = self.0.lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some(table) = &*slot {
+            return Ok(Arc::clone(table));
+        }
+        let built = Arc::new(build()?);
+        *slot = Some(Arc::clone(&built));
+        let arg = self as *const Self as *mut c_void;
+        // SAFETY: `release::<T>` is a function of this library, registered under this
+        // library's handle, so the C runtime calls it before unmapping the library;
+        // `arg` is this `static` cell, alive as long as the library is.
+        unsafe { __cxa_atexit(release::<T>, arg, &raw const __dso_handle) };
+        Ok(built)
     }
 }
 
-/// Drops this library's tables (at dlclose or exit).
-extern "C" fn release(_: *mut c_void) {
-    let tables = std::mem::take(&mut *TABLES.lock().unwrap_or_else(PoisonError::into_inner));
-    drop(tables);
+/// Drops the table of the cell `cell` (a `&'static Shared<T>`; at dlclose or exit).
+extern "C" fn release<T>(cell: *mut c_void) {
+    // SAFETY: registered by `Shared::get` with its own `'static` address.
+    let cell = unsafe { &*(cell as *const Shared<T>) };
+    let table = cell.0.lock().unwrap_or_else(PoisonError::into_inner).take();
+    drop(table);
 }

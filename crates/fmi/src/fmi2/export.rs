@@ -3,7 +3,8 @@
 //! `robofmu_fmi::fmi2::api` for the given model type.
 
 /// Exports the FMI 2.0 binary interface of a model type implementing
-/// `robofmu_fmi::fmi2::Model`. Use once per cdylib crate.
+/// `robofmu_fmi::core::Model` and, through [`share_index!`](crate::share_index),
+/// `Library` (as [`export_fmu!`](crate::export_fmu) does). Use once per cdylib crate.
 #[macro_export]
 macro_rules! export_fmi2 {
     ($model:ty) => {
@@ -43,8 +44,15 @@ macro_rules! export_fmi2 {
                 logging_on: Fmi2Boolean,
             ) -> Fmi2Component {
                 unsafe {
-                    api::instantiate::<M>(
-                        name, kind, guid, resources, functions, visible, logging_on,
+                    api::instantiate_with::<M>(
+                        $crate::core::instance::Index::shared,
+                        name,
+                        kind,
+                        guid,
+                        resources,
+                        functions,
+                        visible,
+                        logging_on,
                     )
                 }
             }

@@ -9,14 +9,19 @@ use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
 use crate::core::variables::{Causality, Initial, Variability, Variable, VariableType};
+use std::sync::Arc;
 
 /// Everything an FMI 2.0 instance owns (nothing beyond the shared fields). Instances
 /// share no mutable state.
 pub type Instance<M> = FmuInstance<Fmi2, M>;
 
 impl<M: Model> FmuInstance<Fmi2, M> {
-    pub fn new(interface: Interface, log: Logger) -> Result<Self, String> {
-        let core = core_instance::Instance::new()?;
+    pub fn new(
+        interface: Interface,
+        log: Logger,
+        index: Arc<core_instance::Index<M>>,
+    ) -> Result<Self, String> {
+        let core = core_instance::Instance::new(index)?;
         Ok(FmuInstance::with(interface, log, (), core))
     }
 

@@ -3,7 +3,10 @@
 //! version-neutral [`core`](crate::core).
 //!
 //! A model implements [`core::Model`](crate::core::Model); an FMU crate calls
-//! [`export_fmi2!`](crate::export_fmi2) once to get the C functions. modelDescription.xml
+//! [`export_fmu!`](crate::export_fmu) once, which expands to
+//! [`export_fmi2!`](crate::export_fmi2) (the C functions), `export_fmi3!` and
+//! [`share_index!`](crate::share_index) (the model's index cell the instantiate
+//! functions take the index from). modelDescription.xml
 //! is generated from the same variable table by the build crate (`robofmu-fmi-build`).
 
 pub mod api;

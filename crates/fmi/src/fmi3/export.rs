@@ -5,7 +5,8 @@
 //! the fmi2* ones of `export_fmi2!`, so one cdylib exports both.
 
 /// Exports the FMI 3.0 binary interface of a model type implementing
-/// `robofmu_fmi::core::Model`. Use once per cdylib crate.
+/// `robofmu_fmi::core::Model` and, through [`share_index!`](crate::share_index),
+/// `Library` (as [`export_fmu!`](crate::export_fmu) does). Use once per cdylib crate.
 #[macro_export]
 macro_rules! export_fmi3 {
     ($model:ty) => {
@@ -42,7 +43,7 @@ macro_rules! export_fmi3 {
                 log_message: Option<Fmi3LogMessageCallback>,
             ) -> Fmi3Instance {
                 unsafe {
-                    api::instantiate::<M>(api::Instantiation {
+                    api::instantiate_with::<M>($crate::core::instance::Index::shared, api::Instantiation {
                         function: "fmi3InstantiateModelExchange",
                         instance_name,
                         token,
@@ -51,7 +52,7 @@ macro_rules! export_fmi3 {
                         log_message,
                         interface: $crate::fmi3::mode::Interface::ModelExchange,
                         intermediate_update: None,
-                    })
+                    }, (std::ptr::null(), 0))
                 }
             }
             #[unsafe(no_mangle)]
@@ -70,7 +71,7 @@ macro_rules! export_fmi3 {
                 intermediate_update: Option<Fmi3IntermediateUpdateCallback>,
             ) -> Fmi3Instance {
                 unsafe {
-                    api::instantiate_requiring::<M>(api::Instantiation {
+                    api::instantiate_with::<M>($crate::core::instance::Index::shared, api::Instantiation {
                         function: "fmi3InstantiateCoSimulation",
                         instance_name,
                         token,

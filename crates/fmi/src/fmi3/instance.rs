@@ -14,7 +14,7 @@ use crate::core::entry;
 use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
-use crate::core::variables::{Causality, Initial, Variability, Variable};
+use crate::core::variables::{Causality, Initial, Variability};
 
 use std::sync::Arc;
 
@@ -31,8 +31,9 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         intermediate_update: Option<IntermediateUpdate>,
         scalar: bool,
         check: impl FnOnce(&Table3, usize) -> Result<(), String>,
+        index: Arc<core_instance::Index<M>>,
     ) -> Result<Self, String> {
-        let core = core_instance::Instance::new()?;
+        let core = core_instance::Instance::new(index)?;
         let table = views::<M>(core.index(), scalar)?;
         check(&table, core.table().len())?;
         let extra = Fmi3Extra {
@@ -55,8 +56,8 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 v.name
             ));
         }
-        let elements: Vec<u32> = variables.iter().flat_map(|v| v.elements()).collect();
-        if let Some(reason) = self.core.prepare_read(&elements)? {
+        let elements = variables.iter().flat_map(|v| v.elements());
+        if let Some(reason) = self.core.prepare_read(elements)? {
             return Ok(Some(reason));
         }
         let indicators = variables
@@ -79,6 +80,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     }
 
     /// Reads the Float64 variable `v` into `out` (its size).
+    #[inline]
     pub fn get_float64(&self, v: &Variable3, out: &mut [f64]) -> Result<(), String> {
         match &v.source {
             Source::Time => out[0] = self.core.time,
@@ -99,6 +101,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         Ok(())
     }
 
+    #[inline]
     pub fn get_int32(&self, v: &Variable3, out: &mut [i32]) -> Result<(), String> {
         for (o, e) in out.iter_mut().zip(v.elements()) {
             *o = self.core.get_integer(e)?;
@@ -106,6 +109,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         Ok(())
     }
 
+    #[inline]
     pub fn get_boolean(&self, v: &Variable3, out: &mut [bool]) -> Result<(), String> {
         for (o, e) in out.iter_mut().zip(v.elements()) {
             *o = self.core.get_boolean(e)?;
@@ -169,16 +173,12 @@ impl<M: Model> FmuInstance<Fmi3, M> {
 }
 
 /// The FMI 3.0 view (array or scalar-only) of model M's table: derived once from the
-/// index shared by the instances of the model in this library (`Index::derived`).
+/// index shared by the instances of the model in this library (`Index::view3`).
 fn views<M: Model>(index: &core_instance::Index<M>, scalar: bool) -> Result<Arc<Table3>, String> {
-    let arrays = |table: &[Variable<M>]| view::<M>(table);
-    const ARRAY_VIEW: usize = 0;
-    const SCALAR_VIEW: usize = 1;
     if scalar {
-        index.derived(SCALAR_VIEW, |table| {
-            super::scalar::view(table, &arrays(table)?)
-        })
+        let arrays = views(index, false)?;
+        index.view3(true, |table| super::scalar::view(table, &arrays))
     } else {
-        index.derived(ARRAY_VIEW, arrays)
+        index.view3(false, view::<M>)
     }
 }

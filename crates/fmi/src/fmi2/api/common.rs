@@ -4,6 +4,7 @@
 use super::with_instance;
 use crate::core::entry;
 use crate::core::frontend::log_categories;
+use crate::core::instance::{Index, IndexOf};
 use crate::core::model::Model;
 use crate::ffi::text;
 use crate::fmi2::instance::Instance;
@@ -20,7 +21,43 @@ pub fn get_version() -> *const c_char {
     c"2.0".as_ptr()
 }
 
+/// fmi2Instantiate for an in-process host: the instance gets an index of its own
+/// ([`instantiate_with`] and [`Index::own`]).
+///
+/// # Safety
+/// As [`instantiate_with`].
 pub unsafe fn instantiate<M: Model>(
+    instance_name: Fmi2String,
+    fmu_type: c_int,
+    guid: Fmi2String,
+    resource_location: Fmi2String,
+    functions: *const Fmi2CallbackFunctions,
+    visible: Fmi2Boolean,
+    logging_on: Fmi2Boolean,
+) -> Fmi2Component {
+    // SAFETY: by the contract above.
+    unsafe {
+        instantiate_with::<M>(
+            Index::own,
+            instance_name,
+            fmu_type,
+            guid,
+            resource_location,
+            functions,
+            visible,
+            logging_on,
+        )
+    }
+}
+
+/// fmi2Instantiate with the model's index taken from `index` (the exported symbol
+/// passes [`Index::shared`]).
+///
+/// # Safety
+/// The host passes NUL-terminated strings or null and a valid callback table or null.
+#[allow(clippy::too_many_arguments)]
+pub unsafe fn instantiate_with<M: Model>(
+    index: IndexOf<M>,
     instance_name: Fmi2String,
     fmu_type: c_int,
     guid: Fmi2String,
@@ -83,7 +120,7 @@ pub unsafe fn instantiate<M: Model>(
                     ));
                 }
             };
-            Instance::<M>::new(interface, log)
+            Instance::<M>::new(interface, log, index()?)
         },
     )
 }

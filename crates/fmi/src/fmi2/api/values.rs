@@ -20,7 +20,7 @@ unsafe fn read<M: Model, T>(
 ) -> Result<Fmi2Status, String> {
     let vrs = unsafe { input_slice(vr, nvr, "vr[]") }?;
     let out = unsafe { output_slice(value, nvr, "value[]") }?;
-    if let Some(reason) = inst.core.prepare_read(vrs)? {
+    if let Some(reason) = inst.core.prepare_read(vrs.iter().copied())? {
         return Ok(entry::discard(inst, function, &reason));
     }
     for (&r, v) in vrs.iter().zip(out) {

@@ -4,6 +4,7 @@
 use super::with_instance;
 use crate::core::entry;
 use crate::core::frontend::log_categories;
+use crate::core::instance::{Index, IndexOf};
 use crate::core::model::Model;
 use crate::core::model_exchange_calls;
 use crate::ffi::{input_slice, text};
@@ -86,12 +87,27 @@ pub unsafe fn instantiate<M: Model>(args: Instantiation) -> Fmi3Instance {
     unsafe { instantiate_requiring::<M>(args, (std::ptr::null(), 0)) }
 }
 
-/// [`instantiate`] for fmi3InstantiateCoSimulation, which also checks
-/// requiredIntermediateVariables (`required`: the array and its length).
+/// [`instantiate_with`] for an in-process host: the instance gets an index of its own
+/// ([`Index::own`]).
 ///
 /// # Safety
 /// A non-null `required.0` must be valid for `required.1` value references.
 pub unsafe fn instantiate_requiring<M: Model>(
+    args: Instantiation,
+    required: (*const Fmi3ValueReference, usize),
+) -> Fmi3Instance {
+    // SAFETY: by the contract above.
+    unsafe { instantiate_with::<M>(Index::own, args, required) }
+}
+
+/// [`instantiate`] with the model's index taken from `index` (the exported symbols
+/// pass [`Index::shared`]), which also checks requiredIntermediateVariables
+/// (`required`: the array and its length; empty for Model Exchange).
+///
+/// # Safety
+/// A non-null `required.0` must be valid for `required.1` value references.
+pub unsafe fn instantiate_with<M: Model>(
+    index: IndexOf<M>,
     args: Instantiation,
     required: (*const Fmi3ValueReference, usize),
 ) -> Fmi3Instance {
@@ -119,7 +135,8 @@ pub unsafe fn instantiate_requiring<M: Model>(
             let check = |table: &Table3, declared| unsafe {
                 check_required::<M>(table, declared, required)
             };
-            Instance::<M>::new(args.interface, log, args.intermediate_update, scalar, check)
+            let (interface, update) = (args.interface, args.intermediate_update);
+            Instance::<M>::new(interface, log, update, scalar, check, index()?)
         },
     )
 }
