@@ -5,11 +5,10 @@
 
 use super::*;
 use crate::motion_cache::ALONG;
-use robofmu_fmi::prelude::Model;
 
 /// A started plant away from rest, tilted, driven by every kind of input.
 fn moving() -> Pss3Plant {
-    let mut m = Pss3Plant::new();
+    let mut m = Pss3Plant::default();
     m.state = robofmu_dynamics::pss3::dynamics::PlantState {
         euler: Vector3::new(0.05, -0.04, 2.35),
         omega: Vector3::new(0.3, -0.5, 0.8),
