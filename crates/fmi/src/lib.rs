@@ -119,7 +119,7 @@ pub mod prelude {
     //! hooks), [`StepOutcome`] and [`EventUpdate`] (what a step or an event did), [`Log`]
     //! and [`LogCategory`] (messages), [`OutputDerivativeError`] (why a hook gives no
     //! output derivative), [`Var`] (a variable in a dependency list, named by its
-    //! declaration), [`concat`], [`every`] and [`same`] (static tables from named parts).
+    //! declaration), [`concat()`], [`every`] and [`same`] (static tables from named parts).
 
     pub use crate::core::tables::{concat, every, same};
     pub use crate::core::{

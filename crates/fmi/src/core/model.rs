@@ -71,16 +71,24 @@ impl ModelInfo {
     }
 }
 
+/// d(unknown)/d(known) of one pair of declared elements (see [`Jacobian`]).
+pub type PartialDerivative<M> = fn(&M, Element, Element) -> Result<f64, String>;
+
+/// dvUnknown = J dvKnown into `out` for (`model`, `unknowns`, `knowns`, `seed`, `out`)
+/// (see [`Jacobian`]).
+pub type DirectionalDerivative<M> =
+    fn(&M, &[Element], &[Element], &[f64], &mut [f64]) -> Result<(), String>;
+
 /// How a model answers directional derivatives (fmi2GetDirectionalDerivative,
 /// fmi3GetDirectionalDerivative and fmi3GetAdjointDerivative), the variables given as
 /// declared [`Element`]s at the current point (computed values are current). An error
 /// (the model cannot be evaluated here) makes the call return Discard.
 pub enum Jacobian<M> {
     /// d(unknown)/d(known) one pair at a time; the layer sums the pairs over the seed.
-    Partial(fn(&M, Element, Element) -> Result<f64, String>),
+    Partial(PartialDerivative<M>),
     /// dvUnknown = J dvKnown for all unknowns at once (`unknowns`, `knowns`, `seed`,
     /// `out`), for a model that linearizes once per call instead of once per pair.
-    Directional(fn(&M, &[Element], &[Element], &[f64], &mut [f64]) -> Result<(), String>),
+    Directional(DirectionalDerivative<M>),
 }
 
 impl<M> Jacobian<M> {
