@@ -9,4 +9,5 @@
 //! its users see one library. Like it, this crate knows nothing of FMI.
 
 pub mod computed_torque;
+pub mod ode;
 pub mod pss3;
