@@ -4,6 +4,9 @@
 //! estimate of Hairer's code DOP853, Solving ODEs I, section II.10): twelve stages per
 //! step and one more at the accepted end state.
 
+// The coefficients as published, to 30 digits; the compiler rounds them to f64.
+#![allow(clippy::excessive_precision)]
+
 use super::{OdeError, Pair, Settings, Solution, integrate, zeros_like};
 use nalgebra::{DefaultAllocator, Dim, OVector, allocator::Allocator};
 

@@ -371,3 +371,6 @@ where
 {
     OVector::zeros_generic(y.shape_generic().0, U1)
 }
+
+#[cfg(test)]
+mod tests;
