@@ -156,7 +156,26 @@ where
     DefaultAllocator: Allocator<D>,
     F: FnMut(f64, &OVector<f64, D>, &mut OVector<f64, D>),
 {
-    integrate::<D, F, Dop853<D>>(f, x0, x_end, y0, settings)
+    integrate::<D, F, _, Dop853<D>>(f, x0, x_end, y0, settings, |_, _| {})
+}
+
+/// As [`dop853`], calling `observe(x, y)` at every accepted point (the integrator's own
+/// steps, the end included; not the start).
+pub fn dop853_observed<D, F, O>(
+    f: F,
+    x0: f64,
+    x_end: f64,
+    y0: OVector<f64, D>,
+    settings: &Settings,
+    observe: O,
+) -> Result<Solution<D>, OdeError>
+where
+    D: Dim,
+    DefaultAllocator: Allocator<D>,
+    F: FnMut(f64, &OVector<f64, D>, &mut OVector<f64, D>),
+    O: FnMut(f64, &OVector<f64, D>),
+{
+    integrate::<D, F, O, Dop853<D>>(f, x0, x_end, y0, settings, observe)
 }
 
 /// The stages of one step and its end state.

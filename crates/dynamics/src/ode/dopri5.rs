@@ -60,7 +60,7 @@ where
     DefaultAllocator: Allocator<D>,
     F: FnMut(f64, &OVector<f64, D>, &mut OVector<f64, D>),
 {
-    integrate::<D, F, Dopri5<D>>(f, x0, x_end, y0, settings)
+    integrate::<D, F, _, Dopri5<D>>(f, x0, x_end, y0, settings, |_, _| {})
 }
 
 /// The stages of one step and its end state.

@@ -20,7 +20,7 @@
 mod dop853;
 mod dopri5;
 
-pub use dop853::dop853;
+pub use dop853::{dop853, dop853_observed};
 pub use dopri5::dopri5;
 
 use nalgebra::{DefaultAllocator, Dim, OVector, U1, allocator::Allocator};
@@ -298,18 +298,21 @@ where
         F: FnMut(f64, &OVector<f64, D>, &mut OVector<f64, D>);
 }
 
-/// Integrates `y' = f(x, y)` from `(x0, y0)` to `x_end` with pair `P`.
-fn integrate<D, F, P>(
+/// Integrates `y' = f(x, y)` from `(x0, y0)` to `x_end` with pair `P`, showing
+/// `observe` every accepted point.
+fn integrate<D, F, O, P>(
     mut f: F,
     x0: f64,
     x_end: f64,
     y0: OVector<f64, D>,
     settings: &Settings,
+    mut observe: O,
 ) -> Result<Solution<D>, OdeError>
 where
     D: Dim,
     DefaultAllocator: Allocator<D>,
     F: FnMut(f64, &OVector<f64, D>, &mut OVector<f64, D>),
+    O: FnMut(f64, &OVector<f64, D>),
     P: Pair<D>,
 {
     let mut stats = Stats::default();
@@ -354,6 +357,7 @@ where
             stats.evaluations += pair.accept(&mut f, x + h, &mut y);
             stats.accepted += 1;
             x += h;
+            observe(x, &y);
             if last {
                 return Ok(Solution { x, y, stats });
             }
