@@ -262,7 +262,8 @@ trait Pair<D: Dim>
 where
     DefaultAllocator: Allocator<D>,
 {
-    /// 1 / (order of the error estimate's lower member + 1): the starting step's exponent.
+    /// The starting step's exponent 1 / IORD (Hairer's HINIT: 5 for DOPRI5, 8 for
+    /// DOP853).
     const ORDER_INVERSE: f64;
 
     /// Workspace for states shaped like `y`.
