@@ -7,6 +7,7 @@
 //! controller is generic.
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
+use robofmu_control::pid_jacobian::{self, Known, Unknown};
 use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
 use robofmu_fmi::prelude::*;
 
@@ -236,75 +237,39 @@ static VARIABLES: &[Decl] = &[
     INTEGRAL, FILTER, DER_INT, DER_FILTER,
 ];
 
-/// d(output or state derivative)/d(input or state), from the law in `control::pid`
-/// (the channels are independent; the limits make u flat, conditional integration
-/// makes dI/dt flat).
+/// The law's unknowns and knowns (`control::pid_jacobian`) by declaration.
+const UNKNOWNS: [(Decl, Unknown); 3] = [
+    (U, Unknown::Output),
+    (DER_INT, Unknown::IntegralRate),
+    (DER_FILTER, Unknown::FilterRate),
+];
+const KNOWNS: [(Decl, Known); 7] = [
+    (SETPOINT, Known::Setpoint),
+    (MEASURED, Known::Measurement),
+    (R_RATE, Known::SetpointRate),
+    (Y_RATE, Known::MeasuredRate),
+    (FEEDFWD, Known::Feedforward),
+    (INTEGRAL, Known::Integral),
+    (FILTER, Known::Filter),
+];
+
+/// The entry of `table` whose declaration is element e's.
+fn role<T: Copy>(table: &[(Decl, T)], e: Element) -> Option<T> {
+    table.iter().find(|(d, _)| d.is(e)).map(|&(_, t)| t)
+}
+
+/// d(output or state derivative)/d(input or state) of the law; the channels are
+/// independent.
 fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
     let c = unknown.index;
+    let not = |e: Element, what| format!("\"{}\" is not an {what}", e.name);
     if known.index != c {
         return Ok(0.0);
     }
-    let g = &m.gains[c];
-    let out = m.output(c);
-    // Coefficients of e (via setpoint/measurement), of the rate error and of the states
-    // in the derivative term D.
-    let (d_e, d_rate, d_filter) = if g.use_rate_inputs {
-        if g.tf > 0.0 {
-            (0.0, 0.0, g.kd)
-        } else {
-            (0.0, g.kd, 0.0)
-        }
-    } else if g.kd != 0.0 {
-        (g.kd / g.tf, 0.0, -g.kd / g.tf)
-    } else {
-        (0.0, 0.0, 0.0)
-    };
-    let filter_active = g.tf > 0.0 && (g.use_rate_inputs || g.kd != 0.0);
-    let saturated = g
-        .limits
-        .is_some_and(|(lo, hi)| out.u_raw > hi || out.u_raw < lo);
-    let error = SETPOINT.is(known) || MEASURED.is(known);
-    let rate = R_RATE.is(known) || Y_RATE.is(known);
-    let sign = if SETPOINT.is(known) || R_RATE.is(known) {
-        1.0
-    } else {
-        -1.0
-    };
-    Ok(if U.is(unknown) && saturated {
-        0.0
-    } else if U.is(unknown) {
-        if error {
-            sign * (g.kp + d_e)
-        } else if rate {
-            sign * d_rate
-        } else if FEEDFWD.is(known) {
-            1.0
-        } else if INTEGRAL.is(known) {
-            g.ki
-        } else if FILTER.is(known) {
-            d_filter
-        } else {
-            return Err(format!("\"{}\" is not an input or state", known.name));
-        }
-    } else if DER_INT.is(unknown) {
-        let stopped = pid::integration_stopped(g, &out);
-        if error && !stopped { sign } else { 0.0 }
-    } else if DER_FILTER.is(unknown) {
-        if !filter_active {
-            0.0
-        } else if (error && !g.use_rate_inputs) || (rate && g.use_rate_inputs) {
-            sign / g.tf
-        } else if FILTER.is(known) {
-            -1.0 / g.tf
-        } else {
-            0.0
-        }
-    } else {
-        return Err(format!(
-            "\"{}\" is not an output or derivative",
-            unknown.name
-        ));
-    })
+    let of = role(&UNKNOWNS, unknown).ok_or_else(|| not(unknown, "output or derivative"))?;
+    let (g, s, i) = (&m.gains[c], &m.states[c], &m.inputs[c]);
+    pid_jacobian::partial(g, s, i, of, role(&KNOWNS, known))
+        .ok_or_else(|| not(known, "input or state"))
 }
 
 impl Model for Pid {
