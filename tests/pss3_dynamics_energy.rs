@@ -1,9 +1,9 @@
 //! Energy conservation with only conservative forces: gravity plus actuator springs
-//! (integrated by Dop853 at a tight tolerance), and gravity plus undamped end stops
+//! (integrated by DOP853 at a tight tolerance), and gravity plus undamped end stops
 //! (integrated through the plant's own communication steps).
 
 use nalgebra::Vector3;
-use ode_solvers::{Dop853, OutputType, System};
+use robofmu::ode::{self, Settings};
 use robofmu::pss3::dynamics::{
     EndStopMode, EndStops, Method, Plant, PlantInputs, PlantParams, PlantState, StateVector,
     StepSettings, StopContact,
@@ -39,10 +39,8 @@ impl Springs<'_> {
             + 0.5 * self.stiffness * stretch.norm_squared();
         (energy, terms.assembly.l)
     }
-}
 
-impl System<f64, StateVector> for Springs<'_> {
-    fn system(&self, _t: f64, y: &StateVector, dy: &mut StateVector) {
+    fn rates(&self, y: &StateVector, dy: &mut StateVector) {
         let state = PlantState::from_vector(y);
         let inputs = PlantInputs {
             forces: self.forces(&state),
@@ -76,47 +74,37 @@ fn gravity_and_actuator_springs_conserve_energy_over_10_s() {
         .terms(&state.euler, &state.omega)
         .unwrap()
         .kinetic_energy(&state.omega);
-    let mut solver = Dop853::from_param(
-        springs,
-        0.0,
-        10.0,
-        10.0,
-        state.to_vector(),
-        1e-13,
-        1e-13,
-        0.9,
-        0.0,
-        0.333,
-        6.0,
-        0.05,
-        0.0,
-        1_000_000,
-        u32::MAX,
-        OutputType::Sparse,
-    );
-    let stats = solver.integrate().unwrap();
-    let springs = Springs {
-        plant: &plant,
-        stiffness: 2e4,
-        rest,
+    let settings = Settings {
+        max_steps: 1_000_000,
+        ..Settings::dop853(1e-13, 0.05)
     };
     let (mut drift, mut l_min, mut l_max) = (0.0f64, f64::INFINITY, f64::NEG_INFINITY);
-    for y in solver.y_out() {
+    let mut observe = |y: &StateVector| {
         let (e, l) = springs.energy(&PlantState::from_vector(y));
         drift = drift.max((e - e0).abs());
         l_min = l_min.min(l.min());
         l_max = l_max.max(l.max());
-    }
+    };
+    observe(&state.to_vector());
+    let end = ode::dop853_observed(
+        |_t, y, dy| springs.rates(y, dy),
+        0.0,
+        10.0,
+        state.to_vector(),
+        &settings,
+        |_t, y| observe(y),
+    )
+    .unwrap();
     println!(
         "{} steps, E0 = {e0:.6} J, T0 = {t0:.6} J, max |E - E0| = {drift:.2e} J \
          (relative to E0 {:.2e}, to T0 {:.2e}), l in [{:.2}, {:.2}] mm",
-        stats.accepted_steps,
+        end.stats.accepted,
         drift / e0,
         drift / t0,
         l_min * 1e3,
         l_max * 1e3
     );
-    assert_eq!(*solver.x_out().last().unwrap(), 10.0);
+    assert_eq!(end.x, 10.0);
     // Stays inside the stroke: the end stops never act.
     assert!(l_min > 0.002 && l_max < 0.152);
     assert!(drift / e0 < 1e-9 && drift / t0 < 1e-9);

@@ -1,9 +1,10 @@
 //! The loop as one ODE, integrated with Dop853 at a tight tolerance and sampled at the
 //! scenario's communication points.
 //!
-//! Time is carried as the first state (t' = 1) so that the right-hand side is
-//! autonomous: ode_solvers 0.6.2's Dop853 evaluates its last stage at a wrong time,
-//! which only autonomous systems do not notice. Each communication interval is
+//! Time is carried as the first state (t' = 1), so the right-hand side is autonomous
+//! (ode_solvers 0.6.2's Dop853, integrated with before, evaluated its twelfth stage at
+//! a wrong time, which autonomous systems do not notice; [`crate::ode`] has no such
+//! fault, and the form is kept so that results stay bit for bit). Each interval is
 //! integrated on its own, so every sample is an accepted end point (no dense output)
 //! and the kinks of the planner at t0 and tf, which lie on sample points, are never
 //! stepped across.
@@ -14,11 +15,10 @@ use super::scenario::LoopSpec;
 use crate::computed_torque::{ComputedTorque, Inputs};
 use crate::control::pid::{self, PidGains, PidInputs, PidState};
 use crate::control::trajectory::Sample;
+use crate::ode::{self, Settings};
 use crate::pss3::dynamics::{DynamicsError, Plant, PlantInputs, PlantState};
 use crate::pss3::rotation::euler_rates;
 use nalgebra::{SVector, Vector3};
-use ode_solvers::{Dop853, OutputType, System};
-use std::cell::RefCell;
 
 /// t, theta (3), omega (3), PID (or computed-torque) integrals (3), PID filter states
 /// (3).
@@ -200,11 +200,12 @@ fn sample(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<LoopSample, 
 struct Flow<'a> {
     spec: &'a LoopSpec,
     plant: &'a Plant,
-    error: &'a RefCell<Option<LoopError>>,
+    error: Option<LoopError>,
 }
 
-impl System<f64, LoopVector> for Flow<'_> {
-    fn system(&self, _s: f64, y: &LoopVector, dy: &mut LoopVector) {
+impl Flow<'_> {
+    /// The loop's rates at `y`, NaN where they cannot be evaluated.
+    fn evaluate(&mut self, y: &LoopVector, dy: &mut LoopVector) {
         if y.iter().any(|v| !v.is_finite()) {
             dy.fill(f64::NAN);
             return;
@@ -212,7 +213,7 @@ impl System<f64, LoopVector> for Flow<'_> {
         match rates(self.spec, self.plant, y) {
             Ok(rates) => *dy = rates,
             Err(e) => {
-                *self.error.borrow_mut() = Some(e);
+                self.error = Some(e);
                 dy.fill(f64::NAN);
             }
         }
@@ -227,42 +228,24 @@ fn advance(
     h: f64,
     tolerance: f64,
 ) -> Result<LoopVector, LoopError> {
-    let error = RefCell::new(None);
-    let flow = Flow {
+    let mut flow = Flow {
         spec,
         plant,
-        error: &error,
+        error: None,
     };
-    let mut solver = Dop853::from_param(
-        flow,
-        0.0,
-        h,
-        h,
-        *y,
-        tolerance,
-        tolerance,
-        0.9,
-        0.0,
-        0.333,
-        6.0,
-        h,
-        0.0,
-        1_000_000,
-        u32::MAX,
-        OutputType::Sparse,
-    );
-    let outcome = solver.integrate();
-    let end = solver.y_out().last().copied();
-    drop(solver);
+    let settings = Settings {
+        max_steps: 1_000_000,
+        ..Settings::dop853(tolerance, h)
+    };
+    let outcome = ode::dop853(|_s, y, dy| flow.evaluate(y, dy), 0.0, h, *y, &settings);
     let fail = |message: String| LoopError::Integration {
         time: y[0],
         message,
     };
-    if let Some(e) = error.into_inner() {
+    if let Some(e) = flow.error {
         return Err(fail(e.to_string()));
     }
-    outcome.map_err(|e| fail(e.to_string()))?;
-    let end = end.ok_or_else(|| fail("no output".into()))?;
+    let end = outcome.map_err(|e| fail(e.to_string()))?.y;
     if end.iter().any(|v| !v.is_finite()) {
         return Err(fail("the state became non-finite".into()));
     }

@@ -19,8 +19,8 @@ use super::locks::Chain;
 use super::paths::Path;
 use super::pmp::{Projection, rates};
 use super::trajectory::Trajectory;
+use crate::ode::{self, Settings};
 use nalgebra::{DMatrix, DVector};
-use ode_solvers::{Dop853, OutputType, System};
 use std::cell::Cell;
 
 /// Settings of the shooting method.
@@ -82,9 +82,10 @@ impl PmpSolution {
 /// The flow in reversed time `s = tf - t`: `y = (q, lambda, cost, s)`.
 ///
 /// Time is carried as a state so that the system is autonomous: ode_solvers 0.6.2's
-/// Dop853 evaluates its twelfth stage at the step start instead of its end (node
-/// `c_12 = 0` instead of 1, srenevey/ode-solvers pull request 42), which corrupts
-/// non-autonomous systems but cannot affect autonomous ones.
+/// Dop853, integrated with before, evaluates its twelfth stage at the step start
+/// instead of its end (node `c_12 = 0` instead of 1, srenevey/ode-solvers pull request
+/// 42), which corrupts non-autonomous systems but cannot affect autonomous ones;
+/// [`crate::ode`] has no such fault, and the form is kept so results stay bit for bit.
 struct ReversedFlow<'a> {
     chain: &'a Chain,
     path: &'a dyn Path,
@@ -92,8 +93,9 @@ struct ReversedFlow<'a> {
     singular_at: &'a Cell<Option<f64>>,
 }
 
-impl System<f64, DVector<f64>> for ReversedFlow<'_> {
-    fn system(&self, _s: f64, y: &DVector<f64>, dy: &mut DVector<f64>) {
+impl ReversedFlow<'_> {
+    /// The rates at `y`, NaN (and the time remembered) where the chain is singular.
+    fn evaluate(&self, y: &DVector<f64>, dy: &mut DVector<f64>) {
         let n = self.chain.free_count();
         // The elapsed reversed time is the state's last component (autonomous form).
         let t = self.end - y[2 * n + 1];
@@ -181,13 +183,11 @@ impl<'a> Shooting<'a> {
             singular_at: &singular_at,
         };
         let tol = self.options.integration_tolerance;
-        let mut solver = Dop853::new(flow, from, to, to - from, y, tol, tol);
-        solver.set_output(OutputType::Sparse);
-        let outcome = solver.integrate();
-        let last = solver.results().get().1.last().cloned();
-        match (outcome, last) {
-            (Ok(_), Some(y)) if y.iter().all(|v| v.is_finite()) => Ok(y),
-            (outcome, _) => Err(match (singular_at.get(), outcome) {
+        let settings = Settings::dop853(tol, to - from);
+        let outcome = ode::dop853(|_s, y, dy| flow.evaluate(y, dy), from, to, y, &settings);
+        match outcome {
+            Ok(end) if end.y.iter().all(|v| v.is_finite()) => Ok(end.y),
+            outcome => Err(match (singular_at.get(), outcome) {
                 (Some(t), _) => DualArmError::Singular { t },
                 (None, Err(e)) => DualArmError::Integration(e.to_string()),
                 (None, Ok(_)) => DualArmError::Integration("non-finite state".into()),

@@ -2,5 +2,6 @@
 //! discretisation. The planner and PID FMU bindings (fmus/planner, fmus/pid) translate variables to these calls.
 
 pub mod pid;
+pub mod pid_jacobian;
 pub mod pid_ramp;
 pub mod trajectory;

@@ -18,8 +18,8 @@
 //! at the start of the step from the values there, and holds for the whole step.
 //! Inputs that follow a quadratic over the step: `pid_ramp`.
 
-/// Gains and options of one channel.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Gains and options of one channel (default: all zero, unlimited, error path).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PidGains {
     pub kp: f64,
     pub ki: f64,

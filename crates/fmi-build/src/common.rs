@@ -4,7 +4,6 @@
 //! its interfaces, variables (with [`variable`](crate::variable)) and structure.
 
 use crate::sections::{DefaultExperiment, LogCategories, UnitDefinitions};
-use robofmu_fmi::core::model::ModelInfo;
 use robofmu_fmi::description::Description;
 use serde::Serialize;
 use serde::ser::{SerializeMap, Serializer};
@@ -171,6 +170,6 @@ fn xml_document<T: Serialize>(root: &T) -> Result<String, String> {
 
 /// The maxOutputDerivativeOrder attribute of `<CoSimulation>`: left out (default 0) when
 /// the model provides no output derivatives.
-pub fn max_output_derivative_order(info: &ModelInfo) -> Option<u32> {
-    (info.max_output_derivative_order > 0).then_some(info.max_output_derivative_order)
+pub fn max_output_derivative_order(d: &Description) -> Option<u32> {
+    (d.max_output_derivative_order > 0).then_some(d.max_output_derivative_order)
 }

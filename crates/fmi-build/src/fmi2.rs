@@ -125,7 +125,7 @@ fn interfaces(d: &Description) -> (Attributes, Attributes) {
             .with("canSerializeFMUstate", true)
             .with(
                 "providesDirectionalDerivative",
-                info.provides_directional_derivative,
+                d.provides_directional_derivative,
             )
     };
     let co_simulation = identified()
@@ -137,21 +137,20 @@ fn interfaces(d: &Description) -> (Attributes, Attributes) {
         );
     let co_simulation = capabilities(co_simulation).with_some(
         "maxOutputDerivativeOrder",
-        common::max_output_derivative_order(info),
+        common::max_output_derivative_order(d),
     );
     (capabilities(identified()), co_simulation)
 }
 
 /// The text of the FMI 2.0 modelDescription.xml of `d`.
 pub fn model_description(d: &Description) -> Result<String, String> {
-    let info = &d.info;
     let table = &d.scalars[..];
     let derivatives: Vec<&Scalar> = table.iter().filter(|v| v.state.is_some()).collect();
-    if derivatives.len() != info.number_of_continuous_states {
+    if derivatives.len() != d.number_of_continuous_states {
         return Err(format!(
             "{} derivative variables but {} continuous states",
             derivatives.len(),
-            info.number_of_continuous_states
+            d.number_of_continuous_states
         ));
     }
     let outputs = table

@@ -176,7 +176,7 @@ fn model_structure(variables: &[Variable3Description]) -> ModelStructure {
 /// `<ModelExchange>` and `<CoSimulation>`.
 fn interfaces(d: &Description) -> (Attributes, Attributes) {
     let info = &d.info;
-    let derivatives = info.provides_directional_derivative;
+    let derivatives = d.provides_directional_derivative;
     let common = || {
         Attributes::default()
             .with("modelIdentifier", info.model_identifier)
@@ -197,7 +197,7 @@ fn interfaces(d: &Description) -> (Attributes, Attributes) {
         )
         .with_some(
             "maxOutputDerivativeOrder",
-            common::max_output_derivative_order(info),
+            common::max_output_derivative_order(d),
         )
         .with_some(
             "providesIntermediateUpdate",
@@ -227,10 +227,10 @@ fn description(
         .filter(|v| v.variable.derivative_of.is_some())
         .map(|v| v.variable.size())
         .sum();
-    if states != d.info.number_of_continuous_states {
+    if states != d.number_of_continuous_states {
         return Err(format!(
             "{states} state derivatives but {} continuous states",
-            d.info.number_of_continuous_states
+            d.number_of_continuous_states
         ));
     }
     let variables = view

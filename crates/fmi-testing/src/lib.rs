@@ -210,7 +210,7 @@ impl<M: Model> Host<M> {
     }
 
     pub fn states(&self) -> Vec<f64> {
-        let mut x = vec![0.0; M::info().number_of_continuous_states];
+        let mut x = vec![0.0; robofmu_fmi::core::declare::continuous_states(M::declarations())];
         let s = unsafe { api::get_continuous_states::<M>(self.c, x.as_mut_ptr(), x.len()) };
         assert_eq!(s, Fmi2Status::Ok, "{}", self.last_message());
         x
@@ -222,7 +222,7 @@ impl<M: Model> Host<M> {
 
     /// Derivatives and the status of fmi2GetDerivatives.
     pub fn derivatives(&self) -> (Fmi2Status, Vec<f64>) {
-        let mut dx = vec![0.0; M::info().number_of_continuous_states];
+        let mut dx = vec![0.0; robofmu_fmi::core::declare::continuous_states(M::declarations())];
         let s = unsafe { api::get_derivatives::<M>(self.c, dx.as_mut_ptr(), dx.len()) };
         (s, dx)
     }

@@ -30,12 +30,19 @@ static DOUBLER: ModelInfo = ModelInfo {
     guid: "{doubler}",
     description: "y = 2 u",
     default_experiment: INFO,
-    number_of_continuous_states: 0,
     number_of_event_indicators: 0,
-    provides_directional_derivative: false,
-    max_output_derivative_order: 0,
     log_categories: &[],
 };
+
+impl Default for Doubler {
+    fn default() -> Self {
+        Doubler {
+            u: 0.0,
+            y: f64::NAN,
+            calculations: 0,
+        }
+    }
+}
 
 impl Model for Doubler {
     fn info() -> &'static ModelInfo {
@@ -60,13 +67,6 @@ impl Model for Doubler {
                 }),
         ];
         VARIABLES
-    }
-    fn new() -> Self {
-        Doubler {
-            u: 0.0,
-            y: f64::NAN,
-            calculations: 0,
-        }
     }
     fn set_time(&mut self, _time: f64) {}
     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {
@@ -147,12 +147,19 @@ static SAWTOOTH: ModelInfo = ModelInfo {
     guid: "{sawtooth}",
     description: "x' = 1, reset to 0 above 1",
     default_experiment: INFO,
-    number_of_continuous_states: 1,
     number_of_event_indicators: 1,
-    provides_directional_derivative: false,
-    max_output_derivative_order: 0,
     log_categories: &[],
 };
+
+impl Default for Sawtooth {
+    fn default() -> Self {
+        Sawtooth {
+            x: 0.0,
+            resets: 0,
+            max_resets: 2,
+        }
+    }
+}
 
 impl Model for Sawtooth {
     fn info() -> &'static ModelInfo {
@@ -179,13 +186,6 @@ impl Model for Sawtooth {
             }),
         ];
         VARIABLES
-    }
-    fn new() -> Self {
-        Sawtooth {
-            x: 0.0,
-            resets: 0,
-            max_resets: 2,
-        }
     }
     fn set_time(&mut self, _time: f64) {}
     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {

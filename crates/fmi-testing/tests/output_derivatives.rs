@@ -37,12 +37,20 @@ static RAMP: ModelInfo = ModelInfo {
         tolerance: 1e-6,
         step_size: 0.1,
     },
-    number_of_continuous_states: 0,
     number_of_event_indicators: 0,
-    provides_directional_derivative: false,
-    max_output_derivative_order: 2,
     log_categories: &[],
 };
+
+impl Default for Ramp {
+    fn default() -> Self {
+        Ramp {
+            a: 0.0,
+            u: 0.0,
+            t: 0.0,
+            y: 0.0,
+        }
+    }
+}
 
 impl Model for Ramp {
     fn info() -> &'static ModelInfo {
@@ -50,14 +58,6 @@ impl Model for Ramp {
     }
     fn declarations() -> &'static [Declaration<Self>] {
         VARIABLES
-    }
-    fn new() -> Self {
-        Ramp {
-            a: 0.0,
-            u: 0.0,
-            t: 0.0,
-            y: 0.0,
-        }
     }
     fn set_time(&mut self, time: f64) {
         self.t = time;
@@ -106,10 +106,10 @@ static VARIABLES: &[Declaration<Ramp>] = &[
         }),
     Declaration::<Ramp>::real("y", "a t", |m, _| m.y)
         .output()
-        .output_derivative(y_rates),
+        .output_derivative(2, y_rates),
     Declaration::<Ramp>::real("w", "y^2", |m, _| m.y * m.y)
         .output()
-        .output_derivative(|_, _, _| {
+        .output_derivative(2, |_, _, _| {
             Err(OutputDerivativeError::NotProvided(
                 "only y is differentiated".to_string(),
             ))

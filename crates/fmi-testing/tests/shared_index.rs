@@ -28,10 +28,7 @@ const fn info(name: &'static str) -> ModelInfo {
         guid: "{shared-index}",
         description: "test model",
         default_experiment: EXPERIMENT,
-        number_of_continuous_states: 0,
         number_of_event_indicators: 0,
-        provides_directional_derivative: false,
-        max_output_derivative_order: 0,
         log_categories: &[],
     }
 }
@@ -71,15 +68,18 @@ macro_rules! trivial_model {
     };
 }
 
+impl Default for Declared {
+    fn default() -> Self {
+        Declared { k: 0.0 }
+    }
+}
+
 impl Model for Declared {
     fn info() -> &'static ModelInfo {
         &DECLARED
     }
     fn declarations() -> &'static [Declaration<Self>] {
         DECLARATIONS
-    }
-    fn new() -> Self {
-        Declared { k: 0.0 }
     }
     trivial_model!();
 }

@@ -12,6 +12,7 @@
 //! instantiation, and lent to the packager's closure: nothing allocated in the cdylib
 //! is freed by the packager.
 
+use crate::core::declare::{continuous_states, max_output_derivative_order};
 use crate::core::frontend::log_categories;
 use crate::core::instance::sorted_table;
 use crate::core::log::LogCategory;
@@ -118,6 +119,12 @@ fn lend<M: Model>(to: &mut dyn FnMut(Result<&Description, &str>)) {
 /// Everything the writers need about one FMU, naming no model type.
 pub struct Description {
     pub info: ModelInfo,
+    /// numberOfContinuousStates, counted from the declarations.
+    pub number_of_continuous_states: usize,
+    /// providesDirectionalDerivative: `Model::JACOBIAN` is given.
+    pub provides_directional_derivative: bool,
+    /// maxOutputDerivativeOrder: the highest order of the output-derivative hooks.
+    pub max_output_derivative_order: u32,
     /// `Model::MAX_INPUT_DERIVATIVE_ORDER`.
     pub max_input_derivative_order: u32,
     /// `Model::INTERMEDIATE_UPDATE_POINTS`.
@@ -190,6 +197,9 @@ pub fn describe<M: Model>() -> Result<Description, String> {
     let scalars3 = scalar::view(&table, &arrays)?;
     Ok(Description {
         info: *M::info(),
+        number_of_continuous_states: continuous_states(M::declarations()),
+        provides_directional_derivative: M::JACOBIAN.is_some(),
+        max_output_derivative_order: max_output_derivative_order(M::declarations()),
         max_input_derivative_order: M::MAX_INPUT_DERIVATIVE_ORDER,
         intermediate_update_points: M::INTERMEDIATE_UPDATE_POINTS,
         log_categories: [

@@ -6,8 +6,8 @@
 //! Everything a model author needs is in the [`prelude`]:
 //!
 //! 1. describe the FMU once in a `static` [`ModelInfo`](prelude::ModelInfo) (names,
-//!    instantiation token, default experiment, state and event-indicator counts,
-//!    capabilities, log categories);
+//!    instantiation token, default experiment, event-indicator count, log
+//!    categories); the state count and the capabilities follow from what is declared;
 //! 2. declare the variables once, in a `static` slice of
 //!    [`Declaration`](prelude::Declaration)s: scalars and arrays (`.array(n)`), each
 //!    with its getter and setter (`fn` pointers taking the element index), causality,
@@ -16,8 +16,9 @@
 //!    or assigned by the layer (see [`core::declare`]);
 //! 3. implement [`Model`](prelude::Model) for the model type: `declarations()` returns
 //!    that slice; the step returns a [`StepOutcome`](prelude::StepOutcome), Model
-//!    Exchange events an [`EventUpdate`](prelude::EventUpdate); partial derivatives
-//!    name their variables as [`Element`](prelude::Element)s; messages go to the
+//!    Exchange events an [`EventUpdate`](prelude::EventUpdate); a
+//!    [`Jacobian`](prelude::Jacobian) names its variables as
+//!    [`Element`](prelude::Element)s; messages go to the
 //!    [`Log`](prelude::Log) in one of the model's [`LogCategory`](prelude::LogCategory)s;
 //! 4. end the crate with [`export_fmu!`]`(Type);` it exports the FMI 2.0 and the
 //!    FMI 3.0 C functions from the same cdylib.
@@ -43,7 +44,7 @@ pub mod prelude {
     //! ```
     //! use robofmu_fmi::prelude::*;
     //!
-    //! #[derive(Clone)]
+    //! #[derive(Clone, Default)]
     //! pub struct Cooling { t: f64, tau: f64, ambient: f64 }
     //!
     //! impl Cooling {
@@ -51,13 +52,12 @@ pub mod prelude {
     //! }
     //!
     //! // 1. What the FMU is (name, instantiation token, default experiment: start, stop,
-    //! //    tolerance, step; capabilities); the count of states comes from the table.
+    //! //    tolerance, step); the count of states and the capabilities come from the
+    //! //    declarations and hooks below.
     //! static INFO: ModelInfo = ModelInfo::new(
     //!     "Cooling", "{5b1f6c36-0a5e-4d43-9d1e-3f1f0c2d9a11}", "Newton's law of cooling",
     //!     [0.0, 10.0, 1e-6, 0.1],
-    //! )
-    //! .states(continuous_states(VARIABLES))
-    //! .output_derivatives(1);
+    //! );
     //!
     //! // 2. Every variable once: getter, setter, role, unit, start, hooks (value
     //! //    references 1, 2, ... in this order; `.at(vr)` pins one). A declaration
@@ -87,16 +87,16 @@ pub mod prelude {
     //!     Decl::real("y", "temperature seen outside", |m, _| m.t)
     //!         .output()
     //!         .depends_on(&[T.var()])
-    //!         .output_derivative(|m, _, _order| Ok(m.rate()))
+    //!         .output_derivative(1, |m, _, _order| Ok(m.rate()))
     //!         .unit("K", None),
     //! ];
     //!
-    //! // 3. The model's behaviour; the layer does the rest (arguments, state machine,
-    //! //    FMU states, logging, both standards' C functions).
+    //! // 3. The model's behaviour; the layer does the rest (a model from `Default`
+    //! //    and the start values, arguments, state machine, FMU states, logging, both
+    //! //    standards' C functions).
     //! impl Model for Cooling {
     //!     fn info() -> &'static ModelInfo { &INFO }
     //!     fn declarations() -> &'static [Declaration<Self>] { VARIABLES }
-    //!     fn new() -> Self { Cooling { t: 0.0, tau: 1.0, ambient: 0.0 } }
     //!     fn set_time(&mut self, _time: f64) {}
     //!     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> { Ok(()) }
     //!     fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
@@ -114,18 +114,17 @@ pub mod prelude {
     //! ```
     //!
     //! Where each name is explained: [`ModelInfo`] and [`Model`] (the contract and its
-    //! optional methods: events, time events, partial derivatives by [`Element`], extra
-    //! FMU state), [`Declaration`] (roles, units, bounds, arrays, value references and the
+    //! optional methods: events, time events, extra FMU state), [`Jacobian`] (partial or
+    //! directional derivatives by [`Element`]), [`Declaration`] (roles, units, bounds, arrays, value references and the
     //! hooks), [`StepOutcome`] and [`EventUpdate`] (what a step or an event did), [`Log`]
     //! and [`LogCategory`] (messages), [`OutputDerivativeError`] (why a hook gives no
     //! output derivative), [`Var`] (a variable in a dependency list, named by its
-    //! declaration), [`concat()`] and [`every`] (static tables from named parts).
+    //! declaration), [`concat()`], [`every`] and [`same`] (static tables from named parts).
 
-    pub use crate::core::declare::continuous_states;
-    pub use crate::core::tables::{concat, every};
+    pub use crate::core::tables::{concat, every, same};
     pub use crate::core::{
-        Declaration, DefaultExperiment, Element, EventUpdate, Log, LogCategory, Model, ModelInfo,
-        OutputDerivativeError, StepOutcome, Var, Variability,
+        Declaration, DefaultExperiment, Element, EventUpdate, Jacobian, Log, LogCategory, Model,
+        ModelInfo, OutputDerivativeError, StepOutcome, Var, Variability,
     };
     pub use crate::export_fmu;
 }

@@ -60,7 +60,7 @@ static TABLE: &[Decl] = &[
         .output()
         .depends_on(&Y_DEPENDS)
         .initial_depends_on(&Y_KNOWNS)
-        .output_derivative(|m, i, order| match order {
+        .output_derivative(1, |m, i, order| match order {
             1 => Ok(2.0 * m.x[i]),
             _ => Err(OutputDerivativeError::NotProvided(
                 "order 1 only".to_string(),
@@ -120,7 +120,7 @@ fn arrays_flatten_to_fmi2_scalars_with_labels_and_per_element_starts() {
     let knowns = ["time", "k", "x[1]", "x[2]", "x[2]"];
     assert_eq!(table[8].initial_dependencies, names(&knowns));
     // The count of continuous states follows from the derivative declarations.
-    assert_eq!(robofmu_fmi::prelude::continuous_states(TABLE), 2);
+    assert_eq!(robofmu_fmi::core::declare::continuous_states(TABLE), 2);
     let element = table[4].element();
     assert_eq!((element.name, element.index), ("der(x)", 1));
     let mut sorted = table;

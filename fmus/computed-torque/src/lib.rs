@@ -40,10 +40,7 @@ static INFO: ModelInfo = ModelInfo {
         tolerance: 1e-8,
         step_size: 1e-3,
     },
-    number_of_continuous_states: AXES,
     number_of_event_indicators: 0,
-    provides_directional_derivative: false,
-    max_output_derivative_order: 0,
     log_categories: &[LogCategory {
         name: "logController",
         description: "Gains and model of the controller at initialization",
@@ -131,16 +128,8 @@ struct Evaluation {
     integral_rate: Vector3<f64>,
 }
 
-impl Model for ComputedTorqueFmu {
-    fn info() -> &'static ModelInfo {
-        &INFO
-    }
-
-    fn declarations() -> &'static [Declaration<Self>] {
-        variables::table()
-    }
-
-    fn new() -> Self {
+impl Default for ComputedTorqueFmu {
+    fn default() -> Self {
         let gains = pole_placement(DEFAULT_BANDWIDTH, true).expect("positive bandwidth");
         ComputedTorqueFmu {
             model: PlantParams::default(),
@@ -153,7 +142,16 @@ impl Model for ComputedTorqueFmu {
             output: None,
         }
     }
+}
 
+impl Model for ComputedTorqueFmu {
+    fn info() -> &'static ModelInfo {
+        &INFO
+    }
+
+    fn declarations() -> &'static [Declaration<Self>] {
+        variables::table()
+    }
     fn set_time(&mut self, _time: f64) {
         // The law is time invariant.
     }

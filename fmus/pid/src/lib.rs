@@ -7,6 +7,7 @@
 //! controller is generic.
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
+use robofmu_control::pid_jacobian::{self, Known, Unknown};
 use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
 use robofmu_fmi::prelude::*;
 
@@ -19,15 +20,13 @@ static INFO: ModelInfo = ModelInfo::new(
      and output limits with conditional-integration anti-windup",
     [0.0, 2.0, 1e-8, 0.01],
 )
-.states(continuous_states(VARIABLES))
-.directional_derivatives()
 .logs(&[LogCategory {
     name: "logController",
     description: "Gains and options of each channel at initialization",
 }]);
 
 /// Parameters, inputs and states of the three channels.
-#[derive(Clone)]
+#[derive(Clone, Default)]
 pub struct Pid {
     gains: [PidGains; CHANNELS],
     /// Limits as set; they apply only when `limited` is true.
@@ -51,9 +50,12 @@ impl Pid {
     fn derivative(&self, c: usize) -> PidState {
         pid::derivatives(&self.gains[c], &self.states[c], &self.inputs[c])
     }
-}
 
-impl Pid {
+    /// The gains of channel c are usable, or why not.
+    fn validate(&self, c: usize) -> Result<(), String> {
+        (self.gains[c].validate()).map_err(|e| format!("channel {}: {e}", c + 1))
+    }
+
     /// Applies a change of channel c (setting a limit updates the law's limits).
     fn change(&mut self, c: usize, f: impl FnOnce(&mut Self)) -> Result<(), String> {
         f(self);
@@ -171,28 +173,28 @@ const RATES: Decl = switch!(
     gains.use_rate_inputs
 );
 const SETPOINT: Decl = input!("setpoint", 101, "Setpoint r", &[1.0, 0.5, -0.25], setpoint);
-const MEASUREMENT: Decl = input!(
+const MEASURED: Decl = input!(
     "measurement",
     111,
     "Measurement y (e = r - y)",
     &[0.0],
     measurement
 );
-const SETPOINT_RATE: Decl = input!(
+const R_RATE: Decl = input!(
     "setpointRate",
     121,
     "Setpoint rate dr/dt (used when useRateInputs)",
     &[0.0],
     setpoint_rate
 );
-const MEASURED_RATE: Decl = input!(
+const Y_RATE: Decl = input!(
     "measuredRate",
     131,
     "Measured rate dy/dt (used when useRateInputs)",
     &[0.0],
     measured_rate
 );
-const FEEDFORWARD: Decl = input!(
+const FEEDFWD: Decl = input!(
     "feedforward",
     141,
     "Added to the output before the limits",
@@ -204,7 +206,7 @@ const U: Decl = channels(Decl::real("u", "control output", |m, c| m.output(c).u)
     .initial_depends_on(&OUTPUT_KNOWNS);
 const INTEGRAL: Decl = state!("integral", 301, "integral of the error (state)", integral);
 const FILTER: Decl = state!("filter", 311, "derivative filter state (state)", filter);
-const DER_INTEGRAL: Decl = state!(
+const DER_INT: Decl = state!(
     "der(integral)",
     INTEGRAL,
     321,
@@ -222,121 +224,52 @@ const DER_FILTER: Decl = state!(
 .initial_depends_on(&FILTER_KNOWNS);
 
 /// What the filter's dx/dt reads at initialization, in the same channel.
-static FILTER_KNOWNS: [Var; 8] = [
-    KD.same(),
-    TF.same(),
-    RATES.same(),
-    SETPOINT.same(),
-    MEASUREMENT.same(),
-    SETPOINT_RATE.same(),
-    MEASURED_RATE.same(),
-    FILTER.same(),
-];
+static FILTER_KNOWNS: [Var; 8] = same(&[KD, TF, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FILTER]);
 /// What u reads at initialization (the law of `control::pid`), in the same channel;
 /// also dI/dt (conditional integration compares u with the limits).
-static OUTPUT_KNOWNS: [Var; 15] = [
-    KP.same(),
-    KI.same(),
-    KD.same(),
-    TF.same(),
-    LIMIT.same(),
-    U_MIN.same(),
-    U_MAX.same(),
-    RATES.same(),
-    SETPOINT.same(),
-    MEASUREMENT.same(),
-    SETPOINT_RATE.same(),
-    MEASURED_RATE.same(),
-    FEEDFORWARD.same(),
-    INTEGRAL.same(),
-    FILTER.same(),
-];
+static OUTPUT_KNOWNS: [Var; 15] = same(&[
+    KP, KI, KD, TF, LIMIT, U_MIN, U_MAX, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FEEDFWD,
+    INTEGRAL, FILTER,
+]);
 
 static VARIABLES: &[Decl] = &[
-    KP,
-    KI,
-    KD,
-    TF,
-    LIMIT,
-    U_MIN,
-    U_MAX,
-    RATES,
-    SETPOINT,
-    MEASUREMENT,
-    SETPOINT_RATE,
-    MEASURED_RATE,
-    FEEDFORWARD,
-    U,
-    INTEGRAL,
-    FILTER,
-    DER_INTEGRAL,
-    DER_FILTER,
+    KP, KI, KD, TF, LIMIT, U_MIN, U_MAX, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FEEDFWD, U,
+    INTEGRAL, FILTER, DER_INT, DER_FILTER,
 ];
 
-/// d(output or state derivative)/d(input or state) of one channel, from the law in
-/// `control::pid` (the limits make u flat, conditional integration makes dI/dt flat).
-fn channel_partial(m: &Pid, c: usize, unknown: Element, known: Element) -> Result<f64, String> {
-    let g = &m.gains[c];
-    let out = m.output(c);
-    // Coefficients of e (via setpoint/measurement), of the rate error and of the states
-    // in the derivative term D.
-    let (d_e, d_rate, d_filter) = if g.use_rate_inputs {
-        if g.tf > 0.0 {
-            (0.0, 0.0, g.kd)
-        } else {
-            (0.0, g.kd, 0.0)
-        }
-    } else if g.kd != 0.0 {
-        (g.kd / g.tf, 0.0, -g.kd / g.tf)
-    } else {
-        (0.0, 0.0, 0.0)
-    };
-    let filter_active = g.tf > 0.0 && (g.use_rate_inputs || g.kd != 0.0);
-    let saturated = g
-        .limits
-        .is_some_and(|(lo, hi)| out.u_raw > hi || out.u_raw < lo);
-    let error = SETPOINT.is(known) || MEASUREMENT.is(known);
-    let rate = SETPOINT_RATE.is(known) || MEASURED_RATE.is(known);
-    let sign = if SETPOINT.is(known) || SETPOINT_RATE.is(known) {
-        1.0
-    } else {
-        -1.0
-    };
-    Ok(if U.is(unknown) && saturated {
-        0.0
-    } else if U.is(unknown) {
-        if error {
-            sign * (g.kp + d_e)
-        } else if rate {
-            sign * d_rate
-        } else if FEEDFORWARD.is(known) {
-            1.0
-        } else if INTEGRAL.is(known) {
-            g.ki
-        } else if FILTER.is(known) {
-            d_filter
-        } else {
-            return Err(format!("\"{}\" is not an input or state", known.name));
-        }
-    } else if DER_INTEGRAL.is(unknown) {
-        let stopped = pid::integration_stopped(g, &out);
-        if error && !stopped { sign } else { 0.0 }
-    } else if DER_FILTER.is(unknown) {
-        if !filter_active {
-            0.0
-        } else if (error && !g.use_rate_inputs) || (rate && g.use_rate_inputs) {
-            sign / g.tf
-        } else if FILTER.is(known) {
-            -1.0 / g.tf
-        } else {
-            0.0
-        }
-    } else {
-        return Err(format!(
-            "\"{}\" is not an output or derivative",
-            unknown.name
-        ));
-    })
+/// The law's unknowns and knowns (`control::pid_jacobian`) by declaration.
+const UNKNOWNS: [(Decl, Unknown); 3] = [
+    (U, Unknown::Output),
+    (DER_INT, Unknown::IntegralRate),
+    (DER_FILTER, Unknown::FilterRate),
+];
+const KNOWNS: [(Decl, Known); 7] = [
+    (SETPOINT, Known::Setpoint),
+    (MEASURED, Known::Measurement),
+    (R_RATE, Known::SetpointRate),
+    (Y_RATE, Known::MeasuredRate),
+    (FEEDFWD, Known::Feedforward),
+    (INTEGRAL, Known::Integral),
+    (FILTER, Known::Filter),
+];
+
+/// The entry of `table` whose declaration is element e's.
+fn role<T: Copy>(table: &[(Decl, T)], e: Element) -> Option<T> {
+    table.iter().find(|(d, _)| d.is(e)).map(|&(_, t)| t)
+}
+
+/// d(output or state derivative)/d(input or state) of the law; the channels are
+/// independent.
+fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
+    let c = unknown.index;
+    let not = |e: Element, what| format!("\"{}\" is not an {what}", e.name);
+    if known.index != c {
+        return Ok(0.0);
+    }
+    let of = role(&UNKNOWNS, unknown).ok_or_else(|| not(unknown, "output or derivative"))?;
+    let (g, s, i) = (&m.gains[c], &m.states[c], &m.inputs[c]);
+    pid_jacobian::partial(g, s, i, of, role(&KNOWNS, known))
+        .ok_or_else(|| not(known, "input or state"))
 }
 
 impl Model for Pid {
@@ -348,50 +281,21 @@ impl Model for Pid {
         VARIABLES
     }
 
-    fn new() -> Self {
-        let gains = PidGains {
-            kp: 0.0,
-            ki: 0.0,
-            kd: 0.0,
-            tf: 0.0,
-            limits: None,
-            use_rate_inputs: false,
-        };
-        Pid {
-            gains: [gains; CHANNELS],
-            limits: [(-1.0, 1.0); CHANNELS],
-            limited: [false; CHANNELS],
-            inputs: [PidInputs::default(); CHANNELS],
-            ramps: [PidInputRamp::default(); CHANNELS],
-            states: [PidState::default(); CHANNELS],
-        }
-    }
-
-    fn set_time(&mut self, _time: f64) {
-        // The law is time invariant.
-    }
-
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         for c in 0..CHANNELS {
-            self.gains[c]
-                .validate()
-                .map_err(|e| format!("channel {}: {e}", c + 1))?;
-            log.debug(
-                "logController",
-                &format!("channel {}: {:?}", c + 1, self.gains[c]),
-            );
+            self.validate(c)?;
+            let message = format!("channel {}: {:?}", c + 1, self.gains[c]);
+            log.debug("logController", &message);
         }
         Ok(())
     }
 
     fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
-        for c in 0..CHANNELS {
-            if let Err(e) = self.gains[c].validate() {
-                return StepOutcome::Discarded {
-                    reason: format!("channel {}: {e}", c + 1),
-                    terminate: true,
-                };
-            }
+        if let Err(reason) = (0..CHANNELS).try_for_each(|c| self.validate(c)) {
+            return StepOutcome::Discarded {
+                reason,
+                terminate: true,
+            };
         }
         for c in 0..CHANNELS {
             let (g, s, i) = (&self.gains[c], &self.states[c], &self.inputs[c]);
@@ -410,12 +314,7 @@ impl Model for Pid {
     // The continuous states and their derivatives: the layer's defaults, through the
     // declarations of integral, filter and their derivatives.
 
-    fn partial_derivative(&self, unknown: Element, known: Element) -> Result<f64, String> {
-        if unknown.index != known.index {
-            return Ok(0.0);
-        }
-        channel_partial(self, unknown.index, unknown, known)
-    }
+    const JACOBIAN: Option<Jacobian<Self>> = Some(Jacobian::Partial(partial));
 }
 
 // The exported fmi2* symbols of this FMU.

@@ -18,7 +18,7 @@ use support::test_info;
 const CS: i32 = FMI2_CO_SIMULATION;
 
 /// A second model type in this binary, standing in for another FMU.
-#[derive(Clone)]
+#[derive(Clone, Default)]
 struct Other;
 
 static OTHER: ModelInfo = test_info("Other", "{other}", "another FMU");
@@ -31,9 +31,6 @@ impl Model for Other {
         static VARIABLES: &[Declaration<Other>] =
             &[Declaration::real("y", "output", |_, _| 1.0).output()];
         VARIABLES
-    }
-    fn new() -> Self {
-        Other
     }
     fn set_time(&mut self, _time: f64) {}
     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {

@@ -15,36 +15,44 @@ static INFO: ModelInfo = ModelInfo::new(
      and tf; at rest at q0 before t0 and at qf after tf",
     [0.0, 2.5, 1e-6, 0.01],
 )
-.output_derivatives(2)
 .logs(&[LogCategory {
     name: "logTrajectory",
     description: "Polynomial coefficients computed at initialization",
 }]);
 
 /// Parameters and time of the planner (outputs are functions of them: no `do_step`).
-#[derive(Clone)]
+#[derive(Clone, Default)]
 pub struct Planner {
     degree: i32,
     t0: f64,
     tf: f64,
     boundary: [Boundary; AXES],
     time: f64,
-    /// The trajectories of the current parameters, or why there are none.
-    plan: Result<Plan<AXES>, String>,
+    plan: Planned,
+}
+
+/// The trajectories of the current parameters, or why there are none.
+#[derive(Clone)]
+struct Planned(Result<Plan<AXES>, String>);
+
+impl Default for Planned {
+    fn default() -> Self {
+        Planned(Err("no parameters applied yet".to_string()))
+    }
 }
 
 impl Planner {
     /// Applies a change of the parameters and plans again.
     fn change(&mut self, f: impl FnOnce(&mut Self)) -> Result<(), String> {
         f(self);
-        self.plan = Plan::new(self.degree, self.t0, self.tf, &self.boundary);
+        self.plan = Planned(Plan::new(self.degree, self.t0, self.tf, &self.boundary));
         Ok(())
     }
 
     /// Exact: order n of output k (0 q, 1 qdot, 2 qddot) of `axis` is the derivative of
     /// order k + n of its polynomial (one-sided at t0 and tf, zero while held).
     fn derivative(&self, axis: usize, k: usize, n: u32) -> Result<f64, OutputDerivativeError> {
-        let plan = self.plan.as_ref();
+        let plan = self.plan.0.as_ref();
         let plan = plan.map_err(|e| OutputDerivativeError::CannotEvaluate(e.clone()))?;
         Ok(plan.axis(axis).derivative(self.time, k + n as usize))
     }
@@ -85,7 +93,7 @@ fn output<const K: usize>(m: &Planner, a: usize) -> f64 {
 /// A planned output of the three axes, with exact time derivatives.
 const fn planned<const K: usize>(name: &'static str, vr: u32, what: &'static str) -> Decl {
     let d = axes(Decl::real(name, what, output::<K>), vr, K).output();
-    d.output_derivative(|m, a, n| m.derivative(a, K, n))
+    d.output_derivative(2, |m, a, n| m.derivative(a, K, n))
         .initial_depends_on(&KNOWNS)
 }
 
@@ -117,18 +125,8 @@ const QDDOTF: Decl = boundary!(qddotf, 15, 2, "acceleration at tf (quintic only)
 
 /// What the outputs of axis a depend on at initialization: time, order, t0, tf and
 /// that axis's boundary values.
-static KNOWNS: [Var; 10] = [
-    Var::Time,
-    ORDER.var(),
-    T0.var(),
-    TF.var(),
-    Q0.same(),
-    QF.same(),
-    QDOT0.same(),
-    QDOTF.same(),
-    QDDOT0.same(),
-    QDDOTF.same(),
-];
+static KNOWNS: [Var; 10] = concat(&[&[Var::Time], &AXIS_KNOWNS], Var::Time);
+const AXIS_KNOWNS: [Var; 9] = same(&[ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF]);
 const Q: Decl = planned::<0>("q", 100, "planned position");
 const QDOT: Decl = planned::<1>("qdot", 101, "planned velocity");
 const QDDOT: Decl = planned::<2>("qddot", 102, "planned acceleration");
@@ -146,26 +144,13 @@ impl Model for Planner {
         VARIABLES
     }
 
-    fn new() -> Self {
-        // Placeholders: the layer writes the table's start values before any use.
-        let (plan, boundary) = (Err(String::new()), [Boundary::default(); AXES]);
-        Planner {
-            degree: 0,
-            t0: 0.0,
-            tf: 0.0,
-            boundary,
-            time: 0.0,
-            plan,
-        }
-    }
-
     fn set_time(&mut self, time: f64) {
         self.time = time;
     }
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
-        self.change(|_| ())?;
-        let plan = self.plan.as_ref().map_err(String::clone)?;
+        // Every writer planned again: the plan is the one of the parameters as set.
+        let plan = self.plan.0.as_ref().map_err(String::clone)?;
         for a in 0..AXES {
             let (c, t0) = (plan.axis(a).shifted_coefficients(), self.t0);
             let message = format!("axis {}: q(t) = sum c_k (t - {t0})^k, c = {c:?}", a + 1);

@@ -45,10 +45,7 @@ static INFO: ModelInfo = ModelInfo {
         tolerance: 1e-8,
         step_size: 1e-3,
     },
-    number_of_continuous_states: 6,
     number_of_event_indicators: 6,
-    provides_directional_derivative: true,
-    max_output_derivative_order: 2,
     log_categories: &[LogCategory {
         name: "logPlant",
         description: "Initial state and integration settings at initialization",
@@ -304,16 +301,8 @@ impl Pss3Plant {
     }
 }
 
-impl Model for Pss3Plant {
-    fn info() -> &'static ModelInfo {
-        &INFO
-    }
-
-    fn declarations() -> &'static [Declaration<Self>] {
-        &variables::VARIABLES
-    }
-
-    fn new() -> Self {
+impl Default for Pss3Plant {
+    fn default() -> Self {
         let params = PlantParams::default();
         let mut model = Pss3Plant {
             params,
@@ -343,7 +332,16 @@ impl Model for Pss3Plant {
         model.rebuild();
         model
     }
+}
 
+impl Model for Pss3Plant {
+    fn info() -> &'static ModelInfo {
+        &INFO
+    }
+
+    fn declarations() -> &'static [Declaration<Self>] {
+        &variables::VARIABLES
+    }
     fn set_time(&mut self, _time: f64) {
         // The plant is time invariant.
     }
@@ -442,15 +440,8 @@ impl Model for Pss3Plant {
         EventUpdate::default()
     }
 
-    fn directional_derivative(
-        &self,
-        unknowns: &[Element],
-        knowns: &[Element],
-        seed: &[f64],
-        out: &mut [f64],
-    ) -> Result<(), String> {
-        partials::directional_derivative(self, unknowns, knowns, seed, out)
-    }
+    const JACOBIAN: Option<Jacobian<Self>> =
+        Some(Jacobian::Directional(partials::directional_derivative));
 
     fn write_extra_state(&self, out: &mut Vec<u8>) {
         out.push(self.started as u8);

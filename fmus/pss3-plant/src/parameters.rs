@@ -334,7 +334,7 @@ mod tests {
         // Truth: a model built from the library's defaults (PlantParams::default(),
         // StepSettings::default().tolerance, the start pose by forward kinematics),
         // read through each declaration's getter.
-        let mut m = Pss3Plant::new();
+        let mut m = Pss3Plant::default();
         m.initial.theta0 = default_start_pose();
         let mut checked = 0;
         for d in &VARIABLES {

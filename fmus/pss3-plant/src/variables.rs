@@ -80,7 +80,7 @@ macro_rules! vector {
             .array(3)
             .at($group + 1)
             .output()
-            .output_derivative(rates!($output))
+            .output_derivative(2, rates!($output))
     };
 }
 
@@ -91,7 +91,7 @@ macro_rules! scalar {
         Decl::real($name, $what, |$m, _| $get)
             .at($vr)
             .output()
-            .output_derivative(rates!($output[0 $(+ $i)?]))
+            .output_derivative(2, rates!($output[0 $(+ $i)?]))
     };
 }
 

@@ -105,6 +105,8 @@ pub struct Declaration<M: 'static> {
     pub initial_dependencies: Option<Dependencies>,
     /// Hook: time derivatives of an output.
     pub output_derivative: Option<OutputDerivative<M>>,
+    /// The highest order `output_derivative` answers (0: no hook).
+    pub output_derivative_order: u32,
     /// Hook: where the model keeps the time derivatives of a continuous input.
     pub input_derivative: Option<InputDerivative<M>>,
 }
@@ -160,6 +162,7 @@ impl<M> Declaration<M> {
             dependencies: None,
             initial_dependencies: None,
             output_derivative: None,
+            output_derivative_order: 0,
             input_derivative: None,
         }
     }
@@ -360,13 +363,30 @@ impl<M> Declaration<M> {
         set_boolean, Boolean, set: Set<M, bool>, Some
     }
 
-    /// Hook: the time derivatives of this Real output, element by element.
-    pub const fn output_derivative(mut self, f: OutputDerivative<M>) -> Self {
+    /// Hook: the time derivatives of this Real output of orders 1 ..= `order`, element
+    /// by element. maxOutputDerivativeOrder is the highest `order` of the table's hooks
+    /// ([`max_output_derivative_order`]), so the capability and the hook are one fact.
+    ///
+    /// A hook that answers no order does not compile:
+    ///
+    /// ```compile_fail
+    /// use robofmu_fmi::prelude::*;
+    /// struct Arm { q: f64 }
+    /// static VARIABLES: &[Declaration<Arm>] = &[
+    ///     Declaration::real("q", "joint angle", |m: &Arm, _| m.q).output().output_derivative(0, |_, _, _| Ok(0.0)),
+    /// ];
+    /// ```
+    pub const fn output_derivative(mut self, order: u32, f: OutputDerivative<M>) -> Self {
         assert!(
             matches!(self.value, Value::Real { .. }),
             "only a Real output has output derivatives"
         );
+        assert!(
+            order > 0,
+            "an output-derivative hook answers order 1 at least"
+        );
         self.output_derivative = Some(f);
+        self.output_derivative_order = order;
         self
     }
 
@@ -432,8 +452,8 @@ impl<M> Declaration<M> {
 }
 
 /// Number of continuous states of a table: the elements of its derivative declarations
-/// (`ModelInfo::number_of_continuous_states`, counted from the table so that the two
-/// cannot disagree).
+/// (numberOfContinuousStates and the length of every state vector the layer passes,
+/// counted from the table so that no second count can disagree).
 pub const fn continuous_states<M>(declarations: &[Declaration<M>]) -> usize {
     let mut n = 0;
     let mut k = 0;
@@ -444,6 +464,19 @@ pub const fn continuous_states<M>(declarations: &[Declaration<M>]) -> usize {
         k += 1;
     }
     n
+}
+
+/// maxOutputDerivativeOrder of a table: the highest order its output-derivative hooks
+/// answer (0: none), taken from the hooks' declarations so that the two cannot disagree.
+pub const fn max_output_derivative_order<M>(declarations: &[Declaration<M>]) -> u32 {
+    let (mut max, mut k) = (0, 0);
+    while k < declarations.len() {
+        if declarations[k].output_derivative_order > max {
+            max = declarations[k].output_derivative_order;
+        }
+        k += 1;
+    }
+    max
 }
 
 /// Calls `f(k, state, derivative, i)` for continuous state k: element i of the state

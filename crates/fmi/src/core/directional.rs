@@ -9,8 +9,8 @@ use super::variables::Variable;
 
 impl<M: Model> Instance<M> {
     /// dvUnknown = J dvKnown at the current point for the table scalars `unknowns` and
-    /// `knowns` ([`Model::directional_derivative`]); the computed values must be
-    /// current.
+    /// `knowns` ([`Model::JACOBIAN`], which the caller has checked is given); the
+    /// computed values must be current.
     pub fn directional_derivative(
         &self,
         unknowns: &[u32],
@@ -19,8 +19,8 @@ impl<M: Model> Instance<M> {
         out: &mut [f64],
     ) -> Result<(), String> {
         let (unknowns, knowns) = (self.elements(unknowns)?, self.elements(knowns)?);
-        self.model()
-            .directional_derivative(&unknowns, &knowns, seed, out)
+        let jacobian = M::JACOBIAN.ok_or("the model provides no directional derivatives")?;
+        jacobian.apply(self.model(), &unknowns, &knowns, seed, out)
     }
 
     fn elements(&self, vrs: &[u32]) -> Result<Vec<Element>, String> {

@@ -87,7 +87,7 @@ pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, Str
 fn with_start_values<'a, M: Model>(
     elements: impl Iterator<Item = (&'a Declaration<M>, usize)>,
 ) -> Result<M, String> {
-    let mut model = M::new();
+    let mut model = M::default();
     for (d, i) in elements {
         let result = match d.value {
             declare::Value::Real {

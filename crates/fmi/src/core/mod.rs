@@ -43,6 +43,6 @@ pub use hooks::{Element, Var};
 pub use instance::{Instance, Snapshot, Standard};
 pub use log::{Log, LogCategory};
 pub use model::{
-    DefaultExperiment, EventUpdate, Model, ModelInfo, OutputDerivativeError, StepOutcome,
+    DefaultExperiment, EventUpdate, Jacobian, Model, ModelInfo, OutputDerivativeError, StepOutcome,
 };
 pub use variables::{Variability, Variable};

@@ -16,7 +16,14 @@ pub struct DefaultExperiment {
     pub step_size: f64,
 }
 
-/// Static facts about a model.
+/// What a model's author states about it: names, instantiation token, description,
+/// default experiment, event indicators and log categories. The rest of the
+/// description's facts are derived, so that they cannot disagree with what they describe:
+/// the continuous states are counted from the declarations
+/// ([`continuous_states`](super::declare::continuous_states)), directional derivatives
+/// are provided exactly when [`Model::JACOBIAN`] is given, and maxOutputDerivativeOrder
+/// is the highest order the declarations' output-derivative hooks answer
+/// ([`max_output_derivative_order`](super::declare::max_output_derivative_order)).
 #[derive(Debug, Clone, Copy)]
 pub struct ModelInfo {
     /// modelName (also the FMU's file name).
@@ -27,21 +34,14 @@ pub struct ModelInfo {
     pub guid: &'static str,
     pub description: &'static str,
     pub default_experiment: DefaultExperiment,
-    pub number_of_continuous_states: usize,
     pub number_of_event_indicators: usize,
-    /// Whether `Model::partial_derivative` (or `directional_derivative`) is implemented.
-    pub provides_directional_derivative: bool,
-    /// maxOutputDerivativeOrder of Co-Simulation: the highest order `k` the
-    /// declarations' output-derivative hooks answer (0: no output derivatives).
-    pub max_output_derivative_order: u32,
     /// Model-specific log categories (the layer's own come first).
     pub log_categories: &'static [LogCategory],
 }
 
 impl ModelInfo {
-    /// The facts of a model named `name` (modelName and modelIdentifier) without
-    /// continuous states, event indicators, directional or output derivatives or log
-    /// categories of its own; the methods below add them.
+    /// The facts of a model named `name` (modelName and modelIdentifier) without event
+    /// indicators or log categories of its own; the methods below add them.
     pub const fn new(
         name: &'static str,
         guid: &'static str,
@@ -59,37 +59,61 @@ impl ModelInfo {
                 tolerance,
                 step_size,
             },
-            number_of_continuous_states: 0,
             number_of_event_indicators: 0,
-            provides_directional_derivative: false,
-            max_output_derivative_order: 0,
             log_categories: &[],
         }
-    }
-
-    /// The continuous states of a table: `continuous_states(VARIABLES)`, counted from
-    /// the declarations.
-    pub const fn states(mut self, n: usize) -> Self {
-        self.number_of_continuous_states = n;
-        self
-    }
-
-    /// `Model::partial_derivative` (or `directional_derivative`) is implemented.
-    pub const fn directional_derivatives(mut self) -> Self {
-        self.provides_directional_derivative = true;
-        self
-    }
-
-    /// The output-derivative hooks answer up to `order`.
-    pub const fn output_derivatives(mut self, order: u32) -> Self {
-        self.max_output_derivative_order = order;
-        self
     }
 
     /// The model's own log categories.
     pub const fn logs(mut self, categories: &'static [LogCategory]) -> Self {
         self.log_categories = categories;
         self
+    }
+}
+
+/// d(unknown)/d(known) of one pair of declared elements (see [`Jacobian`]).
+pub type PartialDerivative<M> = fn(&M, Element, Element) -> Result<f64, String>;
+
+/// dvUnknown = J dvKnown into `out` for (`model`, `unknowns`, `knowns`, `seed`, `out`)
+/// (see [`Jacobian`]).
+pub type DirectionalDerivative<M> =
+    fn(&M, &[Element], &[Element], &[f64], &mut [f64]) -> Result<(), String>;
+
+/// How a model answers directional derivatives (fmi2GetDirectionalDerivative,
+/// fmi3GetDirectionalDerivative and fmi3GetAdjointDerivative), the variables given as
+/// declared [`Element`]s at the current point (computed values are current). An error
+/// (the model cannot be evaluated here) makes the call return Discard.
+pub enum Jacobian<M> {
+    /// d(unknown)/d(known) one pair at a time; the layer sums the pairs over the seed.
+    Partial(PartialDerivative<M>),
+    /// dvUnknown = J dvKnown for all unknowns at once (`unknowns`, `knowns`, `seed`,
+    /// `out`), for a model that linearizes once per call instead of once per pair.
+    Directional(DirectionalDerivative<M>),
+}
+
+impl<M> Jacobian<M> {
+    /// dvUnknown = J dvKnown into `out` (one value per unknown).
+    pub fn apply(
+        &self,
+        model: &M,
+        unknowns: &[Element],
+        knowns: &[Element],
+        seed: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), String> {
+        match self {
+            Jacobian::Directional(f) => f(model, unknowns, knowns, seed, out),
+            Jacobian::Partial(partial) => {
+                for (o, &u) in out.iter_mut().zip(unknowns) {
+                    let mut sum = 0.0;
+                    for (&k, &s) in knowns.iter().zip(seed) {
+                        sum += partial(model, u, k)? * s;
+                    }
+                    *o = sum;
+                }
+                Ok(())
+            }
+        }
     }
 }
 
@@ -121,11 +145,15 @@ pub struct EventUpdate {
 
 /// A model that can be exported as an FMU by a front-end (`export_fmu!`).
 ///
-/// Slices passed to the continuous-state methods have exactly
-/// `info().number_of_continuous_states` (or `number_of_event_indicators`) elements.
+/// Slices passed to the continuous-state methods have exactly one element per
+/// continuous state (element of a derivative declaration), or per event indicator
+/// (`info().number_of_event_indicators`).
 /// The model never sees a value reference: variables reach it as the accessors and
 /// hooks of its declarations, called with an element index, or as [`Element`]s.
-pub trait Model: Clone + Send + Sized + 'static {
+///
+/// The layer builds a model as `Default::default()` and then applies every start value
+/// of the table through its writers, so start values live in the declarations only.
+pub trait Model: Clone + Default + Send + Sized + 'static {
     fn info() -> &'static ModelInfo;
 
     /// The variable table, declared once: a `static` slice of [`Declaration`]s
@@ -133,12 +161,9 @@ pub trait Model: Clone + Send + Sized + 'static {
     /// [`declare`](super::declare)).
     fn declarations() -> &'static [Declaration<Self>];
 
-    /// A model with every field defined; the layer then applies all start values of
-    /// the table through its writers, so defaults live in the table only.
-    fn new() -> Self;
-
-    /// The layer's simulation time changed (setup, fmi2SetTime, a completed step).
-    fn set_time(&mut self, time: f64);
+    /// The layer's simulation time changed (setup, fmi2SetTime, a completed step); a
+    /// time-invariant model ignores it (the default).
+    fn set_time(&mut self, _time: f64) {}
 
     /// End of initialization: check the parameters together (a message says which
     /// one is wrong and why) and prepare for simulation.
@@ -213,35 +238,9 @@ pub trait Model: Clone + Send + Sized + 'static {
         None
     }
 
-    /// Partial derivative d(unknown)/d(known) at the current point, for
-    /// fmi2GetDirectionalDerivative, the variables given as declared elements. Only
-    /// called when the model declares `provides_directional_derivative`.
-    fn partial_derivative(&self, _unknown: Element, _known: Element) -> Result<f64, String> {
-        Err("this model provides no partial derivatives".to_string())
-    }
-
-    /// Directional derivative dvUnknown = J dvKnown for all `unknowns` at once, J the
-    /// Jacobian d(unknowns)/d(knowns) at the current point (computed values are
-    /// current), the variables given as declared elements. The default sums
-    /// `partial_derivative` over the pairs; a model overrides it to linearize once
-    /// per call instead of once per pair. An error (the model cannot be evaluated
-    /// here) makes the call return Discard.
-    fn directional_derivative(
-        &self,
-        unknowns: &[Element],
-        knowns: &[Element],
-        seed: &[f64],
-        out: &mut [f64],
-    ) -> Result<(), String> {
-        for (o, &u) in out.iter_mut().zip(unknowns) {
-            let mut sum = 0.0;
-            for (&k, &s) in knowns.iter().zip(seed) {
-                sum += self.partial_derivative(u, k)? * s;
-            }
-            *o = sum;
-        }
-        Ok(())
-    }
+    /// Directional derivatives: provided (providesDirectionalDerivative) exactly when
+    /// given.
+    const JACOBIAN: Option<Jacobian<Self>> = None;
 
     /// Internal state that is neither a settable variable nor a continuous state,
     /// appended to serialized FMU states.

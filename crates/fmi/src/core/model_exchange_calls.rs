@@ -22,9 +22,9 @@ pub fn check_len(n: usize, expected: usize, what: &str) -> std::result::Result<(
     }
 }
 
-/// The number of continuous states of M.
+/// The number of continuous states of M, counted from its declarations.
 pub fn states<M: Model>() -> usize {
-    M::info().number_of_continuous_states
+    super::declare::continuous_states(M::declarations())
 }
 
 /// The number of event indicators of M.

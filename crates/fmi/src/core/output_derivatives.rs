@@ -26,7 +26,7 @@ fn check<M: Model>(inst: &Instance<M>, r: Request) -> Result<u32, String> {
             r.vr
         ));
     }
-    let max = M::info().max_output_derivative_order;
+    let max = super::declare::max_output_derivative_order(M::declarations());
     match u32::try_from(r.order) {
         Ok(order) if (1..=max).contains(&order) => Ok(order),
         _ if max == 0 => Err(format!(

@@ -70,7 +70,7 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
             .and_then(|m| slot(m, hook, index, order).copied());
         payload.extend_from_slice(&value.unwrap_or(0.0).to_le_bytes());
     }
-    let n = M::info().number_of_continuous_states;
+    let n = super::model_exchange_calls::states::<M>();
     let mut x = vec![0.0; n];
     s.model.continuous_states(&mut x);
     payload.extend_from_slice(&(n as u32).to_le_bytes());
@@ -301,10 +301,10 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
         }
     }
     let n = r.u32("number of states")? as usize;
-    if n != M::info().number_of_continuous_states {
+    let states = super::model_exchange_calls::states::<M>();
+    if n != states {
         return Err(format!(
-            "FMU state has {n} continuous states, the model {}",
-            M::info().number_of_continuous_states
+            "FMU state has {n} continuous states, the model {states}"
         ));
     }
     let x = (0..n)

@@ -39,3 +39,20 @@ pub const fn every<M, const N: usize>(declarations: &[Declaration<M>; N]) -> [Va
     }
     out
 }
+
+/// For each declaration, the element with the dependent element's own index: of an
+/// array the element of that index ([`Declaration::same`]), a scalar itself
+/// ([`Declaration::var`]); `u[c]` on `same(&[KP, SETPOINT])` depends on `Kp[c]` and
+/// `setpoint[c]`.
+pub const fn same<M, const N: usize>(declarations: &[Declaration<M>; N]) -> [Var; N] {
+    let mut out = [Var::Time; N];
+    let mut k = 0;
+    while k < N {
+        out[k] = match declarations[k].length {
+            Some(_) => declarations[k].same(),
+            None => declarations[k].var(),
+        };
+        k += 1;
+    }
+    out
+}

@@ -2,8 +2,8 @@
 
 use robofmu_fmi::core::ModelInfo;
 
-/// The `ModelInfo` of a test model: no continuous states, event indicators, log
-/// categories or directional derivatives; default experiment 0..1 s by 0.1 s.
+/// The `ModelInfo` of a test model: no event indicators or log categories; default
+/// experiment 0..1 s by 0.1 s.
 pub const fn test_info(
     name: &'static str,
     guid: &'static str,

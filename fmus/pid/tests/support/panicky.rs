@@ -4,7 +4,7 @@
 use crate::support::test_info;
 use robofmu_fmi::core::{Declaration, Log, Model, ModelInfo, StepOutcome, Variability};
 
-#[derive(Clone)]
+#[derive(Clone, Default)]
 pub struct Panicky;
 
 static PANICKY_INFO: ModelInfo = test_info("Panicky", "{panicky}", "panics in doStep");
@@ -20,9 +20,6 @@ impl Model for Panicky {
                 .start_real(&[1.0])
                 .set_real(|_, _, _| Ok(()))];
         VARIABLES
-    }
-    fn new() -> Self {
-        Panicky
     }
     fn set_time(&mut self, _time: f64) {}
     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {

@@ -5,14 +5,16 @@
 
 use super::*;
 use crate::motion_cache::ALONG;
-use robofmu_fmi::prelude::Model;
 
 /// A started plant away from rest, tilted, driven by every kind of input.
 fn moving() -> Pss3Plant {
-    let mut m = Pss3Plant::new();
-    m.state = robofmu_dynamics::pss3::dynamics::PlantState {
+    let state = robofmu_dynamics::pss3::dynamics::PlantState {
         euler: Vector3::new(0.05, -0.04, 2.35),
         omega: Vector3::new(0.3, -0.5, 0.8),
+    };
+    let mut m = Pss3Plant {
+        state,
+        ..Default::default()
     };
     m.inputs.forces = Vector3::new(20.0, -5.0, 12.0);
     m.inputs.commanded_torque = Vector3::new(0.1, 0.2, -0.3);

@@ -6,15 +6,14 @@
 //! `Error`, ...) returns NaN derivatives, which makes the solver reject the step and
 //! retry with a smaller one; when it cannot get through, the step fails with the
 //! solver's reason and the last model error. The caller's state is never modified.
-//! The solver's stiffness detection is off: an engaged end stop is stiff, and small
-//! explicit steps still integrate it correctly.
+//! The integrators ([`crate::ode`]) detect no stiffness: an engaged end stop is stiff,
+//! and small explicit steps still integrate it correctly.
 
 use super::error::DynamicsError;
 use super::input_ramp::InputRamp;
 use super::plant::{Plant, PlantInputs, PlantState};
+use crate::ode;
 use nalgebra::{SVector, Vector3};
-use ode_solvers::{Dop853, Dopri5, OutputType, System};
-use std::cell::RefCell;
 
 /// The state as one vector: (thx, thy, thz, omega_x, omega_y, omega_z).
 pub type StateVector = SVector<f64, 6>;
@@ -53,6 +52,20 @@ impl Default for StepSettings {
 }
 
 impl StepSettings {
+    /// The integrator's settings: Hairer's defaults of the pair (safety 0.9; DOPRI5
+    /// with the stabilised control, beta 0.04, step ratio 0.2 to 10; DOP853 with the
+    /// classical one, 0.333 to 6), both tolerances `tolerance`.
+    fn ode_settings(&self) -> ode::Settings {
+        let base = match self.method {
+            Method::Dopri5 => ode::Settings::dopri5(self.tolerance, self.max_step),
+            Method::Dop853 => ode::Settings::dop853(self.tolerance, self.max_step),
+        };
+        ode::Settings {
+            max_steps: self.max_internal_steps,
+            ..base
+        }
+    }
+
     fn validate(&self) -> Result<(), DynamicsError> {
         if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
             return Err(DynamicsError::InvalidSetting("tolerance", self.tolerance));
@@ -89,15 +102,15 @@ impl PlantState {
     }
 }
 
-/// The plant under its inputs, as an ODE system in the time since the step start;
-/// remembers the last model error.
+/// The plant under its inputs, as an ODE right-hand side in the time since the step
+/// start; remembers the last model error.
 struct Flow<'a> {
     plant: &'a Plant,
     /// The inputs at the start of the step.
     inputs: PlantInputs,
     /// How they change over the step; None: held.
     ramp: Option<InputRamp>,
-    last_error: &'a RefCell<Option<DynamicsError>>,
+    last_error: Option<DynamicsError>,
 }
 
 impl Flow<'_> {
@@ -106,10 +119,10 @@ impl Flow<'_> {
         self.ramp
             .map_or(self.inputs, |ramp| ramp.inputs_at(&self.inputs, s))
     }
-}
 
-impl System<f64, StateVector> for Flow<'_> {
-    fn system(&self, t: f64, y: &StateVector, dy: &mut StateVector) {
+    /// Writes the state's derivative `s` seconds into the step into `dy`, NaN where the
+    /// model cannot evaluate it.
+    fn rates(&mut self, s: f64, y: &StateVector, dy: &mut StateVector) {
         if y.iter().any(|v| !v.is_finite()) {
             // A later stage of a step already spoiled by a model error: keep that error.
             dy.fill(f64::NAN);
@@ -117,14 +130,14 @@ impl System<f64, StateVector> for Flow<'_> {
         }
         match self
             .plant
-            .derivative(&PlantState::from_vector(y), &self.inputs_at(t))
+            .derivative(&PlantState::from_vector(y), &self.inputs_at(s))
         {
             Ok(d) => {
                 dy.fixed_rows_mut::<3>(0).copy_from(&d.euler_rates);
                 dy.fixed_rows_mut::<3>(3).copy_from(&d.omega_dot);
             }
             Err(e) => {
-                *self.last_error.borrow_mut() = Some(e);
+                self.last_error = Some(e);
                 dy.fill(f64::NAN);
             }
         }
@@ -162,83 +175,32 @@ impl Plant {
         if h == 0.0 {
             return Ok(*state);
         }
-        let last_error = RefCell::new(None);
-        let flow = Flow {
+        let mut flow = Flow {
             plant: self,
             inputs: *inputs,
             ramp: (!ramp.is_held()).then_some(*ramp),
-            last_error: &last_error,
+            last_error: None,
         };
         let end_inputs = flow.inputs_at(h);
+        let ode_settings = settings.ode_settings();
+        let rates = |s: f64, y: &StateVector, dy: &mut StateVector| flow.rates(s, y, dy);
         let end = match settings.method {
-            Method::Dopri5 => {
-                let mut solver = Dopri5::from_param(
-                    flow,
-                    0.0,
-                    h,
-                    h,
-                    state.to_vector(),
-                    settings.tolerance,
-                    settings.tolerance,
-                    0.9,
-                    0.04,
-                    0.2,
-                    10.0,
-                    settings.max_step,
-                    0.0,
-                    settings.max_internal_steps,
-                    u32::MAX,
-                    OutputType::Sparse,
-                );
-                let outcome = solver.integrate();
-                finish(outcome, solver.x_out(), solver.y_out())
-            }
-            Method::Dop853 => {
-                let mut solver = Dop853::from_param(
-                    flow,
-                    0.0,
-                    h,
-                    h,
-                    state.to_vector(),
-                    settings.tolerance,
-                    settings.tolerance,
-                    0.9,
-                    0.0,
-                    0.333,
-                    6.0,
-                    settings.max_step,
-                    0.0,
-                    settings.max_internal_steps,
-                    u32::MAX,
-                    OutputType::Sparse,
-                );
-                let outcome = solver.integrate();
-                finish(outcome, solver.x_out(), solver.y_out())
-            }
+            Method::Dopri5 => ode::dopri5(rates, 0.0, h, state.to_vector(), &ode_settings),
+            Method::Dop853 => ode::dop853(rates, 0.0, h, state.to_vector(), &ode_settings),
+        };
+        let end = match end {
+            Ok(solution) if solution.y.iter().all(|v| v.is_finite()) => Ok(solution.y),
+            Ok(_) => Err("the solver returned no finite end state".to_string()),
+            Err(e) => Err(e.to_string()),
         };
         let end = end.map_err(|message| DynamicsError::Solver {
             message,
-            cause: last_error.into_inner().map(Box::new),
+            cause: flow.last_error.map(Box::new),
         })?;
         // The last accepted point must itself be a valid state (Dop853 evaluates it
         // only after accepting the step).
         let end = PlantState::from_vector(&end);
         self.derivative(&end, &end_inputs)?;
         Ok(end)
-    }
-}
-
-/// The end state of a finished run, or why there is none.
-fn finish<E: std::fmt::Display>(
-    outcome: Result<ode_solvers::dop_shared::Stats, E>,
-    times: &[f64],
-    states: &[StateVector],
-) -> Result<StateVector, String> {
-    match outcome {
-        Err(e) => Err(e.to_string()),
-        Ok(_) => match (times.last(), states.last()) {
-            (Some(_), Some(y)) if y.iter().all(|v| v.is_finite()) => Ok(*y),
-            _ => Err("the solver returned no finite end state".to_string()),
-        },
     }
 }

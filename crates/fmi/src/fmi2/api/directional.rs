@@ -23,7 +23,7 @@ pub unsafe fn get_directional_derivative<M: Model>(
             "fmi2GetDirectionalDerivative",
             Call::GetDirectionalDerivative,
             |inst| {
-                if !M::info().provides_directional_derivative {
+                if M::JACOBIAN.is_none() {
                     return Err(format!(
                         "{} does not provide directional derivatives \
                      (providesDirectionalDerivative=\"false\")",

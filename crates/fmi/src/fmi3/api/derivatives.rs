@@ -73,7 +73,7 @@ unsafe fn derivative<M: Model>(
 ) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, function, Call::Derivative, |inst| {
-            if !M::info().provides_directional_derivative {
+            if M::JACOBIAN.is_none() {
                 return Err(format!(
                     "{} provides no partial derivatives",
                     M::info().model_name
