@@ -28,32 +28,28 @@ pub struct Planner {
     tf: f64,
     boundary: [Boundary; AXES],
     time: f64,
-    plan: Planned,
-}
-
-/// The trajectories of the current parameters, or why there are none.
-#[derive(Clone)]
-struct Planned(Result<Plan<AXES>, String>);
-
-impl Default for Planned {
-    fn default() -> Self {
-        Planned(Err("no parameters applied yet".to_string()))
-    }
+    /// The trajectories of the parameters as set, or why there are none (None before
+    /// the layer writes the start values).
+    plan: Option<Result<Plan<AXES>, String>>,
 }
 
 impl Planner {
     /// Applies a change of the parameters and plans again.
     fn change(&mut self, f: impl FnOnce(&mut Self)) -> Result<(), String> {
         f(self);
-        self.plan = Planned(Plan::new(self.degree, self.t0, self.tf, &self.boundary));
+        self.plan = Some(Plan::new(self.degree, self.t0, self.tf, &self.boundary));
         Ok(())
+    }
+
+    fn plan(&self) -> Result<&Plan<AXES>, String> {
+        let plan = self.plan.as_ref().ok_or("no parameters applied yet")?;
+        plan.as_ref().map_err(String::clone)
     }
 
     /// Exact: order n of output k (0 q, 1 qdot, 2 qddot) of `axis` is the derivative of
     /// order k + n of its polynomial (one-sided at t0 and tf, zero while held).
     fn derivative(&self, axis: usize, k: usize, n: u32) -> Result<f64, OutputDerivativeError> {
-        let plan = self.plan.0.as_ref();
-        let plan = plan.map_err(|e| OutputDerivativeError::CannotEvaluate(e.clone()))?;
+        let plan = self.plan().map_err(OutputDerivativeError::CannotEvaluate)?;
         Ok(plan.axis(axis).derivative(self.time, k + n as usize))
     }
 }
@@ -150,7 +146,7 @@ impl Model for Planner {
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         // Every writer planned again: the plan is the one of the parameters as set.
-        let plan = self.plan.0.as_ref().map_err(String::clone)?;
+        let plan = self.plan()?;
         for a in 0..AXES {
             let (c, t0) = (plan.axis(a).shifted_coefficients(), self.t0);
             let message = format!("axis {}: q(t) = sum c_k (t - {t0})^k, c = {c:?}", a + 1);
