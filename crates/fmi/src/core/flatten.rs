@@ -48,7 +48,6 @@ fn names<M>(vars: &[Var], all: &[Declaration<M>], i: usize) -> Vec<String> {
     for var in vars {
         match *var {
             Var::Time => out.push("time".to_string()),
-            Var::Named(name) => out.push(name.to_string()),
             Var::Whole(name) => match length(name) {
                 Some(n) => out.extend((1..=n).map(|k| format!("{name}[{k}]"))),
                 None => out.push(name.to_string()),

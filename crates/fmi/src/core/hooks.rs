@@ -50,9 +50,6 @@ pub enum Var {
     /// The element of the array declaration of this name with the index of the
     /// dependent element itself (`setpoint[c]` for `u[c]`).
     Same(&'static str),
-    /// A scalar by its FMI 2.0 name (`platformInertia[1,2]`), for tables whose lists
-    /// are still written as names.
-    Named(&'static str),
 }
 
 /// The variables element i of a declaration depends on: the inputs and states
