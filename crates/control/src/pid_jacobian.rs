@@ -1,5 +1,5 @@
-//! The Jacobian of one PID channel ([`pid::output`](crate::pid::output) and
-//! [`pid::derivatives`](crate::pid::derivatives)) in closed form: the partial derivative
+//! The Jacobian of one PID channel ([`pid::output`] and [`pid::derivatives`]) in
+//! closed form: the partial derivative
 //! of the output u or a state derivative with respect to one input or state, at the
 //! current gains, state and inputs. The limits make u flat, conditional integration
 //! makes dI/dt flat; the channel reads nothing of another channel.

@@ -94,7 +94,7 @@ pub struct Host<M: Model> {
 
 /// Value reference of the variable `name`.
 pub fn vr<M: Model>(name: &str) -> u32 {
-    robofmu_fmi::core::flatten::flatten(M::declarations())
+    robofmu_fmi::core::flatten::flatten(M::VARIABLES)
         .into_iter()
         .find(|v| v.name() == name)
         .unwrap_or_else(|| panic!("no variable {name}"))
@@ -120,7 +120,7 @@ impl<M: Model> Host<M> {
 
     /// Instantiated with loggingOn as given (errors are logged either way).
     pub fn with_logging(kind: i32, logging_on: bool) -> Self {
-        let (c, lines, functions) = instantiate::<M>(kind, M::info().guid, logging_on);
+        let (c, lines, functions) = instantiate::<M>(kind, M::INFO.guid, logging_on);
         assert!(
             !c.is_null(),
             "instantiate failed: {:?}",
@@ -210,7 +210,7 @@ impl<M: Model> Host<M> {
     }
 
     pub fn states(&self) -> Vec<f64> {
-        let mut x = vec![0.0; robofmu_fmi::core::declare::continuous_states(M::declarations())];
+        let mut x = vec![0.0; robofmu_fmi::core::declare::continuous_states(M::VARIABLES)];
         let s = unsafe { api::get_continuous_states::<M>(self.c, x.as_mut_ptr(), x.len()) };
         assert_eq!(s, Fmi2Status::Ok, "{}", self.last_message());
         x
@@ -222,13 +222,13 @@ impl<M: Model> Host<M> {
 
     /// Derivatives and the status of fmi2GetDerivatives.
     pub fn derivatives(&self) -> (Fmi2Status, Vec<f64>) {
-        let mut dx = vec![0.0; robofmu_fmi::core::declare::continuous_states(M::declarations())];
+        let mut dx = vec![0.0; robofmu_fmi::core::declare::continuous_states(M::VARIABLES)];
         let s = unsafe { api::get_derivatives::<M>(self.c, dx.as_mut_ptr(), dx.len()) };
         (s, dx)
     }
 
     pub fn event_indicators(&self) -> (Fmi2Status, Vec<f64>) {
-        let mut z = vec![0.0; M::info().number_of_event_indicators];
+        let mut z = vec![0.0; M::INFO.number_of_event_indicators];
         let s = unsafe { api::get_event_indicators::<M>(self.c, z.as_mut_ptr(), z.len()) };
         (s, z)
     }

@@ -45,29 +45,24 @@ impl Default for Doubler {
 }
 
 impl Model for Doubler {
-    fn info() -> &'static ModelInfo {
-        &DOUBLER
-    }
-    fn declarations() -> &'static [Declaration<Self>] {
-        // Deliberately out of value-reference order: the layer sorts the scalars.
-        static VARIABLES: &[Declaration<Doubler>] = &[
-            Declaration::<Doubler>::real("y", "output", |m, _| m.y)
-                .at(2)
-                .output(),
-            Declaration::<Doubler>::integer("calculations", "count", |m, _| m.calculations)
-                .at(3)
-                .output(),
-            Declaration::<Doubler>::real("u", "input", |m, _| m.u)
-                .at(1)
-                .input()
-                .start_real(&[0.0])
-                .set_real(|m, _, v| {
-                    m.u = v;
-                    Ok(())
-                }),
-        ];
-        VARIABLES
-    }
+    const INFO: &'static ModelInfo = &DOUBLER;
+    // Deliberately out of value-reference order: the layer sorts the scalars.
+    const VARIABLES: &'static [Declaration<Self>] = &[
+        Declaration::<Doubler>::real("y", "output", |m, _| m.y)
+            .at(2)
+            .output(),
+        Declaration::<Doubler>::integer("calculations", "count", |m, _| m.calculations)
+            .at(3)
+            .output(),
+        Declaration::<Doubler>::real("u", "input", |m, _| m.u)
+            .at(1)
+            .input()
+            .start_real(&[0.0])
+            .set_real(|m, _, v| {
+                m.u = v;
+                Ok(())
+            }),
+    ];
     fn set_time(&mut self, _time: f64) {}
     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {
         Ok(())
@@ -162,31 +157,26 @@ impl Default for Sawtooth {
 }
 
 impl Model for Sawtooth {
-    fn info() -> &'static ModelInfo {
-        &SAWTOOTH
-    }
-    fn declarations() -> &'static [Declaration<Self>] {
-        static VARIABLES: &[Declaration<Sawtooth>] = &[
-            Declaration::<Sawtooth>::real("x", "state", |m, _| m.x)
-                .state()
-                .start_real(&[0.0])
-                .set_real(|m, _, v| {
-                    m.x = v;
-                    Ok(())
-                }),
-            Declaration::<Sawtooth>::real("der(x)", "rate", |_, _| 1.0).derivative_of("x"),
-            Declaration::<Sawtooth>::integer("maxResets", "resets before terminating", |m, _| {
-                m.max_resets
-            })
-            .parameter(Variability::Fixed)
-            .start_integer(&[2])
-            .set_integer(|m, _, v| {
-                m.max_resets = v;
+    const INFO: &'static ModelInfo = &SAWTOOTH;
+    const VARIABLES: &'static [Declaration<Self>] = &[
+        Declaration::<Sawtooth>::real("x", "state", |m, _| m.x)
+            .state()
+            .start_real(&[0.0])
+            .set_real(|m, _, v| {
+                m.x = v;
                 Ok(())
             }),
-        ];
-        VARIABLES
-    }
+        Declaration::<Sawtooth>::real("der(x)", "rate", |_, _| 1.0).derivative_of("x"),
+        Declaration::<Sawtooth>::integer("maxResets", "resets before terminating", |m, _| {
+            m.max_resets
+        })
+        .parameter(Variability::Fixed)
+        .start_integer(&[2])
+        .set_integer(|m, _, v| {
+            m.max_resets = v;
+            Ok(())
+        }),
+    ];
     fn set_time(&mut self, _time: f64) {}
     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {
         Ok(())
@@ -351,7 +341,7 @@ fn the_description_header_lends_the_description_of_its_own_build() {
         seen = Some((d.info.model_name, names.len()));
     });
     let table = robofmu_fmi::core::instance::sorted_table::<Doubler>().unwrap();
-    assert_eq!(seen, Some((Doubler::info().model_name, table.len())));
+    assert_eq!(seen, Some((Doubler::INFO.model_name, table.len())));
 }
 
 #[test]

@@ -53,12 +53,8 @@ impl Default for Ramp {
 }
 
 impl Model for Ramp {
-    fn info() -> &'static ModelInfo {
-        &RAMP
-    }
-    fn declarations() -> &'static [Declaration<Self>] {
-        VARIABLES
-    }
+    const INFO: &'static ModelInfo = &RAMP;
+    const VARIABLES: &'static [Declaration<Self>] = VARIABLES;
     fn set_time(&mut self, time: f64) {
         self.t = time;
     }

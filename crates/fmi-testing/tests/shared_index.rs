@@ -75,12 +75,8 @@ impl Default for Declared {
 }
 
 impl Model for Declared {
-    fn info() -> &'static ModelInfo {
-        &DECLARED
-    }
-    fn declarations() -> &'static [Declaration<Self>] {
-        DECLARATIONS
-    }
+    const INFO: &'static ModelInfo = &DECLARED;
+    const VARIABLES: &'static [Declaration<Self>] = DECLARATIONS;
     trivial_model!();
 }
 

@@ -196,10 +196,10 @@ pub fn describe<M: Model>() -> Result<Description, String> {
     let arrays = declared::view::<M>(&table)?;
     let scalars3 = scalar::view(&table, &arrays)?;
     Ok(Description {
-        info: *M::info(),
-        number_of_continuous_states: continuous_states(M::declarations()),
+        info: *M::INFO,
+        number_of_continuous_states: continuous_states(M::VARIABLES),
         provides_directional_derivative: M::JACOBIAN.is_some(),
-        max_output_derivative_order: max_output_derivative_order(M::declarations()),
+        max_output_derivative_order: max_output_derivative_order(M::VARIABLES),
         max_input_derivative_order: M::MAX_INPUT_DERIVATIVE_ORDER,
         intermediate_update_points: M::INTERMEDIATE_UPDATE_POINTS,
         log_categories: [

@@ -14,7 +14,7 @@
 //!    [`Variability`](prelude::Variability), unit, start, bounds and hooks (output
 //!    derivatives, input-derivative slots); value references are pinned with `.at(vr)`
 //!    or assigned by the layer (see [`core::declare`]);
-//! 3. implement [`Model`](prelude::Model) for the model type: `declarations()` returns
+//! 3. implement [`Model`](prelude::Model) for the model type: `VARIABLES` is
 //!    that slice; the step returns a [`StepOutcome`](prelude::StepOutcome), Model
 //!    Exchange events an [`EventUpdate`](prelude::EventUpdate); a
 //!    [`Jacobian`](prelude::Jacobian) names its variables as
@@ -95,8 +95,8 @@ pub mod prelude {
     //! //    and the start values, arguments, state machine, FMU states, logging, both
     //! //    standards' C functions).
     //! impl Model for Cooling {
-    //!     fn info() -> &'static ModelInfo { &INFO }
-    //!     fn declarations() -> &'static [Declaration<Self>] { VARIABLES }
+    //!     const INFO: &'static ModelInfo = &INFO;
+    //!     const VARIABLES: &'static [Declaration<Self>] = VARIABLES;
     //!     fn set_time(&mut self, _time: f64) {}
     //!     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> { Ok(()) }
     //!     fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {

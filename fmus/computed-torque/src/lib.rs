@@ -145,13 +145,9 @@ impl Default for ComputedTorqueFmu {
 }
 
 impl Model for ComputedTorqueFmu {
-    fn info() -> &'static ModelInfo {
-        &INFO
-    }
+    const INFO: &'static ModelInfo = &INFO;
 
-    fn declarations() -> &'static [Declaration<Self>] {
-        variables::table()
-    }
+    const VARIABLES: &'static [Declaration<Self>] = &variables::VARIABLES;
     fn set_time(&mut self, _time: f64) {
         // The law is time invariant.
     }

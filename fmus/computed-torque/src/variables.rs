@@ -285,7 +285,7 @@ const LAW: [Decl; 14] = [
 
 /// The law's variables, then the model's (one declaration per entry of
 /// `MODEL_PARAMETERS`, in its order).
-static VARIABLES: [Decl; 36] = concat(
+pub static VARIABLES: [Decl; 36] = concat(
     &[
         &LAW,
         &GEOMETRY,
@@ -297,8 +297,3 @@ static VARIABLES: [Decl; 36] = concat(
     ],
     KP,
 );
-
-/// The whole table.
-pub fn table() -> &'static [Decl] {
-    &VARIABLES
-}

@@ -273,13 +273,9 @@ fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
 }
 
 impl Model for Pid {
-    fn info() -> &'static ModelInfo {
-        &INFO
-    }
+    const INFO: &'static ModelInfo = &INFO;
 
-    fn declarations() -> &'static [Declaration<Self>] {
-        VARIABLES
-    }
+    const VARIABLES: &'static [Declaration<Self>] = VARIABLES;
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         for c in 0..CHANNELS {

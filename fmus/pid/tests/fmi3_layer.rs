@@ -35,7 +35,7 @@ unsafe extern "C" fn capture(
 
 /// A Co-Simulation instance of M with the capturing logger, initialized.
 fn initialized<M: Model>(lines: &Lines) -> Fmi3Instance {
-    let token = std::ffi::CString::new(M::info().guid).unwrap();
+    let token = std::ffi::CString::new(M::INFO.guid).unwrap();
     let c = unsafe {
         api::instantiate::<M>(api::Instantiation {
             function: "fmi3InstantiateCoSimulation",

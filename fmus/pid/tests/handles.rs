@@ -24,14 +24,9 @@ struct Other;
 static OTHER: ModelInfo = test_info("Other", "{other}", "another FMU");
 
 impl Model for Other {
-    fn info() -> &'static ModelInfo {
-        &OTHER
-    }
-    fn declarations() -> &'static [Declaration<Self>] {
-        static VARIABLES: &[Declaration<Other>] =
-            &[Declaration::real("y", "output", |_, _| 1.0).output()];
-        VARIABLES
-    }
+    const INFO: &'static ModelInfo = &OTHER;
+    const VARIABLES: &'static [Declaration<Self>] =
+        &[Declaration::real("y", "output", |_, _| 1.0).output()];
     fn set_time(&mut self, _time: f64) {}
     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {
         Ok(())
@@ -224,7 +219,7 @@ fn instantiate_refuses_null_memory_callbacks_with_a_log_line() {
         component_environment: &NO_ALLOCATOR_LOG as *const Lines as *mut c_void,
     };
     let name = CString::new("no-allocator").unwrap();
-    let guid = CString::new(Pid::info().guid).unwrap();
+    let guid = CString::new(Pid::INFO.guid).unwrap();
     let c = unsafe {
         api::instantiate::<Pid>(
             name.as_ptr(),

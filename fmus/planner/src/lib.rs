@@ -132,13 +132,9 @@ static VARIABLES: &[Decl] = &[
 ];
 
 impl Model for Planner {
-    fn info() -> &'static ModelInfo {
-        &INFO
-    }
+    const INFO: &'static ModelInfo = &INFO;
 
-    fn declarations() -> &'static [Declaration<Self>] {
-        VARIABLES
-    }
+    const VARIABLES: &'static [Declaration<Self>] = VARIABLES;
 
     fn set_time(&mut self, time: f64) {
         self.time = time;

@@ -21,7 +21,7 @@ fn instantiate_rejects_wrong_guid_type_and_missing_callbacks() {
     let (c, lines, _f) = fmu_host::instantiate::<Planner>(CS, "{not-the-guid}", false);
     assert!(c.is_null());
     assert!(lines.lock().unwrap()[0].2.contains("does not match"));
-    let (c, _, _f) = fmu_host::instantiate::<Planner>(7, Planner::info().guid, false);
+    let (c, _, _f) = fmu_host::instantiate::<Planner>(7, Planner::INFO.guid, false);
     assert!(c.is_null());
     let name = CString::new("x").unwrap();
     let c = unsafe {

@@ -335,13 +335,9 @@ impl Default for Pss3Plant {
 }
 
 impl Model for Pss3Plant {
-    fn info() -> &'static ModelInfo {
-        &INFO
-    }
+    const INFO: &'static ModelInfo = &INFO;
 
-    fn declarations() -> &'static [Declaration<Self>] {
-        &variables::VARIABLES
-    }
+    const VARIABLES: &'static [Declaration<Self>] = &variables::VARIABLES;
     fn set_time(&mut self, _time: f64) {
         // The plant is time invariant.
     }

@@ -197,7 +197,7 @@ pub fn instantiate<F: Frontend, M: Model>(
             if instance.log.enabled("logEvents") {
                 let message = format!(
                     "instantiated {} for {:?}",
-                    M::info().model_name,
+                    M::INFO.model_name,
                     instance.interface
                 );
                 instance.log.debug("logEvents", &message);

@@ -13,7 +13,7 @@ fn not_live<M: Model>(state: *mut c_void, noun: &str) -> String {
     format!(
         "{noun} {state:p} is not a live FMU state of {}: never issued, already \
          freed, or another FMU's",
-        M::info().model_name
+        M::INFO.model_name
     )
 }
 

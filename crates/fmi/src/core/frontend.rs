@@ -107,7 +107,7 @@ pub type LoggerOf<F> = Logger<<F as Frontend>::Sink>;
 
 /// All log categories of model M under front-end F: the layer's, then the model's.
 pub fn log_categories<F: Frontend, M: Model>() -> Vec<LogCategory> {
-    let model = M::info().log_categories;
+    let model = M::INFO.log_categories;
     // Sized once: a grown Vec costs a realloc per instantiation.
     let mut all = Vec::with_capacity(F::LAYER_CATEGORIES.len() + model.len());
     all.extend_from_slice(&F::LAYER_CATEGORIES[..]);

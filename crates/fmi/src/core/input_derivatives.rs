@@ -30,7 +30,7 @@ fn check_order<M: Model>(name: impl Fn() -> String, order: i32) -> Result<u32, S
     if max == 0 {
         return Err(format!(
             "{} takes no input derivatives (its inputs are held over a step)",
-            M::info().model_name
+            M::INFO.model_name
         ));
     }
     match u32::try_from(order) {
@@ -43,7 +43,7 @@ fn check_order<M: Model>(name: impl Fn() -> String, order: i32) -> Result<u32, S
             "order {order} for \"{}\" is above {max}, the highest input derivative \
              order {} uses",
             name(),
-            M::info().model_name
+            M::INFO.model_name
         )),
     }
 }
@@ -102,6 +102,6 @@ pub fn slot<M: Model>(
 fn no_slot<M: Model>(name: &str, order: u32) -> String {
     format!(
         "{} keeps no derivative of order {order} for \"{name}\"",
-        M::info().model_name
+        M::INFO.model_name
     )
 }

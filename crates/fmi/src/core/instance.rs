@@ -117,7 +117,7 @@ fn with_start_values<'a, M: Model>(
 /// references (all the runtime relies on; the full `check_table` runs where the
 /// modelDescription is written, in every FMU crate's drift test).
 pub fn sorted_table<M: Model>() -> Result<Vec<Variable<M>>, String> {
-    let table = by_value_reference(flatten(M::declarations()));
+    let table = by_value_reference(flatten(M::VARIABLES));
     if let Some(pair) = table
         .windows(2)
         .find(|p| p[0].value_reference == p[1].value_reference)
@@ -274,7 +274,7 @@ impl<M: Model> Index<M> {
     /// (all the runtime relies on; the full `check_table` runs where the
     /// modelDescription is written, in every FMU crate's drift test).
     fn build() -> Result<Self, String> {
-        let all = M::declarations();
+        let all = M::VARIABLES;
         let declarations: Vec<Declared<M>> = (all.iter().zip(value_references(all)))
             .map(|(declaration, first)| Declared {
                 declaration,
@@ -395,7 +395,7 @@ impl<M: Model> Instance<M> {
     /// start time.
     pub fn new(index: Arc<Index<M>>) -> Result<Self, String> {
         let mut model = index.fresh_model();
-        let time = M::info().default_experiment.start_time;
+        let time = M::INFO.default_experiment.start_time;
         model.set_time(time);
         Ok(Instance {
             index,
@@ -415,7 +415,7 @@ impl<M: Model> Instance<M> {
         self.dirty = true;
         self.stop_time = None;
         self.terminated_by_model = false;
-        self.set_time(M::info().default_experiment.start_time);
+        self.set_time(M::INFO.default_experiment.start_time);
         self.last_successful_time = self.time;
     }
 

@@ -147,19 +147,19 @@ pub struct EventUpdate {
 ///
 /// Slices passed to the continuous-state methods have exactly one element per
 /// continuous state (element of a derivative declaration), or per event indicator
-/// (`info().number_of_event_indicators`).
+/// (`INFO.number_of_event_indicators`).
 /// The model never sees a value reference: variables reach it as the accessors and
 /// hooks of its declarations, called with an element index, or as [`Element`]s.
 ///
 /// The layer builds a model as `Default::default()` and then applies every start value
 /// of the table through its writers, so start values live in the declarations only.
 pub trait Model: Clone + Default + Send + Sized + 'static {
-    fn info() -> &'static ModelInfo;
+    const INFO: &'static ModelInfo;
 
     /// The variable table, declared once: a `static` slice of [`Declaration`]s
     /// (scalars and arrays, accessors and hooks as `fn` pointers; see
     /// [`declare`](super::declare)).
-    fn declarations() -> &'static [Declaration<Self>];
+    const VARIABLES: &'static [Declaration<Self>];
 
     /// The layer's simulation time changed (setup, fmi2SetTime, a completed step); a
     /// time-invariant model ignores it (the default).
@@ -202,19 +202,19 @@ pub trait Model: Clone + Default + Send + Sized + 'static {
     /// The continuous states, by default read through the getters of the declared
     /// states (element i of the state of each derivative declaration, in their order).
     fn continuous_states(&self, x: &mut [f64]) {
-        super::declare::read_states(Self::declarations(), self, x);
+        super::declare::read_states(Self::VARIABLES, self, x);
     }
 
     /// Sets the continuous states, by default through the declared states' setters.
     fn set_continuous_states(&mut self, x: &[f64]) {
-        super::declare::write_states(Self::declarations(), self, x);
+        super::declare::write_states(Self::VARIABLES, self, x);
     }
 
     /// State derivatives, by default read through the getters of the derivative
     /// declarations; an error (the model cannot be evaluated at this point, e.g. a
     /// function outside its domain) makes fmi2GetDerivatives return fmi2Discard.
     fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
-        super::declare::read_derivatives(Self::declarations(), self, dx);
+        super::declare::read_derivatives(Self::VARIABLES, self, dx);
         Ok(())
     }
 

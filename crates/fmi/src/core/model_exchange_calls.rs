@@ -24,12 +24,12 @@ pub fn check_len(n: usize, expected: usize, what: &str) -> std::result::Result<(
 
 /// The number of continuous states of M, counted from its declarations.
 pub fn states<M: Model>() -> usize {
-    super::declare::continuous_states(M::declarations())
+    super::declare::continuous_states(M::VARIABLES)
 }
 
 /// The number of event indicators of M.
 pub fn indicators<M: Model>() -> usize {
-    M::info().number_of_event_indicators
+    M::INFO.number_of_event_indicators
 }
 
 /// EnterEventMode: `event_mode` (the front-end's Event Mode) with a log line.

@@ -26,13 +26,13 @@ fn check<M: Model>(inst: &Instance<M>, r: Request) -> Result<u32, String> {
             r.vr
         ));
     }
-    let max = super::declare::max_output_derivative_order(M::declarations());
+    let max = super::declare::max_output_derivative_order(M::VARIABLES);
     match u32::try_from(r.order) {
         Ok(order) if (1..=max).contains(&order) => Ok(order),
         _ if max == 0 => Err(format!(
             "{} provides no output derivatives (maxOutputDerivativeOrder=\"0\"); \
              asked for order {} of \"{}\"",
-            M::info().model_name,
+            M::INFO.model_name,
             r.order,
             v.name()
         )),
@@ -90,7 +90,7 @@ fn evaluate<M: Model>(inst: &mut Instance<M>, requests: &[Request]) -> Result<Ve
             Some(f) => f(inst.model(), v.index, order),
             None => Err(OutputDerivativeError::NotProvided(format!(
                 "{} declares no output derivatives for it",
-                M::info().model_name
+                M::INFO.model_name
             ))),
         }
         .map_err(|e| match e {

@@ -82,7 +82,7 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
     payload.extend_from_slice(&(extra.len() as u64).to_le_bytes());
     payload.extend_from_slice(&extra);
 
-    let guid = M::info().guid.as_bytes();
+    let guid = M::INFO.guid.as_bytes();
     let mut out = Vec::with_capacity(payload.len() + guid.len() + 40);
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
@@ -162,12 +162,12 @@ pub fn deserialize<M: Model>(table: &[Variable<M>], bytes: &[u8]) -> Result<Snap
     }
     let guid_len = r.u32("the model id length")? as usize;
     let guid = r.take(guid_len, "the model id")?;
-    if guid != M::info().guid.as_bytes() {
+    if guid != M::INFO.guid.as_bytes() {
         return Err(format!(
             "the FMU state belongs to model {}, not to {} ({})",
             String::from_utf8_lossy(guid),
-            M::info().model_name,
-            M::info().guid
+            M::INFO.model_name,
+            M::INFO.guid
         ));
     }
     let payload_len = r.u64("the payload length")?;
@@ -255,7 +255,7 @@ fn check_model<M: Model>(model: &M, time: f64, terminated: bool) -> Result<(), S
         .exit_initialization(&Silent)
         .map_err(|e| refused("parameters", format!("the model refuses them: {e}")))?;
     if terminated {
-        let h = M::info().default_experiment.step_size;
+        let h = M::INFO.default_experiment.step_size;
         let step = model.clone().do_step(time, h, &Silent);
         if !matches!(
             step,

@@ -20,14 +20,14 @@ pub fn view<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
             "value reference {TIME_VALUE_REFERENCE} is reserved for time in FMI 3.0"
         ));
     }
-    let declarations = M::declarations();
+    let declarations = M::VARIABLES;
     let firsts = value_references(declarations);
     let mut variables = Vec::with_capacity(declarations.len() + 2);
     variables.push(time_variable());
     for (position, &first) in firsts.iter().enumerate() {
         variables.push(variable3(declarations, &firsts, position, first)?);
     }
-    let n_indicators = M::info().number_of_event_indicators;
+    let n_indicators = M::INFO.number_of_event_indicators;
     if n_indicators > 0 {
         let last = table.iter().map(|v| v.value_reference).max().unwrap_or(0);
         variables.push(event_indicator_variable(last + 1, n_indicators));

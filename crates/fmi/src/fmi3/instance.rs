@@ -77,7 +77,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     /// Why the event indicators cannot be evaluated here, if they cannot (the same
     /// answer as fmi3GetEventIndicators: the model's reason, or a non-finite value).
     fn indicators_unevaluable(&self) -> Option<String> {
-        let mut z = vec![0.0; M::info().number_of_event_indicators];
+        let mut z = vec![0.0; M::INFO.number_of_event_indicators];
         match self.core.model().event_indicators(&mut z) {
             Err(reason) => Some(reason),
             Ok(()) => z
@@ -93,7 +93,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         match &v.source {
             Source::Time => out[0] = self.core.time,
             Source::EventIndicators { first } => {
-                let mut z = vec![0.0; M::info().number_of_event_indicators];
+                let mut z = vec![0.0; M::INFO.number_of_event_indicators];
                 self.core.model().event_indicators(&mut z)?;
                 if let Some(bad) = z.iter().find(|z| !z.is_finite()) {
                     return Err(format!("the model computed the event indicator {bad}"));

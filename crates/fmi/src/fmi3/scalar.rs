@@ -12,7 +12,7 @@ use std::borrow::Cow;
 
 /// The instantiationToken of the scalar-only description of model M.
 pub fn token<M: Model>() -> String {
-    format!("{}{SUFFIX}", M::info().guid)
+    format!("{}{SUFFIX}", M::INFO.guid)
 }
 
 /// What [`token`] appends to the model's GUID.
@@ -20,7 +20,7 @@ const SUFFIX: &str = "-scalar";
 
 /// Whether `given` is [`token`] of model M (compared without formatting the token).
 pub fn is_token<M: Model>(given: &str) -> bool {
-    given.strip_suffix(SUFFIX) == Some(M::info().guid)
+    given.strip_suffix(SUFFIX) == Some(M::INFO.guid)
 }
 
 /// The scalar view of `arrays` (the array view of the flattened `table`): each array

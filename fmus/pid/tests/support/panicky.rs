@@ -10,17 +10,12 @@ pub struct Panicky;
 static PANICKY_INFO: ModelInfo = test_info("Panicky", "{panicky}", "panics in doStep");
 
 impl Model for Panicky {
-    fn info() -> &'static ModelInfo {
-        &PANICKY_INFO
-    }
-    fn declarations() -> &'static [Declaration<Self>] {
-        static VARIABLES: &[Declaration<Panicky>] =
-            &[Declaration::real("k", "a parameter", |_, _| 1.0)
-                .parameter(Variability::Fixed)
-                .start_real(&[1.0])
-                .set_real(|_, _, _| Ok(()))];
-        VARIABLES
-    }
+    const INFO: &'static ModelInfo = &PANICKY_INFO;
+    const VARIABLES: &'static [Declaration<Self>] =
+        &[Declaration::real("k", "a parameter", |_, _| 1.0)
+            .parameter(Variability::Fixed)
+            .start_real(&[1.0])
+            .set_real(|_, _, _| Ok(()))];
     fn set_time(&mut self, _time: f64) {}
     fn exit_initialization(&mut self, _log: &dyn Log) -> Result<(), String> {
         Ok(())

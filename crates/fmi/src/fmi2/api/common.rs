@@ -104,11 +104,11 @@ pub unsafe fn instantiate_with<M: Model>(
             }
             // SAFETY: as above.
             let given = unsafe { text(guid, "fmuGUID") }?;
-            if given != M::info().guid {
+            if given != M::INFO.guid {
                 return Err(format!(
                     "fmuGUID {given} does not match this binary ({}, guid {})",
-                    M::info().model_name,
-                    M::info().guid
+                    M::INFO.model_name,
+                    M::INFO.guid
                 ));
             }
             let interface = match fmu_type {

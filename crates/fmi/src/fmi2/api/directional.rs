@@ -27,7 +27,7 @@ pub unsafe fn get_directional_derivative<M: Model>(
                     return Err(format!(
                         "{} does not provide directional derivatives \
                      (providesDirectionalDerivative=\"false\")",
-                        M::info().model_name
+                        M::INFO.model_name
                     ));
                 }
                 let unknowns = input_slice(unknown_refs, n_unknown, "vUnknown_ref[]")?;

@@ -124,11 +124,11 @@ pub unsafe fn instantiate_with<M: Model>(
             // SAFETY: as above.
             let given = unsafe { text(args.token, "instantiationToken") }?;
             let scalar = crate::fmi3::scalar::is_token::<M>(given);
-            if given != M::info().guid && !scalar {
+            if given != M::INFO.guid && !scalar {
                 return Err(format!(
                     "instantiationToken {given} does not match this binary ({}, {})",
-                    M::info().model_name,
-                    M::info().guid
+                    M::INFO.model_name,
+                    M::INFO.guid
                 ));
             }
             // SAFETY: the host passes an array of the given length or null.
@@ -152,7 +152,7 @@ pub unsafe fn refuse_scheduled_execution<M: Model>(
         &format!(
             "fmi3InstantiateScheduledExecution: {} supports Model Exchange and \
              Co-Simulation only",
-            M::info().model_name
+            M::INFO.model_name
         ),
     );
     std::ptr::null_mut()

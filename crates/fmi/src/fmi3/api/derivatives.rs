@@ -76,7 +76,7 @@ unsafe fn derivative<M: Model>(
             if M::JACOBIAN.is_none() {
                 return Err(format!(
                     "{} provides no partial derivatives",
-                    M::info().model_name
+                    M::INFO.model_name
                 ));
             }
             let unknowns = input_slice(r.unknowns, r.n_unknowns, "unknowns[]")?;

@@ -29,7 +29,7 @@ pub struct StepResult {
 
 /// The event indicators of the model now, if it has any and they can be evaluated.
 fn indicators<M: Model>(model: &M) -> Option<Vec<f64>> {
-    let mut z = vec![0.0; M::info().number_of_event_indicators];
+    let mut z = vec![0.0; M::INFO.number_of_event_indicators];
     (!z.is_empty() && model.event_indicators(&mut z).is_ok()).then_some(z)
 }
 

@@ -55,7 +55,7 @@ pub unsafe fn access_unsupported_type<M: Model>(
 pub unsafe fn unsupported<M: Model>(c: Fmi3Instance, function: &str, what: &str) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, function, Call::Unsupported, |_| {
-            Err(format!("{} has no {what}", M::info().model_name))
+            Err(format!("{} has no {what}", M::INFO.model_name))
         })
     }
 }
