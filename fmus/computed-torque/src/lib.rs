@@ -94,10 +94,7 @@ impl ComputedTorqueFmu {
             }
         };
         match law.output(&self.integral, &self.inputs) {
-            Ok(output) => Ok(Evaluation {
-                u: output.u,
-                integral_rate: law.integral_rate(&output),
-            }),
+            Ok(output) => Ok(Evaluation { u: output.u, integral_rate: law.integral_rate(&output) }),
             Err(DynamicsError::Kinematics(e)) => {
                 let theta = self.inputs.measurement.map(f64::to_degrees);
                 Err(format!(
@@ -154,10 +151,7 @@ impl Model for ComputedTorqueFmu {
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         let law = self.build_law()?;
-        log.debug(
-            "logController",
-            &format!("gains {:?}, model {:?}", law.gains(), self.model),
-        );
+        log.debug("logController", &format!("gains {:?}, model {:?}", law.gains(), self.model));
         self.law = Some(law);
         // The model must be evaluable at the start inputs: a geometry whose legs cannot
         // reach the measured pose is refused here, so that a getter in Initialization
@@ -182,10 +176,7 @@ impl Model for ComputedTorqueFmu {
                 self.integral += evaluation.integral_rate * step;
                 StepOutcome::Completed
             }
-            Err(reason) => StepOutcome::Discarded {
-                reason,
-                terminate: true,
-            },
+            Err(reason) => StepOutcome::Discarded { reason, terminate: true },
         }
     }
 

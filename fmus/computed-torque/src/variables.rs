@@ -22,11 +22,8 @@ const GAINS: AxisGains = match pole_placement(DEFAULT_BANDWIDTH, true) {
 /// The default inputs: measured at rest in the start pose (path 1's start), planned
 /// 0.5, -0.5 and 1 deg away, so that the default run's output moves.
 const MEASURED: [f64; 3] = [0.0, 0.0, START_ROLL_DEG.to_radians()];
-const PLANNED: [f64; 3] = [
-    0.5f64.to_radians(),
-    -0.5f64.to_radians(),
-    START_ROLL_DEG.to_radians() + 1f64.to_radians(),
-];
+const PLANNED: [f64; 3] =
+    [0.5f64.to_radians(), -0.5f64.to_radians(), START_ROLL_DEG.to_radians() + 1f64.to_radians()];
 
 /// The per-axis array of `m.$($place)+[k]`-like fields, at `vr`, "Axis k: ..." in FMI
 /// 2.0; writing it rebuilds the law before its next use.
@@ -113,59 +110,25 @@ const fn model<const K: usize>(length: usize) -> Decl {
     d
 }
 
-pub const KP: Decl = gain!(
-    "Kp",
-    1,
-    "acceleration per angle error, 1/s2",
-    GAINS.kp,
-    |m, k| m.gains[k].kp
-);
-pub const KD: Decl = gain!("Kd", 11, "acceleration per rate error", GAINS.kd, |m, k| m
-    .gains[k]
-    .kd)
-.unit("1/s", None);
-pub const KI: Decl = gain!(
-    "Ki",
-    21,
-    "acceleration per integrated error, 1/s3",
-    GAINS.ki,
-    |m, k| m.gains[k].ki
-);
-pub const LIMIT: Decl = axes!(
-    boolean,
-    set_boolean,
-    "limitOutput",
-    31,
-    "clamp the output to [uMin, uMax]",
-    |m, k| m.limited[k]
-)
-.parameter(Variability::Tunable)
-.start_boolean(&[false]);
-pub const U_MIN: Decl = gain!(
-    "uMin",
-    41,
-    "lower output limit (used when limitOutput)",
-    -1.0,
-    |m, k| m.limits[k].0
-)
-.unit("N.m", None);
-pub const U_MAX: Decl = gain!(
-    "uMax",
-    51,
-    "upper output limit (used when limitOutput)",
-    1.0,
-    |m, k| m.limits[k].1
-)
-.unit("N.m", None);
-pub const SETPOINT: Decl = input!(
-    "setpoint",
-    101,
-    "planned Euler angle q",
-    "rad",
-    "deg",
-    &PLANNED,
-    setpoint
-);
+pub const KP: Decl =
+    gain!("Kp", 1, "acceleration per angle error, 1/s2", GAINS.kp, |m, k| m.gains[k].kp);
+pub const KD: Decl = gain!("Kd", 11, "acceleration per rate error", GAINS.kd, |m, k| m.gains[k].kd)
+    .unit("1/s", None);
+pub const KI: Decl =
+    gain!("Ki", 21, "acceleration per integrated error, 1/s3", GAINS.ki, |m, k| m.gains[k].ki);
+pub const LIMIT: Decl =
+    axes!(boolean, set_boolean, "limitOutput", 31, "clamp the output to [uMin, uMax]", |m, k| m
+        .limited[k])
+    .parameter(Variability::Tunable)
+    .start_boolean(&[false]);
+pub const U_MIN: Decl =
+    gain!("uMin", 41, "lower output limit (used when limitOutput)", -1.0, |m, k| m.limits[k].0)
+        .unit("N.m", None);
+pub const U_MAX: Decl =
+    gain!("uMax", 51, "upper output limit (used when limitOutput)", 1.0, |m, k| m.limits[k].1)
+        .unit("N.m", None);
+pub const SETPOINT: Decl =
+    input!("setpoint", 101, "planned Euler angle q", "rad", "deg", &PLANNED, setpoint);
 pub const SETPOINT_RATE: Decl = input!(
     "setpointRate",
     111,
@@ -184,15 +147,8 @@ pub const SETPOINT_ACCELERATION: Decl = input!(
     &[0.0],
     setpoint_acceleration
 );
-pub const MEASUREMENT: Decl = input!(
-    "measurement",
-    131,
-    "measured Euler angle theta",
-    "rad",
-    "deg",
-    &MEASURED,
-    measurement
-);
+pub const MEASUREMENT: Decl =
+    input!("measurement", 131, "measured Euler angle theta", "rad", "deg", &MEASURED, measurement);
 pub const MEASURED_RATE: Decl = input!(
     "measuredRate",
     141,
@@ -202,36 +158,25 @@ pub const MEASURED_RATE: Decl = input!(
     &[0.0],
     measured_rate
 );
-pub const U: Decl = Decl::real(
-    "u",
-    "Euler-angle generalized force (plant generalizedForceCommand)",
-    |m, k| m.u(k),
-)
-.array(AXES)
-.at(201)
-.label("Axis")
-.output()
-.unit("N.m", None)
-.initial_depends_on_each(initial_dependencies::of_axis);
-pub const INTEGRAL: Decl = axes!(
-    real,
-    set_real,
-    "integral",
-    301,
-    "integral of the angle error (state)",
-    |m, k| m.integral[k]
-)
-.state()
-.start_real(&[0.0]);
-pub const DER_INTEGRAL: Decl = Decl::real(
-    "der(integral)",
-    "Time derivative of the error integral",
-    |m, k| m.integral_rate(k),
-)
-.array(AXES)
-.at(311)
-.derivative_of(INTEGRAL.name)
-.initial_depends_on_each(initial_dependencies::of_axis);
+pub const U: Decl =
+    Decl::real("u", "Euler-angle generalized force (plant generalizedForceCommand)", |m, k| m.u(k))
+        .array(AXES)
+        .at(201)
+        .label("Axis")
+        .output()
+        .unit("N.m", None)
+        .initial_depends_on_each(initial_dependencies::of_axis);
+pub const INTEGRAL: Decl =
+    axes!(real, set_real, "integral", 301, "integral of the angle error (state)", |m, k| m
+        .integral[k])
+    .state()
+    .start_real(&[0.0]);
+pub const DER_INTEGRAL: Decl =
+    Decl::real("der(integral)", "Time derivative of the error integral", |m, k| m.integral_rate(k))
+        .array(AXES)
+        .at(311)
+        .derivative_of(INTEGRAL.name)
+        .initial_depends_on_each(initial_dependencies::of_axis);
 
 /// The model's geometry: lp, ld, gamma, lb, alpha, beta, a.
 pub const GEOMETRY: [Decl; 7] = [
@@ -255,12 +200,8 @@ pub const PLATFORM_INERTIA: [Decl; 6] = [
     model::<16>(1),
 ];
 /// legMass, legComFraction, legTransverseInertia, sliderMass.
-pub const LEGS_AND_SLIDERS: [Decl; 4] = [
-    model::<17>(1),
-    model::<18>(1),
-    model::<19>(1),
-    model::<20>(1),
-];
+pub const LEGS_AND_SLIDERS: [Decl; 4] =
+    [model::<17>(1), model::<18>(1), model::<19>(1), model::<20>(1)];
 pub const G: Decl = model::<21>(1);
 /// sliderFriction, pivotFriction.
 pub const FRICTION: [Decl; 2] = [model::<22>(1), model::<23>(1)];

@@ -121,9 +121,7 @@ macro_rules! input {
 /// A state of the three channels (start 0), and its time derivative.
 macro_rules! state {
     ($name:literal, $vr:literal, $what:literal, $field:ident) => {
-        settable!(real, set_real, $name, $vr, $what, states.$field)
-            .state()
-            .start_real(&[0.0])
+        settable!(real, set_real, $name, $vr, $what, states.$field).state().start_real(&[0.0])
     };
     ($name:literal, $state:ident, $vr:literal, $what:literal, $field:ident) => {
         Decl::real($name, $what, |m, c| m.derivative(c).$field)
@@ -144,27 +142,10 @@ const TF: Decl = gain!(
     gains.tf
 )
 .real_range(Some(0.0), None);
-const LIMIT: Decl = switch!(
-    "limitOutput",
-    41,
-    "clamp the output to [uMin, uMax]",
-    Tunable,
-    limited
-);
-const U_MIN: Decl = gain!(
-    "uMin",
-    51,
-    "Lower output limit (used when limitOutput)",
-    -1.0,
-    limits.0
-);
-const U_MAX: Decl = gain!(
-    "uMax",
-    61,
-    "Upper output limit (used when limitOutput)",
-    1.0,
-    limits.1
-);
+const LIMIT: Decl =
+    switch!("limitOutput", 41, "clamp the output to [uMin, uMax]", Tunable, limited);
+const U_MIN: Decl = gain!("uMin", 51, "Lower output limit (used when limitOutput)", -1.0, limits.0);
+const U_MAX: Decl = gain!("uMax", 61, "Upper output limit (used when limitOutput)", 1.0, limits.1);
 const RATES: Decl = switch!(
     "useRateInputs",
     71,
@@ -173,13 +154,7 @@ const RATES: Decl = switch!(
     gains.use_rate_inputs
 );
 const SETPOINT: Decl = input!("setpoint", 101, "Setpoint r", &[1.0, 0.5, -0.25], setpoint);
-const MEASURED: Decl = input!(
-    "measurement",
-    111,
-    "Measurement y (e = r - y)",
-    &[0.0],
-    measurement
-);
+const MEASURED: Decl = input!("measurement", 111, "Measurement y (e = r - y)", &[0.0], measurement);
 const R_RATE: Decl = input!(
     "setpointRate",
     121,
@@ -194,34 +169,19 @@ const Y_RATE: Decl = input!(
     &[0.0],
     measured_rate
 );
-const FEEDFWD: Decl = input!(
-    "feedforward",
-    141,
-    "Added to the output before the limits",
-    &[0.0],
-    feedforward
-);
+const FEEDFWD: Decl =
+    input!("feedforward", 141, "Added to the output before the limits", &[0.0], feedforward);
 const U: Decl = channels(Decl::real("u", "control output", |m, c| m.output(c).u), 201)
     .output()
     .initial_depends_on(&OUTPUT_KNOWNS);
 const INTEGRAL: Decl = state!("integral", 301, "integral of the error (state)", integral);
 const FILTER: Decl = state!("filter", 311, "derivative filter state (state)", filter);
-const DER_INT: Decl = state!(
-    "der(integral)",
-    INTEGRAL,
-    321,
-    "Time derivative of the error integral",
-    integral
-)
-.initial_depends_on(&OUTPUT_KNOWNS);
-const DER_FILTER: Decl = state!(
-    "der(filter)",
-    FILTER,
-    331,
-    "Time derivative of the derivative filter state",
-    filter
-)
-.initial_depends_on(&FILTER_KNOWNS);
+const DER_INT: Decl =
+    state!("der(integral)", INTEGRAL, 321, "Time derivative of the error integral", integral)
+        .initial_depends_on(&OUTPUT_KNOWNS);
+const DER_FILTER: Decl =
+    state!("der(filter)", FILTER, 331, "Time derivative of the derivative filter state", filter)
+        .initial_depends_on(&FILTER_KNOWNS);
 
 /// What the filter's dx/dt reads at initialization, in the same channel.
 static FILTER_KNOWNS: [Var; 8] = same(&[KD, TF, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FILTER]);
@@ -238,11 +198,8 @@ static VARIABLES: &[Decl] = &[
 ];
 
 /// The law's unknowns and knowns (`control::pid_jacobian`) by declaration.
-const UNKNOWNS: [(Decl, Unknown); 3] = [
-    (U, Unknown::Output),
-    (DER_INT, Unknown::IntegralRate),
-    (DER_FILTER, Unknown::FilterRate),
-];
+const UNKNOWNS: [(Decl, Unknown); 3] =
+    [(U, Unknown::Output), (DER_INT, Unknown::IntegralRate), (DER_FILTER, Unknown::FilterRate)];
 const KNOWNS: [(Decl, Known); 7] = [
     (SETPOINT, Known::Setpoint),
     (MEASURED, Known::Measurement),
@@ -288,10 +245,7 @@ impl Model for Pid {
 
     fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
         if let Err(reason) = (0..CHANNELS).try_for_each(|c| self.validate(c)) {
-            return StepOutcome::Discarded {
-                reason,
-                terminate: true,
-            };
+            return StepOutcome::Discarded { reason, terminate: true };
         }
         for c in 0..CHANNELS {
             let (g, s, i) = (&self.gains[c], &self.states[c], &self.inputs[c]);

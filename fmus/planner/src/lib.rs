@@ -81,37 +81,28 @@ macro_rules! boundary {
     };
 }
 
-/// Output k (0 q, 1 qdot, 2 qddot) of axis a (NaN until the parameters are valid).
-fn output<const K: usize>(m: &Planner, a: usize) -> f64 {
-    m.derivative(a, K, 0).unwrap_or(f64::NAN)
-}
-
-/// A planned output of the three axes, with exact time derivatives.
+/// Planned output k (0 q, 1 qdot, 2 qddot) of the three axes (NaN until the parameters
+/// are valid), with exact time derivatives.
 const fn planned<const K: usize>(name: &'static str, vr: u32, what: &'static str) -> Decl {
-    let d = axes(Decl::real(name, what, output::<K>), vr, K).output();
-    d.output_derivative(2, |m, a, n| m.derivative(a, K, n))
-        .initial_depends_on(&KNOWNS)
+    let q = |m: &Planner, a| m.derivative(a, K, 0).unwrap_or(f64::NAN);
+    let d = axes(Decl::real(name, what, q), vr, K).output();
+    d.output_derivative(2, |m, a, n| m.derivative(a, K, n)).initial_depends_on(&KNOWNS)
 }
 
-const ORDER: Decl = Decl::integer(
-    "order",
-    "Polynomial degree: 3 (cubic) or 5 (quintic)",
-    |m, _| m.degree,
-)
-.set_integer(|m, _, v| match Order::from_degree(v) {
-    None => Err("the order must be 3 or 5".to_string()),
-    Some(_) => m.change(|m| m.degree = v),
-})
-.parameter(Variability::Fixed)
-.start_integer(&[5])
-.integer_range(3, 5)
-.at(1);
-const T0: Decl = fixed!(t0, "Start time of the motion", |m, _a| m)
-    .unit("s", None)
-    .start_real(&[0.0]);
-const TF: Decl = fixed!(tf, "End time of the motion (after t0)", |m, _a| m)
-    .unit("s", None)
-    .start_real(&[2.0]);
+const ORDER: Decl =
+    Decl::integer("order", "Polynomial degree: 3 (cubic) or 5 (quintic)", |m, _| m.degree)
+        .set_integer(|m, _, v| match Order::from_degree(v) {
+            None => Err("the order must be 3 or 5".to_string()),
+            Some(_) => m.change(|m| m.degree = v),
+        })
+        .parameter(Variability::Fixed)
+        .start_integer(&[5])
+        .integer_range(3, 5)
+        .at(1);
+const T0: Decl =
+    fixed!(t0, "Start time of the motion", |m, _a| m).unit("s", None).start_real(&[0.0]);
+const TF: Decl =
+    fixed!(tf, "End time of the motion (after t0)", |m, _a| m).unit("s", None).start_real(&[2.0]);
 const Q0: Decl = boundary!(q0, 10, 0, "position at t0", &[0.0]);
 const QF: Decl = boundary!(qf, 11, 0, "position at tf", &[0.5, -0.3, 0.8]);
 const QDOT0: Decl = boundary!(qdot0, 12, 1, "velocity at t0", &[0.0]);
@@ -127,9 +118,7 @@ const Q: Decl = planned::<0>("q", 100, "planned position");
 const QDOT: Decl = planned::<1>("qdot", 101, "planned velocity");
 const QDDOT: Decl = planned::<2>("qddot", 102, "planned acceleration");
 
-static VARIABLES: &[Decl] = &[
-    ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF, Q, QDOT, QDDOT,
-];
+static VARIABLES: &[Decl] = &[ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF, Q, QDOT, QDDOT];
 
 impl Model for Planner {
     const INFO: &'static ModelInfo = &INFO;

@@ -32,10 +32,7 @@ const NAMES: [(&str, &str); 14] = [
 ];
 
 fn fmu_name(library: &str) -> &str {
-    NAMES
-        .iter()
-        .find(|(l, _)| *l == library)
-        .map_or(library, |(_, fmu)| fmu)
+    NAMES.iter().find(|(l, _)| *l == library).map_or(library, |(_, fmu)| fmu)
 }
 
 /// The library's parameter error as a message that names the FMU parameter.
@@ -50,10 +47,7 @@ pub fn fmu_message(e: &PlantParamError) -> String {
         }
         E::Negative(name, v) => format!("parameter {} = {v} must not be negative", fmu_name(name)),
         E::OutsideUnitInterval(name, v) => {
-            format!(
-                "parameter {} = {v} must lie between 0 and 1",
-                fmu_name(name)
-            )
+            format!("parameter {} = {v} must lie between 0 and 1", fmu_name(name))
         }
         E::Geometry(ParamError::EmptyStroke(min, max)) => format!(
             "parameters strokeMin = {min} and strokeMax = {max}: strokeMin must be below \
@@ -230,14 +224,9 @@ pub const L0: Decl = initial!(
     l0
 )
 .unit("m", Some("mm"));
-pub const OMEGA0: Decl = initial!(
-    "omega0",
-    1037,
-    "Initial angular velocity of the platform in {A}",
-    &[0.0],
-    omega0
-)
-.unit("rad/s", Some("deg/s"));
+pub const OMEGA0: Decl =
+    initial!("omega0", 1037, "Initial angular velocity of the platform in {A}", &[0.0], omega0)
+        .unit("rad/s", Some("deg/s"));
 pub const INIT_FROM_ACTUATORS: Decl = Decl::boolean(
     "initFromActuators",
     "Initial pose from l0 by forward kinematics instead of theta0",
@@ -258,11 +247,7 @@ const END_STOP_MODE: Decl = Decl::integer(
 )
 .at(1041)
 .set_integer(|m, _, v| {
-    m.params.end_stops.mode = if v == 2 {
-        EndStopMode::Error
-    } else {
-        EndStopMode::Spring
-    };
+    m.params.end_stops.mode = if v == 2 { EndStopMode::Error } else { EndStopMode::Spring };
     m.rebuild();
     Ok(())
 })
@@ -294,14 +279,7 @@ pub const PARAMETERS: [Decl; COUNT] = concat(
             MAX_STEP,
         ],
         &PLATFORM_INERTIA,
-        &[
-            PLATFORM_COM,
-            THETA0,
-            L0,
-            OMEGA0,
-            INIT_FROM_ACTUATORS,
-            END_STOP_MODE,
-        ],
+        &[PLATFORM_COM, THETA0, L0, OMEGA0, INIT_FROM_ACTUATORS, END_STOP_MODE],
     ],
     STROKE_MIN,
 );

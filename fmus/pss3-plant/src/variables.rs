@@ -16,12 +16,8 @@ type Decl = Declaration<Pss3Plant>;
 /// The continuous states (pose and angular velocity).
 static STATES: [Var; 2] = [THETA.var(), OMEGA.var()];
 /// The pose and the actuator commands (the realised actuator force).
-static THETA_AND_COMMANDS: [Var; 4] = [
-    THETA.var(),
-    ACTUATOR_FORCE.var(),
-    TORQUE_COMMAND.var(),
-    GENERALIZED_FORCE_COMMAND.var(),
-];
+static THETA_AND_COMMANDS: [Var; 4] =
+    [THETA.var(), ACTUATOR_FORCE.var(), TORQUE_COMMAND.var(), GENERALIZED_FORCE_COMMAND.var()];
 /// The states and every input (through the accelerations).
 static STATES_AND_INPUTS: [Var; 6] = [
     THETA.var(),
@@ -100,13 +96,8 @@ fn euler(m: &Pss3Plant, axis: usize, sign: f64) -> f64 {
     m.current_state().map_or(f64::NAN, |s| sign * s.euler[axis])
 }
 
-pub const ACTUATOR_FORCE: Decl = input!(
-    "actuatorForce",
-    0,
-    "N",
-    "Force applied by actuator i along its axis u_i",
-    forces
-);
+pub const ACTUATOR_FORCE: Decl =
+    input!("actuatorForce", 0, "N", "Force applied by actuator i along its axis u_i", forces);
 pub const TORQUE_COMMAND: Decl = input!(
     "torqueCommand",
     10,
@@ -156,16 +147,12 @@ pub const THETA_DOT: Decl = vector!("thetaDot", 120, ThetaDot, "Euler-angle rate
 .unit("rad/s", Some("deg/s"))
 .depends_on(&STATES)
 .initial_depends_on_each(init::theta_dot);
-pub const OMEGA_DOT: Decl = vector!(
-    "omegaDot",
-    130,
-    OmegaDot,
-    "Angular acceleration of the platform in {A}",
-    |m, i| m.output(|o| o.omega_dot[i])
-)
-.unit("rad/s2", Some("deg/s2"))
-.depends_on(&STATES_AND_INPUTS)
-.initial_depends_on(&init::ACCELERATION);
+pub const OMEGA_DOT: Decl =
+    vector!("omegaDot", 130, OmegaDot, "Angular acceleration of the platform in {A}", |m, i| m
+        .output(|o| o.omega_dot[i]))
+    .unit("rad/s2", Some("deg/s2"))
+    .depends_on(&STATES_AND_INPUTS)
+    .initial_depends_on(&init::ACCELERATION);
 pub const YAW: Decl = scalar!(
     "yaw",
     141,
@@ -217,16 +204,12 @@ const FORCE: Decl = vector!(
 .unit("N", None)
 .depends_on(&THETA_AND_COMMANDS)
 .initial_depends_on(&init::FORCE);
-const STOP_FORCE: Decl = vector!(
-    "stopForce",
-    180,
-    StopForce,
-    "End-stop force on the actuator along u_i",
-    |m, i| m.output(|o| o.end_stop_forces[i])
-)
-.unit("N", None)
-.depends_on(&STATES)
-.initial_depends_on(&init::STOP_FORCE);
+const STOP_FORCE: Decl =
+    vector!("stopForce", 180, StopForce, "End-stop force on the actuator along u_i", |m, i| m
+        .output(|o| o.end_stop_forces[i]))
+    .unit("N", None)
+    .depends_on(&STATES)
+    .initial_depends_on(&init::STOP_FORCE);
 const AT_STOP: Decl = Decl::integer(
     "atStop",
     "End-stop contact: -1 lower stop, 0 free, +1 upper stop (changes at events)",
@@ -237,16 +220,12 @@ const AT_STOP: Decl = Decl::integer(
 .output()
 .depends_on(&[THETA.var()])
 .initial_depends_on(&init::AT_STOP);
-const DET_J: Decl = scalar!(
-    "detJ",
-    201,
-    DetJ,
-    "Determinant of the actuator Jacobian J (lDot = J omega)",
-    |m| m.output(|o| o.jacobian_det)
-)
-.unit("m3", None)
-.depends_on(&[THETA.var()])
-.initial_depends_on(&init::POSE);
+const DET_J: Decl =
+    scalar!("detJ", 201, DetJ, "Determinant of the actuator Jacobian J (lDot = J omega)", |m| m
+        .output(|o| o.jacobian_det))
+    .unit("m3", None)
+    .depends_on(&[THETA.var()])
+    .initial_depends_on(&init::POSE);
 const COND_J: Decl = scalar!("condJ", 202, CondJ, "2-norm condition number of J", |m| m
     .output(|o| o.jacobian_cond))
 .depends_on(&[THETA.var()])
@@ -283,24 +262,22 @@ const GRAVITY_COMPENSATION: Decl = vector!(
 .unit("N.m", None)
 .depends_on(&[THETA.var()])
 .initial_depends_on_each(init::gravity_compensation);
-pub const DER_THETA: Decl = Decl::real("der(theta)", "Euler-angle rate", |m, i| {
-    m.computed(|c| c.euler_rates[i])
-})
-.array(3)
-.at(301)
-.derivative_of(THETA.name)
-.unit("rad/s", Some("deg/s"))
-.depends_on(&STATES)
-.initial_depends_on_each(init::theta_dot);
-pub const DER_OMEGA: Decl = Decl::real("der(omega)", "Angular acceleration in {A}", |m, i| {
-    m.output(|o| o.omega_dot[i])
-})
-.array(3)
-.at(311)
-.derivative_of(OMEGA.name)
-.unit("rad/s2", Some("deg/s2"))
-.depends_on(&STATES_AND_INPUTS)
-.initial_depends_on(&init::ACCELERATION);
+pub const DER_THETA: Decl =
+    Decl::real("der(theta)", "Euler-angle rate", |m, i| m.computed(|c| c.euler_rates[i]))
+        .array(3)
+        .at(301)
+        .derivative_of(THETA.name)
+        .unit("rad/s", Some("deg/s"))
+        .depends_on(&STATES)
+        .initial_depends_on_each(init::theta_dot);
+pub const DER_OMEGA: Decl =
+    Decl::real("der(omega)", "Angular acceleration in {A}", |m, i| m.output(|o| o.omega_dot[i]))
+        .array(3)
+        .at(311)
+        .derivative_of(OMEGA.name)
+        .unit("rad/s2", Some("deg/s2"))
+        .depends_on(&STATES_AND_INPUTS)
+        .initial_depends_on(&init::ACCELERATION);
 
 const INPUTS_OUTPUTS: [Decl; 23] = [
     ACTUATOR_FORCE,
@@ -330,18 +307,13 @@ const INPUTS_OUTPUTS: [Decl; 23] = [
 
 /// The whole table: inputs, outputs, state derivatives, parameters (value references
 /// increasing).
-pub static VARIABLES: [Decl; 23 + parameters::COUNT] = concat(
-    &[&INPUTS_OUTPUTS, &parameters::PARAMETERS],
-    INPUTS_OUTPUTS[0],
-);
+pub static VARIABLES: [Decl; 23 + parameters::COUNT] =
+    concat(&[&INPUTS_OUTPUTS, &parameters::PARAMETERS], INPUTS_OUTPUTS[0]);
 
 /// The getter of the Real declaration `name`, if there is one.
 pub fn real_getter(name: &str) -> Option<fn(&Pss3Plant, usize) -> f64> {
-    VARIABLES
-        .iter()
-        .find(|d| d.name == name)
-        .and_then(|d| match d.value {
-            robofmu_fmi::core::declare::Value::Real { get, .. } => Some(get),
-            _ => None,
-        })
+    VARIABLES.iter().find(|d| d.name == name).and_then(|d| match d.value {
+        robofmu_fmi::core::declare::Value::Real { get, .. } => Some(get),
+        _ => None,
+    })
 }
