@@ -41,11 +41,10 @@ static INFO: ModelInfo = ModelInfo {
         step_size: 1e-3,
     },
     number_of_event_indicators: 0,
-    log_categories: &[LogCategory {
-        name: "logController",
-        description: "Gains and model of the controller at initialization",
-    }],
+    log_categories: &[LOG],
 };
+const LOG: LogCategory =
+    LogCategory::new("logController", "Gains and model of the controller at initialization");
 
 /// Parameters, inputs and the error integral of one controller instance.
 #[derive(Clone)]
@@ -151,7 +150,7 @@ impl Model for ComputedTorqueFmu {
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         let law = self.build_law()?;
-        log.debug("logController", &format!("gains {:?}, model {:?}", law.gains(), self.model));
+        log.debug(LOG.name, &format!("gains {:?}, model {:?}", law.gains(), self.model));
         self.law = Some(law);
         // The model must be evaluable at the start inputs: a geometry whose legs cannot
         // reach the measured pose is refused here, so that a getter in Initialization

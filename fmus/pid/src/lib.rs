@@ -20,10 +20,9 @@ static INFO: ModelInfo = ModelInfo::new(
      and output limits with conditional-integration anti-windup",
     [0.0, 2.0, 1e-8, 0.01],
 )
-.logs(&[LogCategory {
-    name: "logController",
-    description: "Gains and options of each channel at initialization",
-}]);
+.logs(&[LOG]);
+const LOG: LogCategory =
+    LogCategory::new("logController", "Gains and options of each channel at initialization");
 
 /// Parameters, inputs and states of the three channels.
 #[derive(Clone, Default)]
@@ -238,7 +237,7 @@ impl Model for Pid {
         for c in 0..CHANNELS {
             self.validate(c)?;
             let message = format!("channel {}: {:?}", c + 1, self.gains[c]);
-            log.debug("logController", &message);
+            log.debug(LOG.name, &message);
         }
         Ok(())
     }

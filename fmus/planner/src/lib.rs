@@ -15,10 +15,9 @@ static INFO: ModelInfo = ModelInfo::new(
      and tf; at rest at q0 before t0 and at qf after tf",
     [0.0, 2.5, 1e-6, 0.01],
 )
-.logs(&[LogCategory {
-    name: "logTrajectory",
-    description: "Polynomial coefficients computed at initialization",
-}]);
+.logs(&[LOG]);
+const LOG: LogCategory =
+    LogCategory::new("logTrajectory", "Polynomial coefficients computed at initialization");
 
 /// Parameters and time of the planner (outputs are functions of them: no `do_step`).
 #[derive(Clone, Default)]
@@ -28,28 +27,28 @@ pub struct Planner {
     tf: f64,
     boundary: [Boundary; AXES],
     time: f64,
-    /// The trajectories of the parameters as set, or why there are none (None before
-    /// the layer writes the start values).
-    plan: Option<Result<Plan<AXES>, String>>,
+    /// The trajectories of the parameters as set (None: they plan none, `why`).
+    plan: Option<Plan<AXES>>,
 }
 
 impl Planner {
     /// Applies a change of the parameters and plans again.
     fn change(&mut self, f: impl FnOnce(&mut Self)) -> Result<(), String> {
         f(self);
-        self.plan = Some(Plan::new(self.degree, self.t0, self.tf, &self.boundary));
+        self.plan = self.planned().ok();
         Ok(())
     }
 
-    fn plan(&self) -> Result<&Plan<AXES>, String> {
-        let plan = self.plan.as_ref().ok_or("no parameters applied yet")?;
-        plan.as_ref().map_err(String::clone)
+    fn planned(&self) -> Result<Plan<AXES>, String> {
+        Plan::new(self.degree, self.t0, self.tf, &self.boundary)
     }
 
     /// Exact: order n of output k (0 q, 1 qdot, 2 qddot) of `axis` is the derivative of
     /// order k + n of its polynomial (one-sided at t0 and tf, zero while held).
     fn derivative(&self, axis: usize, k: usize, n: u32) -> Result<f64, OutputDerivativeError> {
-        let plan = self.plan().map_err(OutputDerivativeError::CannotEvaluate)?;
+        let why =
+            || OutputDerivativeError::CannotEvaluate(self.planned().err().unwrap_or_default());
+        let plan = self.plan.as_ref().ok_or_else(why)?;
         Ok(plan.axis(axis).derivative(self.time, k + n as usize))
     }
 }
@@ -131,11 +130,11 @@ impl Model for Planner {
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         // Every writer planned again: the plan is the one of the parameters as set.
-        let plan = self.plan()?;
+        let plan = self.planned()?;
         for a in 0..AXES {
             let (c, t0) = (plan.axis(a).shifted_coefficients(), self.t0);
             let message = format!("axis {}: q(t) = sum c_k (t - {t0})^k, c = {c:?}", a + 1);
-            log.debug("logTrajectory", &message);
+            log.debug(LOG.name, &message);
         }
         Ok(())
     }

@@ -46,11 +46,10 @@ static INFO: ModelInfo = ModelInfo {
         step_size: 1e-3,
     },
     number_of_event_indicators: 6,
-    log_categories: &[LogCategory {
-        name: "logPlant",
-        description: "Initial state and integration settings at initialization",
-    }],
+    log_categories: &[LOG],
 };
+const LOG: LogCategory =
+    LogCategory::new("logPlant", "Initial state and integration settings at initialization");
 
 /// Displacement of every actuator in the default start pose, m: mid-stroke, 75 mm from
 /// either end stop, so that a default run (an unstable equilibrium at rest) never drifts
@@ -324,7 +323,7 @@ impl Model for Pss3Plant {
         self.started = true;
         self.refresh_contacts();
         log.debug(
-            "logPlant",
+            LOG.name,
             &format!(
                 "initial state theta = {:?} rad, omega = {:?} rad/s; {:?}",
                 self.state.euler.as_slice(),

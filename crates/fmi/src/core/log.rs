@@ -9,6 +9,13 @@ pub struct LogCategory {
     pub description: &'static str,
 }
 
+impl LogCategory {
+    /// The category `name` (what the model passes to [`Log::debug`]: `LOG.name`).
+    pub const fn new(name: &'static str, description: &'static str) -> Self {
+        LogCategory { name, description }
+    }
+}
+
 /// Where a model writes its debug messages.
 pub trait Log {
     /// Logs `message` under `category` (a declared category name) if the host enabled it.
