@@ -10,7 +10,7 @@ gemseo_runs.py (issue 45).
   set with Warning (docs/reliability.md, "A fixed parameter set again").
 - A system of gemseo-fmu's do-step disciplines (PID + plant, TimeSteppingSystem, coupled
   by names) reaches the regulation target of scenarios/regulation.toml: (0, 0, 138) deg
-  from (3, -2, 136) deg, within 1e-6 rad after 1 s (measured 4.3e-11), with the
+  from (3, -2, 136) deg, within 1e-6 rad after 1 s (measured 4.2e-11), with the
   scenario's gains and rate inputs. This needs the FMI 3.0 scalar variant: gemseo-fmu
   takes every FMI 2.0 variable for a Real, and the PID's Boolean parameter
   useRateInputs[i] cannot be an input (test_fmi2_boolean_parameters_need_fmi3)."""
