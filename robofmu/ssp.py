@@ -13,6 +13,7 @@ modelDescription.xml. docs/interoperability.md says which tool reads what.
 
 from __future__ import annotations
 
+import argparse
 import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
@@ -30,6 +31,16 @@ from .ssp_annotations import tag as _tag
 # names it (EcosSimulation.init(parameter_set=PARAMETER_SET)); libcosim takes a
 # component's first set when none is named.
 PARAMETER_SET = "scenario"
+# How each importer applies the bindings (`cosim ssp --help`, and the SSD's description).
+# SSP 1.0 applies every ParameterBinding and has no default or selectable set, so no
+# form of the archive makes ecos apply one without its name (docs/interoperability.md).
+IMPORTERS = f"""The scenario's parameters are bound in each component, in one parameter set
+named "{PARAMETER_SET}"; the importers apply it with:
+  libcosim: CosimExecution.from_ssp_file(PATH) (applied as loaded)
+  ecos:     EcosSimulation(...).init(parameter_set="{PARAMETER_SET}") (a plain init()
+            applies none: the FMUs run at their start values)
+  FMPy:     simulate_ssp(PATH, ..., parameter_set=cosim.ssp.fmpy_parameter_set(PATH))
+            (simulate_ssp ignores the bindings of the SSD)"""
 NO_SCHEDULE = ("a multi-segment motion (a sequence of plans) has no SSP form: SSP parameters "
                "are fixed for the whole run; export one segment at a time (a copy of the "
                "scenario with two of its waypoints, the first as start), or run the whole "
@@ -87,7 +98,8 @@ def resources(fmus: dict[str, Path]) -> dict[str, str]:
 def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.ElementTree:
     """The SystemStructure.ssd document of `scenario`; `variables[alias]` maps each
     FMU's variable names to FMPy's ScalarVariable objects."""
-    root = ET.Element(_tag("ssd", "SystemStructureDescription"), version="1.0", name=scenario.name)
+    root = ET.Element(_tag("ssd", "SystemStructureDescription"), version="1.0", name=scenario.name,
+                      description=" ".join(IMPORTERS.split()))
     system = ET.SubElement(root, _tag("ssd", "System"), name=scenario.name)
     elements = ET.SubElement(system, _tag("ssd", "Elements"))
     used: dict[str, dict[str, str]] = {alias: {} for alias in scenario.order}
@@ -157,6 +169,8 @@ def fmpy_parameter_set(path: Path):
 
 def add_arguments(parser) -> None:
     """``cosim ssp SCENARIO --out X.ssp``."""
+    parser.epilog = IMPORTERS
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.add_argument("scenario", type=Path, help="scenario file (.toml or .json)")
     parser.add_argument("--out", type=output_path, required=True, help="SSP file to write (.ssp)")
     parser.add_argument("--fmu-dir", type=Path, help="find the FMUs by file name here")

@@ -22,6 +22,8 @@ bash scripts/install-platform-test-tools.sh
 # FMUs through a real importer: create the pinned venv, run pytest
 # (pytest exits 5 when it collects nothing; that counts as a failure too).
 bash scripts/setup-venv.sh
+# gemseo-fmu in a venv of its own (it pins an older FMPy) for tests/python/test_gemseo_fmu.py.
+bash scripts/setup-gemseo-venv.sh
 # The harness's lint and types (configured in pyproject.toml): zero findings.
 .venv/bin/ruff check robofmu
 .venv/bin/mypy

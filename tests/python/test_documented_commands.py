@@ -12,8 +12,9 @@ one unit of its last printed digit (so a figure quoted in the docs is what runs)
 
 Each command is one test case named by its file and line, run in document order. It
 passes when it exits 0 and wrote nothing outside results/: the repository is snapshot
-(every file's path, size and modification time) before and after; target/ and .venv/
-(the build's and the environment's, thousands of files) are left out of the snapshot,
+(every file's path, size and modification time) before and after; target/, .venv/ and
+.venv-gemseo/ (the build's and the environments', thousands of files) are left out of
+the snapshot,
 and only the build commands in BUILDS may write to dist/, target/ and .venv/.
 """
 
@@ -48,7 +49,8 @@ SKIPPED = {
 BUILDS = {"bash scripts/demo.sh", "bash scripts/build-fmus.sh"}
 BUILD_OUTPUTS = ("dist", "target", ".venv", "results")
 # Paths the snapshot leaves out: git's, the build's, the environment's, Python's caches.
-UNWATCHED = {".git", "target", ".venv", "__pycache__", ".pytest_cache", ".mypy_cache", ".ruff_cache"}
+UNWATCHED = {".git", "target", ".venv", ".venv-gemseo", "__pycache__", ".pytest_cache",
+             ".mypy_cache", ".ruff_cache"}
 # A hang guard, not a speed assertion: the build may compile on a fresh machine.
 TIMEOUT_S = {"build": 1800, "command": 300}
 

@@ -386,6 +386,28 @@ pub fn settable(
     ))
 }
 
+/// A set of the fixed parameter `name` after initialization, which [`settable`]
+/// refuses (`refusal`): accepted without effect when every value is the one the
+/// parameter holds, bit for bit (`unchanged`; then Ok with the text of the Warning
+/// line the setter logs), otherwise the refusal, unchanged. Importers that set every
+/// parameter of a study again in step mode (gemseo-fmu) need it; a different value
+/// still cannot change what initialization computed from the parameter.
+pub fn refuse_unless_unchanged(
+    refusal: String,
+    name: &dyn std::fmt::Display,
+    mode: impl std::fmt::Debug,
+    unchanged: bool,
+) -> Result<Option<String>, String> {
+    if !unchanged {
+        return Err(refusal);
+    }
+    Ok(Some(format!(
+        "\"{name}\" (causality parameter, variability fixed) set in {mode:?} to the value it \
+         holds: accepted without effect (a fixed parameter cannot change after \
+         initialization; a different value is refused with an Error)"
+    )))
+}
+
 /// Enters `mode` (a call whose only effect is the change of mode).
 pub fn enter<F: Frontend, M: Model>(
     inst: &mut FmuInstance<F, M>,

@@ -624,6 +624,21 @@ impl<M: Model> Instance<M> {
         Ok(())
     }
 
+    /// Whether elements `from..` of the declaration at `position` hold `values`
+    /// already, each bit for bit ([`value_check::holds`]).
+    pub fn holds_declared(
+        &self,
+        position: usize,
+        from: usize,
+        values: impl IntoIterator<Item = Value>,
+    ) -> Result<bool, String> {
+        let d = self.declared(position)?.declaration;
+        let model = &*self.model;
+        Ok((from..)
+            .zip(values)
+            .all(|(i, x)| value_check::holds(model, d, i, x)))
+    }
+
     /// Why ExitInitializationMode would refuse the parameters now, if it would (the
     /// model's check on a copy).
     pub fn parameters_refused(&self) -> Option<String> {
@@ -774,23 +789,18 @@ impl<M: Model> Instance<M> {
         }
     }
 
+    /// Whether the variable `vr` holds `value` already, bit for bit
+    /// ([`value_check::holds`]).
+    pub fn holds(&self, vr: u32, value: Value) -> Result<bool, String> {
+        let (d, i) = self.element(vr)?;
+        Ok(value_check::holds(&*self.model, d, i, value))
+    }
+
     /// Writes a value through its writer after the checks of [`value_check::write`]
     /// (whether the variable may be set now is the front-end's rule).
-    fn write(&mut self, vr: u32, value: Value) -> Result<(), String> {
+    pub fn write(&mut self, vr: u32, value: Value) -> Result<(), String> {
         let (d, i) = self.element(vr)?;
         self.dirty = true;
         value_check::write(&mut *self.model, d, i, vr, value)
-    }
-
-    pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
-        self.write(vr, Value::Real(value))
-    }
-
-    pub fn set_integer(&mut self, vr: u32, value: i32) -> Result<(), String> {
-        self.write(vr, Value::Integer(value))
-    }
-
-    pub fn set_boolean(&mut self, vr: u32, value: bool) -> Result<(), String> {
-        self.write(vr, Value::Boolean(value))
     }
 }

@@ -20,6 +20,16 @@ pub enum Value {
     Boolean(bool),
 }
 
+impl Value {
+    pub fn variable_type(self) -> VariableType {
+        match self {
+            Value::Real(_) => VariableType::Real,
+            Value::Integer(_) => VariableType::Integer,
+            Value::Boolean(_) => VariableType::Boolean,
+        }
+    }
+}
+
 /// The error for the variable `name` (value reference `vr`, of type `is`) used as a
 /// variable of type `wanted`.
 pub fn wrong_type(name: ShownName, vr: u32, is: VariableType, wanted: &str) -> String {
@@ -93,4 +103,18 @@ pub fn write<M>(
         Value::Integer(x) => format!("\"{name}\" = {x}: {e}"),
         Value::Boolean(x) => format!("\"{name}\" = {x}: {e}"),
     })
+}
+
+/// Whether element i of the declaration `d` holds `value` already, bit for bit: a
+/// Real compares its bits, so -0.0 and 0.0 differ and NaN never holds (the layer
+/// refuses NaN, so no variable holds one). A value of another type never holds.
+pub fn holds<M>(model: &M, d: &Declaration<M>, i: usize, value: Value) -> bool {
+    match (&d.value, value) {
+        (Declared::Real { get, .. }, Value::Real(x)) => {
+            !x.is_nan() && get(model, i).to_bits() == x.to_bits()
+        }
+        (Declared::Integer { get, .. }, Value::Integer(x)) => get(model, i) == x,
+        (Declared::Boolean { get, .. }, Value::Boolean(x)) => get(model, i) == x,
+        _ => false,
+    }
 }

@@ -9,9 +9,8 @@ use crate::core::entry;
 use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
-use crate::core::variables::{
-    Causality, Initial, Variability, VariableType, element_name, value_type,
-};
+use crate::core::value_check::Value;
+use crate::core::variables::{Causality, Initial, Variability, element_name, value_type};
 use std::sync::Arc;
 
 /// Everything an FMI 2.0 instance owns (nothing beyond the shared fields). Instances
@@ -63,28 +62,40 @@ impl<M: Model> FmuInstance<Fmi2, M> {
         entry::settable(ok, &name, v.causality, v.variability, mode)
     }
 
-    /// The mode check for writing `vr` as a `wanted` variable (a wrong type is
-    /// reported by the core's writer instead).
-    fn check_write(&self, vr: u32, wanted: VariableType) -> Result<(), String> {
+    /// Writes `value` to `vr` after the mode check (a wrong type is reported by the
+    /// core's writer). Ok(Some(line)): a fixed parameter set after initialization to
+    /// the value it holds, bit for bit, is accepted without effect and the setter
+    /// returns fmi2Warning with that line; a different value is refused.
+    fn set(&mut self, vr: u32, value: Value) -> Result<Option<String>, String> {
         let (v, i) = self.core.element(vr)?;
-        if value_type(&v.value) == wanted {
-            self.check_settable(v, i)?;
+        if value_type(&v.value) == value.variable_type()
+            && let Err(refusal) = self.check_settable(v, i)
+        {
+            // The rule refuses a fixed parameter only after initialization.
+            if (v.causality, v.variability) != (Causality::Parameter, Variability::Fixed) {
+                return Err(refusal);
+            }
+            let unchanged = self.core.holds(vr, value)?;
+            return entry::refuse_unless_unchanged(
+                refusal,
+                &element_name(v, i),
+                self.mode,
+                unchanged,
+            );
         }
-        Ok(())
+        self.core.write(vr, value)?;
+        Ok(None)
     }
 
-    pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
-        self.check_write(vr, VariableType::Real)?;
-        self.core.set_real(vr, value)
+    pub fn set_real(&mut self, vr: u32, value: f64) -> Result<Option<String>, String> {
+        self.set(vr, Value::Real(value))
     }
 
-    pub fn set_integer(&mut self, vr: u32, value: i32) -> Result<(), String> {
-        self.check_write(vr, VariableType::Integer)?;
-        self.core.set_integer(vr, value)
+    pub fn set_integer(&mut self, vr: u32, value: i32) -> Result<Option<String>, String> {
+        self.set(vr, Value::Integer(value))
     }
 
-    pub fn set_boolean(&mut self, vr: u32, value: bool) -> Result<(), String> {
-        self.check_write(vr, VariableType::Boolean)?;
-        self.core.set_boolean(vr, value)
+    pub fn set_boolean(&mut self, vr: u32, value: bool) -> Result<Option<String>, String> {
+        self.set(vr, Value::Boolean(value))
     }
 }

@@ -19,6 +19,10 @@ use crate::core::variables::{Causality, Initial, Variability};
 
 use std::sync::Arc;
 
+/// What a setter did besides writing: Some(line) when it accepted a fixed parameter
+/// set again to the value it holds (the setter returns fmi3Warning with the line).
+pub type Kept = Option<String>;
+
 /// Everything an FMI 3.0 instance owns. Instances share no mutable state.
 pub type Instance<M> = FmuInstance<Fmi3, M>;
 
@@ -133,33 +137,43 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         }
     }
 
-    pub fn set_float64(&mut self, v: &Variable3, values: &[f64]) -> Result<(), String> {
-        self.check_settable(v)?;
+    pub fn set_float64(&mut self, v: &Variable3, values: &[f64]) -> Result<Kept, String> {
         self.set(v, values.iter().map(|&x| Value::Real(x)))
     }
 
-    pub fn set_int32(&mut self, v: &Variable3, values: &[i32]) -> Result<(), String> {
-        self.check_settable(v)?;
+    pub fn set_int32(&mut self, v: &Variable3, values: &[i32]) -> Result<Kept, String> {
         self.set(v, values.iter().map(|&x| Value::Integer(x)))
     }
 
-    pub fn set_boolean(&mut self, v: &Variable3, values: &[bool]) -> Result<(), String> {
-        self.check_settable(v)?;
+    pub fn set_boolean(&mut self, v: &Variable3, values: &[bool]) -> Result<Kept, String> {
         self.set(v, values.iter().map(|&x| Value::Boolean(x)))
     }
 
-    /// Writes `values` to the elements of `v` through the core's checks (nothing for
-    /// time and the event indicators, which are not settable).
-    fn set(&mut self, v: &Variable3, values: impl Iterator<Item = Value>) -> Result<(), String> {
-        match v.source {
-            Source::Elements {
-                first,
-                stride,
-                declaration,
-                element,
-            } => (self.core).set_declared(declaration, element, (first, stride), values),
-            _ => Ok(()),
+    /// Writes `values` to the elements of `v` through the core's checks, after the
+    /// mode check (nothing for time and the event indicators, which are not
+    /// settable). Ok(Some(line)): a fixed parameter set after initialization to the
+    /// values it holds, every element bit for bit, is accepted without effect and the
+    /// setter returns fmi3Warning with that line; one different element refuses all.
+    fn set(&mut self, v: &Variable3, values: impl Iterator<Item = Value>) -> Result<Kept, String> {
+        let Source::Elements {
+            first,
+            stride,
+            declaration,
+            element,
+        } = v.source
+        else {
+            return self.check_settable(v).map(|()| None);
+        };
+        if let Err(refusal) = self.check_settable(v) {
+            // The rule refuses a fixed parameter only after initialization.
+            if (v.causality, v.variability) != (Causality::Parameter, Variability::Fixed) {
+                return Err(refusal);
+            }
+            let unchanged = self.core.holds_declared(declaration, element, values)?;
+            return entry::refuse_unless_unchanged(refusal, &v.name, self.mode, unchanged);
         }
+        (self.core).set_declared(declaration, element, (first, stride), values)?;
+        Ok(None)
     }
 
     /// Whether `v` may be written in the current mode (FMI 3.0 rules for fmi3Set*,

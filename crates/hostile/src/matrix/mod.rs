@@ -6,6 +6,7 @@
 //! tables. Cases run in forked children, grouped per model; a crash fails only the
 //! case that caused it.
 
+pub mod fixed;
 pub mod fmi2;
 pub mod fmi3;
 pub mod handles;
@@ -206,6 +207,7 @@ fn classes<I: seam::Standard>() -> Vec<Cases> {
         states::cases::<I>,
         pose::cases::<I>,
         instantiate::cases::<I>,
+        fixed::cases::<I>,
     ]
 }
 

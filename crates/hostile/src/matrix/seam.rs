@@ -185,6 +185,8 @@ pub struct Tables<I: StandardInterface> {
     /// they refuse.
     pub scalar_arguments: fn() -> Vec<ScalarRow<I>>,
     pub values: ValueNames,
+    /// The states after initialization where the setter of a type is legal.
+    pub setter_states: fn(VarType) -> &'static [<I as StandardInterface>::State],
     /// Classes only this standard has.
     pub own_classes: &'static [Cases],
     pub reasons: Reasons,

@@ -30,19 +30,25 @@ unsafe fn read<M: Model, T>(
 }
 
 /// Writes `value[0..nvr]` to the variables `vr[0..nvr]` with `set`; stops at the
-/// first error.
+/// first error. fmi2Warning, with a log line each, when `set` accepted a fixed
+/// parameter set again to the value it holds (see `Instance::set`).
 unsafe fn write<M: Model, T: Copy>(
     inst: &mut Instance<M>,
+    function: &str,
     (vr, nvr): (*const Fmi2ValueReference, usize),
     value: *const T,
-    set: impl Fn(&mut Instance<M>, u32, T) -> Result<(), String>,
+    set: impl Fn(&mut Instance<M>, u32, T) -> Result<Option<String>, String>,
 ) -> Result<Fmi2Status, String> {
     let vrs = unsafe { input_slice(vr, nvr, "vr[]") }?;
     let values = unsafe { input_slice(value, nvr, "value[]") }?;
+    let mut status = Fmi2Status::Ok;
     for (&r, &v) in vrs.iter().zip(values) {
-        set(inst, r, v)?;
+        if let Some(line) = set(inst, r, v)? {
+            status = Fmi2Status::Warning;
+            inst.log.status(status, &format!("{function}: {line}"));
+        }
     }
-    Ok(Fmi2Status::Ok)
+    Ok(status)
 }
 
 pub unsafe fn get_real<M: Model>(
@@ -137,7 +143,9 @@ pub unsafe fn set_real<M: Model>(
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2SetReal", Call::SetReal, |inst| {
-            write(inst, (vr, nvr), value, |i, r, v| i.set_real(r, v))
+            write(inst, "fmi2SetReal", (vr, nvr), value, |i, r, v| {
+                i.set_real(r, v)
+            })
         })
     }
 }
@@ -150,7 +158,9 @@ pub unsafe fn set_integer<M: Model>(
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2SetInteger", Call::SetDiscrete, |inst| {
-            write(inst, (vr, nvr), value, |i, r, v| i.set_integer(r, v))
+            write(inst, "fmi2SetInteger", (vr, nvr), value, |i, r, v| {
+                i.set_integer(r, v)
+            })
         })
     }
 }
@@ -163,7 +173,7 @@ pub unsafe fn set_boolean<M: Model>(
 ) -> Fmi2Status {
     unsafe {
         with_instance::<M>(c, "fmi2SetBoolean", Call::SetDiscrete, |inst| {
-            write(inst, (vr, nvr), value, |i, r, v| {
+            write(inst, "fmi2SetBoolean", (vr, nvr), value, |i, r, v| {
                 i.set_boolean(r, v != FMI2_FALSE)
             })
         })

@@ -7,7 +7,7 @@ use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::variables::VariableType;
 use crate::ffi::check_array;
-use crate::fmi3::instance::Instance;
+use crate::fmi3::instance::{Instance, Kept};
 use crate::fmi3::mode::Call;
 use crate::fmi3::table::Variable3;
 use crate::fmi3::types::*;
@@ -42,12 +42,15 @@ fn read<M: Model, T: Default + Clone>(
 }
 
 /// Writes `values` to the variables of `vrs` (of type `wanted`) with `write`.
+/// fmi3Warning, with a log line each, when `write` accepted a fixed parameter set
+/// again to the values it holds (see `Instance::set`).
 fn write<M: Model, T>(
     inst: &mut Instance<M>,
+    function: &str,
     vrs: &[Fmi3ValueReference],
     wanted: VariableType,
     (values, n_values): (*const T, usize),
-    write: impl Fn(&mut Instance<M>, &Variable3, &[T]) -> Result<(), String>,
+    write: impl Fn(&mut Instance<M>, &Variable3, &[T]) -> Result<Kept, String>,
 ) -> Result<Fmi3Status, String> {
     check_array(values, n_values, "values[]")?;
     let table = Arc::clone(&inst.extra.table);
@@ -55,11 +58,15 @@ fn write<M: Model, T>(
     // SAFETY: as in `read`, the length was checked against the variables first.
     let values = unsafe { input_slice(values, n_values, "values[]") }?;
     let mut at = 0;
+    let mut status = Fmi3Status::Ok;
     for v in variables {
-        write(inst, v, &values[at..at + v.size()])?;
+        if let Some(line) = write(inst, v, &values[at..at + v.size()])? {
+            status = Fmi3Status::Warning;
+            inst.log.status(status, &format!("{function}: {line}"));
+        }
         at += v.size();
     }
-    Ok(Fmi3Status::Ok)
+    Ok(status)
 }
 
 pub unsafe fn get_float64<M: Model>(
@@ -147,6 +154,7 @@ pub unsafe fn set_float64<M: Model>(
             let vrs = input_slice(vr, nvr, "valueReferences[]")?;
             write(
                 inst,
+                "fmi3SetFloat64",
                 vrs,
                 VariableType::Real,
                 (values, n_values),
@@ -168,6 +176,7 @@ pub unsafe fn set_int32<M: Model>(
             let vrs = input_slice(vr, nvr, "valueReferences[]")?;
             write(
                 inst,
+                "fmi3SetInt32",
                 vrs,
                 VariableType::Integer,
                 (values, n_values),
@@ -189,6 +198,7 @@ pub unsafe fn set_boolean<M: Model>(
             let vrs = input_slice(vr, nvr, "valueReferences[]")?;
             write(
                 inst,
+                "fmi3SetBoolean",
                 vrs,
                 VariableType::Boolean,
                 (values, n_values),

@@ -141,6 +141,7 @@ impl Standard for Interface {
                 types: ["Real", "Integer", "Boolean"],
                 booleans: [2, -1],
             },
+            setter_states: uses::setter_states,
             own_classes: &[],
             reasons: REASONS,
         }

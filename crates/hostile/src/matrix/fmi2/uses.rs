@@ -3,8 +3,8 @@
 //! value classes (`matrix::values`): set, initialize, evaluate.
 
 use crate::binary::{OK, Status};
-use crate::description::{Description, Variable};
-use crate::host::{Instance, Interface};
+use crate::description::{Description, VarType, Variable};
+use crate::host::{Instance, Interface, State};
 use crate::matrix::same_named::{fmu_state_use_rows, me_evaluation_rows};
 use crate::matrix::seam::{Evaluate, Use, Value};
 use crate::matrix::values::{discarded, me_evaluate};
@@ -84,4 +84,17 @@ pub fn evaluate(inst: &Instance, interface: Interface) -> Result<bool, String> {
 /// The Real values of the instance.
 pub fn outputs(inst: &Instance) -> (Status, Vec<f64>) {
     inst.get_reals(&inst.description.real_vrs())
+}
+
+/// The states after initialization where the setter of type `t` is legal (FMI 2.0
+/// 3.2.3, 4.2.4: fmi2SetReal also in Continuous-Time Mode).
+pub fn setter_states(t: VarType) -> &'static [State] {
+    match t {
+        VarType::Real => &[
+            State::EventMode,
+            State::ContinuousTimeMode,
+            State::StepComplete,
+        ],
+        _ => &[State::EventMode, State::StepComplete],
+    }
 }

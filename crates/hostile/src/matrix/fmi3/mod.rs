@@ -144,6 +144,7 @@ impl Standard for Interface3 {
                 types: ["Float64", "Int32", "Boolean"],
                 booleans: [2, 255],
             },
+            setter_states: variability::setter_states,
             own_classes: &[arrays::cases, variability::cases, cross_standard::cases],
             reasons: REASONS,
         }

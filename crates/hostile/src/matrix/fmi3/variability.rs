@@ -1,11 +1,11 @@
-//! Every parameter and input set again after initialization, in each state where
-//! its setter is legal (Event Mode, Continuous-Time Mode, Step Mode), to its start
-//! value. FMI 3.0 (section 2.4.7.4, variability; 3.3 and 4.3, the state tables)
-//! lets a fixed parameter change only before fmi3ExitInitializationMode, a tunable
-//! parameter only in Event Mode (Model Exchange and Co-Simulation with event mode)
-//! and in Step Mode (Co-Simulation), and an input in every state where its setter
-//! is legal. Expected: fmi3OK where allowed, otherwise fmi3Error naming the
-//! variable (and the instance recovers with fmi3Reset).
+//! Every tunable parameter and input set again after initialization, in each state
+//! where its setter is legal (Event Mode, Continuous-Time Mode, Step Mode), to its
+//! start value. FMI 3.0 (section 2.4.7.4, variability; 3.3 and 4.3, the state
+//! tables) lets a tunable parameter change only in Event Mode (Model Exchange and
+//! Co-Simulation with event mode) and in Step Mode (Co-Simulation), and an input in
+//! every state where its setter is legal. Expected: fmi3OK where allowed, otherwise
+//! fmi3Error naming the variable (and the instance recovers with fmi3Reset). Fixed
+//! parameters, for both standards, are the class `fixed` (`matrix/fixed.rs`).
 
 use crate::Loaded;
 use crate::binary::Status;
@@ -14,7 +14,7 @@ use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::matrix::{Case, Expect, on_instance};
 
 const WHY_ALLOWED: &str = "FMI 3.0 2.4.7.4: inputs in every state where their setter is legal, tunable parameters in Event and Step Mode: fmi3OK";
-const WHY_REFUSED: &str = "FMI 3.0 2.4.7.4: a fixed parameter cannot change after initialization, a tunable one not in Continuous-Time Mode: fmi3Error naming it";
+const WHY_REFUSED: &str = "FMI 3.0 2.4.7.4: a tunable parameter cannot change in Continuous-Time Mode: fmi3Error naming it";
 
 /// Whether the standard lets `v` change in `state` (its setter being legal there).
 fn may_change(v: &Variable, state: State3) -> bool {
@@ -26,7 +26,7 @@ fn may_change(v: &Variable, state: State3) -> bool {
 }
 
 /// States after initialization where the setter of type `t` is legal.
-fn setter_states(t: VarType) -> &'static [State3] {
+pub fn setter_states(t: VarType) -> &'static [State3] {
     match t {
         VarType::Real => &[
             State3::EventMode,
@@ -72,7 +72,8 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
     let d = &loaded.fmus3[m].description;
     let mut cases = Vec::new();
     for interface in Interface3::ALL {
-        for v in d.variables.iter().filter(|v| v.is_settable()) {
+        let settable = d.variables.iter().filter(|v| v.is_settable());
+        for v in settable.filter(|v| !(v.is_parameter() && v.variability == "fixed")) {
             for &state in setter_states(v.var_type) {
                 if !state.exists_for(interface) {
                     continue;

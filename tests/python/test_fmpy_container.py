@@ -1,0 +1,212 @@
+"""The closed loop as FMPy's own container FMU (fmpy.container_fmu, FMPy's Rust runtime
+shipped in the wheel), built from our FMI 3.0 FMUs (the scalar-only view, whose variable
+names are the scenario's) and run by FMPy's simulate_fmu: what a user who builds a
+system in FMPy gets (issue 45).
+
+The container steps every component from t_k with the inputs it holds, then transfers
+the connections one after another in the configuration's order (FMPy's
+native/container-fmu, `doFixedStep` and `updateConnections`), reading each source when
+its connection comes: the PID's inputs of t_{k+1} are set before its output is read for
+the plant, so the plant applies the PID's answer to the current inputs (not a Jacobi
+scheme: libcosim and ecos read every source first). Its time is accumulated step by
+step (ecos's grid). Two truths:
+- the same scheme written on FMPy's FMI 2.0 API (`sequential_loop` below, with the
+  initialization of fmpy_loops.py): plant angles and rates equal to 1e-12 (same
+  binaries; the FMI 2.0 and FMI 3.0 front-ends share the model code);
+- our master (cosim.master, sampled coupling with extrapolated inputs) within a
+  tolerance derived as in test_importers_ssp.py: the scheme's difference from the
+  master is first order in h, so its deviation at h is about twice the deviation at
+  h/2; the tolerance is 2.5 times the deviation of the sequential loop from the master
+  at h/2.
+
+FMI 2.0 is not offered by FMPy's container path: test_fmi2_container_fails names how it
+fails (docs/interoperability.md, "FMPy's container FMU")."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import shutil
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fmpy import read_model_description, simulate_fmu
+from fmpy.container_fmu import Configuration
+from fmpy.container_fmu.cli import create_container_fmu
+from fmpy.container_fmu.config import Component, Connection
+from fmpy.model_description import CoSimulation, DefaultExperiment, ModelDescription, ModelVariable
+
+from conftest import DIST
+from fmpy_loops import Slave, ecos_grid, initialize, read
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+from cosim.master import Master  # noqa: E402
+from cosim.scenario import load_scenario  # noqa: E402
+
+SIGNALS = [f"plant.{name}[{i}]" for name in ("theta", "thetaDot") for i in (1, 2, 3)]
+FMI3_TYPES = {"Float64": "Float64", "Int32": "Int32", "Boolean": "Boolean",
+              "Real": "Float64", "Integer": "Int32"}
+
+
+def text(value) -> str:
+    """A start value as the container's configuration holds it (parsed by its runtime)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return repr(value) if isinstance(value, float) else str(value)
+
+
+def configuration(scenario, fmi_version: str, folder: Path) -> Configuration:
+    """The container of the scenario's FMUs (from `folder`), its connections, its
+    parameters as container parameters with their values as start values, and the
+    plant's angles and rates as outputs."""
+    components, variables = {}, {}
+    for alias in scenario.order:
+        filename = folder / scenario.fmus[alias].name
+        md = read_model_description(str(filename))
+        components[alias] = Component(name=alias, filename=filename, modelDescription=md)
+        variables[alias] = {v.name: v for v in md.modelVariables}
+    md = ModelDescription(fmiVersion=fmi_version, modelName=f"{scenario.name}_container",
+                          instantiationToken="{6b9f7d1c-45a0-4c3e-9a51-0c6c2b2f4a45}")
+    md.coSimulation = CoSimulation(modelIdentifier="container_fmu",
+                                   fixedInternalStepSize=scenario.step_size)
+    md.defaultExperiment = DefaultExperiment(startTime="0", stopTime=repr(scenario.stop_time),
+                                             stepSize=repr(scenario.step_size))
+    mappings: dict = {}
+    if fmi_version.startswith("3"):
+        time = ModelVariable(name="time", type="Float64", causality="independent",
+                             variability="continuous")
+        md.modelVariables.append(time)
+    for alias, assignments in scenario.parameters.items():
+        for name, value in assignments.items():
+            inner = variables[alias][name]
+            v = ModelVariable(name=f"{alias}.{name}", type=FMI3_TYPES[inner.type]
+                              if fmi_version.startswith("3") else inner.type,
+                              causality="parameter", variability=inner.variability,
+                              initial="exact")
+            v.start = text(value)
+            md.modelVariables.append(v)
+            mappings[v] = [(components[alias], inner)]
+    for signal in SIGNALS:
+        alias, name = signal.split(".", 1)
+        inner = variables[alias][name]
+        v = ModelVariable(name=signal, type=inner.type, causality="output",
+                          variability="continuous", initial="calculated")
+        md.modelVariables.append(v)
+        mappings[v] = [(components[alias], inner)]
+    connections = [Connection(startElement=components[c.source.alias],
+                              startConnectors=[variables[c.source.alias][c.source.variable]],
+                              endElement=components[c.target.alias],
+                              endConnectors=[variables[c.target.alias][c.target.variable]])
+                   for c in scenario.connections]
+    return Configuration(parallelDoStep=False, modelDescription=md,
+                         components=list(components.values()), connections=connections,
+                         variableMappings=mappings)
+
+
+def build(scenario, fmi_version: str, folder: Path, out: Path) -> Path:
+    unzipdir = out / "unzipped"
+    unzipdir.mkdir(parents=True, exist_ok=True)
+    filename = out / f"{scenario.name}_container.fmu"
+    create_container_fmu(configuration(scenario, fmi_version, folder), unzipdir, filename)
+    return filename
+
+
+def sequential_loop(scenario, grid) -> np.ndarray:
+    """Rows (time, *SIGNALS) at t_0 .. t_N of the container's scheme on FMPy's FMI 2.0
+    API: every FMU steps, then each connection is transferred in turn."""
+    slaves = {alias: Slave(alias, path) for alias, path in scenario.fmus.items()}
+    try:
+        links = [(slaves[c.source.alias], slaves[c.source.alias].vr(c.source.variable),
+                  slaves[c.target.alias], slaves[c.target.alias].vr(c.target.variable))
+                 for c in scenario.connections]
+        initialize(scenario, slaves, links)
+        probes = [(slaves[alias], slaves[alias].vr(name))
+                  for alias, name in (s.split(".", 1) for s in SIGNALS)]
+        rows = np.empty((len(grid) + 1, len(SIGNALS) + 1))
+        rows[0] = [scenario.start_time] + read(probes)
+        for k, (t, h) in enumerate(grid):
+            for slave in slaves.values():
+                slave.fmu.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+            for source, out, target, into in links:
+                target.fmu.setReal([into], source.fmu.getReal([out]))
+            rows[k + 1] = [t + h] + read(probes)
+        return rows
+    finally:
+        for slave in slaves.values():
+            slave.free()
+
+
+def master_rows(scenario) -> np.ndarray:
+    result = Master(scenario).run()
+    return np.column_stack([result.time] + [result.columns[s] for s in SIGNALS])
+
+
+@pytest.fixture(scope="module")
+def regulation():
+    return load_scenario(ROOT / "scenarios" / "regulation.toml")
+
+
+def test_fmi3_container_equals_its_scheme_and_the_master(regulation, tmp_path):
+    scenario = regulation
+    container = build(scenario, "3.0", DIST / "fmi3-scalar", tmp_path)
+    result = simulate_fmu(str(container), stop_time=scenario.stop_time,
+                          step_size=scenario.step_size, output=SIGNALS)
+    rows = np.column_stack([result["time"]] + [result[s] for s in SIGNALS])
+    assert len(rows) == scenario.steps + 1
+    loop = sequential_loop(scenario, ecos_grid(scenario.steps, scenario.step_size))
+    assert np.abs(rows[:, 0] - loop[:, 0]).max() < 1e-12
+    error = np.abs(rows[:, 1:] - loop[:, 1:]).max(axis=0)
+    worst = int(np.argmax(error))
+    assert error[worst] <= 1e-12, f"{SIGNALS[worst]}: {error[worst]:.3g}"
+    # Our master, within the coupling tolerance.
+    half = dataclasses.replace(scenario, step_size=scenario.step_size / 2)
+    loop_half = sequential_loop(half, ecos_grid(half.steps, half.step_size))
+    deviation_half = np.abs(loop_half[:, 1:] - master_rows(half)[:, 1:]).max(axis=0)
+    tolerance = 2.5 * deviation_half
+    deviation = np.abs(rows[:, 1:] - master_rows(scenario)[:, 1:]).max(axis=0)
+    for name, d, tol in zip(SIGNALS, deviation, tolerance):
+        assert d <= tol, f"{name}: {d:.3g} > {tol:.3g}"
+    # The coupling is felt and shrinks as a first-order error does.
+    assert (deviation >= 0.2 * tolerance).all(), deviation / tolerance
+    # The parameters reached the FMUs: the loop regulates to the target (0, 0, 138) deg
+    # from (3, -2, 136) deg, where the FMUs' defaults would not.
+    assert np.abs(rows[-1, 1:4] - np.radians([0.0, 0.0, 138.0])).max() < 1e-3
+
+
+def test_fmi2_container_fails(regulation, tmp_path):
+    # FMPy 0.3.32 writes an FMI 2.0 container without complaint, but its runtime cannot
+    # run it: (1) each connection of the configuration carries the FMI 2.0 type name of
+    # its start connector ("Real"), which the runtime's configuration reader does not
+    # know (it names the FMI 3.0 types), so fmi2Instantiate fails; (2) with those names
+    # made "Float64" by hand it runs, but every value reference answers for the variable
+    # before it: the runtime keeps value reference 0 for the container's time and maps
+    # reference k to its (k-1)-th variable, while an FMI 2.0 container has no time
+    # variable and FMPy numbers its variables from 0.
+    lines = []
+
+    def logger(_component, _name, _status, _category, message):
+        lines.append(message.decode())
+
+    container = build(regulation, "2.0", DIST, tmp_path)
+    with pytest.raises(Exception, match="Failed to instantiate"):
+        simulate_fmu(str(container), stop_time=0.01, step_size=regulation.step_size,
+                     output=SIGNALS, logger=logger)
+    assert any("unknown variant `Real`" in line for line in lines), lines
+    unzipped = tmp_path / "unzipped"
+    config = unzipped / "resources" / "container.json"
+    data = json.loads(config.read_text())
+    for c in data["connections"]:
+        c["variableType"] = {"Real": "Float64", "Integer": "Int32"}.get(c["variableType"],
+                                                                        c["variableType"])
+    config.write_text(json.dumps(data))
+    patched = Path(shutil.make_archive(str(tmp_path / "patched"), "zip", root_dir=unzipped))
+    result = simulate_fmu(str(patched), stop_time=0.01, step_size=regulation.step_size,
+                          output=SIGNALS)
+    # plant.theta[1] reads the variable before it (the parameter omega0[3] = 0), and
+    # plant.theta[2] reads theta[1], which starts at 3 deg.
+    assert result["plant.theta[1]"][0] == 0.0
+    assert result["plant.theta[2]"][0] == pytest.approx(np.radians(3.0), abs=1e-12)
