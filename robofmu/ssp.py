@@ -39,7 +39,7 @@ named "{PARAMETER_SET}"; the importers apply it with:
   libcosim: CosimExecution.from_ssp_file(PATH) (applied as loaded)
   ecos:     EcosSimulation(...).init(parameter_set="{PARAMETER_SET}") (a plain init()
             applies none: the FMUs run at their start values)
-  FMPy:     simulate_ssp(PATH, ..., parameter_set=cosim.ssp.fmpy_parameter_set(PATH))
+  FMPy:     simulate_ssp(PATH, ..., parameter_set=robofmu.ssp.fmpy_parameter_set(PATH))
             (simulate_ssp ignores the bindings of the SSD)"""
 NO_SCHEDULE = ("a multi-segment motion (a sequence of plans) has no SSP form: SSP parameters "
                "are fixed for the whole run; export one segment at a time (a copy of the "

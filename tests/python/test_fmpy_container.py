@@ -13,7 +13,7 @@ step (ecos's grid). Two truths:
 - the same scheme written on FMPy's FMI 2.0 API (`sequential_loop` below, with the
   initialization of fmpy_loops.py): plant angles and rates equal to 1e-12 (same
   binaries; the FMI 2.0 and FMI 3.0 front-ends share the model code);
-- our master (cosim.master, sampled coupling with extrapolated inputs) within a
+- our master (robofmu.master, sampled coupling with extrapolated inputs) within a
   tolerance derived as in test_importers_ssp.py: the scheme's difference from the
   master is first order in h, so its deviation at h is about twice the deviation at
   h/2; the tolerance is 2.5 times the deviation of the sequential loop from the master
@@ -44,8 +44,8 @@ from fmpy_loops import Slave, ecos_grid, initialize, read
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
 
 SIGNALS = [f"plant.{name}[{i}]" for name in ("theta", "thetaDot") for i in (1, 2, 3)]
 FMI3_TYPES = {"Float64": "Float64", "Int32": "Int32", "Boolean": "Boolean",

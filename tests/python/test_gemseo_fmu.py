@@ -31,7 +31,7 @@ from conftest import DIST
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.scenario import load_scenario  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
 
 PYTHON = ROOT / ".venv-gemseo" / "bin" / "python"
 RUNNER = Path(__file__).with_name("gemseo_runs.py")

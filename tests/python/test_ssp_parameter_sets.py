@@ -32,8 +32,8 @@ from importer_runs import run_ecos, run_libcosim
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.scenario import load_scenario  # noqa: E402
-from cosim.ssp import IMPORTERS, PARAMETER_SET, fmpy_parameter_set, write_ssp  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
+from robofmu.ssp import IMPORTERS, PARAMETER_SET, fmpy_parameter_set, write_ssp  # noqa: E402
 
 ANGLES = [f"plant.theta[{i}]" for i in (1, 2, 3)]
 TARGET = np.radians([0.0, 0.0, 138.0])
@@ -61,7 +61,7 @@ def test_help_and_description_name_the_set_and_each_importers_call(regulation):
         assert f'parameter set named "{PARAMETER_SET}"' in text
         assert "CosimExecution.from_ssp_file(PATH)" in text
         assert f'init(parameter_set="{PARAMETER_SET}")' in text
-        assert "parameter_set=cosim.ssp.fmpy_parameter_set(PATH)" in text
+        assert "parameter_set=robofmu.ssp.fmpy_parameter_set(PATH)" in text
     assert description == " ".join(IMPORTERS.split())
 
 
