@@ -1,7 +1,8 @@
 //! Binding of the trajectory planner (`robofmu_control::trajectory`) as the FMU
 //! "Planner": three axes, cubic or quintic, boundary conditions as parameters,
 //! q / qdot / qddot per axis as outputs. Axis positions are angles (rad, shown in deg);
-//! the planner itself is unit-agnostic. docs/fmu-in-one-file.md walks through this file.
+//! the planner itself is unit-agnostic. docs/fmi-layer.md walks through this file
+//! ("Writing an FMU").
 
 use robofmu_control::trajectory::{Boundary, Order, Plan};
 use robofmu_fmi::prelude::*;
