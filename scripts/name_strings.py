@@ -1,6 +1,8 @@
-"""Variable names written as strings in the FMU crates (issue 34): prints every string
-literal in fmus/*/src that equals a declared variable name outside the declaration of
-that name, with its file and line, and exits 1 when there is one.
+"""Variable names written as strings in the FMU crates (issue 34), and declarations
+stated twice (issue 44): prints every string literal in fmus/*/src that equals a
+declared variable name outside the declaration of that name, every name that two
+declarations of one crate declare, and every declaration constant listed twice in one
+list, with its file and line, and exits 1 when there is one.
 
 The names are the checked-in descriptions': every FMI 2.0 scalar of
 modelDescription/*.xml (`theta[1]`, `platformInertia[1,2]`, `der(omega[2])`) and every
@@ -41,7 +43,7 @@ def declared_names(root: Path) -> set[str]:
 
 
 class Token:
-    """`kind`: "str" (value: the literal's text), "ident", "punct" or "char"."""
+    """`kind`: "str" (value: the literal's text), "ident", "num", "punct" or "char"."""
 
     def __init__(self, kind: str, value: str, line: int):
         self.kind, self.value, self.line = kind, value, line
@@ -82,7 +84,7 @@ def _string(text: str, i: int) -> tuple[str, int]:
 
 def tokens(text: str) -> list[Token]:
     """Rust tokens without comments: string literals with their value, identifiers,
-    punctuation (`::` one token), char literals; lifetimes are dropped."""
+    numbers, punctuation (`::` one token), char literals; lifetimes are dropped."""
     out, i, line, n = [], 0, 1, len(text)
     while i < n:
         c = text[i]
@@ -136,6 +138,7 @@ def tokens(text: str) -> list[Token]:
             i = m.end()
         elif c.isdigit():
             m = re.compile(r"[0-9][0-9A-Za-z_]*(?:\.[0-9][0-9A-Za-z_]*)?").match(text, i)
+            out.append(Token("num", m.group(), line))
             i = m.end()
         elif text.startswith("::", i):
             out.append(Token("punct", "::", line))
@@ -250,6 +253,25 @@ def declaring(files: dict[Path, list[Token]]) -> set[str]:
         known |= more
 
 
+def declared_at(toks: list[Token], callees: set[str]):
+    """For each call of a declaring callee: the index of the string literal it declares
+    (the first among its own arguments), or None."""
+    for callee, at in calls(toks):
+        if callee not in callees:
+            continue
+        end, depth, first = matching(toks, at), 0, None
+        for k in range(at + 1, end):
+            v = toks[k]
+            if v.kind == "punct" and v.value in OPEN:
+                depth += 1
+            elif v.kind == "punct" and v.value in CLOSE:
+                depth -= 1
+            elif depth == 0 and v.kind == "str":
+                first = k
+                break
+        yield first
+
+
 def findings(root: Path = ROOT) -> dict[str, list[tuple[str, int, str]]]:
     """FMU folder -> (file, line, literal) of every variable name written as a string
     outside its declaration."""
@@ -263,20 +285,7 @@ def findings(root: Path = ROOT) -> dict[str, list[tuple[str, int, str]]]:
         callees = declaring(files)
         found = []
         for f, toks in files.items():
-            declarations = set()
-            for callee, at in calls(toks):
-                if callee not in callees:
-                    continue
-                end, depth = matching(toks, at), 0
-                for k in range(at + 1, end):
-                    v = toks[k]
-                    if v.kind == "punct" and v.value in OPEN:
-                        depth += 1
-                    elif v.kind == "punct" and v.value in CLOSE:
-                        depth -= 1
-                    elif depth == 0 and v.kind == "str":
-                        declarations.add(k)
-                        break
+            declarations = {k for k in declared_at(toks, callees) if k is not None}
             for k, t in enumerate(toks):
                 named = t.value in names or (t.value.endswith("[") and t.value[:-1] in names)
                 if t.kind == "str" and named and k not in declarations:
@@ -285,18 +294,97 @@ def findings(root: Path = ROOT) -> dict[str, list[tuple[str, int, str]]]:
     return out
 
 
+def declaration_constants(toks: list[Token]) -> set[str]:
+    """Names of the `const` and `static` items whose type is a declaration or a table of
+    them (`Decl`, `Declaration<M>`, `[Decl; 7]`, `&[Decl]`)."""
+    out = set()
+    for i, t in enumerate(toks[:-2]):
+        if t.kind == "ident" and t.value in ("const", "static") and toks[i + 1].kind == "ident" \
+                and _is(toks[i + 2], "punct", ":"):
+            k = i + 3
+            while k < len(toks) and not _is(toks[k], "punct", "=") and not _is(toks[k], "punct", ";"):
+                if toks[k].value in TABLES:
+                    out.add(toks[i + 1].value)
+                k += 1
+    return out
+
+
+def list_elements(toks: list[Token], start: int) -> list[list[Token]]:
+    """The elements of the `[..]` list opening at toks[start], split at its own commas."""
+    elements: list[list[Token]] = [[]]
+    depth = 0
+    for k in range(start + 1, matching(toks, start)):
+        v = toks[k]
+        if v.kind == "punct" and v.value in OPEN:
+            depth += 1
+        elif v.kind == "punct" and v.value in CLOSE:
+            depth -= 1
+        if depth == 0 and _is(v, "punct", ","):
+            elements.append([])
+        else:
+            elements[-1].append(v)
+    return [e for e in elements if e]
+
+
+def listed(element: list[Token], constants: set[str]) -> str | None:
+    """What a list element names of the declarations: the element as written when it
+    starts with a declaration constant (`KP`, `THETA.var()`, `THETA.item(1)`), the
+    constant when the element is a tuple opening with one (`(U, Unknown::Output)`)."""
+    if element[0].kind == "ident" and element[0].value in constants:
+        return "".join(t.value for t in element)
+    if _is(element[0], "punct", "(") and len(element) > 1 and element[1].value in constants:
+        return element[1].value
+    return None
+
+
+def repeats(root: Path = ROOT) -> dict[str, list[tuple[str, int, str]]]:
+    """FMU folder -> (file, line, what) of every declaration stated twice: a name that
+    two declarations of the crate declare, a declaration constant listed twice in one
+    list (a table, a dependency list, a Jacobian table)."""
+    out = {}
+    for crate in sorted((root / "fmus").iterdir()):
+        sources = sorted((crate / "src").rglob("*.rs"))
+        if not sources:
+            continue
+        files = {f: tokens(f.read_text()) for f in sources}
+        callees = declaring(files)
+        constants = set().union(*(declaration_constants(t) for t in files.values()))
+        declared: dict[str, list[tuple[str, int]]] = {}
+        found = []
+        for f, toks in files.items():
+            name = str(f.relative_to(root))
+            for k in declared_at(toks, callees):
+                if k is not None:
+                    declared.setdefault(toks[k].value, []).append((name, toks[k].line))
+            for i, t in enumerate(toks):
+                if not _is(t, "punct", "["):
+                    continue
+                seen = set()
+                for element in list_elements(toks, i):
+                    what = listed(element, constants)
+                    if what is not None and what in seen:
+                        found.append((name, element[0].line, f"{what} listed twice in one list"))
+                    seen.add(what)
+        for value, places in declared.items():
+            found += [(f, line, f'"{value}" declared twice') for f, line in places[1:]]
+        out[crate.name] = sorted(found)
+    return out
+
+
 def main() -> int:
     root = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT
-    result = findings(root)
+    result, twice = findings(root), repeats(root)
     total = 0
     for crate, found in result.items():
-        print(f"fmus/{crate}: {len(found)}")
+        print(f"fmus/{crate}: {len(found) + len(twice[crate])}")
         for f, line, value in found:
             print(f"  {f}:{line}: \"{value}\"")
-        total += len(found)
+        for f, line, what in twice[crate]:
+            print(f"  {f}:{line}: {what}")
+        total += len(found) + len(twice[crate])
     if total:
-        print(f"{total} variable names written as strings outside their declarations: refer "
-              "to the declaration instead (D.var(), D.item(i), D.same(), D.is(element), D.name)")
+        print(f"{total} findings: refer to a variable through its declaration (D.var(), "
+              "D.item(i), D.same(), D.is(element), D.name), declare it once, list it once")
     return 1 if total else 0
 
 

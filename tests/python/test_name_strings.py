@@ -120,3 +120,59 @@ def test_a_name_outside_its_declaration_is_found(tmp_path):
     (src / "lib.rs").write_text(fixed)
     (src / "other.rs").write_text("fn f() -> &'static str { GAIN.name }\n")
     assert name_strings.findings(tmp_path) == {"m": []}
+
+
+def test_no_fmu_crate_declares_a_name_twice_or_lists_a_declaration_twice():
+    twice = name_strings.repeats(ROOT)
+    assert {"pid", "planner", "pss3-plant", "computed-torque"} <= set(twice)
+    assert {crate: f for crate, f in twice.items() if f} == {}
+
+
+def test_no_fmu_crate_defines_a_macro():
+    # Every FMU declares its variables in the layer's vocabulary (Declaration's const
+    # builders and the crate's const fns), not in a dialect of its own (issue 44).
+    sources = sorted((ROOT / "fmus").glob("*/src/**/*.rs"))
+    assert len(sources) >= 4
+    defining = [str(f.relative_to(ROOT)) for f in sources
+                if any(t.value == "macro_rules" for t in name_strings.tokens(f.read_text()))]
+    assert defining == []
+
+
+# Stated twice: "gain" declared by two calls (the second at line 9, through the crate's
+# declaring fn), X listed twice in VARIABLES (line 11), the tuple table naming Y twice
+# (line 12) and X.var() twice in a dependency list (line 13). Not counted: X.item(0)
+# beside X.item(1) (two elements), the same constant in two different lists, Decl::real
+# inside a helper's arguments (one declaration, not two).
+REPEATED = r'''
+type Decl = Declaration<M>;
+const fn param(name: &'static str) -> Decl { Decl::real(name, "a parameter", |m, _| m.v) }
+const fn array(d: Decl) -> Decl { d.array(2) }
+const GAIN: Decl = param("gain");
+const X: Decl = array(Decl::real("x", "position", |m, i| m.v[i]));
+const Y: Decl = Decl::real("y", "out", |m, _| m.y).depends_on(&[X.item(0), X.item(1)]);
+const Z: Decl = Decl::real("z", "out", |m, _| m.y).depends_on(&[X.var()]);
+const AGAIN: Decl = param("gain");
+static ALL: [Var; 2] = [GAIN.var(), X.var()];
+static VARIABLES: &[Decl] = &[GAIN, X, Y, Z, X];
+const ROLES: [(Decl, u8); 3] = [(Y, 1), (Z, 2), (Y, 3)];
+static DEPENDS: [Var; 3] = [X.var(), GAIN.var(), X.var()];
+'''
+
+
+def test_a_declaration_stated_twice_is_found(tmp_path):
+    src = tmp_path / "fmus" / "m" / "src"
+    src.mkdir(parents=True)
+    (src / "lib.rs").write_text(REPEATED)
+    assert name_strings.repeats(tmp_path) == {
+        "m": [
+            ("fmus/m/src/lib.rs", 9, '"gain" declared twice'),
+            ("fmus/m/src/lib.rs", 11, "X listed twice in one list"),
+            ("fmus/m/src/lib.rs", 12, "Y listed twice in one list"),
+            ("fmus/m/src/lib.rs", 13, "X.var() listed twice in one list"),
+        ]
+    }
+    fixed = (REPEATED.replace('const AGAIN: Decl = param("gain");', "")
+             .replace("Y, Z, X];", "Y, Z];").replace("(Y, 3)]", "(GAIN, 3)]")
+             .replace("[X.var(), GAIN.var(), X.var()]", "[X.var(), GAIN.var(), Z.var()]"))
+    (src / "lib.rs").write_text(fixed)
+    assert name_strings.repeats(tmp_path) == {"m": []}

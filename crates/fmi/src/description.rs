@@ -56,7 +56,10 @@ pub type Lend = fn(&mut dyn FnMut(Result<&Description, &str>));
 
 impl Header {
     /// The header of model M (what `export_fmu!` exports).
+    /// Evaluated in a `static`: a table whose value references collide does not compile
+    /// ([`unique_value_references`](crate::core::declare::unique_value_references)).
     pub const fn of<M: Model>() -> Header {
+        crate::core::declare::unique_value_references(M::VARIABLES);
         Header {
             magic: MAGIC,
             header_version: HEADER_VERSION,

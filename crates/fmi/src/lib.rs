@@ -119,8 +119,11 @@ pub mod prelude {
     //! hooks), [`StepOutcome`] and [`EventUpdate`] (what a step or an event did), [`Log`]
     //! and [`LogCategory`] (messages), [`OutputDerivativeError`] (why a hook gives no
     //! output derivative), [`Var`] (a variable in a dependency list, named by its
-    //! declaration), [`concat()`], [`every`] and [`same`] (static tables from named parts).
+    //! declaration), [`concat()`], [`every`] and [`same`] (static tables from named parts),
+    //! [`store`] (a writer's usual body), [`InputDerivative`] and [`OutputDerivative`]
+    //! (the hooks' types, for a model's own declaring functions).
 
+    pub use crate::core::declare::{InputDerivative, OutputDerivative, store};
     pub use crate::core::tables::{concat, every, same};
     pub use crate::core::{
         Declaration, DefaultExperiment, Element, EventUpdate, Jacobian, Log, LogCategory, Model,

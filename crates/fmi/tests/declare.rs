@@ -4,7 +4,7 @@
 //! (pinned: vr + i * stride; unpinned: one after the largest before), the expected
 //! names from the FMI 2.0 convention `base[i]` / `der(state[i])`.
 
-use robofmu_fmi::core::declare::{Declaration, value_references};
+use robofmu_fmi::core::declare::{Declaration, unique_value_references, value_references};
 use robofmu_fmi::core::flatten::flatten;
 use robofmu_fmi::core::variables::Kind;
 use robofmu_fmi::core::variables::check_table;
@@ -75,6 +75,31 @@ fn value_references_are_pinned_or_follow_the_largest_before() {
     assert_eq!(value_references(TABLE), [1, 10, 16, 18, 20]);
     let vrs: Vec<u32> = flatten(TABLE).iter().map(|v| v.value_reference).collect();
     assert_eq!(vrs, [1, 10, 15, 16, 17, 18, 19, 20, 21]);
+}
+
+// The table's value references are distinct: checked while compiling this test.
+const _: () = unique_value_references(TABLE);
+
+/// Whether `unique_value_references` refuses the table, and the declaration it names.
+fn refused(table: &[Decl]) -> Option<String> {
+    let run = std::panic::catch_unwind(|| unique_value_references(table));
+    run.err().map(|e| e.downcast_ref::<String>().cloned().unwrap_or_default())
+}
+
+#[test]
+fn a_value_reference_taken_twice_is_refused_naming_the_later_declaration() {
+    let a = Decl::real("a", "", |m, i| m.x[i]).array(2).at(10).stride(5);
+    let b = |vr| Decl::real("b", "", |m, _| m.x[0]).at(vr);
+    // a holds 10 and 15 (vr + i * stride); 12 lies between them, 15 is a's second.
+    assert_eq!(refused(&[a, b(12)]), None);
+    assert_eq!(refused(&[a, b(15)]).as_deref(), Some("b"));
+    // Unpinned after a: 16 (one after the largest before), so pinning c at 16 collides.
+    let (c, d) = (b(16), Decl::real("d", "", |m, _| m.x[1]));
+    assert_eq!(refused(&[a, d, c]).as_deref(), Some("b"));
+    assert_eq!(refused(&[a, c, d]), None); // d then takes 17
+    // The scheme's references of the accepted tables (value_references, a second
+    // formulation, runs at run time).
+    assert_eq!(value_references(&[a, c, d]), [10, 16, 17]);
 }
 
 #[test]

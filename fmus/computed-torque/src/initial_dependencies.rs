@@ -41,19 +41,39 @@ const LAW: [Var; 12] = [
 /// The model parameters every axis reads: all but the gravity moment's (g,
 /// platformMass, platformCom).
 const MODEL: [Var; 19] = concat(
-    &[&every(&GEOMETRY), &every(&PLATFORM_INERTIA), &every(&LEGS_AND_SLIDERS), &every(&FRICTION)],
+    &[
+        &every(&GEOMETRY),
+        &every(&PLATFORM_INERTIA),
+        &every(&LEGS_AND_SLIDERS),
+        &every(&FRICTION),
+    ],
     Var::Time,
 );
 
 /// Static tables (no allocation: a per-load allocation would leak on every dlclose).
 /// u[1]: the gravity moment but platformCom[1].
 static AXIS_1: [Var; 35] = concat(
-    &[&LAW, &MODEL, &[G.var(), PLATFORM_MASS.var(), PLATFORM_COM.item(1), PLATFORM_COM.item(2)]],
+    &[
+        &LAW,
+        &MODEL,
+        &[
+            G.var(),
+            PLATFORM_MASS.var(),
+            PLATFORM_COM.item(1),
+            PLATFORM_COM.item(2),
+        ],
+    ],
     Var::Time,
 );
 /// u[2]: every model parameter.
-static AXIS_2: [Var; 34] =
-    concat(&[&LAW, &MODEL, &[G.var(), PLATFORM_MASS.var(), PLATFORM_COM.var()]], Var::Time);
+static AXIS_2: [Var; 34] = concat(
+    &[
+        &LAW,
+        &MODEL,
+        &[G.var(), PLATFORM_MASS.var(), PLATFORM_COM.var()],
+    ],
+    Var::Time,
+);
 /// u[3]: no gravity.
 static AXIS_3: [Var; 31] = concat(&[&LAW, &MODEL], Var::Time);
 

@@ -43,8 +43,10 @@ static INFO: ModelInfo = ModelInfo {
     number_of_event_indicators: 0,
     log_categories: &[LOG],
 };
-const LOG: LogCategory =
-    LogCategory::new("logController", "Gains and model of the controller at initialization");
+const LOG: LogCategory = LogCategory::new(
+    "logController",
+    "Gains and model of the controller at initialization",
+);
 
 /// Parameters, inputs and the error integral of one controller instance.
 #[derive(Clone)]
@@ -64,9 +66,11 @@ pub struct ComputedTorqueFmu {
 }
 
 impl ComputedTorqueFmu {
-    /// A parameter changed: the law is rebuilt before its next use.
-    fn changed(&mut self) {
+    /// Applies a change of a parameter: the law is rebuilt before its next use.
+    fn change(&mut self, f: impl FnOnce(&mut Self)) -> Result<(), String> {
+        f(self);
         self.law = None;
+        Ok(())
     }
 
     /// The law for the current parameters, or why there is none (FMU parameter names).
@@ -93,7 +97,10 @@ impl ComputedTorqueFmu {
             }
         };
         match law.output(&self.integral, &self.inputs) {
-            Ok(output) => Ok(Evaluation { u: output.u, integral_rate: law.integral_rate(&output) }),
+            Ok(output) => Ok(Evaluation {
+                u: output.u,
+                integral_rate: law.integral_rate(&output),
+            }),
             Err(DynamicsError::Kinematics(e)) => {
                 let theta = self.inputs.measurement.map(f64::to_degrees);
                 Err(format!(
@@ -150,7 +157,10 @@ impl Model for ComputedTorqueFmu {
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         let law = self.build_law()?;
-        log.debug(LOG.name, &format!("gains {:?}, model {:?}", law.gains(), self.model));
+        log.debug(
+            LOG.name,
+            &format!("gains {:?}, model {:?}", law.gains(), self.model),
+        );
         self.law = Some(law);
         // The model must be evaluable at the start inputs: a geometry whose legs cannot
         // reach the measured pose is refused here, so that a getter in Initialization
@@ -175,7 +185,10 @@ impl Model for ComputedTorqueFmu {
                 self.integral += evaluation.integral_rate * step;
                 StepOutcome::Completed
             }
-            Err(reason) => StepOutcome::Discarded { reason, terminate: true },
+            Err(reason) => StepOutcome::Discarded {
+                reason,
+                terminate: true,
+            },
         }
     }
 

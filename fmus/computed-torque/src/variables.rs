@@ -22,51 +22,30 @@ const GAINS: AxisGains = match pole_placement(DEFAULT_BANDWIDTH, true) {
 /// The default inputs: measured at rest in the start pose (path 1's start), planned
 /// 0.5, -0.5 and 1 deg away, so that the default run's output moves.
 const MEASURED: [f64; 3] = [0.0, 0.0, START_ROLL_DEG.to_radians()];
-const PLANNED: [f64; 3] =
-    [0.5f64.to_radians(), -0.5f64.to_radians(), START_ROLL_DEG.to_radians() + 1f64.to_radians()];
+const PLANNED: [f64; 3] = [
+    0.5f64.to_radians(),
+    -0.5f64.to_radians(),
+    START_ROLL_DEG.to_radians() + 1f64.to_radians(),
+];
 
-/// The per-axis array of `m.$($place)+[k]`-like fields, at `vr`, "Axis k: ..." in FMI
-/// 2.0; writing it rebuilds the law before its next use.
-macro_rules! axes {
-    ($ty:ident, $set:ident, $name:literal, $vr:literal, $what:literal,
-     |$m:ident, $k:ident| $($place:tt)+) => {
-        Decl::$ty($name, $what, |$m, $k| $($place)+)
-            .array(AXES)
-            .at($vr)
-            .label("Axis")
-            .$set(|$m, $k, v| {
-                $($place)+ = v;
-                $m.changed();
-                Ok(())
-            })
-    };
+/// The per-axis array at `vr`, "Axis k: ..." in FMI 2.0.
+const fn axes(d: Decl, vr: u32) -> Decl {
+    d.array(AXES).at(vr).label("Axis")
 }
 
-/// A tunable Real parameter per axis.
-macro_rules! gain {
-    ($name:literal, $vr:literal, $what:literal, $start:expr, $($place:tt)+) => {
-        axes!(real, set_real, $name, $vr, $what, $($place)+)
-            .parameter(Variability::Tunable)
-            .start_real(&[$start])
-    };
+/// A tunable Real parameter per axis (its writer given after it).
+const fn gain(d: Decl, vr: u32, start: &'static [f64]) -> Decl {
+    axes(d, vr)
+        .parameter(Variability::Tunable)
+        .start_real(start)
 }
 
-/// An input per axis (rad-based unit, display in degrees).
-macro_rules! input {
-    ($name:literal, $vr:literal, $what:literal, $unit:literal, $display:literal, $start:expr,
-     $field:ident) => {
-        Decl::real($name, $what, |m, k| m.inputs.$field[k])
-            .array(AXES)
-            .at($vr)
-            .label("Axis")
-            .set_real(|m, k, v| {
-                m.inputs.$field[k] = v;
-                Ok(())
-            })
-            .input()
-            .unit($unit, Some($display))
-            .start_real($start)
-    };
+/// An input per axis, `unit` rad-based and displayed in degrees (its writer given after it).
+const fn input(d: Decl, vr: u32, unit: [&'static str; 2], start: &'static [f64]) -> Decl {
+    axes(d, vr)
+        .input()
+        .unit(unit[0], Some(unit[1]))
+        .start_real(start)
 }
 
 /// `length` spec values from entry `k` on.
@@ -80,9 +59,7 @@ fn get_model<const K: usize>(m: &ComputedTorqueFmu, i: usize) -> f64 {
 }
 
 fn set_model<const K: usize>(m: &mut ComputedTorqueFmu, i: usize, v: f64) -> Result<(), String> {
-    (MODEL_PARAMETERS[K + i].set)(&mut m.model, v);
-    m.changed();
-    Ok(())
+    m.change(|m| (MODEL_PARAMETERS[K + i].set)(&mut m.model, v))
 }
 
 /// The model parameter `MODEL_PARAMETERS[K]` (with `length` > 1: the array `name[1..]`
@@ -110,73 +87,138 @@ const fn model<const K: usize>(length: usize) -> Decl {
     d
 }
 
-pub const KP: Decl =
-    gain!("Kp", 1, "acceleration per angle error, 1/s2", GAINS.kp, |m, k| m.gains[k].kp);
-pub const KD: Decl = gain!("Kd", 11, "acceleration per rate error", GAINS.kd, |m, k| m.gains[k].kd)
-    .unit("1/s", None);
-pub const KI: Decl =
-    gain!("Ki", 21, "acceleration per integrated error, 1/s3", GAINS.ki, |m, k| m.gains[k].ki);
-pub const LIMIT: Decl =
-    axes!(boolean, set_boolean, "limitOutput", 31, "clamp the output to [uMin, uMax]", |m, k| m
-        .limited[k])
-    .parameter(Variability::Tunable)
-    .start_boolean(&[false]);
-pub const U_MIN: Decl =
-    gain!("uMin", 41, "lower output limit (used when limitOutput)", -1.0, |m, k| m.limits[k].0)
-        .unit("N.m", None);
-pub const U_MAX: Decl =
-    gain!("uMax", 51, "upper output limit (used when limitOutput)", 1.0, |m, k| m.limits[k].1)
-        .unit("N.m", None);
-pub const SETPOINT: Decl =
-    input!("setpoint", 101, "planned Euler angle q", "rad", "deg", &PLANNED, setpoint);
-pub const SETPOINT_RATE: Decl = input!(
-    "setpointRate",
+pub const KP: Decl = gain(
+    Decl::real("Kp", "acceleration per angle error, 1/s2", |m, k| {
+        m.gains[k].kp
+    }),
+    1,
+    &[GAINS.kp],
+)
+.set_real(|m, k, v| m.change(|m| m.gains[k].kp = v));
+pub const KD: Decl = gain(
+    Decl::real("Kd", "acceleration per rate error", |m, k| m.gains[k].kd),
+    11,
+    &[GAINS.kd],
+)
+.set_real(|m, k, v| m.change(|m| m.gains[k].kd = v))
+.unit("1/s", None);
+pub const KI: Decl = gain(
+    Decl::real("Ki", "acceleration per integrated error, 1/s3", |m, k| {
+        m.gains[k].ki
+    }),
+    21,
+    &[GAINS.ki],
+)
+.set_real(|m, k, v| m.change(|m| m.gains[k].ki = v));
+pub const LIMIT: Decl = axes(
+    Decl::boolean("limitOutput", "clamp the output to [uMin, uMax]", |m, k| {
+        m.limited[k]
+    }),
+    31,
+)
+.set_boolean(|m, k, v| m.change(|m| m.limited[k] = v))
+.parameter(Variability::Tunable)
+.start_boolean(&[false]);
+pub const U_MIN: Decl = gain(
+    Decl::real(
+        "uMin",
+        "lower output limit (used when limitOutput)",
+        |m, k| m.limits[k].0,
+    ),
+    41,
+    &[-1.0],
+)
+.set_real(|m, k, v| m.change(|m| m.limits[k].0 = v))
+.unit("N.m", None);
+pub const U_MAX: Decl = gain(
+    Decl::real(
+        "uMax",
+        "upper output limit (used when limitOutput)",
+        |m, k| m.limits[k].1,
+    ),
+    51,
+    &[1.0],
+)
+.set_real(|m, k, v| m.change(|m| m.limits[k].1 = v))
+.unit("N.m", None);
+pub const SETPOINT: Decl = input(
+    Decl::real("setpoint", "planned Euler angle q", |m, k| {
+        m.inputs.setpoint[k]
+    }),
+    101,
+    ["rad", "deg"],
+    &PLANNED,
+)
+.set_real(|m, k, v| store(&mut m.inputs.setpoint[k], v));
+pub const SETPOINT_RATE: Decl = input(
+    Decl::real("setpointRate", "planned Euler-angle rate qdot", |m, k| {
+        m.inputs.setpoint_rate[k]
+    }),
     111,
-    "planned Euler-angle rate qdot",
-    "rad/s",
-    "deg/s",
+    ["rad/s", "deg/s"],
     &[0.0],
-    setpoint_rate
-);
-pub const SETPOINT_ACCELERATION: Decl = input!(
-    "setpointAcceleration",
+)
+.set_real(|m, k, v| store(&mut m.inputs.setpoint_rate[k], v));
+pub const SETPOINT_ACCELERATION: Decl = input(
+    Decl::real(
+        "setpointAcceleration",
+        "planned Euler-angle acceleration qddot",
+        |m, k| m.inputs.setpoint_acceleration[k],
+    ),
     121,
-    "planned Euler-angle acceleration qddot",
-    "rad/s2",
-    "deg/s2",
+    ["rad/s2", "deg/s2"],
     &[0.0],
-    setpoint_acceleration
-);
-pub const MEASUREMENT: Decl =
-    input!("measurement", 131, "measured Euler angle theta", "rad", "deg", &MEASURED, measurement);
-pub const MEASURED_RATE: Decl = input!(
-    "measuredRate",
+)
+.set_real(|m, k, v| store(&mut m.inputs.setpoint_acceleration[k], v));
+pub const MEASUREMENT: Decl = input(
+    Decl::real("measurement", "measured Euler angle theta", |m, k| {
+        m.inputs.measurement[k]
+    }),
+    131,
+    ["rad", "deg"],
+    &MEASURED,
+)
+.set_real(|m, k, v| store(&mut m.inputs.measurement[k], v));
+pub const MEASURED_RATE: Decl = input(
+    Decl::real(
+        "measuredRate",
+        "measured Euler-angle rate thetaDot",
+        |m, k| m.inputs.measured_rate[k],
+    ),
     141,
-    "measured Euler-angle rate thetaDot",
-    "rad/s",
-    "deg/s",
+    ["rad/s", "deg/s"],
     &[0.0],
-    measured_rate
-);
-pub const U: Decl =
-    Decl::real("u", "Euler-angle generalized force (plant generalizedForceCommand)", |m, k| m.u(k))
-        .array(AXES)
-        .at(201)
-        .label("Axis")
-        .output()
-        .unit("N.m", None)
-        .initial_depends_on_each(initial_dependencies::of_axis);
-pub const INTEGRAL: Decl =
-    axes!(real, set_real, "integral", 301, "integral of the angle error (state)", |m, k| m
-        .integral[k])
-    .state()
-    .start_real(&[0.0]);
-pub const DER_INTEGRAL: Decl =
-    Decl::real("der(integral)", "Time derivative of the error integral", |m, k| m.integral_rate(k))
-        .array(AXES)
-        .at(311)
-        .derivative_of(INTEGRAL.name)
-        .initial_depends_on_each(initial_dependencies::of_axis);
+)
+.set_real(|m, k, v| store(&mut m.inputs.measured_rate[k], v));
+pub const U: Decl = Decl::real(
+    "u",
+    "Euler-angle generalized force (plant generalizedForceCommand)",
+    |m, k| m.u(k),
+)
+.array(AXES)
+.at(201)
+.label("Axis")
+.output()
+.unit("N.m", None)
+.initial_depends_on_each(initial_dependencies::of_axis);
+pub const INTEGRAL: Decl = axes(
+    Decl::real("integral", "integral of the angle error (state)", |m, k| {
+        m.integral[k]
+    }),
+    301,
+)
+.set_real(|m, k, v| m.change(|m| m.integral[k] = v))
+.state()
+.start_real(&[0.0]);
+pub const DER_INTEGRAL: Decl = Decl::real(
+    "der(integral)",
+    "Time derivative of the error integral",
+    |m, k| m.integral_rate(k),
+)
+.array(AXES)
+.at(311)
+.derivative_of(INTEGRAL.name)
+.initial_depends_on_each(initial_dependencies::of_axis);
 
 /// The model's geometry: lp, ld, gamma, lb, alpha, beta, a.
 pub const GEOMETRY: [Decl; 7] = [
@@ -200,8 +242,12 @@ pub const PLATFORM_INERTIA: [Decl; 6] = [
     model::<16>(1),
 ];
 /// legMass, legComFraction, legTransverseInertia, sliderMass.
-pub const LEGS_AND_SLIDERS: [Decl; 4] =
-    [model::<17>(1), model::<18>(1), model::<19>(1), model::<20>(1)];
+pub const LEGS_AND_SLIDERS: [Decl; 4] = [
+    model::<17>(1),
+    model::<18>(1),
+    model::<19>(1),
+    model::<20>(1),
+];
 pub const G: Decl = model::<21>(1);
 /// sliderFriction, pivotFriction.
 pub const FRICTION: [Decl; 2] = [model::<22>(1), model::<23>(1)];

@@ -21,8 +21,10 @@ static INFO: ModelInfo = ModelInfo::new(
     [0.0, 2.0, 1e-8, 0.01],
 )
 .logs(&[LOG]);
-const LOG: LogCategory =
-    LogCategory::new("logController", "Gains and options of each channel at initialization");
+const LOG: LogCategory = LogCategory::new(
+    "logController",
+    "Gains and options of each channel at initialization",
+);
 
 /// Parameters, inputs and states of the three channels.
 #[derive(Clone, Default)]
@@ -81,106 +83,179 @@ const fn channels(d: Decl, vr: u32) -> Decl {
     d.array(CHANNELS).at(vr).label("Channel")
 }
 
-/// A settable channel array of the field `m.$group[c]$(.$member)` (`$ty`: real or boolean).
-macro_rules! settable {
-    ($ty:ident, $set:ident, $name:literal, $vr:literal, $what:literal, $group:ident $(. $member:tt)?) => {
-        channels(Decl::$ty($name, $what, |m, c| m.$group[c]$(.$member)?), $vr)
-            .$set(|m, c, v| m.change(c, |m| m.$group[c]$(.$member)? = v))
-    };
+/// A tunable Real parameter of the three channels (its writer given after it).
+const fn gain(d: Decl, vr: u32, start: &'static [f64]) -> Decl {
+    channels(d, vr)
+        .parameter(Variability::Tunable)
+        .start_real(start)
 }
 
-/// A tunable Real parameter of the three channels.
-macro_rules! gain {
-    ($name:literal, $vr:literal, $what:literal, $start:literal, $($field:tt)+) => {
-        settable!(real, set_real, $name, $vr, $what, $($field)+)
-            .parameter(Variability::Tunable)
-            .start_real(&[$start])
-    };
+/// A continuous Real input of the three channels, its derivatives kept by `ramp`.
+const fn input(d: Decl, vr: u32, start: &'static [f64], ramp: InputDerivative<Pid>) -> Decl {
+    channels(d, vr)
+        .input()
+        .start_real(start)
+        .input_derivative(ramp)
 }
 
-/// A Boolean parameter of the three channels (default false).
-macro_rules! switch {
-    ($name:literal, $vr:literal, $what:literal, $variability:ident, $($field:tt)+) => {
-        settable!(boolean, set_boolean, $name, $vr, $what, $($field)+)
-            .parameter(Variability::$variability)
-            .start_boolean(&[false])
-    };
+/// A continuous state of the three channels (start 0).
+const fn state(d: Decl, vr: u32) -> Decl {
+    channels(d, vr).state().start_real(&[0.0])
 }
 
-/// A continuous Real input of the three channels, with its input derivatives.
-macro_rules! input {
-    ($name:literal, $vr:literal, $what:literal, $start:expr, $field:ident) => {
-        settable!(real, set_real, $name, $vr, $what, inputs.$field)
-            .input()
-            .start_real($start)
-            .input_derivative(|m, c, n| m.ramp(c, n).map(|r| &mut r.$field))
-    };
-}
-
-/// A state of the three channels (start 0), and its time derivative.
-macro_rules! state {
-    ($name:literal, $vr:literal, $what:literal, $field:ident) => {
-        settable!(real, set_real, $name, $vr, $what, states.$field).state().start_real(&[0.0])
-    };
-    ($name:literal, $state:ident, $vr:literal, $what:literal, $field:ident) => {
-        Decl::real($name, $what, |m, c| m.derivative(c).$field)
-            .array(CHANNELS)
-            .at($vr)
-            .derivative_of($state.name)
-    };
-}
-
-const KP: Decl = gain!("Kp", 1, "Proportional gain", 1.0, gains.kp);
-const KI: Decl = gain!("Ki", 11, "Integral gain (1/s)", 0.5, gains.ki);
-const KD: Decl = gain!("Kd", 21, "Derivative gain (s)", 0.1, gains.kd);
-const TF: Decl = gain!(
-    "Tf",
-    31,
-    "Derivative filter time constant (0 allowed only with rate inputs)",
-    0.05,
-    gains.tf
+const KP: Decl = gain(
+    Decl::real("Kp", "Proportional gain", |m, c| m.gains[c].kp),
+    1,
+    &[1.0],
 )
+.set_real(|m, c, v| m.change(c, |m| m.gains[c].kp = v));
+const KI: Decl = gain(
+    Decl::real("Ki", "Integral gain (1/s)", |m, c| m.gains[c].ki),
+    11,
+    &[0.5],
+)
+.set_real(|m, c, v| m.change(c, |m| m.gains[c].ki = v));
+const KD: Decl = gain(
+    Decl::real("Kd", "Derivative gain (s)", |m, c| m.gains[c].kd),
+    21,
+    &[0.1],
+)
+.set_real(|m, c, v| m.change(c, |m| m.gains[c].kd = v));
+const TF: Decl = gain(
+    Decl::real(
+        "Tf",
+        "Derivative filter time constant (0 allowed only with rate inputs)",
+        |m, c| m.gains[c].tf,
+    ),
+    31,
+    &[0.05],
+)
+.set_real(|m, c, v| m.change(c, |m| m.gains[c].tf = v))
 .real_range(Some(0.0), None);
-const LIMIT: Decl =
-    switch!("limitOutput", 41, "clamp the output to [uMin, uMax]", Tunable, limited);
-const U_MIN: Decl = gain!("uMin", 51, "Lower output limit (used when limitOutput)", -1.0, limits.0);
-const U_MAX: Decl = gain!("uMax", 61, "Upper output limit (used when limitOutput)", 1.0, limits.1);
-const RATES: Decl = switch!(
-    "useRateInputs",
+const LIMIT: Decl = channels(
+    Decl::boolean("limitOutput", "clamp the output to [uMin, uMax]", |m, c| {
+        m.limited[c]
+    }),
+    41,
+)
+.set_boolean(|m, c, v| m.change(c, |m| m.limited[c] = v))
+.parameter(Variability::Tunable)
+.start_boolean(&[false]);
+const U_MIN: Decl = gain(
+    Decl::real(
+        "uMin",
+        "Lower output limit (used when limitOutput)",
+        |m, c| m.limits[c].0,
+    ),
+    51,
+    &[-1.0],
+)
+.set_real(|m, c, v| m.change(c, |m| m.limits[c].0 = v));
+const U_MAX: Decl = gain(
+    Decl::real(
+        "uMax",
+        "Upper output limit (used when limitOutput)",
+        |m, c| m.limits[c].1,
+    ),
+    61,
+    &[1.0],
+)
+.set_real(|m, c, v| m.change(c, |m| m.limits[c].1 = v));
+const RATES: Decl = channels(
+    Decl::boolean(
+        "useRateInputs",
+        "derivative from setpointRate - measuredRate instead of the filtered error",
+        |m, c| m.gains[c].use_rate_inputs,
+    ),
     71,
-    "derivative from setpointRate - measuredRate instead of the filtered error",
-    Fixed,
-    gains.use_rate_inputs
-);
-const SETPOINT: Decl = input!("setpoint", 101, "Setpoint r", &[1.0, 0.5, -0.25], setpoint);
-const MEASURED: Decl = input!("measurement", 111, "Measurement y (e = r - y)", &[0.0], measurement);
-const R_RATE: Decl = input!(
-    "setpointRate",
+)
+.set_boolean(|m, c, v| m.change(c, |m| m.gains[c].use_rate_inputs = v))
+.parameter(Variability::Fixed)
+.start_boolean(&[false]);
+const SETPOINT: Decl = input(
+    Decl::real("setpoint", "Setpoint r", |m, c| m.inputs[c].setpoint),
+    101,
+    &[1.0, 0.5, -0.25],
+    |m, c, n| m.ramp(c, n).map(|r| &mut r.setpoint),
+)
+.set_real(|m, c, v| m.change(c, |m| m.inputs[c].setpoint = v));
+const MEASURED: Decl = input(
+    Decl::real("measurement", "Measurement y (e = r - y)", |m, c| {
+        m.inputs[c].measurement
+    }),
+    111,
+    &[0.0],
+    |m, c, n| m.ramp(c, n).map(|r| &mut r.measurement),
+)
+.set_real(|m, c, v| m.change(c, |m| m.inputs[c].measurement = v));
+const R_RATE: Decl = input(
+    Decl::real(
+        "setpointRate",
+        "Setpoint rate dr/dt (used when useRateInputs)",
+        |m, c| m.inputs[c].setpoint_rate,
+    ),
     121,
-    "Setpoint rate dr/dt (used when useRateInputs)",
     &[0.0],
-    setpoint_rate
-);
-const Y_RATE: Decl = input!(
-    "measuredRate",
+    |m, c, n| m.ramp(c, n).map(|r| &mut r.setpoint_rate),
+)
+.set_real(|m, c, v| m.change(c, |m| m.inputs[c].setpoint_rate = v));
+const Y_RATE: Decl = input(
+    Decl::real(
+        "measuredRate",
+        "Measured rate dy/dt (used when useRateInputs)",
+        |m, c| m.inputs[c].measured_rate,
+    ),
     131,
-    "Measured rate dy/dt (used when useRateInputs)",
     &[0.0],
-    measured_rate
-);
-const FEEDFWD: Decl =
-    input!("feedforward", 141, "Added to the output before the limits", &[0.0], feedforward);
+    |m, c, n| m.ramp(c, n).map(|r| &mut r.measured_rate),
+)
+.set_real(|m, c, v| m.change(c, |m| m.inputs[c].measured_rate = v));
+const FEEDFWD: Decl = input(
+    Decl::real(
+        "feedforward",
+        "Added to the output before the limits",
+        |m, c| m.inputs[c].feedforward,
+    ),
+    141,
+    &[0.0],
+    |m, c, n| m.ramp(c, n).map(|r| &mut r.feedforward),
+)
+.set_real(|m, c, v| m.change(c, |m| m.inputs[c].feedforward = v));
 const U: Decl = channels(Decl::real("u", "control output", |m, c| m.output(c).u), 201)
     .output()
     .initial_depends_on(&OUTPUT_KNOWNS);
-const INTEGRAL: Decl = state!("integral", 301, "integral of the error (state)", integral);
-const FILTER: Decl = state!("filter", 311, "derivative filter state (state)", filter);
-const DER_INT: Decl =
-    state!("der(integral)", INTEGRAL, 321, "Time derivative of the error integral", integral)
-        .initial_depends_on(&OUTPUT_KNOWNS);
-const DER_FILTER: Decl =
-    state!("der(filter)", FILTER, 331, "Time derivative of the derivative filter state", filter)
-        .initial_depends_on(&FILTER_KNOWNS);
+const INTEGRAL: Decl = state(
+    Decl::real("integral", "integral of the error (state)", |m, c| {
+        m.states[c].integral
+    }),
+    301,
+)
+.set_real(|m, c, v| m.change(c, |m| m.states[c].integral = v));
+const FILTER: Decl = state(
+    Decl::real("filter", "derivative filter state (state)", |m, c| {
+        m.states[c].filter
+    }),
+    311,
+)
+.set_real(|m, c, v| m.change(c, |m| m.states[c].filter = v));
+const DER_INT: Decl = Decl::real(
+    "der(integral)",
+    "Time derivative of the error integral",
+    |m, c| m.derivative(c).integral,
+)
+.array(CHANNELS)
+.at(321)
+.derivative_of(INTEGRAL.name)
+.initial_depends_on(&OUTPUT_KNOWNS);
+const DER_FILTER: Decl = Decl::real(
+    "der(filter)",
+    "Time derivative of the derivative filter state",
+    |m, c| m.derivative(c).filter,
+)
+.array(CHANNELS)
+.at(331)
+.derivative_of(FILTER.name)
+.initial_depends_on(&FILTER_KNOWNS);
 
 /// What the filter's dx/dt reads at initialization, in the same channel.
 static FILTER_KNOWNS: [Var; 8] = same(&[KD, TF, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FILTER]);
@@ -197,8 +272,11 @@ static VARIABLES: &[Decl] = &[
 ];
 
 /// The law's unknowns and knowns (`control::pid_jacobian`) by declaration.
-const UNKNOWNS: [(Decl, Unknown); 3] =
-    [(U, Unknown::Output), (DER_INT, Unknown::IntegralRate), (DER_FILTER, Unknown::FilterRate)];
+const UNKNOWNS: [(Decl, Unknown); 3] = [
+    (U, Unknown::Output),
+    (DER_INT, Unknown::IntegralRate),
+    (DER_FILTER, Unknown::FilterRate),
+];
 const KNOWNS: [(Decl, Known); 7] = [
     (SETPOINT, Known::Setpoint),
     (MEASURED, Known::Measurement),
@@ -244,7 +322,10 @@ impl Model for Pid {
 
     fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
         if let Err(reason) = (0..CHANNELS).try_for_each(|c| self.validate(c)) {
-            return StepOutcome::Discarded { reason, terminate: true };
+            return StepOutcome::Discarded {
+                reason,
+                terminate: true,
+            };
         }
         for c in 0..CHANNELS {
             let (g, s, i) = (&self.gains[c], &self.states[c], &self.inputs[c]);

@@ -1,7 +1,8 @@
 //! Binding of the trajectory planner (`robofmu_control::trajectory`) as the FMU
 //! "Planner": three axes, cubic or quintic, boundary conditions as parameters,
 //! q / qdot / qddot per axis as outputs. Axis positions are angles (rad, shown in deg);
-//! the planner itself is unit-agnostic. docs/fmu-in-one-file.md walks through this file.
+//! the planner itself is unit-agnostic. docs/fmi-layer.md walks through this file
+//! ("Writing an FMU").
 
 use robofmu_control::trajectory::{Boundary, Order, Plan};
 use robofmu_fmi::prelude::*;
@@ -16,8 +17,10 @@ static INFO: ModelInfo = ModelInfo::new(
     [0.0, 2.5, 1e-6, 0.01],
 )
 .logs(&[LOG]);
-const LOG: LogCategory =
-    LogCategory::new("logTrajectory", "Polynomial coefficients computed at initialization");
+const LOG: LogCategory = LogCategory::new(
+    "logTrajectory",
+    "Polynomial coefficients computed at initialization",
+);
 
 /// Parameters and time of the planner (outputs are functions of them: no `do_step`).
 #[derive(Clone, Default)]
@@ -55,15 +58,6 @@ impl Planner {
 
 type Decl = Declaration<Planner>;
 
-/// A fixed Real parameter named after the field `$field` of `$place`: setting it plans.
-macro_rules! fixed {
-    ($field:ident, $what:literal, |$m:ident, $a:ident| $place:expr) => {
-        Decl::real(stringify!($field), $what, |$m, $a| $place.$field)
-            .set_real(|$m, $a, v| $m.change(|$m| $place.$field = v))
-            .parameter(Variability::Fixed)
-    };
-}
-
 /// Unit and display unit of order k of a position: 0 q, 1 qdot, 2 qddot.
 const UNITS: [(&str, &str); 3] = [("rad", "deg"), ("rad/s", "deg/s"), ("rad/s2", "deg/s2")];
 
@@ -73,11 +67,11 @@ const fn axes(d: Decl, vr: u32, k: usize) -> Decl {
     d.unit(UNITS[k].0, Some(UNITS[k].1))
 }
 
-/// A boundary value of the three axes, order k of a position.
-macro_rules! boundary {
-    ($field:ident, $vr:literal, $k:literal, $what:literal, $start:expr) => {
-        axes(fixed!($field, $what, |m, a| m.boundary[a]), $vr, $k).start_real($start)
-    };
+/// A boundary value of the three axes, order k of a position (writer given after it).
+const fn boundary(d: Decl, vr: u32, k: usize, start: &'static [f64]) -> Decl {
+    axes(d, vr, k)
+        .parameter(Variability::Fixed)
+        .start_real(start)
 }
 
 /// Planned output k (0 q, 1 qdot, 2 qddot) of the three axes (NaN until the parameters
@@ -85,29 +79,79 @@ macro_rules! boundary {
 const fn planned<const K: usize>(name: &'static str, vr: u32, what: &'static str) -> Decl {
     let q = |m: &Planner, a| m.derivative(a, K, 0).unwrap_or(f64::NAN);
     let d = axes(Decl::real(name, what, q), vr, K).output();
-    d.output_derivative(2, |m, a, n| m.derivative(a, K, n)).initial_depends_on(&KNOWNS)
+    d.output_derivative(2, |m, a, n| m.derivative(a, K, n))
+        .initial_depends_on(&KNOWNS)
 }
 
-const ORDER: Decl =
-    Decl::integer("order", "Polynomial degree: 3 (cubic) or 5 (quintic)", |m, _| m.degree)
-        .set_integer(|m, _, v| match Order::from_degree(v) {
-            None => Err("the order must be 3 or 5".to_string()),
-            Some(_) => m.change(|m| m.degree = v),
-        })
-        .parameter(Variability::Fixed)
-        .start_integer(&[5])
-        .integer_range(3, 5)
-        .at(1);
-const T0: Decl =
-    fixed!(t0, "Start time of the motion", |m, _a| m).unit("s", None).start_real(&[0.0]);
-const TF: Decl =
-    fixed!(tf, "End time of the motion (after t0)", |m, _a| m).unit("s", None).start_real(&[2.0]);
-const Q0: Decl = boundary!(q0, 10, 0, "position at t0", &[0.0]);
-const QF: Decl = boundary!(qf, 11, 0, "position at tf", &[0.5, -0.3, 0.8]);
-const QDOT0: Decl = boundary!(qdot0, 12, 1, "velocity at t0", &[0.0]);
-const QDOTF: Decl = boundary!(qdotf, 13, 1, "velocity at tf", &[0.0]);
-const QDDOT0: Decl = boundary!(qddot0, 14, 2, "acceleration at t0 (quintic only)", &[0.0]);
-const QDDOTF: Decl = boundary!(qddotf, 15, 2, "acceleration at tf (quintic only)", &[0.0]);
+const ORDER: Decl = Decl::integer(
+    "order",
+    "Polynomial degree: 3 (cubic) or 5 (quintic)",
+    |m, _| m.degree,
+)
+.set_integer(|m, _, v| match Order::from_degree(v) {
+    None => Err("the order must be 3 or 5".to_string()),
+    Some(_) => m.change(|m| m.degree = v),
+})
+.parameter(Variability::Fixed)
+.start_integer(&[5])
+.integer_range(3, 5)
+.at(1);
+const T0: Decl = Decl::real("t0", "Start time of the motion", |m, _| m.t0)
+    .set_real(|m, _, v| m.change(|m| m.t0 = v))
+    .parameter(Variability::Fixed)
+    .unit("s", None)
+    .start_real(&[0.0]);
+const TF: Decl = Decl::real("tf", "End time of the motion (after t0)", |m, _| m.tf)
+    .set_real(|m, _, v| m.change(|m| m.tf = v))
+    .parameter(Variability::Fixed)
+    .unit("s", None)
+    .start_real(&[2.0]);
+const Q0: Decl = boundary(
+    Decl::real("q0", "position at t0", |m, a| m.boundary[a].q0),
+    10,
+    0,
+    &[0.0],
+)
+.set_real(|m, a, v| m.change(|m| m.boundary[a].q0 = v));
+const QF: Decl = boundary(
+    Decl::real("qf", "position at tf", |m, a| m.boundary[a].qf),
+    11,
+    0,
+    &[0.5, -0.3, 0.8],
+)
+.set_real(|m, a, v| m.change(|m| m.boundary[a].qf = v));
+const QDOT0: Decl = boundary(
+    Decl::real("qdot0", "velocity at t0", |m, a| m.boundary[a].qdot0),
+    12,
+    1,
+    &[0.0],
+)
+.set_real(|m, a, v| m.change(|m| m.boundary[a].qdot0 = v));
+const QDOTF: Decl = boundary(
+    Decl::real("qdotf", "velocity at tf", |m, a| m.boundary[a].qdotf),
+    13,
+    1,
+    &[0.0],
+)
+.set_real(|m, a, v| m.change(|m| m.boundary[a].qdotf = v));
+const QDDOT0: Decl = boundary(
+    Decl::real("qddot0", "acceleration at t0 (quintic only)", |m, a| {
+        m.boundary[a].qddot0
+    }),
+    14,
+    2,
+    &[0.0],
+)
+.set_real(|m, a, v| m.change(|m| m.boundary[a].qddot0 = v));
+const QDDOTF: Decl = boundary(
+    Decl::real("qddotf", "acceleration at tf (quintic only)", |m, a| {
+        m.boundary[a].qddotf
+    }),
+    15,
+    2,
+    &[0.0],
+)
+.set_real(|m, a, v| m.change(|m| m.boundary[a].qddotf = v));
 
 /// What the outputs of axis a depend on at initialization: time, order, t0, tf and
 /// that axis's boundary values.
@@ -117,7 +161,9 @@ const Q: Decl = planned::<0>("q", 100, "planned position");
 const QDOT: Decl = planned::<1>("qdot", 101, "planned velocity");
 const QDDOT: Decl = planned::<2>("qddot", 102, "planned acceleration");
 
-static VARIABLES: &[Decl] = &[ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF, Q, QDOT, QDDOT];
+static VARIABLES: &[Decl] = &[
+    ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF, Q, QDOT, QDDOT,
+];
 
 impl Model for Planner {
     const INFO: &'static ModelInfo = &INFO;

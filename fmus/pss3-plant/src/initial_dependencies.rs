@@ -21,20 +21,31 @@ use super::variables::{
 use robofmu_fmi::prelude::{Var, concat, every};
 
 /// The pose source besides theta0: l0 and, for its forward kinematics, the geometry.
-const FROM_ACTUATORS: [Var; 9] =
-    concat(&[&[INIT_FROM_ACTUATORS.var(), L0.var()], &every(&GEOMETRY)], Var::Time);
+const FROM_ACTUATORS: [Var; 9] = concat(
+    &[&[INIT_FROM_ACTUATORS.var(), L0.var()], &every(&GEOMETRY)],
+    Var::Time,
+);
 /// The whole initial pose.
 pub const POSE: [Var; 10] = concat(&[&[THETA0.var()], &FROM_ACTUATORS], Var::Time);
 /// The pose and the initial angular velocity.
 pub const MOTION: [Var; 11] = concat(&[&POSE, &[OMEGA0.var()]], Var::Time);
 /// The end-stop constants.
-const STOPS: [Var; 4] =
-    [STROKE_MIN.var(), STROKE_MAX.var(), END_STOP_STIFFNESS.var(), END_STOP_DAMPING.var()];
+const STOPS: [Var; 4] = [
+    STROKE_MIN.var(),
+    STROKE_MAX.var(),
+    END_STOP_STIFFNESS.var(),
+    END_STOP_DAMPING.var(),
+];
 /// Masses and inertias of the kinetic energy.
 const INERTIA: [Var; 10] = concat(
     &[
         &every(&PLATFORM_INERTIA),
-        &[LEG_MASS.var(), LEG_COM_FRACTION.var(), LEG_TRANSVERSE_INERTIA.var(), SLIDER_MASS.var()],
+        &[
+            LEG_MASS.var(),
+            LEG_COM_FRACTION.var(),
+            LEG_TRANSVERSE_INERTIA.var(),
+            SLIDER_MASS.var(),
+        ],
     ],
     Var::Time,
 );
@@ -54,13 +65,31 @@ pub static OMEGA: [Var; 1] = [OMEGA0.same()];
 // thetaDot = E^-1(thy, thz) omega, row by row (R = Rz Ry Rx: no row reads thx, row 2
 // neither thy nor omega_z).
 static THETA_DOT_1: [Var; 13] = concat(
-    &[&[THETA0.item(1), THETA0.item(2), OMEGA0.item(0), OMEGA0.item(1)], &FROM_ACTUATORS],
+    &[
+        &[
+            THETA0.item(1),
+            THETA0.item(2),
+            OMEGA0.item(0),
+            OMEGA0.item(1),
+        ],
+        &FROM_ACTUATORS,
+    ],
     Var::Time,
 );
-static THETA_DOT_2: [Var; 12] =
-    concat(&[&[THETA0.item(2), OMEGA0.item(0), OMEGA0.item(1)], &FROM_ACTUATORS], Var::Time);
-static THETA_DOT_3: [Var; 12] =
-    concat(&[&[THETA0.item(1), THETA0.item(2), OMEGA0.var()], &FROM_ACTUATORS], Var::Time);
+static THETA_DOT_2: [Var; 12] = concat(
+    &[
+        &[THETA0.item(2), OMEGA0.item(0), OMEGA0.item(1)],
+        &FROM_ACTUATORS,
+    ],
+    Var::Time,
+);
+static THETA_DOT_3: [Var; 12] = concat(
+    &[
+        &[THETA0.item(1), THETA0.item(2), OMEGA0.var()],
+        &FROM_ACTUATORS,
+    ],
+    Var::Time,
+);
 pub static ACCELERATION: [Var; 34] = concat(
     &[
         &MOTION,
@@ -77,11 +106,18 @@ pub static ACCELERATION: [Var; 34] = concat(
 pub static FORCE: [Var; 13] = concat(&[&POSE, &[ACTUATOR_FORCE.same()], &COMMANDS], Var::Time);
 /// A pose from l0 lies within the strokes (forward kinematics refuses any other), where
 /// the stops act on no actuator: l0 moves no stop force or flag.
-const POSE_IN_A_STOP: [Var; 9] =
-    concat(&[&[THETA0.var(), INIT_FROM_ACTUATORS.var()], &every(&GEOMETRY)], Var::Time);
+const POSE_IN_A_STOP: [Var; 9] = concat(
+    &[
+        &[THETA0.var(), INIT_FROM_ACTUATORS.var()],
+        &every(&GEOMETRY),
+    ],
+    Var::Time,
+);
 pub static STOP_FORCE: [Var; 14] = concat(&[&POSE_IN_A_STOP, &[OMEGA0.var()], &STOPS], Var::Time);
-pub static AT_STOP: [Var; 11] =
-    concat(&[&POSE_IN_A_STOP, &[STROKE_MIN.var(), STROKE_MAX.var()]], Var::Time);
+pub static AT_STOP: [Var; 11] = concat(
+    &[&POSE_IN_A_STOP, &[STROKE_MIN.var(), STROKE_MAX.var()]],
+    Var::Time,
+);
 pub static KINETIC_ENERGY: [Var; 21] = concat(&[&MOTION, &INERTIA], Var::Time);
 pub static POTENTIAL_ENERGY: [Var; 19] = concat(
     &[
@@ -98,8 +134,10 @@ pub static POTENTIAL_ENERGY: [Var; 19] = concat(
     ],
     Var::Time,
 );
-static GRAVITY_COMPENSATION: [Var; 15] =
-    concat(&[&POSE, &GRAVITY, &[LEG_MASS.var(), LEG_COM_FRACTION.var()]], Var::Time);
+static GRAVITY_COMPENSATION: [Var; 15] = concat(
+    &[&POSE, &GRAVITY, &[LEG_MASS.var(), LEG_COM_FRACTION.var()]],
+    Var::Time,
+);
 
 /// Element i of thetaDot and der(theta).
 pub fn theta_dot(i: usize) -> &'static [Var] {

@@ -48,8 +48,10 @@ static INFO: ModelInfo = ModelInfo {
     number_of_event_indicators: 6,
     log_categories: &[LOG],
 };
-const LOG: LogCategory =
-    LogCategory::new("logPlant", "Initial state and integration settings at initialization");
+const LOG: LogCategory = LogCategory::new(
+    "logPlant",
+    "Initial state and integration settings at initialization",
+);
 
 /// Displacement of every actuator in the default start pose, m: mid-stroke, 75 mm from
 /// either end stop, so that a default run (an unstable equilibrium at rest) never drifts
@@ -172,6 +174,13 @@ impl Pss3Plant {
         }
     }
 
+    /// Applies a change of a parameter and rebuilds the plant.
+    fn change(&mut self, f: impl FnOnce(&mut Self)) -> Result<(), String> {
+        f(self);
+        self.rebuild();
+        Ok(())
+    }
+
     fn plant(&self) -> Result<&Plant, String> {
         self.plant.as_ref().map_err(Clone::clone)
     }
@@ -202,7 +211,11 @@ impl Pss3Plant {
 
     /// The state: the initial one until initialization ends.
     fn current_state(&self) -> Result<PlantState, String> {
-        if self.started { Ok(self.state) } else { self.initial_state() }
+        if self.started {
+            Ok(self.state)
+        } else {
+            self.initial_state()
+        }
     }
 
     /// Computes the outputs, Euler-angle rates and gravity compensation of the
@@ -215,12 +228,19 @@ impl Pss3Plant {
     fn compute_at(&self, state: &PlantState) -> Result<Computed, String> {
         let state = *state;
         let plant = self.plant()?;
-        let outputs = plant.outputs(&state, &self.inputs).map_err(|e| e.to_string())?;
+        let outputs = plant
+            .outputs(&state, &self.inputs)
+            .map_err(|e| e.to_string())?;
         // The rates alone: E^-1 omega, not a second evaluation of the dynamics.
         let euler_rates = euler_rates(&state.euler, &state.omega).map_err(|e| e.to_string())?;
-        let gravity_compensation =
-            plant.gravity_compensation(&state.euler).map_err(|e| e.to_string())?;
-        Ok(Computed { outputs, euler_rates, gravity_compensation })
+        let gravity_compensation = plant
+            .gravity_compensation(&state.euler)
+            .map_err(|e| e.to_string())?;
+        Ok(Computed {
+            outputs,
+            euler_rates,
+            gravity_compensation,
+        })
     }
 
     /// One computed value, NaN when the model could not be evaluated (the layer
@@ -264,15 +284,23 @@ impl Pss3Plant {
             self.contacts[i].code()
         } else {
             self.displacements()
-                .map_or(StopContact::Free, |l| next_contact(StopContact::Free, l[i], self.stroke()))
+                .map_or(StopContact::Free, |l| {
+                    next_contact(StopContact::Free, l[i], self.stroke())
+                })
                 .code()
         }
     }
 
     fn check_settings(&self) -> Result<(), String> {
-        let StepSettings { tolerance, max_step, .. } = self.settings;
+        let StepSettings {
+            tolerance,
+            max_step,
+            ..
+        } = self.settings;
         if !(tolerance.is_finite() && tolerance > 0.0) {
-            return Err(format!("parameter tolerance = {tolerance} must be positive"));
+            return Err(format!(
+                "parameter tolerance = {tolerance} must be positive"
+            ));
         }
         if !(max_step.is_finite() && max_step > 0.0) {
             return Err(format!("parameter maxStep = {max_step} must be positive"));
@@ -292,12 +320,18 @@ impl Default for Pss3Plant {
                 l0: Vector3::repeat(START_DISPLACEMENT),
                 omega0: Vector3::zeros(),
             },
-            settings: StepSettings { max_step: 1e-3, ..StepSettings::default() },
+            settings: StepSettings {
+                max_step: 1e-3,
+                ..StepSettings::default()
+            },
             inputs: PlantInputs::default(),
             ramp: InputRamp::default(),
             plant: Err("not built yet".to_string()),
             built_from: None,
-            state: PlantState { euler: Vector3::zeros(), omega: Vector3::zeros() },
+            state: PlantState {
+                euler: Vector3::zeros(),
+                omega: Vector3::zeros(),
+            },
             started: false,
             contacts: [StopContact::Free; 3],
             computed: Err("not computed yet".to_string()),
@@ -338,7 +372,10 @@ impl Model for Pss3Plant {
         let plant = match self.plant() {
             Ok(p) => p,
             Err(reason) => {
-                return StepOutcome::Discarded { reason, terminate: true };
+                return StepOutcome::Discarded {
+                    reason,
+                    terminate: true,
+                };
             }
         };
         let (inputs, ramp) = (&self.inputs, &self.ramp);
@@ -380,7 +417,10 @@ impl Model for Pss3Plant {
     }
 
     fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
-        let d = self.plant()?.derivative(&self.state, &self.inputs).map_err(|e| e.to_string())?;
+        let d = self
+            .plant()?
+            .derivative(&self.state, &self.inputs)
+            .map_err(|e| e.to_string())?;
         dx[..3].copy_from_slice(d.euler_rates.as_slice());
         dx[3..].copy_from_slice(d.omega_dot.as_slice());
         Ok(())

@@ -86,8 +86,12 @@ impl MotionCache {
         match stored.as_mut() {
             Some((p, entry)) if p.same(&point) => read(entry),
             _ => {
-                let entry =
-                    Entry { motion: motion(&point), all: None, gravity: None, theta_dot: None };
+                let entry = Entry {
+                    motion: motion(&point),
+                    all: None,
+                    gravity: None,
+                    theta_dot: None,
+                };
                 read(&mut stored.insert((point, entry)).1)
             }
         }

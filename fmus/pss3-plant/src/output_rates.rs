@@ -77,8 +77,15 @@ const SCALARS: [Output; 4] = [DetJ, CondJ, KineticEnergy, PotentialEnergy];
 
 /// The vector outputs differentiated along the local motion, 3 slots each after the
 /// scalars.
-const VECTORS: [Output; 7] =
-    [Omega, ThetaDot, OmegaDot, LDot, Force, StopForce, GravityCompensation];
+const VECTORS: [Output; 7] = [
+    Omega,
+    ThetaDot,
+    OmegaDot,
+    LDot,
+    Force,
+    StopForce,
+    GravityCompensation,
+];
 
 /// The slot in `Along` of element `i` of `output`, if it is one of those
 /// differentiated along the local motion.
@@ -94,8 +101,12 @@ fn slot(output: Output, i: usize) -> Option<usize> {
 /// one state), in the order of `slot`.
 fn samples(c: &Computed) -> Along {
     let o = &c.outputs;
-    let scalars =
-        [o.jacobian_det, o.jacobian_cond, o.kinetic_energy, o.potential_energy + o.end_stop_energy];
+    let scalars = [
+        o.jacobian_det,
+        o.jacobian_cond,
+        o.kinetic_energy,
+        o.potential_energy + o.end_stop_energy,
+    ];
     let vectors = [
         o.omega,
         c.euler_rates,
@@ -111,10 +122,16 @@ fn samples(c: &Computed) -> Along {
 
 /// `read` of the stored entry of the current point (`MotionCache`).
 fn at_point<R>(m: &Pss3Plant, read: impl FnOnce(&mut Entry) -> R) -> Result<R, String> {
-    let point = Point { params: m.params, state: m.current_state()?, inputs: m.inputs };
+    let point = Point {
+        params: m.params,
+        state: m.current_state()?,
+        inputs: m.inputs,
+    };
     let motion = |p: &Point| {
         let plant = m.plant()?;
-        plant.local_motion(&p.state, &p.inputs).map_err(|e| e.to_string())
+        plant
+            .local_motion(&p.state, &p.inputs)
+            .map_err(|e| e.to_string())
     };
     Ok(m.along.with(point, motion, read))
 }
@@ -183,7 +200,9 @@ fn along_motion(
         along_all(m).map(|d| d[order as usize - 1][k])
     };
     derivatives.map_err(|e| {
-        CannotEvaluate(format!("the plant cannot be evaluated near the current state: {e}"))
+        CannotEvaluate(format!(
+            "the plant cannot be evaluated near the current state: {e}"
+        ))
     })
 }
 

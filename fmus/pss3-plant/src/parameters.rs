@@ -32,7 +32,10 @@ const NAMES: [(&str, &str); 14] = [
 ];
 
 fn fmu_name(library: &str) -> &str {
-    NAMES.iter().find(|(l, _)| *l == library).map_or(library, |(_, fmu)| fmu)
+    NAMES
+        .iter()
+        .find(|(l, _)| *l == library)
+        .map_or(library, |(_, fmu)| fmu)
 }
 
 /// The library's parameter error as a message that names the FMU parameter.
@@ -47,7 +50,10 @@ pub fn fmu_message(e: &PlantParamError) -> String {
         }
         E::Negative(name, v) => format!("parameter {} = {v} must not be negative", fmu_name(name)),
         E::OutsideUnitInterval(name, v) => {
-            format!("parameter {} = {v} must lie between 0 and 1", fmu_name(name))
+            format!(
+                "parameter {} = {v} must lie between 0 and 1",
+                fmu_name(name)
+            )
         }
         E::Geometry(ParamError::EmptyStroke(min, max)) => format!(
             "parameters strokeMin = {min} and strokeMax = {max}: strokeMin must be below \
@@ -67,9 +73,7 @@ fn get_model<const K: usize>(m: &Pss3Plant, i: usize) -> f64 {
 }
 
 fn set_model<const K: usize>(m: &mut Pss3Plant, i: usize, v: f64) -> Result<(), String> {
-    (MODEL_PARAMETERS[K + i].set)(&mut m.params, v);
-    m.rebuild();
-    Ok(())
+    m.change(|m| (MODEL_PARAMETERS[K + i].set)(&mut m.params, v))
 }
 
 /// The robot-model parameter `MODEL_PARAMETERS[K]` at `vr` (with `length` 3: the array
@@ -97,35 +101,17 @@ const fn model<const K: usize>(vr: u32, length: usize) -> Decl {
     }
 }
 
-/// A fixed Real parameter `m.$field` at `$vr` with start value `$start`; a write
-/// rebuilds the plant.
-macro_rules! own {
-    ($name:literal, $vr:literal, $what:literal, $start:expr, $($field:ident).+) => {
-        Decl::real($name, $what, |m, _| m.$($field).+)
-            .at($vr)
-            .set_real(|m, _, v| {
-                m.$($field).+ = v;
-                m.rebuild();
-                Ok(())
-            })
-            .parameter(Variability::Fixed)
-            .start_real(&[$start])
-    };
+/// A fixed Real parameter of the plant's own at `vr` (its writer given after it).
+const fn own(d: Decl, vr: u32, start: &'static [f64]) -> Decl {
+    d.at(vr).parameter(Variability::Fixed).start_real(start)
 }
 
-/// A part of the initial state, `m.initial.$field[1..3]` at `$vr`.
-macro_rules! initial {
-    ($name:literal, $vr:literal, $what:literal, $start:expr, $field:ident) => {
-        Decl::real($name, $what, |m, i| m.initial.$field[i])
-            .array(3)
-            .at($vr)
-            .set_real(|m, i, v| {
-                m.initial.$field[i] = v;
-                Ok(())
-            })
-            .parameter(Variability::Fixed)
-            .start_real($start)
-    };
+/// A part of the initial state, three elements at `vr` (its writer given after it).
+const fn initial(d: Decl, vr: u32, start: &'static [f64]) -> Decl {
+    d.array(3)
+        .at(vr)
+        .parameter(Variability::Fixed)
+        .start_real(start)
 }
 
 /// The geometry: lp, ld, gamma, lb, alpha, beta, a.
@@ -138,21 +124,27 @@ pub const GEOMETRY: [Decl; 7] = [
     model::<5>(1006, 1),
     model::<6>(1007, 1),
 ];
-pub const STROKE_MIN: Decl = own!(
-    "strokeMin",
+pub const STROKE_MIN: Decl = own(
+    Decl::real(
+        "strokeMin",
+        "Lower end of the actuator stroke (lower end stop)",
+        |m, _| m.params.geometry.stroke_min,
+    ),
     1008,
-    "Lower end of the actuator stroke (lower end stop)",
-    0.002,
-    params.geometry.stroke_min
+    &[0.002],
 )
+.set_real(|m, _, v| m.change(|m| m.params.geometry.stroke_min = v))
 .unit("m", Some("mm"));
-pub const STROKE_MAX: Decl = own!(
-    "strokeMax",
+pub const STROKE_MAX: Decl = own(
+    Decl::real(
+        "strokeMax",
+        "Upper end of the actuator stroke (upper end stop)",
+        |m, _| m.params.geometry.stroke_max,
+    ),
     1009,
-    "Upper end of the actuator stroke (upper end stop)",
-    0.152,
-    params.geometry.stroke_max
+    &[0.152],
 )
+.set_real(|m, _, v| m.change(|m| m.params.geometry.stroke_max = v))
 .unit("m", Some("mm"));
 pub const PLATFORM_MASS: Decl = model::<7>(1010, 1);
 pub const LEG_MASS: Decl = model::<17>(1011, 1);
@@ -162,40 +154,52 @@ pub const SLIDER_MASS: Decl = model::<20>(1014, 1);
 pub const G: Decl = model::<21>(1015, 1);
 pub const SLIDER_FRICTION: Decl = model::<22>(1016, 1);
 pub const PIVOT_FRICTION: Decl = model::<23>(1017, 1);
-pub const END_STOP_STIFFNESS: Decl = own!(
-    "endStopStiffness",
+pub const END_STOP_STIFFNESS: Decl = own(
+    Decl::real(
+        "endStopStiffness",
+        "Stiffness of the end-stop springs (endStopMode 1: positive)",
+        |m, _| m.params.end_stops.stiffness,
+    ),
     1018,
-    "Stiffness of the end-stop springs (endStopMode 1: positive)",
-    1e6,
-    params.end_stops.stiffness
+    &[1e6],
 )
+.set_real(|m, _, v| m.change(|m| m.params.end_stops.stiffness = v))
 .real_range(Some(0.0), None)
 .unit("N/m", None);
-pub const END_STOP_DAMPING: Decl = own!(
-    "endStopDamping",
+pub const END_STOP_DAMPING: Decl = own(
+    Decl::real(
+        "endStopDamping",
+        "Damping of the end stops (endStopMode 1); the stop pushes, never pulls",
+        |m, _| m.params.end_stops.damping,
+    ),
     1019,
-    "Damping of the end stops (endStopMode 1); the stop pushes, never pulls",
-    2000.0,
-    params.end_stops.damping
+    &[2000.0],
 )
+.set_real(|m, _, v| m.change(|m| m.params.end_stops.damping = v))
 .real_range(Some(0.0), None)
 .unit("N.s/m", None);
-const TOLERANCE: Decl = own!(
-    "tolerance",
-    1020,
-    "Relative and absolute tolerance of the co-simulation integrator \
+const TOLERANCE: Decl = own(
+    Decl::real(
+        "tolerance",
+        "Relative and absolute tolerance of the co-simulation integrator \
      (Dormand-Prince 5(4)), positive",
-    1e-8,
-    settings.tolerance
+        |m, _| m.settings.tolerance,
+    ),
+    1020,
+    &[1e-8],
 )
+.set_real(|m, _, v| m.change(|m| m.settings.tolerance = v))
 .real_range(Some(0.0), None);
-const MAX_STEP: Decl = own!(
-    "maxStep",
+const MAX_STEP: Decl = own(
+    Decl::real(
+        "maxStep",
+        "Largest internal step of the co-simulation integrator, positive",
+        |m, _| m.settings.max_step,
+    ),
     1021,
-    "Largest internal step of the co-simulation integrator, positive",
-    1e-3,
-    settings.max_step
+    &[1e-3],
 )
+.set_real(|m, _, v| m.change(|m| m.settings.max_step = v))
 .real_range(Some(0.0), None)
 .unit("s", None);
 /// platformInertia[1,1], [2,2], [3,3], [1,2], [1,3], [2,3].
@@ -208,35 +212,46 @@ pub const PLATFORM_INERTIA: [Decl; 6] = [
     model::<16>(1027, 1),
 ];
 pub const PLATFORM_COM: Decl = model::<8>(1028, 3);
-pub const THETA0: Decl = initial!(
-    "theta0",
+pub const THETA0: Decl = initial(
+    Decl::real(
+        "theta0",
+        "Initial Euler angles (thx, thy, thz), used unless initFromActuators",
+        |m, i| m.initial.theta0[i],
+    ),
     1031,
-    "Initial Euler angles (thx, thy, thz), used unless initFromActuators",
     &START_POSE,
-    theta0
 )
+.set_real(|m, i, v| store(&mut m.initial.theta0[i], v))
 .unit("rad", Some("deg"));
-pub const L0: Decl = initial!(
-    "l0",
+pub const L0: Decl = initial(
+    Decl::real(
+        "l0",
+        "Initial actuator displacements, used when initFromActuators",
+        |m, i| m.initial.l0[i],
+    ),
     1034,
-    "Initial actuator displacements, used when initFromActuators",
     &[START_DISPLACEMENT],
-    l0
 )
+.set_real(|m, i, v| store(&mut m.initial.l0[i], v))
 .unit("m", Some("mm"));
-pub const OMEGA0: Decl =
-    initial!("omega0", 1037, "Initial angular velocity of the platform in {A}", &[0.0], omega0)
-        .unit("rad/s", Some("deg/s"));
+pub const OMEGA0: Decl = initial(
+    Decl::real(
+        "omega0",
+        "Initial angular velocity of the platform in {A}",
+        |m, i| m.initial.omega0[i],
+    ),
+    1037,
+    &[0.0],
+)
+.set_real(|m, i, v| store(&mut m.initial.omega0[i], v))
+.unit("rad/s", Some("deg/s"));
 pub const INIT_FROM_ACTUATORS: Decl = Decl::boolean(
     "initFromActuators",
     "Initial pose from l0 by forward kinematics instead of theta0",
     |m, _| m.initial.from_actuators,
 )
 .at(1040)
-.set_boolean(|m, _, v| {
-    m.initial.from_actuators = v;
-    Ok(())
-})
+.set_boolean(|m, _, v| store(&mut m.initial.from_actuators, v))
 .parameter(Variability::Fixed)
 .start_boolean(&[false]);
 const END_STOP_MODE: Decl = Decl::integer(
@@ -247,9 +262,12 @@ const END_STOP_MODE: Decl = Decl::integer(
 )
 .at(1041)
 .set_integer(|m, _, v| {
-    m.params.end_stops.mode = if v == 2 { EndStopMode::Error } else { EndStopMode::Spring };
-    m.rebuild();
-    Ok(())
+    let mode = if v == 2 {
+        EndStopMode::Error
+    } else {
+        EndStopMode::Spring
+    };
+    m.change(|m| m.params.end_stops.mode = mode)
 })
 .parameter(Variability::Fixed)
 .integer_range(1, 2)
@@ -279,7 +297,14 @@ pub const PARAMETERS: [Decl; COUNT] = concat(
             MAX_STEP,
         ],
         &PLATFORM_INERTIA,
-        &[PLATFORM_COM, THETA0, L0, OMEGA0, INIT_FROM_ACTUATORS, END_STOP_MODE],
+        &[
+            PLATFORM_COM,
+            THETA0,
+            L0,
+            OMEGA0,
+            INIT_FROM_ACTUATORS,
+            END_STOP_MODE,
+        ],
     ],
     STROKE_MIN,
 );

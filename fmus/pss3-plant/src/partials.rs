@@ -39,8 +39,12 @@ enum Known {
 /// The states in the order of `Known::State`.
 const STATES: [Declaration<Pss3Plant>; 2] = [THETA, OMEGA];
 /// The inputs in the order of `Known::Input`.
-const INPUTS: [Declaration<Pss3Plant>; 4] =
-    [ACTUATOR_FORCE, DISTURBANCE_TORQUE, TORQUE_COMMAND, GENERALIZED_FORCE_COMMAND];
+const INPUTS: [Declaration<Pss3Plant>; 4] = [
+    ACTUATOR_FORCE,
+    DISTURBANCE_TORQUE,
+    TORQUE_COMMAND,
+    GENERALIZED_FORCE_COMMAND,
+];
 
 fn known(e: Element) -> Option<Known> {
     if let Some(k) = STATES.iter().position(|d| d.is(e)) {
@@ -62,8 +66,11 @@ pub fn directional_derivative(
         .iter()
         .map(|&e| known(e).ok_or_else(|| format!("\"{}\" is neither a state nor an input", e.name)))
         .collect::<Result<Vec<_>, _>>()?;
-    let seeded: Vec<(Known, f64)> =
-        knowns.into_iter().zip(seed.iter().copied()).filter(|&(_, s)| s != 0.0).collect();
+    let seeded: Vec<(Known, f64)> = knowns
+        .into_iter()
+        .zip(seed.iter().copied())
+        .filter(|&(_, s)| s != 0.0)
+        .collect();
     let mut linearization = None;
     let mut by_differences = Vec::new();
     for (o, &unknown) in out.iter_mut().zip(unknowns) {
@@ -125,7 +132,10 @@ fn identity(state: Known, k: Known) -> f64 {
 /// The current state and the linearisation there.
 fn linearize(m: &Pss3Plant) -> Result<(PlantState, Linearization), String> {
     let state = m.current_state()?;
-    let lin = m.plant()?.linearize(&state, &m.inputs).map_err(|e| e.to_string())?;
+    let lin = m
+        .plant()?
+        .linearize(&state, &m.inputs)
+        .map_err(|e| e.to_string())?;
     Ok((state, lin))
 }
 
@@ -204,8 +214,16 @@ fn output_partials(m: &Pss3Plant, unknowns: &[Element], k: Known) -> Result<Vec<
     } * (1.0 + current.abs());
     let central = |h: f64| -> Result<Vec<f64>, String> {
         let (plus, minus) = (values(h)?, values(-h)?);
-        Ok(plus.iter().zip(&minus).map(|(p, q)| (p - q) / (2.0 * h)).collect())
+        Ok(plus
+            .iter()
+            .zip(&minus)
+            .map(|(p, q)| (p - q) / (2.0 * h))
+            .collect())
     };
     let (half, full) = (central(0.5 * h)?, central(h)?);
-    Ok(half.iter().zip(&full).map(|(a, b)| (4.0 * a - b) / 3.0).collect())
+    Ok(half
+        .iter()
+        .zip(&full)
+        .map(|(a, b)| (4.0 * a - b) / 3.0)
+        .collect())
 }

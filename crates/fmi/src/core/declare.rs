@@ -451,6 +451,13 @@ impl<M> Declaration<M> {
     }
 }
 
+/// A writer's usual body: stores `value` at `place` and accepts it
+/// (`.set_real(|m, i, v| store(&mut m.inputs[i], v))`).
+pub fn store<T>(place: &mut T, value: T) -> Result<(), String> {
+    *place = value;
+    Ok(())
+}
+
 /// Number of continuous states of a table: the elements of its derivative declarations
 /// (numberOfContinuousStates and the length of every state vector the layer passes,
 /// counted from the table so that no second count can disagree).
@@ -530,6 +537,77 @@ pub fn read_derivatives<M>(declarations: &[Declaration<M>], model: &M, dx: &mut 
             *slot = get(model, i);
         }
     });
+}
+
+/// Value reference of element 1 of each declaration `k` in turn, by the scheme of the
+/// module documentation (`const`: [`unique_value_references`] runs at compile time).
+const fn first_value_reference<M>(declarations: &[Declaration<M>], k: usize) -> u32 {
+    let (mut next, mut j) = (1, 0);
+    loop {
+        let d = &declarations[j];
+        let first = match d.value_reference {
+            Some(vr) => vr,
+            None => next,
+        };
+        if j == k {
+            return first;
+        }
+        let last = first + (d.size() as u32 - 1) * d.stride;
+        if last + 1 > next {
+            next = last + 1;
+        }
+        j += 1;
+    }
+}
+
+/// Whether element i of declaration a and element j of declaration b share a value
+/// reference.
+const fn overlaps<M>(declarations: &[Declaration<M>], a: usize, b: usize) -> bool {
+    let (da, db) = (&declarations[a], &declarations[b]);
+    let (fa, fb) = (
+        first_value_reference(declarations, a),
+        first_value_reference(declarations, b),
+    );
+    let mut i = 0;
+    while i < da.size() {
+        let mut j = 0;
+        while j < db.size() {
+            if fa + i as u32 * da.stride == fb + j as u32 * db.stride {
+                return true;
+            }
+            j += 1;
+        }
+        i += 1;
+    }
+    false
+}
+
+/// Panics, naming the later declaration, when two elements of the table share a value
+/// reference. `export_fmu!` evaluates it on the model's table in a `static`
+/// ([`Header::of`](crate::description::Header::of)), so a duplicate value reference is a
+/// compile error of the FMU crate:
+///
+/// ```compile_fail
+/// use robofmu_fmi::prelude::*;
+/// struct Arm { q: f64, p: f64 }
+/// const TABLE: &[Declaration<Arm>] = &[
+///     Declaration::real("q", "joint angle", |m: &Arm, _| m.q).at(7),
+///     Declaration::real("p", "joint rate", |m: &Arm, _| m.p).at(7),
+/// ];
+/// const _: () = robofmu_fmi::core::declare::unique_value_references(TABLE);
+/// ```
+pub const fn unique_value_references<M>(declarations: &[Declaration<M>]) {
+    let mut b = 1;
+    while b < declarations.len() {
+        let mut a = 0;
+        while a < b {
+            if overlaps(declarations, a, b) {
+                panic!("{}", declarations[b].name); // takes a value reference taken before
+            }
+            a += 1;
+        }
+        b += 1;
+    }
 }
 
 /// The value references of every declaration's element 1 by the scheme of the module

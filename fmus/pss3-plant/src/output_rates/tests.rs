@@ -12,7 +12,10 @@ fn moving() -> Pss3Plant {
         euler: Vector3::new(0.05, -0.04, 2.35),
         omega: Vector3::new(0.3, -0.5, 0.8),
     };
-    let mut m = Pss3Plant { state, ..Default::default() };
+    let mut m = Pss3Plant {
+        state,
+        ..Default::default()
+    };
     m.inputs.forces = Vector3::new(20.0, -5.0, 12.0);
     m.inputs.commanded_torque = Vector3::new(0.1, 0.2, -0.3);
     m.inputs.generalized_force = Vector3::new(-0.2, 0.1, 0.05);
@@ -33,7 +36,10 @@ fn along_outputs() -> Vec<(Output, usize)> {
 fn one_at_a_time(m: &Pss3Plant, (output, i): (Output, usize)) -> [f64; 2] {
     let k = slot(output, i).unwrap();
     let motion = m.plant.as_ref().unwrap().local_motion(&m.state, &m.inputs);
-    motion.unwrap().derivatives(|x| m.compute_at(x).map(|c| samples(&c)[k])).unwrap()
+    motion
+        .unwrap()
+        .derivatives(|x| m.compute_at(x).map(|c| samples(&c)[k]))
+        .unwrap()
 }
 
 #[test]
@@ -54,9 +60,12 @@ fn all_at_once_equals_one_at_a_time_bit_for_bit() {
 
 /// Order 1 and 2 of every output differentiated along the motion, as bit patterns.
 fn along_bits(m: &Pss3Plant) -> Vec<u64> {
-    let orders =
-        along_outputs().into_iter().flat_map(|(output, i)| [(output, i, 1), (output, i, 2)]);
-    orders.map(|(output, i, order)| along_motion(m, output, i, order).unwrap().to_bits()).collect()
+    let orders = along_outputs()
+        .into_iter()
+        .flat_map(|(output, i)| [(output, i, 1), (output, i, 2)]);
+    orders
+        .map(|(output, i, order)| along_motion(m, output, i, order).unwrap().to_bits())
+        .collect()
 }
 
 #[test]
