@@ -83,7 +83,8 @@ const _: () = unique_value_references(TABLE);
 /// Whether `unique_value_references` refuses the table, and the declaration it names.
 fn refused(table: &[Decl]) -> Option<String> {
     let run = std::panic::catch_unwind(|| unique_value_references(table));
-    run.err().map(|e| e.downcast_ref::<String>().cloned().unwrap_or_default())
+    run.err()
+        .map(|e| e.downcast_ref::<String>().cloned().unwrap_or_default())
 }
 
 #[test]
