@@ -7,7 +7,8 @@ ones that run are run by test_documented_commands.py, the others are examples):
   `scripts/`, `fmus/*/src/*.rs`), so a renamed folder is followed without editing
   this file;
 - the target of a relative Markdown link (`[the layer](fmi.md)`), from the document's
-  folder.
+  folder; its anchor (`fmi.md#the-crates`, `#usage`) must be a heading of the target,
+  as GitHub makes it (lower case, punctuation dropped, spaces as hyphens).
 
 The rule: the path exists in the checkout (a glob, or a placeholder such as `<Model>`
 or `{FMI_Version}` standing for one part, matches something), unless
@@ -86,6 +87,28 @@ def named_paths(text: str, folder: Path, tops: set):
                 yield number, word, word
 
 
+def anchors(document: Path) -> set:
+    """The anchors of a Markdown document's headings, as GitHub makes them."""
+    heads = (h for _, h in prose(document.read_text()) if h.startswith("#"))
+    return {re.sub(r"[^\w\- ]", "", h.lstrip("#").strip().lower()).replace(" ", "-")
+            for h in heads}
+
+
+def dead_anchors(document: str, text: str) -> list:
+    """'document:line: link' of each relative link whose anchor is no heading of its
+    target (a target that does not exist is a dead path, reported by dead_paths)."""
+    dead = []
+    for number, line in prose(text):
+        for target in LINK.findall(line):
+            if "://" in target or "#" not in target or target.startswith("mailto:"):
+                continue
+            path, anchor = target.split("#", 1)
+            doc = ROOT / document if not path else ROOT / Path(document).parent / path
+            if doc.suffix == ".md" and doc.is_file() and anchor not in anchors(doc):
+                dead.append(f"{document}:{number}: {target}")
+    return dead
+
+
 def exists(path: str) -> bool:
     """The path (a glob, placeholders standing for one part, `{a,b}` for both a and
     b) names something here."""
@@ -130,6 +153,12 @@ def test_every_path_a_document_names_exists(document):
     assert not dead, "paths that do not exist (fix the path, or the text):\n" + "\n".join(dead)
 
 
+@pytest.mark.parametrize("document", DOCUMENTS, ids=lambda d: d.relative_to(ROOT).as_posix())
+def test_every_anchor_a_document_links_to_exists(document):
+    dead = dead_anchors(document.relative_to(ROOT).as_posix(), document.read_text())
+    assert not dead, "links to headings that do not exist:\n" + "\n".join(dead)
+
+
 def test_the_rule_finds_dead_paths_and_passes_outputs_globs_links_and_places():
     # A document of known content, read as if it were docs/release.md: dead are the
     # missing source file (line 1) and the missing link (line 3); the existing file,
@@ -149,3 +178,9 @@ def test_the_rule_finds_dead_paths_and_passes_outputs_globs_links_and_places():
     # A renamed top-level folder is followed: a word whose first part git does not
     # track is no path of this repository (units, another project's owner/name).
     assert dead_paths("README.md", "rad/s, modelica/Reference-FMUs") == []
+    # Anchors: a heading of the target (GitHub's form), of the document itself for `#x`.
+    links = ("[a](fmi-layer.md#the-crates) [b](fmi-layer.md#no-such-heading) "
+             "[c](#no-heading-here) [d](architecture.md#repository-layout)")
+    assert dead_anchors("docs/release.md", links) == [
+        "docs/release.md:1: fmi-layer.md#no-such-heading", "docs/release.md:1: #no-heading-here"]
+    assert dead_anchors("docs/release.md", "[w](#the-wheel)") == []

@@ -83,7 +83,8 @@ const _: () = unique_value_references(TABLE);
 /// Whether `unique_value_references` refuses the table, and the declaration it names.
 fn refused(table: &[Decl]) -> Option<String> {
     let run = std::panic::catch_unwind(|| unique_value_references(table));
-    run.err().map(|e| e.downcast_ref::<String>().cloned().unwrap_or_default())
+    run.err()
+        .map(|e| e.downcast_ref::<String>().cloned().unwrap_or_default())
 }
 
 #[test]
@@ -97,8 +98,7 @@ fn a_value_reference_taken_twice_is_refused_naming_the_later_declaration() {
     let (c, d) = (b(16), Decl::real("d", "", |m, _| m.x[1]));
     assert_eq!(refused(&[a, d, c]).as_deref(), Some("b"));
     assert_eq!(refused(&[a, c, d]), None); // d then takes 17
-    // The scheme's references of the accepted tables (value_references, a second
-    // formulation, runs at run time).
+    // The scheme's references of the accepted table.
     assert_eq!(value_references(&[a, c, d]), [10, 16, 17]);
 }
 

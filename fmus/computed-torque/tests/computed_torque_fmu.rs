@@ -20,7 +20,10 @@ struct Uniform(u64);
 
 impl Uniform {
     fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 
@@ -55,7 +58,13 @@ fn set_inputs(h: &Fmu, i: &Inputs) {
 
 /// The plant's parameters with viscous friction (so the friction terms count).
 fn rough_robot() -> PlantParams {
-    PlantParams { friction: Friction { slider: 25.0, pivot: 0.08 }, ..PlantParams::default() }
+    PlantParams {
+        friction: Friction {
+            slider: 25.0,
+            pivot: 0.08,
+        },
+        ..PlantParams::default()
+    }
 }
 
 /// A Model Exchange instance with gains per axis and the model `rough_robot` with the
@@ -69,7 +78,11 @@ fn model_exchange(gains: &[AxisGains; 3], leg_mass_factor: f64) -> Fmu {
     }
     let nominal = rough_robot();
     let leg_mass = nominal.inertia.leg_mass * leg_mass_factor;
-    for (name, v) in [("legMass", leg_mass), ("sliderFriction", 25.0), ("pivotFriction", 0.08)] {
+    for (name, v) in [
+        ("legMass", leg_mass),
+        ("sliderFriction", 25.0),
+        ("pivotFriction", 0.08),
+    ] {
         assert_eq!(h.set_real(name, v), Fmi2Status::Ok);
     }
     assert_eq!(h.initialize(), Fmi2Status::Ok, "{}", h.last_message());
@@ -137,7 +150,10 @@ fn the_plant_driven_by_the_fmu_output_accelerates_as_commanded() {
                 + g.ki * integral[k]
         });
         let theta = i.measurement;
-        let state = PlantState { euler: theta, omega: euler_rate_matrix(&theta) * i.measured_rate };
+        let state = PlantState {
+            euler: theta,
+            omega: euler_rate_matrix(&theta) * i.measured_rate,
+        };
         let command = PlantInputs {
             generalized_force: Vector3::from(h.vector("u")),
             ..PlantInputs::default()
@@ -182,14 +198,20 @@ fn a_model_that_is_no_robot_is_refused_by_its_fmu_name() {
     // Below the declared min: refused by the set, naming the range.
     assert_eq!(h.set_real("legMass", -1.0), Fmi2Status::Error);
     let message = h.last_message();
-    assert!(message.contains("\"legMass\" = -1 is outside [0, inf]"), "{message}");
+    assert!(
+        message.contains("\"legMass\" = -1 is outside [0, inf]"),
+        "{message}"
+    );
     // Within the declared range but no robot (legs too short to reach the platform):
     // refused at initialization by the model, naming the geometry.
     let h = Fmu::with_logging(FMI2_CO_SIMULATION, false);
     assert_eq!(h.set_real("a", 0.35), Fmi2Status::Ok);
     assert_eq!(h.initialize(), Fmi2Status::Error);
     let message = h.last_message();
-    assert!(message.contains("parameter a") || message.contains("lp, ld"), "{message}");
+    assert!(
+        message.contains("parameter a") || message.contains("lp, ld"),
+        "{message}"
+    );
 }
 
 /// At thx = 80 deg the legs cannot reach the platform joints (the workspace is |thx|,
@@ -201,7 +223,10 @@ const OUTSIDE: [f64; 3] = [80f64.to_radians(), 0.0, 2.13];
 fn reason_outside() -> String {
     let gains = robofmu_dynamics::computed_torque::pole_placement(30.0, true).unwrap();
     let law = ComputedTorque::new(PlantParams::default(), [gains; 3]).unwrap();
-    let inputs = Inputs { measurement: OUTSIDE.into(), ..Inputs::default() };
+    let inputs = Inputs {
+        measurement: OUTSIDE.into(),
+        ..Inputs::default()
+    };
     let refusal = law.output(&Vector3::zeros(), &inputs).unwrap_err();
     format!(
         "measurement = (80.0000, 0.0000, 122.0400) deg: the controller's model (the \
@@ -218,7 +243,10 @@ fn outside_the_models_workspace_every_getter_discards_with_the_pose_and_the_reas
     assert_eq!(h.initialize(), Fmi2Status::Ok, "{}", h.last_message());
     h.enter_continuous_time_mode();
     h.set_vector("measurement", OUTSIDE);
-    assert_eq!(h.real_at(vr::<ComputedTorqueFmu>("u[2]")).0, Fmi2Status::Discard);
+    assert_eq!(
+        h.real_at(vr::<ComputedTorqueFmu>("u[2]")).0,
+        Fmi2Status::Discard
+    );
     let reason = format!("at t = 0 s: {}", reason_outside());
     assert_eq!(h.last_message(), format!("fmi2GetReal: {reason}"));
     assert_eq!(h.derivatives().0, Fmi2Status::Discard);
@@ -236,7 +264,11 @@ fn outside_the_models_workspace_at_the_start_initialization_is_refused_naming_it
     let h = Fmu::new(FMI2_MODEL_EXCHANGE);
     h.set_vector("measurement", OUTSIDE);
     assert_eq!(h.initialize(), Fmi2Status::Error);
-    assert!(h.last_message().ends_with(&reason_outside()), "{}", h.last_message());
+    assert!(
+        h.last_message().ends_with(&reason_outside()),
+        "{}",
+        h.last_message()
+    );
 }
 
 #[test]
@@ -248,10 +280,16 @@ fn outside_the_models_workspace_a_step_is_discarded_with_the_reason_and_terminat
     assert_eq!(h.step(0.0, 1e-3), Fmi2Status::Ok);
     let integral = h.vector("integral");
     h.set_vector("measurement", OUTSIDE);
-    assert_eq!(h.real_at(vr::<ComputedTorqueFmu>("u[1]")).0, Fmi2Status::Discard);
+    assert_eq!(
+        h.real_at(vr::<ComputedTorqueFmu>("u[1]")).0,
+        Fmi2Status::Discard
+    );
     assert_eq!(h.step(1e-3, 1e-3), Fmi2Status::Discard);
     let logged = h.messages(Fmi2Status::Discard);
-    assert!(logged.last().unwrap().ends_with(&reason_outside()), "{logged:?}");
+    assert!(
+        logged.last().unwrap().ends_with(&reason_outside()),
+        "{logged:?}"
+    );
     assert!(h.terminated());
     assert_eq!(h.vector("integral"), integral);
 }

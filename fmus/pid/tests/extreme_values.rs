@@ -11,7 +11,10 @@ fn gains_and_setpoints_of_1e308_are_refused_where_they_are_set() {
         let h: Host<Pid> = Host::with_logging(FMI2_CO_SIMULATION, false);
         assert_eq!(h.set_real(name, 1e308), Fmi2Status::Error, "{name}");
         let message = h.last_message();
-        assert!(message.contains(&format!("\"{name}\" = 1e308")), "{message}");
+        assert!(
+            message.contains(&format!("\"{name}\" = 1e308")),
+            "{message}"
+        );
     }
 }
 

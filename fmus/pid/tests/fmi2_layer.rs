@@ -41,11 +41,21 @@ fn calls_out_of_sequence_return_error_and_move_to_error_mode() {
     let h = quiet::<Pid>(CS);
     // doStep before initialization: illegal in Instantiated.
     assert_eq!(h.step(0.0, 0.1), Fmi2Status::Error);
-    assert!(h.last_message().contains("illegal call sequence"), "{}", h.last_message());
+    assert!(
+        h.last_message().contains("illegal call sequence"),
+        "{}",
+        h.last_message()
+    );
     // The instance is now in the Error mode: only get/reset/free-like calls work.
-    assert_eq!(unsafe { api::enter_initialization_mode::<Pid>(h.c) }, Fmi2Status::Error);
+    assert_eq!(
+        unsafe { api::enter_initialization_mode::<Pid>(h.c) },
+        Fmi2Status::Error
+    );
     assert_eq!(unsafe { api::reset::<Pid>(h.c) }, Fmi2Status::Ok);
-    assert_eq!(unsafe { api::enter_initialization_mode::<Pid>(h.c) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::enter_initialization_mode::<Pid>(h.c) },
+        Fmi2Status::Ok
+    );
     // Model Exchange functions are illegal for a Co-Simulation instance.
     assert_eq!(unsafe { api::set_time::<Pid>(h.c, 0.0) }, Fmi2Status::Error);
     // A null instance is rejected without a crash.
@@ -64,17 +74,30 @@ fn bad_arguments_are_rejected_with_a_reason() {
             Box::new(|| unsafe { api::get_real::<Pid>(h.c, std::ptr::null(), 1, &mut 0.0) }),
             "null pointer",
         ),
-        (Box::new(|| h.real_at(9999).0), "unknown value reference 9999"),
-        (Box::new(|| h.set_real_at(PID_SETPOINT1, f64::NAN)), "cannot be set to NaN"),
+        (
+            Box::new(|| h.real_at(9999).0),
+            "unknown value reference 9999",
+        ),
+        (
+            Box::new(|| h.set_real_at(PID_SETPOINT1, f64::NAN)),
+            "cannot be set to NaN",
+        ),
         (Box::new(|| h.set_real_at(PID_U1, 1.0)), "cannot be set"),
-        (Box::new(|| unsafe { api::get_integer::<Pid>(h.c, &PID_U1, 1, &mut 0) }), "not Integer"),
+        (
+            Box::new(|| unsafe { api::get_integer::<Pid>(h.c, &PID_U1, 1, &mut 0) }),
+            "not Integer",
+        ),
         (Box::new(|| h.step(0.5, 0.1)), "differs from the FMU time"),
         (Box::new(|| h.step(0.0, -0.1)), "not positive"),
         (Box::new(|| h.step(0.0, f64::INFINITY)), "not finite"),
     ];
     for (call, reason) in cases {
         assert_eq!(call(), Fmi2Status::Error, "{reason}");
-        assert!(h.last_message().contains(reason), "{} lacks {reason}", h.last_message());
+        assert!(
+            h.last_message().contains(reason),
+            "{} lacks {reason}",
+            h.last_message()
+        );
         assert_eq!(unsafe { api::reset::<Pid>(h.c) }, Fmi2Status::Ok);
         unsafe {
             api::enter_initialization_mode::<Pid>(h.c);
@@ -92,14 +115,21 @@ fn bad_arguments_are_rejected_with_a_reason() {
 fn debug_logging_honours_categories_and_escapes_percent() {
     let h = quiet::<Pid>(CS);
     let cats = [c"logEvents".as_ptr()];
-    assert_eq!(unsafe { api::set_debug_logging::<Pid>(h.c, 1, 1, cats.as_ptr()) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::set_debug_logging::<Pid>(h.c, 1, 1, cats.as_ptr()) },
+        Fmi2Status::Ok
+    );
     unsafe {
         api::enter_initialization_mode::<Pid>(h.c);
         api::exit_initialization_mode::<Pid>(h.c);
     }
     {
         let lines = h.lines.lock().unwrap();
-        assert!(lines.iter().any(|l| l.1 == "logEvents" && l.2.contains("initialized")));
+        assert!(
+            lines
+                .iter()
+                .any(|l| l.1 == "logEvents" && l.2.contains("initialized"))
+        );
         // logController was not enabled.
         assert!(!lines.iter().any(|l| l.1 == "logController"));
     }
@@ -108,7 +138,11 @@ fn debug_logging_honours_categories_and_escapes_percent() {
         unsafe { api::set_debug_logging::<Pid>(h.c, 1, 1, bad.as_ptr()) },
         Fmi2Status::Error
     );
-    assert!(h.last_message().contains("log%%sNothing"), "{}", h.last_message());
+    assert!(
+        h.last_message().contains("log%%sNothing"),
+        "{}",
+        h.last_message()
+    );
 }
 
 #[test]
@@ -118,10 +152,16 @@ fn fmu_state_round_trip_reproduces_bit_for_bit() {
         assert_eq!(h.step(k as f64 * 0.01, 0.01), Fmi2Status::Ok);
     }
     let mut state: Fmi2FmuState = std::ptr::null_mut();
-    assert_eq!(unsafe { api::get_fmu_state::<Pid>(h.c, &mut state) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::get_fmu_state::<Pid>(h.c, &mut state) },
+        Fmi2Status::Ok
+    );
     h.step(0.05, 0.01);
     let first = h.real_at(PID_U1).1;
-    assert_eq!(unsafe { api::set_fmu_state::<Pid>(h.c, state) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::set_fmu_state::<Pid>(h.c, state) },
+        Fmi2Status::Ok
+    );
     h.step(0.05, 0.01);
     assert_eq!(h.real_at(PID_U1).1.to_bits(), first.to_bits());
 
@@ -138,7 +178,10 @@ fn fmu_state_round_trip_reproduces_bit_for_bit() {
         unsafe { api::de_serialize_fmu_state::<Pid>(h.c, bytes.as_ptr(), size, &mut copy) },
         Fmi2Status::Ok
     );
-    assert_eq!(unsafe { api::set_fmu_state::<Pid>(h.c, copy) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::set_fmu_state::<Pid>(h.c, copy) },
+        Fmi2Status::Ok
+    );
     h.step(0.05, 0.01);
     assert_eq!(h.real_at(PID_U1).1.to_bits(), first.to_bits());
     unsafe {
@@ -166,7 +209,10 @@ fn foreign_truncated_and_corrupted_state_bytes_are_rejected() {
     assert!(why.contains("belongs to model"), "{why}");
     let (status, why) = attempt(&good[..size - 3]);
     assert_eq!(status, Fmi2Status::Error);
-    assert!(why.contains("truncated") || why.contains("belongs"), "{why}");
+    assert!(
+        why.contains("truncated") || why.contains("belongs"),
+        "{why}"
+    );
     let (status, why) = attempt(&[0; 5]);
     assert_eq!(status, Fmi2Status::Error);
     assert!(why.contains("truncated"), "{why}");
@@ -205,7 +251,9 @@ fn foreign_copy(state: &[c_char]) -> Vec<c_char> {
     let body = bytes.len() - 8;
     let checksum = bytes[..body]
         .iter()
-        .fold(0xcbf2_9ce4_8422_2325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3));
+        .fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+            (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+        });
     bytes[body..].copy_from_slice(&checksum.to_le_bytes());
     bytes.into_iter().map(|b| b as c_char).collect()
 }
@@ -234,7 +282,10 @@ fn discarded_step_leaves_state_unchanged_and_reports_status() {
     assert_eq!(terminated, FMI2_TRUE);
     assert_eq!(last, 0.1);
     // The states are those of t = 0.1 s, untouched by the rejected step.
-    assert_eq!((h.real_at(PID_INTEGRAL1).1, h.real_at(PID_FILTER1).1), states_before);
+    assert_eq!(
+        (h.real_at(PID_INTEGRAL1).1, h.real_at(PID_FILTER1).1),
+        states_before
+    );
     assert!(states_before.0 > 0.0);
     // doStep is illegal after a discard until the state is restored.
     assert_eq!(h.step(0.1, 0.1), Fmi2Status::Error);
@@ -245,10 +296,16 @@ fn directional_derivatives_match_finite_differences() {
     // Expected values: central differences of the outputs/derivatives under
     // perturbations of inputs and states set through fmi2SetReal.
     let h = initialized::<Pid>(ME);
-    assert_eq!(unsafe { api::enter_continuous_time_mode::<Pid>(h.c) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::enter_continuous_time_mode::<Pid>(h.c) },
+        Fmi2Status::Ok
+    );
     // Move away from the zero state so that every term contributes.
     let x = [0.3, 0.0, 0.0, -0.2, 0.0, 0.0];
-    assert_eq!(unsafe { api::set_continuous_states::<Pid>(h.c, x.as_ptr(), 6) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::set_continuous_states::<Pid>(h.c, x.as_ptr(), 6) },
+        Fmi2Status::Ok
+    );
     let vr = |group: u32, channel: u32| group + channel;
     // Knowns: inputs (set with fmi2SetReal) and states (index into x).
     let knowns: [(u32, Option<usize>); 5] = [
@@ -296,7 +353,10 @@ fn directional_derivatives_match_finite_differences() {
                 v
             };
             let fd = (value_at(eps) - value_at(-eps)) / (2.0 * eps);
-            assert!((analytic - fd).abs() < 1e-6, "d{unknown}/d{seed_vr}: {analytic} vs {fd}");
+            assert!(
+                (analytic - fd).abs() < 1e-6,
+                "d{unknown}/d{seed_vr}: {analytic} vs {fd}"
+            );
         }
     }
 }
@@ -317,7 +377,9 @@ fn instances_on_different_threads_do_not_interfere() {
         h.real_at(PID_U1).1
     };
     let alone: Vec<f64> = (0..4).map(|i| run(i as f64)).collect();
-    let threads: Vec<_> = (0..4).map(|i| std::thread::spawn(move || run(i as f64))).collect();
+    let threads: Vec<_> = (0..4)
+        .map(|i| std::thread::spawn(move || run(i as f64)))
+        .collect();
     let parallel: Vec<f64> = threads.into_iter().map(|t| t.join().unwrap()).collect();
     assert_eq!(alone, parallel);
 }

@@ -27,7 +27,9 @@ unsafe extern "C" fn capture(
 ) {
     // SAFETY: env is the &Lines the test passed; the message comes from the layer.
     let lines = unsafe { &*(env as *const Lines) };
-    let text = unsafe { CStr::from_ptr(message) }.to_string_lossy().into_owned();
+    let text = unsafe { CStr::from_ptr(message) }
+        .to_string_lossy()
+        .into_owned();
     lines.lock().unwrap().push((status, text));
 }
 
@@ -52,7 +54,10 @@ fn initialized<M: Model>(lines: &Lines) -> Fmi3Instance {
     assert!(!c.is_null());
     let start = unsafe { api::enter_initialization_mode::<M>(c, 0, 0.0, 0.0, 0, 0.0) };
     assert_eq!(start, Fmi3Status::Ok);
-    assert_eq!(unsafe { api::exit_initialization_mode::<M>(c) }, Fmi3Status::Ok);
+    assert_eq!(
+        unsafe { api::exit_initialization_mode::<M>(c) },
+        Fmi3Status::Ok
+    );
     c
 }
 

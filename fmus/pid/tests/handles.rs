@@ -44,7 +44,10 @@ fn initialized<M: Model>() -> Host<M> {
 
 fn get_state<M: Model>(h: &Host<M>) -> Fmi2FmuState {
     let mut state: Fmi2FmuState = std::ptr::null_mut();
-    assert_eq!(unsafe { api::get_fmu_state::<M>(h.c, &mut state) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::get_fmu_state::<M>(h.c, &mut state) },
+        Fmi2Status::Ok
+    );
     state
 }
 
@@ -55,15 +58,24 @@ fn garbage_and_foreign_instance_handles_are_errors() {
     let mut garbage = [0xAAu8; 512];
     let c = garbage.as_mut_ptr() as Fmi2Component;
     unsafe {
-        assert_eq!(api::do_step::<Pid>(c, 0.0, 0.1, FMI2_TRUE), Fmi2Status::Error);
+        assert_eq!(
+            api::do_step::<Pid>(c, 0.0, 0.1, FMI2_TRUE),
+            Fmi2Status::Error
+        );
         assert_eq!(api::reset::<Pid>(c), Fmi2Status::Error);
         api::free_instance::<Pid>(c);
     }
-    assert!(garbage.iter().all(|&b| b == 0xAA), "the garbage was written to");
+    assert!(
+        garbage.iter().all(|&b| b == 0xAA),
+        "the garbage was written to"
+    );
     // A live instance of another FMU is not an instance of this one.
     let other = initialized::<Other>();
     unsafe {
-        assert_eq!(api::do_step::<Pid>(other.c, 0.0, 0.1, FMI2_TRUE), Fmi2Status::Error);
+        assert_eq!(
+            api::do_step::<Pid>(other.c, 0.0, 0.1, FMI2_TRUE),
+            Fmi2Status::Error
+        );
         api::free_instance::<Pid>(other.c);
     }
     // ... and it is still alive and usable afterwards.
@@ -75,29 +87,52 @@ fn states_never_issued_freed_or_foreign_are_errors_with_a_log_line() {
     let h = initialized::<Pid>();
     let mut garbage = [0x55u8; 512];
     let never_issued = garbage.as_mut_ptr() as Fmi2FmuState;
-    assert_eq!(unsafe { api::set_fmu_state::<Pid>(h.c, never_issued) }, Fmi2Status::Error);
-    assert!(h.last_message().contains("not a live FMU state"), "{}", h.last_message());
+    assert_eq!(
+        unsafe { api::set_fmu_state::<Pid>(h.c, never_issued) },
+        Fmi2Status::Error
+    );
+    assert!(
+        h.last_message().contains("not a live FMU state"),
+        "{}",
+        h.last_message()
+    );
     assert_eq!(unsafe { api::reset::<Pid>(h.c) }, Fmi2Status::Ok);
     assert_eq!(h.initialize(), Fmi2Status::Ok);
 
     // A freed state: set, serialize and a second free are refused (no double free).
     let mut state = get_state(&h);
     let dangling = state;
-    assert_eq!(unsafe { api::free_fmu_state::<Pid>(h.c, &mut state) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::free_fmu_state::<Pid>(h.c, &mut state) },
+        Fmi2Status::Ok
+    );
     assert!(state.is_null());
-    assert_eq!(unsafe { api::set_fmu_state::<Pid>(h.c, dangling) }, Fmi2Status::Error);
-    assert!(h.last_message().contains("already freed"), "{}", h.last_message());
+    assert_eq!(
+        unsafe { api::set_fmu_state::<Pid>(h.c, dangling) },
+        Fmi2Status::Error
+    );
+    assert!(
+        h.last_message().contains("already freed"),
+        "{}",
+        h.last_message()
+    );
     assert_eq!(unsafe { api::reset::<Pid>(h.c) }, Fmi2Status::Ok);
     assert_eq!(h.initialize(), Fmi2Status::Ok);
     let mut again = dangling;
-    assert_eq!(unsafe { api::free_fmu_state::<Pid>(h.c, &mut again) }, Fmi2Status::Error);
+    assert_eq!(
+        unsafe { api::free_fmu_state::<Pid>(h.c, &mut again) },
+        Fmi2Status::Error
+    );
     assert_eq!(unsafe { api::reset::<Pid>(h.c) }, Fmi2Status::Ok);
     assert_eq!(h.initialize(), Fmi2Status::Ok);
 
     // Another FMU's live state.
     let other = initialized::<Other>();
     let foreign = get_state(&other);
-    assert_eq!(unsafe { api::set_fmu_state::<Pid>(h.c, foreign) }, Fmi2Status::Error);
+    assert_eq!(
+        unsafe { api::set_fmu_state::<Pid>(h.c, foreign) },
+        Fmi2Status::Error
+    );
     let mut size = 0;
     assert_eq!(unsafe { api::reset::<Pid>(h.c) }, Fmi2Status::Ok);
     assert_eq!(h.initialize(), Fmi2Status::Ok);
@@ -109,9 +144,15 @@ fn states_never_issued_freed_or_foreign_are_errors_with_a_log_line() {
     assert_eq!(unsafe { api::reset::<Pid>(h.c) }, Fmi2Status::Ok);
     assert_eq!(h.initialize(), Fmi2Status::Ok);
     let mut slot = foreign;
-    assert_eq!(unsafe { api::get_fmu_state::<Pid>(h.c, &mut slot) }, Fmi2Status::Error);
+    assert_eq!(
+        unsafe { api::get_fmu_state::<Pid>(h.c, &mut slot) },
+        Fmi2Status::Error
+    );
     // The other FMU's state is intact and still its own.
-    assert_eq!(unsafe { api::set_fmu_state::<Other>(other.c, foreign) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::set_fmu_state::<Other>(other.c, foreign) },
+        Fmi2Status::Ok
+    );
 }
 
 #[test]
@@ -130,7 +171,10 @@ fn a_state_of_another_instance_of_the_same_fmu_is_accepted() {
     assert_eq!(a.step(0.0, 0.1), Fmi2Status::Ok);
     assert_eq!(a.step(0.1, 0.1), Fmi2Status::Ok);
     let state = get_state(&a);
-    assert_eq!(unsafe { api::set_fmu_state::<Pid>(b.c, state) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::set_fmu_state::<Pid>(b.c, state) },
+        Fmi2Status::Ok
+    );
     for (h, t) in [(&a, 0.2), (&b, 0.2), (&fresh, 0.0)] {
         assert_eq!(h.step(t, 0.1), Fmi2Status::Ok, "{}", h.last_message());
     }
@@ -149,8 +193,13 @@ extern "C" fn capture(
     message: Fmi2String,
 ) {
     assert_eq!(env, &NO_ALLOCATOR_LOG as *const Lines as *mut c_void);
-    let text = unsafe { std::ffi::CStr::from_ptr(message) }.to_string_lossy().into_owned();
-    NO_ALLOCATOR_LOG.lock().unwrap().push((status, String::new(), text));
+    let text = unsafe { std::ffi::CStr::from_ptr(message) }
+        .to_string_lossy()
+        .into_owned();
+    NO_ALLOCATOR_LOG
+        .lock()
+        .unwrap()
+        .push((status, String::new(), text));
 }
 
 #[test]

@@ -59,7 +59,10 @@ fn derivatives_survive_a_serialized_state_and_a_reset_clears_them() {
     assert_eq!(other.step(0.0, 0.05), Fmi2Status::Ok);
     assert_eq!([other.vector("integral"), other.vector("filter")], original);
 
-    assert_eq!(unsafe { robofmu_fmi::fmi2::api::reset::<Pid>(h.c) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { robofmu_fmi::fmi2::api::reset::<Pid>(h.c) },
+        Fmi2Status::Ok
+    );
     assert_eq!(h.set_boolean("useRateInputs[3]", true), Fmi2Status::Ok);
     assert_eq!(h.initialize(), Fmi2Status::Ok);
     let fresh = initialized();

@@ -26,7 +26,11 @@ fn a_boundary_value_of_1e308_is_refused_where_it_is_set() {
     // Truth: 1e308 exceeds the layer's limit 1e150 (10 (qf - q0) alone would overflow).
     let h = planner();
     assert_eq!(h.set_real("q0[1]", 1e308), Fmi2Status::Error);
-    assert!(h.last_message().contains("\"q0[1]\" = 1e308"), "{}", h.last_message());
+    assert!(
+        h.last_message().contains("\"q0[1]\" = 1e308"),
+        "{}",
+        h.last_message()
+    );
 }
 
 #[test]

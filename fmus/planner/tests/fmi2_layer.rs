@@ -44,11 +44,21 @@ fn invalid_parameters_fail_at_exit_initialization_with_a_message() {
     // tf (vr 3) before t0 (vr 2).
     assert_eq!(h.set_real_at(2, 3.0), Fmi2Status::Ok);
     unsafe { api::enter_initialization_mode::<Planner>(h.c) };
-    assert_eq!(unsafe { api::exit_initialization_mode::<Planner>(h.c) }, Fmi2Status::Error);
-    assert!(h.last_message().contains("must be after the start time"), "{}", h.last_message());
+    assert_eq!(
+        unsafe { api::exit_initialization_mode::<Planner>(h.c) },
+        Fmi2Status::Error
+    );
+    assert!(
+        h.last_message().contains("must be after the start time"),
+        "{}",
+        h.last_message()
+    );
     // order 4 is refused at once (range 3..5, then the writer's own check).
     let h = quiet(CS);
-    assert_eq!(unsafe { api::set_integer::<Planner>(h.c, &1, 1, &4) }, Fmi2Status::Error);
+    assert_eq!(
+        unsafe { api::set_integer::<Planner>(h.c, &1, 1, &4) },
+        Fmi2Status::Error
+    );
     assert!(h.last_message().contains("3 or 5"));
 }
 

@@ -28,7 +28,9 @@ fn planner(order: i32, boundary: &[(&str, [f64; AXES])]) -> H {
 
 /// Every output name `q[1]` .. `qddot[3]`, axis by axis.
 fn output_names() -> Vec<String> {
-    (1..=AXES).flat_map(|a| OUTPUTS.iter().map(move |o| format!("{o}[{a}]"))).collect()
+    (1..=AXES)
+        .flat_map(|a| OUTPUTS.iter().map(move |o| format!("{o}[{a}]")))
+        .collect()
 }
 
 /// Orders 1 and 2 of every output at the current time: d[name index][order - 1].

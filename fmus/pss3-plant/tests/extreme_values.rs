@@ -12,7 +12,11 @@ fn a_leg_mass_of_1e308_is_refused_where_it_is_set() {
     // Truth: 1e308 exceeds the layer's limit 1e150 (m g alone would be 1e309).
     let h = H::with_logging(FMI2_CO_SIMULATION, false);
     assert_eq!(h.set_real("legMass", 1e308), Fmi2Status::Error);
-    assert!(h.last_message().contains("\"legMass\" = 1e308"), "{}", h.last_message());
+    assert!(
+        h.last_message().contains("\"legMass\" = 1e308"),
+        "{}",
+        h.last_message()
+    );
 }
 
 #[test]

@@ -126,18 +126,30 @@ fn the_calls_are_legal_where_fmi2_set_real_is_and_only_in_co_simulation() {
     // FMI 2.0 section 4.2.1: the restrictions of fmi2SetReal apply (Instantiated,
     // InitializationMode, StepComplete); Model Exchange has no such function.
     let h = moving(CS);
-    assert_eq!(h.set_input_derivative("actuatorForce[1]", 1, 1.0), Fmi2Status::Ok);
+    assert_eq!(
+        h.set_input_derivative("actuatorForce[1]", 1, 1.0),
+        Fmi2Status::Ok
+    );
     assert_eq!(h.initialize(), Fmi2Status::Ok);
-    assert_eq!(h.set_input_derivative("actuatorForce[1]", 2, 1.0), Fmi2Status::Ok);
+    assert_eq!(
+        h.set_input_derivative("actuatorForce[1]", 2, 1.0),
+        Fmi2Status::Ok
+    );
     assert_eq!(h.step(0.0, 1e-3), Fmi2Status::Ok);
-    assert_eq!(h.set_input_derivative("actuatorForce[1]", 1, 2.0), Fmi2Status::Ok);
+    assert_eq!(
+        h.set_input_derivative("actuatorForce[1]", 1, 2.0),
+        Fmi2Status::Ok
+    );
     // Not after fmi2Terminate (nor in StepFailed, Error: the mode table's rule).
     assert_eq!(unsafe { api::terminate::<Pss3Plant>(h.c) }, Fmi2Status::Ok);
     let late = h.set_input_derivative("actuatorForce[1]", 1, 3.0);
     assert_eq!(late, Fmi2Status::Error);
     assert!(h.last_message().contains("not allowed in mode Terminated"));
     let me = moving(FMI2_MODEL_EXCHANGE);
-    assert_eq!(me.set_input_derivative("actuatorForce[1]", 1, 1.0), Fmi2Status::Error);
+    assert_eq!(
+        me.set_input_derivative("actuatorForce[1]", 1, 1.0),
+        Fmi2Status::Error
+    );
     assert!(me.last_message().contains("illegal call sequence"));
 }
 
@@ -149,7 +161,11 @@ fn zero_derivatives_step_bit_identically_to_held_inputs_and_others_do_not() {
     let zero = moving(CS);
     assert_eq!(zero.initialize(), Fmi2Status::Ok);
     for order in [1, 2] {
-        for name in ["actuatorForce[1]", "torqueCommand[2]", "disturbanceTorque[3]"] {
+        for name in [
+            "actuatorForce[1]",
+            "torqueCommand[2]",
+            "disturbanceTorque[3]",
+        ] {
             assert_eq!(zero.set_input_derivative(name, order, 0.0), Fmi2Status::Ok);
         }
     }
@@ -170,14 +186,26 @@ fn derivatives_are_part_of_the_fmu_state() {
     set_ramps(&h);
     let saved = h.serialize();
     let mut state: Fmi2FmuState = std::ptr::null_mut();
-    assert_eq!(unsafe { api::get_fmu_state::<Pss3Plant>(h.c, &mut state) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::get_fmu_state::<Pss3Plant>(h.c, &mut state) },
+        Fmi2Status::Ok
+    );
     let original = run(&h, 0.0, 10);
 
-    assert_eq!(h.set_input_derivative("actuatorForce[1]", 1, -50.0), Fmi2Status::Ok);
-    assert_eq!(unsafe { api::set_fmu_state::<Pss3Plant>(h.c, state) }, Fmi2Status::Ok);
+    assert_eq!(
+        h.set_input_derivative("actuatorForce[1]", 1, -50.0),
+        Fmi2Status::Ok
+    );
+    assert_eq!(
+        unsafe { api::set_fmu_state::<Pss3Plant>(h.c, state) },
+        Fmi2Status::Ok
+    );
     assert_eq!(run(&h, 0.0, 10), original, "fmi2SetFMUstate");
 
-    assert_eq!(h.set_input_derivative("actuatorForce[3]", 2, 0.0), Fmi2Status::Ok);
+    assert_eq!(
+        h.set_input_derivative("actuatorForce[3]", 2, 0.0),
+        Fmi2Status::Ok
+    );
     assert_eq!(h.restore(&saved), Fmi2Status::Ok);
     assert_eq!(run(&h, 0.0, 10), original, "fmi2DeSerializeFMUstate");
 
@@ -185,7 +213,10 @@ fn derivatives_are_part_of_the_fmu_state() {
     assert_eq!(fresh.initialize(), Fmi2Status::Ok);
     assert_eq!(fresh.restore(&saved), Fmi2Status::Ok);
     assert_eq!(run(&fresh, 0.0, 10), original, "into another instance");
-    assert_eq!(unsafe { api::free_fmu_state::<Pss3Plant>(h.c, &mut state) }, Fmi2Status::Ok);
+    assert_eq!(
+        unsafe { api::free_fmu_state::<Pss3Plant>(h.c, &mut state) },
+        Fmi2Status::Ok
+    );
 
     assert_eq!(unsafe { api::reset::<Pss3Plant>(h.c) }, Fmi2Status::Ok);
     let held = moving(CS);

@@ -60,16 +60,37 @@ fn cycle(keep_state: bool) {
     );
     assert!(!c.is_null(), "{:?}", lines.lock().unwrap());
     unsafe {
-        assert_eq!(api::setup_experiment::<Pss3Plant>(c, 0, 0.0, 0.0, 0, 0.0), Fmi2Status::Ok);
-        assert_eq!(api::enter_initialization_mode::<Pss3Plant>(c), Fmi2Status::Ok);
-        assert_eq!(api::exit_initialization_mode::<Pss3Plant>(c), Fmi2Status::Ok);
-        assert_eq!(api::do_step::<Pss3Plant>(c, 0.0, 1e-3, FMI2_TRUE), Fmi2Status::Ok);
+        assert_eq!(
+            api::setup_experiment::<Pss3Plant>(c, 0, 0.0, 0.0, 0, 0.0),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            api::enter_initialization_mode::<Pss3Plant>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            api::exit_initialization_mode::<Pss3Plant>(c),
+            Fmi2Status::Ok
+        );
+        assert_eq!(
+            api::do_step::<Pss3Plant>(c, 0.0, 1e-3, FMI2_TRUE),
+            Fmi2Status::Ok
+        );
         let (vr, mut value) = (151u32, 0.0);
-        assert_eq!(api::get_real::<Pss3Plant>(c, &vr, 1, &mut value), Fmi2Status::Ok);
+        assert_eq!(
+            api::get_real::<Pss3Plant>(c, &vr, 1, &mut value),
+            Fmi2Status::Ok
+        );
         let mut state: Fmi2FmuState = std::ptr::null_mut();
-        assert_eq!(api::get_fmu_state::<Pss3Plant>(c, &mut state), Fmi2Status::Ok);
+        assert_eq!(
+            api::get_fmu_state::<Pss3Plant>(c, &mut state),
+            Fmi2Status::Ok
+        );
         if !keep_state {
-            assert_eq!(api::free_fmu_state::<Pss3Plant>(c, &mut state), Fmi2Status::Ok);
+            assert_eq!(
+                api::free_fmu_state::<Pss3Plant>(c, &mut state),
+                Fmi2Status::Ok
+            );
         }
         api::free_instance::<Pss3Plant>(c);
     }

@@ -69,7 +69,11 @@ fn every_change_of_the_point_gives_the_answer_of_a_fresh_instance() {
     assert_eq!(stepped, fresh(&h), "after a step");
 
     assert_eq!(h.restore(&before), Fmi2Status::Ok);
-    assert_eq!(derivatives(&h), first, "after restoring the earlier FMU state");
+    assert_eq!(
+        derivatives(&h),
+        first,
+        "after restoring the earlier FMU state"
+    );
 }
 
 #[test]

@@ -50,7 +50,11 @@ impl Sample {
     /// error of the values (the integrator's, tolerance 1e-12, taken as 1e-11
     /// relative) amplified by the difference (1 / delta, 4 / delta^2).
     fn tolerance(&self, delta: f64) -> f64 {
-        let amplification = if self.order == 1 { 1.0 / delta } else { 4.0 / (delta * delta) };
+        let amplification = if self.order == 1 {
+            1.0 / delta
+        } else {
+            4.0 / (delta * delta)
+        };
         (self.fine - self.coarse).abs() + 1e-11 * self.scale * amplification
     }
 }

@@ -60,7 +60,11 @@ fn reads_and_directional_derivatives_discard_where_the_pose_cannot_assemble() {
     for name in ["l[1]", "detJ", "thetaDot[2]", "gravityCompensation[3]"] {
         let (status, _) = h.real_at(vr::<Pss3Plant>(name));
         assert_eq!(status, Fmi2Status::Discard, "{name}: {}", h.last_message());
-        assert!(h.last_message().contains("fmi2GetReal"), "{}", h.last_message());
+        assert!(
+            h.last_message().contains("fmi2GetReal"),
+            "{}",
+            h.last_message()
+        );
     }
     let (status, _) = directional(&h, &vrs(&["der(omega[1])"]), &vrs(&["theta[1]"]), &[1.0]);
     assert_eq!(status, Fmi2Status::Discard, "{}", h.last_message());
@@ -117,7 +121,10 @@ fn one_call_with_a_seed_vector_equals_the_sum_of_single_columns() {
         );
     }
     // Not trivially zero: der(theta[1]) along theta/omega and the lever arms move.
-    assert!(together.iter().filter(|v| v.abs() > 1e-6).count() >= 8, "{together:?}");
+    assert!(
+        together.iter().filter(|v| v.abs() > 1e-6).count() >= 8,
+        "{together:?}"
+    );
 }
 
 #[test]
@@ -137,7 +144,12 @@ fn a_co_simulation_instance_continues_from_a_model_exchange_state() {
 
     let restored = H::new(FMI2_CO_SIMULATION);
     assert_eq!(restored.initialize(), Fmi2Status::Ok);
-    assert_eq!(restored.restore(&bytes), Fmi2Status::Ok, "{}", restored.last_message());
+    assert_eq!(
+        restored.restore(&bytes),
+        Fmi2Status::Ok,
+        "{}",
+        restored.last_message()
+    );
     let direct = H::new(FMI2_CO_SIMULATION);
     direct.set_vector("theta0", moved_theta);
     direct.set_vector("omega0", OMEGA);
@@ -148,5 +160,8 @@ fn a_co_simulation_instance_continues_from_a_model_exchange_state() {
     for name in ["theta", "omega", "l", "force"] {
         assert_eq!(restored.vector(name), direct.vector(name), "{name}");
     }
-    assert!(restored.vector("theta") != moved_theta, "the step moved nothing");
+    assert!(
+        restored.vector("theta") != moved_theta,
+        "the step moved nothing"
+    );
 }

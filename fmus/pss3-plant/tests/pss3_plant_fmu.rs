@@ -26,7 +26,10 @@ fn tilted(kind: i32) -> H {
 }
 
 fn library_state() -> PlantState {
-    PlantState { euler: Vector3::from(THETA), omega: Vector3::from(OMEGA) }
+    PlantState {
+        euler: Vector3::from(THETA),
+        omega: Vector3::from(OMEGA),
+    }
 }
 
 fn close(a: [f64; 3], b: Vector3<f64>, tol: f64) -> bool {
@@ -62,13 +65,19 @@ fn outputs_equal_the_library_outputs() {
     assert_eq!(h.real("detJ"), o.jacobian_det);
     assert_eq!(h.real("condJ"), o.jacobian_cond);
     assert_eq!(h.real("kineticEnergy"), o.kinetic_energy);
-    assert_eq!(h.real("potentialEnergy"), o.potential_energy + o.end_stop_energy);
+    assert_eq!(
+        h.real("potentialEnergy"),
+        o.potential_energy + o.end_stop_energy
+    );
     assert_eq!(h.real("yaw"), THETA[0]);
     assert_eq!(h.real("pitch"), -THETA[1]);
     assert_eq!(h.real("roll"), THETA[2]);
     let l = h.vector("l");
     assert!(l.iter().all(|&li| (0.002..0.152).contains(&li)), "{l:?}");
-    assert_eq!([1, 2, 3].map(|i| h.integer(&format!("atStop[{i}]"))), [0; 3]);
+    assert_eq!(
+        [1, 2, 3].map(|i| h.integer(&format!("atStop[{i}]"))),
+        [0; 3]
+    );
 }
 
 #[test]
@@ -81,8 +90,16 @@ fn commands_map_through_the_statics() {
     let q = [-0.6, 1.1, 0.4];
     h.set_vector("torqueCommand", tau);
     assert_eq!(h.initialize(), Fmi2Status::Ok);
-    let geometry = Plant::new(PlantParams::default()).unwrap().model().geometry.clone();
-    let j = jacobian(&geometry, &assemble(&geometry, &Vector3::from(THETA)).unwrap()).unwrap();
+    let geometry = Plant::new(PlantParams::default())
+        .unwrap()
+        .model()
+        .geometry
+        .clone();
+    let j = jacobian(
+        &geometry,
+        &assemble(&geometry, &Vector3::from(THETA)).unwrap(),
+    )
+    .unwrap();
     let j_inv_t: Matrix3<f64> = j.matrix.transpose().try_inverse().unwrap();
     let expected = j_inv_t * Vector3::from(tau);
     assert!(close(h.vector("force"), expected, 1e-12), "{expected}");
@@ -90,7 +107,10 @@ fn commands_map_through_the_statics() {
     let h = tilted(CS);
     h.set_vector("generalizedForceCommand", q);
     assert_eq!(h.initialize(), Fmi2Status::Ok);
-    let e_inv_t = euler_rate_matrix(&Vector3::from(THETA)).transpose().try_inverse().unwrap();
+    let e_inv_t = euler_rate_matrix(&Vector3::from(THETA))
+        .transpose()
+        .try_inverse()
+        .unwrap();
     let expected = j_inv_t * (e_inv_t * Vector3::from(q));
     assert!(close(h.vector("force"), expected, 1e-12), "{expected}");
 }
@@ -144,11 +164,20 @@ fn invalid_parameters_are_refused_naming_the_parameter() {
     assert_eq!(h.set_integer("endStopMode", 3), Fmi2Status::Error);
     // A value below a declared min is refused by the set itself, naming the range
     // (the modelDescription's min = 0 of the masses, stiffness and tolerance).
-    for name in ["platformMass", "legMass", "endStopStiffness", "tolerance", "sliderFriction"] {
+    for name in [
+        "platformMass",
+        "legMass",
+        "endStopStiffness",
+        "tolerance",
+        "sliderFriction",
+    ] {
         let h = H::new(CS);
         assert_eq!(h.set_real(name, -1.0), Fmi2Status::Error, "{name}");
         let message = h.last_message();
-        assert!(message.contains(name) && message.contains("outside [0,"), "{message}");
+        assert!(
+            message.contains(name) && message.contains("outside [0,"),
+            "{message}"
+        );
     }
 }
 
@@ -161,7 +190,10 @@ fn initial_pose_from_actuators_matches_theta0_default() {
     let h = H::new(CS);
     assert_eq!(h.initialize(), Fmi2Status::Ok);
     let theta = h.vector("theta");
-    assert!(theta[0].abs() < 1e-12 && theta[1].abs() < 1e-12, "{theta:?}");
+    assert!(
+        theta[0].abs() < 1e-12 && theta[1].abs() < 1e-12,
+        "{theta:?}"
+    );
     assert!((theta[2].to_degrees() - 139.7893).abs() < 5e-5, "{theta:?}");
     assert!(close(h.vector("l"), Vector3::repeat(0.077), 1e-13));
     let k = H::new(CS);
@@ -198,7 +230,9 @@ fn model_exchange_derivatives_discard_where_the_pose_cannot_assemble() {
     let (status, dx) = h.derivatives();
     assert_eq!(status, Fmi2Status::Ok);
     let plant = Plant::new(PlantParams::default()).unwrap();
-    let d = plant.derivative(&library_state(), &PlantInputs::default()).unwrap();
+    let d = plant
+        .derivative(&library_state(), &PlantInputs::default())
+        .unwrap();
     assert_eq!(dx[..3], *d.euler_rates.as_slice());
     assert_eq!(dx[3..], *d.omega_dot.as_slice());
     let mut x = h.states();
@@ -246,7 +280,10 @@ fn stop_contacts_change_only_at_events() {
     assert_eq!(h.integer("atStop[1]"), 0, "not before the event");
     h.handle_event();
     assert_eq!(h.integer("atStop[1]"), -1);
-    assert!(h.event_indicators().1[0] < 0.0, "consistent after the event");
+    assert!(
+        h.event_indicators().1[0] < 0.0,
+        "consistent after the event"
+    );
 }
 
 #[test]
@@ -260,8 +297,15 @@ fn directional_derivatives_match_finite_differences() {
     h.enter_continuous_time_mode();
     let x0 = h.states();
     let step = 1e-6;
-    let state_names = ["theta[1]", "theta[2]", "theta[3]", "omega[1]", "omega[2]", "omega[3]"];
-    let unknowns = ["der(theta[2])", "der(omega[1])", "der(omega[3])", "omegaDot[2]"];
+    let state_names = [
+        "theta[1]", "theta[2]", "theta[3]", "omega[1]", "omega[2]", "omega[3]",
+    ];
+    let unknowns = [
+        "der(theta[2])",
+        "der(omega[1])",
+        "der(omega[3])",
+        "omegaDot[2]",
+    ];
     let row = |name: &str| match name {
         "der(theta[2])" => 1,
         "der(omega[1])" => 3,
@@ -289,7 +333,11 @@ fn directional_derivatives_match_finite_differences() {
         let fd = (lp[1] - lm[1]) / (2.0 * step);
         worst = worst.max((h.directional("l[2]", known) - fd).abs() / (1.0 + fd.abs()));
     }
-    for known in ["actuatorForce[2]", "generalizedForceCommand[1]", "disturbanceTorque[3]"] {
+    for known in [
+        "actuatorForce[2]",
+        "generalizedForceCommand[1]",
+        "disturbanceTorque[3]",
+    ] {
         let value = h.real(known);
         let (_, d0) = h.derivatives();
         assert_eq!(h.set_real(known, value + 1.0), Fmi2Status::Ok);
@@ -362,8 +410,15 @@ fn dependencies_name_only_inputs_and_states() {
         .parameter(Variability::Fixed)
         .start_real(&[1.0])
         .set_real(|_, _, _| Ok(()));
-    static TABLE: &[Declaration<()>] =
-        &[K, Declaration::real("y", "an output", |_, _| 1.0).output().depends_on(&[K.var()])];
+    static TABLE: &[Declaration<()>] = &[
+        K,
+        Declaration::real("y", "an output", |_, _| 1.0)
+            .output()
+            .depends_on(&[K.var()]),
+    ];
     let error = check_table(&flatten(TABLE)).unwrap_err();
-    assert!(error.contains("neither an input nor a continuous state"), "{error}");
+    assert!(
+        error.contains("neither an input nor a continuous state"),
+        "{error}"
+    );
 }

@@ -539,40 +539,27 @@ pub fn read_derivatives<M>(declarations: &[Declaration<M>], model: &M, dx: &mut 
     });
 }
 
-/// Value reference of element 1 of each declaration `k` in turn, by the scheme of the
-/// module documentation (`const`: [`unique_value_references`] runs at compile time).
-const fn first_value_reference<M>(declarations: &[Declaration<M>], k: usize) -> u32 {
-    let (mut next, mut j) = (1, 0);
-    loop {
-        let d = &declarations[j];
-        let first = match d.value_reference {
-            Some(vr) => vr,
-            None => next,
-        };
-        if j == k {
-            return first;
-        }
-        let last = first + (d.size() as u32 - 1) * d.stride;
-        if last + 1 > next {
-            next = last + 1;
-        }
-        j += 1;
-    }
+/// Where declaration `d` lies when the next unpinned value reference is `next`: the
+/// value reference of its element 1, and the next unpinned one after it (the scheme of
+/// the module documentation, once for [`value_references`] and, at compile time,
+/// [`unique_value_references`]).
+const fn placed<M>(d: &Declaration<M>, next: u32) -> (u32, u32) {
+    let first = match d.value_reference {
+        Some(vr) => vr,
+        None => next,
+    };
+    let last = first + (d.size() as u32 - 1) * d.stride;
+    (first, if last + 1 > next { last + 1 } else { next })
 }
 
-/// Whether element i of declaration a and element j of declaration b share a value
-/// reference.
-const fn overlaps<M>(declarations: &[Declaration<M>], a: usize, b: usize) -> bool {
-    let (da, db) = (&declarations[a], &declarations[b]);
-    let (fa, fb) = (
-        first_value_reference(declarations, a),
-        first_value_reference(declarations, b),
-    );
+/// Whether an element of `a` (element 1 at `fa`) and one of `b` (element 1 at `fb`)
+/// share a value reference.
+const fn overlaps<M>(a: &Declaration<M>, fa: u32, b: &Declaration<M>, fb: u32) -> bool {
     let mut i = 0;
-    while i < da.size() {
+    while i < a.size() {
         let mut j = 0;
-        while j < db.size() {
-            if fa + i as u32 * da.stride == fb + j as u32 * db.stride {
+        while j < b.size() {
+            if fa + i as u32 * a.stride == fb + j as u32 * b.stride {
                 return true;
             }
             j += 1;
@@ -597,16 +584,18 @@ const fn overlaps<M>(declarations: &[Declaration<M>], a: usize, b: usize) -> boo
 /// const _: () = robofmu_fmi::core::declare::unique_value_references(TABLE);
 /// ```
 pub const fn unique_value_references<M>(declarations: &[Declaration<M>]) {
-    let mut b = 1;
+    let (mut b, mut next_b) = (0, 1);
     while b < declarations.len() {
-        let mut a = 0;
+        let (fb, after_b) = placed(&declarations[b], next_b);
+        let (mut a, mut next_a) = (0, 1);
         while a < b {
-            if overlaps(declarations, a, b) {
+            let (fa, after_a) = placed(&declarations[a], next_a);
+            if overlaps(&declarations[a], fa, &declarations[b], fb) {
                 panic!("{}", declarations[b].name); // takes a value reference taken before
             }
-            a += 1;
+            (a, next_a) = (a + 1, after_a);
         }
-        b += 1;
+        (b, next_b) = (b + 1, after_b);
     }
 }
 
@@ -617,9 +606,8 @@ pub fn value_references<M>(declarations: &[Declaration<M>]) -> Vec<u32> {
     declarations
         .iter()
         .map(|d| {
-            let first = d.value_reference.unwrap_or(next);
-            let last = first + (d.size() as u32 - 1) * d.stride;
-            next = next.max(last + 1);
+            let first;
+            (first, next) = placed(d, next);
             first
         })
         .collect()
