@@ -5,6 +5,7 @@ the study; the result holds what gemseo-fmu computed, as lists of floats.
 - "doe": a design of experiments with gemseo's DOE machinery (sample_disciplines, full
   factorial) over fixed parameters of an FMU wrapped in gemseo-fmu's FMUDiscipline (the
   discipline simulates from 0 to `final_time` at each sample);
+- "run": one FMUDiscipline executed at the FMU's start values;
 - "system": gemseo-fmu's TimeSteppingSystem of DoStepFMUDiscipline's (PID + plant),
   coupled by names, run to `final_time`.
 """
@@ -43,6 +44,16 @@ def doe(request: dict) -> dict:
     return {"rows": rows, "time": discipline.time.tolist()}
 
 
+def run(request: dict) -> dict:
+    """One FMUDiscipline executed at its default inputs (the FMU's start values)."""
+    discipline = FMUDiscipline(request["fmu"], input_names=request["inputs"],
+                               output_names=request["outputs"],
+                               final_time=request["final_time"],
+                               time_step=request["time_step"])
+    data = discipline.execute()
+    return {name: [float(x) for x in data[name]] for name in request["outputs"]}
+
+
 def system(request: dict) -> dict:
     disciplines = [
         DoStepFMUDiscipline(spec["fmu"], input_names=spec["inputs"],
@@ -60,6 +71,6 @@ def system(request: dict) -> dict:
 if __name__ == "__main__":
     with open(sys.argv[1]) as f:
         request = json.load(f)
-    result = {"doe": doe, "system": system}[request["study"]](request)
+    result = {"doe": doe, "run": run, "system": system}[request["study"]](request)
     with open(sys.argv[2], "w") as f:
         json.dump(result, f)

@@ -147,9 +147,9 @@ def test_fmi2_fixed_parameter_set_again(unpacked2, model, interface, mode):
             continue  # fmi2SetInteger/Boolean are illegal there (FMI 2.0 3.2.3)
         before = host.state()
         value = host.get(v)
-        assert host.set(v, value) == 1, host.lines[-1:]  # fmi2Warning
+        assert host.set(v, value) == WARNING, host.lines[-1:]
         status, category, line = host.lines[-1]
-        assert (status, category) == (1, "logStatusWarning")
+        assert (status, category) == (WARNING, "logStatusWarning")
         assert f'"{v.name}"' in line and RULE in line and mode in line, line
         assert host.state() == before
         assert host.set(v, different(value)) == ERROR
@@ -177,7 +177,7 @@ def test_fmi2_outputs_after_unchanged_sets_equal_a_twin(unpacked2, model):
     values = [hosts[0].get(v) for v in fixed]
     for k in range(1, 21):
         for v, value in zip(fixed, values):
-            assert hosts[0].set(v, value) == 1
+            assert hosts[0].set(v, value) == WARNING
         for host in hosts:
             host.fmu.doStep(0.01 * k, 0.01)
         assert hosts[0].fmu.getReal(outputs) == hosts[1].fmu.getReal(outputs)

@@ -1,7 +1,9 @@
 """The closed loop as FMPy's own container FMU (fmpy.container_fmu, FMPy's Rust runtime
-shipped in the wheel), built from our FMI 3.0 FMUs (the scalar-only view, whose variable
-names are the scenario's) and run by FMPy's simulate_fmu: what a user who builds a
-system in FMPy gets (issue 45).
+shipped in the wheel), built from our FMI 3.0 PID and plant (the scalar-only view, whose
+variable names are the scenario's) and run by FMPy's simulate_fmu: what a user who builds
+a system in FMPy gets (issue 45). The regulation scenario's planner is constant (a plan
+from a pose to the same pose; tested below), so the PID's setpoint inputs hold its start
+values.
 
 The container steps every component from t_k with the inputs it holds, then transfers
 the connections one after another in the configuration's order (FMPy's
@@ -59,10 +61,30 @@ def text(value) -> str:
     return repr(value) if isinstance(value, float) else str(value)
 
 
+def pid_and_plant(scenario):
+    """The scenario without its planner, whose outputs are constant in the regulation
+    scenario (its start and end poses are equal, its rates zero): the PID's setpoint
+    inputs get the planner's start values instead, as start values."""
+    planner = scenario.parameters["planner"]
+    held = {"q": "q0", "qdot": "qdot0"}
+    setpoints = {}
+    for c in scenario.connections:
+        if c.source.alias == "planner":
+            name, index = c.source.variable.split("[")
+            setpoints[c.target.variable] = planner[f"{held[name]}[{index}"]
+    kept = ("pid", "plant")
+    parameters = {alias: dict(scenario.parameters[alias]) for alias in kept}
+    parameters["pid"].update(setpoints)
+    return dataclasses.replace(
+        scenario, fmus={alias: scenario.fmus[alias] for alias in kept}, order=list(kept),
+        parameters=parameters,
+        connections=[c for c in scenario.connections if c.source.alias in kept])
+
+
 def configuration(scenario, fmi_version: str, folder: Path) -> Configuration:
     """The container of the scenario's FMUs (from `folder`), its connections, its
-    parameters as container parameters with their values as start values, and the
-    plant's angles and rates as outputs."""
+    parameters (and held inputs) as container parameters (inputs) with their values as
+    start values, and the plant's angles and rates as outputs."""
     components, variables = {}, {}
     for alias in scenario.order:
         filename = folder / scenario.fmus[alias].name
@@ -83,10 +105,11 @@ def configuration(scenario, fmi_version: str, folder: Path) -> Configuration:
     for alias, assignments in scenario.parameters.items():
         for name, value in assignments.items():
             inner = variables[alias][name]
+            given = ("input", "continuous", None) if inner.causality == "input" else (
+                "parameter", inner.variability, "exact")
             v = ModelVariable(name=f"{alias}.{name}", type=FMI3_TYPES[inner.type]
                               if fmi_version.startswith("3") else inner.type,
-                              causality="parameter", variability=inner.variability,
-                              initial="exact")
+                              causality=given[0], variability=given[1], initial=given[2])
             v.start = text(value)
             md.modelVariables.append(v)
             mappings[v] = [(components[alias], inner)]
@@ -115,8 +138,12 @@ def build(scenario, fmi_version: str, folder: Path, out: Path) -> Path:
     return filename
 
 
-def sequential_loop(scenario, grid) -> np.ndarray:
-    """Rows (time, *SIGNALS) at t_0 .. t_N of the container's scheme on FMPy's FMI 2.0
+def run_alone_rows(scenario, signals) -> np.ndarray:
+    return sequential_loop(scenario, ecos_grid(scenario.steps, scenario.step_size), signals)
+
+
+def sequential_loop(scenario, grid, signals=SIGNALS) -> np.ndarray:
+    """Rows (time, *signals) at t_0 .. t_N of the container's scheme on FMPy's FMI 2.0
     API: every FMU steps, then each connection is transferred in turn."""
     slaves = {alias: Slave(alias, path) for alias, path in scenario.fmus.items()}
     try:
@@ -125,8 +152,8 @@ def sequential_loop(scenario, grid) -> np.ndarray:
                  for c in scenario.connections]
         initialize(scenario, slaves, links)
         probes = [(slaves[alias], slaves[alias].vr(name))
-                  for alias, name in (s.split(".", 1) for s in SIGNALS)]
-        rows = np.empty((len(grid) + 1, len(SIGNALS) + 1))
+                  for alias, name in (s.split(".", 1) for s in signals)]
+        rows = np.empty((len(grid) + 1, len(signals) + 1))
         rows[0] = [scenario.start_time] + read(probes)
         for k, (t, h) in enumerate(grid):
             for slave in slaves.values():
@@ -150,8 +177,21 @@ def regulation():
     return load_scenario(ROOT / "scenarios" / "regulation.toml")
 
 
+def test_the_planner_is_constant_in_the_regulation_scenario(regulation):
+    # Why the container may hold PID and plant only: the planner's outputs equal its
+    # start values at every step (its plan from a pose to the same pose).
+    planner = dataclasses.replace(regulation, fmus={"planner": regulation.fmus["planner"]},
+                                  order=["planner"], connections=[],
+                                  parameters={"planner": regulation.parameters["planner"]})
+    names = [f"planner.{n}[{i}]" for n in ("q", "qdot") for i in (1, 2, 3)]
+    rows = run_alone_rows(planner, names)
+    start = regulation.parameters["planner"]
+    expected = [start[f"{n}0[{i}]"] for n in ("q", "qdot") for i in (1, 2, 3)]
+    assert (rows[:, 1:] == np.array(expected)).all()
+
+
 def test_fmi3_container_equals_its_scheme_and_the_master(regulation, tmp_path):
-    scenario = regulation
+    scenario = pid_and_plant(regulation)
     container = build(scenario, "3.0", DIST / "fmi3-scalar", tmp_path)
     result = simulate_fmu(str(container), stop_time=scenario.stop_time,
                           step_size=scenario.step_size, output=SIGNALS)
@@ -165,9 +205,9 @@ def test_fmi3_container_equals_its_scheme_and_the_master(regulation, tmp_path):
     # Our master, within the coupling tolerance.
     half = dataclasses.replace(scenario, step_size=scenario.step_size / 2)
     loop_half = sequential_loop(half, ecos_grid(half.steps, half.step_size))
-    deviation_half = np.abs(loop_half[:, 1:] - master_rows(half)[:, 1:]).max(axis=0)
-    tolerance = 2.5 * deviation_half
-    deviation = np.abs(rows[:, 1:] - master_rows(scenario)[:, 1:]).max(axis=0)
+    master_half = master_rows(dataclasses.replace(regulation, step_size=half.step_size))
+    tolerance = 2.5 * np.abs(loop_half[:, 1:] - master_half[:, 1:]).max(axis=0)
+    deviation = np.abs(rows[:, 1:] - master_rows(regulation)[:, 1:]).max(axis=0)
     for name, d, tol in zip(SIGNALS, deviation, tolerance):
         assert d <= tol, f"{name}: {d:.3g} > {tol:.3g}"
     # The coupling is felt and shrinks as a first-order error does.
@@ -191,7 +231,7 @@ def test_fmi2_container_fails(regulation, tmp_path):
     def logger(_component, _name, _status, _category, message):
         lines.append(message.decode())
 
-    container = build(regulation, "2.0", DIST, tmp_path)
+    container = build(pid_and_plant(regulation), "2.0", DIST, tmp_path)
     with pytest.raises(Exception, match="Failed to instantiate"):
         simulate_fmu(str(container), stop_time=0.01, step_size=regulation.step_size,
                      output=SIGNALS, logger=logger)

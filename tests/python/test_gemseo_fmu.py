@@ -133,3 +133,16 @@ def test_fmi2_boolean_parameters_need_fmi3(tmp_path):
     request = system_request(DIST, rate_inputs=True)
     with pytest.raises(AssertionError, match="could not convert string to float"):
         gemseo(request, tmp_path)
+
+
+def test_fmi3_arrays_need_the_scalar_variant(tmp_path):
+    # gemseo-fmu 3.1.1 leaves the start values of an FMI 3.0 array as strings: the
+    # plant's theta0 (array of 3) as an input fails at the first set ("must be real
+    # number, not numpy.str_"). Workaround: dist/fmi3-scalar, whose theta0[1] is a
+    # scalar (the DOE above).
+    request = {"study": "run", "fmu": str(DIST / "fmi3" / "Pss3Plant.fmu"),
+               "inputs": ["theta0"], "outputs": ["theta"], "final_time": 2 * STEP,
+               "time_step": STEP}
+    with pytest.raises(AssertionError, match="must be real number, not numpy.str_"):
+        gemseo(request, tmp_path)
+

@@ -7,6 +7,7 @@
 //! `y` as one array of 2, the scalar view `y[1]`, `y[2]`.
 
 use robofmu_fmi::core::instance::{Index, Instance};
+use robofmu_fmi::core::value_check::Value;
 use robofmu_fmi::core::{DefaultExperiment, Log, Model, ModelInfo, StepOutcome, Variability};
 use robofmu_fmi::fmi3::instance::Instance as Instance3;
 use robofmu_fmi::fmi3::logging::{Callback, Logger};
@@ -89,7 +90,7 @@ fn instances_of_a_declared_model_share_one_index_and_keep_their_own_values() {
     assert!(Arc::ptr_eq(a.index(), b.index()));
     let references: Vec<u32> = a.table().iter().map(|v| v.value_reference).collect();
     assert_eq!(references, [10, 11, 12]);
-    a.set_real(10, 3.0).unwrap();
+    a.write(10, Value::Real(3.0)).unwrap();
     a.prepare_read([12]).unwrap();
     assert_eq!(a.get_real(12).unwrap(), 6.0);
     assert_eq!(b.get_real(12).unwrap(), 4.0, "start value k = 2, element 2");
