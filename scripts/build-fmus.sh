@@ -69,8 +69,18 @@ done
 build_platform() {
     if [[ "$tuple" == *-linux ]]; then
         # scripts/toolchain/finalize.c: the unload-time __cxa_finalize that gcc's C
-        # runtime objects give a shared library and zig's link does not.
-        env "CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_RUSTFLAGS=-C link-arg=$PWD/scripts/toolchain/finalize.c" \
+        # runtime objects give a shared library and zig's link does not. The stub
+        # libgcc_s (scripts/toolchain/libgcc_s.c, built here by zig for the target):
+        # the binaries use the process's unwinder, libgcc_s.so.1, instead of a copy
+        # of LLVM's libunwind that zig would link in (the stub is linked first, so
+        # nothing of that copy is needed).
+        local stub="$PWD/$tools/libgcc_s/$triple"
+        mkdir -p "$stub"
+        "$tools/venv/bin/python" -m ziglang cc -target "${target/unknown-linux-gnu/linux-gnu}" \
+            -shared -nostdlib -o "$stub/libgcc_s_stub.so" scripts/toolchain/libgcc_s.c \
+            -Wl,--version-script=scripts/toolchain/libgcc_s.map -Wl,-soname,libgcc_s.so.1 ||
+            return 1
+        env "CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_RUSTFLAGS=-C link-arg=$PWD/scripts/toolchain/finalize.c -L native=$stub -l dylib=gcc_s_stub" \
             "${build[@]}" --profile fmu --target "$target" "${packages[@]}" "${host[@]}"
         return
     fi

@@ -11,6 +11,8 @@ packages=()
 [[ -x /usr/lib/wine/wine64 ]] || command -v wine64 >/dev/null 2>&1 || packages+=(wine64)
 command -v qemu-aarch64 >/dev/null 2>&1 || packages+=(qemu-user)
 [[ -e /usr/aarch64-linux-gnu/lib/ld-linux-aarch64.so.1 ]] || packages+=(libc6-arm64-cross)
+# The aarch64 FMUs need libgcc_s.so.1, the unwinder of the process (issue 42).
+[[ -e /usr/aarch64-linux-gnu/lib/libgcc_s.so.1 ]] || packages+=(libgcc-s1-arm64-cross)
 command -v x86_64-w64-mingw32-gcc >/dev/null 2>&1 || packages+=(gcc-mingw-w64-x86-64)
 tools="$(rustc --print sysroot)/lib/rustlib/$(rustc -vV | sed -n 's/^host: //p')/bin"
 if [[ ! -x "$tools/llvm-objdump" ]] && ! command -v llvm-objdump >/dev/null 2>&1 &&

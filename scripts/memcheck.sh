@@ -8,8 +8,10 @@
 # binary, instantiated with the scalar token). Then the issue 20 probes
 # (robofmu-hostile-reentry): loggers that free, reset, set states and re-enter, reused
 # handles, a second thread on a busy instance, forged states, both standards, every
-# FMU. Fails on any memcheck error and on any definite leak. Installs valgrind from
-# Debian when it is missing and this runs as root (CI); otherwise asks for it.
+# FMU; and the C and C++ hosts that leave the logger with longjmp (tests/leave.rs in
+# crates/hostile). Fails on any memcheck error and on any definite leak. Installs
+# valgrind from Debian when it is missing and this runs as root (CI); otherwise asks
+# for it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v valgrind >/dev/null 2>&1; then
@@ -27,3 +29,5 @@ for program in robofmu-hostile-lifecycle robofmu-hostile-reentry; do
     valgrind --error-exitcode=1 --errors-for-leak-kinds=definite --leak-check=full \
         --show-leak-kinds=definite -q "target/release/$program"
 done
+# Hosts that leave the logger with longjmp (issue 42): the instance freed, no leak.
+ROBOFMU_LEAVE_VALGRIND=1 cargo test --release -p robofmu-hostile --test leave

@@ -61,8 +61,10 @@ WINDOWS_DLLS = {
     "ws2_32.dll", "msvcrt.dll", "api-ms-win-core-synch-l1-2-0.dll", "shell32.dll",
     "ole32.dll", "user32.dll", "bcrypt.dll", "secur32.dll",
 }
+# libgcc_s.so.1: the unwinder of the process (every glibc system has it; glibc loads it
+# for pthread_cancel), which the FMUs use instead of a copy of their own (issue 42).
 GLIBC_LIBRARIES = {"libc.so.6", "libm.so.6", "libdl.so.2", "libpthread.so.0", "librt.so.1",
-                   "ld-linux-x86-64.so.2", "ld-linux-aarch64.so.1"}
+                   "ld-linux-x86-64.so.2", "ld-linux-aarch64.so.1", "libgcc_s.so.1"}
 
 
 def status():

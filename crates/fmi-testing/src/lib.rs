@@ -32,7 +32,7 @@ extern "C" fn capture(
 }
 
 /// fmi2CallbackAllocateMemory of the host: zeroed memory from the C heap.
-pub extern "C" fn allocate(count: usize, size: usize) -> *mut c_void {
+pub extern "C-unwind" fn allocate(count: usize, size: usize) -> *mut c_void {
     // SAFETY: calloc accepts any sizes and returns null on failure.
     unsafe { libc::calloc(count, size) }
 }
@@ -41,7 +41,7 @@ pub extern "C" fn allocate(count: usize, size: usize) -> *mut c_void {
 ///
 /// # Safety
 /// `pointer` is null or came from `allocate` and was not freed yet.
-pub unsafe extern "C" fn free(pointer: *mut c_void) {
+pub unsafe extern "C-unwind" fn free(pointer: *mut c_void) {
     // SAFETY: by the contract above.
     unsafe { libc::free(pointer) }
 }

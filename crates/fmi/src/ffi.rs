@@ -101,6 +101,33 @@ pub fn c_string(message: &str) -> CString {
     CString::new(message.replace('\0', " ")).unwrap_or_default()
 }
 
+/// Calls `f` with `text` as a NUL-terminated C string, NUL bytes replaced by spaces
+/// and, with `double_percent`, every '%' doubled; built in a buffer on the stack when
+/// it fits (a log message: no allocation, and nothing to leak when a callback is left
+/// with longjmp), on the heap otherwise.
+pub fn with_c_text<R>(text: &str, double_percent: bool, f: impl FnOnce(*const c_char) -> R) -> R {
+    let mut buffer = [0u8; 512];
+    let mut n = 0;
+    for &b in text.as_bytes() {
+        let out: &[u8] = match b {
+            0 => b" ",
+            b'%' if double_percent => b"%%",
+            _ => std::slice::from_ref(&b),
+        };
+        if n + out.len() >= buffer.len() {
+            let escaped = if double_percent {
+                text.replace('%', "%%")
+            } else {
+                text.to_string()
+            };
+            return f(c_string(&escaped).as_ptr());
+        }
+        buffer[n..n + out.len()].copy_from_slice(out);
+        n += out.len();
+    }
+    f(buffer.as_ptr().cast())
+}
+
 /// Whether `n` elements of `T` can exist at all (a slice may span at most isize::MAX
 /// bytes): a larger count from the host is refused before any slice is formed.
 fn fits_in_memory<T>(n: usize) -> bool {
@@ -129,5 +156,22 @@ mod tests {
         );
         assert!(fits_in_memory::<f64>((isize::MAX as usize) / 8));
         assert!(!fits_in_memory::<f64>((isize::MAX as usize) / 8 + 1));
+    }
+
+    #[test]
+    fn c_text_is_the_c_string_with_percent_signs_doubled_on_the_stack_or_the_heap() {
+        // Expected: the same bytes as c_string (and, doubled, as replace('%', "%%"))
+        // for a short text (stack buffer) and one longer than the buffer (heap).
+        let read = |p: *const c_char| unsafe { CStr::from_ptr(p) }.to_str().unwrap().to_string();
+        assert_eq!(with_c_text("50% of\0x", true, read), "50%% of x");
+        assert_eq!(with_c_text("50% of\0x", false, read), "50% of x");
+        let long = "%".repeat(300) + "\0" + &"y".repeat(300);
+        let expected = "%".repeat(600) + " " + &"y".repeat(300);
+        assert_eq!(with_c_text(&long, true, read), expected);
+        assert_eq!(
+            with_c_text(&long, false, read),
+            c_string(&long).to_str().unwrap()
+        );
+        assert_eq!(with_c_text("", true, read), "");
     }
 }

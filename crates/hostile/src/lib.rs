@@ -29,6 +29,7 @@ pub mod isolate;
 pub mod lifecycle;
 pub mod matrix;
 pub mod plant_hard;
+pub mod realtime;
 pub mod reentry;
 pub mod rng;
 pub mod sequence_run;

@@ -19,7 +19,7 @@ use std::sync::Mutex;
 /// Log lines received: (status, message).
 type Lines = Mutex<Vec<(Fmi3Status, String)>>;
 
-unsafe extern "C" fn capture(
+unsafe extern "C-unwind" fn capture(
     env: Fmi3InstanceEnvironment,
     status: Fmi3Status,
     _category: Fmi3String,

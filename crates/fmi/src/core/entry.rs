@@ -3,6 +3,7 @@
 //! standard's status ([`with_instance`]); creating and freeing an instance; and the
 //! bodies of the functions that FMI 2.0 and FMI 3.0 define alike.
 
+use super::callback;
 use super::frontend::{FmuInstance, Frontend, LoggerOf, StatusCode};
 use super::handles::{self, HandleKind};
 use super::instance::Snapshot;
@@ -35,15 +36,27 @@ pub unsafe fn with_instance<F: Frontend, M: Model>(
     body: impl FnOnce(&mut FmuInstance<F, M>) -> Result<F::Status, String>,
 ) -> F::Status {
     let token = handle as usize;
-    let (instance, failed) = match handles::enter::<FmuInstance<F, M>>(token) {
-        Ok(entered) => (entered.address as *mut FmuInstance<F, M>, entered.failed),
+    let entered = match handles::enter::<FmuInstance<F, M>>(token, callback::stack_mark()) {
+        Ok(entered) => entered,
         Err(refused) => return refuse::<F>(function, refused),
     };
-    if failed {
-        // SAFETY: as below; a call that could not touch it left the Error state.
+    let instance = entered.address as *mut FmuInstance<F, M>;
+    if entered.failed || entered.abandoned {
+        // SAFETY: as below; a call that could not touch it left the Error state, and
+        // so does a call that never returned (its changes may be half done).
         let inst = unsafe { &mut *instance };
         if inst.mode != F::FATAL {
             inst.mode = F::ERROR;
+        }
+        if entered.abandoned {
+            inst.log.status(
+                F::Status::ERROR,
+                &format!(
+                    "{function}: the previous call on this instance never returned (a \
+                     callback left it with longjmp): the instance is in the Error state; \
+                     Reset or FreeInstance it"
+                ),
+            );
         }
     }
     // SAFETY: a live instance, busy with this call: nothing else reaches it.
@@ -243,7 +256,8 @@ pub fn instantiate<F: Frontend, M: Model>(
 /// # Safety
 /// Every live handle of type `FmuInstance<F, M>` must come from [`instantiate`].
 pub unsafe fn free_instance<F: Frontend, M: Model>(handle: *mut c_void) {
-    if let Some(freed) = handles::free_instance::<FmuInstance<F, M>>(handle as usize) {
+    let mark = callback::stack_mark();
+    if let Some(freed) = handles::free_instance::<FmuInstance<F, M>>(handle as usize, mark) {
         // SAFETY: by the contract above; unregistered, so freed once.
         unsafe { free_boxes::<F, M>(freed) }
     }

@@ -19,6 +19,12 @@
 //! is refused, and a FreeInstance is deferred until the running call leaves. The
 //! registry is static data of the loaded library; it releases its heap memory when
 //! the last handle is freed, so nothing of it survives unloading.
+//!
+//! `fork()` at any moment (Linux, glibc): the registry's lock is taken by a fork
+//! handler before the process is copied and released in the parent and the child
+//! after (`__register_atfork` under this library's `__dso_handle`, so glibc removes
+//! the handlers when the library is unloaded: `__cxa_finalize` at dlclose), so the
+//! child never finds it held by a thread that does not exist there.
 
 use std::any::TypeId;
 use std::collections::hash_map::RandomState;
@@ -141,6 +147,66 @@ fn live() -> MutexGuard<'static, Registry> {
     LIVE.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
+/// The fork handlers of the registry (glibc).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+mod fork {
+    use super::{Registry, live};
+    use std::cell::UnsafeCell;
+    use std::ffi::c_void;
+    use std::sync::MutexGuard;
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    unsafe extern "C" {
+        /// This library's handle (crtbegin), under which glibc keeps the handlers
+        /// and removes them when the library is unloaded.
+        static __dso_handle: c_void;
+        /// glibc's registration behind pthread_atfork (which passes the caller's
+        /// `__dso_handle` the same way), exported since glibc 2.3.2.
+        fn __register_atfork(
+            prepare: Option<extern "C" fn()>,
+            parent: Option<extern "C" fn()>,
+            child: Option<extern "C" fn()>,
+            dso: *const c_void,
+        ) -> libc::c_int;
+    }
+
+    /// The registry's lock, held by the forking thread from `prepare` to `release`.
+    struct Held(UnsafeCell<Option<MutexGuard<'static, Registry>>>);
+    // SAFETY: only touched by the thread that holds the registry's lock.
+    unsafe impl Sync for Held {}
+    static HELD: Held = Held(UnsafeCell::new(None));
+
+    extern "C" fn prepare() {
+        let guard = live();
+        // SAFETY: this thread holds the lock, so no other thread touches HELD.
+        unsafe { *HELD.0.get() = Some(guard) };
+    }
+
+    /// After fork, in the parent and in the child (whose only thread is the copy of
+    /// the forking one): the lock released.
+    extern "C" fn release() {
+        // SAFETY: as in `prepare`: the forking thread still holds the lock.
+        drop(unsafe { (*HELD.0.get()).take() });
+    }
+
+    /// Registers the handlers once per loaded copy of the library.
+    pub fn guard_once() {
+        static DONE: AtomicBool = AtomicBool::new(false);
+        if !DONE.swap(true, Ordering::AcqRel) {
+            // SAFETY: functions of this library under its own handle (removed at its
+            // unload); glibc calls them around every fork.
+            unsafe {
+                __register_atfork(
+                    Some(prepare),
+                    Some(release),
+                    Some(release),
+                    &raw const __dso_handle,
+                )
+            };
+        }
+    }
+}
+
 /// The index of `handle` in the sorted list.
 fn find(list: &[Entry], handle: usize) -> Option<usize> {
     list.binary_search_by_key(&handle, |e| e.handle).ok()
@@ -165,6 +231,9 @@ pub fn register<M: 'static>(
     owner: Option<usize>,
     reporter: Option<Reporter>,
 ) -> Option<usize> {
+    // Before the lock: glibc runs the fork handlers under a lock of its own.
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    fork::guard_once();
     let mut registry = live();
     if registry.key == 0 {
         registry.key = draw_key();
@@ -252,11 +321,24 @@ pub struct Entered {
     pub address: usize,
     /// The instance is to be put in the Error state before the call runs ([`fail`]).
     pub failed: bool,
+    /// The earlier call of this thread on the instance never returned: a callback
+    /// left it with longjmp ([`abandoned`]). The instance is to be put in the Error
+    /// state, with a log line.
+    pub abandoned: bool,
 }
 
-/// Marks the instance `handle` of model `M` busy with a call of this thread and
-/// returns its address.
-pub fn enter<M: 'static>(handle: usize) -> Result<Entered, Refused> {
+/// Whether the call of this thread that holds an instance busy was abandoned: this
+/// thread calls again (`mark`: a [`stack_mark`](super::callback::stack_mark) of the
+/// new call) from outside every host callback it runs, so the earlier call is no
+/// longer on its stack (a callback left it with longjmp). A call from inside a
+/// callback is re-entrant instead.
+fn abandoned(busy: Option<usize>, me: usize, mark: usize) -> bool {
+    busy == Some(me) && !super::callback::inside_callback(mark)
+}
+
+/// Marks the instance `handle` of model `M` busy with a call of this thread (`mark`:
+/// a stack address of that call) and returns its address.
+pub fn enter<M: 'static>(handle: usize, mark: usize) -> Result<Entered, Refused> {
     let mut registry = live();
     let list = &mut registry.entries;
     let i = find_is::<M>(list, handle, HandleKind::Instance).ok_or(Refused::Unknown)?;
@@ -265,12 +347,17 @@ pub fn enter<M: 'static>(handle: usize) -> Result<Entered, Refused> {
         return Err(Refused::Unknown);
     }
     let me = this_thread();
+    let abandoned = abandoned(entry.busy, me, mark);
+    if abandoned {
+        entry.busy = None;
+    }
     match entry.busy {
         None => {
             entry.busy = Some(me);
             Ok(Entered {
                 address: entry.address,
                 failed: std::mem::take(&mut entry.failed),
+                abandoned,
             })
         }
         Some(thread) => Err(Refused::Busy {
@@ -322,13 +409,19 @@ pub fn leave(handle: usize) -> Option<Freed> {
     Some(Freed { instance, states })
 }
 
-/// FreeInstance of `handle` (model `M`): Some when it can be freed now (it is
-/// unregistered with its states); None when it is not a live instance, or busy, in
-/// which case the running call frees it when it leaves ([`leave`]).
-pub fn free_instance<M: 'static>(handle: usize) -> Option<Freed> {
+/// FreeInstance of `handle` (model `M`; `mark`: a stack address of the call): Some
+/// when it can be freed now (it is unregistered with its states), also when the call
+/// of this thread that held it busy was abandoned ([`abandoned`]); None when it is
+/// not a live instance, or busy, in which case the running call frees it when it
+/// leaves ([`leave`]).
+pub fn free_instance<M: 'static>(handle: usize, mark: usize) -> Option<Freed> {
     let mut registry = live();
     let list = &mut registry.entries;
     let i = find_is::<M>(list, handle, HandleKind::Instance)?;
+    if abandoned(list[i].busy, this_thread(), mark) {
+        list[i].busy = None;
+        list[i].free_requested = false;
+    }
     if list[i].free_requested {
         return None;
     }
@@ -359,7 +452,7 @@ mod tests {
         assert!(!is_live::<B>(a, HandleKind::Instance));
         assert!(!is_live::<A>(a, HandleKind::State));
         assert!(!is_live::<A>(0x1000, HandleKind::Instance));
-        let freed = free_instance::<A>(a).expect("not busy: freed now");
+        let freed = free_instance::<A>(a, 0).expect("not busy: freed now");
         assert_eq!((freed.instance, freed.states), (0x1000, vec![0x2000]));
         assert!(!is_live::<A>(s, HandleKind::State));
         let again = register::<A>(0x1000, HandleKind::Instance, None, None).unwrap();
@@ -422,29 +515,39 @@ mod tests {
         let e = register::<E>(0x6000, HandleKind::Instance, None, None).unwrap();
         fail::<E>(e);
         fail::<A>(e); // another model's type: not this instance
-        assert!(enter::<E>(e).ok().unwrap().failed);
+        assert!(enter::<E>(e, 0).ok().unwrap().failed);
         assert!(leave(e).is_none());
-        assert!(!enter::<E>(e).ok().unwrap().failed);
+        assert!(!enter::<E>(e, 0).ok().unwrap().failed);
         assert!(leave(e).is_none());
-        assert!(free_instance::<E>(e).is_some());
+        assert!(free_instance::<E>(e, 0).is_some());
     }
 
     #[test]
     fn a_busy_instance_refuses_a_second_call_and_defers_its_free() {
-        // Expected: enter marks the instance busy; a second enter from this thread is
-        // re-entrant, from another thread not; a free while busy happens at leave.
+        // Expected: enter marks the instance busy; a second enter from a callback of
+        // this thread is re-entrant, from another thread not; a free while busy
+        // happens at leave.
+        use crate::core::callback::{host, stack_mark};
         struct C;
         let c = register::<C>(0x3000, HandleKind::Instance, None, None).unwrap();
-        assert_eq!(enter::<C>(c).ok().map(|e| e.address), Some(0x3000));
+        assert_eq!(
+            enter::<C>(c, stack_mark()).ok().map(|e| e.address),
+            Some(0x3000)
+        );
+        // A callback is a call through the host's function pointer: a frame below
+        // `host`'s (black_box keeps the call from being inlined into it).
+        fn in_callback<R>(f: fn(usize) -> R, c: usize) -> R {
+            host("logger", || std::hint::black_box(f)(c))
+        }
         assert!(matches!(
-            enter::<C>(c),
+            in_callback(|c| enter::<C>(c, stack_mark()), c),
             Err(Refused::Busy {
                 reentrant: true,
                 ..
             })
         ));
         std::thread::scope(|scope| {
-            let other = scope.spawn(|| enter::<C>(c)).join().unwrap();
+            let other = scope.spawn(|| enter::<C>(c, 0)).join().unwrap();
             assert!(matches!(
                 other,
                 Err(Refused::Busy {
@@ -453,12 +556,41 @@ mod tests {
                 })
             ));
         });
-        assert!(free_instance::<C>(c).is_none());
+        assert!(in_callback(|c| free_instance::<C>(c, stack_mark()), c).is_none());
         assert!(free_requested(c));
-        assert!(matches!(enter::<C>(c), Err(Refused::Unknown)));
+        assert!(matches!(enter::<C>(c, 0), Err(Refused::Unknown)));
         let freed = leave(c).expect("freed at leave");
         assert_eq!(freed.instance, 0x3000);
         assert!(!is_live::<C>(c, HandleKind::Instance));
+    }
+
+    #[test]
+    fn a_call_abandoned_by_its_thread_lets_the_next_call_of_that_thread_in() {
+        // Expected: an instance busy with a call of this thread that no callback of
+        // this thread is running any more (a longjmp out of the callback) is let in
+        // by the next call of the thread, marked abandoned (the Error state follows),
+        // and freed at once by its FreeInstance; another thread is still refused.
+        use crate::core::callback::stack_mark;
+        struct F;
+        let f = register::<F>(0x7000, HandleKind::Instance, None, None).unwrap();
+        assert!(!enter::<F>(f, stack_mark()).ok().unwrap().abandoned);
+        std::thread::scope(|scope| {
+            let other = scope.spawn(|| enter::<F>(f, stack_mark())).join().unwrap();
+            assert!(matches!(
+                other,
+                Err(Refused::Busy {
+                    reentrant: false,
+                    ..
+                })
+            ));
+        });
+        let again = enter::<F>(f, stack_mark()).ok().expect("let in");
+        assert!(again.abandoned && !again.failed);
+        assert_eq!(again.address, 0x7000);
+        let freed = free_instance::<F>(f, stack_mark()).expect("freed now");
+        assert_eq!(freed.instance, 0x7000);
+        assert!(leave(f).is_none());
+        assert!(!is_live::<F>(f, HandleKind::Instance));
     }
 
     #[test]

@@ -14,6 +14,7 @@
 //! they share, with [`fmu_state_calls`] and [`model_exchange_calls`].
 
 pub mod attributes;
+pub mod callback;
 pub mod declare;
 pub mod directional;
 pub mod entry;

@@ -8,6 +8,10 @@
 //! calls) as its `Library` implementation (`core/instance.rs`): no type-erased
 //! table, no lookup by type.
 //!
+//! No lock: the cell is an atomic pointer, so a `fork()` while another thread
+//! instantiates leaves the child nothing to wait for (two first instantiations at
+//! once may both build the table; one is kept, the other dropped).
+//!
 //! Nothing here outlives the library: a cell that is filled registers its release with
 //! `__cxa_atexit` under this library's `__dso_handle`, which the C runtime calls when
 //! the library is unloaded (dlclose) or the process exits, so a dlopen / dlclose cycle
@@ -15,11 +19,13 @@
 //! alive at that point keeps its own reference (its table is freed with it).
 
 use std::ffi::c_void;
-use std::sync::{Arc, Mutex, PoisonError};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicPtr, Ordering};
 
 /// One table of this library, built the first time it is asked for and dropped when
-/// the library is unloaded.
-pub struct Shared<T>(Mutex<Option<Arc<T>>>);
+/// the library is unloaded: null, or a pointer from `Arc::into_raw` that holds one
+/// reference.
+pub struct Shared<T>(AtomicPtr<T>);
 
 impl<T> Default for Shared<T> {
     fn default() -> Self {
@@ -39,25 +45,55 @@ unsafe extern "C" {
 
 impl<T> Shared<T> {
     pub const fn new() -> Self {
-        Shared(Mutex::new(None))
+        Shared(AtomicPtr::new(std::ptr::null_mut()))
     }
 
     /// The table, built by `build` the first time it is asked for in this library (an
-    /// error is returned, not kept: the next call builds again). Built under the lock,
-    /// so concurrent first instantiations build it once.
+    /// error is returned, not kept: the next call builds again).
     pub fn get(&'static self, build: impl FnOnce() -> Result<T, String>) -> Result<Arc<T>, String> {
-        let mut slot = self.0.lock().unwrap_or_else(PoisonError::into_inner);
-        if let Some(table) = &*slot {
-            return Ok(Arc::clone(table));
+        let kept = self.0.load(Ordering::Acquire);
+        if !kept.is_null() {
+            // SAFETY: a pointer from Arc::into_raw whose reference the cell holds until
+            // the library is unloaded (no call runs then).
+            return Ok(unsafe { clone_raw(kept) });
         }
         let built = Arc::new(build()?);
-        *slot = Some(Arc::clone(&built));
-        let arg = self as *const Self as *mut c_void;
-        // SAFETY: `release::<T>` is a function of this library, registered under this
-        // library's handle, so the C runtime calls it before unmapping the library;
-        // `arg` is this `static` cell, alive as long as the library is.
-        unsafe { __cxa_atexit(release::<T>, arg, &raw const __dso_handle) };
-        Ok(built)
+        let raw = Arc::into_raw(Arc::clone(&built)) as *mut T;
+        let null = std::ptr::null_mut();
+        match self
+            .0
+            .compare_exchange(null, raw, Ordering::AcqRel, Ordering::Acquire)
+        {
+            Ok(_) => {
+                let arg = self as *const Self as *mut c_void;
+                // SAFETY: `release::<T>` is a function of this library, registered under
+                // this library's handle, so the C runtime calls it before unmapping the
+                // library; `arg` is this `static` cell, alive as long as the library is.
+                unsafe { __cxa_atexit(release::<T>, arg, &raw const __dso_handle) };
+                Ok(built)
+            }
+            Err(other) => {
+                // Another thread kept its table first: use that one, drop this one.
+                // SAFETY: `raw` came from Arc::into_raw above and was not published;
+                // `other` is the kept pointer, as above.
+                unsafe {
+                    drop(Arc::from_raw(raw));
+                    Ok(clone_raw(other))
+                }
+            }
+        }
+    }
+}
+
+/// A new reference to the table behind `raw`.
+///
+/// # Safety
+/// `raw` must come from `Arc::into_raw` and its reference must still be held.
+unsafe fn clone_raw<T>(raw: *mut T) -> Arc<T> {
+    // SAFETY: by the contract above.
+    unsafe {
+        Arc::increment_strong_count(raw);
+        Arc::from_raw(raw)
     }
 }
 
@@ -65,6 +101,9 @@ impl<T> Shared<T> {
 extern "C" fn release<T>(cell: *mut c_void) {
     // SAFETY: registered by `Shared::get` with its own `'static` address.
     let cell = unsafe { &*(cell as *const Shared<T>) };
-    let table = cell.0.lock().unwrap_or_else(PoisonError::into_inner).take();
-    drop(table);
+    let raw = cell.0.swap(std::ptr::null_mut(), Ordering::AcqRel);
+    if !raw.is_null() {
+        // SAFETY: the reference the cell held, from Arc::into_raw.
+        drop(unsafe { Arc::from_raw(raw) });
+    }
 }

@@ -6,8 +6,9 @@
 //! format arguments) shows them as they are.
 
 use super::types::{Fmi2CallbackLogger, Fmi2ComponentEnvironment, Fmi2Status};
+use crate::core::callback;
 use crate::core::logging::{self, LogCategory, LogSink};
-use crate::ffi::c_string;
+use crate::ffi::with_c_text;
 use std::ffi::CString;
 
 /// Categories the layer itself logs under; models add their own after these.
@@ -33,37 +34,37 @@ impl LogSink for Callback {
     type Status = Fmi2Status;
 
     fn emit(&self, status: Fmi2Status, category: &str, message: &str) {
-        let text = escape_message(message);
-        let category = c_string(category);
-        // SAFETY: the callback was checked non-null at instantiation; all strings are
-        // NUL-terminated and live until the call returns; no variadic arguments follow
-        // because the message contains no conversion specification.
-        unsafe {
-            (self.function)(
-                self.environment,
-                self.instance_name.as_ptr(),
-                status,
-                category.as_ptr(),
-                text.as_ptr(),
-            );
-        }
+        with_c_text(message, true, |text| {
+            with_c_text(category, false, |category| {
+                // SAFETY: the callback was checked non-null at instantiation; all
+                // strings are NUL-terminated and live until the call returns; no
+                // variadic arguments follow because the message contains no
+                // conversion specification.
+                callback::host("logger", || unsafe {
+                    (self.function)(
+                        self.environment,
+                        self.instance_name.as_ptr(),
+                        status,
+                        category,
+                        text,
+                    );
+                })
+            })
+        });
     }
-}
-
-/// The message as a C string that printf prints verbatim: '%' doubled, NUL removed.
-pub fn escape_message(message: &str) -> CString {
-    c_string(&message.replace('%', "%%"))
 }
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::ffi::with_c_text;
+    use std::ffi::CStr;
 
     #[test]
     fn percent_signs_are_doubled_and_nul_bytes_removed() {
-        assert_eq!(
-            escape_message("50% of %s\0x").to_str().unwrap(),
-            "50%% of %%s x"
-        );
+        // Expected: the message as a printf format that prints it verbatim.
+        let text = with_c_text("50% of %s\0x", true, |p| {
+            unsafe { CStr::from_ptr(p) }.to_str().unwrap().to_string()
+        });
+        assert_eq!(text, "50%% of %%s x");
     }
 }

@@ -37,8 +37,9 @@ pub const FMI2_LAST_SUCCESSFUL_TIME: c_int = 2;
 pub const FMI2_TERMINATED: c_int = 3;
 
 /// fmi2CallbackLogger: variadic in C; we always pass a preformatted message with '%'
-/// escaped, so no format arguments follow.
-pub type Fmi2CallbackLogger = unsafe extern "C" fn(
+/// escaped, so no format arguments follow. The host's callbacks are `C-unwind`: they
+/// may unwind (core::callback says what the FMU does then).
+pub type Fmi2CallbackLogger = unsafe extern "C-unwind" fn(
     Fmi2ComponentEnvironment,
     Fmi2String,
     Fmi2Status,
@@ -46,9 +47,9 @@ pub type Fmi2CallbackLogger = unsafe extern "C" fn(
     Fmi2String,
     ...
 );
-pub type Fmi2CallbackAllocateMemory = unsafe extern "C" fn(usize, usize) -> *mut c_void;
-pub type Fmi2CallbackFreeMemory = unsafe extern "C" fn(*mut c_void);
-pub type Fmi2StepFinished = unsafe extern "C" fn(Fmi2ComponentEnvironment, Fmi2Status);
+pub type Fmi2CallbackAllocateMemory = unsafe extern "C-unwind" fn(usize, usize) -> *mut c_void;
+pub type Fmi2CallbackFreeMemory = unsafe extern "C-unwind" fn(*mut c_void);
+pub type Fmi2StepFinished = unsafe extern "C-unwind" fn(Fmi2ComponentEnvironment, Fmi2Status);
 
 /// fmi2CallbackFunctions. Function pointers are nullable (Option) so that a null
 /// pointer from the host is representable and can be rejected.

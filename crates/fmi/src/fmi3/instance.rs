@@ -51,9 +51,12 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     /// Makes the computed values current for reading `variables`; Ok(Some(reason))
     /// when one of them cannot be evaluated here (the read returns Discard). In
     /// Intermediate Update Mode only variables declared intermediateUpdate are read.
-    pub fn prepare_read(&mut self, variables: &[&Variable3]) -> Result<Option<String>, String> {
+    pub fn prepare_read<'a>(
+        &mut self,
+        variables: impl Iterator<Item = &'a Variable3> + Clone,
+    ) -> Result<Option<String>, String> {
         if self.mode == Mode::IntermediateUpdateMode
-            && let Some(v) = variables.iter().find(|v| !v.intermediate_update::<M>())
+            && let Some(v) = variables.clone().find(|v| !v.intermediate_update::<M>())
         {
             return Err(format!(
                 "\"{}\" is not declared intermediateUpdate: it cannot be read in \
@@ -61,7 +64,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 v.name
             ));
         }
-        let parts = variables.iter().filter_map(|v| match v.source {
+        let parts = variables.clone().filter_map(|v| match v.source {
             Source::Elements {
                 declaration,
                 element,
@@ -72,9 +75,10 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         if let Some(reason) = self.core.prepare_read_declared(parts)? {
             return Ok(Some(reason));
         }
-        let indicators = variables
-            .iter()
-            .any(|v| matches!(v.source, Source::EventIndicators { .. }));
+        let indicators = {
+            let mut variables = variables;
+            variables.any(|v| matches!(v.source, Source::EventIndicators { .. }))
+        };
         Ok(indicators.then(|| self.indicators_unevaluable()).flatten())
     }
 

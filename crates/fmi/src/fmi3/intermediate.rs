@@ -42,7 +42,7 @@ impl IntermediateUpdate {
         let mut at = time;
         // SAFETY: the host's fmi3IntermediateUpdateCallback with its environment; the
         // two outputs live until it returns.
-        unsafe {
+        crate::core::callback::host("intermediateUpdate", || unsafe {
             (self.function)(
                 self.environment,
                 time,
@@ -53,7 +53,7 @@ impl IntermediateUpdate {
                 &mut requested,
                 &mut at,
             )
-        };
+        });
         (can_return_early && requested != FMI3_FALSE).then_some(at.max(time))
     }
 }
@@ -70,7 +70,7 @@ mod tests {
         static OFFERED: Cell<bool> = const { Cell::new(false) };
     }
 
-    unsafe extern "C" fn answer(
+    unsafe extern "C-unwind" fn answer(
         _environment: Fmi3InstanceEnvironment,
         _time: f64,
         _set_requested: Fmi3Boolean,

@@ -5,8 +5,9 @@
 //! verbatim with only NUL bytes replaced.
 
 use super::types::{Fmi3InstanceEnvironment, Fmi3LogMessageCallback, Fmi3Status};
+use crate::core::callback;
 use crate::core::logging::{self, LogCategory, LogSink};
-use crate::ffi::c_string;
+use crate::ffi::with_c_text;
 
 /// Categories the layer itself logs under; models add their own after these.
 pub const LAYER_CATEGORIES: [LogCategory; 6] =
@@ -31,20 +32,24 @@ impl LogSink for Callback {
     type Status = Fmi3Status;
 
     fn emit(&self, status: Fmi3Status, category: &str, message: &str) {
-        let Some(callback) = self.function else {
+        let Some(function) = self.function else {
             return;
         };
-        let text = c_string(message);
-        let category = c_string(category);
-        // SAFETY: the callback is the host's fmi3LogMessageCallback; both strings are
-        // NUL-terminated and live until the call returns.
-        unsafe { callback(self.environment, status, category.as_ptr(), text.as_ptr()) };
+        with_c_text(message, false, |text| {
+            with_c_text(category, false, |category| {
+                // SAFETY: the callback is the host's fmi3LogMessageCallback; both
+                // strings are NUL-terminated and live until the call returns.
+                callback::host("logMessage", || unsafe {
+                    function(self.environment, status, category, text)
+                })
+            })
+        });
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::ffi::c_string;
 
     #[test]
     fn messages_keep_percent_signs_and_lose_nul_bytes() {

@@ -47,24 +47,24 @@ impl Table3 {
     }
 
     /// The variables of `vrs`, checked against `wanted` and the total element count
-    /// `n_values`.
-    pub fn typed_all(
-        &self,
-        vrs: &[u32],
+    /// `n_values`, as an iterator (not collected: a get or set allocates nothing).
+    pub fn typed_all<'a>(
+        &'a self,
+        vrs: &'a [u32],
         wanted: VariableType,
         n_values: usize,
-    ) -> Result<Vec<&Variable3>, String> {
-        let variables = vrs
-            .iter()
-            .map(|&vr| self.typed(vr, wanted))
-            .collect::<Result<Vec<_>, _>>()?;
-        let total: usize = variables.iter().map(|v| v.size()).sum();
+    ) -> Result<impl Iterator<Item = &'a Variable3> + Clone + 'a, String> {
+        let mut total = 0;
+        for &vr in vrs {
+            total += self.typed(vr, wanted)?.size();
+        }
         if total != n_values {
             return Err(format!(
                 "nValues = {n_values}, but the variables have {total} elements"
             ));
         }
-        Ok(variables)
+        // Every value reference was found above: no lookup below fails.
+        Ok(vrs.iter().filter_map(|&vr| self.find(vr)))
     }
 }
 

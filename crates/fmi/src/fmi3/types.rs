@@ -57,12 +57,14 @@ pub enum Fmi3DependencyKind {
 /// fmi3IntervalQualifier (clocks; this layer declares none).
 pub type Fmi3IntervalQualifier = std::ffi::c_int;
 
-/// fmi3LogMessageCallback: the message is passed as it is (no format expansion).
+/// fmi3LogMessageCallback: the message is passed as it is (no format expansion). The
+/// host's callbacks are `C-unwind`: they may unwind (core::callback says what the FMU
+/// does then).
 pub type Fmi3LogMessageCallback =
-    unsafe extern "C" fn(Fmi3InstanceEnvironment, Fmi3Status, Fmi3String, Fmi3String);
+    unsafe extern "C-unwind" fn(Fmi3InstanceEnvironment, Fmi3Status, Fmi3String, Fmi3String);
 
 /// fmi3IntermediateUpdateCallback (Co-Simulation).
-pub type Fmi3IntermediateUpdateCallback = unsafe extern "C" fn(
+pub type Fmi3IntermediateUpdateCallback = unsafe extern "C-unwind" fn(
     Fmi3InstanceEnvironment,
     Fmi3Float64,
     Fmi3Boolean,
@@ -74,9 +76,9 @@ pub type Fmi3IntermediateUpdateCallback = unsafe extern "C" fn(
 );
 
 /// fmi3ClockUpdateCallback (Scheduled Execution, not supported).
-pub type Fmi3ClockUpdateCallback = unsafe extern "C" fn(Fmi3InstanceEnvironment);
+pub type Fmi3ClockUpdateCallback = unsafe extern "C-unwind" fn(Fmi3InstanceEnvironment);
 /// fmi3LockPreemptionCallback and fmi3UnlockPreemptionCallback.
-pub type Fmi3PreemptionCallback = unsafe extern "C" fn();
+pub type Fmi3PreemptionCallback = unsafe extern "C-unwind" fn();
 
 /// Opaque pointers the standard passes around untouched.
 pub type Fmi3Opaque = *mut c_void;

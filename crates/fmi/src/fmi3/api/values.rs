@@ -30,7 +30,7 @@ fn read<M: Model, T: Default + Clone>(
     let variables = table.typed_all(vrs, wanted, n_values)?;
     // SAFETY: the host's buffer holds nValues elements, which match the variables.
     let out = unsafe { output_slice(values, n_values, "values[]") }?;
-    if let Some(reason) = inst.prepare_read(&variables)? {
+    if let Some(reason) = inst.prepare_read(variables.clone())? {
         return Ok(entry::discard(inst, function, &reason));
     }
     let mut at = 0;
