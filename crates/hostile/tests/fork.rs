@@ -96,7 +96,7 @@ fn main() {
     let child = AtomicI32::new(0);
     let since = AtomicU64::new(0);
     let start = Instant::now();
-    let (mut deadlocked, mut failed) = (0, 0);
+    let (mut deadlocked, mut failed, mut done) = (0, 0, 0);
     std::thread::scope(|scope| {
         for w in 0..3 {
             let (l, stop, cycles, failed_cycles) = (&loaded, &stop, &cycles, &failed_cycles);
@@ -137,6 +137,7 @@ fn main() {
             // SAFETY: waits for the child just forked.
             unsafe { libc::waitpid(pid, &mut status, 0) };
             child.store(0, Ordering::Release);
+            done += 1;
             if libc::WIFSIGNALED(status) && libc::WTERMSIG(status) == libc::SIGKILL {
                 deadlocked += 1;
             } else if !(libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0) {
@@ -149,13 +150,14 @@ fn main() {
         stop.store(true, Ordering::Relaxed);
     });
     println!(
-        "{forks} forks in {:.1} s while 3 threads ran {} instantiate-step-free cycles: \
-         {deadlocked} children deadlocked, {failed} failed; {} cycles failed",
+        "{done} of {forks} forks in {:.1} s while 3 threads ran {} instantiate-step-free \
+         cycles: {deadlocked} children deadlocked, {failed} failed (stops at 3); {} cycles \
+         failed",
         start.elapsed().as_secs_f64(),
         cycles.load(Ordering::Relaxed),
         failed_cycles.load(Ordering::Relaxed)
     );
-    assert_eq!((deadlocked, failed), (0, 0));
+    assert_eq!((deadlocked, failed, done), (0, 0, forks));
     assert_eq!(failed_cycles.load(Ordering::Relaxed), 0);
     assert!(cycles.load(Ordering::Relaxed) > 0);
 }
