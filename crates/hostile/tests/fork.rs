@@ -27,7 +27,7 @@ use std::time::{Duration, Instant};
 fn cycle(l: &Loaded, k: usize) -> bool {
     let n = l.fmus.len();
     let m = (k / 2) % n;
-    if k % 2 == 0 {
+    if k.is_multiple_of(2) {
         let inst = Instance::new(
             &l.binaries[m],
             &l.fmus[m].description,
