@@ -487,3 +487,50 @@ def test_the_platform_gives_the_x86_64_linux_result(model, case, platform, tmp_p
         # Expected: x86_64 Linux's result bit for bit (the same Rust code, IEEE
         # arithmetic, the same results of the C runtime's functions).
         assert np.array_equal(other, native), message
+
+
+# ---------------------------------------------------------------- leaving a callback on aarch64
+
+ZIG = ROOT / "target" / "toolchain" / "venv" / "bin" / "python"
+ABORTED = "robofmu FMU: fatal: the host's {} callback did not return"
+
+
+@pytest.fixture(scope="module")
+def leave_host_aarch64(tmp_path_factory):
+    """crates/hostile/native/leave.c built as a C host for aarch64 Linux by zig (the
+    toolchain of scripts/build-fmus.sh): glibc's pthread_exit and pthread_cancel unwind
+    with libgcc_s, as a gcc-built host does."""
+    require("aarch64-linux")
+    if not ZIG.exists():
+        pytest.fail(f"{ZIG} is missing: run `bash scripts/build-fmus.sh`")
+    out = tmp_path_factory.mktemp("leave") / "leave-c"
+    subprocess.run([str(ZIG), "-m", "ziglang", "cc", "-target", "aarch64-linux-gnu.2.17", "-O1",
+                    "-x", "c", str(ROOT / "crates" / "hostile" / "native" / "leave.c"),
+                    "-o", str(out), "-lpthread", "-ldl"], check=True, capture_output=True)
+    return out
+
+
+@pytest.mark.parametrize("way", ["exit", "cancel", "longjmp"])
+@pytest.mark.parametrize("standard", ["2", "3"])
+@pytest.mark.parametrize("model", MODELS)
+def test_leaving_the_logger_on_aarch64_is_an_abort_or_the_error_state(
+        model, standard, way, leave_host_aarch64, tmp_path):
+    # Expected (docs/reliability.md, "Leaving a callback"), as crates/hostile/tests/leave.rs
+    # checks on x86_64: pthread_exit or pthread_cancel in the logger ends the process
+    # with SIGABRT and the FMU's message; after a longjmp the next call finds the Error
+    # state (3), Reset (0) makes the instance usable and FreeInstance frees it.
+    path = extract(tmp_path, model, "aarch64-linux")
+    token = read_model_description(str(DIST / f"{model}.fmu")).guid
+    result = subprocess.run([qemu(), "-L", "/usr/aarch64-linux-gnu", str(leave_host_aarch64),
+                             str(path), standard, token, way],
+                            capture_output=True, text=True, timeout=120)
+    if way == "longjmp":
+        enter = "enter 0\n" if standard == "2" else ""
+        assert (result.returncode, result.stdout) == (
+            0, f"left\nagain 3\nreset 0\nstart 0\n{enter}exit 0\nstep 0\nfreed\njoined\n"), result
+    else:
+        callback = "logger" if standard == "2" else "logMessage"
+        assert result.stdout == "left\n", result
+        assert ABORTED.format(callback) in result.stderr, result
+        # qemu-user reports the guest's SIGABRT as its own (-6, or 128 + 6 from a shell).
+        assert result.returncode in (-6, 134), result

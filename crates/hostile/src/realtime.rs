@@ -31,7 +31,7 @@ enum Live<'a> {
 /// One case: a live instance in Step Mode (CS) or Continuous-Time Mode (ME) with the
 /// buffers of its step path.
 pub struct Stepper<'a> {
-    /// "<Model> FMI 2.0 CS", ...
+    /// `<Model> FMI 2.0 CS`, ...
     pub name: String,
     live: Live<'a>,
     me: bool,

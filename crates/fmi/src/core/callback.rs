@@ -25,7 +25,7 @@ impl Drop for AbortOnUnwind {
         for part in parts {
             // SAFETY: writes bytes of a live &str to stderr (no allocation, no lock: the
             // unwinding thread may hold any lock of the host).
-            unsafe { libc::write(2, part.as_ptr().cast(), part.len()) };
+            unsafe { libc::write(2, part.as_ptr().cast(), part.len() as _) };
         }
         // SAFETY: ends the process; nothing runs after it.
         unsafe { libc::abort() }

@@ -322,7 +322,7 @@ pub struct Entered {
     /// The instance is to be put in the Error state before the call runs ([`fail`]).
     pub failed: bool,
     /// The earlier call of this thread on the instance never returned: a callback
-    /// left it with longjmp ([`abandoned`]). The instance is to be put in the Error
+    /// left it with longjmp (see `abandoned`). The instance is to be put in the Error
     /// state, with a log line.
     pub abandoned: bool,
 }
@@ -411,7 +411,7 @@ pub fn leave(handle: usize) -> Option<Freed> {
 
 /// FreeInstance of `handle` (model `M`; `mark`: a stack address of the call): Some
 /// when it can be freed now (it is unregistered with its states), also when the call
-/// of this thread that held it busy was abandoned ([`abandoned`]); None when it is
+/// of this thread that held it busy was abandoned (see `abandoned`); None when it is
 /// not a live instance, or busy, in which case the running call frees it when it
 /// leaves ([`leave`]).
 pub fn free_instance<M: 'static>(handle: usize, mark: usize) -> Option<Freed> {

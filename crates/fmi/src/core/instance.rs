@@ -6,11 +6,11 @@ use super::declare::{self, Declaration, value_references};
 use super::flatten::{flatten, start_of};
 use super::log::Log;
 use super::model::{Model, StepOutcome};
-use super::shared::Shared;
+use super::shared::{Built, Shared};
 use super::value_check::{self, Value, wrong_type};
 use super::variables::{Initial, Variable, VariableType, element_name, find, value_type};
 use super::view::Table3;
-use std::sync::{Arc, Mutex, OnceLock, PoisonError};
+use std::sync::{Arc, Mutex, TryLockError};
 
 /// Does not log: the model's checks on a copy are not the instance's.
 pub struct Silent;
@@ -240,15 +240,16 @@ pub struct Index<M: 'static> {
     calculated_reals: Vec<CalculatedReal<M>>,
     /// The FMI 2.0 scalars sorted by value reference (descriptions, FMU states,
     /// directional derivatives, messages), built the first time they are asked for.
-    table: OnceLock<Vec<Variable<M>>>,
+    table: Built<Vec<Variable<M>>>,
     /// The model with every start value applied, built once (a clone costs a copy; the
     /// setters of every start value cost about 1,700 instructions for the PID). In a
     /// Mutex because a model need not be `Sync` (the plant keeps a `RefCell` cache).
     fresh: Mutex<M>,
     /// FMI 3.0's two views (the array view and the scalar-only view), each built the
-    /// first time an FMI 3.0 instance asks for it.
-    arrays: OnceLock<Arc<Table3>>,
-    scalars: OnceLock<Arc<Table3>>,
+    /// first time an FMI 3.0 instance asks for it. No `OnceLock` here: the cells take
+    /// no lock, so a child forked while a view is built finds nothing held.
+    arrays: Built<Arc<Table3>>,
+    scalars: Built<Arc<Table3>>,
 }
 
 /// Where an instantiation takes the model's index from: [`Index::shared`] (the exported
@@ -323,10 +324,10 @@ impl<M: Model> Index<M> {
             declarations,
             slots,
             calculated_reals,
-            table: OnceLock::new(),
+            table: Built::new(),
             fresh: Mutex::new(fresh),
-            arrays: OnceLock::new(),
-            scalars: OnceLock::new(),
+            arrays: Built::new(),
+            scalars: Built::new(),
         })
     }
 
@@ -346,12 +347,21 @@ impl<M: Model> Index<M> {
         Ok(Arc::clone(cell.get_or_init(|| built)))
     }
 
-    /// The model with every start value applied (a clone of the one built once).
+    /// The model with every start value applied: a clone of the one built once, or,
+    /// when another thread holds it (or, in a child forked meanwhile, a thread that
+    /// does not exist there), the same model built again from the start values (no
+    /// wait: a fork at any moment cannot leave the child blocked here).
     pub fn fresh_model(&self) -> M {
-        self.fresh
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner)
-            .clone()
+        match self.fresh.try_lock() {
+            Ok(model) => model.clone(),
+            Err(TryLockError::Poisoned(poisoned)) => poisoned.into_inner().clone(),
+            Err(TryLockError::WouldBlock) => with_start_values(
+                self.slots
+                    .iter()
+                    .map(|s| (s.declaration, s.element as usize)),
+            )
+            .expect("the start values were applied when the index was built"),
+        }
     }
 }
 

@@ -107,3 +107,88 @@ extern "C" fn release<T>(cell: *mut c_void) {
         drop(unsafe { Arc::from_raw(raw) });
     }
 }
+
+/// A value built the first time it is asked for, without a lock (an atomic pointer to
+/// a box): a `fork()` while another thread builds it leaves the child nothing to wait
+/// for, unlike `OnceLock`. Two threads that ask first at once may both build it; one
+/// value is kept, the other dropped.
+pub struct Built<T>(AtomicPtr<T>, std::marker::PhantomData<Box<T>>);
+
+impl<T> Default for Built<T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T> Built<T> {
+    pub const fn new() -> Self {
+        Built(
+            AtomicPtr::new(std::ptr::null_mut()),
+            std::marker::PhantomData,
+        )
+    }
+
+    /// The value, if built.
+    pub fn get(&self) -> Option<&T> {
+        let kept = self.0.load(Ordering::Acquire);
+        // SAFETY: null or a box published once and freed only with `self`.
+        (!kept.is_null()).then(|| unsafe { &*kept })
+    }
+
+    /// The value, built by `build` if it is not yet.
+    pub fn get_or_init(&self, build: impl FnOnce() -> T) -> &T {
+        if let Some(value) = self.get() {
+            return value;
+        }
+        let raw = Box::into_raw(Box::new(build()));
+        let null = std::ptr::null_mut();
+        match (self.0).compare_exchange(null, raw, Ordering::AcqRel, Ordering::Acquire) {
+            // SAFETY: published now; freed only with `self`.
+            Ok(_) => unsafe { &*raw },
+            Err(kept) => {
+                // SAFETY: `raw` was not published; `kept` is, as in `get`.
+                unsafe {
+                    drop(Box::from_raw(raw));
+                    &*kept
+                }
+            }
+        }
+    }
+}
+
+impl<T> Drop for Built<T> {
+    fn drop(&mut self) {
+        let kept = *self.0.get_mut();
+        if !kept.is_null() {
+            // SAFETY: the box published by `get_or_init`, freed once.
+            drop(unsafe { Box::from_raw(kept) });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Built;
+
+    #[test]
+    fn a_built_value_is_built_once_and_kept() {
+        // Expected: the first get_or_init builds, later ones return the same value
+        // without building; eight threads at once agree on one value.
+        let cell: Built<Vec<u32>> = Built::new();
+        assert!(cell.get().is_none());
+        assert_eq!(cell.get_or_init(|| vec![1, 2]), &[1, 2]);
+        assert_eq!(cell.get_or_init(|| unreachable!()), &[1, 2]);
+        let shared: Built<usize> = Built::new();
+        let seen: Vec<usize> = std::thread::scope(|s| {
+            let handles: Vec<_> = (0..8)
+                .map(|k| {
+                    let shared = &shared;
+                    s.spawn(move || *shared.get_or_init(|| k))
+                })
+                .collect();
+            handles.into_iter().map(|h| h.join().unwrap()).collect()
+        });
+        assert!(seen.iter().all(|&v| v == seen[0]));
+        assert_eq!(shared.get(), Some(&seen[0]));
+    }
+}
