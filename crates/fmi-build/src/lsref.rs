@@ -50,7 +50,7 @@ pub struct Case {
     pub stop: f64,
     pub step: f64,
     pub rel_tol: f64,
-    /// Start values of case.json, in its order.
+    /// Start values of case.json, sorted by name.
     pub start_values: Vec<(String, serde_json::Value)>,
     pub event_times: Vec<f64>,
     /// (interface or None for every interface, signal, rule) of case.json.
