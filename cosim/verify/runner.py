@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from . import junit
-from .case import load_case
+from .case import Case, load_case
 from .compare import judge_all
 from .errors import RunFailed
 from .names import Names
@@ -52,6 +52,12 @@ def verify_case(fmu: Path, case_dir: Path | None, options, wanted: str | None, o
     case = load_case(case_dir, options)
     if name is not None:
         case.name = name
+    return run_case(fmu, description, interface, case, out, out_csv)
+
+
+def run_case(fmu: Path, description, interface: str, case: Case, out: Path,
+             out_csv: str | None = None) -> CaseResult:
+    """Runs and judges a loaded case; VerifyError when it does not fit the FMU."""
     title = f"{fmu.name} ({interface}) against {case.name}"
     classname = f"{fmu.stem}.{interface}"
     head = f"{fmu.name} {description.fmiVersion} {interface} against {case.name}"
