@@ -1,15 +1,15 @@
 """The build hook of the `robofmu` distribution (pyproject.toml): the package data that
-.gitignore hides from hatchling or that lives outside cosim/.
+.gitignore hides from hatchling or that lives outside robofmu/.
 
 - sdist: the built FMUs (dist/*.fmu, dist/fmi3/*.fmu, dist/fmi3-scalar/*.fmu) and the
   native stepping kernels (target/<target>/fmu/, target/release/) at their own paths, so that the
   wheel builds from the sdist without Rust;
-- wheel: the FMUs as cosim/data/fmus/ (same layout as dist/), tests/references/ as
-  cosim/data/references/, scenarios/ as cosim/data/scenarios/, the kernel as
-  cosim/_native/<platform>/ (cosim.loop.PLATFORM), one per platform build-fmus.sh
-  built; the wheel is py3-none-any: where no kernel is bundled for the platform, cosim
+- wheel: the FMUs as robofmu/data/fmus/ (same layout as dist/), tests/references/ as
+  robofmu/data/references/, scenarios/ as robofmu/data/scenarios/, the kernel as
+  robofmu/_native/<platform>/ (robofmu.loop.PLATFORM), one per platform build-fmus.sh
+  built; the wheel is py3-none-any: where no kernel is bundled for the platform, robofmu
   refuses to run with one line naming the platform (the master has one loop, the native one);
-- editable installs: nothing (cosim.bundle finds dist/, tests/references/ and
+- editable installs: nothing (robofmu.bundle finds dist/, tests/references/ and
   scenarios/ in the checkout).
 
 A build without the FMUs (the same models in each folder) stops with one line naming
@@ -28,7 +28,7 @@ FMU_FOLDERS = ("", "fmi3", "fmi3-scalar")
 KERNEL = {"linux": "libcosim_kernel.so", "darwin": "libcosim_kernel.dylib",
           "win32": "cosim_kernel.dll"}
 # The kernels scripts/build-fmus.sh cross-builds beside the FMUs: (cargo target, the
-# folder cosim.loop.PLATFORM names on that platform, the library's file name).
+# folder robofmu.loop.PLATFORM names on that platform, the library's file name).
 CROSS_KERNELS = (
     ("x86_64-unknown-linux-gnu", "linux-x86_64", KERNEL["linux"]),
     ("aarch64-unknown-linux-gnu", "linux-aarch64", KERNEL["linux"]),
@@ -39,7 +39,7 @@ CROSS_KERNELS = (
 
 
 def kernel_platform() -> str:
-    """The folder name of this machine's kernel: cosim.loop.PLATFORM's rule."""
+    """The folder name of this machine's kernel: robofmu.loop.PLATFORM's rule."""
     return f"{sys.platform}-{platform.machine().lower()}"
 
 
@@ -76,8 +76,8 @@ class BundleHook(BuildHookInterface):
                 include[str(path)] = str(path.relative_to(root))
             return
         for path in fmus:
-            include[str(path)] = f"cosim/data/fmus/{path.relative_to(root / 'dist').as_posix()}"
-        include[str(root / "tests" / "references")] = "cosim/data/references"
-        include[str(root / "scenarios")] = "cosim/data/scenarios"
+            include[str(path)] = f"robofmu/data/fmus/{path.relative_to(root / 'dist').as_posix()}"
+        include[str(root / "tests" / "references")] = "robofmu/data/references"
+        include[str(root / "scenarios")] = "robofmu/data/scenarios"
         for folder, path in bundled.items():
-            include[str(path)] = f"cosim/_native/{folder}/{path.name}"
+            include[str(path)] = f"robofmu/_native/{folder}/{path.name}"

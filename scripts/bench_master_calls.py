@@ -28,8 +28,8 @@ RUN = """
 import sys, tomllib
 sys.path.insert(0, {root!r})
 from pathlib import Path
-from cosim.master import Master
-from cosim.scenario import parse_document
+from robofmu.master import Master
+from robofmu.scenario import parse_document
 path = Path({scenario!r})
 document = tomllib.loads(path.read_text())
 document["stop_time"] = "{stop} s"

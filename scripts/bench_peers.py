@@ -3,11 +3,11 @@
 
     python scripts/bench_peers.py [--runs 5] [--scenario three_axis_quintic]
 
-Each master runs the scenario's whole run at its step h: ours (cosim.master.Master,
+Each master runs the scenario's whole run at its step h: ours (robofmu.master.Master,
 input_extrapolation hold, linear and quadratic, and quadratic at 4 h) from the
 scenario, libcosim and ecos
 (their fixed-step algorithms, Jacobi schemes without input extrapolation) from the SSP
-archive cosim.ssp writes for it. Time: wall time of a whole run, loading and
+archive robofmu.ssp writes for it. Time: wall time of a whole run, loading and
 instantiation included, nothing read back during the run (libcosim: one step(N)
 call, ecos: one step(N) call), runs interleaved, median and minimum over the runs.
 Error: the largest |theta - theta_ref| over the axes and the communication points,
@@ -31,9 +31,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
-from cosim.ssp import PARAMETER_SET, write_ssp  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
+from robofmu.ssp import PARAMETER_SET, write_ssp  # noqa: E402
 
 THETA = [f"plant.theta[{i}]" for i in (1, 2, 3)]
 

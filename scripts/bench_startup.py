@@ -1,12 +1,12 @@
 """Start-up wall time of the `cosim` command line, each run a fresh interpreter, runs
 interleaved, medians printed: `cosim --help`, `cosim run --help`, `cosim sweep --help`,
-and the import of each module that cosim/ keeps lazy (the figures named where it does,
+and the import of each module that robofmu/ keeps lazy (the figures named where it does,
 and in CHANGELOG.md).
 
     python scripts/bench_startup.py [--runs 10] [--tree DIR ...]
 
---tree: run the commands in each of these checkouts too (e.g. an older cosim/ exported
-with `git archive REV cosim | tar -x -C DIR`), interleaved with this one."""
+--tree: run the commands in each of these checkouts too (e.g. an older robofmu/ exported
+with `git archive REV robofmu | tar -x -C DIR`), interleaved with this one."""
 
 from __future__ import annotations
 
@@ -19,17 +19,17 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 COMMANDS = {
-    "cosim --help": ["-m", "cosim", "--help"],
-    "cosim run --help": ["-m", "cosim", "run", "--help"],
-    "cosim sweep --help": ["-m", "cosim", "sweep", "--help"],
+    "cosim --help": ["-m", "robofmu", "--help"],
+    "cosim run --help": ["-m", "robofmu", "run", "--help"],
+    "cosim sweep --help": ["-m", "robofmu", "sweep", "--help"],
 }
-# Kept lazy in cosim/: the table's command modules (cosim.cli) and the heavy optional
+# Kept lazy in robofmu/: the table's command modules (robofmu.cli) and the heavy optional
 # packages; `python -c pass` is the interpreter's own start-up.
 IMPORTS = {
     "python -c pass": "pass",
-    "every command module": "import cosim.run, cosim.check, cosim.sweep.cli, cosim.ssp, "
-                            "cosim.container, cosim.bench, cosim.demo, cosim.verify.cli, "
-                            "cosim.animate.cli, cosim.list_fmus, cosim.list_examples",
+    "every command module": "import robofmu.run, robofmu.check, robofmu.sweep.cli, robofmu.ssp, "
+                            "robofmu.container, robofmu.bench, robofmu.demo, robofmu.verify.cli, "
+                            "robofmu.animate.cli, robofmu.list_fmus, robofmu.list_examples",
     "matplotlib.pyplot": "import matplotlib.pyplot",
     "matplotlib.figure": "import matplotlib.figure",
     "distributed": "import distributed",

@@ -25,8 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from cosim.master import Master
-from cosim.scenario import parse_document
+from robofmu.master import Master
+from robofmu.scenario import parse_document
 
 ROOT = Path(__file__).resolve().parent.parent
 STEPS = (8e-3, 4e-3, 2e-3, 1e-3)

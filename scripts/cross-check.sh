@@ -74,7 +74,7 @@ for entry in "${cases[@]}"; do
         dir="$out/fmus/2.0/$kind/linux64/robofmu/$version/$model"
         report="$out/verify/2.0/$kind/$model"
         mkdir -p "$report"
-        if ! "$python" -m cosim.verify "$dir/$model.fmu" "$dir" --interface "$kind" \
+        if ! "$python" -m robofmu.verify "$dir/$model.fmu" "$dir" --interface "$kind" \
             --tolerance '*=cross-check' --out "$report" --junit "$report/junit.xml" \
             >"$report/verdict.txt" 2>&1; then
             echo "cross-check: $model ($kind) failed its verdict:" >&2

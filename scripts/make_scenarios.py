@@ -32,7 +32,7 @@ def main(names: list[str]) -> None:
     for name in names or sorted(p.stem for p in SCENARIOS.glob("*.toml")
                                 if p.stem not in HARNESS_ONLY):
         expanded = EXPANDED / f"{name}.toml"
-        subprocess.run([sys.executable, "-m", "cosim", "check", str(SCENARIOS / f"{name}.toml"),
+        subprocess.run([sys.executable, "-m", "robofmu", "check", str(SCENARIOS / f"{name}.toml"),
                         "--expanded", str(expanded)], check=True, cwd=ROOT)
         reference = REFERENCES / name / f"{name}_ref.csv"
         reference.parent.mkdir(parents=True, exist_ok=True)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Creates (or reuses) the Python virtual environment .venv at the repository root with
 # the pinned packages the FMU tests need, and installs this repository's harness into
-# it (editable, no dependencies: .venv/bin/cosim runs cosim/ from this checkout).
+# it (editable, no dependencies: .venv/bin/cosim runs robofmu/ from this checkout).
 # Idempotent: a second run only checks the pins and the install.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,8 +20,8 @@ fi
 # The console script and the import path must point at this checkout (isolated mode: the
 # current directory does not count).
 if [[ ! -x "$venv/bin/cosim" ]] || ! "$venv/bin/python" -I -c '
-import pathlib, sys, cosim
-sys.exit(pathlib.Path(cosim.__file__).resolve().parent.parent != pathlib.Path.cwd().resolve())
+import pathlib, sys, robofmu
+sys.exit(pathlib.Path(robofmu.__file__).resolve().parent.parent != pathlib.Path.cwd().resolve())
 ' 2>/dev/null; then
     "$venv/bin/python" -m pip install --quiet --disable-pip-version-check --no-deps \
         --no-build-isolation --editable .

@@ -60,8 +60,8 @@ exit 0
 # The checks, in the user's shell after the README's commands (their venv active):
 checks=
 version=$VERSION
-where=$(python -c 'import cosim; print(cosim.__file__)')
-[[ "$where" == "$PWD/robofmu-env/"* ]] || fail "cosim imported from $where, not the venv"
+where=$(python -c 'import robofmu; print(robofmu.__file__)')
+[[ "$where" == "$PWD/robofmu-env/"* ]] || fail "robofmu imported from $where, not the venv"
 
 said=$(cosim --version)
 [[ "$said" == "cosim $version" ]] || fail "cosim --version says '$said', Cargo.toml $version"

@@ -23,7 +23,7 @@ bash scripts/install-platform-test-tools.sh
 # (pytest exits 5 when it collects nothing; that counts as a failure too).
 bash scripts/setup-venv.sh
 # The harness's lint and types (configured in pyproject.toml): zero findings.
-.venv/bin/ruff check cosim
+.venv/bin/ruff check robofmu
 .venv/bin/mypy
 .venv/bin/python -m pytest tests/python -q
 # The wheel as a user installs it: built, installed into a fresh venv in an empty folder

@@ -210,7 +210,7 @@ fn plan_switches_continue_the_motion_at_the_waypoint() {
 
 #[test]
 fn plan_switches_outside_the_run_or_out_of_order_are_refused_by_name() {
-    // Truth: the harness's rule (cosim/scenario.py, _plan_switches): steps increase and
+    // Truth: the harness's rule (robofmu/scenario.py, _plan_switches): steps increase and
     // lie strictly inside the run (3 s at 1 ms: steps 1 to 2999). The reference must
     // refuse what the co-simulation refuses, else trajectories_at picks a segment that
     // never runs (a switch at step 0 replaces the first segment).

@@ -223,7 +223,7 @@ fn parameters<'a>(doc: &'a Table, alias: &str) -> Result<&'a Table, LoopError> {
 
 /// The later segments of a multi-segment motion: each `[[plan_switches]]` entry resets
 /// the planner at communication step `step` with its `parameters`. As the harness
-/// (`cosim/scenario.py`), the steps must increase and lie inside the run: a switch at
+/// (`robofmu/scenario.py`), the steps must increase and lie inside the run: a switch at
 /// step 0 or out of order would make [`LoopSpec::trajectories_at`] pick a segment the
 /// co-simulation never runs.
 fn plan_switches(

@@ -16,11 +16,11 @@ INTERFACES = ["CoSimulation", "ModelExchange"]
 
 def package_source(folder: Path) -> Path:
     """`folder` made a copy of what `pip install` of the harness reads (what the sdist
-    holds: cosim/, pyproject.toml, hatch_build.py, Cargo.toml for the version, the FMUs,
+    holds: robofmu/, pyproject.toml, hatch_build.py, Cargo.toml for the version, the FMUs,
     the native kernel, the reference cases, the example scenarios), so that an install
     leaves the working tree alone."""
     ignore = shutil.ignore_patterns("__pycache__")
-    for name in ("cosim", "scenarios", "tests/references"):
+    for name in ("robofmu", "scenarios", "tests/references"):
         shutil.copytree(ROOT / name, folder / name, ignore=ignore)
     for name in ("pyproject.toml", "README.md", "CHANGELOG.md", "Cargo.toml", "hatch_build.py",
                  "target/release/libcosim_kernel.so"):

@@ -1,4 +1,4 @@
-"""Loops written directly on FMPy's FMI 2.0 Co-Simulation API (not on cosim.master), the
+"""Loops written directly on FMPy's FMI 2.0 Co-Simulation API (not on robofmu.master), the
 second implementation the importers of test_importers_*.py are compared with. They step
 on the importer's own time grid (GRIDS): libcosim counts integer nanoseconds and passes
 t_k = (k h_ns) / 1e9 and t_{k+1} - t_k; ecos passes h itself and accumulates t. The
@@ -9,7 +9,7 @@ tolerance, far above 1e-12).
 
 run_jacobi: the closed loop of a scenario with the Jacobi coupling that libcosim's and ecos's
 fixed-step algorithms use, written directly on FMPy's FMI 2.0 Co-Simulation API (not on
-cosim.master): the second implementation the importers are compared with.
+robofmu.master): the second implementation the importers are compared with.
 
 Initialization: every FMU gets its parameters, enters initialization mode, then the
 connections are propagated in the scenario's order (inputs at the start time equal the

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-PARAMETER_SET = "scenario"  # cosim.ssp.PARAMETER_SET, the name ecos must be given
+PARAMETER_SET = "scenario"  # robofmu.ssp.PARAMETER_SET, the name ecos must be given
 
 
 def quiet() -> None:

@@ -1,8 +1,8 @@
 """A test oracle, never run by the harness: the master's stepping loop written out in
 Python over the instances' own methods (FmuInstance / Fmu3Instance get_values,
 set_values, do_step, get_output_derivatives, set_input_derivatives, get/set/free_state:
-FMPy's wrappers), in the order cosim.loop's native kernel makes the same calls. It is
-what the master's loop was before it became one native loop (cosim/master.py's
+FMPy's wrappers), in the order robofmu.loop's native kernel makes the same calls. It is
+what the master's loop was before it became one native loop (robofmu/master.py's
 `_run_python` with FMPy calls); tests compare the master with it bit for bit.
 """
 
@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from cosim.errors import CosimError, StepDiscarded
-from cosim.master import Master, Result
+from robofmu.errors import CosimError, StepDiscarded
+from robofmu.master import Master, Result
 
 
 class ReferenceMaster(Master):
-    """cosim.master.Master with the stepping loop in plain Python."""
+    """robofmu.master.Master with the stepping loop in plain Python."""
 
     def _set_inputs(self, alias: str) -> None:
         for source, variables, inputs in self.inputs[alias]:

@@ -20,14 +20,14 @@ from PIL import Image
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.animate.cli import main  # noqa: E402
-from cosim.animate.draw import GHOST, LEG, Canvas  # noqa: E402
-from cosim.animate.frames import make_frames  # noqa: E402
-from cosim.animate.geometry import pose, robot  # noqa: E402
-from cosim.animate.motion import Motion, read_motion  # noqa: E402
-from cosim.animate.plant import plant_parameters  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
+from robofmu.animate.cli import main  # noqa: E402
+from robofmu.animate.draw import GHOST, LEG, Canvas  # noqa: E402
+from robofmu.animate.frames import make_frames  # noqa: E402
+from robofmu.animate.geometry import pose, robot  # noqa: E402
+from robofmu.animate.motion import Motion, read_motion  # noqa: E402
+from robofmu.animate.plant import plant_parameters  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
 from conftest import fmu_path  # noqa: E402
 
 PLANT = Path(fmu_path("Pss3Plant"))

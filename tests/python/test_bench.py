@@ -13,7 +13,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_bench_prints_every_loop_and_ends_with_the_ratio():
-    run = subprocess.run([sys.executable, "-m", "cosim.bench", "--runs", "1",
+    run = subprocess.run([sys.executable, "-m", "robofmu.bench", "--runs", "1",
                           "--sweep-runs", "0", "regulation"], cwd=ROOT, check=True,
                          capture_output=True, text=True)
     lines = run.stdout.strip().splitlines()
@@ -21,7 +21,7 @@ def test_bench_prints_every_loop_and_ends_with_the_ratio():
     times = {m.group(1): float(m.group(2)) for m in loops if m}
     assert sorted(times) == ["master", "master, linear extrapolation",
                              "master, quadratic extrapolation", "minimal FMPy loop"]
-    # The container section (cosim.bench_container) sits between the loops and the ratio.
+    # The container section (robofmu.bench_container) sits between the loops and the ratio.
     assert any(line.startswith("container/master ratio: ") for line in lines[:-1])
     ratio = float(re.fullmatch(r"master/minimal ratio: ([0-9.]+)", lines[-1]).group(1))
     assert abs(ratio - times["master"] / times["minimal FMPy loop"]) < 0.01 + 0.01 * ratio
@@ -31,7 +31,7 @@ def test_bench_sweep_prints_throughput_and_efficiency_per_worker_count():
     # Output contract of `cosim bench sweep` (speed not asserted): one row per worker
     # count; the speed-up is runs/s over the serial row's and the efficiency the
     # speed-up per worker, as printed (second formulation from the printed columns).
-    run = subprocess.run([sys.executable, "-m", "cosim.bench", "sweep", "--runs", "6",
+    run = subprocess.run([sys.executable, "-m", "robofmu.bench", "sweep", "--runs", "6",
                           "--workers", "0,1"], cwd=ROOT, check=True, capture_output=True,
                          text=True)
     lines = run.stdout.strip().splitlines()

@@ -1,4 +1,4 @@
-"""The loops that python -m cosim.bench times compute the closed loop (a benchmark of a
+"""The loops that python -m robofmu.bench times compute the closed loop (a benchmark of a
 wrong loop would mislead): the minimal FMPy loop is our master's sampled coupling with
 nothing else, so it ends on the master's state to rounding; the container run ends within
 the container-master bound of test_container.py."""
@@ -11,10 +11,10 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.bench_container import container_run, minimal_run  # noqa: E402
-from cosim.container import build_container  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
+from robofmu.bench_container import container_run, minimal_run  # noqa: E402
+from robofmu.container import build_container  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
 
 
 def test_benchmarked_loops_end_where_the_master_ends(tmp_path):

@@ -1,4 +1,4 @@
-"""Bundled FMUs by name (cosim.bundle, scenario FMU entries without .fmu) and the
+"""Bundled FMUs by name (robofmu.bundle, scenario FMU entries without .fmu) and the
 commands that list them. Truth: the files under dist/ that scripts/build-fmus.sh writes
 (in a checkout the bundle is the repository's dist/, tests/references/, scenarios/)."""
 
@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pytest
 
-from cosim import bundle
-from cosim.cli import main
-from cosim.errors import ScenarioError
-from cosim.scenario import fmu_file, parse_document, read_document
+from robofmu import bundle
+from robofmu.cli import main
+from robofmu.errors import ScenarioError
+from robofmu.scenario import fmu_file, parse_document, read_document
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -64,9 +64,9 @@ def test_without_the_native_kernel_one_line_names_the_platform_and_nothing_runs(
     import subprocess
     import sys
 
-    from cosim.loop import PLATFORM
+    from robofmu.loop import PLATFORM
     env = dict(os.environ, COSIM_KERNEL_LIBRARY=str(tmp_path / "no_such_kernel.so"))
-    run = subprocess.run([sys.executable, "-m", "cosim", "run",
+    run = subprocess.run([sys.executable, "-m", "robofmu", "run",
                           str(ROOT / "scenarios" / "regulation.toml"), "--quiet", "--no-plots",
                           "--out", str(tmp_path / "out")], capture_output=True, text=True, env=env)
     assert run.returncode != 0

@@ -17,9 +17,9 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from cosim.errors import CosimError  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import ScenarioError, load_scenario, parse_document  # noqa: E402
+from robofmu.errors import CosimError  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import ScenarioError, load_scenario, parse_document  # noqa: E402
 from hostile_cases import ROOT, base, edit, plain  # noqa: E402
 
 HEAVY_INERTIA = {"platformMass": "2.5 kg", "platformInertia[1,1]": "0.03 kg m^2",
@@ -49,7 +49,7 @@ def test_a_refused_call_carries_the_fmus_log_line_and_cleanup_leaves_nothing(pri
 
 
 def test_the_gain_design_at_a_pose_the_plant_refuses_names_the_plants_reason(private_temp):
-    from cosim.design import euler_inertia
+    from robofmu.design import euler_inertia
     plant = str(ROOT / "dist" / "Pss3Plant.fmu")
     with pytest.raises(ScenarioError, match="cannot reach its platform joint"):
         euler_inertia(plant, (0.0, math.radians(30.0), math.radians(138.0)))
@@ -72,7 +72,7 @@ def test_units_are_checked_against_the_declared_unit(tmp_path):
 
 
 def test_the_documented_heavier_platform_runs(tmp_path, capsys):
-    from cosim.cli import main
+    from robofmu.cli import main
     path = tmp_path / "heavy.json"
     path.write_text(json.dumps(edit(base(), "plant", HEAVY_INERTIA)))
     assert main(["run", str(path), "--out", str(tmp_path / "out"), "--quiet",
@@ -121,7 +121,7 @@ def test_plots_do_not_magnify_round_off():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
-    from cosim.report import coincide_note, steady_axis
+    from robofmu.report import coincide_note, steady_axis
     fig, (flat, real) = plt.subplots(2)
     noise = 1e-14 * np.sin(np.linspace(0.0, 10.0, 100))
     flat.plot(noise)
@@ -141,7 +141,7 @@ def test_plots_do_not_magnify_round_off():
 def test_a_simulation_that_fails_is_exit_1_with_the_fmus_reason(tmp_path, capsys):
     # Absurd gains from a small offset: the plant's integrator cannot follow and the
     # plant discards the first step, saying why (its log line, category logStatusDiscard).
-    from cosim.cli import main
+    from robofmu.cli import main
     doc = edit(plain(), "parameters/plant/theta0[1]", 0.01)
     for i in (1, 2, 3):
         doc = edit(doc, f"parameters/pid/Kp[{i}]", 1e12)
@@ -155,7 +155,7 @@ def test_a_simulation_that_fails_is_exit_1_with_the_fmus_reason(tmp_path, capsys
 
 
 def test_one_help_lists_every_command_and_each_command_has_its_own(capsys):
-    from cosim.cli import COMMANDS, main
+    from robofmu.cli import COMMANDS, main
     assert main(["--help"]) == 0
     text = capsys.readouterr().out
     assert all(f"    {name}" in text for name in COMMANDS) and len(COMMANDS) == 11
@@ -168,7 +168,7 @@ def test_every_document_the_harness_points_to_exists():
     # Messages and help texts send users to docs/NAME.md: each such file must exist
     # (truth: the repository's docs/ folder); a renamed document left a dead pointer.
     import re
-    named = {m for p in (ROOT / "cosim").rglob("*.py")
+    named = {m for p in (ROOT / "robofmu").rglob("*.py")
              for m in re.findall(r"docs/[\w.-]+\.md", p.read_text())}
     assert len(named) >= 3
     assert sorted(n for n in named if not (ROOT / n).is_file()) == []
@@ -177,11 +177,11 @@ def test_every_document_the_harness_points_to_exists():
 def test_demo_errors_are_one_line_with_the_exit_code_of_the_contract(tmp_path, capsys,
                                                                     monkeypatch):
     # A bundled scenario that is missing (the user's checkout is incomplete) is a user
-    # error: exit 2 and one line 'cosim: FILE: ...' (the contract of cosim/cli.py); the
+    # error: exit 2 and one line 'cosim: FILE: ...' (the contract of robofmu/cli.py); the
     # demo said 'demo: ...' and exited 1, like a failed simulation.
-    import cosim.demo
-    from cosim.cli import main
-    monkeypatch.setattr(cosim.demo, "SCENARIOS", ["no_such_scenario"])
+    import robofmu.demo
+    from robofmu.cli import main
+    monkeypatch.setattr(robofmu.demo, "SCENARIOS", ["no_such_scenario"])
     assert main(["demo", "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err.splitlines()
     assert len(err) == 1 and err[0].startswith("cosim: ") and "no_such_scenario.toml" in err[0]
@@ -193,11 +193,11 @@ def test_a_flat_recorded_signal_is_not_labelled_in_newtons(tmp_path, monkeypatch
     # signals are the planner's, whose unit is rad, not N.
     import matplotlib
     matplotlib.use("Agg")
-    import cosim.outputs
-    from cosim.outputs import plot_signals
+    import robofmu.outputs
+    from robofmu.outputs import plot_signals
     notes = []
-    original = cosim.outputs.steady_axis  # cosim.report's, imported where it is used
-    monkeypatch.setattr(cosim.outputs, "steady_axis",
+    original = robofmu.outputs.steady_axis  # robofmu.report's, imported where it is used
+    monkeypatch.setattr(robofmu.outputs, "steady_axis",
                         lambda ax, values, unit: notes.append(unit) or original(ax, values,
                                                                                unit))
     t = [0.0, 0.5, 1.0]

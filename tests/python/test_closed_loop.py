@@ -14,9 +14,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.master import Master  # noqa: E402
-from cosim.report import vector  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.report import vector  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
 
 SCENARIOS = ["regulation", "path1_cubic", "path1_quintic", "three_axis_cubic",
              "three_axis_quintic", "three_axis_waypoints"]
@@ -37,7 +37,7 @@ REGULATION = {"theta": 2e-3, "thetaDot": 0.1, "u": 3.0, "force": 6.0}
 
 
 def reference(name: str) -> dict:
-    from cosim.report import read_csv
+    from robofmu.report import read_csv
     return read_csv(ROOT / "tests" / "closed_loop_references" / name / f"{name}_ref.csv")
 
 
@@ -113,7 +113,7 @@ def test_ssp_runs_in_fmpy_and_matches_the_master(tmp_path):
     # that produced it, hence the shift by h.
     from fmpy.ssp.simulation import simulate_ssp
 
-    from cosim.ssp import fmpy_parameter_set, write_ssp
+    from robofmu.ssp import fmpy_parameter_set, write_ssp
     scenario = load_scenario(ROOT / "scenarios" / "three_axis_quintic.toml")
     ssp = tmp_path / "three_axis_quintic.ssp"
     write_ssp(scenario, ssp)

@@ -1,5 +1,5 @@
 """The closed-loop scenarios through our master with the FMI 3.0 builds of the FMUs
-(cosim/fmi3.py, `cosim run SCENARIO --fmi3`) against the FMI 2.0 run: the same
+(robofmu/fmi3.py, `cosim run SCENARIO --fmi3`) against the FMI 2.0 run: the same
 model code behind two front-ends, driven in the same order, so every recorded signal
 (angles, rates, forces, the PID output, the plan) must agree to 1e-9 (the issue's bound
 in rad; all signals are compared with it)."""
@@ -15,9 +15,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.fmi3 import open_fmi3  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
+from robofmu.fmi3 import open_fmi3  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
 from test_closed_loop import SCENARIOS  # noqa: E402
 
 AGREEMENT = 1e-9
@@ -45,7 +45,7 @@ def test_after_reset_a_single_element_write_keeps_the_other_start_values():
     # An FMI 3.0 array is written whole, so the adapter fills the elements not named
     # from what it last wrote; after fmi3Reset that must be the start values again
     # (Kp start = "1.0 1.0 1.0" in modelDescription/fmi3/PID.xml), not the last run's.
-    from cosim.fmi3 import Fmu3Instance
+    from robofmu.fmi3 import Fmu3Instance
     pid = Fmu3Instance("pid", ROOT / "dist" / "fmi3" / "PID.fmu", 0.0, 1.0)
     try:
         pid.set_values(("Kp[1]", "Kp[2]", "Kp[3]"), [5.0, 6.0, 7.0])

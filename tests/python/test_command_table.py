@@ -1,5 +1,5 @@
-"""Every `cosim` command is in the one command table (cosim.cli.COMMANDS): `cosim --help`
-lists each, `cosim NAME --help` reaches its module's arguments, the `python -m cosim.X`
+"""Every `cosim` command is in the one command table (robofmu.cli.COMMANDS): `cosim --help`
+lists each, `cosim NAME --help` reaches its module's arguments, the `python -m robofmu.X`
 entry points that the docs name go through the same table, and no module builds an
 argument parser of its own. The expected commands are written out here from the
 command list of docs/user-guide.md ("The command line"), not read from the table."""
@@ -17,14 +17,14 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.cli import main  # noqa: E402
+from robofmu.cli import main  # noqa: E402
 
 # docs/user-guide.md, "The command line": one row per command, in this order.
 DOCUMENTED = ["run", "check", "sweep", "ssp", "container", "bench", "demo", "verify",
               "animate", "fmus", "examples"]
-# `python -m cosim.X` entry points named in the docs and module docstrings.
-ENTRY_POINTS = {"cosim.bench": "bench", "cosim.demo": "demo", "cosim.animate": "animate",
-                "cosim.verify": "verify"}
+# `python -m robofmu.X` entry points named in the docs and module docstrings.
+ENTRY_POINTS = {"robofmu.bench": "bench", "robofmu.demo": "demo", "robofmu.animate": "animate",
+                "robofmu.verify": "verify"}
 
 
 def test_the_user_guide_lists_the_commands_written_here():
@@ -59,9 +59,9 @@ def test_documented_python_m_entry_points_go_through_the_table(module, command):
 
 
 def test_no_module_builds_its_own_argument_parser():
-    # the table's parser (cosim/cli.py) is the one place that parses a command line
+    # the table's parser (robofmu/cli.py) is the one place that parses a command line
     builders = []
-    for path in sorted((ROOT / "cosim").rglob("*.py")):
+    for path in sorted((ROOT / "robofmu").rglob("*.py")):
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.Call) and getattr(node.func, "attr",
                                                       getattr(node.func, "id", None)) \
@@ -72,9 +72,9 @@ def test_no_module_builds_its_own_argument_parser():
 
 def test_every_module_with_a_command_interface_is_in_the_table():
     # a module with add_arguments(parser) and run(args) is a command: the table names it
-    from cosim.cli import COMMANDS
+    from robofmu.cli import COMMANDS
     commands = set()
-    for path in sorted((ROOT / "cosim").rglob("*.py")):
+    for path in sorted((ROOT / "robofmu").rglob("*.py")):
         tree = ast.parse(path.read_text())
         defined = {n.name for n in tree.body if isinstance(n, ast.FunctionDef)}
         if {"add_arguments", "run"} <= defined:

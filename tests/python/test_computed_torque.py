@@ -15,11 +15,11 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.cli import main as cosim  # noqa: E402
-from cosim.fmi3 import open_fmi3  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
-from cosim.report import vector  # noqa: E402
+from robofmu.cli import main as cosim  # noqa: E402
+from robofmu.fmi3 import open_fmi3  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
+from robofmu.report import vector  # noqa: E402
 from test_closed_loop import at, reference, run  # noqa: E402
 
 SCENARIOS = ["path1_cubic_ct", "three_axis_quintic_ct", "path1_quintic_ct_mismatch"]
@@ -54,7 +54,7 @@ def test_the_model_mismatch_costs_tracking_but_stays_inside_the_bar():
     # Truth: docs/computed-torque.md's table (the Rust reference): with a perfect model
     # the error stays at the integrator's precision (1e-13 deg); with the model's legs
     # 20 % heavy it is about 2e-5 deg RMS on path 1, far inside the thesis's 0.05 deg.
-    from cosim.report import metrics
+    from robofmu.report import metrics
     nominal = metrics(run("path1_cubic_ct")).rms_error_deg
     mismatched = metrics(run("path1_quintic_ct_mismatch")).rms_error_deg
     assert nominal < 1e-8
@@ -99,7 +99,7 @@ def test_model_exchange_equals_co_simulation():
 def _check(tmp_path, capsys, change) -> tuple[int, str]:
     import tomllib
     data = tomllib.loads((ROOT / "scenarios" / "path1_cubic_ct.toml").read_text())
-    from cosim.scenario import fmu_file  # the FMU files the entries name, as absolute paths
+    from robofmu.scenario import fmu_file  # the FMU files the entries name, as absolute paths
     data["fmus"] = {a: str(fmu_file(a, p, ROOT / "scenarios")) for a, p in data["fmus"].items()}
     change(data)
     import json
@@ -148,8 +148,8 @@ def test_a_wrong_computed_torque_scenario_is_refused_by_field(tmp_path, capsys, 
 def test_the_demo_turns_a_pid_scenario_into_the_hand_written_computed_torque_one():
     # Truth: scenarios/path1_cubic_ct.toml, written by hand from path1_cubic.toml: the
     # demo's conversion resolves to the same FMU parameters and connections.
-    from cosim.demo_controllers import computed_torque_document
-    from cosim.scenario import parse_document, read_document
+    from robofmu.demo_controllers import computed_torque_document
+    from robofmu.scenario import parse_document, read_document
     folder = ROOT / "scenarios"
     converted = parse_document(computed_torque_document(
         read_document(folder / "path1_cubic.toml")), folder)
@@ -169,7 +169,7 @@ def test_the_container_fmu_of_the_loop_agrees_with_the_master(name, tmp_path):
     # times 2 as there, plus 1e-15 rad of rounding on an axis at rest. Measured: 0.46
     # of the bound on the moving axes.
     import dataclasses
-    from cosim.container import build_container, stepping_order
+    from robofmu.container import build_container, stepping_order
     from fmpy import simulate_fmu
     from test_container import AXES, MARGIN, columns, loop_gains
     s = dataclasses.replace(load_scenario(ROOT / "scenarios" / f"{name}.toml"),

@@ -1,4 +1,4 @@
-"""The closed loop as a container FMU (python -m cosim container), built and stepped by a
+"""The closed loop as a container FMU (python -m robofmu container), built and stepped by a
 second FMI implementation (fmu-manipulation-toolbox's runtime) and run bare in FMPy,
 against our master.
 
@@ -47,10 +47,10 @@ from fmpy.validation import validate_fmu
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.container import build_container, stepping_order  # noqa: E402
-from cosim.fmu import FmuInstance  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
+from robofmu.container import build_container, stepping_order  # noqa: E402
+from robofmu.fmu import FmuInstance  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
 
 SCENARIOS = ["regulation", "path1_cubic", "path1_quintic", "three_axis_cubic",
              "three_axis_quintic"]
@@ -195,7 +195,7 @@ def test_container_runs_bare_in_fmpy_and_tracks_the_plan(tmp_path):
     # Requirement (as for the master): RMS tracking error below 0.05 deg.
     s = scenario("three_axis_quintic")
     fmu = tmp_path / "loop.fmu"
-    subprocess.run([sys.executable, "-m", "cosim", "container", str(ROOT / "scenarios" /
+    subprocess.run([sys.executable, "-m", "robofmu", "container", str(ROOT / "scenarios" /
                     "three_axis_quintic.toml"), "--out", str(fmu)], check=True, cwd=ROOT,
                    capture_output=True)
     csv = tmp_path / "loop.csv"
@@ -228,7 +228,7 @@ def test_toolbox_ssp_reader_ignores_parameter_bindings(tmp_path):
     # When a toolbox version reads them, this test fails and the README must change.
     from fmu_manipulation_toolbox.assembly import Assembly
 
-    from cosim.ssp import fmpy_parameter_set, write_ssp
+    from robofmu.ssp import fmpy_parameter_set, write_ssp
     s = scenario("three_axis_quintic")
     ssp = tmp_path / "loop.ssp"
     write_ssp(s, ssp)

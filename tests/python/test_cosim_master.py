@@ -12,9 +12,9 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from cosim.errors import CosimError, StepDiscarded  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import ScenarioError, load_scenario, parse_scenario  # noqa: E402
+from robofmu.errors import CosimError, StepDiscarded  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import ScenarioError, load_scenario, parse_scenario  # noqa: E402
 
 
 class Ramp:
@@ -236,7 +236,7 @@ def test_ssp_structure_passes_the_ssp_schema(tmp_path):
     from types import SimpleNamespace as Var
     pytest.importorskip("fmpy")
     from fmpy.ssp.ssd import read_ssd
-    from cosim.ssp import system_structure
+    from robofmu.ssp import system_structure
     s = scenario(parameters={"int": {"gain": 2.0, "n": 3}})
     variables = {"ramp": {"y": Var(type="Real", causality="output")},
                  "int": {"u": Var(type="Real", causality="input"),
@@ -253,7 +253,7 @@ def test_ssp_structure_passes_the_ssp_schema(tmp_path):
     names = [(c.startElement, c.startConnector, c.endElement, c.endConnector)
              for c in ssd.system.connections]
     assert names == [("ramp", "y", "int", "u")]
-    assert ssd.system.parameterBindings == []  # bound per component (cosim.ssp)
+    assert ssd.system.parameterBindings == []  # bound per component (robofmu.ssp)
     ramp, integrator = ssd.system.elements
     assert ramp.parameterBindings == []
     params = integrator.parameterBindings[0].parameterValues[0].parameters

@@ -152,9 +152,9 @@ def test_cosim_verify_runs_a_whole_tree(tree, tmp_path):
     import shutil
     import sys
     from fmpy.cross_check.validate_vendor_repo import validate_cross_check_result
-    from cosim.verify.tree import tool_version
+    from robofmu.verify.tree import tool_version
     xc = with_more_cases(tree, tmp_path)
-    done = subprocess.run([sys.executable, "-m", "cosim", "verify", str(xc), "--out", str(xc),
+    done = subprocess.run([sys.executable, "-m", "robofmu", "verify", str(xc), "--out", str(xc),
                            "--jobs", "2"], cwd=ROOT, capture_output=True, text=True)
     print(done.stdout)
     assert done.returncode == 1, done.stderr  # one failed and one rejected case
@@ -204,7 +204,7 @@ def test_cosim_verify_runs_a_whole_tree(tree, tmp_path):
     wrong = next((xc / "fmus/2.0/cs/linux64/wrong").glob("*/Planner"))
     shutil.copy(next((xc / "fmus/2.0/cs/linux64/robofmu").glob("*/Planner/Planner_ref.csv")),
                 wrong)
-    again = subprocess.run([sys.executable, "-m", "cosim", "verify", str(wrong.parent),
+    again = subprocess.run([sys.executable, "-m", "robofmu", "verify", str(wrong.parent),
                             "--out", str(xc)], cwd=ROOT, capture_output=True, text=True)
     assert again.returncode == 0, again.stdout + again.stderr
     assert "1 passed, 0 failed, 0 rejected, 0 skipped of 1 cases" in again.stdout
@@ -212,7 +212,7 @@ def test_cosim_verify_runs_a_whole_tree(tree, tmp_path):
         "Planner_out.csv", "README.md", "passed", "verify.json"]
     # --interface picks the cases of one interface; a tree where none runs is refused
     # (exit 2, nothing written), not passed.
-    nothing = subprocess.run([sys.executable, "-m", "cosim", "verify", str(wrong.parent),
+    nothing = subprocess.run([sys.executable, "-m", "robofmu", "verify", str(wrong.parent),
                               "--interface", "me", "--out", str(tmp_path / "none")],
                              cwd=ROOT, capture_output=True, text=True)
     assert nothing.returncode == 2 and "none of its 1 cases runs here" in nothing.stderr

@@ -1,5 +1,5 @@
 """One implementation of the scenario rules: the hand-written scenarios are resolved by
-the harness (cosim/closed_loop.py, units.py, design.py) and the Rust reference reads
+the harness (robofmu/closed_loop.py, units.py, design.py) and the Rust reference reads
 their expanded form, committed in tests/scenarios/expanded/. Truths: (1) the committed
 files are what `cosim check --expanded` writes now (every number to 1e-12 relative: the
 gain design runs on the plant FMU); (2) the harness runs an expanded file and its
@@ -17,7 +17,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from cosim.cli import main  # noqa: E402
+from robofmu.cli import main  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 EXPANDED = ROOT / "tests" / "scenarios" / "expanded"
@@ -66,7 +66,7 @@ def test_the_description_is_kept_through_the_expansion(tmp_path, capsys):
     # and again in the expansion of that expanded form.
     text = "Three axes, with \"quotes\" and a \\ backslash"
     source = tomllib.loads((ROOT / "scenarios" / "three_axis_waypoints.toml").read_text())
-    from cosim.scenario import fmu_file  # the FMU files the entries name, as absolute paths
+    from robofmu.scenario import fmu_file  # the FMU files the entries name, as absolute paths
     source["fmus"] = {a: str(fmu_file(a, p, ROOT / "scenarios"))
                       for a, p in source["fmus"].items()}
     source["description"] = text

@@ -19,9 +19,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.errors import ScenarioError  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
+from robofmu.errors import ScenarioError  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
 
 OMSIMULATOR_AT_1_MS = 4.8e-6  # rad
 

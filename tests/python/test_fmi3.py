@@ -13,7 +13,7 @@ from fmpy.validation import validate_fmu
 
 import fmi3_names
 from conftest import INTERFACES, MODELS, fmu3_path, fmu_path
-from cosim.fmi3 import scalar_names
+from robofmu.fmi3 import scalar_names
 from test_importers import read_options, read_signals, reference_cases
 
 # The FMI 2.0 and FMI 3.0 builds call the same model code with the same arguments in

@@ -2,7 +2,7 @@
 every one is answered with exit code 2 (1 where the run itself fails), one line
 `cosim: ...` naming the file and the field (or the argument), no traceback, nothing
 written outside --out, and no FMU instance folder left in the temp directory. The cases
-run in this process through cosim.cli.main (the console script's function); a few run
+run in this process through robofmu.cli.main (the console script's function); a few run
 as subprocesses to see the real exit status. About 40 s."""
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from cosim.cli import main  # noqa: E402
+from robofmu.cli import main  # noqa: E402
 from hostile_cases import DIST, DOCUMENTS, RAW, ROOT, base, edit  # noqa: E402
 
 
@@ -202,14 +202,14 @@ def test_an_exceeded_limit_is_exit_1_with_the_results_written(sandbox, capsys):
 
 
 def test_the_process_exit_status_and_debug_traceback(tmp_path):
-    """The real process: `python -m cosim` from another directory."""
+    """The real process: `python -m robofmu` from another directory."""
     bad = tmp_path / "bad.toml"
     bad.write_bytes(b"\xff\xfe")
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    run = subprocess.run([sys.executable, "-m", "cosim", "run", str(bad)], cwd=tmp_path,
+    run = subprocess.run([sys.executable, "-m", "robofmu", "run", str(bad)], cwd=tmp_path,
                          env=env, capture_output=True, text=True)
     assert run.returncode == 2 and run.stderr.count("\n") == 1 and "UTF-8" in run.stderr
-    debug = subprocess.run([sys.executable, "-m", "cosim", "--debug", "run", str(bad)],
+    debug = subprocess.run([sys.executable, "-m", "robofmu", "--debug", "run", str(bad)],
                            cwd=tmp_path, env=env, capture_output=True, text=True)
     assert debug.returncode == 2 and "Traceback" in debug.stderr
     assert shutil.which("true")  # (the environment ran a process at all)

@@ -1,4 +1,4 @@
-"""The closed loop exported by cosim.ssp, run by libcosim and ecos (the SSP importers from
+"""The closed loop exported by robofmu.ssp, run by libcosim and ecos (the SSP importers from
 PyPI) with their fixed-step algorithms, which are Jacobi schemes: every FMU steps from t_k
 with the outputs its sources had at t_k after their previous step, so the plant applies
 the PID's answer to inputs one step old.
@@ -7,7 +7,7 @@ Two truths:
 - the same Jacobi loop on FMPy (tests/python/fmpy_loops.py, on the importer's time grid):
   plant angles and rates equal to 1e-12 (same binaries, same calls; measured 0, bit for
   bit);
-- our master (cosim.master, sampled coupling), within a tolerance derived from the
+- our master (robofmu.master, sampled coupling), within a tolerance derived from the
   coupling: the Jacobi scheme's one-step delay is a first-order error, so its deviation
   from the master at step h is about twice the deviation at h/2 (measured ratios 2.05 to
   2.26 on these scenarios). The tolerance is 2.5 times the deviation of the FMPy Jacobi
@@ -39,10 +39,10 @@ from importer_runs import run_ecos, run_libcosim
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
-from cosim.ssp import write_ssp  # noqa: E402
-from cosim.ssp_annotations import NS, tag  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
+from robofmu.ssp import write_ssp  # noqa: E402
+from robofmu.ssp_annotations import NS, tag  # noqa: E402
 
 SCENARIOS = ["regulation", "three_axis_cubic"]
 SIGNALS = [f"plant.{name}[{i}]" for name in ("theta", "thetaDot") for i in (1, 2, 3)]
@@ -106,7 +106,7 @@ def test_ecos_applies_the_bindings_only_when_init_names_the_set(case):
 
 def system_level_copy(ssp: Path, out: Path) -> None:
     """`ssp` with its bindings moved to the system, names "component.variable" (the form
-    cosim.ssp wrote before; valid SSP 1.0 too)."""
+    robofmu.ssp wrote before; valid SSP 1.0 too)."""
     with zipfile.ZipFile(ssp) as z:
         files = {name: z.read(name) for name in z.namelist()}
     root = ET.fromstring(files["SystemStructure.ssd"])

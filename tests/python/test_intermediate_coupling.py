@@ -1,5 +1,5 @@
 """Linear input extrapolation for the FMI 3.0 builds through the intermediate update
-(cosim/intermediate.py) against the FMI 2.0 builds' input derivatives: the same model
+(robofmu/intermediate.py) against the FMI 2.0 builds' input derivatives: the same model
 code behind two front-ends. FMI 2.0 integrates the ramp u_k + u'_k s exactly; the FMI 3.0
 plant and PID take the ramp's value at the middle of each of their 10 sub-intervals (the
 midpoint rule, exact for a ramp) except the first, held at u_k: an input-integral error
@@ -18,9 +18,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.fmi3 import open_fmi3  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import parse_document  # noqa: E402
+from robofmu.fmi3 import open_fmi3  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import parse_document  # noqa: E402
 
 SCENARIO = ROOT / "scenarios" / "regulation.toml"
 

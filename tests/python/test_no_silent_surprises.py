@@ -35,7 +35,7 @@ PYTHON = ROOT / ".venv" / "bin" / "python"
 
 def cosim(*argv, cwd=ROOT):
     env = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")
-    return subprocess.run([str(PYTHON), "-m", "cosim", *map(str, argv)], cwd=cwd, env=env,
+    return subprocess.run([str(PYTHON), "-m", "robofmu", *map(str, argv)], cwd=cwd, env=env,
                           capture_output=True, text=True, timeout=300)
 
 
@@ -197,7 +197,7 @@ def test_ctrl_c_during_a_sweep_prints_one_line_and_resume_finishes(tmp_path, wor
     spec = _spec(tmp_path, "name = \"c\"\n[grid.'gains.omega']\nfrom = 10\nto = 50\n"
                  "steps = 80\nunit = \"rad/s\"\n")
     out = tmp_path / "out"
-    argv = [str(PYTHON), "-m", "cosim", "sweep", str(spec), "--out", str(out), "--quiet",
+    argv = [str(PYTHON), "-m", "robofmu", "sweep", str(spec), "--out", str(out), "--quiet",
             "--workers", str(workers)]
     process = subprocess.Popen(argv, cwd=ROOT, start_new_session=True, text=True,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
@@ -232,7 +232,7 @@ def test_equal_curves_say_that_they_hide_one_another():
     sys.path.insert(0, str(ROOT))
     import numpy as np
 
-    from cosim.report import hidden_labels
+    from robofmu.report import hidden_labels
     f = np.linspace(0.0, -0.009, 50)
     assert hidden_labels([f, f, f], ["a1", "a2", "a3"], "N", float(np.ptp(f))) == [
         "a1 (hidden under a3: equal)", "a2 (hidden under a3: equal)", "a3"]
@@ -244,7 +244,7 @@ def test_equal_curves_say_that_they_hide_one_another():
 
 def test_the_sweep_figure_names_what_is_drawn_at_random():
     sys.path.insert(0, str(ROOT))
-    from cosim.sweep.spec import load_spec
+    from robofmu.sweep.spec import load_spec
     about = load_spec(ROOT / "sweeps" / "demo_gains.toml").about()
     assert about == ("sweep demo_gains: 15 runs; random plant.legMass: normal, mean 0.9467 "
                      "kg, sd 0.09467 kg, truncated to [0.75, 1.15] kg (3 draws per grid "
@@ -257,7 +257,7 @@ def test_a_metric_equal_in_every_run_is_said_not_drawn_flat(tmp_path):
     sys.path.insert(0, str(ROOT))
     import matplotlib
     matplotlib.use("Agg")
-    from cosim.sweep import plots
+    from robofmu.sweep import plots
     rows = [{"status": "ok", "g [rad/s]": float(w), "rms_error_deg": 1.0 / w,
              "max_error_deg": 3.0000000000000004, "peak_force_n": 100.0 * (1 + 0.006 * (w % 2)),
              "settling_time_s": 4.0 / w, "wall_s": 0.2} for w in (10, 20, 30, 41)]

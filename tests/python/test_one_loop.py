@@ -1,4 +1,4 @@
-"""The master's one stepping loop (cosim.loop: native code, with callbacks into Python
+"""The master's one stepping loop (robofmu.loop: native code, with callbacks into Python
 for every instance that is not an FMI 2.0 FMPy one) against the same loop written out
 in Python over FMPy's wrappers (reference_loop.ReferenceMaster, a test oracle only),
 bit for bit: every extrapolation order, both couplings, plan switches, step halvings,
@@ -14,10 +14,10 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.errors import CosimError  # noqa: E402
-from cosim.fmi3 import open_fmi3  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
+from robofmu.errors import CosimError  # noqa: E402
+from robofmu.fmi3 import open_fmi3  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
 from reference_loop import ReferenceMaster  # noqa: E402
 
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from conftest import package_source
 
-from cosim.loop import library_path
+from robofmu.loop import library_path
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -48,11 +48,11 @@ def test_installed_console_command_runs_a_scenario_anywhere(tmp_path):
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     imported = subprocess.run([str(Path(sys.executable)), "-c",
-                               "import cosim, sys; print(cosim.__file__)"], cwd=work,
+                               "import robofmu, sys; print(robofmu.__file__)"], cwd=work,
                               env=env, capture_output=True, text=True)
     assert imported.stdout.startswith(str(site)), imported.stdout
     # A copied scenario naming the bundled FMUs (plant = "Pss3Plant") finds them in the
-    # installed package (cosim/data/fmus) ...
+    # installed package (robofmu/data/fmus) ...
     run = subprocess.run([str(command), "run", "regulation.toml", "--out", "out3", "--quiet"],
                          cwd=work, env=env, capture_output=True, text=True)
     assert run.returncode == 0, run.stderr

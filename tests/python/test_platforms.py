@@ -177,7 +177,7 @@ def test_each_fmu_holds_the_platform_binary_of_its_layout(model, variant, platfo
 @pytest.mark.parametrize("platform", PLATFORMS)
 def test_the_stepping_kernel_is_built_for_the_platform_and_goes_into_the_wheel(platform):
     # hatch_build.py bundles, per platform, the kernel build-fmus.sh cross-built beside
-    # the FMUs; cosim.loop loads it from cosim/_native/<that platform's PLATFORM>/.
+    # the FMUs; robofmu.loop loads it from robofmu/_native/<that platform's PLATFORM>/.
     require(platform)
     sys.path.insert(0, str(ROOT))
     try:
@@ -191,7 +191,7 @@ def test_the_stepping_kernel_is_built_for_the_platform_and_goes_into_the_wheel(p
     headers = run(llvm("llvm-readobj"), "--file-headers", str(path))
     kind = " ".join(re.search(rf"^{k}: (.+)$", headers, re.M).group(1) for k in ("Format", "Arch"))
     assert kind == PLATFORMS[platform][1], kind
-    # Expected: the two entry points cosim/loop.py declares (argtypes) and calls.
+    # Expected: the two entry points robofmu/loop.py declares (argtypes) and calls.
     assert {"cosim_kernel_run", "cosim_kernel_propagate"} <= exported(path, platform)
     if platform.endswith("linux"):
         symbols = run(llvm("llvm-objdump"), "-T", str(path))

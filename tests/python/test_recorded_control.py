@@ -11,9 +11,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from cosim.fmu import FmuInstance  # noqa: E402
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import Signal, load_scenario  # noqa: E402
+from robofmu.fmu import FmuInstance  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import Signal, load_scenario  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 AXES = (1, 2, 3)

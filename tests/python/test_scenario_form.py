@@ -1,4 +1,4 @@
-"""Hand-written closed-loop scenarios (cosim.closed_loop): units, the Euler-rate and gain
+"""Hand-written closed-loop scenarios (robofmu.closed_loop): units, the Euler-rate and gain
 conversions against the Rust side, and multi-segment motions through the planner FMU."""
 
 from __future__ import annotations
@@ -14,9 +14,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.master import Master  # noqa: E402
-from cosim.report import read_csv, vector  # noqa: E402
-from cosim.scenario import ScenarioError, load_scenario, parse_document  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.report import read_csv, vector  # noqa: E402
+from robofmu.scenario import ScenarioError, load_scenario, parse_document  # noqa: E402
 
 NAMES = ["regulation", "path1_cubic", "path1_quintic", "three_axis_cubic",
          "three_axis_quintic"]
@@ -98,7 +98,7 @@ def test_multi_segment_motions_pass_every_waypoint_continuously(profile):
     # Truth: the waypoint's angles and its base-frame omega (converted by the
     # planner-independent E^-1) at t = 1 s; velocity continuity shows as a
     # first-difference of q equal to q_dot h to O(h^2) on both sides of the waypoint.
-    from cosim.design import euler_rates
+    from robofmu.design import euler_rates
     scenario = parse_document(multi_segment(profile), ROOT / "scenarios")
     assert [s.step for s in scenario.schedule] == [1000]
     r = Master(scenario).run()
@@ -152,7 +152,7 @@ def test_the_gain_design_uses_the_scenarios_plant_as_the_closed_form_says():
 def test_a_sweep_drawing_plant_parameters_designs_on_the_base_plant():
     # Truth: sweeps/demo_gains.toml draws plant.legMass at random (the robot's
     # uncertainty): each run's gains are those of the base scenario's plant at its omega.
-    from cosim.sweep.spec import document_for, load_spec
+    from robofmu.sweep.spec import document_for, load_spec
     spec = load_spec(ROOT / "sweeps" / "demo_gains.toml")
     run = spec.runs[0]
     document = document_for(spec, run)

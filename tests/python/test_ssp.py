@@ -1,4 +1,4 @@
-"""The SSP export (cosim.ssp) against the SSP 1.0 schema and the places the importers read.
+"""The SSP export (robofmu.ssp) against the SSP 1.0 schema and the places the importers read.
 
 Truths: the standard's XSDs (SystemStructureDescription.xsd and the schemas it imports,
 the copies FMPy ships under fmpy/ssp/schema, BSD-licensed, not copied here) through
@@ -20,9 +20,9 @@ import xmlschema
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.scenario import load_scenario  # noqa: E402
-from cosim.ssp import PARAMETER_SET, write_ssp  # noqa: E402
-from cosim.ssp_annotations import NS  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
+from robofmu.ssp import PARAMETER_SET, write_ssp  # noqa: E402
+from robofmu.ssp_annotations import NS  # noqa: E402
 
 SCHEMA = Path(fmpy.__file__).parent / "ssp" / "schema" / "SystemStructureDescription.xsd"
 # Every scenario with one plan (a multi-segment motion has no SSP form), with either

@@ -1,4 +1,4 @@
-"""Sweeps on Dask (cosim.sweep): a 2-worker LocalCluster against the same runs made
+"""Sweeps on Dask (robofmu.sweep): a 2-worker LocalCluster against the same runs made
 serially, a killed worker, --resume, failures, malformed SPECs, the metrics, and the
 instance reuse (fmi2Reset) the workers rely on.
 
@@ -20,10 +20,10 @@ from scipy.optimize import brentq
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.master import Master  # noqa: E402
-from cosim.scenario import load_scenario  # noqa: E402
-from cosim.sweep import SpecError, load_spec, run_sweep  # noqa: E402
-from cosim.sweep.runner import InstancePool  # noqa: E402
+from robofmu.master import Master  # noqa: E402
+from robofmu.scenario import load_scenario  # noqa: E402
+from robofmu.sweep import SpecError, load_spec, run_sweep  # noqa: E402
+from robofmu.sweep.runner import InstancePool  # noqa: E402
 
 BASE = '''scenario = "{scenario}"
 name = "{name}"
@@ -114,7 +114,7 @@ def test_a_killed_workers_runs_are_retried(tmp_path, monkeypatch):
     # which once made as_completed track the sweep's futures on the caller's event loop
     # (a result lost with the worker was then awaited on the sweep's loop: "bound to a
     # different event loop", issue 19): the futures must be tracked on the sweep's loop.
-    # The killed worker ran no clean-up: its folder of FMU files (cosim.sweep.scratch)
+    # The killed worker ran no clean-up: its folder of FMU files (robofmu.sweep.scratch)
     # must be gone after the sweep all the same, and so every worker's.
     import tempfile
 
@@ -214,7 +214,7 @@ def test_workspace_targets_outside_the_reachable_set_are_left_out(tmp_path):
     # Truth: the plant FMU's inverse kinematics at the pose. At thx = 10 deg actuator 3
     # would be 157.8 mm long, beyond the 152 mm stroke end; at 60 deg leg 3 cannot reach
     # its platform joint; at 0 deg all three are within the stroke.
-    from cosim.sweep import reachable_on
+    from robofmu.sweep import reachable_on
     text = BASE + ("[workspace]\npath = \"motion.waypoints[1].angles\"\nunit = \"deg\"\n"
                    "[workspace.thx]\nvalues = [0, 10, 60]\n[workspace.thy]\nvalues = [0]\n"
                    "[workspace.thz]\nvalues = [138]\n")
@@ -224,12 +224,12 @@ def test_workspace_targets_outside_the_reachable_set_are_left_out(tmp_path):
 
 
 def test_the_sweep_reachability_is_the_workspace_check_at_the_stroke_end():
-    # Truth: cosim/workspace.py's Workspace.problem, the one implementation, which counts
+    # Truth: robofmu/workspace.py's Workspace.problem, the one implementation, which counts
     # a length within STROKE_TOLERANCE of a stroke end as inside. Bisecting thx between
     # 0 deg (reachable) and 10 deg (actuator 3 beyond its stroke) gives a pose whose
     # length lies past strokeMax by less than that tolerance: the sweep must keep it.
-    from cosim.sweep.reach import reachable
-    from cosim.workspace import LENGTHS, STROKE_TOLERANCE, Workspace
+    from robofmu.sweep.reach import reachable
+    from robofmu.workspace import LENGTHS, STROKE_TOLERANCE, Workspace
     plant = ROOT / "dist" / "Pss3Plant.fmu"
     pose = lambda thx: (thx, 0.0, math.radians(138.0))  # noqa: E731
     inside, outside = 0.0, math.radians(10.0)
@@ -254,7 +254,7 @@ def test_the_sweep_reachability_is_the_workspace_check_at_the_stroke_end():
 def test_the_command_refuses_a_malformed_spec_by_field(tmp_path):
     import subprocess
     spec = write_spec(tmp_path, BASE + "[grid.'gains.omega']\nfrom = 10\nto = 60\n")
-    run = subprocess.run([sys.executable, "-m", "cosim", "sweep", str(spec), "--out",
+    run = subprocess.run([sys.executable, "-m", "robofmu", "sweep", str(spec), "--out",
                           str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
     assert run.returncode == 2
     assert "field 'grid.gains.omega.steps' must be a positive integer" in run.stderr
@@ -266,7 +266,7 @@ def test_random_draws_are_seeded_truncated_and_follow_their_distribution():
     # mean 0.8 + 0.1 (phi(-1) - phi(2)) / (Phi(2) - Phi(-1)) = 0.8288; uniform(1, 3):
     # mean 2, variance 1/3. Bounds: 5 standard errors of the mean over 4000 draws.
     from scipy.stats import norm, truncnorm
-    from cosim.sweep.spec import random_draws
+    from robofmu.sweep.spec import random_draws
     tables = {"a": {"distribution": "normal", "mean": 0.8, "sd": 0.1, "min": 0.7,
                     "max": 1.0},
               "b": {"distribution": "uniform", "low": 1.0, "high": 3.0}}
@@ -285,7 +285,7 @@ def test_random_draws_are_seeded_truncated_and_follow_their_distribution():
 def test_auto_batch_fits_the_task_length_and_keeps_every_worker_busy():
     # Closed form: runs per task = min(T(W) / (steps RUN_STEP_S), runs / (4 W)), at
     # least 1, with the task length T(W) = max(TASK_S, 4 W CLIENT_TASK_S).
-    from cosim.sweep.engine import CLIENT_TASK_S, RUN_STEP_S, TASK_S, auto_batch
+    from robofmu.sweep.engine import CLIENT_TASK_S, RUN_STEP_S, TASK_S, auto_batch
     run_s = 1000 * RUN_STEP_S
     assert auto_batch(100000, 2, 1000) == int(TASK_S / run_s)
     assert auto_batch(100000, 16, 1000) == int(4 * 16 * CLIENT_TASK_S / run_s)
@@ -297,7 +297,7 @@ def test_auto_batch_fits_the_task_length_and_keeps_every_worker_busy():
 def test_grid_plots_show_the_spread_of_the_draws(tmp_path):
     # Truth: numpy's median and percentiles of each grid point's draws, computed here
     # apart; below 10 draws the band is the range. No histogram of a few draws.
-    from cosim.sweep.plots import plot_sweep, spread
+    from robofmu.sweep.plots import plot_sweep, spread
     rng = np.random.default_rng(5)
     rows = [{"status": "ok", "w": w, "rms_error_deg": float(w + rng.normal())}
             for w in (1.0, 2.0) for _ in range(30)]
@@ -314,7 +314,7 @@ def test_grid_plots_show_the_spread_of_the_draws(tmp_path):
 def test_the_command_exits_1_with_the_reasons_of_failed_runs(tmp_path, capsys):
     # lp = 0: the plant refuses it (its own reason in the table's 'reason' column); the
     # command says how many runs failed and why, exit status 1.
-    from cosim.cli import main
+    from robofmu.cli import main
     text = BASE + "[grid.'plant.lp']\nvalues = [0.0, 0.632187]\nunit = \"m\"\n"
     spec = write_spec(tmp_path, text)
     status = main(["sweep", str(spec), "--out", str(tmp_path), "--workers", "0", "--quiet"])

@@ -14,7 +14,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.cli import main as cosim  # noqa: E402
+from robofmu.cli import main as cosim  # noqa: E402
 from hostile_cases import ABSOLUTE_NAME  # noqa: E402
 
 SCENARIO = ROOT / "scenarios" / "regulation.toml"

@@ -1,6 +1,6 @@
 """cosim verify on a third-party binary runtime: the closed loop as the container FMU of
-fmu-manipulation-toolbox (cosim.container.build_container), verified against our
-master's result of the same scenario (cosim.master.Master) as the reference CSV, given
+fmu-manipulation-toolbox (robofmu.container.build_container), verified against our
+master's result of the same scenario (robofmu.master.Master) as the reference CSV, given
 by options only (--reference, --step, --tolerance).
 
 The tolerances are test_container.py's coupling bounds (derived there from the loop's
@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from test_container import deviations, force_after_step, run_master, scenario, tolerances
-from cosim.container import build_container
+from robofmu.container import build_container
 from verify_cli import verify
 
 AXES = (1, 2, 3)

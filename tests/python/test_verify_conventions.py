@@ -18,11 +18,11 @@ from fmpy.util import read_ref_opt_file
 from conftest import DIST, REFERENCES
 from verify_cli import verify
 
-from cosim.verify import compare
-from cosim.verify.case import Case
-from cosim.verify.simulate import Run
-from cosim.verify.table import Table, read_options, read_table
-from cosim.verify.tolerance import CrossCheckBand, Deviation
+from robofmu.verify import compare
+from robofmu.verify.case import Case
+from robofmu.verify.simulate import Run
+from robofmu.verify.table import Table, read_options, read_table
+from robofmu.verify.tolerance import CrossCheckBand, Deviation
 
 PID = DIST / "PID.fmu"
 # FMPy 0.3.32 imports its band filters from scipy.ndimage.filters, deprecated in SciPy 1.17.
@@ -235,7 +235,7 @@ def test_an_fmu_that_ends_the_run_early(tmp_path, monkeypatch):
     # terminate at 9 s of 10): every signal judged up to 1 s, a FAIL line saying so with
     # the FMU's last log message, every signal plotted, JUnit's "run" test case failed;
     # --allow-early-end passes it.
-    from cosim.verify import runner
+    from robofmu.verify import runner
     real = runner.simulate
 
     def ends_at_one_second(*args):

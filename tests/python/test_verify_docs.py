@@ -85,7 +85,7 @@ def test_ci_recipe_commands_run_against_a_local_fmu(index, ci, installed, tmp_pa
     env = dict(os.environ, PYTHONPATH=str(installed),
                PATH=f"{installed / 'bin'}:{ROOT / '.venv' / 'bin'}:{os.environ['PATH']}")
     # The commands import the installed package, not the repository's.
-    where = bash("python -c 'import cosim.verify; print(cosim.verify.__file__)'", tmp_path, env)
+    where = bash("python -c 'import robofmu.verify; print(robofmu.verify.__file__)'", tmp_path, env)
     assert Path(where.stdout.strip()).is_relative_to(installed), where
     for command in checks:
         done = bash(command, tmp_path, env)

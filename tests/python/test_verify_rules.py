@@ -1,4 +1,4 @@
-"""The tolerance rules of cosim verify (cosim/verify/tolerance.py).
+"""The tolerance rules of cosim verify (robofmu/verify/tolerance.py).
 
 The FMI cross-check band rule is checked against the second implementation of the same
 definition, FMPy 0.3.32's fmpy.cross_check (validate_signal: the band and the outliers;
@@ -11,8 +11,8 @@ from fmpy.cross_check import validate_result, validate_signal
 
 from conftest import REFERENCES
 from verify_cli import ROOT  # noqa: F401  (puts the repository on sys.path)
-from cosim.verify.table import read_table
-from cosim.verify.tolerance import CrossCheckBand, Deviation, from_json, from_text
+from robofmu.verify.table import read_table
+from robofmu.verify.tolerance import CrossCheckBand, Deviation, from_json, from_text
 
 # FMPy's validate_signal imports from scipy.ndimage.filters (deprecated in SciPy 1.17).
 pytestmark = pytest.mark.filterwarnings(

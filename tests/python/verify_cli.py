@@ -1,8 +1,8 @@
 """Runs ``cosim verify`` for the tests: the one place that says how the command is
 invoked (in process, as the console script would, with its exit code and output).
 
-The command runs through the harness's dispatcher (cosim/cli.py), in process and as
-``python -m cosim verify``."""
+The command runs through the harness's dispatcher (robofmu/cli.py), in process and as
+``python -m robofmu verify``."""
 
 from __future__ import annotations
 
@@ -17,14 +17,14 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from cosim.cli import main as dispatch  # noqa: E402
+from robofmu.cli import main as dispatch  # noqa: E402
 
 # The same command in a child process (exit code and stderr as a user sees them).
-COMMAND = [sys.executable, "-m", "cosim", "verify"]
+COMMAND = [sys.executable, "-m", "robofmu", "verify"]
 
 
 def main(argv) -> int:
-    """``cosim verify ARGV...`` through the harness's dispatcher (cosim/cli.py)."""
+    """``cosim verify ARGV...`` through the harness's dispatcher (robofmu/cli.py)."""
     return dispatch(["verify", *argv])
 
 
@@ -58,5 +58,5 @@ def verify_process(*args, cwd=ROOT) -> Outcome:
 
 def shell(command: str) -> str:
     """A documented command line as the tests run it: `cosim verify` through this
-    interpreter's dispatcher (`python -m cosim verify`, the console script's function)."""
-    return command.replace("cosim verify", f"{sys.executable} -m cosim verify")
+    interpreter's dispatcher (`python -m robofmu verify`, the console script's function)."""
+    return command.replace("cosim verify", f"{sys.executable} -m robofmu verify")

@@ -1,5 +1,5 @@
-//! The stepping loop of the co-simulation master (`cosim/master.py`), the only one it
-//! has, in native code. Python prepares every call of a step once (`cosim/loop.py`):
+//! The stepping loop of the co-simulation master (`robofmu/master.py`), the only one it
+//! has, in native code. Python prepares every call of a step once (`robofmu/loop.py`):
 //! an FMI 2.0 instance's own functions (function pointers from its library, instance
 //! handles, value-reference arrays, shared buffers), or for any other instance (FMI
 //! 3.0, a stand-in) a C callback into its Python adapter with the same signature; it
@@ -57,7 +57,7 @@ const DISCARD: c_int = 2;
 /// # Safety
 ///
 /// `plan` must point to a valid [`Plan`] whose arrays, handles and function pointers
-/// are alive and match (as `cosim/loop.py` builds them), `rows` must hold
+/// are alive and match (as `robofmu/loop.py` builds them), `rows` must hold
 /// `(to + 1) * width` values and `failure` must be writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn cosim_kernel_run(

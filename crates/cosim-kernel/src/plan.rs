@@ -43,7 +43,7 @@ pub struct Exchange {
 /// The input derivatives of one connected pair (orders 1..k, all of order 1 first):
 /// the source's output derivatives (`get` set) or, when the source gives none, the
 /// derivatives through the pair's values at the last communication points
-/// (`cosim.slopes.History`; `values`: the value [`Exchange`]'s buffer).
+/// (`robofmu.slopes.History`; `values`: the value [`Exchange`]'s buffer).
 #[repr(C)]
 pub struct SlopeExchange {
     /// fmi2GetRealOutputDerivatives of the source, or None for the history.
@@ -202,7 +202,7 @@ impl Plan {
     /// Every FMU's step from t(numerator / denominator) by h / denominator; with
     /// `inputs_set` the sampled propagation there is done already. A discarded step
     /// with halvings left is retried as two half steps from the states saved before
-    /// it (every FMU rolled back), as `cosim.master` did in Python.
+    /// it (every FMU rolled back), as `robofmu.master` did in Python.
     ///
     /// # Safety
     ///
@@ -458,7 +458,7 @@ impl SlopeExchange {
     }
 
     /// The derivatives at `t` of the polynomial through the last points (Newton's
-    /// divided differences; as `cosim.slopes.History.derivatives`, operation for
+    /// divided differences; as `robofmu.slopes.History.derivatives`, operation for
     /// operation): zero at the first point, the last derivatives at a time already seen.
     ///
     /// # Safety

@@ -58,7 +58,7 @@ pub struct BoundaryArgs {
 
 #[derive(Args)]
 pub struct ReferenceArgs {
-    /// Scenario file (TOML), as run by `python -m cosim`.
+    /// Scenario file (TOML), as run by `python -m robofmu`.
     #[arg(long)]
     scenario: PathBuf,
     /// Output CSV; the options file is written beside it, the same name with the

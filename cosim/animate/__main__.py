@@ -1,7 +1,0 @@
-"""``python -m cosim.animate RESULT.csv [options]``: the same as ``cosim animate``."""
-
-import sys
-
-from .cli import main
-
-sys.exit(main())
