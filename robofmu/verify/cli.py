@@ -57,6 +57,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"folder for {REPORT} and the PNG of each failing signal; for "
                         "a tree, the results tree (default: results/verify)")
     parser.add_argument("--junit", type=output_path, help="also write JUnit XML to this file")
+    parser.add_argument("--html", type=output_path, help="a tree: also write the results page "
+                        "(FMU x importer x platform, each case's numbers, plots and files) "
+                        "to this file")
 
 
 def _write(files: dict[Path, bytes], cases: list[tuple[Path, list[str]]]) -> None:
@@ -127,6 +130,9 @@ def _verify(args) -> int:
                           "give the number of cases to run at once, e.g. --jobs 2")
     if args.fmu.is_dir():
         return verify_tree(args)
+    if args.html is not None:
+        raise VerifyError(COMMAND_LINE, "--html", "is written for a tree only",
+                          "give a cross-check tree, or leave --html out")
     if args.case is None and args.reference is None:
         return _verify_own(args)
     result = verify_case(args.fmu, args.case, args, args.interface, args.out)

@@ -43,9 +43,9 @@ def bash(command: str, cwd: Path, env: dict) -> subprocess.CompletedProcess:
 def test_sh_blocks_run():
     env = dict(os.environ, PATH=f"{ROOT / '.venv' / 'bin'}:{os.environ['PATH']}")
     commands = [line for body in blocks("sh") for line in body.splitlines() if line.strip()]
-    # Three cases, then a cross-check tree of our FMUs laid out and verified whole, then
-    # an FMU's own experiments.
-    assert len(commands) == 6 and commands[3].startswith("bash scripts/cross-check.sh")
+    # Three cases, then a cross-check tree of our FMUs laid out and verified whole (and
+    # again with its results page), then an FMU's own experiments.
+    assert len(commands) == 7 and commands[3].startswith("bash scripts/cross-check.sh")
     for k, command in enumerate(commands):
         done = bash(command, ROOT, env)
         assert done.returncode == 0, (command, done.stdout, done.stderr)
@@ -55,6 +55,8 @@ def test_sh_blocks_run():
         if k == 4:
             assert " 0 failed, 0 rejected, 0 skipped of " in summary, summary
         if k == 5:
+            assert summary.endswith(", results/cross-check/index.html"), summary
+        if k == 6:
             assert summary.startswith("dist/Pss3Plant.fmu: 2 of 2 experiments passed"), summary
 
 
