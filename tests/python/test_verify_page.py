@@ -66,7 +66,7 @@ def page(tmp_path_factory):
     reference.write_text("\n".join(lines) + "\n")
     html = tree / "page" / "index.html"
     done = subprocess.run([sys.executable, "-m", "robofmu.verify", str(tree / "fmus"),
-                           "--out", str(tree / "out"), "--html", str(html)],
+                           "--out", str(tree / "out"), "--html", str(html), "--jobs", "2"],
                           cwd=ROOT, capture_output=True, text=True)
     assert done.returncode == 1, done.stdout + done.stderr  # the PID case fails
     assert "7 passed, 1 failed, 0 rejected" in done.stdout.splitlines()[-1]
