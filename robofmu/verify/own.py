@@ -241,9 +241,10 @@ def _experiment(archive: Archive, path: str, role: str, node: ET.Element, defaul
         start_values.update(_parameters(archive, archive.resolve(path, p.get("source", ""),
                                                                  where), path))
     rules, events = _rules(archive, path, node)
-    start = setting("startTime", default.start)
-    stop = setting("stopTime", default.stop)
-    step = setting("stepSize", default.step or _median_interval(reference))
+    fallback = _span(default, reference)
+    start = setting("startTime", fallback[0])
+    stop = setting("stopTime", fallback[1])
+    step = setting("stepSize", fallback[2])
     rel_tol = _number(archive, path, f"{where} tolerance", node.get("tolerance"))
     case = Case(name=name, reference=reference, inputs=inputs, start=start, stop=stop,
                 step=step, rel_tol=rel_tol if rel_tol is not None else default.rel_tol,
@@ -260,21 +261,32 @@ def _median_interval(reference: Table) -> float:
 
 @dataclass
 class Default:
-    start: float
-    stop: float
-    step: float
+    """The FMU's DefaultExperiment; None where it says nothing."""
+
+    start: float | None
+    stop: float | None
+    step: float | None
     rel_tol: float
 
 
 def default_experiment(description) -> Default:
     e = description.defaultExperiment
 
-    def value(name: str, fallback: float) -> float:
+    def value(name: str) -> float | None:
         v = getattr(e, name, None) if e is not None else None
-        return float(v) if v is not None else fallback
+        return None if v is None else float(v)
 
-    return Default(value("startTime", 0.0), value("stopTime", 1.0), value("stepSize", 0.0),
-                   value("tolerance", DEFAULT_REL_TOL))
+    tolerance = value("tolerance")
+    return Default(value("startTime"), value("stopTime"), value("stepSize"),
+                   DEFAULT_REL_TOL if tolerance is None else tolerance)
+
+
+def _span(default: Default, reference: Table) -> tuple[float, float, float]:
+    """Start, stop and step where an experiment gives none: the DefaultExperiment's,
+    else the reference's first and last time and its median interval."""
+    return (float(reference.time[0]) if default.start is None else default.start,
+            float(reference.time[-1]) if default.stop is None else default.stop,
+            default.step or _median_interval(reference))
 
 
 def own_experiments(fmu: Path, description, options) -> list[Own]:
@@ -297,9 +309,9 @@ def own_experiments(fmu: Path, description, options) -> list[Own]:
     for r in related:  # a result no experiment names: the default experiment's
         if r.role == "result" and r.path not in named:
             reference = _table(archive, r.path, "the manifest")
+            start, stop, step = _span(default, reference)
             case = Case(name=f"default experiment ({posixpath.basename(r.path)})",
-                        reference=reference, inputs=None, start=default.start,
-                        stop=default.stop, step=default.step or _median_interval(reference),
+                        reference=reference, inputs=None, start=start, stop=stop, step=step,
                         rel_tol=default.rel_tol,
                         allow_early_end=bool(getattr(options, "allow_early_end", False)))
             found.append(Own(case, "result", r.path, archive.label(MANIFEST)))

@@ -194,6 +194,16 @@ def test_an_fmu_carrying_only_a_result_is_verified_against_its_default_experimen
     (report,) = reports(tmp_path / "out").values()
     assert report["experiment"]["stop"] == 2.5 and report["experiment"]["step"] == 0.01
     assert report["passed"] and len(report["signals"]) == 9
+    # Without a DefaultExperiment: the reference's span (0 to 2.5 s) and its interval.
+    description = files["modelDescription.xml"].decode()
+    start = description.index("<DefaultExperiment")
+    stripped = dict(files, **{"modelDescription.xml": (
+        description[:start] + description[description.index("/>", start) + 2:]).encode()})
+    outcome = verify(write(tmp_path / "Planner.fmu", stripped), "--out", tmp_path / "out1")
+    assert outcome.code == 0, outcome.err
+    (report,) = reports(tmp_path / "out1").values()
+    assert report["experiment"]["stop"] == 2.5 and report["passed"]
+    assert report["experiment"]["step"] == pytest.approx(0.01, rel=1e-12)
     # The same FMU with q[1] off by 0.5 rad from 1 s on (60 % of the samples, beyond the
     # band's 10 %) fails on q[1] alone.
     csv = files[f"{FOLDER}/Planner_out.csv"].decode().splitlines()
