@@ -54,7 +54,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--junit", type=output_path, help="also write JUnit XML to this file")
 
 
-def _write(files: dict[Path, bytes], out: Path, signals) -> None:
+def write_files(files: dict[Path, bytes], out: Path, signals) -> None:
     """Writes `files`, then removes the PNG an earlier run wrote for a signal of this case
     that this run did not plot (only `<signal>.png` names that verify itself writes)."""
     try:
@@ -86,7 +86,7 @@ def _verify(args) -> int:
     files = dict(result.files)
     if args.junit is not None:
         files[args.junit] = junit.document([ET.fromstring(result.suite)])
-    _write(files, args.out, result.signals)
+    write_files(files, args.out, result.signals)
     if result.error is not None:
         raise RunFailed(result.error)
     for line in result.lines:
