@@ -62,10 +62,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "to this file")
 
 
-def _write(files: dict[Path, bytes], cases: list[tuple[Path, list[str]]]) -> None:
-    """Writes `files`, then removes the PNG an earlier run wrote for a signal of a case
-    (its folder, its signals) that this run did not plot (only `<signal>.png` names that
-    verify itself writes)."""
+def write_files(files: dict[Path, bytes], out: Path, signals) -> None:
+    """Writes `files`, then removes the PNG an earlier run wrote for a signal of this case
+    that this run did not plot (only `<signal>.png` names that verify itself writes)."""
+    write_cases(files, [(out, signals)])
+
+
+def write_cases(files: dict[Path, bytes], cases: list[tuple[Path, list[str]]]) -> None:
+    """`write_files` for several cases (each its folder and its signals)."""
     try:
         write_all(files)
     except OSError as e:
@@ -111,7 +115,7 @@ def _verify_own(args) -> int:
         files.update(result.files)
     if args.junit is not None:
         files[args.junit] = junit.document([ET.fromstring(r.suite) for _, r in results])
-    _write(files, [(out, r.signals) for out, r in results])
+    write_cases(files, [(out, r.signals) for out, r in results])
     for out, result in results:
         for line in result.lines:
             print(line)
@@ -139,7 +143,7 @@ def _verify(args) -> int:
     files = dict(result.files)
     if args.junit is not None:
         files[args.junit] = junit.document([ET.fromstring(result.suite)])
-    _write(files, [(args.out, result.signals)])
+    write_files(files, args.out, result.signals)
     if result.error is not None:
         raise RunFailed(result.error)
     for line in result.lines:
