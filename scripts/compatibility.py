@@ -14,8 +14,11 @@ folder holding cross-check.txt), the smoke test the FMU carries itself (FMI-LS-R
 
 Then every FMU is imported, by running it, not by hand: `cosim verify OUT/fmus --html`
 (FMPy, Co-Simulation and Model Exchange) writes OUT/results/ (the cross-check's results
-layout), OUT/junit.xml and the results page OUT/index.html; each ReadMe.txt and
-OUT/README.md then list the importers with their versions and verdicts.
+layout), OUT/junit.xml and the results page OUT/index.html; libcosim (libcosimpy) runs
+each FMI 2.0 Co-Simulation case, in a child process each, judged by the same rule (the
+FMI cross-check band, robofmu.verify) from its first step on (libcosim reports the
+outputs after each step); each ReadMe.txt and OUT/README.md then list the importers
+with their versions and verdicts.
 
 Usage: python scripts/compatibility.py OUT   (from the repository root; needs dist/ and
 the venv). Exit status 1 when an FMU fails its verdict.
@@ -23,6 +26,8 @@ the venv). Exit status 1 when an FMU fails its verdict.
 
 from __future__ import annotations
 
+import argparse
+import importlib.metadata
 import re
 import shutil
 import subprocess
@@ -32,6 +37,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import fmpy
+import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 MAX_VARIABLES = 10
@@ -97,7 +103,73 @@ def lay_out(out: Path, tool_version: str) -> list[Path]:
     return folders
 
 
+def libcosim_verdict(folder: Path) -> str:
+    """libcosim's verdict on the Co-Simulation case of `folder`: the FMU alone, its
+    inputs set before each step (linear in time), its outputs after each step, every
+    signal judged by the FMI cross-check band."""
+    sys.path.insert(0, str(ROOT))
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimManipulator import CosimManipulator
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    from robofmu.verify.case import load_case
+    from robofmu.verify.compare import judge_all
+    from robofmu.verify.simulate import Run
+
+    options = argparse.Namespace(reference=None, input=None, step=None, start=None,
+                                 tolerance=None, allow_early_end=False)
+    case = load_case(folder, options)
+    log_output_level(CosimLogLevel.WARNING)
+    execution = CosimExecution.from_step_size(round(case.step * 1e9))
+    index = execution.add_local_slave(CosimLocalSlave(
+        fmu_path=str(folder / f"{folder.name}.fmu"), instance_name="fmu"))
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer)
+    manipulator = CosimManipulator.create_override()
+    execution.add_manipulator(manipulator)
+    refs = {v.name.decode(): v.reference for v in execution.slave_variables(index)}
+    outputs = [refs[name] for name in case.signals()]
+    inputs = case.inputs
+    names = list(inputs.columns) if inputs is not None else []
+    input_refs = [refs[name] for name in names]
+
+    def at(t: float) -> list[float]:
+        assert inputs is not None
+        return [float(np.interp(t, inputs.time, inputs.columns[n])) for n in names]
+
+    for ref, value in zip(input_refs, at(case.start) if names else []):
+        execution.real_initial_value(index, ref, value)
+    steps = round((case.stop - case.start) / case.step)
+    rows = np.empty((steps, len(outputs) + 1))
+    for k in range(steps):
+        if names:
+            manipulator.slave_real_values(index, input_refs, at(case.start + k * case.step))
+        if not execution.step(1):
+            return f"failed (step {k} failed)"
+        rows[k, 0] = case.start + execution.status().current_time * 1e-9
+        rows[k, 1:] = observer.last_real_values(index, outputs)
+    case.start = float(rows[0, 0])  # judged from the first step on
+    run = Run(rows[:, 0], {s: rows[:, j + 1] for j, s in enumerate(case.signals())})
+    verdicts, end = judge_all(case, run, "CoSimulation")
+    return "passed" if end is None and all(v.passed for v in verdicts) else "failed"
+
+
+def libcosim(folder: Path) -> str:
+    """libcosim_verdict in a child process: a crash of the library costs this case only."""
+    done = subprocess.run([sys.executable, __file__, "--libcosim", str(folder)],
+                          capture_output=True, text=True)
+    said = done.stdout.strip().splitlines()
+    if done.returncode != 0 or not said:
+        return f"failed (exit status {done.returncode})"
+    return said[-1]
+
+
 def main() -> int:
+    if len(sys.argv) == 3 and sys.argv[1] == "--libcosim":
+        print(libcosim_verdict(Path(sys.argv[2])))
+        return 0
     if len(sys.argv) != 2:
         sys.exit("usage: python scripts/compatibility.py OUT")
     out = Path(sys.argv[1])
@@ -117,25 +189,34 @@ def main() -> int:
     if not verdicts:
         sys.stderr.write(done.stdout + done.stderr)
         return 1
-    rows = []
+    cosim_lib = f"libcosim (libcosimpy {importlib.metadata.version('libcosimpy')})"
+    rows, failed = [], False
     for folder in folders:
         label = "/".join(folder.parts[-6:])
         verdict = verdicts.get(label, "not run")
         parts = label.split("/")
         results = "/".join(["results", *parts[:3], "cosim", tool_version, *parts[3:]])
+        lines = [f"Imported and simulated with {importer}: {verdict} ({results}/ and "
+                 "index.html of the compatibility folder)."]
+        other = "not run"
+        if label.startswith("2.0/cs/"):
+            other = libcosim(folder)
+            lines.append(f"Imported and simulated with {cosim_lib}, Co-Simulation: {other}.")
+        failed |= verdict != "passed" or other.startswith("failed")
         with (folder / "ReadMe.txt").open("a") as f:
-            f.write(f"\nImported and simulated with {importer}: {verdict} ({results}/ and "
-                    "index.html of the compatibility folder).\n")
-        rows.append(f"| {label} | {verdict} |")
+            f.write("\n" + "\n".join(lines) + "\n")
+        rows.append(f"| {label} | {verdict} | {other} |")
     (out / "README.md").write_text(
         f"# robofmu {tool_version}: compatibility information\n\nEvery FMU of robofmu "
         f"{tool_version} in `fmus/` with its reference (`_ref.csv`, `_ref.opt`, `_in.csv`) "
         "and `ReadMe.txt`, in the layout of the FMI cross-check. Importers that ran "
         f"them (scripts/compatibility.py, at release):\n\n- {importer}: Co-Simulation and "
-        "Model Exchange, FMI 2.0 and 3.0\n\nThe results page: `index.html`; the results: "
-        "`results/`, `junit.xml`.\n\n| FMU | verdict |\n|---|---|\n" + "\n".join(rows) + "\n")
+        f"Model Exchange, FMI 2.0 and 3.0\n- {cosim_lib}: FMI 2.0 Co-Simulation (it "
+        "crashed loading our FMI 3.0 FMUs)\n\nThe results page of cosim: `index.html`; "
+        "its results: `results/`, `junit.xml`.\n\n| FMU | cosim (FMPy) | libcosim |\n"
+        "|---|---|---|\n" + "\n".join(rows) + "\n")
     print(done.stdout.splitlines()[-1])
-    return 0 if done.returncode == 0 else 1
+    return 1 if failed or done.returncode != 0 else 0
 
 
 if __name__ == "__main__":

@@ -88,7 +88,8 @@ def check_compatibility(folder: Path, version: str) -> None:
     """The layout the FMI tools list asks for (modelica/fmi-standard.org CONTRIBUTING.md,
     "Compatibility information"): per FMU its .fmu, _ref.csv (at most 10 variables, at
     most 1 MB), _ref.opt, _in.csv for a model with inputs, a ReadMe; the importer that ran
-    it with its version and verdict; every FMU of the release, both interfaces."""
+    it with its version and verdict (FMPy every case, libcosim the FMI 2.0 Co-Simulation
+    ones); every FMU of the release, both interfaces."""
     fmus = sorted(folder.glob("fmus/*/*/*/*/*/*/*.fmu"))
     assert len(fmus) == 24  # 12 FMUs x Co-Simulation and Model Exchange
     for fmu in fmus:
@@ -102,5 +103,12 @@ def check_compatibility(folder: Path, version: str) -> None:
         assert (case / f"{model}_in.csv").is_file() == bool(inputs)
         readme = (case / "ReadMe.txt").read_text()
         assert f"on FMPy {fmpy.__version__}: passed" in readme, readme
+        # libcosim runs the FMI 2.0 Co-Simulation cases.
+        libcosim = "2.0/cs/" in case.as_posix()
+        assert ("(libcosimpy 0.0.6), Co-Simulation: passed." in readme) == libcosim, readme
     summary = (folder / "README.md").read_text()
-    assert summary.count("| passed |") == 24 and f"cosim {version}" in summary
+    rows = re.findall(r"^\| (\S+) \| (\w+) \| ([\w ]+) \|$", summary, re.M)
+    assert len(rows) == 24 and all(fmpy_verdict == "passed" for _, fmpy_verdict, _ in rows)
+    assert sorted(label for label, _, other in rows if other == "passed") == sorted(
+        label for label, _, _ in rows if label.startswith("2.0/cs/"))
+    assert f"cosim {version}" in summary
