@@ -19,7 +19,7 @@ import sys
 import traceback
 
 from . import bundle
-from .errors import CosimError, ScenarioError
+from .errors import EXTRAS, CosimError, MissingExtra, ScenarioError
 
 COMMANDS = {
     "run": ("robofmu.run", "simulate one scenario: CSV (SI, units sidecar), plots, metrics"),
@@ -86,7 +86,7 @@ def _types(names) -> tuple[type, ...]:
 
 def user_error_types() -> tuple[type, ...]:
     """The exceptions that are the user's mistake (exit 2)."""
-    return (ScenarioError,) + _types([("robofmu.sweep.spec", "SpecError"),
+    return (ScenarioError, MissingExtra) + _types([("robofmu.sweep.spec", "SpecError"),
                                       ("robofmu.container", "ContainerError"),
                                       ("robofmu.verify.errors", "VerifyError"),
                                       ("robofmu.animate.errors", "AnimateError")])
@@ -118,6 +118,10 @@ def main(argv=None) -> int:
     except ModuleNotFoundError as e:
         if debug:
             traceback.print_exc()
+        top = (e.name or "").split(".")[0]
+        if top in EXTRAS:
+            return _fail(f"cosim {command} needs {top}, which robofmu leaves optional; pip "
+                         f"install 'robofmu[{EXTRAS[top]}]'", USER_ERROR)
         return _fail(f"{command}: this command is not part of this version ({e.name} is "
                      "missing)", USER_ERROR)
     args.debug = debug  # commands that report their own errors re-raise them with it

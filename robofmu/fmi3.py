@@ -1,5 +1,5 @@
 """The FMI 3.0 build of a scenario's FMUs behind the interface the master uses
-(`FmuInstance` in fmu.py): the same scalar names (`theta[1]`) on the FMI 3.0 arrays
+(`FmuInstance` in fmi2.py): the same scalar names (`theta[1]`) on the FMI 3.0 arrays
 (`theta`, element 1). Choose it with ``cosim run SCENARIO --fmi3`` or
 ``Master(scenario, open_fmu=open_fmi3)``; a scenario's ``dist/<Model>.fmu`` is then
 read as ``dist/fmi3/<Model>.fmu``.
@@ -18,7 +18,7 @@ from fmpy import extract, read_model_description
 from fmpy.fmi3 import FMU3Slave
 
 from .errors import FmuError
-from .fmu import LoggedCalls, status_categories
+from .fmi2 import LoggedCalls, status_categories
 from .intermediate import IntermediateInputs, flagged_inputs
 
 _FMI3_DISCARD = 2

@@ -8,7 +8,7 @@ Gauss-Seidel coupling; a discarded step retried in halves from the saved FMU sta
 the sampled propagation at the next point (values, then input derivatives) and the
 recorded row. Each call of the plan is, per FMU and call:
 
-- an FMI 2.0 FMPy instance (robofmu.fmu.FmuInstance) on Real variables: the FMU's own
+- an FMI 2.0 FMPy instance (robofmu.fmi2.FmuInstance) on Real variables: the FMU's own
   C function (fmi2GetReal, fmi2SetReal, fmi2DoStep, fmi2GetRealOutputDerivatives,
   fmi2SetRealInputDerivatives, fmi2Get/Set/FreeFMUstate) with its instance handle,
   value references and a buffer prepared here: per connected pair one value-reference
@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import CosimError, FmuError, StepDiscarded
-from .fmu import FmuInstance
+from .fmi2 import FmuInstance
 
 ROOT = Path(__file__).resolve().parent.parent
 LIBRARY = ("cosim_kernel.dll" if sys.platform == "win32" else

@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .fmu import FmuInstance
+from .fmi2 import FmuInstance
 from .loop import Loop
 from .scenario import Scenario, Signal, extrapolation_order
 from .slopes import History, accepted, served

@@ -12,7 +12,7 @@ from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFr
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
 from .errors import ScenarioError
-from .fmu import release, status_categories
+from .fmi2 import release, status_categories
 
 
 class ModelExchangeInstance:

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .errors import CosimError, ScenarioError
-from .fmu import FmuInstance
+from .fmi2 import FmuInstance
 from .fmu_check import check_value, describe
 from .limits import check_measurable
 

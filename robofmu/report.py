@@ -14,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .errors import require
+
 AXES = ("thx", "thy", "thz")
 
 
@@ -127,7 +129,7 @@ def hidden_labels(series: list, labels: list[str], unit: str, span: float) -> li
 
 def _figure(rows: int):
     # lazy: matplotlib.pyplot is 0.4 s of start-up (scripts/bench_startup.py), paid by plots only
-    import matplotlib
+    matplotlib = require("matplotlib", "plots", "the plots of a run")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(rows, 1, figsize=(8, 2.4 * rows), sharex=True, squeeze=False)
@@ -194,7 +196,7 @@ def plot_cubic_vs_quintic(cubic: dict, quintic: dict, motion: str, out_dir: Path
     """Planned Euler-angle accelerations (left) and the plant's angular acceleration in
     the base frame (right) of both planners."""
     # lazy: matplotlib.pyplot is 0.4 s of start-up (scripts/bench_startup.py), paid by plots only
-    import matplotlib
+    matplotlib = require("matplotlib", "plots", "the plots of a run")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(3, 2, figsize=(11, 7), sharex=True)

@@ -10,7 +10,7 @@ import sys
 import time
 from pathlib import Path
 
-from .errors import output_path
+from .errors import output_path, require
 from .fmi3 import fmi3_path, open_fmi3
 from .master import Master, text_progress
 from .outputs import write_outputs
@@ -50,6 +50,8 @@ def fmu_dir(path: Path | None) -> Path | None:
 
 
 def run(args: argparse.Namespace) -> int:
+    if not args.no_plots:
+        require("matplotlib", "plots", "the plots of cosim run", "run with --no-plots")
     out = output_dir(args.out)
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
     open_fmu = None  # the master's FMI 2.0 default

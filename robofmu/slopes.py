@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import CosimError
-from .fmu import FmuInstance
+from .fmi2 import FmuInstance
 
 
 def _probe(path: str, call) -> bool:

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .errors import CosimError, ScenarioError
-from .fmu import FmuInstance
+from .fmi2 import FmuInstance
 from .fmu_check import start_value, variables
 from .preflight import _reason
 

@@ -4,6 +4,9 @@
 #   fmus/<Model>.fmu, fmus/fmi3/<Model>.fmu, fmus/fmi3-scalar/<Model>.fmu   (dist/)
 #   ssp/<scenario>.ssp   the example scenarios as SSP archives (cosim ssp; multi-segment
 #                        motions have no SSP form and are left out, said on stdout)
+#   compatibility/       the compatibility information the FMI tools list asks for (every
+#                        FMU with its reference and ReadMe.txt, imported by running it:
+#                        results/, junit.xml, the results page index.html, README.md)
 #   CHANGELOG-VERSION.md the version's section of CHANGELOG.md
 #   SHA256SUMS           of every other file (sha256sum -c SHA256SUMS checks them)
 # and lists the files with their sizes (docs/release.md).
@@ -62,6 +65,9 @@ for scenario in scenarios/*.toml; do
         exit 1
     fi
 done
+# The compatibility information of the FMI tools list, every FMU imported by running it,
+# with the results page (scripts/compatibility.py).
+.venv/bin/python scripts/compatibility.py "$out/compatibility" >/dev/null
 printf '%s\n' "$changelog" >"$out/CHANGELOG-$version.md"
 (cd "$out" && find . -type f ! -name SHA256SUMS | sed 's#^\./##' | LC_ALL=C sort |
     xargs sha256sum >SHA256SUMS &&

@@ -26,6 +26,14 @@ wheel="$work/packages/robofmu-$version-py3-none-any.whl"
 [[ -f "$wheel" ]] || { echo "test-wheel: no $wheel" >&2; ls "$work/packages" >&2; exit 1; }
 # pip refuses extras in constraints: dask[distributed]==X constrains dask==X.
 sed 's/\[[^]]*\]//' scripts/python-requirements.txt >"$work/constraints.txt"
+# The library's scripts of docs/python-api.md (its blocks ```python wheel), run in the
+# user's folder with only the wheel installed, and the third-party FMU they couple with
+# our PID (compiled here from examples/integrator/, as the docs' sh line does).
+mkdir "$work/docs"
+awk -v dir="$work/docs" '/^```python wheel$/ { n++; inside = 1; next } /^```$/ { inside = 0 }
+    inside { print > (dir "/" n ".py") }' docs/python-api.md
+[[ -f "$work/docs/2.py" ]] || { echo "test-wheel: docs/python-api.md: fewer than two blocks \`\`\`python wheel" >&2; exit 1; }
+.venv/bin/python examples/integrator/build_fmu.py "$work/Integrator.fmu" >/dev/null
 
 user="$work/user"
 mkdir "$user"
@@ -51,6 +59,7 @@ base=$(.venv/bin/python -c 'import sys; print(sys._base_executable)')
 # The user's environment: nothing of this shell's (no cargo, no PYTHONPATH, no checkout);
 # pip takes the dependencies from PyPI at the versions pinned for CI (PIP_CONSTRAINT).
 (cd "$user" && env -i HOME="$user" LANG=C.UTF-8 MPLBACKEND=Agg VERSION="$version" \
+    DOCS="$work/docs" INTEGRATOR="$work/Integrator.fmu" \
     WHEEL="$(basename "$wheel")" PIP_CONSTRAINT="$work/constraints.txt" \
     PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_QUIET=1 PATH="$(dirname "$base"):/usr/bin:/bin" \
     bash -euo pipefail "$work/user.sh")
@@ -78,6 +87,18 @@ assert md.generationTool == f"robofmu {version}", f"{path}: {md.generationTool!r
 PY
 done
 echo "cosim --version = Cargo.toml = every bundled FMU's version: $version (12 FMUs)"
+
+# The library with only the wheel (numpy, FMPy): docs/python-api.md's scripts.
+mkdir -p results && cp "$INTEGRATOR" results/Integrator.fmu
+for script in "$DOCS"/*.py; do
+    python "$script" || fail "docs/python-api.md's block $(basename "$script" .py) failed"
+done
+# A missing extra: one line naming it, exit 2; then the extras.
+code=0
+cosim run "$(cosim examples --path regulation)" --out plots --quiet 2>extra.err || code=$?
+[[ $code == 2 && $(cat extra.err) == "cosim: the plots of cosim run needs matplotlib, which robofmu leaves optional; pip install 'robofmu[plots]', or run with --no-plots" ]] ||
+    fail "cosim run without matplotlib: exit $code, said: $(cat extra.err)"
+pip install "$WHEEL[all]"
 
 
 cp "$(cosim examples --path regulation)" my_scenario.toml

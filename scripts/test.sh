@@ -19,6 +19,9 @@ bash scripts/install-importer-libs.sh
 # rustup in CI): the Windows and aarch64 Linux binaries run there, the macOS ones are
 # read statically.
 bash scripts/install-platform-test-tools.sh
+# Debian's chromium for tests/python/test_verify_page.py (apt-get in CI): the results page
+# of `cosim verify TREE --html` opened headless, its images loaded, a screenshot kept.
+bash scripts/install-browser.sh
 # FMUs through a real importer: create the pinned venv, run pytest
 # (pytest exits 5 when it collects nothing; that counts as a failure too).
 bash scripts/setup-venv.sh

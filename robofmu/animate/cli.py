@@ -10,14 +10,12 @@ import sys
 from pathlib import Path
 
 from ..cli import entry
-from ..errors import CosimError, output_path
+from ..errors import CosimError, output_path, require
 from ..scenario import ScenarioError, load_scenario
 from .errors import COMMAND_LINE, AnimateError
 from .geometry import PARAMETERS, robot
 from .motion import read_motion
 from .plant import plant_parameters
-from .render import render_run, write_outputs
-from .writer import ffmpeg
 
 DEFAULT_FMU = Path("dist/Pss3Plant.fmu")
 MAX_PICTURE_BYTES = 1_000_000_000
@@ -100,22 +98,33 @@ def _plant(args, alias: str):
     return Path(fmu or DEFAULT_FMU), overrides
 
 
+def make_animation(args: argparse.Namespace) -> tuple[str, list[Path]]:
+    """Draws and writes the animation the arguments ask for: (its summary, the files
+    written); AnimateError for bad input (the library's robofmu.animate too)."""
+    _check_options(args)
+    require("matplotlib", "plots", "cosim animate")
+    require("PIL", "plots", "cosim animate")
+    from .render import render_run, write_outputs  # matplotlib and Pillow: the extra 'plots'
+    from .writer import ffmpeg
+    motion = read_motion(args.csv, args.plant, args.planner)
+    fmu, overrides = _plant(args, motion.plant)
+    rob = robot(plant_parameters(fmu, overrides))
+    if args.mp4:
+        ffmpeg()
+    animation = render_run(rob, motion, args.frames, args.size, title=args.csv.stem)
+    written = write_outputs(animation, args.out / args.csv.stem, args.fps, args.mp4)
+    return animation.summary(), list(written)
+
+
 def run(args: argparse.Namespace) -> int:
     try:
-        _check_options(args)
-        motion = read_motion(args.csv, args.plant, args.planner)
-        fmu, overrides = _plant(args, motion.plant)
-        rob = robot(plant_parameters(fmu, overrides))
-        if args.mp4:
-            ffmpeg()
-        animation = render_run(rob, motion, args.frames, args.size, title=args.csv.stem)
-        written = write_outputs(animation, args.out / args.csv.stem, args.fps, args.mp4)
+        summary, written = make_animation(args)
     except AnimateError as e:
         if getattr(args, "debug", False):
             raise
         print(f"cosim: {e}", file=sys.stderr)
         return 2
-    print(f"{args.csv.stem}: {animation.summary()} -> {', '.join(map(str, written))}")
+    print(f"{args.csv.stem}: {summary} -> {', '.join(map(str, written))}")
     return 0
 
 

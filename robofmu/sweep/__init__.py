@@ -15,10 +15,13 @@ written next to it at the end. See robofmu.sweep.spec for the SPEC format.
 from __future__ import annotations
 
 import time
+import tomllib
 from collections import Counter
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
+from ..scenario import ScenarioError, fmu_file
 from .engine import auto_batch, run_dask, run_serial
 from .plots import plot_sweep
 from .reach import reachable
@@ -27,7 +30,7 @@ from .spec import Spec, SpecError, document_for, load_spec, run_id
 from .store import Progress, Table, columns, read_table, values_row
 
 __all__ = ["Spec", "SpecError", "SweepOutcome", "auto_batch", "load_spec", "run_sweep",
-           "reachable_on"]
+           "reachable_on", "workspace_filter"]
 
 
 @dataclass
@@ -62,11 +65,30 @@ def reachable_on(plant_fmu: Path):
     return lambda pose: reachable(plant_fmu, pose)
 
 
-def run_sweep(spec: Spec, out: Path, scheduler: str | None = None,
+def workspace_filter(spec_path: Path, fmu_dir: Path | None = None):
+    """The workspace filter on the plant FMU of the SPEC's base scenario (None when the
+    SPEC or its scenario cannot be read: load_spec then reports the problem by field)."""
+    try:
+        data = tomllib.loads(Path(spec_path).read_text())
+        scenario = (Path(spec_path).parent / str(data.get("scenario", ""))).resolve()
+        plant = tomllib.loads(scenario.read_text())["fmus"]["plant"]
+        if not isinstance(plant, str):
+            return None
+    except (OSError, KeyError, TypeError, ValueError, tomllib.TOMLDecodeError):
+        return None
+    try:
+        path = fmu_file("plant", plant, scenario.parent, fmu_dir)
+    except ScenarioError:
+        return None  # not a bundled FMU: load_spec names the field
+    return reachable_on(path)
+
+
+def run_sweep(spec: Spec, out: Path, scheduler: Any = None,
               workers: int | None = None, resume: bool = False, progress: bool = True,
               retries: int = 2, plots: bool = True, batch: int | None = None
               ) -> SweepOutcome:
     """Runs every run of `spec` not done yet; workers=0 runs serially in-process;
+    `scheduler`: an address, or a dask.distributed.Client of the caller's (left open);
     `batch`: runs per Dask task (None: sized by auto_batch)."""
     started = time.perf_counter()
     header = columns(spec)

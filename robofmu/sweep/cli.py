@@ -8,12 +8,10 @@ from __future__ import annotations
 
 import argparse
 import sys
-import tomllib
 from pathlib import Path
 
-from ..errors import output_path
-from ..scenario import ScenarioError, fmu_file
-from . import SpecError, load_spec, reachable_on, run_sweep
+from ..errors import output_path, require
+from . import SpecError, load_spec, run_sweep, workspace_filter
 from .spec import MAX_RUNS
 
 
@@ -52,9 +50,10 @@ def _check_arguments(args) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    require("matplotlib", "plots", "the plots of cosim sweep")
     try:
         _check_arguments(args)
-        spec = load_spec(args.spec, args.fmu_dir, reachable=_reachable(args))
+        spec = load_spec(args.spec, args.fmu_dir, reachable=workspace_filter(args.spec, args.fmu_dir))
         outcome = run_sweep(spec, args.out, scheduler=args.scheduler, workers=args.workers,
                             resume=args.resume, progress=not args.quiet, batch=args.batch)
     except (SpecError, ValueError, OSError) as e:
@@ -77,22 +76,3 @@ def run(args: argparse.Namespace) -> int:
 def _one_line(error: Exception) -> str:
     text = " ".join(str(error).split())
     return text if len(text) <= 400 else text[:397] + "..."
-
-
-def _reachable(args):
-    """The workspace filter on the base scenario's plant FMU (None when the SPEC or its
-    scenario cannot be read: load_spec then reports the problem by field)."""
-    try:
-        data = tomllib.loads(args.spec.read_text())
-        scenario = (args.spec.parent / str(data.get("scenario", ""))).resolve()
-        plant = tomllib.loads(scenario.read_text())["fmus"]["plant"]
-        if not isinstance(plant, str):
-            return None
-    except (OSError, KeyError, TypeError, ValueError, tomllib.TOMLDecodeError):
-        return None
-    try:
-        path = fmu_file("plant", plant, scenario.parent, args.fmu_dir)
-    except ScenarioError:
-        return None  # not a bundled FMU: load_spec names the field
-    return reachable_on(path)
-

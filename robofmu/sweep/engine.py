@@ -17,6 +17,7 @@ import multiprocessing
 import os
 from concurrent.futures import ThreadPoolExecutor
 
+from ..errors import require
 from ..units import quantity
 from . import scratch
 from .runner import FmuStore, execute, run_on_worker, warm, worker_plugin
@@ -68,8 +69,12 @@ def run_serial(todo, fmus, blobs, record, ready) -> None:
         store.close()
 
 
-def _client(scheduler: str | None, workers: int | None):
+def _client(scheduler, workers: int | None):
+    """`scheduler`: None (a LocalCluster of `workers`), an address, or a Client of the
+    caller's (used as it is, left open)."""
     from distributed import Client, LocalCluster  # lazy: 0.4 s (see _worker_processes)
+    if isinstance(scheduler, Client):
+        return scheduler, None
     if scheduler is not None:
         return Client(scheduler, set_as_default=False), None
     cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
@@ -84,12 +89,13 @@ def _start(scheduler, workers, blobs, fmus):
         client.register_plugin(worker_plugin(blobs, fmus))
         return client, cluster, max(1, len(client.scheduler_info()["workers"]))
     except BaseException:
-        _close(client, cluster)
+        _close(client, cluster, scheduler)
         raise
 
 
-def _close(client, cluster) -> None:
-    client.close()
+def _close(client, cluster, scheduler=None) -> None:
+    if client is not scheduler:  # a Client the caller passed stays open
+        client.close()
     if cluster is not None:
         cluster.close()
 
@@ -137,6 +143,7 @@ def _worker_processes():
 
 
 def run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, ready) -> None:
+    require("distributed", "sweep", "a sweep on Dask", "run it serially (--workers 0)")
     with _worker_processes():
         _run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, ready)
 
@@ -169,7 +176,7 @@ def _run_dask(todo, fmus, blobs, record, scheduler, workers, retries, batch, rea
         if rest:
             _gather(client, rest, fmus, record, retries, size)
     finally:
-        _close(client, cluster)
+        _close(client, cluster, scheduler)
         scratch.reclaim()  # the folders of workers that died during the sweep
 
 

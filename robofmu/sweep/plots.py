@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import require
+
 PLOTTED = {"rms_error_deg": "RMS tracking error (deg)", "max_error_deg": "max error (deg)",
            "peak_force_n": "peak actuator force (N)", "settling_time_s": "settling time (s)",
            "wall_s": "wall time per run (s)"}
@@ -22,7 +24,7 @@ MIN_HISTOGRAM_DRAWS = 20  # fewer draws per grid point: no histogram
 
 def _plt():
     # lazy: matplotlib.pyplot is 0.4 s of start-up (scripts/bench_startup.py), paid by plots only
-    import matplotlib
+    matplotlib = require("matplotlib", "plots", "the plots of a sweep")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     return plt

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import CosimError
-from ..fmu import FmuInstance
+from ..fmi2 import FmuInstance
 from ..master import Master
 from ..scenario import ScenarioError, Signal, fmu_file, parse_document
 from . import scratch

@@ -199,13 +199,30 @@ PATH_FORM = ("a path like \"table.key\" or \"list[0].key\" (list indices count f
              "waypoint; no negative indices)")
 
 
-def set_path(document: dict, path: str, value) -> None:
-    """Sets document[path] (tables created as needed), or raises SpecError naming path."""
+def _keys(path: str) -> list:
+    """The steps of a path ("table.key", "list[0]"), or SpecError naming it."""
     keys = [m.group(1) if m.group(1) is not None else int(m.group(2))
-            for m in _STEP.finditer(path)]
+            for m in _STEP.finditer(path)] if isinstance(path, str) else []
     if not keys or "".join(f".{k}" if isinstance(k, str) else f"[{k}]" for k in keys
                            ).lstrip(".") != path:
         raise SpecError(f"field '{path}' is not {PATH_FORM}")
+    return keys
+
+
+def get_path(document: dict, path: str):
+    """document[path], or SpecError naming path."""
+    node = document
+    for key in _keys(path):
+        _check_step(node, key, path)
+        if isinstance(key, str) and key not in node:
+            raise SpecError(f"field '{path}': '{key}' does not exist in the scenario")
+        node = node[key]
+    return node
+
+
+def set_path(document: dict, path: str, value) -> None:
+    """Sets document[path] (tables created as needed), or raises SpecError naming path."""
+    keys = _keys(path)
     node = document
     for key, following in zip(keys, keys[1:]):
         _check_step(node, key, path)

@@ -159,17 +159,25 @@ def load_case(folder: Path | None, options) -> Case:
         event_times=casefile.event_times(source, data.get("event_times", [])),
         rules=casefile.tolerances(source, data.get("tolerances", {})),
         options=opt, allow_early_end=bool(getattr(options, "allow_early_end", False)))
-    _check_coverage(case)
     opt_path = folder / f"{model}_ref.opt" if folder else COMMAND_LINE
+    check_case(case, opt_path, options, "StepSize" if folder else "--step", source)
+    apply_options(case, options)
+    return case
+
+
+def check_case(case: Case, experiment: Path | str, options, step_field: str = "StepSize",
+               rules: Path | str | None = None) -> None:
+    """The reference covers the experiment, the step makes a sane number of steps, every
+    rule names a column; `experiment` and `rules` are where a mistake is (`rules`
+    defaults to `experiment`)."""
+    _check_coverage(case)
     if options.step is not None:
         _check_step(case.step, case, COMMAND_LINE, "--step")
     elif case.step > 0:
-        _check_step(case.step, case, opt_path, "StepSize" if folder else "--step")
+        _check_step(case.step, case, experiment, step_field)
     elif case.output_interval is not None:
-        _check_step(case.output_interval, case, opt_path, "OutputIntervalLength")
-    _check_rule_names(case, source)
-    apply_options(case, options)
-    return case
+        _check_step(case.output_interval, case, experiment, "OutputIntervalLength")
+    _check_rule_names(case, experiment if rules is None else rules)
 
 
 def _pair(text: str, option: str) -> tuple[str, str]:

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+from ..errors import ScenarioError
+
 
 COMMAND_LINE = "command line"  # the "file" of a mistake in the options
 
 
-class VerifyError(Exception):
+class VerifyError(ScenarioError):
     """Bad input: the message names the file, the field or column, and the fix."""
 
     def __init__(self, source: object, field: str, problem: str, fix: str):
@@ -14,5 +16,5 @@ class VerifyError(Exception):
         super().__init__(f"{where}: {problem}; {fix}")
 
 
-class RunFailed(Exception):
+class RunFailed(RuntimeError):
     """The FMU could not be simulated (an FMI call failed): a verification failure."""

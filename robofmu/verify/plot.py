@@ -9,6 +9,7 @@ import re
 
 import numpy as np
 
+from ..errors import require
 from .case import Case
 from .compare import EarlyEnd, Verdict
 
@@ -52,7 +53,7 @@ def _deviation_panel(axes, verdict: Verdict, outside, unit) -> None:
 def plot_png(case: Case, verdict: Verdict, title: str, unit: str | None = None,
              end: EarlyEnd | None = None) -> bytes:
     # lazy: matplotlib.figure is 0.3 s of start-up (scripts/bench_startup.py), paid by plots only
-    import matplotlib
+    matplotlib = require("matplotlib", "plots", "the plots of cosim verify")
     matplotlib.use("Agg")
     from matplotlib.figure import Figure
     figure = Figure(figsize=(8, 6.5), dpi=100, layout="constrained")

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from . import junit
-from .case import load_case
+from .case import Case, load_case
 from .compare import judge_all
 from .errors import RunFailed
 from .names import Names
@@ -45,13 +45,21 @@ def result_csv(run, signals: list[str]) -> bytes:
 
 
 def verify_case(fmu: Path, case_dir: Path | None, options, wanted: str | None, out: Path,
-                name: str | None = None, out_csv: str | None = None) -> CaseResult:
+                name: str | None = None, out_csv: str | None = None,
+                plot_all: bool = False) -> CaseResult:
     """Runs and judges one case; VerifyError on bad input (nothing made)."""
     description = read_description(fmu)
     interface = choose_interface(fmu, description, wanted)
     case = load_case(case_dir, options)
     if name is not None:
         case.name = name
+    return run_case(fmu, description, interface, case, out, out_csv, plot_all)
+
+
+def run_case(fmu: Path, description, interface: str, case: Case, out: Path,
+             out_csv: str | None = None, plot_all: bool = False) -> CaseResult:
+    """Runs and judges a loaded case; VerifyError when it does not fit the FMU.
+    `plot_all`: a plot of every signal (for the results page), not only the failing."""
     title = f"{fmu.name} ({interface}) against {case.name}"
     classname = f"{fmu.stem}.{interface}"
     head = f"{fmu.name} {description.fmiVersion} {interface} against {case.name}"
@@ -69,8 +77,9 @@ def verify_case(fmu: Path, case_dir: Path | None, options, wanted: str | None, o
     names = Names(description)
     files, plots = {}, {}
     for v in verdicts:
-        # A failing signal's plot; every signal's when the FMU ended the run early.
-        if not v.passed or (end is not None and not end.allowed):
+        # A failing signal's plot; every signal's when the FMU ended the run early or
+        # the results page shows them all.
+        if plot_all or not v.passed or (end is not None and not end.allowed):
             path = out / plot_name(v.signal)
             files[path] = plot_png(case, v, title, names.unit(v.signal), end)
             plots[v.signal] = str(path)

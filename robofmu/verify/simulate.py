@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 from fmpy import extract, read_model_description, simulate_fmu
 
-from ..fmu import remove_extracted
+from ..fmi2 import remove_extracted
 from .case import Case
 from .errors import RunFailed, VerifyError
 from .names import Names

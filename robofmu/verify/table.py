@@ -7,6 +7,7 @@ rule of the cross-check each reading follows."""
 from __future__ import annotations
 
 import csv
+import io
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -51,10 +52,12 @@ class Options:
     ignored: list[str] | None = None
 
 
-def _read_rows(path: Path) -> list[list[str]]:
-    """The rows; "utf-8-sig" drops the byte-order mark some exporters write."""
+def _read_rows(path: Path, text: str | None = None) -> list[list[str]]:
+    """The rows (of `text` when given, `path` then only names it); "utf-8-sig" drops the
+    byte-order mark some exporters write."""
     try:
-        with open(path, newline="", encoding="utf-8-sig") as f:
+        with (io.StringIO(text, newline="") if text is not None
+              else open(path, newline="", encoding="utf-8-sig")) as f:
             return [row for row in csv.reader(f, skipinitialspace=True)
                     if row and any(field.strip() for field in row)]
     except OSError as e:
@@ -120,11 +123,11 @@ def _check_times(path: Path, time: np.ndarray) -> None:
                       "rows: the value before it, then the value after it)")
 
 
-def read_table(path: Path) -> Table:
-    """The signals of a CSV file, checked: names, numbers, finite, times that never go
-    back."""
+def read_table(path: Path, text: str | None = None) -> Table:
+    """The signals of a CSV file (or of `text`, read from `path`, such as a file inside
+    an FMU), checked: names, numbers, finite, times that never go back."""
     path = Path(path)
-    rows = _read_rows(path)
+    rows = _read_rows(path, text)
     names = _header(path, rows)
     values = np.empty((len(rows) - 1, len(names)))
     for i, row in enumerate(rows[1:]):

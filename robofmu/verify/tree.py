@@ -30,6 +30,7 @@ from .. import bundle
 from . import junit
 from .errors import COMMAND_LINE, VerifyError
 from .files import write_all
+from .page import Entry, page
 from .runner import CaseResult, verify_case
 from .simulate import INTERFACE_NAMES
 
@@ -143,7 +144,8 @@ def _run_one(case: TreeCase, args) -> tuple[str, list[str], str, dict, bytes]:
     name = case.label()
     try:
         result: CaseResult = verify_case(case.fmu, case.folder, args, case.kind, out, name,
-                                         f"{case.model}_out.csv")
+                                         f"{case.model}_out.csv",
+                                         plot_all=args.html is not None)
         status, lines, summary, files, suite = (result.status, result.lines, result.summary,
                                                 dict(result.files), result.suite)
     except VerifyError as e:
@@ -189,6 +191,8 @@ def verify_tree(args) -> int:
     jobs = min(args.jobs, max(1, len(todo)))
     started = time.perf_counter()
     suites, counts = {}, {"passed": 0, "failed": 0, "rejected": 0}
+    entries: list[Entry] = []
+    importer = f"{TOOL} {tool_version()} (FMPy {_fmpy_version()})"
     print(f"{tree}: {len(cases)} cases, {len(todo)} to run here ({jobs} at once), "
           f"{len(skipped)} skipped", flush=True)
 
@@ -202,6 +206,10 @@ def verify_tree(args) -> int:
                               f"({e.strerror})", "give a writable folder") from None
         counts[status] += 1
         suites[case.label()] = suite
+        inputs = sorted(p for p in case.folder.iterdir() if p.is_file())
+        entries.append(Entry(case.fmu.name, case.fmi_version, case.kind, case.platform,
+                             importer, case.label(), status, summary, case.results(args.out),
+                             inputs + sorted(files)))
         print(f"[{k}/{len(todo)}] {status.upper():8} {summary}", flush=True)
         for line in lines:
             if not line.startswith("PASS"):
@@ -224,7 +232,14 @@ def verify_tree(args) -> int:
     except OSError as e:
         raise VerifyError(e.filename or junit_path, "--junit", f"cannot be written "
                           f"({e.strerror})", "give a writable path") from None
+    if args.html is not None:
+        try:
+            write_all({args.html: page(f"cosim verify {tree}", entries, args.html)})
+        except OSError as e:
+            raise VerifyError(e.filename or args.html, "--html", f"cannot be written "
+                              f"({e.strerror})", "give a writable path") from None
     print(f"{tree}: {counts['passed']} passed, {counts['failed']} failed, "
           f"{counts['rejected']} rejected, {len(skipped)} skipped of {len(cases)} cases "
-          f"in {time.perf_counter() - started:.1f} s -> {args.out / 'results'}, {junit_path}")
+          f"in {time.perf_counter() - started:.1f} s -> {args.out / 'results'}, {junit_path}"
+          + ("" if args.html is None else f", {args.html}"))
     return 0 if counts["failed"] == counts["rejected"] == 0 else 1

@@ -48,7 +48,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
 from robofmu.container import build_container, stepping_order  # noqa: E402
-from robofmu.fmu import FmuInstance  # noqa: E402
+from robofmu.fmi2 import FmuInstance  # noqa: E402
 from robofmu.master import Master  # noqa: E402
 from robofmu.scenario import load_scenario  # noqa: E402
 

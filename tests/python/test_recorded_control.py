@@ -11,7 +11,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from robofmu.fmu import FmuInstance  # noqa: E402
+from robofmu.fmi2 import FmuInstance  # noqa: E402
 from robofmu.master import Master  # noqa: E402
 from robofmu.scenario import Signal, load_scenario  # noqa: E402
 

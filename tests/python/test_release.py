@@ -5,7 +5,10 @@ is read from its modelDescription by FMPy (a second reader besides cosim's own),
 checked-in copies under modelDescription/ with ElementTree; the release folder's files
 are those scripts/release.sh writes into a temporary folder, compared with the table of
 docs/release.md (names exactly, sizes within 25 %: the table is a measurement, to be
-rewritten when the FMUs change size, e.g. with more platforms). About 20 s."""
+rewritten when the FMUs change size, e.g. with more platforms), and its compatibility
+folder against the rules of the FMI website's contribution guide (CONTRIBUTING.md of
+modelica/fmi-standard.org, "Compatibility information"), read from fmpy's
+read_model_description for the inputs."""
 
 import re
 import subprocess
@@ -13,6 +16,7 @@ import tomllib
 from pathlib import Path
 from xml.etree import ElementTree
 
+import fmpy
 from fmpy import read_model_description
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -57,8 +61,12 @@ def test_release_folder_holds_what_the_docs_list(tmp_path):
     run = subprocess.run(["bash", str(ROOT / "scripts" / "release.sh"), "--out", str(out)],
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr[-3000:]
-    written = {p.relative_to(out).as_posix(): p.stat().st_size
-               for p in out.rglob("*") if p.is_file()}
+    every = {p.relative_to(out).as_posix(): p.stat().st_size
+             for p in out.rglob("*") if p.is_file()}
+    # The compatibility folder (every FMU twice with its reference, results and plots:
+    # hundreds of files) is listed by its top files; its layout is checked below.
+    written = {n: s for n, s in every.items()
+               if not n.startswith("compatibility/") or n.count("/") == 1}
     listed = {name: int(size) for name, size in
               ROW.findall((ROOT / "docs" / "release.md").read_text())}
     table = "\n".join(f"| `{n}` | {s} |" for n, s in sorted(written.items()))
@@ -73,3 +81,34 @@ def test_release_folder_holds_what_the_docs_list(tmp_path):
     version = workspace_version()
     section = (out / f"CHANGELOG-{version}.md").read_text()
     assert section.startswith(f"## {version}") and "\n## 0." not in section[3:]
+    check_compatibility(out / "compatibility", version)
+
+
+def check_compatibility(folder: Path, version: str) -> None:
+    """The layout the FMI tools list asks for (modelica/fmi-standard.org CONTRIBUTING.md,
+    "Compatibility information"): per FMU its .fmu, _ref.csv (at most 10 variables, at
+    most 1 MB), _ref.opt, _in.csv for a model with inputs, a ReadMe; the importer that ran
+    it with its version and verdict (FMPy every case, libcosim the FMI 2.0 Co-Simulation
+    ones); every FMU of the release, both interfaces."""
+    fmus = sorted(folder.glob("fmus/*/*/*/*/*/*/*.fmu"))
+    assert len(fmus) == 24  # 12 FMUs x Co-Simulation and Model Exchange
+    for fmu in fmus:
+        model, case = fmu.stem, fmu.parent
+        reference = case / f"{model}_ref.csv"
+        assert reference.stat().st_size <= 1_000_000
+        assert len(reference.read_text().splitlines()[0].split(",")) - 1 <= 10
+        assert (case / f"{model}_ref.opt").is_file()
+        inputs = [v for v in read_model_description(str(fmu)).modelVariables
+                  if v.causality == "input"]
+        assert (case / f"{model}_in.csv").is_file() == bool(inputs)
+        readme = (case / "ReadMe.txt").read_text()
+        assert f"on FMPy {fmpy.__version__}: passed" in readme, readme
+        # libcosim runs the FMI 2.0 Co-Simulation cases.
+        libcosim = "2.0/cs/" in case.as_posix()
+        assert ("(libcosimpy 0.0.6), Co-Simulation: passed." in readme) == libcosim, readme
+    summary = (folder / "README.md").read_text()
+    rows = re.findall(r"^\| (\S+) \| (\w+) \| ([\w ]+) \|$", summary, re.M)
+    assert len(rows) == 24 and all(fmpy_verdict == "passed" for _, fmpy_verdict, _ in rows)
+    assert sorted(label for label, _, other in rows if other == "passed") == sorted(
+        label for label, _, _ in rows if label.startswith("2.0/cs/"))
+    assert f"cosim {version}" in summary

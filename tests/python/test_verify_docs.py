@@ -19,7 +19,7 @@ from conftest import package_source
 from verify_cli import ROOT, shell
 
 DOC = ROOT / "docs" / "verify.md"
-FENCE = re.compile(r"^```(\w*)\n(.*?)^```", re.S | re.M)
+FENCE = re.compile(r"^```(\w*)[^\n]*\n(.*?)^```", re.S | re.M)  # "```text prints": text
 
 
 def blocks(kind: str) -> list[str]:
@@ -43,15 +43,21 @@ def bash(command: str, cwd: Path, env: dict) -> subprocess.CompletedProcess:
 def test_sh_blocks_run():
     env = dict(os.environ, PATH=f"{ROOT / '.venv' / 'bin'}:{os.environ['PATH']}")
     commands = [line for body in blocks("sh") for line in body.splitlines() if line.strip()]
-    # Three cases, then a cross-check tree of our FMUs laid out and verified whole.
-    assert len(commands) == 5 and commands[3].startswith("bash scripts/cross-check.sh")
-    for command in commands:
+    # Three cases, then a cross-check tree of our FMUs laid out and verified whole (and
+    # again with its results page), then an FMU's own experiments.
+    assert len(commands) == 7 and commands[3].startswith("bash scripts/cross-check.sh")
+    for k, command in enumerate(commands):
         done = bash(command, ROOT, env)
         assert done.returncode == 0, (command, done.stdout, done.stderr)
         if command.startswith("cosim verify"):
             assert "PASS" in done.stdout and "FAIL" not in done.stdout
-    summary = done.stdout.splitlines()[-1]
-    assert " 0 failed, 0 rejected, 0 skipped of " in summary, summary
+        summary = done.stdout.splitlines()[-1]
+        if k == 4:
+            assert " 0 failed, 0 rejected, 0 skipped of " in summary, summary
+        if k == 5:
+            assert summary.endswith(", results/cross-check/index.html"), summary
+        if k == 6:
+            assert summary.startswith("dist/Pss3Plant.fmu: 2 of 2 experiments passed"), summary
 
 
 @pytest.fixture(scope="module")

@@ -8,6 +8,8 @@
 //!   (the root element), [`variable`] (a variable's attributes) and [`sections`]
 //!   (units from [`units`], log categories, default experiment);
 //! - documentation/index.html from [`documentation`];
+//! - [`lsref`]: the experiments and results every FMU carries (FMI-LS-REF), from the
+//!   test cases of `tests/references/`;
 //! - [`package`]: the three FMU archives of a model ([`package::Variant`]), with the
 //!   platform folder names of [`platform`];
 //! - [`drift`]: the check of the checked-in descriptions, and their regeneration.
@@ -17,6 +19,7 @@ pub mod documentation;
 pub mod drift;
 pub mod fmi2;
 pub mod fmi3;
+pub mod lsref;
 pub mod package;
 pub mod platform;
 pub mod sections;

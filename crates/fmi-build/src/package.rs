@@ -1,6 +1,6 @@
 //! Writes the three FMU archives of a [`Description`] (modelDescription.xml,
 //! `binaries/<platform>/<modelIdentifier>` with each platform's library extension,
-//! documentation/index.html): FMI 2.0, FMI 3.0 with arrays, FMI 3.0 scalar-only, each
+//! documentation/index.html, the FMI-LS-REF files of [`lsref`]): FMI 2.0, FMI 3.0 with arrays, FMI 3.0 scalar-only, each
 //! a [`Variant`], with the libraries of every [`Platform`] given.
 //!
 //! An archive is built in memory and written beside its target, then renamed into
@@ -9,6 +9,7 @@
 //! modification time is set to now: it is as new as the sources it was compared with).
 
 use crate::documentation::documentation;
+use crate::lsref::{self, Case};
 use crate::platform::{Platform, fat_mach_o};
 use crate::{fmi2, fmi3};
 use robofmu_fmi::description::Description;
@@ -162,10 +163,12 @@ pub fn create_parent(path: &Path) -> Result<(), String> {
 }
 
 /// Writes `<out>/<folder>/<modelName>.fmu` of every variant of `d` with the
-/// `libraries` of its platforms; each path with whether it was (re)written.
+/// `libraries` of its platforms and the experiments of `cases` (FMI-LS-REF); each path
+/// with whether it was (re)written.
 pub fn package(
     d: &Description,
     libraries: &[Library],
+    cases: &[Case],
     out: &Path,
 ) -> Result<Vec<(PathBuf, bool)>, String> {
     let platforms: Vec<Platform> = libraries.iter().map(|l| l.platform).collect();
@@ -184,8 +187,9 @@ pub fn package(
         }
         entries.push((
             "documentation/index.html".to_string(),
-            documentation(d, variant.standard()).into_bytes(),
+            documentation(d, variant.standard(), !cases.is_empty()).into_bytes(),
         ));
+        entries.extend(lsref::entries(d, cases, variant.standard())?);
         let bytes = zip_bytes(&entries).map_err(|e| format!("{}: {e}", path.display()))?;
         let written = replace_file(&path, &bytes)?;
         done.push((path, written));

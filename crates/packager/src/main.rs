@@ -6,7 +6,9 @@
 //! - writes `<out>/<Model>.fmu` (FMI 2.0), `<out>/fmi3/<Model>.fmu` and
 //!   `<out>/fmi3-scalar/<Model>.fmu` (default out: `dist`) with the binaries of the
 //!   platforms `--platforms` names (default: all five), each taken from
-//!   `target/<triple>/fmu/` where scripts/build-fmus.sh built it; an archive is
+//!   `target/<triple>/fmu/` where scripts/build-fmus.sh built it, and the test cases of
+//!   `tests/references/<Model>/` as the experiments the FMU carries (FMI-LS-REF:
+//!   robofmu_fmi_build::lsref); an archive is
 //!   replaced atomically, and left as it is when its bytes would not change;
 //! - with `--check`, compares every generated modelDescription and the layout of
 //!   every FMU's `binaries/` folders with the checked-in ones under
@@ -19,6 +21,7 @@
 mod fmus;
 mod load;
 
+use robofmu_fmi_build::lsref;
 use robofmu_fmi_build::package::Library;
 use robofmu_fmi_build::platform::{PLATFORMS, Platform};
 use std::path::{Path, PathBuf};
@@ -27,6 +30,8 @@ use std::process::ExitCode;
 const USAGE: &str = "usage: robofmu-packager [--out DIR] [--platforms TUPLE,...] | --check \
                      | --update (from the repository root)";
 const DESCRIPTIONS: &str = "modelDescription";
+/// The test cases each FMU carries as its experiments (FMI-LS-REF).
+const REFERENCES: &str = "tests/references";
 
 enum Command {
     Package {
@@ -115,7 +120,8 @@ fn run(args: &[String]) -> Result<(), Failure> {
                     .zip(&paths)
                     .map(|(p, path)| Library { platform: *p, path })
                     .collect();
-                robofmu_fmi_build::package::package(d, &libraries, out)
+                let cases = lsref::read_cases(Path::new(REFERENCES), d.info.model_name)?;
+                robofmu_fmi_build::package::package(d, &libraries, &cases, out)
             }
             Command::Check => robofmu_fmi_build::drift::drifted(d, descriptions).map(|paths| {
                 drifted.extend(paths);

@@ -1,0 +1,223 @@
+"""Writes the compatibility information the FMI tools list asks each exporting tool for
+(modelica/fmi-standard.org, CONTRIBUTING.md, "Compatibility information"): per FMU of
+dist/ (FMI 2.0, 3.0 and 3.0 scalar-only) a folder with the files the guide names,
+
+    <Model>.fmu, <Model>_ref.csv (at most 10 variables, at most 1 MB), <Model>_in.csv
+    (models with inputs), <Model>_ref.opt, ReadMe.txt (what the FMU represents, what is
+    tested, the importers that ran it with their versions and verdicts),
+
+laid out as the FMI cross-check did (a layout the guide allows: "The folder structure
+can be chosen by the vendor"): OUT/fmus/<FMI version>/<cs|me>/<platform>/<tool>/<version>/
+<Model>/, the scalar-only FMI 3.0 FMUs under the tool name robofmu-scalar. The reference
+of each FMU is its model's case at the FMU's defaults (tests/references/<Model>/, the
+folder holding cross-check.txt), the smoke test the FMU carries itself (FMI-LS-REF).
+
+Then every FMU is imported, by running it, not by hand: `cosim verify OUT/fmus --html`
+(FMPy, Co-Simulation and Model Exchange) writes OUT/results/ (the cross-check's results
+layout), OUT/junit.xml and the results page OUT/index.html; libcosim (libcosimpy) runs
+each FMI 2.0 Co-Simulation case, in a child process each, judged by the same rule (the
+FMI cross-check band, robofmu.verify) from its first step on (libcosim reports the
+outputs after each step); each ReadMe.txt and OUT/README.md then list the importers
+with their versions and verdicts.
+
+Usage: python scripts/compatibility.py OUT   (from the repository root; needs dist/ and
+the venv). Exit status 1 when an FMU fails its verdict.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.metadata
+import re
+import shutil
+import subprocess
+import sys
+import tomllib
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import fmpy
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+MAX_VARIABLES = 10
+MAX_CSV_BYTES = 1_000_000
+VARIANTS = [("", "2.0", "linux64", "robofmu"), ("fmi3", "3.0", "x86_64-linux", "robofmu"),
+            ("fmi3-scalar", "3.0", "x86_64-linux", "robofmu-scalar")]
+
+
+def version() -> str:
+    """The workspace's version (Cargo.toml [workspace.package]), every FMU's."""
+    with (ROOT / "Cargo.toml").open("rb") as f:
+        return str(tomllib.load(f)["workspace"]["package"]["version"])
+
+
+def defaults_case(model: str) -> Path:
+    (marker,) = (ROOT / "tests" / "references" / model).glob("*/cross-check.txt")
+    return marker.parent
+
+
+def check_csv(path: Path) -> None:
+    """The guide's limits: a CSV at most 1 MB, a reference of at most 10 variables (the
+    inputs are every input of the FMU)."""
+    header = path.read_text().splitlines()[0].split(",")
+    many = path.name.endswith("_ref.csv") and len(header) - 1 > MAX_VARIABLES
+    if many or path.stat().st_size > MAX_CSV_BYTES:
+        sys.exit(f"compatibility: {path}: {len(header) - 1} variables, {path.stat().st_size} "
+                 f"bytes; the FMI tools list allows {MAX_VARIABLES} and {MAX_CSV_BYTES}")
+
+
+def lay_out(out: Path, tool_version: str) -> list[Path]:
+    """Writes the folder of every FMU and interface; the folders."""
+    folders = []
+    for variant, fmi_version, platform, tool in VARIANTS:
+        for description in sorted((ROOT / "modelDescription" / variant).glob("*.xml")):
+            model = description.stem
+            fmu = ROOT / "dist" / variant / f"{model}.fmu"
+            case = defaults_case(model)
+            about = ET.parse(description).getroot().get("description", "")
+            for kind in ("cs", "me"):
+                folder = out / "fmus" / fmi_version / kind / platform / tool / tool_version / model
+                folder.mkdir(parents=True)
+                shutil.copy(fmu, folder / fmu.name)
+                shutil.copy(case / f"{model}_ref.csv", folder / f"{model}_ref.csv")
+                shutil.copy(case / f"{model}_ref.opt", folder / f"{model}_ref.opt")
+                for name in (f"{model}_input.csv", f"{model}_in.csv"):
+                    if (case / name).is_file():
+                        shutil.copy(case / name, folder / f"{model}_in.csv")
+                for csv in folder.glob("*.csv"):
+                    check_csv(csv)
+                interface = "Co-Simulation" if kind == "cs" else "Model Exchange"
+                (folder / "ReadMe.txt").write_text(
+                    f"{model} {tool_version} (robofmu), FMI {fmi_version}"
+                    f"{' scalar-only' if tool.endswith('scalar') else ''} {interface}, "
+                    f"{platform}.\n\n{about}.\n\nTested: the FMU simulated with its default "
+                    f"parameters, the experiment of {model}_ref.opt and the inputs of "
+                    f"{model}_in.csv where present, every signal of {model}_ref.csv within "
+                    "the FMI cross-check band. The reference was computed without running "
+                    f"the FMU (robofmu, tests/references/{model}/{case.name}): "
+                    f"{(case / 'cross-check.txt').read_text().strip()}\n\nThe FMU carries "
+                    "this experiment and its validation experiments itself (FMI-LS-REF: "
+                    "extra/org.fmi-standard.fmi-ls-ref/, documentation/fmi-ls-ref.html).\n")
+                folders.append(folder)
+    return folders
+
+
+def libcosim_verdict(folder: Path) -> str:
+    """libcosim's verdict on the Co-Simulation case of `folder`: the FMU alone, its
+    inputs set before each step (linear in time), its outputs after each step, every
+    signal judged by the FMI cross-check band."""
+    sys.path.insert(0, str(ROOT))
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimManipulator import CosimManipulator
+    from libcosimpy.CosimObserver import CosimObserver
+    from libcosimpy.CosimSlave import CosimLocalSlave
+
+    from robofmu.verify.case import load_case
+    from robofmu.verify.compare import judge_all
+    from robofmu.verify.simulate import Run
+
+    options = argparse.Namespace(reference=None, input=None, step=None, start=None,
+                                 tolerance=None, allow_early_end=False)
+    case = load_case(folder, options)
+    log_output_level(CosimLogLevel.WARNING)
+    execution = CosimExecution.from_step_size(round(case.step * 1e9))
+    index = execution.add_local_slave(CosimLocalSlave(
+        fmu_path=str(folder / f"{folder.name}.fmu"), instance_name="fmu"))
+    observer = CosimObserver.create_last_value()
+    execution.add_observer(observer)
+    manipulator = CosimManipulator.create_override()
+    execution.add_manipulator(manipulator)
+    refs = {v.name.decode(): v.reference for v in execution.slave_variables(index)}
+    outputs = [refs[name] for name in case.signals()]
+    inputs = case.inputs
+    names = list(inputs.columns) if inputs is not None else []
+    input_refs = [refs[name] for name in names]
+
+    def at(t: float) -> list[float]:
+        assert inputs is not None
+        return [float(np.interp(t, inputs.time, inputs.columns[n])) for n in names]
+
+    for ref, value in zip(input_refs, at(case.start) if names else []):
+        execution.real_initial_value(index, ref, value)
+    steps = round((case.stop - case.start) / case.step)
+    rows = np.empty((steps, len(outputs) + 1))
+    for k in range(steps):
+        if names:
+            manipulator.slave_real_values(index, input_refs, at(case.start + k * case.step))
+        if not execution.step(1):
+            return f"failed (step {k} failed)"
+        rows[k, 0] = case.start + execution.status().current_time * 1e-9
+        rows[k, 1:] = observer.last_real_values(index, outputs)
+    case.start = float(rows[0, 0])  # judged from the first step on
+    run = Run(rows[:, 0], {s: rows[:, j + 1] for j, s in enumerate(case.signals())})
+    verdicts, end = judge_all(case, run, "CoSimulation")
+    return "passed" if end is None and all(v.passed for v in verdicts) else "failed"
+
+
+def libcosim(folder: Path) -> str:
+    """libcosim_verdict in a child process: a crash of the library costs this case only."""
+    done = subprocess.run([sys.executable, __file__, "--libcosim", str(folder)],
+                          capture_output=True, text=True)
+    said = done.stdout.strip().splitlines()
+    if done.returncode != 0 or not said:
+        return f"failed (exit status {done.returncode})"
+    return said[-1]
+
+
+def main() -> int:
+    if len(sys.argv) == 3 and sys.argv[1] == "--libcosim":
+        print(libcosim_verdict(Path(sys.argv[2])))
+        return 0
+    if len(sys.argv) != 2:
+        sys.exit("usage: python scripts/compatibility.py OUT")
+    out = Path(sys.argv[1])
+    if out.exists() and any(out.iterdir()):
+        sys.exit(f"compatibility: {out} is not empty; name a new or empty folder")
+    tool_version = version()
+    folders = lay_out(out, tool_version)
+    importer = f"cosim {tool_version} (robofmu's `cosim verify`) on FMPy {fmpy.__version__}"
+    done = subprocess.run([sys.executable, "-m", "robofmu.verify", str(out / "fmus"),
+                           "--out", str(out), "--html", str(out / "index.html")],
+                          capture_output=True, text=True)
+    verdicts = {}
+    for line in done.stdout.splitlines():
+        found = re.match(r"\[\d+/\d+\] (\w+)\s+\S+ \S+ \S+ against (\S+):", line)
+        if found:
+            verdicts[found.group(2)] = found.group(1).lower()
+    if not verdicts:
+        sys.stderr.write(done.stdout + done.stderr)
+        return 1
+    cosim_lib = f"libcosim (libcosimpy {importlib.metadata.version('libcosimpy')})"
+    rows, failed = [], False
+    for folder in folders:
+        label = "/".join(folder.parts[-6:])
+        verdict = verdicts.get(label, "not run")
+        parts = label.split("/")
+        results = "/".join(["results", *parts[:3], "cosim", tool_version, *parts[3:]])
+        lines = [f"Imported and simulated with {importer}: {verdict} ({results}/ and "
+                 "index.html of the compatibility folder)."]
+        other = "not run"
+        if label.startswith("2.0/cs/"):
+            other = libcosim(folder)
+            lines.append(f"Imported and simulated with {cosim_lib}, Co-Simulation: {other}.")
+        failed |= verdict != "passed" or other.startswith("failed")
+        with (folder / "ReadMe.txt").open("a") as f:
+            f.write("\n" + "\n".join(lines) + "\n")
+        rows.append(f"| {label} | {verdict} | {other} |")
+    (out / "README.md").write_text(
+        f"# robofmu {tool_version}: compatibility information\n\nEvery FMU of robofmu "
+        f"{tool_version} in `fmus/` with its reference (`_ref.csv`, `_ref.opt`, `_in.csv`) "
+        "and `ReadMe.txt`, in the layout of the FMI cross-check. Importers that ran "
+        f"them (scripts/compatibility.py, at release):\n\n- {importer}: Co-Simulation and "
+        f"Model Exchange, FMI 2.0 and 3.0\n- {cosim_lib}: FMI 2.0 Co-Simulation (it "
+        "crashed loading our FMI 3.0 FMUs)\n\nThe results page of cosim: `index.html`; "
+        "its results: `results/`, `junit.xml`.\n\n| FMU | cosim (FMPy) | libcosim |\n"
+        "|---|---|---|\n" + "\n".join(rows) + "\n")
+    print(done.stdout.splitlines()[-1])
+    return 1 if failed or done.returncode != 0 else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
