@@ -15,10 +15,11 @@ folder holding cross-check.txt), the smoke test the FMU carries itself (FMI-LS-R
 Then every FMU is imported, by running it, not by hand: `cosim verify OUT/fmus --html`
 (FMPy, Co-Simulation and Model Exchange) writes OUT/results/ (the cross-check's results
 layout), OUT/junit.xml and the results page OUT/index.html; libcosim (libcosimpy) runs
-each FMI 2.0 Co-Simulation case, in a child process each, judged by the same rule (the
-FMI cross-check band, robofmu.verify) from its first step on (libcosim reports the
-outputs after each step); each ReadMe.txt and OUT/README.md then list the importers
-with their versions and verdicts.
+each FMI 2.0 Co-Simulation case and ecos (ecospy) each FMI 2.0 and scalar-only FMI 3.0
+Co-Simulation case, in a child process each, judged by the same rule (the FMI
+cross-check band, robofmu.verify) from the first step on (both report the outputs after
+each step); each ReadMe.txt and OUT/README.md then list the importers with their
+versions and verdicts.
 
 Usage: python scripts/compatibility.py OUT   (from the repository root; needs dist/ and
 the venv). Exit status 1 when an FMU fails its verdict.
@@ -103,24 +104,74 @@ def lay_out(out: Path, tool_version: str) -> list[Path]:
     return folders
 
 
+def _case(folder: Path):
+    """The case of `folder` as cosim verify reads it, and its inputs at a time."""
+    sys.path.insert(0, str(ROOT))
+    from robofmu.verify.case import load_case
+
+    options = argparse.Namespace(reference=None, input=None, step=None, start=None,
+                                 tolerance=None, allow_early_end=False)
+    case = load_case(folder, options)
+    inputs = case.inputs
+    names = list(inputs.columns) if inputs is not None else []
+
+    def at(t: float) -> list[float]:
+        assert inputs is not None
+        return [float(np.interp(t, inputs.time, inputs.columns[n])) for n in names]
+
+    return case, names, at
+
+
+def _judge(case, rows: np.ndarray) -> str:
+    """The verdict of the outputs `rows` (time, then the case's signals, after each
+    step), judged from the first step on."""
+    from robofmu.verify.compare import judge_all
+    from robofmu.verify.simulate import Run
+
+    case.start = float(rows[0, 0])
+    run = Run(rows[:, 0], {s: rows[:, j + 1] for j, s in enumerate(case.signals())})
+    verdicts, end = judge_all(case, run, "CoSimulation")
+    return "passed" if end is None and all(v.passed for v in verdicts) else "failed"
+
+
+def ecos_verdict(folder: Path) -> str:
+    """ecos's verdict on the Co-Simulation case of `folder`: the FMU alone, its inputs
+    set before initialization and before each step (linear in time)."""
+    from ecospy.EcosSimulation import EcosSimulation
+    from ecospy.EcosSimulationStructure import EcosSimulationStructure
+    from ecospy.lib import EcosLib
+
+    case, names, at = _case(folder)
+    EcosLib.set_log_level("warn")
+    structure = EcosSimulationStructure()
+    structure.add_model("fmu", str(folder / f"{folder.name}.fmu"))
+    steps = round((case.stop - case.start) / case.step)
+    rows = np.empty((steps, len(case.signals()) + 1))
+    with EcosSimulation(structure=structure, step_size=case.step) as sim:
+        for name, value in zip(names, at(case.start) if names else []):
+            sim.set_real(f"fmu::{name}", value)
+        if not sim.init():
+            return "failed (initialization)"
+        for k in range(steps):
+            for name, value in zip(names, at(case.start + k * case.step) if names else []):
+                sim.set_real(f"fmu::{name}", value)
+            rows[k, 0] = sim.step(1)
+            rows[k, 1:] = [sim.get_real(f"fmu::{s}") for s in case.signals()]
+        sim.terminate()
+    return _judge(case, rows)
+
+
 def libcosim_verdict(folder: Path) -> str:
     """libcosim's verdict on the Co-Simulation case of `folder`: the FMU alone, its
     inputs set before each step (linear in time), its outputs after each step, every
     signal judged by the FMI cross-check band."""
-    sys.path.insert(0, str(ROOT))
     from libcosimpy.CosimExecution import CosimExecution
     from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
     from libcosimpy.CosimManipulator import CosimManipulator
     from libcosimpy.CosimObserver import CosimObserver
     from libcosimpy.CosimSlave import CosimLocalSlave
 
-    from robofmu.verify.case import load_case
-    from robofmu.verify.compare import judge_all
-    from robofmu.verify.simulate import Run
-
-    options = argparse.Namespace(reference=None, input=None, step=None, start=None,
-                                 tolerance=None, allow_early_end=False)
-    case = load_case(folder, options)
+    case, names, at = _case(folder)
     log_output_level(CosimLogLevel.WARNING)
     execution = CosimExecution.from_step_size(round(case.step * 1e9))
     index = execution.add_local_slave(CosimLocalSlave(
@@ -131,14 +182,7 @@ def libcosim_verdict(folder: Path) -> str:
     execution.add_manipulator(manipulator)
     refs = {v.name.decode(): v.reference for v in execution.slave_variables(index)}
     outputs = [refs[name] for name in case.signals()]
-    inputs = case.inputs
-    names = list(inputs.columns) if inputs is not None else []
     input_refs = [refs[name] for name in names]
-
-    def at(t: float) -> list[float]:
-        assert inputs is not None
-        return [float(np.interp(t, inputs.time, inputs.columns[n])) for n in names]
-
     for ref, value in zip(input_refs, at(case.start) if names else []):
         execution.real_initial_value(index, ref, value)
     steps = round((case.stop - case.start) / case.step)
@@ -150,15 +194,16 @@ def libcosim_verdict(folder: Path) -> str:
             return f"failed (step {k} failed)"
         rows[k, 0] = case.start + execution.status().current_time * 1e-9
         rows[k, 1:] = observer.last_real_values(index, outputs)
-    case.start = float(rows[0, 0])  # judged from the first step on
-    run = Run(rows[:, 0], {s: rows[:, j + 1] for j, s in enumerate(case.signals())})
-    verdicts, end = judge_all(case, run, "CoSimulation")
-    return "passed" if end is None and all(v.passed for v in verdicts) else "failed"
+    return _judge(case, rows)
 
 
-def libcosim(folder: Path) -> str:
-    """libcosim_verdict in a child process: a crash of the library costs this case only."""
-    done = subprocess.run([sys.executable, __file__, "--libcosim", str(folder)],
+IMPORTERS = {"libcosim": libcosim_verdict, "ecos": ecos_verdict}
+
+
+def verdict_of(importer: str, folder: Path) -> str:
+    """An importer's verdict in a child process: a crash of its library costs this case
+    only."""
+    done = subprocess.run([sys.executable, __file__, f"--{importer}", str(folder)],
                           capture_output=True, text=True)
     said = done.stdout.strip().splitlines()
     if done.returncode != 0 or not said:
@@ -167,8 +212,8 @@ def libcosim(folder: Path) -> str:
 
 
 def main() -> int:
-    if len(sys.argv) == 3 and sys.argv[1] == "--libcosim":
-        print(libcosim_verdict(Path(sys.argv[2])))
+    if len(sys.argv) == 3 and sys.argv[1].removeprefix("--") in IMPORTERS:
+        print(IMPORTERS[sys.argv[1].removeprefix("--")](Path(sys.argv[2])))
         return 0
     if len(sys.argv) != 2:
         sys.exit("usage: python scripts/compatibility.py OUT")
@@ -190,6 +235,7 @@ def main() -> int:
         sys.stderr.write(done.stdout + done.stderr)
         return 1
     cosim_lib = f"libcosim (libcosimpy {importlib.metadata.version('libcosimpy')})"
+    ecos = f"ecos (ecospy {importlib.metadata.version('ecospy')})"
     rows, failed = [], False
     for folder in folders:
         label = "/".join(folder.parts[-6:])
@@ -198,23 +244,29 @@ def main() -> int:
         results = "/".join(["results", *parts[:3], "cosim", tool_version, *parts[3:]])
         lines = [f"Imported and simulated with {importer}: {verdict} ({results}/ and "
                  "index.html of the compatibility folder)."]
-        other = "not run"
+        by_libcosim = by_ecos = "not run"
         if label.startswith("2.0/cs/"):
-            other = libcosim(folder)
-            lines.append(f"Imported and simulated with {cosim_lib}, Co-Simulation: {other}.")
-        failed |= verdict != "passed" or other.startswith("failed")
+            by_libcosim = verdict_of("libcosim", folder)
+            lines.append(f"Imported and simulated with {cosim_lib}, Co-Simulation: "
+                         f"{by_libcosim}.")
+        if label.startswith("2.0/cs/") or re.match(r"3\.0/cs/[^/]+/robofmu-scalar/", label):
+            by_ecos = verdict_of("ecos", folder)
+            lines.append(f"Imported and simulated with {ecos}, Co-Simulation: {by_ecos}.")
+        failed |= verdict != "passed" or "failed" in (by_libcosim + by_ecos)
         with (folder / "ReadMe.txt").open("a") as f:
             f.write("\n" + "\n".join(lines) + "\n")
-        rows.append(f"| {label} | {verdict} | {other} |")
+        rows.append(f"| {label} | {verdict} | {by_libcosim} | {by_ecos} |")
     (out / "README.md").write_text(
         f"# robofmu {tool_version}: compatibility information\n\nEvery FMU of robofmu "
         f"{tool_version} in `fmus/` with its reference (`_ref.csv`, `_ref.opt`, `_in.csv`) "
         "and `ReadMe.txt`, in the layout of the FMI cross-check. Importers that ran "
         f"them (scripts/compatibility.py, at release):\n\n- {importer}: Co-Simulation and "
         f"Model Exchange, FMI 2.0 and 3.0\n- {cosim_lib}: FMI 2.0 Co-Simulation (it "
-        "crashed loading our FMI 3.0 FMUs)\n\nThe results page of cosim: `index.html`; "
-        "its results: `results/`, `junit.xml`.\n\n| FMU | cosim (FMPy) | libcosim |\n"
-        "|---|---|---|\n" + "\n".join(rows) + "\n")
+        f"crashed loading our FMI 3.0 FMUs)\n- {ecos}: FMI 2.0 and scalar-only FMI 3.0 "
+        "Co-Simulation (it names an FMI 3.0 array's elements otherwise than `x[i]`)\n\n"
+        "The results page of cosim: `index.html`; its results: `results/`, `junit.xml`."
+        "\n\n| FMU | cosim (FMPy) | libcosim | ecos |\n|---|---|---|---|\n"
+        + "\n".join(rows) + "\n")
     print(done.stdout.splitlines()[-1])
     return 1 if failed or done.returncode != 0 else 0
 

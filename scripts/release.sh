@@ -65,8 +65,10 @@ for scenario in scenarios/*.toml; do
         exit 1
     fi
 done
-# The compatibility information of the FMI tools list, every FMU imported by running it,
-# with the results page (scripts/compatibility.py).
+# The compatibility information of the FMI tools list, every FMU imported by running it
+# (FMPy, libcosim, ecos: ecospy needs libtbb12), with the results page
+# (scripts/compatibility.py).
+bash scripts/install-importer-libs.sh
 .venv/bin/python scripts/compatibility.py "$out/compatibility" >/dev/null
 printf '%s\n' "$changelog" >"$out/CHANGELOG-$version.md"
 (cd "$out" && find . -type f ! -name SHA256SUMS | sed 's#^\./##' | LC_ALL=C sort |

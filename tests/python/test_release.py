@@ -89,7 +89,8 @@ def check_compatibility(folder: Path, version: str) -> None:
     "Compatibility information"): per FMU its .fmu, _ref.csv (at most 10 variables, at
     most 1 MB), _ref.opt, _in.csv for a model with inputs, a ReadMe; the importer that ran
     it with its version and verdict (FMPy every case, libcosim the FMI 2.0 Co-Simulation
-    ones); every FMU of the release, both interfaces."""
+    ones, ecos those and the scalar-only FMI 3.0 ones); every FMU of the release, both
+    interfaces."""
     fmus = sorted(folder.glob("fmus/*/*/*/*/*/*/*.fmu"))
     assert len(fmus) == 24  # 12 FMUs x Co-Simulation and Model Exchange
     for fmu in fmus:
@@ -103,12 +104,17 @@ def check_compatibility(folder: Path, version: str) -> None:
         assert (case / f"{model}_in.csv").is_file() == bool(inputs)
         readme = (case / "ReadMe.txt").read_text()
         assert f"on FMPy {fmpy.__version__}: passed" in readme, readme
-        # libcosim runs the FMI 2.0 Co-Simulation cases.
-        libcosim = "2.0/cs/" in case.as_posix()
+        # libcosim runs the FMI 2.0 Co-Simulation cases, ecos those and the scalar-only
+        # FMI 3.0 ones.
+        path = case.as_posix()
+        libcosim = "/2.0/cs/" in path
+        ecos = libcosim or ("/3.0/cs/" in path and "/robofmu-scalar/" in path)
         assert ("(libcosimpy 0.0.6), Co-Simulation: passed." in readme) == libcosim, readme
+        assert ("(ecospy 0.7.2), Co-Simulation: passed." in readme) == ecos, readme
     summary = (folder / "README.md").read_text()
-    rows = re.findall(r"^\| (\S+) \| (\w+) \| ([\w ]+) \|$", summary, re.M)
-    assert len(rows) == 24 and all(fmpy_verdict == "passed" for _, fmpy_verdict, _ in rows)
-    assert sorted(label for label, _, other in rows if other == "passed") == sorted(
-        label for label, _, _ in rows if label.startswith("2.0/cs/"))
+    rows = re.findall(r"^\| (\S+) \| (\w+) \| ([\w ]+) \| ([\w ]+) \|$", summary, re.M)
+    assert len(rows) == 24 and all(row[1] == "passed" for row in rows)
+    assert sum(row[2] == "passed" for row in rows) == 4
+    assert sum(row[3] == "passed" for row in rows) == 8
+    assert all(verdict in ("passed", "not run") for row in rows for verdict in row[2:])
     assert f"cosim {version}" in summary
