@@ -104,6 +104,17 @@ def entry(command: str, argv: list[str] | None = None) -> int:
 
 
 def main(argv=None) -> int:
+    """Runs one command; the FMU instances it shared (robofmu.instances) are closed
+    before it returns (their extracted folders removed)."""
+    try:
+        return _main(argv)
+    finally:
+        shared = sys.modules.get("robofmu.instances")
+        if shared is not None:
+            shared.close_all()
+
+
+def _main(argv) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     debug = "--debug" in argv
     argv = [a for a in argv if a != "--debug"]

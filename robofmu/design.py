@@ -15,7 +15,6 @@
 from __future__ import annotations
 
 import math
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -79,8 +78,8 @@ def design_gains(plant_fmu: Path, poses, bandwidth: float,
     check_bandwidth(bandwidth, poses)
     parameters = tuple(sorted((plant or {}).items()))
     inertia = np.zeros(3)
-    for pose in poses:
-        inertia = np.maximum(inertia, euler_inertia(str(plant_fmu), tuple(pose), parameters))
+    for at_pose in euler_inertias(str(plant_fmu), [tuple(p) for p in poses], parameters):
+        inertia = np.maximum(inertia, at_pose)
     return [triple_pole_gains(float(m), bandwidth) for m in inertia]
 
 
@@ -90,21 +89,45 @@ def check_bandwidth(bandwidth: float, poses) -> None:
         raise ScenarioError(f"field 'gains.omega' must be positive, got {bandwidth}")
 
 
-@lru_cache(maxsize=256)
+# (plant FMU, pose, parameters) -> diagonal of M_x: a plant is linearised once per pose.
+_INERTIA: dict[tuple, np.ndarray] = {}
+MAX_CACHED = 256
+
+
+def euler_inertias(plant_fmu: str, poses: list[tuple[float, float, float]],
+                   parameters: tuple = ()) -> list[np.ndarray]:
+    """Diagonal of M_x at each pose (rad), from the plant FMU at rest (Model Exchange)
+    with `parameters` ((name, value) pairs) set: one instance for every pose not
+    computed before (fmi2Reset between poses). A pose the plant refuses raises
+    ScenarioError with the plant's own reason."""
+    keys = [(plant_fmu, tuple(pose), parameters) for pose in poses]
+    todo = [key for key in dict.fromkeys(keys) if key not in _INERTIA]
+    if len(_INERTIA) + len(todo) > MAX_CACHED:
+        _INERTIA.clear()
+    if todo:
+        with ModelExchangeInstance(plant_fmu, "design") as fmu:
+            for k, key in enumerate(todo):
+                if k:
+                    fmu.reset()
+                _INERTIA[key] = _inertia_at(fmu, key[1], parameters)
+    return [_INERTIA[key] for key in keys]
+
+
 def euler_inertia(plant_fmu: str, pose: tuple[float, float, float],
                   parameters: tuple = ()) -> np.ndarray:
-    """Diagonal of M_x at `pose` (rad), from the plant FMU at rest (Model Exchange) with
-    `parameters` ((name, value) pairs) set. A pose the plant refuses raises
-    ScenarioError with the plant's own reason."""
-    with ModelExchangeInstance(plant_fmu, "design") as fmu:
-        try:
-            fmu.set_values(dict(parameters))
-            return _euler_inertia(fmu, pose)
-        except fmu.Failed as e:
-            deg = ", ".join(f"{math.degrees(x):.6g}" for x in pose)
-            raise PlantRefused(f"field 'gains': the plant cannot be linearised at the "
-                               f"design pose ({deg}) deg: {fmu.reason(e)}; choose design "
-                               "poses inside the workspace", fmu.reason(e)) from None
+    """euler_inertias at one pose."""
+    return euler_inertias(plant_fmu, [pose], parameters)[0]
+
+
+def _inertia_at(fmu, pose, parameters: tuple) -> np.ndarray:
+    try:
+        fmu.set_values(dict(parameters))
+        return _euler_inertia(fmu, pose)
+    except fmu.Failed as e:
+        deg = ", ".join(f"{math.degrees(x):.6g}" for x in pose)
+        raise PlantRefused(f"field 'gains': the plant cannot be linearised at the "
+                           f"design pose ({deg}) deg: {fmu.reason(e)}; choose design "
+                           "poses inside the workspace", fmu.reason(e)) from None
 
 
 def _euler_inertia(fmu, pose) -> np.ndarray:

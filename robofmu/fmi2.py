@@ -150,6 +150,9 @@ class LoggedCalls:
 class FmuInstance(LoggedCalls):
     """A co-simulation instance of an FMI 2.0 FMU, addressed by variable names."""
 
+    #: (file, modification time) where robofmu.instances shares it; None: not shared.
+    pool_key: tuple[str, int] | None = None
+
     def __init__(self, alias: str, path: Path, start_time: float, stop_time: float):
         self.alias = alias
         self.messages: list[str] = []

@@ -37,7 +37,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .fmi2 import FmuInstance
+from .fmu_check import describe
+from .instances import close_all, give_back, open_instance
 from .loop import Loop
 from .scenario import Scenario, Signal, extrapolation_order
 from .slopes import History, accepted, served
@@ -63,11 +64,11 @@ class Result:
 
 
 def _open_fmu(alias, path, scenario):
-    return FmuInstance(alias, path, scenario.start_time, scenario.stop_time)
+    return open_instance(alias, path, scenario.start_time, scenario.stop_time)
 
 
 def _close_fmu(fmu) -> None:
-    fmu.close()
+    give_back(fmu)  # robofmu.instances: the next run or check resets it
 
 
 class Master:
@@ -246,6 +247,13 @@ class Master:
             self._run_steps(rows, switches, loop)
             self.loop_seconds = time.perf_counter() - loop_started
             self.discards = loop.discards
+        except BaseException:
+            if self.close_fmu is _close_fmu:  # after a failed run nothing stays shared
+                for fmu in self.fmus.values():
+                    fmu.close()
+                self.fmus = {}
+                close_all()
+            raise
         finally:
             for fmu in self.fmus.values():
                 self.close_fmu(fmu)
@@ -254,6 +262,29 @@ class Master:
         columns = {name: rows[:, j].tolist() for j, name in enumerate(names)}
         return Result(names=order, time=times, columns={n: columns[n] for n in order},
                       discards=self.discards)
+
+
+class _Described:
+    """What Master._slope_pairs reads of an FMI 2.0 instance, from its model description."""
+
+    def __init__(self, path: Path):
+        md = describe(path, "fmus")
+        self.variables = {v.name: v for v in md.modelVariables}
+        self.can_interpolate_inputs = bool(md.coSimulation.canInterpolateInputs)
+        self.max_output_derivative_order = int(md.coSimulation.maxOutputDerivativeOrder or 0)
+
+    def is_real(self, name: str) -> bool:
+        return self.variables[name].type == "Real"
+
+
+def warm_probes(scenario: Scenario) -> None:
+    """Makes now the input-derivative probes that the first run of `scenario` would make
+    (slopes.accepted and served, cached per FMU file), while no instance is held: they
+    borrow the scenario's shared instances (robofmu.instances) instead of instantiating
+    the FMUs a second time during the run."""
+    master = Master(scenario)
+    master.fmus = {alias: _Described(path) for alias, path in scenario.fmus.items()}
+    master._slope_pairs()
 
 
 def text_progress(stream=sys.stderr, width: int = 40) -> Callable[[float], None]:

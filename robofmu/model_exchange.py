@@ -76,6 +76,14 @@ class ModelExchangeInstance:
     def get_real(self, names) -> list[float]:
         return list(self._fmu.getReal([self.refs[n] for n in names]))
 
+    def reset(self) -> None:
+        """fmi2Reset: the state after instantiation again (its start values), ready for
+        the next evaluation."""
+        self._fmu.reset()
+        self._initialized = False
+        self.messages.clear()
+        self._fmu.setupExperiment(startTime=0.0)
+
     def initialize(self) -> None:
         self._fmu.enterInitializationMode()
         self._fmu.exitInitializationMode()

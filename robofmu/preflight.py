@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .errors import CosimError, ScenarioError
-from .fmi2 import FmuInstance
+from .instances import give_back, open_instance
 from .fmu_check import check_value, describe
 from .limits import check_measurable
 
@@ -19,13 +19,14 @@ if TYPE_CHECKING:
 
 
 def initialize_alone(path: Path, alias: str, parameters: dict, field: str) -> None:
-    """Instantiates the FMU, sets `parameters`, initialises it and reads its outputs;
-    ScenarioError with the FMU's reason when it refuses."""
+    """Sets `parameters` on an instance of the FMU (robofmu.instances: the one the run
+    will use), initialises it and reads its outputs; ScenarioError with the FMU's reason
+    when it refuses."""
     md = describe(path, f"fmus.{alias}")
     outputs = tuple(v.name for v in md.modelVariables if v.causality == "output"
                     and v.type in ("Real", "Integer", "Boolean"))
     try:
-        fmu = FmuInstance(alias, Path(path), 0.0, 1.0)
+        fmu = open_instance(alias, Path(path), 0.0, 1.0)
     except CosimError as e:
         raise ScenarioError(f"field 'fmus.{alias}': the FMU cannot be instantiated: "
                             f"{_reason(e)}; rebuild it (bash scripts/build-fmus.sh)") from None
@@ -36,10 +37,13 @@ def initialize_alone(path: Path, alias: str, parameters: dict, field: str) -> No
         fmu.exit_initialization()
         fmu.get_values(outputs)
     except CosimError as e:
+        fmu.close()
         raise ScenarioError(f"field '{field}': {alias} refuses these parameters: "
                             f"{_reason(e)}; change them") from None
-    finally:
+    except BaseException:
         fmu.close()
+        raise
+    give_back(fmu)
 
 
 def _reason(error: Exception) -> str:
@@ -83,3 +87,5 @@ def check(scenario: Scenario, fields: dict | None = None) -> None:
     for alias in scenario.order:
         initialize_alone(scenario.fmus[alias], alias, scenario.parameters.get(alias, {}),
                          fields.get(alias, f"parameters.{alias}"))
+    from .master import warm_probes  # lazily: the master reads scenarios (this module's user)
+    warm_probes(scenario)

@@ -21,12 +21,14 @@ from pathlib import Path
 import numpy as np
 
 from .errors import CosimError
-from .fmi2 import FmuInstance
+from .instances import give_back, open_instance
 
 
 def _probe(path: str, call) -> bool:
+    """`call` on a shared instance of the FMU (robofmu.instances) in initialisation
+    mode; False when the FMU refuses (the instance is reset before its next use)."""
     try:
-        fmu = FmuInstance("probe", Path(path), 0.0, 1.0)
+        fmu = open_instance("probe", Path(path), 0.0, 1.0)
     except Exception:  # noqa: BLE001 - any failure: no derivatives (the run reports it)
         return False
     try:
@@ -34,8 +36,11 @@ def _probe(path: str, call) -> bool:
         return call(fmu)
     except CosimError:
         return False
-    finally:
+    except BaseException:
         fmu.close()
+        raise
+    finally:
+        give_back(fmu)
 
 
 def _outputs(names: tuple[str, ...], order: int):

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .errors import CosimError, ScenarioError
-from .fmi2 import FmuInstance
+from .instances import give_back, open_instance
 from .fmu_check import start_value, variables
 from .preflight import _reason
 
@@ -43,14 +43,14 @@ class Workspace:
     def __init__(self, plant_fmu: Path, parameters: dict):
         self.parameters = {k: v for k, v in parameters.items()
                            if not k.startswith(("theta0[", "omega0["))}
-        self.fmu = FmuInstance("plant", Path(plant_fmu), 0.0, 1.0)
+        self.fmu = open_instance("plant", Path(plant_fmu), 0.0, 1.0)
         self.fresh = True
 
     def __enter__(self) -> Workspace:
         return self
 
     def __exit__(self, *_exc) -> None:
-        self.fmu.close()
+        give_back(self.fmu)  # robofmu.instances: reset before its next use
 
     def problem(self, pose) -> str | None:
         fmu = self.fmu
@@ -91,7 +91,7 @@ def planned_poses(scenario: Scenario) -> list[tuple[float, list[float]]]:
     keep = set(range(0, s.steps + 1, stride)) | {s.steps} | set(switches)
     names = tuple(f"q[{i}]" for i in (1, 2, 3))
     poses = []
-    fmu = FmuInstance("planner", s.fmus["planner"], s.start_time, s.stop_time)
+    fmu = open_instance("planner", s.fmus["planner"], s.start_time, s.stop_time)
     try:
         for name, value in s.parameters.get("planner", {}).items():
             fmu.set_value(name, value)
@@ -109,8 +109,10 @@ def planned_poses(scenario: Scenario) -> list[tuple[float, list[float]]]:
                 poses.append((t, fmu.get_values(names)))
             if k < s.steps:
                 fmu.do_step(t, s.step_size)
-    finally:
+    except BaseException:
         fmu.close()
+        raise
+    give_back(fmu)
     return poses
 
 

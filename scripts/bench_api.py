@@ -11,7 +11,8 @@ input_extrapolation = "hold", so that they make the same FMI calls (robofmu's de
 "quadratic", adds the input derivatives; its figure is printed too). A whole run is
 timed on both sides: loading, instantiation, initialisation, the steps, freeing.
 
-Printed, each the median of --runs: robofmu.simulate(PATH) / C host;
+Printed, each the median of --runs: robofmu.simulate(PATH) / C host (and the
+process's first such call, before any instance is shared or any answer cached);
 robofmu.simulate(loaded scenario) / C host; and a serial sweep of --sweep regulation
 runs (robofmu.run_sweep) / --sweep C-host runs. The machine's load average is printed
 with them: measure on a quiet machine."""
@@ -109,6 +110,9 @@ def main() -> int:
         path = work / "regulation.toml"
         path.write_text(text.replace('step_size = "1 ms"',
                                      'step_size = "1 ms"\ninput_extrapolation = "hold"'))
+        started = time.perf_counter()
+        robofmu.simulate(path)  # the first run in this process: nothing shared or cached yet
+        cold = time.perf_counter() - started
         scenario = robofmu.load(path)
         exe = compile_host(work)
         plan = write_plan(scenario, work)
@@ -136,6 +140,8 @@ def main() -> int:
     print(f"C host, whole run: {1e3 * c_run:.2f} ms (median of {args.runs}); its last "
           f"pid.u equals robofmu's within {difference:.1e}")
     print(f"simulate(path):      {1e3 * from_path:8.2f} ms = {from_path / c_run:5.2f} x the C host")
+    print(f"  (the process's first, nothing shared yet: {1e3 * cold:.2f} ms = "
+          f"{cold / c_run:.2f} x)")
     print(f"simulate(scenario):  {1e3 * loaded:8.2f} ms = {loaded / c_run:5.2f} x the C host")
     print(f"  (default quadratic extrapolation: {1e3 * quadratic:.2f} ms = "
           f"{quadratic / c_run:.2f} x)")

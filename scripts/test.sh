@@ -30,6 +30,13 @@ bash scripts/setup-gemseo-venv.sh
 # The harness's lint and types (configured in pyproject.toml): zero findings.
 .venv/bin/ruff check robofmu
 .venv/bin/mypy
+# The library's public API (docs/python-api.md) under mypy --strict.
+.venv/bin/mypy --strict --follow-imports=silent robofmu/__init__.py robofmu/api.py \
+    robofmu/errors.py robofmu/instances.py
+# Its reference (docstrings rendered by pdoc, pinned), built without a warning.
+api_docs=$(mktemp -d)
+.venv/bin/python -W error -m pdoc robofmu.api robofmu.errors -o "$api_docs"
+rm -rf "$api_docs"
 .venv/bin/python -m pytest tests/python -q
 # The wheel as a user installs it: built, installed into a fresh venv in an empty folder
 # (no checkout, no Rust on PATH), a bundled scenario and a bundled `cosim verify` case run
