@@ -25,6 +25,11 @@ bash scripts/setup-venv.sh
 # The harness's lint and types (configured in pyproject.toml): zero findings.
 .venv/bin/ruff check robofmu
 .venv/bin/mypy
+# The public API (robofmu/__init__.py, api.py, errors.py) under mypy --strict (the modules
+# it imports are read, their findings left to the run above); its reference: pdoc (pinned)
+# renders the docstrings of robofmu.__all__ into target/api-docs, failing on any warning.
+.venv/bin/mypy --strict --follow-imports=silent robofmu/__init__.py robofmu/api.py robofmu/errors.py
+.venv/bin/python scripts/api_docs.py target/api-docs
 .venv/bin/python -m pytest tests/python -q
 # The wheel as a user installs it: built, installed into a fresh venv in an empty folder
 # (no checkout, no Rust on PATH), a bundled scenario and a bundled `cosim verify` case run

@@ -68,8 +68,9 @@ def worker_facts(dask_worker: Any) -> dict[str, object]:
 
 
 def main(checkout: Path) -> None:
-    from distributed import Client
+    from distributed import Client, get_task_stream
 
+    started = time.perf_counter()
     root = Path(tempfile.mkdtemp(prefix="robofmu-cluster-"))
     folders = {name: root / name for name in ("scheduler", "worker1", "worker2", "client")}
     for folder in folders.values():
@@ -130,8 +131,15 @@ unit = "kg"
 
         with Client(address, timeout=START_TIMEOUT_S) as client:
             client.wait_for_workers(2, timeout=START_TIMEOUT_S)
-            on_cluster = robofmu.run_sweep(spec, folders["client"] / "cluster", client=client,
-                                           fmu_dir=fmu_dir)
+            with get_task_stream(client) as stream:
+                on_cluster = robofmu.run_sweep(spec, folders["client"] / "cluster",
+                                               client=client, fmu_dir=fmu_dir)
+            # Every run went to the workers: the tasks of the sweep (a batch of runs each).
+            tasks = [t for t in stream.data if str(t["key"]).startswith("cosim-runs-")]
+            ran = sum(int(str(t["key"]).rsplit("-", 1)[1]) for t in tasks)
+            assert ran == 6, stream.data
+            print(f"cluster: {len(tasks)} tasks of the sweep ran on "
+                  f"{len({t['worker'] for t in tasks})} of the 2 workers, {ran} runs in all")
             facts = client.run(worker_facts)
         assert len(facts) == 2, facts
         venv = Path(sys.prefix).resolve()
@@ -165,7 +173,8 @@ unit = "kg"
         rms = [float(r["rms_error_deg"]) for r in a]
         assert all(0.0 < x < 3.0 for x in rms), rms
         print(f"cluster: 6 runs on 2 dask workers = the serial sweep ({compared} values equal; "
-              f"RMS error {min(rms):.4f}..{max(rms):.4f} deg)")
+              f"RMS error {min(rms):.4f}..{max(rms):.4f} deg), "
+              f"{time.perf_counter() - started:.1f} s with the cluster's start")
     finally:
         stop(processes)
         shutil.rmtree(root, ignore_errors=True)
