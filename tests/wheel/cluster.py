@@ -32,11 +32,16 @@ START_TIMEOUT_S = 90.0
 
 
 def start(args: list[str], folder: Path, env: dict[str, str]) -> subprocess.Popen[bytes]:
-    """A process in its own empty folder and process group; its output to a log beside."""
+    """A process in its own empty folder and process group; its output to a log beside, its
+    temporary files (the sweep's FMU folder on a worker) in a folder beside, removed with
+    the rest: a worker killed at the end runs no clean-up."""
     assert not any(folder.iterdir()), f"{folder} is not empty"
     log = (folder.parent / f"{folder.name}.log").open("wb")
-    return subprocess.Popen(args, cwd=folder, env=env, stdout=log, stderr=subprocess.STDOUT,
-                            stdin=subprocess.DEVNULL, start_new_session=True)
+    tmp = folder.parent / f"{folder.name}-tmp"
+    tmp.mkdir()
+    return subprocess.Popen(args, cwd=folder, env=dict(env, TMPDIR=str(tmp)), stdout=log,
+                            stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                            start_new_session=True)
 
 
 def stop(processes: list[subprocess.Popen[bytes]]) -> None:
