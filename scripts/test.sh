@@ -23,7 +23,7 @@ bash scripts/install-platform-test-tools.sh
 # (pytest exits 5 when it collects nothing; that counts as a failure too).
 bash scripts/setup-venv.sh
 # The harness's lint and types (configured in pyproject.toml): zero findings.
-.venv/bin/ruff check robofmu
+.venv/bin/ruff check robofmu tests/wheel scripts/api_docs.py examples/robofmu.ipynb
 .venv/bin/mypy
 # The public API (robofmu/__init__.py, api.py, errors.py) under mypy --strict (the modules
 # it imports are read, their findings left to the run above); its reference: pdoc (pinned)
