@@ -11,6 +11,7 @@
 #   cosim run <a bundled example scenario copied there: it names bundled FMUs>, with the
 #                                    native loop (no fallback line)
 #   cosim verify <bundled Pss3Plant> <bundled reference case> --junit  (0 failures)
+#   examples/robofmu.ipynb executed (nbclient), a sweep on a real Dask cluster (tests/wheel/)
 # Run by scripts/test.sh (CI); about a minute and a half, most of it pip.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,6 +35,9 @@ awk -v dir="$work/docs" '/^```python wheel$/ { n++; inside = 1; next } /^```$/ {
     inside { print > (dir "/" n ".py") }' docs/python-api.md
 [[ -f "$work/docs/2.py" ]] || { echo "test-wheel: docs/python-api.md: fewer than two blocks \`\`\`python wheel" >&2; exit 1; }
 .venv/bin/python examples/integrator/build_fmu.py "$work/Integrator.fmu" >/dev/null
+# The notebook and the Dask cluster test (tests/wheel/), run there with the wheel's venv.
+mkdir "$work/tests"
+cp examples/robofmu.ipynb tests/wheel/run_notebook.py tests/wheel/cluster.py "$work/tests/"
 
 user="$work/user"
 mkdir "$user"
@@ -59,7 +63,7 @@ base=$(.venv/bin/python -c 'import sys; print(sys._base_executable)')
 # The user's environment: nothing of this shell's (no cargo, no PYTHONPATH, no checkout);
 # pip takes the dependencies from PyPI at the versions pinned for CI (PIP_CONSTRAINT).
 (cd "$user" && env -i HOME="$user" LANG=C.UTF-8 MPLBACKEND=Agg VERSION="$version" \
-    DOCS="$work/docs" INTEGRATOR="$work/Integrator.fmu" \
+    DOCS="$work/docs" INTEGRATOR="$work/Integrator.fmu" TESTS="$work/tests" CHECKOUT="$root" \
     WHEEL="$(basename "$wheel")" PIP_CONSTRAINT="$work/constraints.txt" \
     PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_QUIET=1 PATH="$(dirname "$base"):/usr/bin:/bin" \
     bash -euo pipefail "$work/user.sh")
@@ -99,6 +103,16 @@ cosim run "$(cosim examples --path regulation)" --out plots --quiet 2>extra.err 
 [[ $code == 2 && $(cat extra.err) == "cosim: the plots of cosim run needs matplotlib, which robofmu leaves optional; pip install 'robofmu[plots]', or run with --no-plots" ]] ||
     fail "cosim run without matplotlib: exit $code, said: $(cat extra.err)"
 pip install "$WHEEL[all]"
+
+# examples/robofmu.ipynb executed by nbclient (its asserts check its numbers; every code
+# cell ran without error, the figure cells made image/png): about 15 s.
+pip install nbclient nbformat ipykernel  # the versions of scripts/python-requirements.txt
+timeout 180 python "$TESTS/run_notebook.py" "$TESTS/robofmu.ipynb" ||
+    fail "examples/robofmu.ipynb: exit $?"
+# robofmu.run_sweep with a Client of a real cluster: `dask scheduler` and two `dask worker`
+# processes of this venv, each in its own empty folder, on 127.0.0.1; the table equals the
+# serial sweep's (tests/wheel/cluster.py; its processes are killed at its end): about 20 s.
+timeout 300 python "$TESTS/cluster.py" "$CHECKOUT" || fail "the Dask cluster sweep: exit $?"
 
 
 cp "$(cosim examples --path regulation)" my_scenario.toml
