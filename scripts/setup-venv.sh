@@ -19,7 +19,10 @@ if ! { [[ -f "$stamp" ]] && cmp -s "$requirements" "$stamp"; }; then
 fi
 # The console script and the import path must point at this checkout (isolated mode: the
 # current directory does not count).
-if [[ ! -x "$venv/bin/cosim" ]] || ! "$venv/bin/python" -I -c '
+# A checkout from before the package was renamed (cosim -> robofmu) keeps a console script
+# that imports cosim: it is reinstalled too.
+if [[ ! -x "$venv/bin/cosim" ]] || ! grep -q "from robofmu\.cli import" "$venv/bin/cosim" ||
+    ! "$venv/bin/python" -I -c '
 import pathlib, sys, robofmu
 sys.exit(pathlib.Path(robofmu.__file__).resolve().parent.parent != pathlib.Path.cwd().resolve())
 ' 2>/dev/null; then
