@@ -53,7 +53,7 @@ def off_target(final) -> float:
 
 def test_help_and_description_name_the_set_and_each_importers_call(regulation):
     _, ssp = regulation
-    help_text = subprocess.run([sys.executable, "-m", "cosim", "ssp", "--help"], cwd=ROOT,
+    help_text = subprocess.run([sys.executable, "-m", "robofmu", "ssp", "--help"], cwd=ROOT,
                                capture_output=True, text=True, check=True).stdout
     with zipfile.ZipFile(ssp) as z:
         description = ET.fromstring(z.read("SystemStructure.ssd")).get("description")
