@@ -74,10 +74,14 @@ def ecos_grid(steps: int, h: float) -> list[tuple[float, float]]:
 GRIDS = {"libcosim": libcosim_grid, "ecos": ecos_grid}
 
 
-def run_jacobi(scenario, signals: list[str], grid: list[tuple[float, float]]) -> np.ndarray:
+def run_jacobi(scenario, signals: list[str], grid: list[tuple[float, float]],
+               exchange=None) -> np.ndarray:
     """Rows (time, *signals) at t_0 .. t_N of the Jacobi loop over `grid` (pairs
     (t_k, step size), from the scenario's start time 0); `signals` are "alias.variable"
-    Real outputs."""
+    Real outputs. `exchange(links)` passes the values after every step (default
+    `transfer`: all read, then all set; `transfer_in_turn`: one connection after the
+    other)."""
+    exchange = exchange or transfer
     slaves = {alias: Slave(alias, path) for alias, path in scenario.fmus.items()}
     try:
         links = [(slaves[c.source.alias], slaves[c.source.alias].vr(c.source.variable),
@@ -91,7 +95,7 @@ def run_jacobi(scenario, signals: list[str], grid: list[tuple[float, float]]) ->
         for k, (t, h) in enumerate(grid):
             for slave in slaves.values():
                 slave.fmu.doStep(currentCommunicationPoint=t, communicationStepSize=h)
-            transfer(links)
+            exchange(links)
             rows[k + 1] = [t + h] + read(probes)
         return rows
     finally:
@@ -118,6 +122,13 @@ def transfer(links) -> None:
     values = [source.fmu.getReal([vr])[0] for source, vr, _, _ in links]
     for (_, _, target, vr), value in zip(links, values):
         target.fmu.setReal([vr], [value])
+
+
+def transfer_in_turn(links) -> None:
+    """Each connection's source output copied to its target input before the next is
+    read (the container FMU's scheme)."""
+    for source, out, target, into in links:
+        target.fmu.setReal([into], source.fmu.getReal([out]))
 
 
 def read(probes) -> list[float]:

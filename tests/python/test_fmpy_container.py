@@ -41,7 +41,7 @@ from fmpy.container_fmu.config import Component, Connection
 from fmpy.model_description import CoSimulation, DefaultExperiment, ModelDescription, ModelVariable
 
 from conftest import DIST
-from fmpy_loops import Slave, ecos_grid, initialize, read
+from fmpy_loops import ecos_grid, run_jacobi, transfer_in_turn
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
@@ -145,26 +145,7 @@ def run_alone_rows(scenario, signals) -> np.ndarray:
 def sequential_loop(scenario, grid, signals=SIGNALS) -> np.ndarray:
     """Rows (time, *signals) at t_0 .. t_N of the container's scheme on FMPy's FMI 2.0
     API: every FMU steps, then each connection is transferred in turn."""
-    slaves = {alias: Slave(alias, path) for alias, path in scenario.fmus.items()}
-    try:
-        links = [(slaves[c.source.alias], slaves[c.source.alias].vr(c.source.variable),
-                  slaves[c.target.alias], slaves[c.target.alias].vr(c.target.variable))
-                 for c in scenario.connections]
-        initialize(scenario, slaves, links)
-        probes = [(slaves[alias], slaves[alias].vr(name))
-                  for alias, name in (s.split(".", 1) for s in signals)]
-        rows = np.empty((len(grid) + 1, len(signals) + 1))
-        rows[0] = [scenario.start_time] + read(probes)
-        for k, (t, h) in enumerate(grid):
-            for slave in slaves.values():
-                slave.fmu.doStep(currentCommunicationPoint=t, communicationStepSize=h)
-            for source, out, target, into in links:
-                target.fmu.setReal([into], source.fmu.getReal([out]))
-            rows[k + 1] = [t + h] + read(probes)
-        return rows
-    finally:
-        for slave in slaves.values():
-            slave.free()
+    return run_jacobi(scenario, signals, grid, exchange=transfer_in_turn)
 
 
 def master_rows(scenario) -> np.ndarray:
