@@ -197,7 +197,111 @@ def libcosim_verdict(folder: Path) -> str:
     return _judge(case, rows)
 
 
-IMPORTERS = {"libcosim": libcosim_verdict, "ecos": ecos_verdict}
+class Stimuli:
+    """The case's inputs as the source FMU of our master (robofmu.master.Master): its
+    outputs are the input CSV's columns, linear in time, at the time it has reached."""
+
+    def __init__(self, names: list[str], at, start: float):
+        self.names, self.at, self.t = names, at, start
+
+    def get_values(self, names: list[str]) -> list[float]:
+        now = dict(zip(self.names, self.at(self.t)))
+        return [now[n] for n in names]
+
+    def do_step(self, t: float, h: float) -> None:
+        self.t = t + h
+
+    def enter_initialization(self) -> None:
+        """Nothing to initialize: the CSV is the whole model."""
+
+    exit_initialization = close = enter_initialization
+
+
+def master_verdict(folder: Path) -> str:
+    """Our master's verdict on the Co-Simulation case of `folder`: robofmu.master.Master
+    (the native stepping loop of `cosim run`) running the FMU with its start values, its
+    inputs from the case's CSV held over each step (input_extrapolation "hold", as FMPy
+    applies them), every reference signal recorded at each communication point."""
+    sys.path.insert(0, str(ROOT))
+    from robofmu.fmi2 import FmuInstance
+    from robofmu.fmi3 import Fmu3Instance
+    from robofmu.master import Master
+    from robofmu.scenario import Connection, Scenario, Signal
+
+    case, names, at = _case(folder)
+    fmu = folder / f"{folder.name}.fmu"
+    connections = [Connection(Signal("stimuli", n), Signal("fmu", n)) for n in names]
+    scenario = Scenario(
+        name="compatibility", fmus={"stimuli": folder, "fmu": fmu},
+        order=["stimuli", "fmu"] if names else ["fmu"], start_time=case.start,
+        stop_time=case.stop, step_size=case.step,
+        parameters={"fmu": dict(case.start_values)}, connections=connections,
+        record=[Signal("fmu", s) for s in case.signals()], input_extrapolation="hold")
+    fmi3 = "/3.0/" in folder.as_posix()
+
+    def open_fmu(alias, path, s):
+        if alias == "stimuli":
+            return Stimuli(names, at, s.start_time)
+        opened = Fmu3Instance if fmi3 else FmuInstance
+        return opened(alias, path, s.start_time, s.stop_time)
+
+    result = Master(scenario, open_fmu=open_fmu, close_fmu=lambda f: f.close()).run()
+    rows = np.column_stack([result.time] + [result.columns[f"fmu.{s}"]
+                                            for s in case.signals()])
+    return _judge(case, rows)
+
+
+def container_verdict(folder: Path) -> str:
+    """The container runtime's verdict on the Co-Simulation case of `folder`: the FMU
+    alone inside a container FMU of fmu-manipulation-toolbox (its compiled runtime loads
+    and steps the FMU; its inputs and the reference signals are the container's inputs
+    and outputs under the same names, its start values the container's), the container
+    run by `cosim verify` (FMPy) against the same case."""
+    import tempfile
+
+    from fmu_manipulation_toolbox.container import FMUContainer
+
+    case, names, _ = _case(folder)
+    model = folder.name
+    fmi_version = 3 if "/3.0/" in folder.as_posix() else 2
+
+    def whole(names: list[str]) -> list[str]:
+        """The variables of `names`: an FMI 3.0 array (robofmu, not robofmu-scalar) once
+        for its elements x[i], the toolbox's ports being whole variables."""
+        if fmi_version == 2 or "/robofmu-scalar/" in folder.as_posix():
+            return names
+        return list(dict.fromkeys(re.sub(r"\[\d+\]$", "", n) for n in names))
+
+    with tempfile.TemporaryDirectory(prefix="compatibility-container-") as scratch:
+        work = Path(scratch)
+        shutil.copy(folder / f"{model}.fmu", work / f"{model}.fmu")
+        container = FMUContainer(f"{model}_container", work, fmi_version=fmi_version)
+        container.get_fmu(f"{model}.fmu")
+        for name in whole(names):
+            container.add_input(name, f"{model}.fmu", name)
+        for signal in whole(case.signals()):
+            container.add_output(f"{model}.fmu", signal, signal)
+        for name, value in case.start_values.items():
+            text = str(value).lower() if isinstance(value, bool) else repr(value)
+            container.add_start_value(f"{model}.fmu", name, text)
+        container.add_implicit_rule(auto_input=False, auto_output=False, auto_link=False)
+        container.start_time, container.stop_time = case.start, case.stop
+        container.make_fmu(f"{model}.fmu", step_size=case.step, sequential=True)
+        case_copy = work / "case" / model
+        shutil.copytree(folder, case_copy, ignore=shutil.ignore_patterns("*.fmu"))
+        done = subprocess.run([sys.executable, "-m", "robofmu.verify", str(work / f"{model}.fmu"),
+                               str(case_copy), "--interface", "cs", "--out", str(work / "out"),
+                               *DEBUG],
+                              capture_output=True, text=True, cwd=ROOT)
+    if done.returncode == 0:
+        return "passed"
+    said = (done.stdout + done.stderr).strip().splitlines()
+    return f"failed ({said[-1] if said else f'exit status {done.returncode}'})"
+
+
+DEBUG = sys.argv[3:]
+IMPORTERS = {"libcosim": libcosim_verdict, "ecos": ecos_verdict, "master": master_verdict,
+             "container": container_verdict}
 
 
 def verdict_of(importer: str, folder: Path) -> str:
@@ -212,7 +316,7 @@ def verdict_of(importer: str, folder: Path) -> str:
 
 
 def main() -> int:
-    if len(sys.argv) == 3 and sys.argv[1].removeprefix("--") in IMPORTERS:
+    if len(sys.argv) >= 3 and sys.argv[1].removeprefix("--") in IMPORTERS:
         print(IMPORTERS[sys.argv[1].removeprefix("--")](Path(sys.argv[2])))
         return 0
     if len(sys.argv) != 2:

@@ -67,7 +67,12 @@ class Names:
             if None in elements:
                 out[base] = elements[None]
                 continue
-            values = np.tile(np.asarray(_starts(self.variables[base]), float), (len(time), 1))
+            variable = self.variables[base]
+            # Every element given: no start value is read (a container FMU of
+            # fmu-manipulation-toolbox 2.0 declares none that FMPy reads).
+            every = set(elements) == set(range(_size(variable)))
+            starts = np.zeros(_size(variable)) if every else _starts(variable)
+            values = np.tile(np.asarray(starts, float), (len(time), 1))
             for index, column in elements.items():
                 values[:, index] = column
             out[base] = values
