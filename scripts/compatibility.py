@@ -29,12 +29,14 @@ from __future__ import annotations
 
 import argparse
 import importlib.metadata
+import os
 import re
 import shutil
 import subprocess
 import sys
 import tomllib
 import xml.etree.ElementTree as ET
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import fmpy
@@ -174,8 +176,11 @@ def libcosim_verdict(folder: Path) -> str:
     case, names, at = _case(folder)
     log_output_level(CosimLogLevel.WARNING)
     execution = CosimExecution.from_step_size(round(case.step * 1e9))
-    index = execution.add_local_slave(CosimLocalSlave(
-        fmu_path=str(folder / f"{folder.name}.fmu"), instance_name="fmu"))
+    slave = CosimLocalSlave(fmu_path=str(folder / f"{folder.name}.fmu"), instance_name="fmu")
+    if not slave.ptr():  # libcosimpy would pass the NULL slave on and crash the process
+        from libcosimpy._internal import get_last_error_message
+        return f"refused ({re.sub(r' for FMU .*', '', get_last_error_message())})"
+    index = execution.add_local_slave(slave)
     observer = CosimObserver.create_last_value()
     execution.add_observer(observer)
     manipulator = CosimManipulator.create_override()
@@ -315,6 +320,44 @@ def verdict_of(importer: str, folder: Path) -> str:
     return said[-1]
 
 
+def importers(tool_version: str) -> dict[str, str]:
+    """Each importer (its column) with its version, as the README names it."""
+    container = importlib.metadata.version("fmu-manipulation-toolbox")
+    return {
+        "cosim": f"cosim {tool_version} (robofmu's `cosim verify`) on FMPy {fmpy.__version__}",
+        "master": f"cosim {tool_version} master (robofmu.master, the native stepping loop of "
+                  "`cosim run`)",
+        "container": f"the container runtime of fmu-manipulation-toolbox {container} (the FMU "
+                     f"alone in a container FMU, run by FMPy {fmpy.__version__})",
+        "libcosim": f"libcosim (libcosimpy {importlib.metadata.version('libcosimpy')})",
+        "ecos": f"ecos (ecospy {importlib.metadata.version('ecospy')})",
+    }
+
+
+def runs(label: str) -> list[str]:
+    """The importers that run the case `label` (FMI version/interface/platform/tool/...):
+    every case in cosim verify; the Co-Simulation ones in our master, the container
+    and libcosim (which refuses FMI 3.0); ecos the FMI 2.0 and scalar-only FMI 3.0 ones."""
+    if not label.split("/")[1] == "cs":
+        return []
+    scalars = label.startswith("2.0/") or "/robofmu-scalar/" in label
+    return ["master", "container", "libcosim"] + (["ecos"] if scalars else [])
+
+
+LIMITS = """Each importer runs the cases it can:
+
+- cosim (FMPy): every case, Co-Simulation and Model Exchange.
+- Our master, the container runtime, libcosim and ecos: Co-Simulation only (the master
+  and libcosim import co-simulation FMUs only; the container FMU is one).
+- libcosim loads FMI 1.0 and 2.0 FMUs only: it refuses every FMI 3.0 FMU ("Unsupported
+  FMI version", its `cosim_local_slave_create` returns no slave; libcosimpy 0.0.6 does
+  not check that and crashes the process in `cosim_execution_add_slave` when it is added
+  to an execution, so it is not added). It refuses a third-party FMI 3.0 FMU alike.
+- ecos: not the FMI 3.0 FMUs with arrays (it offers an array as one scalar and reads
+  one element of it); their scalar-only builds (`robofmu-scalar`) run.
+"""
+
+
 def main() -> int:
     if len(sys.argv) >= 3 and sys.argv[1].removeprefix("--") in IMPORTERS:
         print(IMPORTERS[sys.argv[1].removeprefix("--")](Path(sys.argv[2])))
@@ -326,10 +369,11 @@ def main() -> int:
         sys.exit(f"compatibility: {out} is not empty; name a new or empty folder")
     tool_version = version()
     folders = lay_out(out, tool_version)
-    importer = f"cosim {tool_version} (robofmu's `cosim verify`) on FMPy {fmpy.__version__}"
+    named = importers(tool_version)
+    jobs = min(4, os.cpu_count() or 1)  # each case, and each importer's run, a process
     done = subprocess.run([sys.executable, "-m", "robofmu.verify", str(out / "fmus"),
-                           "--out", str(out), "--html", str(out / "index.html")],
-                          capture_output=True, text=True)
+                           "--out", str(out), "--html", str(out / "index.html"),
+                           "--jobs", str(jobs)], capture_output=True, text=True)
     verdicts = {}
     for line in done.stdout.splitlines():
         found = re.match(r"\[\d+/\d+\] (\w+)\s+\S+ \S+ \S+ against (\S+):", line)
@@ -338,39 +382,36 @@ def main() -> int:
     if not verdicts:
         sys.stderr.write(done.stdout + done.stderr)
         return 1
-    cosim_lib = f"libcosim (libcosimpy {importlib.metadata.version('libcosimpy')})"
-    ecos = f"ecos (ecospy {importlib.metadata.version('ecospy')})"
+    with ThreadPoolExecutor(jobs) as pool:
+        running = {(folder, importer): pool.submit(verdict_of, importer, folder)
+                   for folder in folders for importer in runs("/".join(folder.parts[-6:]))}
     rows, failed = [], False
     for folder in folders:
         label = "/".join(folder.parts[-6:])
         verdict = verdicts.get(label, "not run")
         parts = label.split("/")
         results = "/".join(["results", *parts[:3], "cosim", tool_version, *parts[3:]])
-        lines = [f"Imported and simulated with {importer}: {verdict} ({results}/ and "
+        lines = [f"Imported and simulated with {named['cosim']}: {verdict} ({results}/ and "
                  "index.html of the compatibility folder)."]
-        by_libcosim = by_ecos = "not run"
-        if label.startswith("2.0/cs/"):
-            by_libcosim = verdict_of("libcosim", folder)
-            lines.append(f"Imported and simulated with {cosim_lib}, Co-Simulation: "
-                         f"{by_libcosim}.")
-        if label.startswith("2.0/cs/") or re.match(r"3\.0/cs/[^/]+/robofmu-scalar/", label):
-            by_ecos = verdict_of("ecos", folder)
-            lines.append(f"Imported and simulated with {ecos}, Co-Simulation: {by_ecos}.")
-        failed |= verdict != "passed" or "failed" in (by_libcosim + by_ecos)
+        by = {importer: running[folder, importer].result() for importer in runs(label)}
+        for importer, said in by.items():
+            lines.append(f"Imported and simulated with {named[importer]}, Co-Simulation: "
+                         f"{said}.")
+        failed |= verdict != "passed" or any(v.startswith("failed") for v in by.values())
         with (folder / "ReadMe.txt").open("a") as f:
             f.write("\n" + "\n".join(lines) + "\n")
-        rows.append(f"| {label} | {verdict} | {by_libcosim} | {by_ecos} |")
+        cells = [by.get(i, "not run").split(" (")[0] for i in named if i != "cosim"]
+        rows.append(f"| {label} | {verdict} | " + " | ".join(cells) + " |")
+    listed = "\n".join(f"- {name}" for name in named.values())
     (out / "README.md").write_text(
         f"# robofmu {tool_version}: compatibility information\n\nEvery FMU of robofmu "
         f"{tool_version} in `fmus/` with its reference (`_ref.csv`, `_ref.opt`, `_in.csv`) "
         "and `ReadMe.txt`, in the layout of the FMI cross-check. Importers that ran "
-        f"them (scripts/compatibility.py, at release):\n\n- {importer}: Co-Simulation and "
-        f"Model Exchange, FMI 2.0 and 3.0\n- {cosim_lib}: FMI 2.0 Co-Simulation (it "
-        f"crashed loading our FMI 3.0 FMUs)\n- {ecos}: FMI 2.0 and scalar-only FMI 3.0 "
-        "Co-Simulation (it names an FMI 3.0 array's elements otherwise than `x[i]`)\n\n"
-        "The results page of cosim: `index.html`; its results: `results/`, `junit.xml`."
-        "\n\n| FMU | cosim (FMPy) | libcosim | ecos |\n|---|---|---|---|\n"
-        + "\n".join(rows) + "\n")
+        f"them (scripts/compatibility.py, at release):\n\n{listed}\n\n{LIMITS}\n"
+        "Each case's `ReadMe.txt` gives each importer's verdict with its reason. The results "
+        "page of cosim: `index.html`; its results: `results/`, `junit.xml`.\n\n"
+        "| FMU | cosim (FMPy) | our master | container | libcosim | ecos |\n"
+        "|---|---|---|---|---|---|\n" + "\n".join(rows) + "\n")
     print(done.stdout.splitlines()[-1])
     return 1 if failed or done.returncode != 0 else 0
 
