@@ -70,12 +70,15 @@ def check_csv(path: Path) -> None:
                  f"bytes; the FMI tools list allows {MAX_VARIABLES} and {MAX_CSV_BYTES}")
 
 
-def lay_out(out: Path, tool_version: str) -> list[Path]:
-    """Writes the folder of every FMU and interface; the folders."""
+def lay_out(out: Path, tool_version: str, models: list[str] | None = None) -> list[Path]:
+    """Writes the folder of every FMU (of `models`, default all) and interface; the
+    folders."""
     folders = []
     for variant, fmi_version, platform, tool in VARIANTS:
         for description in sorted((ROOT / "modelDescription" / variant).glob("*.xml")):
             model = description.stem
+            if models is not None and model not in models:
+                continue
             fmu = ROOT / "dist" / variant / f"{model}.fmu"
             case = defaults_case(model)
             about = ET.parse(description).getroot().get("description", "")

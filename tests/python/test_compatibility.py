@@ -1,0 +1,83 @@
+"""The importers that scripts/compatibility.py adds to the compatibility folder besides
+cosim verify: our master (robofmu.master.Master, the FMU with its inputs from a CSV
+source) and the container runtime (the FMU alone in a container FMU of
+fmu-manipulation-toolbox, run by FMPy), and libcosim's refusal of FMI 3.0. One FMU, the
+PID, per FMI version (the release runs all of them: test_release.py); each importer in
+its own process, as at release.
+
+Truths: the PID's reference is its closed-form response to its constant default inputs
+(tests/references/PID/defaults, scripts/make_references.py), computed without running
+the FMU; a copy of the case whose reference u[2] is shifted by 0.5 from t = 1 s must fail
+in each importer (the FMI cross-check band around the reference is its running minimum
+and maximum widened by 10 % of its range: u[2] ranges over 0.93 (1.5 to 0.57), so the
+band reaches 0.093 beyond it, and the shifted half lies outside), so that a verdict is
+not a constant. libcosim's refusal is its own error message ("Unsupported FMI
+version"), for our FMU and for a third-party FMI 3.0 FMU: a container FMU written by
+fmu-manipulation-toolbox (its modelDescription.xml and its binary are the toolbox's)."""
+
+import csv
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "scripts"))
+
+import compatibility  # noqa: E402
+
+REFUSED = "refused (Unsupported feature: Unsupported FMI version)"
+
+
+@pytest.fixture(scope="module")
+def folders(tmp_path_factory):
+    """The PID's Co-Simulation folders: FMI 2.0 and FMI 3.0 (arrays)."""
+    out = tmp_path_factory.mktemp("compatibility")
+    laid = compatibility.lay_out(out, compatibility.version(), models=["PID"])
+    cs = {f.parts[-6]: f for f in laid if f.parts[-5] == "cs" and f.parts[-3] == "robofmu"}
+    assert sorted(cs) == ["2.0", "3.0"]
+    return cs
+
+
+@pytest.mark.parametrize("fmi_version", ["2.0", "3.0"])
+@pytest.mark.parametrize("importer", ["master", "container"])
+def test_importer_passes_the_pid(folders, importer, fmi_version):
+    assert compatibility.verdict_of(importer, folders[fmi_version]) == "passed"
+
+
+@pytest.mark.parametrize("importer", ["master", "container"])
+def test_importer_fails_an_edited_reference(folders, importer, tmp_path):
+    case = tmp_path / "PID"
+    shutil.copytree(folders["2.0"], case)
+    reference = case / "PID_ref.csv"
+    with reference.open() as f:
+        rows = list(csv.reader(f))
+    column = rows[0].index("u[2]")
+    for row in rows[1:]:
+        if float(row[0]) >= 1.0:
+            row[column] = repr(float(row[column]) + 0.5)
+    with reference.open("w", newline="") as f:
+        csv.writer(f, quoting=csv.QUOTE_NONNUMERIC, lineterminator="\n").writerows(
+            [rows[0]] + [[float(v) for v in row] for row in rows[1:]])
+    assert compatibility.verdict_of(importer, case).startswith("failed")
+
+
+def test_libcosim_runs_fmi2_and_refuses_fmi3_ours_and_a_third_party_one(folders, tmp_path):
+    from fmu_manipulation_toolbox.container import FMUContainer
+
+    assert compatibility.verdict_of("libcosim", folders["2.0"]) == "passed"
+    assert compatibility.verdict_of("libcosim", folders["3.0"]) == REFUSED
+    # The toolbox's FMI 3.0 container of the FMI 2.0 PID, in a copy of the case.
+    work = tmp_path / "work"
+    work.mkdir()
+    shutil.copy(folders["2.0"] / "PID.fmu", work / "PID.fmu")
+    container = FMUContainer("PID_container", work, fmi_version=3)
+    container.get_fmu("PID.fmu")
+    container.add_output("PID.fmu", "u[1]", "u1")
+    container.add_implicit_rule(auto_input=False, auto_output=False, auto_link=False)
+    container.make_fmu("container.fmu", step_size=1e-3)
+    case = tmp_path / "PID"
+    shutil.copytree(folders["3.0"], case)
+    shutil.copy(work / "container.fmu", case / "PID.fmu")
+    assert compatibility.verdict_of("libcosim", case) == REFUSED
