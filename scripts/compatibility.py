@@ -12,14 +12,20 @@ can be chosen by the vendor"): OUT/fmus/<FMI version>/<cs|me>/<platform>/<tool>/
 of each FMU is its model's case at the FMU's defaults (tests/references/<Model>/, the
 folder holding cross-check.txt), the smoke test the FMU carries itself (FMI-LS-REF).
 
-Then every FMU is imported, by running it, not by hand: `cosim verify OUT/fmus --html`
-(FMPy, Co-Simulation and Model Exchange) writes OUT/results/ (the cross-check's results
-layout), OUT/junit.xml and the results page OUT/index.html; libcosim (libcosimpy) runs
-each FMI 2.0 Co-Simulation case and ecos (ecospy) each FMI 2.0 and scalar-only FMI 3.0
-Co-Simulation case, in a child process each, judged by the same rule (the FMI
-cross-check band, robofmu.verify) from the first step on (both report the outputs after
-each step); each ReadMe.txt and OUT/README.md then list the importers with their
-versions and verdicts.
+Every FMU is first checked with FMPy's validate_fmu (the guide asks for a checker), then
+imported by running it, not by hand: `cosim verify OUT/fmus --html` (FMPy, Co-Simulation
+and Model Exchange) writes OUT/results/ (the cross-check's results layout), OUT/junit.xml
+and the results page OUT/index.html; each Co-Simulation case is also run, in a child
+process each (a crash of a library costs that case only), by
+- our master (robofmu.master.Master, the native stepping loop of `cosim run`), the FMU
+  with its inputs from a CSV source, held over each step;
+- the container runtime of fmu-manipulation-toolbox: the FMU alone in a container FMU
+  (FMI 2 or 3 like the FMU), run by `cosim verify` against the same case;
+- libcosim (libcosimpy), which refuses FMI 3.0 FMUs (its refusal is recorded);
+- ecos (ecospy), the FMI 2.0 and scalar-only FMI 3.0 ones;
+the master, libcosim and ecos judged by cosim verify's rule (the FMI cross-check band,
+robofmu.verify) from the first step on. Each ReadMe.txt and OUT/README.md then list the
+importers with their versions, verdicts and limits.
 
 Usage: python scripts/compatibility.py OUT   (from the repository root; needs dist/ and
 the venv). Exit status 1 when an FMU fails its verdict.
@@ -41,6 +47,7 @@ from pathlib import Path
 
 import fmpy
 import numpy as np
+from fmpy.validation import validate_fmu
 
 ROOT = Path(__file__).resolve().parents[1]
 MAX_VARIABLES = 10
@@ -82,6 +89,11 @@ def lay_out(out: Path, tool_version: str, models: list[str] | None = None) -> li
             fmu = ROOT / "dist" / variant / f"{model}.fmu"
             case = defaults_case(model)
             about = ET.parse(description).getroot().get("description", "")
+            # The guide: "Check the FMUs with at least one of the available checkers
+            # before uploading ... and document this."
+            problems = validate_fmu(str(fmu))
+            if problems:
+                sys.exit(f"compatibility: {fmu}: FMPy's validate_fmu: {'; '.join(problems)}")
             for kind in ("cs", "me"):
                 folder = out / "fmus" / fmi_version / kind / platform / tool / tool_version / model
                 folder.mkdir(parents=True)
@@ -104,7 +116,10 @@ def lay_out(out: Path, tool_version: str, models: list[str] | None = None) -> li
                     f"the FMU (robofmu, tests/references/{model}/{case.name}): "
                     f"{(case / 'cross-check.txt').read_text().strip()}\n\nThe FMU carries "
                     "this experiment and its validation experiments itself (FMI-LS-REF: "
-                    "extra/org.fmi-standard.fmi-ls-ref/, documentation/fmi-ls-ref.html).\n")
+                    "extra/org.fmi-standard.fmi-ls-ref/, documentation/fmi-ls-ref.html).\n\n"
+                    f"Checked with FMPy {fmpy.__version__} (fmpy.validation.validate_fmu, "
+                    "the checks of `fmpy validate`: the modelDescription.xml against the "
+                    "FMI schema and its rules): no problem.\n")
                 folders.append(folder)
     return folders
 
@@ -358,6 +373,9 @@ LIMITS = """Each importer runs the cases it can:
   to an execution, so it is not added). It refuses a third-party FMI 3.0 FMU alike.
 - ecos: not the FMI 3.0 FMUs with arrays (it offers an array as one scalar and reads
   one element of it); their scalar-only builds (`robofmu-scalar`) run.
+- fmusim (Reference-FMUs' simulator) is not among them: no package that the release's
+  machines reach (PyPI, Debian, crates.io) ships it, its source or a way to build it
+  (docs/verify.md, "Importers").
 """
 
 

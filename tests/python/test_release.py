@@ -104,17 +104,29 @@ def check_compatibility(folder: Path, version: str) -> None:
         assert (case / f"{model}_in.csv").is_file() == bool(inputs)
         readme = (case / "ReadMe.txt").read_text()
         assert f"on FMPy {fmpy.__version__}: passed" in readme, readme
-        # libcosim runs the FMI 2.0 Co-Simulation cases, ecos those and the scalar-only
+        assert f"Checked with FMPy {fmpy.__version__}" in readme, readme
+        # Co-Simulation: our master and the container runtime every case, libcosim the
+        # FMI 2.0 ones (it refuses FMI 3.0, saying why), ecos those and the scalar-only
         # FMI 3.0 ones.
         path = case.as_posix()
-        libcosim = "/2.0/cs/" in path
-        ecos = libcosim or ("/3.0/cs/" in path and "/robofmu-scalar/" in path)
-        assert ("(libcosimpy 0.0.6), Co-Simulation: passed." in readme) == libcosim, readme
+        cs = "/cs/" in path
+        fmi2 = "/2.0/cs/" in path
+        ecos = fmi2 or (cs and "/robofmu-scalar/" in path)
+        assert ("master (robofmu.master, the native stepping loop of `cosim run`), "
+                "Co-Simulation: passed." in readme) == cs, readme
+        assert ("(the FMU alone in a container FMU, run by FMPy "
+                f"{fmpy.__version__}), Co-Simulation: passed." in readme) == cs, readme
+        assert ("(libcosimpy 0.0.6), Co-Simulation: passed." in readme) == fmi2, readme
+        assert ("(libcosimpy 0.0.6), Co-Simulation: refused (Unsupported feature: "
+                "Unsupported FMI version)." in readme) == (cs and not fmi2), readme
         assert ("(ecospy 0.7.2), Co-Simulation: passed." in readme) == ecos, readme
     summary = (folder / "README.md").read_text()
-    rows = re.findall(r"^\| (\S+) \| (\w+) \| ([\w ]+) \| ([\w ]+) \|$", summary, re.M)
+    rows = re.findall(r"^\| (\S+) \| (\w+) \| ([\w ]+) \| ([\w ]+) \| ([\w ]+) \| ([\w ]+) \|$",
+                      summary, re.M)
     assert len(rows) == 24 and all(row[1] == "passed" for row in rows)
-    assert sum(row[2] == "passed" for row in rows) == 4
-    assert sum(row[3] == "passed" for row in rows) == 8
-    assert all(verdict in ("passed", "not run") for row in rows for verdict in row[2:])
-    assert f"cosim {version}" in summary
+    counts = [sum(row[k] == "passed" for row in rows) for k in range(2, 6)]
+    assert counts == [12, 12, 4, 8]  # master, container, libcosim, ecos
+    assert sum(row[4] == "refused" for row in rows) == 8
+    assert all(v in ("passed", "refused", "not run") for row in rows for v in row[2:])
+    assert f"cosim {version}" in summary and "fmu-manipulation-toolbox 2.0" in summary
+    assert "fmusim" in summary  # why it is not among the importers
