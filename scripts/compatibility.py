@@ -77,6 +77,26 @@ def check_csv(path: Path) -> None:
                  f"bytes; the FMI tools list allows {MAX_VARIABLES} and {MAX_CSV_BYTES}")
 
 
+def write_arrays(source: Path, target: Path) -> None:
+    """`source` (a case's CSV, one column per scalar, FMI 2.0's names) written at
+    `target` as the guide's CSV rules ask for the FMI 3.0 build, whose arrays are
+    variables: "All variable names are exactly the same as defined in the
+    modelDescription.xml"; "Arrays are serialized as for start values in the
+    modelDescription.xml with space (` `) as separator". The elements x[1], x[2], ...
+    become one column x; the numbers are kept as written."""
+    rows = [line.split(",") for line in source.read_text().splitlines() if line]
+    header = [name.strip('"') for name in rows[0]]
+    groups: dict[str, list[int]] = {}
+    for j, name in enumerate(header):
+        groups.setdefault(re.sub(r"\[\d+\]$", "", name), []).append(j)
+    for base, columns in groups.items():  # elements in their index order
+        columns.sort(key=lambda j: int(re.findall(r"\d+", header[j][len(base):] or "0")[-1]))
+    lines = [",".join(f'"{name}"' for name in groups)]
+    lines += [",".join(" ".join(row[j] for j in columns) for columns in groups.values())
+              for row in rows[1:]]
+    target.write_text("\n".join(lines) + "\n")
+
+
 def lay_out(out: Path, tool_version: str, models: list[str] | None = None) -> list[Path]:
     """Writes the folder of every FMU (of `models`, default all) and interface; the
     folders."""
@@ -98,11 +118,12 @@ def lay_out(out: Path, tool_version: str, models: list[str] | None = None) -> li
                 folder = out / "fmus" / fmi_version / kind / platform / tool / tool_version / model
                 folder.mkdir(parents=True)
                 shutil.copy(fmu, folder / fmu.name)
-                shutil.copy(case / f"{model}_ref.csv", folder / f"{model}_ref.csv")
+                copy = write_arrays if variant == "fmi3" else shutil.copy
+                copy(case / f"{model}_ref.csv", folder / f"{model}_ref.csv")
                 shutil.copy(case / f"{model}_ref.opt", folder / f"{model}_ref.opt")
                 for name in (f"{model}_input.csv", f"{model}_in.csv"):
                     if (case / name).is_file():
-                        shutil.copy(case / name, folder / f"{model}_in.csv")
+                        copy(case / name, folder / f"{model}_in.csv")
                 for csv in folder.glob("*.csv"):
                     check_csv(csv)
                 interface = "Co-Simulation" if kind == "cs" else "Model Exchange"

@@ -128,15 +128,41 @@ def read_table(path: Path, text: str | None = None) -> Table:
     an FMU), checked: names, numbers, finite, times that never go back."""
     path = Path(path)
     rows = _read_rows(path, text)
-    names = _header(path, rows)
+    header = _header(path, rows)
+    # An array column (the FMI tools list's CSV rules: "Arrays are serialized as for start
+    # values in the modelDescription.xml with space as separator"): its elements x[1],
+    # x[2], ... as many as its first row holds.
+    widths = [max(1, len(field.split())) for field in rows[1][:len(header)]]
+    widths += [1] * (len(header) - len(widths))
+    if widths[0] != 1:
+        raise VerifyError(path, "line 2, column 'time'", "holds more than one number",
+                          "write one time per row")
+    names = [n if w == 1 else f"{n}[{k}]" for n, w in zip(header, widths)
+             for k in range(1, w + 1)]
+    if len(set(names)) != len(names):
+        raise VerifyError(path, "line 1", "names an array's element twice (a column x[i] "
+                          "beside the array column x)", "keep one of them")
     values = np.empty((len(rows) - 1, len(names)))
     for i, row in enumerate(rows[1:]):
-        if len(row) != len(names):
+        if len(row) != len(header):
             raise VerifyError(path, f"line {i + 2}", f"has {len(row)} fields, the header "
-                              f"{len(names)}", "write one value per column on every line")
-        values[i] = [_number(path, i + 2, n, t) for n, t in zip(names, row)]
+                              f"{len(header)}", "write one value per column on every line")
+        values[i] = [v for n, w, t in zip(header, widths, row)
+                     for v in _cells(path, i + 2, n, t, w)]
     _check_times(path, values[:, 0])
     return Table(path, values[:, 0], {n: values[:, j] for j, n in enumerate(names[1:], 1)})
+
+
+def _cells(path: Path, line: int, name: str, text: str, width: int) -> list[float]:
+    """The numbers of one field: one, or the `width` elements of an array column."""
+    if width == 1:
+        return [_number(path, line, name, text)]
+    words = text.split()
+    if len(words) != width:
+        raise VerifyError(path, f"line {line}, column '{name}'", f"has {len(words)} "
+                          f"elements, the column's first row {width}", "write every row "
+                          "of an array column with its elements separated by spaces")
+    return [_number(path, line, name, w) for w in words]
 
 
 def _option_lines(path: Path):

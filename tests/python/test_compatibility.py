@@ -16,6 +16,7 @@ version"), for our FMU and for a third-party FMI 3.0 FMU: a container FMU writte
 fmu-manipulation-toolbox (its modelDescription.xml and its binary are the toolbox's)."""
 
 import csv
+import re
 import shutil
 import sys
 from pathlib import Path
@@ -24,6 +25,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "scripts"))
+sys.path.insert(0, str(ROOT))
 
 import compatibility  # noqa: E402
 
@@ -81,3 +83,38 @@ def test_libcosim_runs_fmi2_and_refuses_fmi3_ours_and_a_third_party_one(folders,
     shutil.copytree(folders["3.0"], case)
     shutil.copy(work / "container.fmu", case / "PID.fmu")
     assert compatibility.verdict_of("libcosim", case) == REFUSED
+
+
+def test_fmi3_array_csvs_name_the_variables_and_read_as_the_case(folders):
+    # The guide's CSV rules: "All variable names are exactly the same as defined in the
+    # modelDescription.xml" and arrays "serialized as for start values ... with space (` `)
+    # as separator". Truth: FMPy's reading of the FMU's variables, and the case's own
+    # files (one column per element), read by the same reader.
+    from fmpy import read_model_description
+
+    from robofmu.verify.table import read_table
+
+    case = ROOT / "tests" / "references" / "PID" / "defaults"
+    folder = folders["3.0"]
+    variables = {v.name: v for v in read_model_description(str(folder / "PID.fmu")).modelVariables}
+    for written, original in (("PID_ref.csv", "PID_ref.csv"), ("PID_in.csv", "PID_input.csv")):
+        header = (folder / written).read_text().splitlines()[0].split(",")
+        names = [name.strip('"') for name in header[1:]]
+        assert names and all(variables[n].dimensions for n in names), names
+        ours, theirs = read_table(folder / written), read_table(case / original)
+        assert (ours.time == theirs.time).all()
+        assert sorted(ours.columns) == sorted(theirs.columns)
+        assert all((ours.columns[n] == theirs.columns[n]).all() for n in theirs.columns)
+
+
+@pytest.mark.parametrize("text, said", [
+    ('"time","u"\n0,1 2 3\n1,4 5\n', "line 3, column 'u': has 2 elements, the column's first row 3"),
+    ('"time","u","u[1]"\n0,1 2,3\n1,4 5,6\n', "line 1: names an array's element twice"),
+    ('"time","u"\n0 1,1\n1,2\n', "line 2, column 'time': holds more than one number"),
+])
+def test_a_broken_array_column_is_one_line(text, said):
+    from robofmu.verify.errors import VerifyError
+    from robofmu.verify.table import read_table
+
+    with pytest.raises(VerifyError, match=re.escape(said)):
+        read_table(Path("x.csv"), text)

@@ -99,9 +99,15 @@ def check_compatibility(folder: Path, version: str) -> None:
         assert reference.stat().st_size <= 1_000_000
         assert len(reference.read_text().splitlines()[0].split(",")) - 1 <= 10
         assert (case / f"{model}_ref.opt").is_file()
-        inputs = [v for v in read_model_description(str(fmu)).modelVariables
-                  if v.causality == "input"]
+        variables = read_model_description(str(fmu)).modelVariables
+        inputs = [v for v in variables if v.causality == "input"]
         assert (case / f"{model}_in.csv").is_file() == bool(inputs)
+        # "All variable names are exactly the same as defined in the modelDescription.xml"
+        # (an FMI 3.0 array is one column, its elements separated by spaces).
+        names = {v.name for v in variables}
+        for written in case.glob("*.csv"):
+            header = written.read_text().splitlines()[0].split(",")
+            assert {n.strip('"') for n in header[1:]} <= names, written
         readme = (case / "ReadMe.txt").read_text()
         assert f"on FMPy {fmpy.__version__}: passed" in readme, readme
         assert f"Checked with FMPy {fmpy.__version__}" in readme, readme
