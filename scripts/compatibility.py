@@ -262,10 +262,16 @@ class Stimuli:
 
 
 def master_verdict(folder: Path) -> str:
-    """Our master's verdict on the Co-Simulation case of `folder`: robofmu.master.Master
-    (the native stepping loop of `cosim run`) running the FMU with its start values, its
-    inputs from the case's CSV held over each step (input_extrapolation "hold", as FMPy
-    applies them), every reference signal recorded at each communication point."""
+    """Our master's verdict on the Co-Simulation case of `folder`."""
+    return _judge(*master_run(folder))
+
+
+def master_run(folder: Path):
+    """The Co-Simulation case of `folder` run by our master, robofmu.master.Master (the
+    native stepping loop of `cosim run`): the FMU with its start values, its inputs from
+    the case's CSV held over each step (input_extrapolation "hold", as FMPy applies
+    them), every reference signal recorded at each communication point. The case and
+    the rows (time, then the signals)."""
     sys.path.insert(0, str(ROOT))
     from robofmu.fmi2 import FmuInstance
     from robofmu.fmi3 import Fmu3Instance
@@ -292,7 +298,7 @@ def master_verdict(folder: Path) -> str:
     result = Master(scenario, open_fmu=open_fmu, close_fmu=lambda f: f.close()).run()
     rows = np.column_stack([result.time] + [result.columns[f"fmu.{s}"]
                                             for s in case.signals()])
-    return _judge(case, rows)
+    return case, rows
 
 
 def container_verdict(folder: Path) -> str:
