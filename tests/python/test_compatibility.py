@@ -1,9 +1,9 @@
 """The importers that scripts/compatibility.py adds to the compatibility folder besides
 cosim verify: our master (robofmu.master.Master, the FMU with its inputs from a CSV
 source) and the container runtime (the FMU alone in a container FMU of
-fmu-manipulation-toolbox, run by FMPy), and libcosim's refusal of FMI 3.0. One FMU, the
-PID, per FMI version (the release runs all of them: test_release.py); each importer in
-its own process, as at release.
+fmu-manipulation-toolbox, run by FMPy), and libcosim's refusal of FMI 3.0. The PID and
+the plant, per FMI version (the release runs every FMU: test_release.py); each verdict
+in its own process, as at release.
 
 Truths: the PID's reference is its closed-form response to its constant default inputs
 (tests/references/PID/defaults, scripts/make_references.py), computed without running
