@@ -181,6 +181,28 @@ def test_every_document_has_its_commands_found():
     assert any("cosim run results/first.toml" in n for n in names)
 
 
+README_MAX_LINES = 200  # the front door, not the manual (developers' guide, README contract)
+README_FIRST_SCREEN = 40  # the wheel install and the two commands must be read first
+
+
+def test_readme_is_a_front_door():
+    # Truth: the README contract: at most 200 lines; the wheel install and the two
+    # commands (build and demo, whole test suite) within its first 40 lines.
+    lines = (ROOT / "README.md").read_text().splitlines()
+    assert len(lines) <= README_MAX_LINES, f"README.md has {len(lines)} lines"
+
+    def line_of(wanted):
+        return next((n for n, x in enumerate(lines, 1) if wanted(x)), None)
+
+    where = {
+        "wheel install": line_of(lambda x: x.startswith("pip install robofmu-")),
+        "bash scripts/demo.sh": line_of(lambda x: x == "bash scripts/demo.sh"),
+        "bash scripts/test.sh": line_of(lambda x: x == "bash scripts/test.sh"),
+    }
+    late = {k: v for k, v in where.items() if v is None or v > README_FIRST_SCREEN}
+    assert not late, f"README.md: not within its first {README_FIRST_SCREEN} lines: {late}"
+
+
 def test_sh_lines_are_one_command_each():
     # The convention: no line continuations, so that each line runs alone.
     broken = [s.name for s in STEPS if s.kind == "sh" and s.text.rstrip().endswith("\\")]
