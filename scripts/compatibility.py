@@ -402,7 +402,7 @@ LIMITS = """Each importer runs the cases it can:
   one element of it); their scalar-only builds (`robofmu-scalar`) run.
 - fmusim (Reference-FMUs' simulator) is not among them: no package that the release's
   machines reach (PyPI, Debian, crates.io) ships it, its source or a way to build it
-  (docs/verify.md, "Importers").
+  (docs/verify.md, "Importers left out").
 """
 
 
