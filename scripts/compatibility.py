@@ -3,7 +3,7 @@
 dist/ (FMI 2.0, 3.0 and 3.0 scalar-only) a folder with the files the guide names,
 
     <Model>.fmu, <Model>_ref.csv (at most 10 variables, at most 1 MB), <Model>_in.csv
-    (models with inputs), <Model>_ref.opt, ReadMe.txt (what the FMU represents, what is
+    (models with inputs), <Model>_ref.opt, Readme.txt (what the FMU represents, what is
     tested, the importers that ran it with their versions and verdicts),
 
 laid out as the FMI cross-check did (a layout the guide allows: "The folder structure
@@ -24,7 +24,7 @@ process each (a crash of a library costs that case only), by
 - libcosim (libcosimpy), which refuses FMI 3.0 FMUs (its refusal is recorded);
 - ecos (ecospy), the FMI 2.0 and scalar-only FMI 3.0 ones;
 the master, libcosim and ecos judged by cosim verify's rule (the FMI cross-check band,
-robofmu.verify) from the first step on. Each ReadMe.txt and OUT/README.md then list the
+robofmu.verify) from the first step on. Each Readme.txt and OUT/README.md then list the
 importers with their versions, verdicts and limits.
 
 Usage: python scripts/compatibility.py OUT   (from the repository root; needs dist/ and
@@ -127,7 +127,7 @@ def lay_out(out: Path, tool_version: str, models: list[str] | None = None) -> li
                 for csv in folder.glob("*.csv"):
                     check_csv(csv)
                 interface = "Co-Simulation" if kind == "cs" else "Model Exchange"
-                (folder / "ReadMe.txt").write_text(
+                (folder / "Readme.txt").write_text(
                     f"{model} {tool_version} (robofmu), FMI {fmi_version}"
                     f"{' scalar-only' if tool.endswith('scalar') else ''} {interface}, "
                     f"{platform}.\n\n{about}.\n\nTested: the FMU simulated with its default "
@@ -446,7 +446,7 @@ def main() -> int:
             lines.append(f"Imported and simulated with {named[importer]}, Co-Simulation: "
                          f"{said}.")
         failed |= verdict != "passed" or any(v.startswith("failed") for v in by.values())
-        with (folder / "ReadMe.txt").open("a") as f:
+        with (folder / "Readme.txt").open("a") as f:
             f.write("\n" + "\n".join(lines) + "\n")
         cells = [by.get(i, "not run").split(" (")[0] for i in named if i != "cosim"]
         rows.append(f"| {label} | {verdict} | " + " | ".join(cells) + " |")
@@ -454,9 +454,9 @@ def main() -> int:
     (out / "README.md").write_text(
         f"# robofmu {tool_version}: compatibility information\n\nEvery FMU of robofmu "
         f"{tool_version} in `fmus/` with its reference (`_ref.csv`, `_ref.opt`, `_in.csv`) "
-        "and `ReadMe.txt`, in the layout of the FMI cross-check. Importers that ran "
+        "and `Readme.txt`, in the layout of the FMI cross-check. Importers that ran "
         f"them (scripts/compatibility.py, at release):\n\n{listed}\n\n{LIMITS}\n"
-        "Each case's `ReadMe.txt` gives each importer's verdict with its reason. The results "
+        "Each case's `Readme.txt` gives each importer's verdict with its reason. The results "
         "page of cosim: `index.html`; its results: `results/`, `junit.xml`.\n\n"
         "| FMU | cosim (FMPy) | our master | container | libcosim | ecos |\n"
         "|---|---|---|---|---|---|\n" + "\n".join(rows) + "\n")

@@ -5,7 +5,7 @@
 #   ssp/<scenario>.ssp   the example scenarios as SSP archives (cosim ssp; multi-segment
 #                        motions have no SSP form and are left out, said on stdout)
 #   compatibility/       the compatibility information the FMI tools list asks for (every
-#                        FMU with its reference and ReadMe.txt, imported by running it:
+#                        FMU with its reference and Readme.txt, imported by running it:
 #                        results/, junit.xml, the results page index.html, README.md)
 #   CHANGELOG-VERSION.md the version's section of CHANGELOG.md
 #   SHA256SUMS           of every other file (sha256sum -c SHA256SUMS checks them)

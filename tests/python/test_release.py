@@ -108,7 +108,7 @@ def check_compatibility(folder: Path, version: str) -> None:
         for written in case.glob("*.csv"):
             header = written.read_text().splitlines()[0].split(",")
             assert {n.strip('"') for n in header[1:]} <= names, written
-        readme = (case / "ReadMe.txt").read_text()
+        readme = (case / "Readme.txt").read_text()
         assert f"on FMPy {fmpy.__version__}: passed" in readme, readme
         assert f"Checked with FMPy {fmpy.__version__}" in readme, readme
         # Co-Simulation: our master and the container runtime every case, libcosim the
