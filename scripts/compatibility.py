@@ -445,7 +445,11 @@ def main() -> int:
         for importer, said in by.items():
             lines.append(f"Imported and simulated with {named[importer]}, Co-Simulation: "
                          f"{said}.")
-        failed |= verdict != "passed" or any(v.startswith("failed") for v in by.values())
+        # Every verdict must be "passed" but libcosim's known refusal of FMI 3.0.
+        failed |= verdict != "passed" or any(
+            v != "passed" and not (i == "libcosim" and label.startswith("3.0/")
+                                   and "Unsupported FMI version" in v)
+            for i, v in by.items())
         with (folder / "Readme.txt").open("a") as f:
             f.write("\n" + "\n".join(lines) + "\n")
         cells = [by.get(i, "not run").split(" (")[0] for i in named if i != "cosim"]
