@@ -12,11 +12,14 @@
 //!   actuators as tau = E^-T u about P and f = J^-T tau.
 //!
 //! State of the loop: (theta, omega, PID integral, PID filter), 12 values; the planner
-//! is a function of time.
+//! is a function of time. With the controller sampled (`simulate_sampled`: the PID or
+//! the computed-torque law at ticks of a fixed period, output held between them) the
+//! continuous state is the plant's alone.
 
 mod controller;
 mod error;
 mod gains;
+mod sampled;
 mod scenario;
 mod simulate;
 mod summary;
@@ -24,6 +27,7 @@ mod summary;
 pub use controller::{Controller, ControllerKind};
 pub use error::LoopError;
 pub use gains::{AxisDesign, design_gains, triple_pole_gains};
+pub use sampled::simulate_sampled;
 pub use scenario::{LoopSpec, parse_loop_scenario};
 pub use simulate::{LoopSample, simulate};
 pub use summary::{Tracking, tracking};

@@ -32,6 +32,8 @@ pub enum ControllerError {
     Bandwidth(f64),
     /// The controller's model parameters do not describe a physical robot.
     Model(PlantParamError),
+    /// The sample period of the sampled law is not a positive finite number, s.
+    SamplePeriod(f64),
 }
 
 impl fmt::Display for ControllerError {
@@ -44,6 +46,10 @@ impl fmt::Display for ControllerError {
             ),
             Self::Bandwidth(w) => write!(f, "the bandwidth {w} rad/s must be positive"),
             Self::Model(e) => write!(f, "controller model: {e}"),
+            Self::SamplePeriod(p) => write!(
+                f,
+                "the sample period {p} s must be a positive finite number of seconds"
+            ),
         }
     }
 }

@@ -24,13 +24,15 @@
 //! [u_min, u_max], and its integral stops (conditional integration) while the output is
 //! at a limit and Ki e would push it further out. End stops are not modelled by the
 //! controller: they are the plant's protection, not a force a controller plans for.
-//! Derivation and numbers: docs/computed-torque.md.
+//! Derivation and numbers: docs/computed-torque.md. The sampled (discrete-time) form,
+//! evaluated at ticks with its output held between them: [`SampledComputedTorque`].
 //!
 //! [`PlantParams`]: crate::pss3::dynamics::PlantParams
 
 mod gains;
 mod law;
 mod model_parameters;
+mod sampled;
 
 pub use gains::pole_placement;
 pub use law::{AxisGains, ComputedTorque, ControllerError, Inputs, Output};
@@ -38,3 +40,4 @@ pub use model_parameters::{
     GEOMETRY, MODEL_PARAMETER_SPECS, MODEL_PARAMETERS, ModelParameter, controller_message,
     model_parameter, with_fmu_names,
 };
+pub use sampled::SampledComputedTorque;
