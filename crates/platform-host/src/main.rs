@@ -3,9 +3,9 @@
 //! communication point. It is cross-built for every platform the FMUs carry
 //! (scripts/build-fmus.sh) and run natively, under Wine and under qemu-aarch64 by
 //! tests/python/test_platforms.py, which compares the lines of every platform with
-//! those of x86_64 Linux. It needs only the standard library and the C runtime, so
-//! the same source loads the library with dlopen on Linux and macOS and with
-//! LoadLibraryW on Windows.
+//! those of x86_64 Linux. It needs only the standard library, the C runtime and the
+//! workspace's loader (`crates/fmi-loader`: dlopen on Linux and macOS, LoadLibraryW on
+//! Windows).
 //!
 //! Usage: `robofmu-platform-host PLAN` where PLAN is a text file written by the test
 //! (one directive a line, values separated by single spaces):
@@ -27,6 +27,7 @@
 //! round-trip form (the same double parses back). Errors: one line on stderr naming
 //! the plan or the FMI call, exit 2 (a bad plan) or 1 (the FMU refused a call).
 
+use robofmu_fmi_loader::Library;
 use std::ffi::{CString, c_char, c_int, c_void};
 use std::path::Path;
 use std::process::ExitCode;
@@ -84,61 +85,6 @@ extern "C" fn release(p: *mut c_void) {
     unsafe { libc::free(p) }
 }
 
-/// A loaded library, never unloaded (the process ends after one run).
-struct Library(*mut c_void);
-
-#[cfg(unix)]
-fn load(path: &Path) -> Result<Library, String> {
-    use std::os::unix::ffi::OsStrExt;
-    let c_path = CString::new(path.as_os_str().as_bytes()).map_err(|e| e.to_string())?;
-    // SAFETY: dlopen of a NUL-terminated path.
-    let handle = unsafe { libc::dlopen(c_path.as_ptr(), libc::RTLD_NOW | libc::RTLD_LOCAL) };
-    if handle.is_null() {
-        // SAFETY: dlerror returns a NUL-terminated string after a failed dlopen.
-        let e = unsafe { std::ffi::CStr::from_ptr(libc::dlerror()) };
-        return Err(format!(
-            "{}: cannot load: {}",
-            path.display(),
-            e.to_string_lossy()
-        ));
-    }
-    Ok(Library(handle))
-}
-
-#[cfg(unix)]
-fn symbol(library: &Library, name: &CString) -> *mut c_void {
-    // SAFETY: dlsym on a live handle with a NUL-terminated name.
-    unsafe { libc::dlsym(library.0, name.as_ptr()) }
-}
-
-#[cfg(windows)]
-#[link(name = "kernel32")]
-unsafe extern "system" {
-    fn LoadLibraryW(name: *const u16) -> *mut c_void;
-    fn GetProcAddress(module: *mut c_void, name: *const c_char) -> *mut c_void;
-    fn GetLastError() -> u32;
-}
-
-#[cfg(windows)]
-fn load(path: &Path) -> Result<Library, String> {
-    use std::os::windows::ffi::OsStrExt;
-    let wide: Vec<u16> = path.as_os_str().encode_wide().chain([0]).collect();
-    // SAFETY: LoadLibraryW of a NUL-terminated wide path.
-    let handle = unsafe { LoadLibraryW(wide.as_ptr()) };
-    if handle.is_null() {
-        // SAFETY: no arguments; reads the thread's last error.
-        let code = unsafe { GetLastError() };
-        return Err(format!("{}: cannot load: error {code}", path.display()));
-    }
-    Ok(Library(handle))
-}
-
-#[cfg(windows)]
-fn symbol(library: &Library, name: &CString) -> *mut c_void {
-    // SAFETY: GetProcAddress on a live module with a NUL-terminated name.
-    unsafe { GetProcAddress(library.0, name.as_ptr()) }
-}
-
 type Instantiate = extern "C" fn(
     *const c_char,
     c_int,
@@ -174,7 +120,7 @@ struct Fmi2 {
 macro_rules! bind {
     ($library:expr, $name:literal, $type:ty) => {{
         let name = CString::new($name).expect("a name without NUL");
-        let address = symbol($library, &name);
+        let address = $library.symbol(&name);
         if address.is_null() {
             return Err(format!("the library exports no {}", $name));
         }
@@ -291,7 +237,8 @@ fn parse(text: &str) -> Result<Plan, String> {
 
 /// Runs the plan; the output lines.
 fn simulate(plan: &Plan) -> Result<Vec<String>, String> {
-    let library = load(Path::new(&plan.library))?;
+    let library = Library::open(Path::new(&plan.library))
+        .map_err(|e| format!("{}: cannot load: {e}", plan.library))?;
     let f = Fmi2::bind(&library)?;
     let functions = CallbackFunctions {
         logger,
