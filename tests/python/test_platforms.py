@@ -526,33 +526,39 @@ def leave_host_aarch64(tmp_path_factory):
     return out
 
 
-@pytest.mark.parametrize("way", ["exit", "cancel", "longjmp"])
-@pytest.mark.parametrize("standard", ["2", "3"])
+# (standard, way, callback): every way out of the logger, and the unwinding ways out of
+# intermediateUpdate (FMI 3.0; the models without intermediate points never call it).
+AARCH64_LEAVES = [(standard, way, "logger") for standard in ("2", "3")
+                  for way in ("exit", "cancel", "longjmp")] + [
+                  ("3", "exit", "update"), ("3", "cancel", "update")]
+
+
+@pytest.mark.parametrize("standard,way,callback", AARCH64_LEAVES)
 @pytest.mark.parametrize("model", MODELS)
-def test_leaving_the_logger_on_aarch64_is_an_abort_or_the_error_state(
-        model, standard, way, leave_host_aarch64, tmp_path):
+def test_leaving_a_callback_on_aarch64_is_an_abort_or_the_error_state(
+        model, standard, way, callback, leave_host_aarch64, tmp_path):
     # Expected (docs/reliability.md, "Leaving a callback"), as crates/hostile/tests/leave.rs
-    # checks on x86_64: pthread_exit or pthread_cancel in the logger ends the process
-    # with SIGABRT and the FMU's message; after a longjmp the next call finds the Error
-    # state (3), Reset (0) makes the instance usable and FreeInstance frees it.
+    # checks on x86_64: pthread_exit or pthread_cancel in the callback ends the process
+    # with SIGABRT and the FMU's message naming the callback; after a longjmp the next
+    # call finds the Error state (3), Reset (0) makes the instance usable and
+    # FreeInstance frees it. A model without intermediate points: the step returns.
     path = extract(tmp_path, model, "aarch64-linux")
     token = read_model_description(str(DIST / f"{model}.fmu")).guid
     result = subprocess.run([qemu(), "-L", "/usr/aarch64-linux-gnu", str(leave_host_aarch64),
-                             str(path), standard, token, way],
+                             str(path), standard, token, way, callback],
                             capture_output=True, text=True, timeout=120)
     if way == "longjmp":
         enter = "enter 0\n" if standard == "2" else ""
         assert (result.returncode, result.stdout) == (
             0, f"left\nagain 3\nreset 0\nstart 0\n{enter}exit 0\nstep 0\nfreed\njoined\n"), result
+    elif callback == "update" and not has_intermediate_points(model):
+        assert (result.returncode, result.stdout) == (0, "returned\njoined\n"), result
     else:
-        callback = "logger" if standard == "2" else "logMessage"
         assert result.stdout == "left\n", result
-        assert ABORTED.format(callback) in result.stderr, result
+        assert ABORTED.format(callback_name(standard, callback)) in result.stderr, result
         # qemu-user reports the guest's SIGABRT as its own (-6, or 128 + 6 from a shell).
         assert result.returncode in (-6, 134), result
 
-
-# ---------------------------------------------------------------- leaving a callback on Windows
 
 def has_intermediate_points(model):
     """Whether the FMI 3.0 `model` declares intermediateUpdate variables: the models whose
@@ -560,6 +566,15 @@ def has_intermediate_points(model):
     with zipfile.ZipFile(DIST / "fmi3" / f"{model}.fmu") as z:
         return 'intermediateUpdate="true"' in z.read("modelDescription.xml").decode()
 
+
+def callback_name(standard, callback):
+    """The callback's name in the FMU's abort message (leave.c's `logger` or `update`)."""
+    if callback == "update":
+        return "intermediateUpdate"
+    return "logger" if standard == "2" else "logMessage"
+
+
+# ---------------------------------------------------------------- leaving a callback on Windows
 
 @pytest.fixture(scope="module")
 def leave_host_windows(windows_folder):
@@ -603,7 +618,5 @@ def test_leaving_a_callback_on_windows_is_an_abort_or_the_error_state(
     elif callback == "update" and not has_intermediate_points(model):
         assert (result.returncode, result.stdout) == (0, "returned\njoined\n"), result
     else:
-        name = {"2": "logger", "3": "logMessage"}[standard] if callback == "logger" else \
-            "intermediateUpdate"
         assert (result.returncode, result.stdout) == (3, "left\n"), result
-        assert ABORTED.format(name) in result.stderr, result
+        assert ABORTED.format(callback_name(standard, callback)) in result.stderr, result
