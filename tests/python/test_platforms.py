@@ -581,8 +581,11 @@ def leave_host_windows(windows_folder):
     """crates/hostile/native/leave.c built as a C++ host for Windows by MinGW-w64's g++
     (SEH exceptions, as a MinGW C++ importer throws them), statically linked, beside the
     platform host in the Wine folder."""
+    compiler = shutil.which("x86_64-w64-mingw32-g++-posix")
+    if not compiler:
+        pytest.fail("MinGW-w64's g++ is missing: run `bash scripts/install-platform-test-tools.sh`")
     out = windows_folder / "leave.exe"
-    subprocess.run(["x86_64-w64-mingw32-g++-posix", "-O1", "-Wall", "-Werror", "-static",
+    subprocess.run([compiler, "-O1", "-Wall", "-Werror", "-static",
                     "-x", "c++", str(ROOT / "crates" / "hostile" / "native" / "leave.c"),
                     "-o", str(out)], check=True, capture_output=True)
     return out
