@@ -1,6 +1,6 @@
-//! An FMU binary opened with dlopen: the FMI 2.0 functions looked up with dlsym, as
-//! a C importer would. Statuses are kept as C ints so that a corrupt return value
-//! is reported, not undefined behaviour in the importer.
+//! An FMU binary's FMI 2.0 functions (all 44), looked up in the library that
+//! [`crate::Library`] opened, as a C importer would. Statuses are kept as C ints so
+//! that a corrupt return value is reported, not undefined behaviour in the importer.
 
 use std::ffi::{c_char, c_int, c_uint, c_void};
 
@@ -61,14 +61,14 @@ macro_rules! functions {
         $(#[$doc])*
         #[allow(clippy::type_complexity)]
         pub struct $name {
-            _library: robofmu_fmi_loader::Library,
+            _library: $crate::Library,
             $(pub $field: unsafe extern "C" fn($($arg),*) $(-> $ret)?,)*
         }
 
         impl $name {
             /// dlopen (RTLD_NOW | RTLD_LOCAL) and dlsym of every function.
             pub fn open(path: &std::path::Path) -> Result<$name, String> {
-                let library = robofmu_fmi_loader::Library::open(path)
+                let library = $crate::Library::open(path)
                     .map_err(|e| format!("dlopen {}: {e}", path.display()))?;
                 let symbol = |name: &'static str| {
                     let name = std::ffi::CStr::from_bytes_with_nul(name.as_bytes())

@@ -1,7 +1,10 @@
-//! The one loader of robofmu's hosts and tools: the hostile importer
-//! (`crates/hostile`), the platform-test host (`crates/platform-host`, cross-built for
-//! Windows too) and the packager (`crates/packager`, which reads each FMU crate's
-//! description from its cdylib) open a library through [`Library`] alone.
+//! What every host of robofmu's tests shares: the one loader, [`Library`], and the
+//! FMI function tables of a loaded binary, [`fmi2::Binary`] (FMI 2.0) and
+//! [`fmi3::Binary3`] (FMI 3.0), each function looked up by its standard name with its
+//! C signature. The hostile importer (`crates/hostile`) and the platform-test host
+//! (`crates/platform-host`, cross-built for Windows and aarch64 Linux) call FMUs
+//! through the tables; the packager (`crates/packager`, which reads each FMU crate's
+//! description from its cdylib) uses the loader alone.
 //!
 //! Linux and macOS: `dlopen(path, RTLD_NOW | RTLD_LOCAL)`, `dlsym`, `dlclose`, as a C
 //! importer does (every symbol resolved at load time, none made visible to later
@@ -9,6 +12,9 @@
 
 use std::ffi::{CStr, c_void};
 use std::path::Path;
+
+pub mod fmi2;
+pub mod fmi3;
 
 /// A loaded library, closed when dropped (after every instance made from it was freed).
 pub struct Library(*mut c_void);
