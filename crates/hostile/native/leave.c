@@ -1,16 +1,32 @@
-/* A host that leaves the FMU's logger callback without returning: a C++ exception
+/* A host that leaves a callback of the FMU without returning: a C++ exception
  * (compiled as C++), pthread_exit, pthread_cancel while the thread waits in the
- * logger, or longjmp. Compiled as C and as C++ by crates/hostile/tests/leave.rs, which
+ * callback, or longjmp. Compiled as C and as C++ by crates/hostile/tests/leave.rs, which
  * runs it on every packaged FMU, both standards, and judges the outcome
- * (docs/reliability.md, "Leaving a callback").
+ * (docs/reliability.md, "Leaving a callback"); compiled for aarch64 Linux and, as C++
+ * with MinGW-w64's g++ (Windows: LoadLibrary, SEH exceptions), for Windows under Wine by
+ * tests/python/test_platforms.py.
  *
  * Usage: leave <library> <2|3> <instantiation token> <throw|exit|cancel|longjmp>
+ *        [logger|update]
  *
  * A worker thread instantiates a Co-Simulation instance with logging on and calls
  * SetupExperiment (FMI 2.0) or EnterInitializationMode (FMI 3.0), whose logCalls line
- * reaches the logger, which leaves. The lines printed on stdout say how far it got:
- * "left", then, after a longjmp, the status of every later call on the instance. */
+ * reaches the logger, which leaves. With "update" (FMI 3.0) the instance has an
+ * intermediateUpdate callback instead, which leaves at the first intermediate point of
+ * a DoStep ("returned" if the model has none). The lines printed on stdout say how far
+ * it got: "left", then, after a longjmp, the status of every later call on the
+ * instance. */
+#ifdef _WIN32
+#include <windows.h>
+#define RTLD_NOW 0
+#define RTLD_LOCAL 0
+#define dlopen(path, flags) ((void *)LoadLibraryA(path))
+#define dlsym(library, name) ((void *)GetProcAddress((HMODULE)(library), (name)))
+#define dlclose(library) FreeLibrary((HMODULE)(library))
+#define dlerror() "LoadLibrary failed"
+#else
 #include <dlfcn.h>
+#endif
 #include <pthread.h>
 #include <semaphore.h>
 #include <setjmp.h>
@@ -41,6 +57,7 @@ static void *library;
 static int standard;
 static const char *token;
 static const char *way;
+static int update; /* leave the intermediateUpdate callback, not the logger */
 static volatile int armed;
 static sem_t in_logger;
 static jmp_buf back;
@@ -84,6 +101,14 @@ static void logger2(void *env, const char *name, int status, const char *categor
 
 static void logger3(void *env, int status, const char *category, const char *message) {
     (void)env, (void)status, (void)category, (void)message;
+    if (armed && !update)
+        leave_now();
+}
+
+static void update3(void *env, double time, char set_requested, char get_allowed,
+                    char finished, char can_return_early, char *requested, double *at) {
+    (void)env, (void)time, (void)set_requested, (void)get_allowed, (void)finished;
+    (void)can_return_early, (void)requested, (void)at;
     if (armed)
         leave_now();
 }
@@ -97,7 +122,8 @@ static void *instantiate(void) {
         return f("leave", 1, token, NULL, &callbacks, 0, 1);
     }
     instantiate3_t f = (instantiate3_t)symbol("fmi3InstantiateCoSimulation");
-    return f("leave", token, NULL, 0, 1, 0, 0, NULL, 0, NULL, (void *)logger3, NULL);
+    return f("leave", token, NULL, 0, 1, 0, 0, NULL, 0, NULL, (void *)logger3,
+             update ? (void *)update3 : NULL);
 }
 
 /* The call whose logCalls line reaches the logger. */
@@ -117,6 +143,15 @@ static int step(void *c) {
     char event, stop, early;
     double last;
     return ((step3_t)symbol("fmi3DoStep"))(c, 0.0, 1e-3, 1, &event, &stop, &early, &last);
+}
+
+/* The call that reaches the callback that leaves. */
+static int leaving_call(void *c) {
+    if (!update)
+        return start(c);
+    start(c);
+    call("", "fmi3ExitInitializationMode", c);
+    return step(c);
 }
 
 /* After a longjmp: the same instance, called again from this thread. */
@@ -146,21 +181,24 @@ static void *worker(void *unused) {
     armed = 1;
 #ifdef __cplusplus
     try {
-        start(c);
+        leaving_call(c);
     } catch (const std::exception &e) {
         printf("caught %s\n", e.what());
         return NULL;
     }
 #else
-    start(c);
+    leaving_call(c);
 #endif
     printf("returned\n");
+    sem_post(&in_logger); /* nothing to cancel: the callback was never called */
     return NULL;
 }
 
 int main(int argc, char **argv) {
-    if (argc != 5) {
-        fprintf(stderr, "usage: leave <library> <2|3> <token> <throw|exit|cancel|longjmp>\n");
+    int callback_named = argc == 6 && (!strcmp(argv[5], "logger") || !strcmp(argv[5], "update"));
+    if (argc != 5 && !callback_named) {
+        fprintf(stderr, "usage: leave <library> <2|3> <token> <throw|exit|cancel|longjmp> "
+                        "[logger|update]\n");
         return 2;
     }
     library = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
@@ -171,6 +209,7 @@ int main(int argc, char **argv) {
     standard = atoi(argv[2]);
     token = argv[3];
     way = argv[4];
+    update = argc == 6 && !strcmp(argv[5], "update");
     sem_init(&in_logger, 0, 0);
     pthread_t thread;
     pthread_create(&thread, NULL, worker, NULL);

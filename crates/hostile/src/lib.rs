@@ -17,7 +17,8 @@
 //! per standard (C signatures, instances, state machines) lives in the FMI 2.0
 //! modules (`binary`, `host`, `sequences`, `lifecycle`) and in `fmi3`.
 
-pub mod binary;
+/// The FMI 2.0 function table and types (shared with the platform-test host).
+pub use robofmu_fmi_host::fmi2 as binary;
 pub mod cycles;
 pub mod description;
 pub mod fmi3;

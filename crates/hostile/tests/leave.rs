@@ -1,9 +1,11 @@
-//! Hosts that leave the logger callback without returning (issue 42), on every packaged
-//! FMU, FMI 2.0 and FMI 3.0: `native/leave.c` compiled as C (pthread_exit,
-//! pthread_cancel while the thread waits in the logger, longjmp) and as C++ (the same
-//! and a thrown exception), each case in a process of its own.
+//! Hosts that leave a callback without returning (issue 42), on every packaged FMU, FMI
+//! 2.0 and FMI 3.0: `native/leave.c` compiled as C (pthread_exit, pthread_cancel while
+//! the thread waits in the callback, longjmp) and as C++ (the same and a thrown
+//! exception), each case in a process of its own. The callback left is the logger
+//! (logMessage in FMI 3.0) and, for the FMI 3.0 models with intermediate points, also
+//! intermediateUpdate (every way but longjmp).
 //!
-//! Expected (docs/reliability.md, "Leaving a callback"): an unwind out of the logger
+//! Expected (docs/reliability.md, "Leaving a callback"): an unwind out of the callback
 //! (C++ exception, pthread_exit, cancellation) ends the process with SIGABRT and the
 //! FMU's message naming the callback, every time, never another signal; a longjmp
 //! leaves the instance to the next call of that thread, which finds it in the Error
@@ -47,12 +49,13 @@ fn after_longjmp(standard: Standard) -> String {
     format!("left\nagain 3\nreset 0\nstart 0\n{enter}exit 0\nstep 0\nfreed\njoined\n")
 }
 
-/// Runs one case; Err says what differed from the expected outcome.
+/// Runs one case, leaving `callback` ("logger" or "update", leave.c's argument); Err
+/// says what differed from the expected outcome.
 fn case(
     host: &Path,
     fmu: &Fmu,
     standard: Standard,
-    way: &str,
+    (way, callback): (&str, &str),
     valgrind: bool,
 ) -> Result<(), String> {
     let number = if standard == Standard::Fmi2 { "2" } else { "3" };
@@ -72,7 +75,7 @@ fn case(
     };
     let output = command
         .arg(&fmu.library)
-        .args([number, &fmu.description.guid, way])
+        .args([number, &fmu.description.guid, way, callback])
         .output()
         .map_err(|e| format!("cannot run {}: {e}", host.display()))?;
     let stdout = String::from_utf8_lossy(&output.stdout);
@@ -84,10 +87,10 @@ fn case(
         }
         return Err(seen);
     }
-    let callback = if standard == Standard::Fmi2 {
-        "logger"
-    } else {
-        "logMessage"
+    let callback = match (callback, standard) {
+        ("update", _) => "intermediateUpdate",
+        (_, Standard::Fmi2) => "logger",
+        _ => "logMessage",
     };
     let message = format!("robofmu FMU: fatal: the host's {callback} callback did not return");
     if output.status.signal() == Some(libc::SIGABRT)
@@ -120,15 +123,29 @@ fn main() {
     for model in models() {
         for standard in Standard::BOTH {
             let fmu = Fmu::unpack(model, standard).unwrap_or_else(|e| panic!("{e}"));
+            let points = fmu
+                .description
+                .variables
+                .iter()
+                .any(|v| v.intermediate_update);
+            let callbacks: &[&str] = if points {
+                &["logger", "update"]
+            } else {
+                &["logger"]
+            };
             for (language, host, ways) in &hosts {
-                for way in ways {
-                    if valgrind && *way != "longjmp" {
+                for (way, callback) in ways
+                    .iter()
+                    .flat_map(|w| callbacks.iter().map(move |c| (*w, *c)))
+                {
+                    let longjmp = way == "longjmp";
+                    if (valgrind && !longjmp) || (longjmp && callback == "update") {
                         continue;
                     }
-                    match case(host, &fmu, standard, way, valgrind) {
+                    match case(host, &fmu, standard, (way, callback), valgrind) {
                         Ok(()) => passed += 1,
                         Err(e) => failed.push(format!(
-                            "{model} {} {language} host, {way}: {e}",
+                            "{model} {} {language} host, {way} out of {callback}: {e}",
                             standard.name()
                         )),
                     }
@@ -138,7 +155,7 @@ fn main() {
     }
     let _ = std::fs::remove_dir_all(&dir);
     let under = if valgrind { " under valgrind" } else { "" };
-    println!("leaving the logger{under}: {passed} cases as documented");
+    println!("leaving a callback{under}: {passed} cases as documented");
     for f in &failed {
         println!("FAILED: {f}");
     }

@@ -3,9 +3,9 @@
 //! communication point. It is cross-built for every platform the FMUs carry
 //! (scripts/build-fmus.sh) and run natively, under Wine and under qemu-aarch64 by
 //! tests/python/test_platforms.py, which compares the lines of every platform with
-//! those of x86_64 Linux. It needs only the standard library and the C runtime, so
-//! the same source loads the library with dlopen on Linux and macOS and with
-//! LoadLibraryW on Windows.
+//! those of x86_64 Linux. It needs only the standard library, the C runtime and the
+//! hosts' shared loader and FMI 2.0 function table (`crates/fmi-host`: dlopen on Linux
+//! and macOS, LoadLibraryW on Windows).
 //!
 //! Usage: `robofmu-platform-host PLAN` where PLAN is a text file written by the test
 //! (one directive a line, values separated by single spaces):
@@ -27,24 +27,12 @@
 //! round-trip form (the same double parses back). Errors: one line on stderr naming
 //! the plan or the FMI call, exit 2 (a bad plan) or 1 (the FMU refused a call).
 
+use robofmu_fmi_host::fmi2::{Binary, CallbackFunctions, OK, Status};
 use std::ffi::{CString, c_char, c_int, c_void};
 use std::path::Path;
 use std::process::ExitCode;
 
-type Component = *mut c_void;
-type Status = c_int;
-const OK: Status = 0;
 const CO_SIMULATION: c_int = 1;
-
-/// fmi2CallbackFunctions.
-#[repr(C)]
-struct CallbackFunctions {
-    logger: extern "C" fn(*mut c_void, *const c_char, Status, *const c_char, *const c_char),
-    allocate_memory: extern "C" fn(usize, usize) -> *mut c_void,
-    free_memory: extern "C" fn(*mut c_void),
-    step_finished: *const c_void,
-    component_environment: *mut c_void,
-}
 
 /// Prints the FMU's log lines on stderr. Non-variadic stand-in for the variadic
 /// fmi2CallbackLogger: the five fixed arguments are passed the same way on x86_64
@@ -82,124 +70,6 @@ extern "C" fn allocate(n: usize, size: usize) -> *mut c_void {
 extern "C" fn release(p: *mut c_void) {
     // SAFETY: the FMU frees only what `allocate` returned (or null).
     unsafe { libc::free(p) }
-}
-
-/// A loaded library, never unloaded (the process ends after one run).
-struct Library(*mut c_void);
-
-#[cfg(unix)]
-fn load(path: &Path) -> Result<Library, String> {
-    use std::os::unix::ffi::OsStrExt;
-    let c_path = CString::new(path.as_os_str().as_bytes()).map_err(|e| e.to_string())?;
-    // SAFETY: dlopen of a NUL-terminated path.
-    let handle = unsafe { libc::dlopen(c_path.as_ptr(), libc::RTLD_NOW | libc::RTLD_LOCAL) };
-    if handle.is_null() {
-        // SAFETY: dlerror returns a NUL-terminated string after a failed dlopen.
-        let e = unsafe { std::ffi::CStr::from_ptr(libc::dlerror()) };
-        return Err(format!(
-            "{}: cannot load: {}",
-            path.display(),
-            e.to_string_lossy()
-        ));
-    }
-    Ok(Library(handle))
-}
-
-#[cfg(unix)]
-fn symbol(library: &Library, name: &CString) -> *mut c_void {
-    // SAFETY: dlsym on a live handle with a NUL-terminated name.
-    unsafe { libc::dlsym(library.0, name.as_ptr()) }
-}
-
-#[cfg(windows)]
-#[link(name = "kernel32")]
-unsafe extern "system" {
-    fn LoadLibraryW(name: *const u16) -> *mut c_void;
-    fn GetProcAddress(module: *mut c_void, name: *const c_char) -> *mut c_void;
-    fn GetLastError() -> u32;
-}
-
-#[cfg(windows)]
-fn load(path: &Path) -> Result<Library, String> {
-    use std::os::windows::ffi::OsStrExt;
-    let wide: Vec<u16> = path.as_os_str().encode_wide().chain([0]).collect();
-    // SAFETY: LoadLibraryW of a NUL-terminated wide path.
-    let handle = unsafe { LoadLibraryW(wide.as_ptr()) };
-    if handle.is_null() {
-        // SAFETY: no arguments; reads the thread's last error.
-        let code = unsafe { GetLastError() };
-        return Err(format!("{}: cannot load: error {code}", path.display()));
-    }
-    Ok(Library(handle))
-}
-
-#[cfg(windows)]
-fn symbol(library: &Library, name: &CString) -> *mut c_void {
-    // SAFETY: GetProcAddress on a live module with a NUL-terminated name.
-    unsafe { GetProcAddress(library.0, name.as_ptr()) }
-}
-
-type Instantiate = extern "C" fn(
-    *const c_char,
-    c_int,
-    *const c_char,
-    *const c_char,
-    *const CallbackFunctions,
-    c_int,
-    c_int,
-) -> Component;
-type SetupExperiment = extern "C" fn(Component, c_int, f64, f64, c_int, f64) -> Status;
-type OfComponent = extern "C" fn(Component) -> Status;
-type SetReal = extern "C" fn(Component, *const u32, usize, *const f64) -> Status;
-type SetInteger = extern "C" fn(Component, *const u32, usize, *const c_int) -> Status;
-type GetReal = extern "C" fn(Component, *const u32, usize, *mut f64) -> Status;
-type DoStep = extern "C" fn(Component, f64, f64, c_int) -> Status;
-type FreeInstance = extern "C" fn(Component);
-
-/// The FMI 2.0 functions this host calls.
-struct Fmi2 {
-    instantiate: Instantiate,
-    setup_experiment: SetupExperiment,
-    enter_initialization_mode: OfComponent,
-    exit_initialization_mode: OfComponent,
-    set_real: SetReal,
-    set_integer: SetInteger,
-    set_boolean: SetInteger,
-    get_real: GetReal,
-    do_step: DoStep,
-    terminate: OfComponent,
-    free_instance: FreeInstance,
-}
-
-macro_rules! bind {
-    ($library:expr, $name:literal, $type:ty) => {{
-        let name = CString::new($name).expect("a name without NUL");
-        let address = symbol($library, &name);
-        if address.is_null() {
-            return Err(format!("the library exports no {}", $name));
-        }
-        // SAFETY: the FMI 2.0 standard fixes the signature of the named function,
-        // `$type`.
-        unsafe { std::mem::transmute::<*mut c_void, $type>(address) }
-    }};
-}
-
-impl Fmi2 {
-    fn bind(library: &Library) -> Result<Fmi2, String> {
-        Ok(Fmi2 {
-            instantiate: bind!(library, "fmi2Instantiate", Instantiate),
-            setup_experiment: bind!(library, "fmi2SetupExperiment", SetupExperiment),
-            enter_initialization_mode: bind!(library, "fmi2EnterInitializationMode", OfComponent),
-            exit_initialization_mode: bind!(library, "fmi2ExitInitializationMode", OfComponent),
-            set_real: bind!(library, "fmi2SetReal", SetReal),
-            set_integer: bind!(library, "fmi2SetInteger", SetInteger),
-            set_boolean: bind!(library, "fmi2SetBoolean", SetInteger),
-            get_real: bind!(library, "fmi2GetReal", GetReal),
-            do_step: bind!(library, "fmi2DoStep", DoStep),
-            terminate: bind!(library, "fmi2Terminate", OfComponent),
-            free_instance: bind!(library, "fmi2FreeInstance", FreeInstance),
-        })
-    }
 }
 
 /// A start value of the plan.
@@ -291,27 +161,32 @@ fn parse(text: &str) -> Result<Plan, String> {
 
 /// Runs the plan; the output lines.
 fn simulate(plan: &Plan) -> Result<Vec<String>, String> {
-    let library = load(Path::new(&plan.library))?;
-    let f = Fmi2::bind(&library)?;
+    let f = Binary::open(Path::new(&plan.library))?;
     let functions = CallbackFunctions {
-        logger,
-        allocate_memory: allocate,
-        free_memory: release,
+        logger: logger as *const c_void,
+        allocate_memory: allocate as *const c_void,
+        free_memory: release as *const c_void,
         step_finished: std::ptr::null(),
         component_environment: std::ptr::null_mut(),
     };
     let name = CString::new("host").expect("no NUL");
     let guid = CString::new(plan.guid.as_str()).map_err(|e| e.to_string())?;
     let resources = CString::new("").expect("no NUL");
-    let c = (f.instantiate)(
-        name.as_ptr(),
-        CO_SIMULATION,
-        guid.as_ptr(),
-        resources.as_ptr(),
-        &functions,
-        0,
-        0,
-    );
+    // SAFETY (every call of an `f` function below): the FMI 2.0 functions of the loaded
+    // binary, called as the standard says: NUL-terminated strings, callbacks alive
+    // until the end of this function, the instance `c` from fmi2Instantiate until
+    // fmi2FreeInstance, each array as long as the count passed with it.
+    let c = unsafe {
+        (f.instantiate)(
+            name.as_ptr(),
+            CO_SIMULATION,
+            guid.as_ptr(),
+            resources.as_ptr(),
+            &functions,
+            0,
+            0,
+        )
+    };
     if c.is_null() {
         return Err("fmi2Instantiate returned NULL".to_string());
     }
@@ -323,23 +198,23 @@ fn simulate(plan: &Plan) -> Result<Vec<String>, String> {
         }
     };
     check(
-        (f.setup_experiment)(c, 0, 0.0, plan.start, 1, plan.stop),
+        unsafe { (f.setup_experiment)(c, 0, 0.0, plan.start, 1, plan.stop) },
         "fmi2SetupExperiment",
     )?;
     for s in &plan.starts {
         let (status, call) = match *s {
-            Start::Real(vr, v) => ((f.set_real)(c, &vr, 1, &v), "fmi2SetReal"),
-            Start::Integer(vr, v) => ((f.set_integer)(c, &vr, 1, &v), "fmi2SetInteger"),
-            Start::Boolean(vr, v) => ((f.set_boolean)(c, &vr, 1, &v), "fmi2SetBoolean"),
+            Start::Real(vr, v) => (unsafe { (f.set_real)(c, &vr, 1, &v) }, "fmi2SetReal"),
+            Start::Integer(vr, v) => (unsafe { (f.set_integer)(c, &vr, 1, &v) }, "fmi2SetInteger"),
+            Start::Boolean(vr, v) => (unsafe { (f.set_boolean)(c, &vr, 1, &v) }, "fmi2SetBoolean"),
         };
         check(status, call)?;
     }
     check(
-        (f.enter_initialization_mode)(c),
+        unsafe { (f.enter_initialization_mode)(c) },
         "fmi2EnterInitializationMode",
     )?;
     check(
-        (f.exit_initialization_mode)(c),
+        unsafe { (f.exit_initialization_mode)(c) },
         "fmi2ExitInitializationMode",
     )?;
     let steps = ((plan.stop - plan.start) / plan.step).round() as usize;
@@ -359,12 +234,12 @@ fn simulate(plan: &Plan) -> Result<Vec<String>, String> {
                     )
                 })?;
             check(
-                (f.set_real)(c, plan.inputs.as_ptr(), row.len(), row.as_ptr()),
+                unsafe { (f.set_real)(c, plan.inputs.as_ptr(), row.len(), row.as_ptr()) },
                 "fmi2SetReal (inputs)",
             )?;
         }
         check(
-            (f.get_real)(c, plan.outputs.as_ptr(), y.len(), y.as_mut_ptr()),
+            unsafe { (f.get_real)(c, plan.outputs.as_ptr(), y.len(), y.as_mut_ptr()) },
             "fmi2GetReal",
         )?;
         let mut line = format!("{t}");
@@ -373,11 +248,11 @@ fn simulate(plan: &Plan) -> Result<Vec<String>, String> {
         }
         lines.push(line);
         if k < steps {
-            check((f.do_step)(c, t, plan.step, 1), "fmi2DoStep")?;
+            check(unsafe { (f.do_step)(c, t, plan.step, 1) }, "fmi2DoStep")?;
         }
     }
-    check((f.terminate)(c), "fmi2Terminate")?;
-    (f.free_instance)(c);
+    check(unsafe { (f.terminate)(c) }, "fmi2Terminate")?;
+    unsafe { (f.free_instance)(c) };
     Ok(lines)
 }
 

@@ -3,7 +3,8 @@
 //! threads tests take the FMI 3.0 simulations from here). Its tables for the one
 //! matrix are in `matrix::fmi3`.
 
-pub mod binary;
+/// The FMI 3.0 function table and types (shared with the platform-test host).
+pub use robofmu_fmi_host::fmi3 as binary;
 pub mod host;
 pub mod lifecycle;
 pub mod sequences;

@@ -1,9 +1,8 @@
-//! An FMU binary opened with dlopen: the FMI 2.0 functions looked up with dlsym, as
-//! a C importer would. Statuses are kept as C ints so that a corrupt return value
-//! is reported, not undefined behaviour in the importer.
+//! An FMU binary's FMI 2.0 functions (all 44), looked up in the library that
+//! [`crate::Library`] opened, as a C importer would. Statuses are kept as C ints so
+//! that a corrupt return value is reported, not undefined behaviour in the importer.
 
-use std::ffi::{CString, c_char, c_int, c_uint, c_void};
-use std::path::Path;
+use std::ffi::{c_char, c_int, c_uint, c_void};
 
 pub type Component = *mut c_void;
 pub type FmuState = *mut c_void;
@@ -62,27 +61,31 @@ macro_rules! functions {
         $(#[$doc])*
         #[allow(clippy::type_complexity)]
         pub struct $name {
-            _library: $crate::binary::Library,
+            _library: $crate::Library,
             $(pub $field: unsafe extern "C" fn($($arg),*) $(-> $ret)?,)*
         }
 
         impl $name {
             /// dlopen (RTLD_NOW | RTLD_LOCAL) and dlsym of every function.
             pub fn open(path: &std::path::Path) -> Result<$name, String> {
-                let library = $crate::binary::Library::open(path)?;
-                let handle = library.handle();
+                let library = $crate::Library::open(path)
+                    .map_err(|e| format!("dlopen {}: {e}", path.display()))?;
+                let symbol = |name: &'static str| {
+                    let name = std::ffi::CStr::from_bytes_with_nul(name.as_bytes())
+                        .expect("a NUL-terminated name");
+                    library.symbol(name)
+                };
                 Ok($name {
-                    _library: library,
                     $($field: {
-                        let name = concat!($symbol, "\0");
-                        // SAFETY: a live handle and a NUL-terminated name.
-                        let p = unsafe { libc::dlsym(handle, name.as_ptr() as *const std::ffi::c_char) };
+                        let p = symbol(concat!($symbol, "\0"));
                         if p.is_null() {
                             return Err(format!("symbol {} is missing", $symbol));
                         }
                         // SAFETY: the symbol has this C signature in the standard.
                         unsafe { std::mem::transmute::<*mut std::ffi::c_void, unsafe extern "C" fn($($arg),*) $(-> $ret)?>(p) }
                     },)*
+                    // After every lookup: the library moves into the binary.
+                    _library: library,
                 })
             }
         }
@@ -143,45 +146,5 @@ functions! {
     get_integer_status = "fmi2GetIntegerStatus": fn(Component, c_int, *mut c_int) -> Status;
     get_boolean_status = "fmi2GetBooleanStatus": fn(Component, c_int, *mut c_int) -> Status;
     get_string_status = "fmi2GetStringStatus": fn(Component, c_int, *mut Str) -> Status;
-    }
-}
-
-/// A dlopen handle, closed on drop (after every instance was freed by its owner).
-pub struct Library(*mut c_void);
-
-impl Library {
-    /// dlopen with RTLD_NOW | RTLD_LOCAL.
-    pub fn open(path: &Path) -> Result<Library, String> {
-        let c_path = CString::new(path.as_os_str().as_encoded_bytes())
-            .map_err(|_| format!("{} contains a NUL byte", path.display()))?;
-        // SAFETY: a NUL-terminated path.
-        let handle = unsafe { libc::dlopen(c_path.as_ptr(), libc::RTLD_NOW | libc::RTLD_LOCAL) };
-        if handle.is_null() {
-            return Err(format!("dlopen {}: {}", path.display(), dl_error()));
-        }
-        Ok(Library(handle))
-    }
-
-    pub fn handle(&self) -> *mut c_void {
-        self.0
-    }
-}
-
-impl Drop for Library {
-    fn drop(&mut self) {
-        // SAFETY: the handle came from dlopen; nothing from it is in use any more.
-        unsafe { libc::dlclose(self.0) };
-    }
-}
-
-fn dl_error() -> String {
-    // SAFETY: dlerror returns null or a NUL-terminated message.
-    let e = unsafe { libc::dlerror() };
-    if e.is_null() {
-        "unknown error".into()
-    } else {
-        unsafe { std::ffi::CStr::from_ptr(e) }
-            .to_string_lossy()
-            .into_owned()
     }
 }

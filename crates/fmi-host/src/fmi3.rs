@@ -1,8 +1,8 @@
-//! An FMU binary's FMI 3.0 functions (all 75 of fmi3FunctionTypes.h), looked up with
-//! dlsym in the same shared object that exports the fmi2* symbols. fmi3Boolean is a
+//! An FMU binary's FMI 3.0 functions (all 75 of fmi3FunctionTypes.h), looked up in the
+//! same library that exports the fmi2* symbols. fmi3Boolean is a
 //! C99 `bool`, passed here as a byte so that a corrupt value is observable.
 
-use crate::binary::{Status, functions};
+use crate::fmi2::{Status, functions};
 use std::ffi::{c_char, c_int, c_void};
 
 pub type Instance3 = *mut c_void;
@@ -101,7 +101,7 @@ mod tests {
     fn declares_the_75_functions_of_fmi3_function_types() {
         // Expected value: fmi3FunctionTypes.h of FMI 3.0 declares 75 functions; one
         // field per `= "fmi3` in the table above.
-        let source = include_str!("binary.rs");
+        let source = include_str!("fmi3.rs");
         let table = source.split("mod tests").next().unwrap_or("");
         assert_eq!(table.matches("= \"fmi3").count(), 75);
     }
