@@ -164,7 +164,7 @@ fn accessors_and_hooks_reach_their_element() {
     };
     set.call(&mut m, 2.0).unwrap();
     assert_eq!(m.x, [0.0, 2.0]);
-    assert_eq!(get.call(&m), 6.0); // d/dt x = 3 x
+    assert_eq!(get.call(&mut m), 6.0); // d/dt x = 3 x
     let (hook, i) = (
         table[8].output_hook().expect("y has output derivatives"),
         table[8].index,
