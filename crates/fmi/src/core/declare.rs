@@ -185,17 +185,6 @@ pub fn write_element<M, T>(
     }
 }
 
-impl<M> Value<M> {
-    /// Whether the layer can write the variable: it has a writer or a place.
-    pub fn writable(&self) -> bool {
-        match self {
-            Value::Real { get, set, .. } => set.is_some() || get.is_place(),
-            Value::Integer { get, set, .. } => set.is_some() || get.is_place(),
-            Value::Boolean { get, set, .. } => set.is_some() || get.is_place(),
-        }
-    }
-}
-
 impl<M> Clone for Value<M> {
     fn clone(&self) -> Self {
         *self
