@@ -9,7 +9,8 @@ modelDescription/*.xml (`theta[1]`, `platformInertia[1,2]`, `der(omega[2])`) and
 FMI 3.0 variable of modelDescription/fmi3/*.xml (`theta`, `der(omega)`), of all FMUs
 together, and the head of an element's name (`concat!("Kp[", ..)`). A literal is a
 declaration when it is the first string literal among the
-arguments of a declaring call: `Decl::real/integer/boolean(..)` (also
+arguments of a declaring call: `Decl::real/integer/boolean(..)` or
+`Decl::real_in/integer_in/boolean_in(..)` (also
 `Declaration::`, or `Decl::$ty(..)` inside a macro), or a macro or function of the
 same crate whose definition makes such a call (`gain!("Kp", ..)`, `planned::<0>("q",
 ..)`). Everything else that names a variable refers to it through its declaration
@@ -26,7 +27,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 
-DECLARE = {"real", "integer", "boolean"}
+DECLARE = {"real", "integer", "boolean", "real_in", "integer_in", "boolean_in"}
 TABLES = {"Decl", "Declaration"}
 IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 

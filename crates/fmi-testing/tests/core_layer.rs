@@ -184,7 +184,7 @@ impl Model for Sawtooth {
     fn do_step(&mut self, _time: f64, _step: f64, _log: &dyn Log) -> StepOutcome {
         StepOutcome::Completed
     }
-    fn continuous_states(&self, x: &mut [f64]) {
+    fn continuous_states(&mut self, x: &mut [f64]) {
         x[0] = self.x;
     }
     fn set_continuous_states(&mut self, x: &[f64]) {

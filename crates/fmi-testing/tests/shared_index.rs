@@ -86,7 +86,7 @@ robofmu_fmi::share_index!(Declared);
 #[test]
 fn instances_of_a_declared_model_share_one_index_and_keep_their_own_values() {
     let new = || Instance::<Declared>::new(Index::shared().unwrap()).unwrap();
-    let (mut a, b) = (new(), new());
+    let (mut a, mut b) = (new(), new());
     assert!(Arc::ptr_eq(a.index(), b.index()));
     let references: Vec<u32> = a.table().iter().map(|v| v.value_reference).collect();
     assert_eq!(references, [10, 11, 12]);

@@ -59,24 +59,27 @@ pub mod prelude {
     //!     [0.0, 10.0, 1e-6, 0.1],
     //! );
     //!
-    //! // 2. Every variable once: getter, setter, role, unit, start, hooks (value
+    //! // 2. Every variable once: where it is kept (one accessor the layer reads and
+    //! //    writes through) or how it is computed, role, unit, start, hooks (value
     //! //    references 1, 2, ... in this order; `.at(vr)` pins one). A declaration
     //! //    another one names (a state, a dependency) is a `const`: the compiler checks
     //! //    the name.
     //! type Decl = Declaration<Cooling>;
-    //! const T: Decl = Decl::real("T", "temperature", |m, _| m.t)
-    //!     .set_real(|m, _, v| { m.t = v; Ok(()) })
+    //! const T: Decl = Decl::real_in("T", |m, _| &mut m.t)
+    //!     .describe("temperature")
     //!     .state()
     //!     .unit("K", None)
     //!     .start_real(&[350.0]);
     //! static VARIABLES: &[Decl] = &[
-    //!     Decl::real("tau", "time constant", |m, _| m.tau)
+    //!     // A writer of its own checks the value (the place still serves reading).
+    //!     Decl::real_in("tau", |m, _| &mut m.tau)
+    //!         .describe("time constant")
     //!         .set_real(|m, _, v| if v > 0.0 { m.tau = v; Ok(()) } else { Err("tau > 0".into()) })
     //!         .parameter(Variability::Fixed)
     //!         .unit("s", None)
     //!         .start_real(&[2.0]),
-    //!     Decl::real("ambient", "ambient temperature", |m, _| m.ambient)
-    //!         .set_real(|m, _, v| { m.ambient = v; Ok(()) })
+    //!     Decl::real_in("ambient", |m, _| &mut m.ambient)
+    //!         .describe("ambient temperature")
     //!         .input()
     //!         .unit("K", None)
     //!         .start_real(&[293.15]),
@@ -120,10 +123,11 @@ pub mod prelude {
     //! and [`LogCategory`] (messages), [`OutputDerivativeError`] (why a hook gives no
     //! output derivative), [`Var`] (a variable in a dependency list, named by its
     //! declaration), [`concat()`], [`every`] and [`same`] (static tables from named parts),
-    //! [`store`] (a writer's usual body), [`InputDerivative`] and [`OutputDerivative`]
-    //! (the hooks' types, for a model's own declaring functions).
+    //! [`Place`] (where a model keeps a variable: one accessor to read and write it),
+    //! [`InputDerivative`] and [`OutputDerivative`] (the hooks' types, for a model's own
+    //! declaring functions).
 
-    pub use crate::core::declare::{InputDerivative, OutputDerivative, store};
+    pub use crate::core::declare::{InputDerivative, OutputDerivative, Place};
     pub use crate::core::tables::{concat, every, same};
     pub use crate::core::{
         Declaration, DefaultExperiment, Element, EventUpdate, Jacobian, Log, LogCategory, Model,

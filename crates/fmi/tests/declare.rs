@@ -164,7 +164,7 @@ fn accessors_and_hooks_reach_their_element() {
     };
     set.call(&mut m, 2.0).unwrap();
     assert_eq!(m.x, [0.0, 2.0]);
-    assert_eq!(get.call(&m), 6.0); // d/dt x = 3 x
+    assert_eq!(get.call(&mut m), 6.0); // d/dt x = 3 x
     let (hook, i) = (
         table[8].output_hook().expect("y has output derivatives"),
         table[8].index,
@@ -222,4 +222,73 @@ fn fmi3_elements_are_index_arithmetic_and_lookups_find_every_variable() {
     let sorted = Table3::new(vec![strided_array(11), strided_array(40)]);
     assert_eq!(sorted.find(40).map(|v| v.value_reference), Some(40));
     assert!(sorted.find(12).is_none());
+}
+
+/// A model whose kept variables are declared by place; `changes` counts the writes
+/// `after_set` saw, `sum` is what it keeps up to date.
+#[derive(Clone, Default)]
+struct Kept {
+    gain: [f64; 2],
+    on: bool,
+    order: i32,
+    sum: f64,
+    changes: u32,
+}
+
+fn resum(m: &mut Kept, _: usize) {
+    m.sum = m.gain[0] + m.gain[1];
+    m.changes += 1;
+}
+
+type KeptDecl = Declaration<Kept>;
+
+static KEPT: &[KeptDecl] = &[
+    KeptDecl::real_in("gain", |m, i| &mut m.gain[i])
+        .describe("two gains")
+        .array(2)
+        .parameter(Variability::Tunable)
+        .start_real(&[1.0, 2.0])
+        .after_set(resum),
+    KeptDecl::boolean_in("on", |m, _| &mut m.on)
+        .parameter(Variability::Fixed)
+        .start_boolean(&[true]),
+    // A writer of its own checks the value; the place still serves reading.
+    KeptDecl::integer_in("order", |m, _| &mut m.order)
+        .set_integer(|m, _, v| {
+            if v % 2 == 0 {
+                return Err("the order is odd".to_string());
+            }
+            m.order = v;
+            Ok(())
+        })
+        .parameter(Variability::Fixed)
+        .start_integer(&[3])
+        .after_set(resum),
+];
+
+#[test]
+fn a_place_is_read_and_written_through_one_accessor_and_after_set_follows_each_write() {
+    use robofmu_fmi::core::value_check::{Value, holds, write};
+    let mut m = Kept::default();
+    // Expected: the values written, read back through the same place; after_set ran
+    // once per accepted write (counted), and sum = gain[1] + gain[2] by hand.
+    write(&mut m, &KEPT[0], 1, 2, Value::Real(5.0)).unwrap();
+    assert_eq!(m.gain, [0.0, 5.0]);
+    assert_eq!((m.sum, m.changes), (5.0, 1));
+    assert!(holds(&mut m, &KEPT[0], 1, Value::Real(5.0)));
+    write(&mut m, &KEPT[1], 0, 3, Value::Boolean(true)).unwrap();
+    assert!(m.on && m.changes == 1, "no hook declared: none ran");
+    // The model's own writer refuses an even order: nothing stored, no hook.
+    let refused = write(&mut m, &KEPT[2], 0, 4, Value::Integer(4)).unwrap_err();
+    assert!(refused.contains("the order is odd"), "{refused}");
+    assert_eq!((m.order, m.changes), (0, 1));
+    write(&mut m, &KEPT[2], 0, 4, Value::Integer(5)).unwrap();
+    assert_eq!((m.order, m.changes), (5, 2));
+    // The FMI 2.0 scalars: all three writable, read through the place.
+    let table = flatten(KEPT);
+    assert!(table.iter().all(|v| v.has_setter()));
+    let Kind::Real { get, .. } = &table[1].kind else {
+        panic!("gain[2] is a Real")
+    };
+    assert_eq!(get.call(&mut m), 5.0);
 }

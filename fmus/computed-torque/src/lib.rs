@@ -66,11 +66,9 @@ pub struct ComputedTorqueFmu {
 }
 
 impl ComputedTorqueFmu {
-    /// Applies a change of a parameter: the law is rebuilt before its next use.
-    fn change(&mut self, f: impl FnOnce(&mut Self)) -> Result<(), String> {
-        f(self);
+    /// After a parameter is set: the law is rebuilt before its next use.
+    fn rebuild_law(&mut self, _: usize) {
         self.law = None;
-        Ok(())
     }
 
     /// The law for the current parameters, or why there is none (FMU parameter names).
@@ -192,13 +190,7 @@ impl Model for ComputedTorqueFmu {
         }
     }
 
-    fn continuous_states(&self, x: &mut [f64]) {
-        x.copy_from_slice(self.integral.as_slice());
-    }
-
-    fn set_continuous_states(&mut self, x: &[f64]) {
-        self.integral.copy_from_slice(x);
-    }
+    // The continuous states: the layer's defaults, through the place of `integral`.
 
     fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
         let evaluation = self.evaluate()?;

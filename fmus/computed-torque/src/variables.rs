@@ -11,7 +11,8 @@ use robofmu_dynamics::computed_torque::{
 use robofmu_dynamics::pss3::START_ROLL_DEG;
 use robofmu_fmi::prelude::*;
 
-type Decl = Declaration<ComputedTorqueFmu>;
+type Fmu = ComputedTorqueFmu;
+type Decl = Declaration<Fmu>;
 
 /// The default gains: a triple pole at -30 rad/s of the error dynamics.
 const GAINS: AxisGains = match pole_placement(DEFAULT_BANDWIDTH, true) {
@@ -33,19 +34,26 @@ const fn axes(d: Decl, vr: u32) -> Decl {
     d.array(AXES).at(vr).label("Axis")
 }
 
-/// A tunable Real parameter per axis (its writer given after it).
-const fn gain(d: Decl, vr: u32, start: &'static [f64]) -> Decl {
-    axes(d, vr)
-        .parameter(Variability::Tunable)
-        .start_real(start)
+/// A tunable parameter per axis: the law is rebuilt before its next use.
+const fn tunable(d: Decl, vr: u32) -> Decl {
+    let d = axes(d, vr).parameter(Variability::Tunable);
+    d.after_set(ComputedTorqueFmu::rebuild_law)
 }
 
-/// An input per axis, `unit` rad-based and displayed in degrees (its writer given after it).
-const fn input(d: Decl, vr: u32, unit: [&'static str; 2], start: &'static [f64]) -> Decl {
-    axes(d, vr)
-        .input()
-        .unit(unit[0], Some(unit[1]))
-        .start_real(start)
+/// A tunable Real parameter per axis.
+const fn gain(name: &'static str, vr: u32, start: &'static [f64], place: Place<Fmu, f64>) -> Decl {
+    tunable(Decl::real_in(name, place), vr).start_real(start)
+}
+
+/// An input per axis, `unit` rad-based and displayed in degrees.
+const fn input(
+    name: &'static str,
+    vr: u32,
+    unit: [&'static str; 2],
+    place: Place<Fmu, f64>,
+) -> Decl {
+    let d = axes(Decl::real_in(name, place), vr).input();
+    d.unit(unit[0], Some(unit[1])).start_real(&[0.0])
 }
 
 /// `length` spec values from entry `k` on.
@@ -59,7 +67,8 @@ fn get_model<const K: usize>(m: &ComputedTorqueFmu, i: usize) -> f64 {
 }
 
 fn set_model<const K: usize>(m: &mut ComputedTorqueFmu, i: usize, v: f64) -> Result<(), String> {
-    m.change(|m| (MODEL_PARAMETERS[K + i].set)(&mut m.model, v))
+    (MODEL_PARAMETERS[K + i].set)(&mut m.model, v);
+    Ok(())
 }
 
 /// The model parameter `MODEL_PARAMETERS[K]` (with `length` > 1: the array `name[1..]`
@@ -78,6 +87,7 @@ const fn model<const K: usize>(length: usize) -> Decl {
     }
     d = d
         .set_real(set_model::<K>)
+        .after_set(ComputedTorqueFmu::rebuild_law)
         .parameter(Variability::Fixed)
         .start_real(specs(K, length))
         .real_range(p.min, p.max);
@@ -87,109 +97,48 @@ const fn model<const K: usize>(length: usize) -> Decl {
     d
 }
 
-pub const KP: Decl = gain(
-    Decl::real("Kp", "acceleration per angle error, 1/s2", |m, k| {
-        m.gains[k].kp
-    }),
-    1,
-    &[GAINS.kp],
-)
-.set_real(|m, k, v| m.change(|m| m.gains[k].kp = v));
-pub const KD: Decl = gain(
-    Decl::real("Kd", "acceleration per rate error", |m, k| m.gains[k].kd),
-    11,
-    &[GAINS.kd],
-)
-.set_real(|m, k, v| m.change(|m| m.gains[k].kd = v))
-.unit("1/s", None);
-pub const KI: Decl = gain(
-    Decl::real("Ki", "acceleration per integrated error, 1/s3", |m, k| {
-        m.gains[k].ki
-    }),
-    21,
-    &[GAINS.ki],
-)
-.set_real(|m, k, v| m.change(|m| m.gains[k].ki = v));
-pub const LIMIT: Decl = axes(
-    Decl::boolean("limitOutput", "clamp the output to [uMin, uMax]", |m, k| {
-        m.limited[k]
-    }),
+pub const KP: Decl = gain("Kp", 1, &[GAINS.kp], |m, k| &mut m.gains[k].kp)
+    .describe("acceleration per angle error, 1/s2");
+pub const KD: Decl = gain("Kd", 11, &[GAINS.kd], |m, k| &mut m.gains[k].kd)
+    .describe("acceleration per rate error")
+    .unit("1/s", None);
+pub const KI: Decl = gain("Ki", 21, &[GAINS.ki], |m, k| &mut m.gains[k].ki)
+    .describe("acceleration per integrated error, 1/s3");
+pub const LIMIT: Decl = tunable(
+    Decl::boolean_in("limitOutput", |m, k| &mut m.limited[k]),
     31,
 )
-.set_boolean(|m, k, v| m.change(|m| m.limited[k] = v))
-.parameter(Variability::Tunable)
+.describe("clamp the output to [uMin, uMax]")
 .start_boolean(&[false]);
-pub const U_MIN: Decl = gain(
-    Decl::real(
-        "uMin",
-        "lower output limit (used when limitOutput)",
-        |m, k| m.limits[k].0,
-    ),
-    41,
-    &[-1.0],
-)
-.set_real(|m, k, v| m.change(|m| m.limits[k].0 = v))
-.unit("N.m", None);
-pub const U_MAX: Decl = gain(
-    Decl::real(
-        "uMax",
-        "upper output limit (used when limitOutput)",
-        |m, k| m.limits[k].1,
-    ),
-    51,
-    &[1.0],
-)
-.set_real(|m, k, v| m.change(|m| m.limits[k].1 = v))
-.unit("N.m", None);
-pub const SETPOINT: Decl = input(
-    Decl::real("setpoint", "planned Euler angle q", |m, k| {
-        m.inputs.setpoint[k]
-    }),
-    101,
-    ["rad", "deg"],
-    &PLANNED,
-)
-.set_real(|m, k, v| store(&mut m.inputs.setpoint[k], v));
-pub const SETPOINT_RATE: Decl = input(
-    Decl::real("setpointRate", "planned Euler-angle rate qdot", |m, k| {
-        m.inputs.setpoint_rate[k]
-    }),
-    111,
-    ["rad/s", "deg/s"],
-    &[0.0],
-)
-.set_real(|m, k, v| store(&mut m.inputs.setpoint_rate[k], v));
-pub const SETPOINT_ACCELERATION: Decl = input(
-    Decl::real(
-        "setpointAcceleration",
-        "planned Euler-angle acceleration qddot",
-        |m, k| m.inputs.setpoint_acceleration[k],
-    ),
-    121,
-    ["rad/s2", "deg/s2"],
-    &[0.0],
-)
-.set_real(|m, k, v| store(&mut m.inputs.setpoint_acceleration[k], v));
-pub const MEASUREMENT: Decl = input(
-    Decl::real("measurement", "measured Euler angle theta", |m, k| {
-        m.inputs.measurement[k]
-    }),
-    131,
-    ["rad", "deg"],
-    &MEASURED,
-)
-.set_real(|m, k, v| store(&mut m.inputs.measurement[k], v));
-pub const MEASURED_RATE: Decl = input(
-    Decl::real(
-        "measuredRate",
-        "measured Euler-angle rate thetaDot",
-        |m, k| m.inputs.measured_rate[k],
-    ),
-    141,
-    ["rad/s", "deg/s"],
-    &[0.0],
-)
-.set_real(|m, k, v| store(&mut m.inputs.measured_rate[k], v));
+pub const U_MIN: Decl = gain("uMin", 41, &[-1.0], |m, k| &mut m.limits[k].0)
+    .describe("lower output limit (used when limitOutput)")
+    .unit("N.m", None);
+pub const U_MAX: Decl = gain("uMax", 51, &[1.0], |m, k| &mut m.limits[k].1)
+    .describe("upper output limit (used when limitOutput)")
+    .unit("N.m", None);
+pub const SETPOINT: Decl = input("setpoint", 101, ["rad", "deg"], |m, k| {
+    &mut m.inputs.setpoint[k]
+})
+.describe("planned Euler angle q")
+.start_real(&PLANNED);
+pub const SETPOINT_RATE: Decl = input("setpointRate", 111, ["rad/s", "deg/s"], |m, k| {
+    &mut m.inputs.setpoint_rate[k]
+})
+.describe("planned Euler-angle rate qdot");
+pub const SETPOINT_ACCELERATION: Decl =
+    input("setpointAcceleration", 121, ["rad/s2", "deg/s2"], |m, k| {
+        &mut m.inputs.setpoint_acceleration[k]
+    })
+    .describe("planned Euler-angle acceleration qddot");
+pub const MEASUREMENT: Decl = input("measurement", 131, ["rad", "deg"], |m, k| {
+    &mut m.inputs.measurement[k]
+})
+.describe("measured Euler angle theta")
+.start_real(&MEASURED);
+pub const MEASURED_RATE: Decl = input("measuredRate", 141, ["rad/s", "deg/s"], |m, k| {
+    &mut m.inputs.measured_rate[k]
+})
+.describe("measured Euler-angle rate thetaDot");
 pub const U: Decl = Decl::real(
     "u",
     "Euler-angle generalized force (plant generalizedForceCommand)",
@@ -201,15 +150,10 @@ pub const U: Decl = Decl::real(
 .output()
 .unit("N.m", None)
 .initial_depends_on_each(initial_dependencies::of_axis);
-pub const INTEGRAL: Decl = axes(
-    Decl::real("integral", "integral of the angle error (state)", |m, k| {
-        m.integral[k]
-    }),
-    301,
-)
-.set_real(|m, k, v| m.change(|m| m.integral[k] = v))
-.state()
-.start_real(&[0.0]);
+pub const INTEGRAL: Decl = axes(Decl::real_in("integral", |m, k| &mut m.integral[k]), 301)
+    .describe("integral of the angle error (state)")
+    .state()
+    .start_real(&[0.0]);
 pub const DER_INTEGRAL: Decl = Decl::real(
     "der(integral)",
     "Time derivative of the error integral",

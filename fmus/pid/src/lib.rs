@@ -40,8 +40,14 @@ pub struct Pid {
 }
 
 impl Pid {
+    /// Brings the law's limits of channel c up to date (after a parameter is set).
     fn sync_limits(&mut self, c: usize) {
         self.gains[c].limits = self.limited[c].then_some(self.limits[c]);
+    }
+
+    /// The gains of channel c are usable, or why not.
+    fn validate(&self, c: usize) -> Result<(), String> {
+        (self.gains[c].validate()).map_err(|e| format!("channel {}: {e}", c + 1))
     }
 
     fn output(&self, c: usize) -> pid::PidOutput {
@@ -50,18 +56,6 @@ impl Pid {
 
     fn derivative(&self, c: usize) -> PidState {
         pid::derivatives(&self.gains[c], &self.states[c], &self.inputs[c])
-    }
-
-    /// The gains of channel c are usable, or why not.
-    fn validate(&self, c: usize) -> Result<(), String> {
-        (self.gains[c].validate()).map_err(|e| format!("channel {}: {e}", c + 1))
-    }
-
-    /// Applies a change of channel c (setting a limit updates the law's limits).
-    fn change(&mut self, c: usize, f: impl FnOnce(&mut Self)) -> Result<(), String> {
-        f(self);
-        self.sync_limits(c);
-        Ok(())
     }
 
     /// The input derivatives of `order` (1 or 2) of channel c.
@@ -75,6 +69,18 @@ impl Pid {
     }
 }
 
+/// Input K of `inputs`, in the order of the declarations: setpoint, measurement,
+/// setpointRate, measuredRate, feedforward.
+fn input<const K: usize>(inputs: &mut PidInputs) -> &mut f64 {
+    match K {
+        0 => &mut inputs.setpoint,
+        1 => &mut inputs.measurement,
+        2 => &mut inputs.setpoint_rate,
+        3 => &mut inputs.measured_rate,
+        _ => &mut inputs.feedforward,
+    }
+}
+
 type Decl = Declaration<Pid>;
 
 /// The array of the three channels, element c at `vr + c - 1`, described as
@@ -83,179 +89,79 @@ const fn channels(d: Decl, vr: u32) -> Decl {
     d.array(CHANNELS).at(vr).label("Channel")
 }
 
-/// A tunable Real parameter of the three channels (its writer given after it).
-const fn gain(d: Decl, vr: u32, start: &'static [f64]) -> Decl {
-    channels(d, vr)
-        .parameter(Variability::Tunable)
-        .start_real(start)
+/// A tunable Real parameter of the three channels.
+const fn gain(name: &'static str, vr: u32, start: &'static [f64], place: Place<Pid, f64>) -> Decl {
+    let d = channels(Decl::real_in(name, place), vr).parameter(Variability::Tunable);
+    d.start_real(start).after_set(Pid::sync_limits)
 }
 
-/// A continuous Real input of the three channels, its derivatives kept by `ramp`.
-const fn input(d: Decl, vr: u32, start: &'static [f64], ramp: InputDerivative<Pid>) -> Decl {
-    channels(d, vr)
-        .input()
-        .start_real(start)
-        .input_derivative(ramp)
+/// A Boolean parameter of the three channels (start false).
+const fn flag(name: &'static str, vr: u32, v: Variability, place: Place<Pid, bool>) -> Decl {
+    let d = channels(Decl::boolean_in(name, place), vr).parameter(v);
+    d.start_boolean(&[false]).after_set(Pid::sync_limits)
+}
+
+/// Continuous Real input K of the three channels (see [`input`]), its time derivatives
+/// kept in the ramps.
+const fn input_k<const K: usize>(name: &'static str, vr: u32, start: &'static [f64]) -> Decl {
+    let d = Decl::real_in(name, |m, c| input::<K>(&mut m.inputs[c]));
+    let d = channels(d, vr).input().start_real(start);
+    d.input_derivative(|m, c, n| Some(input::<K>(m.ramp(c, n)?)))
 }
 
 /// A continuous state of the three channels (start 0).
-const fn state(d: Decl, vr: u32) -> Decl {
-    channels(d, vr).state().start_real(&[0.0])
+const fn state(name: &'static str, vr: u32, place: Place<Pid, f64>) -> Decl {
+    channels(Decl::real_in(name, place), vr)
+        .state()
+        .start_real(&[0.0])
 }
 
-const KP: Decl = gain(
-    Decl::real("Kp", "Proportional gain", |m, c| m.gains[c].kp),
-    1,
-    &[1.0],
-)
-.set_real(|m, c, v| m.change(c, |m| m.gains[c].kp = v));
-const KI: Decl = gain(
-    Decl::real("Ki", "Integral gain (1/s)", |m, c| m.gains[c].ki),
-    11,
-    &[0.5],
-)
-.set_real(|m, c, v| m.change(c, |m| m.gains[c].ki = v));
-const KD: Decl = gain(
-    Decl::real("Kd", "Derivative gain (s)", |m, c| m.gains[c].kd),
-    21,
-    &[0.1],
-)
-.set_real(|m, c, v| m.change(c, |m| m.gains[c].kd = v));
-const TF: Decl = gain(
-    Decl::real(
-        "Tf",
-        "Derivative filter time constant (0 allowed only with rate inputs)",
-        |m, c| m.gains[c].tf,
-    ),
-    31,
-    &[0.05],
-)
-.set_real(|m, c, v| m.change(c, |m| m.gains[c].tf = v))
-.real_range(Some(0.0), None);
-const LIMIT: Decl = channels(
-    Decl::boolean("limitOutput", "clamp the output to [uMin, uMax]", |m, c| {
-        m.limited[c]
-    }),
-    41,
-)
-.set_boolean(|m, c, v| m.change(c, |m| m.limited[c] = v))
-.parameter(Variability::Tunable)
-.start_boolean(&[false]);
-const U_MIN: Decl = gain(
-    Decl::real(
-        "uMin",
-        "Lower output limit (used when limitOutput)",
-        |m, c| m.limits[c].0,
-    ),
-    51,
-    &[-1.0],
-)
-.set_real(|m, c, v| m.change(c, |m| m.limits[c].0 = v));
-const U_MAX: Decl = gain(
-    Decl::real(
-        "uMax",
-        "Upper output limit (used when limitOutput)",
-        |m, c| m.limits[c].1,
-    ),
-    61,
-    &[1.0],
-)
-.set_real(|m, c, v| m.change(c, |m| m.limits[c].1 = v));
-const RATES: Decl = channels(
-    Decl::boolean(
-        "useRateInputs",
-        "derivative from setpointRate - measuredRate instead of the filtered error",
-        |m, c| m.gains[c].use_rate_inputs,
-    ),
-    71,
-)
-.set_boolean(|m, c, v| m.change(c, |m| m.gains[c].use_rate_inputs = v))
-.parameter(Variability::Fixed)
-.start_boolean(&[false]);
-const SETPOINT: Decl = input(
-    Decl::real("setpoint", "Setpoint r", |m, c| m.inputs[c].setpoint),
-    101,
-    &[1.0, 0.5, -0.25],
-    |m, c, n| m.ramp(c, n).map(|r| &mut r.setpoint),
-)
-.set_real(|m, c, v| m.change(c, |m| m.inputs[c].setpoint = v));
-const MEASURED: Decl = input(
-    Decl::real("measurement", "Measurement y (e = r - y)", |m, c| {
-        m.inputs[c].measurement
-    }),
-    111,
-    &[0.0],
-    |m, c, n| m.ramp(c, n).map(|r| &mut r.measurement),
-)
-.set_real(|m, c, v| m.change(c, |m| m.inputs[c].measurement = v));
-const R_RATE: Decl = input(
-    Decl::real(
-        "setpointRate",
-        "Setpoint rate dr/dt (used when useRateInputs)",
-        |m, c| m.inputs[c].setpoint_rate,
-    ),
-    121,
-    &[0.0],
-    |m, c, n| m.ramp(c, n).map(|r| &mut r.setpoint_rate),
-)
-.set_real(|m, c, v| m.change(c, |m| m.inputs[c].setpoint_rate = v));
-const Y_RATE: Decl = input(
-    Decl::real(
-        "measuredRate",
-        "Measured rate dy/dt (used when useRateInputs)",
-        |m, c| m.inputs[c].measured_rate,
-    ),
-    131,
-    &[0.0],
-    |m, c, n| m.ramp(c, n).map(|r| &mut r.measured_rate),
-)
-.set_real(|m, c, v| m.change(c, |m| m.inputs[c].measured_rate = v));
-const FEEDFWD: Decl = input(
-    Decl::real(
-        "feedforward",
-        "Added to the output before the limits",
-        |m, c| m.inputs[c].feedforward,
-    ),
-    141,
-    &[0.0],
-    |m, c, n| m.ramp(c, n).map(|r| &mut r.feedforward),
-)
-.set_real(|m, c, v| m.change(c, |m| m.inputs[c].feedforward = v));
+const KP: Decl = gain("Kp", 1, &[1.0], |m, c| &mut m.gains[c].kp).describe("Proportional gain");
+const KI: Decl = gain("Ki", 11, &[0.5], |m, c| &mut m.gains[c].ki).describe("Integral gain (1/s)");
+const KD: Decl = gain("Kd", 21, &[0.1], |m, c| &mut m.gains[c].kd).describe("Derivative gain (s)");
+const TF: Decl = gain("Tf", 31, &[0.05], |m, c| &mut m.gains[c].tf)
+    .describe("Derivative filter time constant (0 allowed only with rate inputs)")
+    .real_range(Some(0.0), None);
+const LIMIT: Decl = flag("limitOutput", 41, Variability::Tunable, |m, c| {
+    &mut m.limited[c]
+})
+.describe("clamp the output to [uMin, uMax]");
+const U_MIN: Decl = gain("uMin", 51, &[-1.0], |m, c| &mut m.limits[c].0)
+    .describe("Lower output limit (used when limitOutput)");
+const U_MAX: Decl = gain("uMax", 61, &[1.0], |m, c| &mut m.limits[c].1)
+    .describe("Upper output limit (used when limitOutput)");
+const RATES: Decl = flag("useRateInputs", 71, Variability::Fixed, |m, c| {
+    &mut m.gains[c].use_rate_inputs
+})
+.describe("derivative from setpointRate - measuredRate instead of the filtered error");
+const SETPOINT: Decl = input_k::<0>("setpoint", 101, &[1.0, 0.5, -0.25]).describe("Setpoint r");
+const MEASURED: Decl =
+    input_k::<1>("measurement", 111, &[0.0]).describe("Measurement y (e = r - y)");
+const R_RATE: Decl = input_k::<2>("setpointRate", 121, &[0.0])
+    .describe("Setpoint rate dr/dt (used when useRateInputs)");
+const Y_RATE: Decl = input_k::<3>("measuredRate", 131, &[0.0])
+    .describe("Measured rate dy/dt (used when useRateInputs)");
+const FEEDFWD: Decl =
+    input_k::<4>("feedforward", 141, &[0.0]).describe("Added to the output before the limits");
 const U: Decl = channels(Decl::real("u", "control output", |m, c| m.output(c).u), 201)
     .output()
     .initial_depends_on(&OUTPUT_KNOWNS);
-const INTEGRAL: Decl = state(
-    Decl::real("integral", "integral of the error (state)", |m, c| {
-        m.states[c].integral
-    }),
-    301,
-)
-.set_real(|m, c, v| m.change(c, |m| m.states[c].integral = v));
-const FILTER: Decl = state(
-    Decl::real("filter", "derivative filter state (state)", |m, c| {
-        m.states[c].filter
-    }),
-    311,
-)
-.set_real(|m, c, v| m.change(c, |m| m.states[c].filter = v));
-const DER_INT: Decl = Decl::real(
-    "der(integral)",
-    "Time derivative of the error integral",
-    |m, c| m.derivative(c).integral,
-)
-.array(CHANNELS)
-.at(321)
-.derivative_of(INTEGRAL.name)
-.initial_depends_on(&OUTPUT_KNOWNS);
-const DER_FILTER: Decl = Decl::real(
-    "der(filter)",
-    "Time derivative of the derivative filter state",
-    |m, c| m.derivative(c).filter,
-)
-.array(CHANNELS)
-.at(331)
-.derivative_of(FILTER.name)
-.initial_depends_on(&FILTER_KNOWNS);
+const INTEGRAL: Decl = state("integral", 301, |m, c| &mut m.states[c].integral)
+    .describe("integral of the error (state)");
+const FILTER: Decl = state("filter", 311, |m, c| &mut m.states[c].filter)
+    .describe("derivative filter state (state)");
+const DER_INT: Decl = Decl::real("der(integral)", "", |m, c| m.derivative(c).integral)
+    .describe("Time derivative of the error integral")
+    .array(CHANNELS)
+    .at(321)
+    .derivative_of(INTEGRAL.name)
+    .initial_depends_on(&OUTPUT_KNOWNS);
+const DER_FILTER: Decl = Decl::real("der(filter)", "", |m, c| m.derivative(c).filter)
+    .describe("Time derivative of the derivative filter state")
+    .array(CHANNELS)
+    .at(331)
+    .derivative_of(FILTER.name)
+    .initial_depends_on(&FILTER_KNOWNS);
 
 /// What the filter's dx/dt reads at initialization, in the same channel.
 static FILTER_KNOWNS: [Var; 8] = same(&[KD, TF, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FILTER]);

@@ -35,11 +35,9 @@ pub struct Planner {
 }
 
 impl Planner {
-    /// Applies a change of the parameters and plans again.
-    fn change(&mut self, f: impl FnOnce(&mut Self)) -> Result<(), String> {
-        f(self);
+    /// Plans again (after a parameter is set).
+    fn replan(&mut self, _: usize) {
         self.plan = self.planned().ok();
-        Ok(())
     }
 
     fn planned(&self) -> Result<Plan<AXES>, String> {
@@ -67,11 +65,14 @@ const fn axes(d: Decl, vr: u32, k: usize) -> Decl {
     d.unit(UNITS[k].0, Some(UNITS[k].1))
 }
 
-/// A boundary value of the three axes, order k of a position (writer given after it).
-const fn boundary(d: Decl, vr: u32, k: usize, start: &'static [f64]) -> Decl {
-    axes(d, vr, k)
-        .parameter(Variability::Fixed)
-        .start_real(start)
+/// A fixed parameter: the plan follows it.
+const fn fixed(d: Decl) -> Decl {
+    d.parameter(Variability::Fixed).after_set(Planner::replan)
+}
+
+/// A boundary value of the three axes, order k of a position (start 0 unless given).
+const fn boundary(name: &'static str, vr: u32, k: usize, place: Place<Planner, f64>) -> Decl {
+    fixed(axes(Decl::real_in(name, place), vr, k)).start_real(&[0.0])
 }
 
 /// Planned output k (0 q, 1 qdot, 2 qddot) of the three axes (NaN until the parameters
@@ -83,75 +84,33 @@ const fn planned<const K: usize>(name: &'static str, vr: u32, what: &'static str
         .initial_depends_on(&KNOWNS)
 }
 
-const ORDER: Decl = Decl::integer(
-    "order",
-    "Polynomial degree: 3 (cubic) or 5 (quintic)",
-    |m, _| m.degree,
-)
-.set_integer(|m, _, v| match Order::from_degree(v) {
-    None => Err("the order must be 3 or 5".to_string()),
-    Some(_) => m.change(|m| m.degree = v),
-})
-.parameter(Variability::Fixed)
-.start_integer(&[5])
-.integer_range(3, 5)
-.at(1);
-const T0: Decl = Decl::real("t0", "Start time of the motion", |m, _| m.t0)
-    .set_real(|m, _, v| m.change(|m| m.t0 = v))
-    .parameter(Variability::Fixed)
-    .unit("s", None)
+const ORDER: Decl = fixed(Decl::integer_in("order", |m, _| &mut m.degree))
+    .describe("Polynomial degree: 3 (cubic) or 5 (quintic)")
+    .set_integer(|m, _, v| {
+        let order = Order::from_degree(v).map(|_| m.degree = v);
+        order.ok_or_else(|| "the order must be 3 or 5".to_string())
+    })
+    .start_integer(&[5])
+    .integer_range(3, 5)
+    .at(1);
+const T0: Decl = fixed(Decl::real_in("t0", |m, _| &mut m.t0).unit("s", None))
+    .describe("Start time of the motion")
     .start_real(&[0.0]);
-const TF: Decl = Decl::real("tf", "End time of the motion (after t0)", |m, _| m.tf)
-    .set_real(|m, _, v| m.change(|m| m.tf = v))
-    .parameter(Variability::Fixed)
-    .unit("s", None)
+const TF: Decl = fixed(Decl::real_in("tf", |m, _| &mut m.tf).unit("s", None))
+    .describe("End time of the motion (after t0)")
     .start_real(&[2.0]);
-const Q0: Decl = boundary(
-    Decl::real("q0", "position at t0", |m, a| m.boundary[a].q0),
-    10,
-    0,
-    &[0.0],
-)
-.set_real(|m, a, v| m.change(|m| m.boundary[a].q0 = v));
-const QF: Decl = boundary(
-    Decl::real("qf", "position at tf", |m, a| m.boundary[a].qf),
-    11,
-    0,
-    &[0.5, -0.3, 0.8],
-)
-.set_real(|m, a, v| m.change(|m| m.boundary[a].qf = v));
-const QDOT0: Decl = boundary(
-    Decl::real("qdot0", "velocity at t0", |m, a| m.boundary[a].qdot0),
-    12,
-    1,
-    &[0.0],
-)
-.set_real(|m, a, v| m.change(|m| m.boundary[a].qdot0 = v));
-const QDOTF: Decl = boundary(
-    Decl::real("qdotf", "velocity at tf", |m, a| m.boundary[a].qdotf),
-    13,
-    1,
-    &[0.0],
-)
-.set_real(|m, a, v| m.change(|m| m.boundary[a].qdotf = v));
-const QDDOT0: Decl = boundary(
-    Decl::real("qddot0", "acceleration at t0 (quintic only)", |m, a| {
-        m.boundary[a].qddot0
-    }),
-    14,
-    2,
-    &[0.0],
-)
-.set_real(|m, a, v| m.change(|m| m.boundary[a].qddot0 = v));
-const QDDOTF: Decl = boundary(
-    Decl::real("qddotf", "acceleration at tf (quintic only)", |m, a| {
-        m.boundary[a].qddotf
-    }),
-    15,
-    2,
-    &[0.0],
-)
-.set_real(|m, a, v| m.change(|m| m.boundary[a].qddotf = v));
+const Q0: Decl = boundary("q0", 10, 0, |m, a| &mut m.boundary[a].q0).describe("position at t0");
+const QF: Decl = boundary("qf", 11, 0, |m, a| &mut m.boundary[a].qf)
+    .describe("position at tf")
+    .start_real(&[0.5, -0.3, 0.8]);
+const QDOT0: Decl =
+    boundary("qdot0", 12, 1, |m, a| &mut m.boundary[a].qdot0).describe("velocity at t0");
+const QDOTF: Decl =
+    boundary("qdotf", 13, 1, |m, a| &mut m.boundary[a].qdotf).describe("velocity at tf");
+const QDDOT0: Decl = boundary("qddot0", 14, 2, |m, a| &mut m.boundary[a].qddot0)
+    .describe("acceleration at t0 (quintic only)");
+const QDDOTF: Decl = boundary("qddotf", 15, 2, |m, a| &mut m.boundary[a].qddotf)
+    .describe("acceleration at tf (quintic only)");
 
 /// What the outputs of axis a depend on at initialization: time, order, t0, tf and
 /// that axis's boundary values.

@@ -174,11 +174,9 @@ impl Pss3Plant {
         }
     }
 
-    /// Applies a change of a parameter and rebuilds the plant.
-    fn change(&mut self, f: impl FnOnce(&mut Self)) -> Result<(), String> {
-        f(self);
+    /// After a parameter is set: the plant rebuilt.
+    fn changed(&mut self, _: usize) {
         self.rebuild();
-        Ok(())
     }
 
     fn plant(&self) -> Result<&Plant, String> {
@@ -406,7 +404,7 @@ impl Model for Pss3Plant {
         self.computed.as_ref().map(|_| ()).map_err(Clone::clone)
     }
 
-    fn continuous_states(&self, x: &mut [f64]) {
+    fn continuous_states(&mut self, x: &mut [f64]) {
         x.copy_from_slice(self.state.to_vector().as_slice());
     }
 

@@ -73,7 +73,8 @@ fn get_model<const K: usize>(m: &Pss3Plant, i: usize) -> f64 {
 }
 
 fn set_model<const K: usize>(m: &mut Pss3Plant, i: usize, v: f64) -> Result<(), String> {
-    m.change(|m| (MODEL_PARAMETERS[K + i].set)(&mut m.params, v))
+    (MODEL_PARAMETERS[K + i].set)(&mut m.params, v);
+    Ok(())
 }
 
 /// The robot-model parameter `MODEL_PARAMETERS[K]` at `vr` (with `length` 3: the array
@@ -92,6 +93,7 @@ const fn model<const K: usize>(vr: u32, length: usize) -> Decl {
     d = d
         .at(vr)
         .set_real(set_model::<K>)
+        .after_set(Pss3Plant::changed)
         .parameter(Variability::Fixed)
         .start_real(start)
         .real_range(p.min, p.max);
@@ -101,12 +103,13 @@ const fn model<const K: usize>(vr: u32, length: usize) -> Decl {
     }
 }
 
-/// A fixed Real parameter of the plant's own at `vr` (its writer given after it).
+/// A fixed Real parameter of the plant's own at `vr`: the plant is rebuilt from it.
 const fn own(d: Decl, vr: u32, start: &'static [f64]) -> Decl {
-    d.at(vr).parameter(Variability::Fixed).start_real(start)
+    let d = d.at(vr).parameter(Variability::Fixed).start_real(start);
+    d.after_set(Pss3Plant::changed)
 }
 
-/// A part of the initial state, three elements at `vr` (its writer given after it).
+/// A part of the initial state, three elements at `vr`.
 const fn initial(d: Decl, vr: u32, start: &'static [f64]) -> Decl {
     d.array(3)
         .at(vr)
@@ -125,26 +128,18 @@ pub const GEOMETRY: [Decl; 7] = [
     model::<6>(1007, 1),
 ];
 pub const STROKE_MIN: Decl = own(
-    Decl::real(
-        "strokeMin",
-        "Lower end of the actuator stroke (lower end stop)",
-        |m, _| m.params.geometry.stroke_min,
-    ),
+    Decl::real_in("strokeMin", |m, _| &mut m.params.geometry.stroke_min)
+        .describe("Lower end of the actuator stroke (lower end stop)"),
     1008,
     &[0.002],
 )
-.set_real(|m, _, v| m.change(|m| m.params.geometry.stroke_min = v))
 .unit("m", Some("mm"));
 pub const STROKE_MAX: Decl = own(
-    Decl::real(
-        "strokeMax",
-        "Upper end of the actuator stroke (upper end stop)",
-        |m, _| m.params.geometry.stroke_max,
-    ),
+    Decl::real_in("strokeMax", |m, _| &mut m.params.geometry.stroke_max)
+        .describe("Upper end of the actuator stroke (upper end stop)"),
     1009,
     &[0.152],
 )
-.set_real(|m, _, v| m.change(|m| m.params.geometry.stroke_max = v))
 .unit("m", Some("mm"));
 pub const PLATFORM_MASS: Decl = model::<7>(1010, 1);
 pub const LEG_MASS: Decl = model::<17>(1011, 1);
@@ -155,51 +150,36 @@ pub const G: Decl = model::<21>(1015, 1);
 pub const SLIDER_FRICTION: Decl = model::<22>(1016, 1);
 pub const PIVOT_FRICTION: Decl = model::<23>(1017, 1);
 pub const END_STOP_STIFFNESS: Decl = own(
-    Decl::real(
-        "endStopStiffness",
-        "Stiffness of the end-stop springs (endStopMode 1: positive)",
-        |m, _| m.params.end_stops.stiffness,
-    ),
+    Decl::real_in("endStopStiffness", |m, _| &mut m.params.end_stops.stiffness)
+        .describe("Stiffness of the end-stop springs (endStopMode 1: positive)"),
     1018,
     &[1e6],
 )
-.set_real(|m, _, v| m.change(|m| m.params.end_stops.stiffness = v))
 .real_range(Some(0.0), None)
 .unit("N/m", None);
 pub const END_STOP_DAMPING: Decl = own(
-    Decl::real(
-        "endStopDamping",
-        "Damping of the end stops (endStopMode 1); the stop pushes, never pulls",
-        |m, _| m.params.end_stops.damping,
-    ),
+    Decl::real_in("endStopDamping", |m, _| &mut m.params.end_stops.damping)
+        .describe("Damping of the end stops (endStopMode 1); the stop pushes, never pulls"),
     1019,
     &[2000.0],
 )
-.set_real(|m, _, v| m.change(|m| m.params.end_stops.damping = v))
 .real_range(Some(0.0), None)
 .unit("N.s/m", None);
 const TOLERANCE: Decl = own(
-    Decl::real(
-        "tolerance",
+    Decl::real_in("tolerance", |m, _| &mut m.settings.tolerance).describe(
         "Relative and absolute tolerance of the co-simulation integrator \
      (Dormand-Prince 5(4)), positive",
-        |m, _| m.settings.tolerance,
     ),
     1020,
     &[1e-8],
 )
-.set_real(|m, _, v| m.change(|m| m.settings.tolerance = v))
 .real_range(Some(0.0), None);
 const MAX_STEP: Decl = own(
-    Decl::real(
-        "maxStep",
-        "Largest internal step of the co-simulation integrator, positive",
-        |m, _| m.settings.max_step,
-    ),
+    Decl::real_in("maxStep", |m, _| &mut m.settings.max_step)
+        .describe("Largest internal step of the co-simulation integrator, positive"),
     1021,
     &[1e-3],
 )
-.set_real(|m, _, v| m.change(|m| m.settings.max_step = v))
 .real_range(Some(0.0), None)
 .unit("s", None);
 /// platformInertia[1,1], [2,2], [3,3], [1,2], [1,3], [2,3].
@@ -213,47 +193,32 @@ pub const PLATFORM_INERTIA: [Decl; 6] = [
 ];
 pub const PLATFORM_COM: Decl = model::<8>(1028, 3);
 pub const THETA0: Decl = initial(
-    Decl::real(
-        "theta0",
-        "Initial Euler angles (thx, thy, thz), used unless initFromActuators",
-        |m, i| m.initial.theta0[i],
-    ),
+    Decl::real_in("theta0", |m, i| &mut m.initial.theta0[i])
+        .describe("Initial Euler angles (thx, thy, thz), used unless initFromActuators"),
     1031,
     &START_POSE,
 )
-.set_real(|m, i, v| store(&mut m.initial.theta0[i], v))
 .unit("rad", Some("deg"));
 pub const L0: Decl = initial(
-    Decl::real(
-        "l0",
-        "Initial actuator displacements, used when initFromActuators",
-        |m, i| m.initial.l0[i],
-    ),
+    Decl::real_in("l0", |m, i| &mut m.initial.l0[i])
+        .describe("Initial actuator displacements, used when initFromActuators"),
     1034,
     &[START_DISPLACEMENT],
 )
-.set_real(|m, i, v| store(&mut m.initial.l0[i], v))
 .unit("m", Some("mm"));
 pub const OMEGA0: Decl = initial(
-    Decl::real(
-        "omega0",
-        "Initial angular velocity of the platform in {A}",
-        |m, i| m.initial.omega0[i],
-    ),
+    Decl::real_in("omega0", |m, i| &mut m.initial.omega0[i])
+        .describe("Initial angular velocity of the platform in {A}"),
     1037,
     &[0.0],
 )
-.set_real(|m, i, v| store(&mut m.initial.omega0[i], v))
 .unit("rad/s", Some("deg/s"));
-pub const INIT_FROM_ACTUATORS: Decl = Decl::boolean(
-    "initFromActuators",
-    "Initial pose from l0 by forward kinematics instead of theta0",
-    |m, _| m.initial.from_actuators,
-)
-.at(1040)
-.set_boolean(|m, _, v| store(&mut m.initial.from_actuators, v))
-.parameter(Variability::Fixed)
-.start_boolean(&[false]);
+pub const INIT_FROM_ACTUATORS: Decl =
+    Decl::boolean_in("initFromActuators", |m, _| &mut m.initial.from_actuators)
+        .describe("Initial pose from l0 by forward kinematics instead of theta0")
+        .at(1040)
+        .parameter(Variability::Fixed)
+        .start_boolean(&[false]);
 const END_STOP_MODE: Decl = Decl::integer(
     "endStopMode",
     "End stops: 1 = spring-damper (contacts flagged in atStop), 2 = error (a step \
@@ -267,8 +232,10 @@ const END_STOP_MODE: Decl = Decl::integer(
     } else {
         EndStopMode::Spring
     };
-    m.change(|m| m.params.end_stops.mode = mode)
+    m.params.end_stops.mode = mode;
+    Ok(())
 })
+.after_set(Pss3Plant::changed)
 .parameter(Variability::Fixed)
 .integer_range(1, 2)
 .start_integer(&[1]);
@@ -336,7 +303,7 @@ mod tests {
     fn every_start_value_is_the_library_default() {
         // Truth: a model built from the library's defaults (PlantParams::default(),
         // StepSettings::default().tolerance, the start pose by forward kinematics),
-        // read through each declaration's getter.
+        // read through each declaration's accessor.
         let mut m = Pss3Plant::default();
         m.initial.theta0 = default_start_pose();
         let mut checked = 0;
@@ -346,19 +313,19 @@ mod tests {
                 match d.value {
                     Value::Real { get, start, .. } => {
                         if let Some(s) = pick(start) {
-                            assert!((get(&m, i) - s).abs() <= 1e-12, "{}[{i}]", d.name);
+                            assert!((get.read(&mut m, i) - s).abs() <= 1e-12, "{}[{i}]", d.name);
                             checked += 1;
                         }
                     }
                     Value::Integer { get, start, .. } => {
                         if let [s] = start {
-                            assert_eq!(get(&m, i), *s, "{}", d.name);
+                            assert_eq!(get.read(&mut m, i), *s, "{}", d.name);
                             checked += 1;
                         }
                     }
                     Value::Boolean { get, start, .. } => {
                         if let [s] = start {
-                            assert_eq!(get(&m, i), *s, "{}", d.name);
+                            assert_eq!(get.read(&mut m, i), *s, "{}", d.name);
                             checked += 1;
                         }
                     }

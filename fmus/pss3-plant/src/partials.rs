@@ -205,7 +205,10 @@ fn output_partials(m: &Pss3Plant, unknowns: &[Element], k: Known) -> Result<Vec<
         let mut copy = moved(m, k, delta)?;
         copy.calculate_values()
             .map_err(|e| format!("the plant cannot be evaluated near this point: {e}"))?;
-        Ok(getters.iter().map(|(get, i)| get(&copy, *i)).collect())
+        Ok(getters
+            .iter()
+            .map(|(get, i)| get.read(&mut copy, *i))
+            .collect())
     };
     let current = *known_value(&mut m.current_state()?, &mut m.inputs.clone(), k);
     let h = match k {

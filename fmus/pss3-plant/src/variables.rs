@@ -8,6 +8,7 @@ use super::initial_dependencies as init;
 use super::output_rates::{Output, output_derivative};
 use super::{Pss3Plant, parameters};
 use robofmu_dynamics::pss3::dynamics::PlantInputs;
+use robofmu_fmi::core::declare::Access;
 use robofmu_fmi::prelude::*;
 
 type Decl = Declaration<Pss3Plant>;
@@ -71,50 +72,40 @@ fn euler(m: &Pss3Plant, axis: usize, sign: f64) -> f64 {
 }
 
 pub const ACTUATOR_FORCE: Decl = input(
-    Decl::real(
-        "actuatorForce",
-        "Force applied by actuator i along its axis u_i",
-        |m, i| m.inputs.forces[i],
-    ),
+    Decl::real_in("actuatorForce", |m, i| &mut m.inputs.forces[i])
+        .describe("Force applied by actuator i along its axis u_i"),
     0,
     "N",
     |m, i, order| Some(&mut ramp(m, order)?.forces[i]),
-)
-.set_real(|m, i, v| store(&mut m.inputs.forces[i], v));
+);
 pub const TORQUE_COMMAND: Decl = input(
-    Decl::real(
-        "torqueCommand",
-        "Commanded moment about P in {A}, realised by the actuators (f = J^-T tau)",
-        |m, i| m.inputs.commanded_torque[i],
-    ),
+    Decl::real_in("torqueCommand", |m, i| &mut m.inputs.commanded_torque[i])
+        .describe("Commanded moment about P in {A}, realised by the actuators (f = J^-T tau)"),
     10,
     "N.m",
     |m, i, order| Some(&mut ramp(m, order)?.commanded_torque[i]),
-)
-.set_real(|m, i, v| store(&mut m.inputs.commanded_torque[i], v));
+);
 pub const GENERALIZED_FORCE_COMMAND: Decl = input(
-    Decl::real(
-        "generalizedForceCommand",
+    Decl::real_in("generalizedForceCommand", |m, i| {
+        &mut m.inputs.generalized_force[i]
+    })
+    .describe(
         "Commanded generalized force in Euler-angle coordinates (thx, thy, thz), \
          realised by the actuators (tau = E^-T Q, f = J^-T tau)",
-        |m, i| m.inputs.generalized_force[i],
     ),
     20,
     "N.m",
     |m, i, order| Some(&mut ramp(m, order)?.generalized_force[i]),
-)
-.set_real(|m, i, v| store(&mut m.inputs.generalized_force[i], v));
+);
 pub const DISTURBANCE_TORQUE: Decl = input(
-    Decl::real(
-        "disturbanceTorque",
-        "External moment on the platform about P in {A} (not through the actuators)",
-        |m, i| m.inputs.disturbance_torque[i],
-    ),
+    Decl::real_in("disturbanceTorque", |m, i| {
+        &mut m.inputs.disturbance_torque[i]
+    })
+    .describe("External moment on the platform about P in {A} (not through the actuators)"),
     30,
     "N.m",
     |m, i, order| Some(&mut ramp(m, order)?.disturbance_torque[i]),
-)
-.set_real(|m, i, v| store(&mut m.inputs.disturbance_torque[i], v));
+);
 // A declaration's own list cannot name it (a const that refers to itself): theta and
 // omega reach their lists through a function.
 pub const THETA: Decl = vector(
@@ -365,8 +356,8 @@ pub static VARIABLES: [Decl; 23 + parameters::COUNT] = concat(
     INPUTS_OUTPUTS[0],
 );
 
-/// The getter of the Real declaration `name`, if there is one.
-pub fn real_getter(name: &str) -> Option<fn(&Pss3Plant, usize) -> f64> {
+/// The accessor of the Real declaration `name`, if there is one.
+pub fn real_getter(name: &str) -> Option<Access<Pss3Plant, f64>> {
     VARIABLES
         .iter()
         .find(|d| d.name == name)

@@ -3,6 +3,13 @@
 //! declaration allocates nothing and nothing of it has to be freed when the library
 //! is unloaded.
 //!
+//! A variable the model keeps (parameter, input, state) is declared with its place,
+//! `|m, i| &mut m.field[i]`: the layer reads and writes through that one accessor
+//! ([`Access::Place`]); a variable the model computes (output, derivative) with a
+//! getter ([`Access::Get`]). A writer of the model's own ([`Declaration::set_real`]
+//! ...) checks a value before it is stored, and [`Declaration::after_set`] runs after
+//! every accepted write (a law rebuilt from its parameters).
+//!
 //! One declaration is a scalar or a one-dimensional array (FMI 3.0 shape: `q` with
 //! `<Dimension start="3"/>`); FMI 2.0 sees the array flattened into the scalars
 //! `q[1]`..`q[3]` ([`flatten`](super::flatten)). Accessors take the element index (0 for a scalar),
@@ -26,16 +33,55 @@ pub use super::hooks::{
     Dependencies, Element, ElementDependencies, InputDerivative, OutputDerivative, Var,
 };
 
-/// Reads element i (0 for a scalar).
+/// Reads element i (0 for a scalar) of a value the model computes.
 pub type Get<M, T> = fn(&M, usize) -> T;
-/// Writes element i (0 for a scalar); Err: the value is refused, with the reason.
+/// Where the model keeps element i (0 for a scalar): one accessor through which the
+/// layer both reads and writes the value.
+pub type Place<M, T> = fn(&mut M, usize) -> &mut T;
+/// Writes element i (0 for a scalar) with a check of the model's own; Err: the value
+/// is refused, with the reason.
 pub type Set<M, T> = fn(&mut M, usize, T) -> Result<(), String>;
+/// Runs after every accepted write of element i (the model brings what depends on the
+/// value up to date).
+pub type AfterSet<M> = fn(&mut M, usize);
+
+/// How the layer reads a variable: computed by a getter, or kept at a place (then
+/// also written there, unless the declaration gives a writer of its own).
+pub enum Access<M, T> {
+    Get(Get<M, T>),
+    Place(Place<M, T>),
+}
+
+impl<M, T: Copy> Access<M, T> {
+    /// Element i of `model` (a place is reached through `&mut`, not changed).
+    #[inline(always)]
+    pub fn read(self, model: &mut M, i: usize) -> T {
+        match self {
+            Access::Get(get) => get(model, i),
+            Access::Place(place) => *place(model, i),
+        }
+    }
+
+    /// Whether the variable is kept at a place.
+    pub fn is_place(self) -> bool {
+        matches!(self, Access::Place(_))
+    }
+
+    /// Element i of `model` when it is computed (None: it is kept at a place, which
+    /// only `&mut` reaches).
+    pub fn computed(self, model: &M, i: usize) -> Option<T> {
+        match self {
+            Access::Get(get) => Some(get(model, i)),
+            Access::Place(_) => None,
+        }
+    }
+}
 
 /// The typed part of a declaration. `start` holds no value (none), one value (every
 /// element's) or one per element.
 pub enum Value<M: 'static> {
     Real {
-        get: Get<M, f64>,
+        get: Access<M, f64>,
         set: Option<Set<M, f64>>,
         start: &'static [f64],
         min: Option<f64>,
@@ -44,14 +90,14 @@ pub enum Value<M: 'static> {
         display_unit: Option<&'static str>,
     },
     Integer {
-        get: Get<M, i32>,
+        get: Access<M, i32>,
         set: Option<Set<M, i32>>,
         start: &'static [i32],
         min: Option<i32>,
         max: Option<i32>,
     },
     Boolean {
-        get: Get<M, bool>,
+        get: Access<M, bool>,
         set: Option<Set<M, bool>>,
         start: &'static [bool],
     },
@@ -63,9 +109,9 @@ pub enum Value<M: 'static> {
 /// use robofmu_fmi::prelude::*;
 /// struct Arm { q: [f64; 3] }
 /// static VARIABLES: &[Declaration<Arm>] = &[
-///     Declaration::real("q", "joint angle", |m: &Arm, i| m.q[i])
+///     Declaration::real_in("q", |m: &mut Arm, i| &mut m.q[i])
+///         .describe("joint angle")
 ///         .array(3)
-///         .set_real(|m, i, v| { m.q[i] = v; Ok(()) })
 ///         .parameter(Variability::Fixed)
 ///         .unit("rad", Some("deg"))
 ///         .start_real(&[0.0, 0.5, 1.0]),
@@ -109,6 +155,34 @@ pub struct Declaration<M: 'static> {
     pub output_derivative_order: u32,
     /// Hook: where the model keeps the time derivatives of a continuous input.
     pub input_derivative: Option<InputDerivative<M>>,
+    /// Hook: runs after every accepted write of an element.
+    pub after_set: Option<AfterSet<M>>,
+}
+
+impl<M, T> Clone for Access<M, T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<M, T> Copy for Access<M, T> {}
+
+/// Writes `value` to element i through `set` if given, else at the place of `get`;
+/// None: neither (a computed variable without a writer).
+pub fn write_element<M, T>(
+    get: Access<M, T>,
+    set: Option<Set<M, T>>,
+    model: &mut M,
+    i: usize,
+    value: T,
+) -> Option<Result<(), String>> {
+    match (set, get) {
+        (Some(set), _) => Some(set(model, i, value)),
+        (None, Access::Place(place)) => {
+            *place(model, i) = value;
+            Some(Ok(()))
+        }
+        (None, Access::Get(_)) => None,
+    }
 }
 
 impl<M> Clone for Value<M> {
@@ -164,11 +238,37 @@ impl<M> Declaration<M> {
             output_derivative: None,
             output_derivative_order: 0,
             input_derivative: None,
+            after_set: None,
         }
     }
 
-    /// A Real variable read by `get` (a local until a role is given).
+    /// A Real variable the model computes, read by `get` (a local until a role is
+    /// given).
     pub const fn real(name: &'static str, description: &'static str, get: Get<M, f64>) -> Self {
+        Self::real_access(name, description, Access::Get(get))
+    }
+
+    /// A Real variable kept at `place`, read and written there (its description given
+    /// by [`describe`](Self::describe)): `Declaration::real_in("kp", |m, i| &mut m.kp[i])`.
+    pub const fn real_in(name: &'static str, place: Place<M, f64>) -> Self {
+        Self::real_access(name, "", Access::Place(place))
+    }
+
+    /// An Integer variable kept at `place`, read and written there.
+    pub const fn integer_in(name: &'static str, place: Place<M, i32>) -> Self {
+        Self::integer_access(name, "", Access::Place(place))
+    }
+
+    /// A Boolean variable kept at `place`, read and written there.
+    pub const fn boolean_in(name: &'static str, place: Place<M, bool>) -> Self {
+        Self::boolean_access(name, "", Access::Place(place))
+    }
+
+    const fn real_access(
+        name: &'static str,
+        description: &'static str,
+        get: Access<M, f64>,
+    ) -> Self {
         let value = Value::Real {
             get,
             set: None,
@@ -181,8 +281,16 @@ impl<M> Declaration<M> {
         Self::with_value(name, description, value)
     }
 
-    /// An Integer variable read by `get`.
+    /// An Integer variable the model computes, read by `get`.
     pub const fn integer(name: &'static str, description: &'static str, get: Get<M, i32>) -> Self {
+        Self::integer_access(name, description, Access::Get(get))
+    }
+
+    const fn integer_access(
+        name: &'static str,
+        description: &'static str,
+        get: Access<M, i32>,
+    ) -> Self {
         let value = Value::Integer {
             get,
             set: None,
@@ -193,14 +301,35 @@ impl<M> Declaration<M> {
         Self::with_value(name, description, value)
     }
 
-    /// A Boolean variable read by `get`.
+    /// A Boolean variable the model computes, read by `get`.
     pub const fn boolean(name: &'static str, description: &'static str, get: Get<M, bool>) -> Self {
+        Self::boolean_access(name, description, Access::Get(get))
+    }
+
+    const fn boolean_access(
+        name: &'static str,
+        description: &'static str,
+        get: Access<M, bool>,
+    ) -> Self {
         let value = Value::Boolean {
             get,
             set: None,
             start: &[],
         };
         Self::with_value(name, description, value)
+    }
+
+    /// The description (FMI 2.0 prefixes each element's with its label).
+    pub const fn describe(mut self, description: &'static str) -> Self {
+        self.description = description;
+        self
+    }
+
+    /// Hook: `f(model, i)` after every accepted write of element i (e.g. a law
+    /// rebuilt from its parameters).
+    pub const fn after_set(mut self, f: AfterSet<M>) -> Self {
+        self.after_set = Some(f);
+        self
     }
 
     /// An array of `length` elements instead of a scalar.
@@ -262,8 +391,14 @@ impl<M> Declaration<M> {
     /// element i is the derivative of element i of the array `state`.
     pub const fn derivative_of(mut self, state: &'static str) -> Self {
         assert!(
-            matches!(self.value, Value::Real { .. }),
-            "only a Real is a derivative"
+            matches!(
+                self.value,
+                Value::Real {
+                    get: Access::Get(_),
+                    ..
+                }
+            ),
+            "a derivative is a Real the model computes"
         );
         self.causality = Causality::Local;
         self.initial = Some(Initial::Calculated);
@@ -451,13 +586,6 @@ impl<M> Declaration<M> {
     }
 }
 
-/// A writer's usual body: stores `value` at `place` and accepts it
-/// (`.set_real(|m, i, v| store(&mut m.inputs[i], v))`).
-pub fn store<T>(place: &mut T, value: T) -> Result<(), String> {
-    *place = value;
-    Ok(())
-}
-
 /// Number of continuous states of a table: the elements of its derivative declarations
 /// (numberOfContinuousStates and the length of every state vector the layer passes,
 /// counted from the table so that no second count can disagree).
@@ -509,22 +637,26 @@ fn each_state<M>(
     }
 }
 
-/// The continuous states as the table declares them: `x[k]` = the getter of state k.
-pub fn read_states<M>(declarations: &[Declaration<M>], model: &M, x: &mut [f64]) {
+/// The continuous states as the table declares them: `x[k]` = state k.
+pub fn read_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &mut [f64]) {
     each_state(declarations, |k, state, _, i| {
         if let (Value::Real { get, .. }, Some(slot)) = (&state.value, x.get_mut(k)) {
-            *slot = get(model, i);
+            *slot = get.read(model, i);
         }
     });
 }
 
-/// Writes the continuous states through the state declarations' setters (the layer
-/// has checked the values).
+/// Writes the continuous states through the state declarations' writers or places
+/// (the layer has checked the values).
 pub fn write_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]) {
     each_state(declarations, |k, state, _, i| {
-        if let (Value::Real { set: Some(set), .. }, Some(&v)) = (&state.value, x.get(k)) {
-            // A state's setter refuses nothing the layer's value check lets through.
-            let _ = set(model, i, v);
+        if let (Value::Real { get, set, .. }, Some(&v)) = (&state.value, x.get(k)) {
+            // A state's writer refuses nothing the layer's value check lets through.
+            if let Some(Ok(())) = write_element(*get, *set, model, i, v)
+                && let Some(after) = state.after_set
+            {
+                after(model, i);
+            }
         }
     });
 }
@@ -533,8 +665,9 @@ pub fn write_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]
 /// derivative of state k.
 pub fn read_derivatives<M>(declarations: &[Declaration<M>], model: &M, dx: &mut [f64]) {
     each_state(declarations, |k, _, derivative, i| {
+        // A derivative is computed (`derivative_of` refuses a place).
         if let (Value::Real { get, .. }, Some(slot)) = (&derivative.value, dx.get_mut(k)) {
-            *slot = get(model, i);
+            *slot = get.computed(model, i).unwrap_or(f64::NAN);
         }
     });
 }

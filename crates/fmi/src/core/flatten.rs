@@ -3,7 +3,7 @@
 //! formatted here: an element's name, description and state are formatted from its
 //! declaration when asked ([`Variable::name`]).
 
-use super::declare::{Declaration, Value, value_references};
+use super::declare::{Access, Declaration, Set, Value, value_references};
 use super::hooks::Var;
 use super::variables::{Getter, Kind, Setter, Variable};
 
@@ -72,7 +72,7 @@ fn kind<M>(value: &Value<M>, i: usize) -> Kind<M> {
             display_unit,
         } => Kind::Real {
             get: Getter { f: get, index: i },
-            set: set.map(|f| Setter { f, index: i }),
+            set: setter(get, set, i),
             start: start_of(start, i),
             min,
             max,
@@ -87,17 +87,27 @@ fn kind<M>(value: &Value<M>, i: usize) -> Kind<M> {
             max,
         } => Kind::Integer {
             get: Getter { f: get, index: i },
-            set: set.map(|f| Setter { f, index: i }),
+            set: setter(get, set, i),
             start: start_of(start, i),
             min,
             max,
         },
         Value::Boolean { get, set, start } => Kind::Boolean {
             get: Getter { f: get, index: i },
-            set: set.map(|f| Setter { f, index: i }),
+            set: setter(get, set, i),
             start: start_of(start, i),
         },
     }
+}
+
+/// The writer of element i, if the element is writable (a writer or a place).
+fn setter<M, T: Copy>(get: Access<M, T>, set: Option<Set<M, T>>, i: usize) -> Option<Setter<M, T>> {
+    let setter = Setter {
+        access: get,
+        f: set,
+        index: i,
+    };
+    (set.is_some() || get.is_place()).then_some(setter)
 }
 
 /// Start value of element i: none, the one for all, or element i's.

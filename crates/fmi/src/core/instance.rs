@@ -2,7 +2,7 @@
 //! time of the experiment, and typed, checked access to the variables. A front-end
 //! adds its mode, logger and C entry points around it.
 
-use super::declare::{self, Declaration, value_references};
+use super::declare::{self, Declaration, value_references, write_element};
 use super::flatten::{flatten, start_of};
 use super::log::Log;
 use super::model::{Model, StepOutcome};
@@ -89,26 +89,24 @@ fn with_start_values<'a, M: Model>(
 ) -> Result<M, String> {
     let mut model = M::default();
     for (d, i) in elements {
-        let result = match d.value {
+        let m = &mut model;
+        let written = match d.value {
             declare::Value::Real {
-                set: Some(set),
-                start,
-                ..
-            } => start_of(start, i).map_or(Ok(()), |s| set(&mut model, i, s)),
+                get, set, start, ..
+            } => start_of(start, i).and_then(|s| write_element(get, set, m, i, s)),
             declare::Value::Integer {
-                set: Some(set),
-                start,
-                ..
-            } => start_of(start, i).map_or(Ok(()), |s| set(&mut model, i, s)),
-            declare::Value::Boolean {
-                set: Some(set),
-                start,
-                ..
-            } => start_of(start, i).map_or(Ok(()), |s| set(&mut model, i, s)),
-            _ => Ok(()),
+                get, set, start, ..
+            } => start_of(start, i).and_then(|s| write_element(get, set, m, i, s)),
+            declare::Value::Boolean { get, set, start } => {
+                start_of(start, i).and_then(|s| write_element(get, set, m, i, s))
+            }
         };
         let name = element_name(d, i);
-        result.map_err(|e| format!("start value of \"{name}\" rejected: {e}"))?;
+        match (written, d.after_set) {
+            (Some(Err(e)), _) => return Err(format!("start value of \"{name}\" rejected: {e}")),
+            (Some(Ok(())), Some(after)) => after(m, i),
+            _ => {}
+        }
     }
     Ok(model)
 }
@@ -218,7 +216,7 @@ impl<M> Copy for Slot<M> {}
 
 /// A calculated Real element, checked to be finite after each calculation.
 struct CalculatedReal<M: 'static> {
-    get: declare::Get<M, f64>,
+    get: declare::Access<M, f64>,
     element: usize,
     declaration: &'static Declaration<M>,
 }
@@ -452,6 +450,12 @@ impl<M: Model> Instance<M> {
         &self.model
     }
 
+    /// The model for reading variables kept at places (reached through `&mut`, not
+    /// changed: the computed values stay current).
+    pub fn model_to_read(&mut self) -> &mut M {
+        &mut self.model
+    }
+
     /// The model for a change: the computed values become stale.
     pub fn model_mut(&mut self) -> &mut M {
         self.dirty = true;
@@ -478,9 +482,9 @@ impl<M: Model> Instance<M> {
     }
 
     /// Every calculated Real element, in value-reference order, is finite.
-    fn check_calculated_finite(&self) -> Result<(), String> {
+    fn check_calculated_finite(&mut self) -> Result<(), String> {
         for c in &self.index.calculated_reals {
-            let value = (c.get)(&self.model, c.element);
+            let value = c.get.read(&mut self.model, c.element);
             if !value.is_finite() {
                 let name = element_name(c.declaration, c.element);
                 return Err(format!("\"{name}\" evaluates to {value}"));
@@ -537,11 +541,11 @@ impl<M: Model> Instance<M> {
 
     /// Why element i of `d` cannot be read now, if it is a Real that is not finite.
     #[inline(always)]
-    fn not_finite(&self, d: &Declaration<M>, i: usize) -> Option<String> {
+    fn not_finite(&mut self, d: &Declaration<M>, i: usize) -> Option<String> {
         let declare::Value::Real { get, .. } = d.value else {
             return None;
         };
-        let value = get(&self.model, i);
+        let value = get.read(&mut self.model, i);
         (!value.is_finite()).then(|| format!("\"{}\" evaluates to {value}", element_name(d, i)))
     }
 
@@ -564,13 +568,18 @@ impl<M: Model> Instance<M> {
     /// Reads elements `from..from + out.len()` of the Real declaration at `position`
     /// (FMI 3.0's array view, after `prepare_read_declared`).
     #[inline(always)]
-    pub fn get_reals(&self, position: usize, from: usize, out: &mut [f64]) -> Result<(), String> {
+    pub fn get_reals(
+        &mut self,
+        position: usize,
+        from: usize,
+        out: &mut [f64],
+    ) -> Result<(), String> {
         let d = self.declared(position)?.declaration;
         let declare::Value::Real { get, .. } = d.value else {
             return Err(format!("\"{}\" is not a Real", d.name));
         };
         for (o, i) in out.iter_mut().zip(from..) {
-            let value = get(&self.model, i);
+            let value = get.read(&mut self.model, i);
             if !value.is_finite() {
                 return Err(format!("\"{}\" evaluated to {value}", element_name(d, i)));
             }
@@ -582,7 +591,7 @@ impl<M: Model> Instance<M> {
     /// Reads elements `from..from + out.len()` of the Integer declaration at `position`.
     #[inline(always)]
     pub fn get_integers(
-        &self,
+        &mut self,
         position: usize,
         from: usize,
         out: &mut [i32],
@@ -592,7 +601,7 @@ impl<M: Model> Instance<M> {
             return Err(format!("\"{}\" is not an Integer", d.name));
         };
         for (o, i) in out.iter_mut().zip(from..) {
-            *o = get(&self.model, i);
+            *o = get.read(&mut self.model, i);
         }
         Ok(())
     }
@@ -600,7 +609,7 @@ impl<M: Model> Instance<M> {
     /// Reads elements `from..from + out.len()` of the Boolean declaration at `position`.
     #[inline(always)]
     pub fn get_booleans(
-        &self,
+        &mut self,
         position: usize,
         from: usize,
         out: &mut [bool],
@@ -610,7 +619,7 @@ impl<M: Model> Instance<M> {
             return Err(format!("\"{}\" is not a Boolean", d.name));
         };
         for (o, i) in out.iter_mut().zip(from..) {
-            *o = get(&self.model, i);
+            *o = get.read(&mut self.model, i);
         }
         Ok(())
     }
@@ -637,13 +646,13 @@ impl<M: Model> Instance<M> {
     /// Whether elements `from..` of the declaration at `position` hold `values`
     /// already, each bit for bit ([`value_check::holds`]).
     pub fn holds_declared(
-        &self,
+        &mut self,
         position: usize,
         from: usize,
         values: impl IntoIterator<Item = Value>,
     ) -> Result<bool, String> {
         let d = self.declared(position)?.declaration;
-        let model = &*self.model;
+        let model = &mut *self.model;
         Ok((from..)
             .zip(values)
             .all(|(i, x)| value_check::holds(model, d, i, x)))
@@ -768,12 +777,12 @@ impl<M: Model> Instance<M> {
 
     /// Reads a Real (after `prepare_read`, so computed values are current).
     #[inline(always)]
-    pub fn get_real(&self, vr: u32) -> Result<f64, String> {
+    pub fn get_real(&mut self, vr: u32) -> Result<f64, String> {
         let (d, i) = self.element(vr)?;
         let declare::Value::Real { get, .. } = d.value else {
             return Err(Self::wrong_type(d, i, vr, VariableType::Real));
         };
-        let value = get(&self.model, i);
+        let value = get.read(&mut self.model, i);
         if value.is_finite() {
             Ok(value)
         } else {
@@ -782,28 +791,28 @@ impl<M: Model> Instance<M> {
     }
 
     #[inline(always)]
-    pub fn get_integer(&self, vr: u32) -> Result<i32, String> {
+    pub fn get_integer(&mut self, vr: u32) -> Result<i32, String> {
         let (d, i) = self.element(vr)?;
         match d.value {
-            declare::Value::Integer { get, .. } => Ok(get(&self.model, i)),
+            declare::Value::Integer { get, .. } => Ok(get.read(&mut self.model, i)),
             _ => Err(Self::wrong_type(d, i, vr, VariableType::Integer)),
         }
     }
 
     #[inline(always)]
-    pub fn get_boolean(&self, vr: u32) -> Result<bool, String> {
+    pub fn get_boolean(&mut self, vr: u32) -> Result<bool, String> {
         let (d, i) = self.element(vr)?;
         match d.value {
-            declare::Value::Boolean { get, .. } => Ok(get(&self.model, i)),
+            declare::Value::Boolean { get, .. } => Ok(get.read(&mut self.model, i)),
             _ => Err(Self::wrong_type(d, i, vr, VariableType::Boolean)),
         }
     }
 
     /// Whether the variable `vr` holds `value` already, bit for bit
     /// ([`value_check::holds`]).
-    pub fn holds(&self, vr: u32, value: Value) -> Result<bool, String> {
+    pub fn holds(&mut self, vr: u32, value: Value) -> Result<bool, String> {
         let (d, i) = self.element(vr)?;
-        Ok(value_check::holds(&*self.model, d, i, value))
+        Ok(value_check::holds(&mut *self.model, d, i, value))
     }
 
     /// Writes a value through its writer after the checks of [`value_check::write`]

@@ -199,13 +199,15 @@ pub trait Model: Clone + Default + Send + Sized + 'static {
         Ok(())
     }
 
-    /// The continuous states, by default read through the getters of the declared
-    /// states (element i of the state of each derivative declaration, in their order).
-    fn continuous_states(&self, x: &mut [f64]) {
+    /// The continuous states, by default read through the accessors of the declared
+    /// states (element i of the state of each derivative declaration, in their order;
+    /// `&mut` because a state kept at a place is reached through it, not changed).
+    fn continuous_states(&mut self, x: &mut [f64]) {
         super::declare::read_states(Self::VARIABLES, self, x);
     }
 
-    /// Sets the continuous states, by default through the declared states' setters.
+    /// Sets the continuous states, by default through the declared states' writers or
+    /// places.
     fn set_continuous_states(&mut self, x: &[f64]) {
         super::declare::write_states(Self::VARIABLES, self, x);
     }

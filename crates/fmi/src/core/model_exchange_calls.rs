@@ -116,7 +116,7 @@ impl StateArray {
     }
 
     /// The array of model `m` into `out`.
-    fn compute<M: Model>(self, m: &M, out: &mut [f64]) -> std::result::Result<(), String> {
+    fn compute<M: Model>(self, m: &mut M, out: &mut [f64]) -> std::result::Result<(), String> {
         match self {
             StateArray::Derivatives => m.derivatives(out),
             StateArray::EventIndicators => m.event_indicators(out),
@@ -170,12 +170,12 @@ unsafe fn fill<F: Frontend, M: Model>(
     ptr: *mut f64,
     n: usize,
     expected: usize,
-    f: impl FnOnce(&M, &mut [f64]) -> std::result::Result<(), String>,
+    f: impl FnOnce(&mut M, &mut [f64]) -> std::result::Result<(), String>,
 ) -> Result<F> {
     check_len(n, expected, "the array")?;
     // SAFETY: by the contract above.
     let out = unsafe { output_slice(ptr, n, "the array") }?;
-    if let Err(reason) = f(inst.core.model(), out) {
+    if let Err(reason) = f(inst.core.model_to_read(), out) {
         return Ok(discard(inst, function, &reason));
     }
     if let Some(bad) = out.iter().find(|v| !v.is_finite()) {

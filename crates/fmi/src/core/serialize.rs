@@ -46,33 +46,29 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
     payload.extend_from_slice(&s.stop_time.unwrap_or(0.0).to_le_bytes());
     payload.extend_from_slice(&s.last_successful_time.to_le_bytes());
     payload.push(s.terminated_by_model as u8);
+    // Places and input-derivative slots are reached through `&mut`: read a copy.
+    let mut model = s.model.clone();
     for v in table {
         match &v.kind {
             Kind::Real {
                 get, set: Some(_), ..
-            } => payload.extend_from_slice(&get.call(&s.model).to_le_bytes()),
+            } => payload.extend_from_slice(&get.call(&mut model).to_le_bytes()),
             Kind::Integer {
                 get, set: Some(_), ..
-            } => payload.extend_from_slice(&get.call(&s.model).to_le_bytes()),
+            } => payload.extend_from_slice(&get.call(&mut model).to_le_bytes()),
             Kind::Boolean {
                 get, set: Some(_), ..
-            } => payload.push(get.call(&s.model) as u8),
+            } => payload.push(get.call(&mut model) as u8),
             _ => {}
         }
     }
-    let slots = input_derivative_slots(table);
-    // The slots are reached through `&mut`: read them from a copy (only for a model
-    // that takes derivatives).
-    let mut model = (!slots.is_empty()).then(|| s.model.clone());
-    for (_, hook, index, order) in slots {
-        let value = model
-            .as_mut()
-            .and_then(|m| slot(m, hook, index, order).copied());
+    for (_, hook, index, order) in input_derivative_slots(table) {
+        let value = slot(&mut model, hook, index, order).copied();
         payload.extend_from_slice(&value.unwrap_or(0.0).to_le_bytes());
     }
     let n = super::model_exchange_calls::states::<M>();
     let mut x = vec![0.0; n];
-    s.model.continuous_states(&mut x);
+    model.continuous_states(&mut x);
     payload.extend_from_slice(&(n as u32).to_le_bytes());
     for xi in &x {
         payload.extend_from_slice(&xi.to_le_bytes());

@@ -3,7 +3,7 @@
 //! value read back from a serialized FMU state go through [`write()`], so a state can
 //! hold nothing that the setters would refuse.
 
-use super::declare::{Declaration, Value as Declared};
+use super::declare::{Declaration, Value as Declared, write_element};
 use super::variables::{ShownName, VariableType, element_name, value_type};
 
 /// Largest magnitude the layer accepts for a Real value set by the host. No model
@@ -80,23 +80,36 @@ pub fn write<M>(
     let name = element_name(d, i);
     let no_writer = || format!("\"{name}\" has no writer");
     let result = match (&d.value, value) {
-        (Declared::Real { set, min, max, .. }, Value::Real(x)) => {
+        (
+            Declared::Real {
+                get, set, min, max, ..
+            },
+            Value::Real(x),
+        ) => {
             check_real(name, x, *min, *max)?;
-            set.ok_or_else(no_writer)?(model, i, x)
+            write_element(*get, *set, model, i, x).ok_or_else(no_writer)?
         }
-        (Declared::Integer { set, min, max, .. }, Value::Integer(x)) => {
+        (
+            Declared::Integer {
+                get, set, min, max, ..
+            },
+            Value::Integer(x),
+        ) => {
             if min.is_some_and(|m| x < m) || max.is_some_and(|m| x > m) {
                 return Err(format!("\"{name}\" = {x} is outside its range"));
             }
-            set.ok_or_else(no_writer)?(model, i, x)
+            write_element(*get, *set, model, i, x).ok_or_else(no_writer)?
         }
-        (Declared::Boolean { set, .. }, Value::Boolean(x)) => {
-            set.ok_or_else(no_writer)?(model, i, x)
+        (Declared::Boolean { get, set, .. }, Value::Boolean(x)) => {
+            write_element(*get, *set, model, i, x).ok_or_else(no_writer)?
         }
         (is, Value::Real(_)) => return Err(wrong_type(name, vr, value_type(is), "Real")),
         (is, Value::Integer(_)) => return Err(wrong_type(name, vr, value_type(is), "Integer")),
         (is, Value::Boolean(_)) => return Err(wrong_type(name, vr, value_type(is), "Boolean")),
     };
+    if let (Ok(()), Some(after)) = (&result, d.after_set) {
+        after(model, i);
+    }
     // Formatted only for a refusal (a float to text costs more than the write).
     result.map_err(|e| match value {
         Value::Real(x) => format!("\"{name}\" = {x}: {e}"),
@@ -108,13 +121,13 @@ pub fn write<M>(
 /// Whether element i of the declaration `d` holds `value` already, bit for bit: a
 /// Real compares its bits, so -0.0 and 0.0 differ and NaN never holds (the layer
 /// refuses NaN, so no variable holds one). A value of another type never holds.
-pub fn holds<M>(model: &M, d: &Declaration<M>, i: usize, value: Value) -> bool {
+pub fn holds<M>(model: &mut M, d: &Declaration<M>, i: usize, value: Value) -> bool {
     match (&d.value, value) {
         (Declared::Real { get, .. }, Value::Real(x)) => {
-            !x.is_nan() && get(model, i).to_bits() == x.to_bits()
+            !x.is_nan() && get.read(model, i).to_bits() == x.to_bits()
         }
-        (Declared::Integer { get, .. }, Value::Integer(x)) => get(model, i) == x,
-        (Declared::Boolean { get, .. }, Value::Boolean(x)) => get(model, i) == x,
+        (Declared::Integer { get, .. }, Value::Integer(x)) => get.read(model, i) == x,
+        (Declared::Boolean { get, .. }, Value::Boolean(x)) => get.read(model, i) == x,
         _ => false,
     }
 }

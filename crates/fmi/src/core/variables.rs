@@ -8,31 +8,36 @@
 //! ([`Variable::name`]), for messages and the description writers.
 
 pub use super::attributes::{Causality, Initial, Variability};
-use super::declare::{Declaration, Value};
+use super::declare::{Access, Declaration, Set, Value, write_element};
 use super::hooks::{Element, InputDerivative, OutputDerivative};
 use std::borrow::Cow;
 
-/// Reads element `index` of a declaration (a `fn` and the index: nothing boxed).
+/// Reads element `index` of a declaration (its accessor and the index: nothing boxed).
 pub struct Getter<M, T> {
-    pub f: fn(&M, usize) -> T,
+    pub f: Access<M, T>,
     pub index: usize,
 }
 
-/// Writes element `index` of a declaration; Err: the value is refused, with the reason.
+/// Writes element `index` of a declaration: through the declaration's writer if it
+/// gives one, else at its place (`access`).
 pub struct Setter<M, T> {
-    pub f: fn(&mut M, usize, T) -> Result<(), String>,
+    pub access: Access<M, T>,
+    pub f: Option<Set<M, T>>,
     pub index: usize,
 }
 
-impl<M, T> Getter<M, T> {
-    pub fn call(&self, model: &M) -> T {
-        (self.f)(model, self.index)
+impl<M, T: Copy> Getter<M, T> {
+    pub fn call(&self, model: &mut M) -> T {
+        self.f.read(model, self.index)
     }
 }
 
 impl<M, T> Setter<M, T> {
+    /// The write alone (`value_check::write` checks the value first and runs the
+    /// declaration's `after_set` hook after it).
     pub fn call(&self, model: &mut M, value: T) -> Result<(), String> {
-        (self.f)(model, self.index, value)
+        write_element(self.access, self.f, model, self.index, value)
+            .unwrap_or_else(|| Err("no writer and no place".to_string()))
     }
 }
 

@@ -97,7 +97,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
 
     /// Reads the Float64 variable `v` into `out` (its size).
     #[inline]
-    pub fn get_float64(&self, v: &Variable3, out: &mut [f64]) -> Result<(), String> {
+    pub fn get_float64(&mut self, v: &Variable3, out: &mut [f64]) -> Result<(), String> {
         match &v.source {
             Source::Time => out[0] = self.core.time,
             Source::EventIndicators { first } => {
@@ -118,7 +118,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     }
 
     #[inline]
-    pub fn get_int32(&self, v: &Variable3, out: &mut [i32]) -> Result<(), String> {
+    pub fn get_int32(&mut self, v: &Variable3, out: &mut [i32]) -> Result<(), String> {
         match v.source {
             Source::Elements {
                 declaration,
@@ -130,7 +130,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
     }
 
     #[inline]
-    pub fn get_boolean(&self, v: &Variable3, out: &mut [bool]) -> Result<(), String> {
+    pub fn get_boolean(&mut self, v: &Variable3, out: &mut [bool]) -> Result<(), String> {
         match v.source {
             Source::Elements {
                 declaration,

@@ -16,7 +16,7 @@ unsafe fn read<M: Model, T>(
     function: &str,
     (vr, nvr): (*const Fmi2ValueReference, usize),
     value: *mut T,
-    get: impl Fn(&Instance<M>, u32) -> Result<T, String>,
+    get: impl Fn(&mut Instance<M>, u32) -> Result<T, String>,
 ) -> Result<Fmi2Status, String> {
     let vrs = unsafe { input_slice(vr, nvr, "vr[]") }?;
     let out = unsafe { output_slice(value, nvr, "value[]") }?;

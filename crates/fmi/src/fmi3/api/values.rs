@@ -21,7 +21,7 @@ fn read<M: Model, T: Default + Clone>(
     vrs: &[Fmi3ValueReference],
     wanted: VariableType,
     (values, n_values): (*mut T, usize),
-    read: impl Fn(&Instance<M>, &Variable3, &mut [T]) -> Result<(), String>,
+    read: impl Fn(&mut Instance<M>, &Variable3, &mut [T]) -> Result<(), String>,
 ) -> Result<Fmi3Status, String> {
     check_array(values, n_values, "values[]")?;
     let table = Arc::clone(&inst.extra.table);
