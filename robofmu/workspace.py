@@ -17,13 +17,13 @@ again through robofmu.fmi2, whose error carries the FMU's reason for the message
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from ctypes import c_double, c_int, c_uint
 from pathlib import Path
 from types import SimpleNamespace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-
-from typing import TYPE_CHECKING
 
 from .errors import CosimError, ScenarioError
 from .fmi2 import FmuInstance
@@ -57,6 +57,7 @@ class Workspace:
                            if not k.startswith(("theta0[", "omega0["))}
         self.fmu = open_instance("plant", Path(plant_fmu), 0.0, 1.0)
         self.fresh = True
+        self._direct: _DirectPose | None
         try:
             self._direct = _DirectPose(self.fmu, self.parameters)
         except _NotDirect:
@@ -108,7 +109,8 @@ class _NotDirect(Exception):
     """The instance is not an FMI 2.0 one with Real angles and lengths."""
 
 
-_C_TYPES = {"Real": (c_double, float), "Integer": (c_int, int), "Boolean": (c_int, bool)}
+_C_TYPES: dict[str, tuple[Any, Callable[[Any], Any]]] = {
+    "Real": (c_double, float), "Integer": (c_int, int), "Boolean": (c_int, bool)}
 _WARNING = 1  # fmi2Warning: the worst status that is not a failure (as FMPy counts)
 
 
