@@ -257,9 +257,10 @@ class Master:
         finally:
             for fmu in self.fmus.values():
                 self.close_fmu(fmu)
-        times = [self._time(k, 1) for k in range(s.steps + 1)]
+        # t_k = start + k h as _time computes it (k h / 1 is k h), for every k at once.
+        times = (s.start_time + np.arange(s.steps + 1) * s.step_size).tolist()
         order = [str(sig) for sig in self.recorded]
-        columns = {name: rows[:, j].tolist() for j, name in enumerate(names)}
+        columns = dict(zip(names, rows.T.tolist()))
         return Result(names=order, time=times, columns={n: columns[n] for n in order},
                       discards=self.discards)
 
