@@ -16,6 +16,7 @@
 
 mod controller;
 mod error;
+mod form;
 mod gains;
 mod scenario;
 mod simulate;
@@ -23,6 +24,7 @@ mod summary;
 
 pub use controller::{Controller, ControllerKind};
 pub use error::LoopError;
+pub use form::{GainRule, gain_rule};
 pub use gains::{AxisDesign, design_gains, triple_pole_gains};
 pub use scenario::{LoopSpec, parse_loop_scenario};
 pub use simulate::{LoopSample, simulate};
