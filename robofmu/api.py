@@ -424,23 +424,13 @@ def simulate(target: Target, parameters: Mapping[str, Value] | None = None, *,
     the FMU declares), set on top of the scenario's; checked against the variable's
     type and min/max. `fmi3`: run the FMI 3.0 builds of the FMUs (dist/fmi3/).
     ScenarioError for bad input, SimulationError when the run fails."""
-    from .fmi3 import fmi3_path, open_fmi3
-    from .master import Master, text_progress
+    from .master import run_scenario, text_progress
     from .outputs import column_units
     plan = _plan_of(target, fmu_dir)
     if parameters:
         _override(plan, parameters)
-    shown = text_progress() if progress else None
-    if fmi3:
-        for alias, path in plan.fmus.items():
-            if not fmi3_path(path).is_file():
-                raise ScenarioError(f"fmi3: {fmi3_path(path)} (the FMI 3.0 build of fmus.{alias}) "
-                                    "does not exist; run without fmi3")
-        master = Master(plan, open_fmu=open_fmi3, progress=shown)
-    else:
-        master = Master(plan, progress=shown)
     try:
-        table = master.run()
+        table = run_scenario(plan, fmi3=fmi3, progress=text_progress() if progress else None)
     except CosimError as e:
         raise SimulationError(f"{plan.name}: the simulation failed: {e}") from e
     columns = {n: np.asarray(table.columns[n], dtype=float) for n in table.names}
@@ -473,7 +463,7 @@ def run_sweep(spec: PathLike, out: PathLike, *, client: Any = None, scheduler: s
     running one, `client` on an existing ``dask.distributed.Client`` (how Dask reaches
     SLURM or Kubernetes clusters). Dask needs ``pip install 'robofmu[sweep]'``; `plots`
     needs ``'robofmu[plots]'``."""
-    from .sweep import SpecError, load_spec, run_sweep, workspace_filter
+    from .sweep import SpecError, sweep_file
     if client is not None and scheduler is not None:
         raise ScenarioError("run_sweep: give client or scheduler, not both")
     if client is not None or scheduler is not None or workers != 0:
@@ -484,33 +474,44 @@ def run_sweep(spec: PathLike, out: PathLike, *, client: Any = None, scheduler: s
     fmus = None if fmu_dir is None else Path(fmu_dir)
     if folder.exists() and not folder.is_dir():
         raise ScenarioError(f"run_sweep: out: {folder} is not a directory; give a directory")
+    remote = client if client is not None else scheduler
     try:
-        loaded = load_spec(spec_path, fmus, reachable=workspace_filter(spec_path, fmus))
+        _, outcome = sweep_file(spec_path, folder, fmus, scheduler=remote,
+                                workers=None if remote is not None else workers,
+                                resume=resume, progress=progress, plots=plots)
     except SpecError as e:
         raise ScenarioError(str(e)) from None
-    remote = client if client is not None else scheduler
-    outcome = run_sweep(loaded, folder, scheduler=remote,
-                        workers=None if remote is not None else workers, resume=resume,
-                        progress=progress, plots=plots)
     return SweepResult(outcome.table, list(outcome.plots), outcome.runs, outcome.failed,
                        outcome.wall_s, dict(outcome.reasons))
 
 
+def _source(target: Target) -> Path | None:
+    """The scenario file `target` was read from, if any (named in messages)."""
+    if isinstance(target, Scenario):
+        return target.source
+    if isinstance(target, (str, os.PathLike)):
+        return _scenario_file(target)
+    return None
+
+
 def write_ssp(target: Target, path: PathLike, fmu_dir: PathLike | None = None) -> Path:
-    """Writes `target` (scenario, System or file) as an SSP 1.0 archive at `path`."""
-    from .ssp import write_ssp as write
+    """Writes `target` (scenario, System or file) as an SSP 1.0 archive at `path` (a
+    .ssp file)."""
+    from .ssp import check_archive_path, write_ssp as write
     out = Path(path)
-    write(_plan_of(target, fmu_dir), out)
+    check_archive_path(out)
+    write(_plan_of(target, fmu_dir), out, _source(target))
     return out
 
 
 def write_container(target: Target, path: PathLike, fmu_dir: PathLike | None = None) -> Path:
-    """Writes `target` as one container FMU at `path` (.fmu), built by the
+    """Writes `target` as one container FMU at `path` (a .fmu file), built by the
     fmu-manipulation-toolbox (``pip install 'robofmu[container]'``)."""
-    from .container import build_container
+    from .container import build_container, check_container_path
     require("fmu_manipulation_toolbox", "container", "write_container")
     out = Path(path)
-    build_container(_plan_of(target, fmu_dir), out)
+    check_container_path(out)
+    build_container(_plan_of(target, fmu_dir), out, _source(target))
     return out
 
 
@@ -567,11 +568,9 @@ def write_animation(csv: PathLike, out: PathLike, *, scenario: PathLike | None =
     moving, as NAME.gif in the folder `out` (``cosim animate``: docs/animation.md); the
     plant's geometry from `scenario`, else `fmu_file`, else the bundled Pss3Plant.
     Returns the files written; ScenarioError (an AnimateError) for bad input."""
-    from .animate.cli import make_animation
+    from .animate.make import make_animation
     plant = fmu_file if fmu_file is not None else (fmu("Pss3Plant") if scenario is None
                                                    else None)
-    args = _arguments("animate", os.fspath(csv), csv=Path(csv), out=Path(out),
-                      scenario=None if scenario is None else Path(scenario),
-                      fmu=None if plant is None else Path(plant), frames=frames, fps=fps,
-                      size=size)
-    return make_animation(args)[1]
+    return make_animation(Path(csv), Path(out), fmu=None if plant is None else Path(plant),
+                          scenario=None if scenario is None else Path(scenario),
+                          frames=frames, fps=fps, size=size)[1]

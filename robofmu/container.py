@@ -36,7 +36,8 @@ from fmpy import read_model_description
 
 from .errors import output_path
 from .run import fmu_dir
-from .scenario import Scenario, ScenarioError, load_scenario, schedule_field
+from .scenario import Scenario, load_scenario
+from .ssp import no_schedule
 
 TOOLBOX_LOGGER = "fmu_manipulation_toolbox"
 
@@ -125,17 +126,30 @@ class _Collector(logging.Handler):
         self.records.append(record)
 
 
-def build_container(scenario: Scenario, out: Path) -> list[str]:
-    """Writes the scenario as a container FMU at `out` (a .fmu path). Returns the
-    toolbox's warnings; raises ContainerError on any error it logs."""
+NO_SCHEDULE = ("a multi-segment motion has no container form (the container has no plan "
+               "switches); use two waypoints")
+
+
+def check_container_path(out: Path, option: str = "path") -> None:
+    """ContainerError (naming `option`, the argument that gave `out`) unless `out` can be
+    the container: a file whose name ends with .fmu."""
+    if out.suffix != ".fmu" or out.is_dir():
+        raise ContainerError(f"{option}: {out}: the container is a file whose name ends "
+                             "with .fmu; name such a file")
+
+
+def build_container(scenario: Scenario, out: Path, source: Path | None = None) -> list[str]:
+    """Writes the scenario (read from the file `source`, if any: named in the message of
+    a scenario that has no container form) as a container FMU at `out` (a .fmu path).
+    Returns the toolbox's warnings; raises ContainerError on any error it logs."""
+    no_schedule(scenario, source, NO_SCHEDULE)
     try:  # lazy: an optional dependency (the wheel's extra 'container'), 0.04 s to import
         from fmu_manipulation_toolbox.container import FMUContainer, FMUContainerError
     except ImportError:
         raise ContainerError("cosim container needs fmu-manipulation-toolbox, which the wheel "
                              "leaves optional; pip install 'robofmu[container]'") from None
     out = Path(out)
-    if out.suffix != ".fmu":
-        raise ContainerError(f"{out}: the container's file name must end with .fmu")
+    check_container_path(out)
     logger = logging.getLogger(TOOLBOX_LOGGER)
     collector, propagate = _Collector(), logger.propagate
     logger.addHandler(collector)
@@ -171,15 +185,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    if args.out.suffix != ".fmu" or args.out.is_dir():
-        raise ContainerError(f"--out: {args.out}: the container is a file whose name ends "
-                             "with .fmu; name such a file")
+    check_container_path(args.out, "--out")
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
-    if scenario.schedule:
-        raise ScenarioError(f"{args.scenario}: field '{schedule_field(args.scenario)}': a "
-                            "multi-segment motion has no container form (the container has "
-                            "no plan switches); use two waypoints")
-    warnings = build_container(scenario, args.out)
+    warnings = build_container(scenario, args.out, args.scenario)
     for line in warnings:
         print(f"fmu-manipulation-toolbox: {line}", file=sys.stderr)
     print(f"{args.out}: {scenario.name} as a container FMU ({', '.join(stepping_order(scenario))} "

@@ -6,19 +6,27 @@ generalizedForceCommand, so the plant and the planner are the same in either loo
 
 A computed-torque scenario names its FMUs ``planner``, ``ct`` and ``plant``; its gains
 come from the design rule ``[gains] omega = "30 rad/s"`` (triple pole at -omega of the
-error dynamics e'' + Kd e' + Kp e + Ki int(e) = 0: Kd = 3 w, Kp = 3 w^2, Ki = w^3, the
-Rust library's computed_torque::pole_placement; with ``integral = false`` a double pole
-and no integral: Kd = 2 w, Kp = w^2); its model of the robot is the plant's (the
+error dynamics e'' + Kd e' + Kp e + Ki int(e) = 0: Kd = 3 w, Kp = 3 w^2, Ki = w^3, as
+the Rust library's computed_torque::pole_placement; with ``integral = false`` a double
+pole and no integral: Kd = 2 w, Kp = w^2); its model of the robot is the plant's (the
 ``[plant]`` table's values under the same names) unless ``[model]`` sets a parameter
-apart (the model-mismatch study: ``[model] legMass = "1.13604 kg"``)."""
+apart (the model-mismatch study: ``[model] legMass = "1.13604 kg"``).
+
+The controllers' FMUs and connections and the gain rules are data, closed_loop.toml
+beside this module, which the Rust reference reads too (src/closed_loop/form.rs)."""
 
 from __future__ import annotations
 
+import tomllib
 from dataclasses import dataclass
+from pathlib import Path
 
 from .errors import ScenarioError
 
-KINDS = ("pid", "computed-torque")
+#: The loop's one description, shared with the Rust reference (src/closed_loop/form.rs):
+#: the controllers' FMUs and connections, and the gain rules.
+FORM = tomllib.loads((Path(__file__).parent / "closed_loop.toml").read_text())
+KINDS = tuple(FORM["controllers"])
 
 
 @dataclass(frozen=True)
@@ -32,21 +40,27 @@ class Loop:
     role_variable: str
 
 
-LOOPS = {
-    "pid": Loop("pid", (("planner", "q", "pid", "setpoint"),
-                        ("planner", "qdot", "pid", "setpointRate"),
-                        ("plant", "theta", "pid", "measurement"),
-                        ("plant", "thetaDot", "pid", "measuredRate"),
-                        ("plant", "gravityCompensation", "pid", "feedforward"),
-                        ("pid", "u", "plant", "generalizedForceCommand")), "Kp[1]"),
-    "computed-torque": Loop("ct", (("planner", "q", "ct", "setpoint"),
-                                   ("planner", "qdot", "ct", "setpointRate"),
-                                   ("planner", "qddot", "ct", "setpointAcceleration"),
-                                   ("plant", "theta", "ct", "measurement"),
-                                   ("plant", "thetaDot", "ct", "measuredRate"),
-                                   ("ct", "u", "plant", "generalizedForceCommand")),
-                            "setpointAcceleration[1]"),
-}
+def _loop(entry: dict) -> Loop:
+    alias = {"planner": "planner", "plant": "plant", "controller": entry["alias"]}
+    return Loop(entry["alias"], tuple((alias[a], x, alias[b], y)
+                                      for a, x, b, y in entry["connections"]),
+                entry["role_variable"])
+
+
+LOOPS = {kind: _loop(entry) for kind, entry in FORM["controllers"].items()}
+
+
+def rule_gains(rule: str, inertia: float, bandwidth: float) -> tuple[float, float, float]:
+    """(Kp, Ki, Kd) of the gain rule `rule` of closed_loop.toml for an axis of inertia
+    m = `inertia` and bandwidth w = `bandwidth`: factor * m * w * ... * w, in that order."""
+    gains = []
+    for name in ("Kp", "Ki", "Kd"):
+        term = FORM["rules"][rule][name]
+        gain = term["factor"] * inertia
+        for _ in range(term["power"]):
+            gain *= bandwidth
+        gains.append(gain)
+    return gains[0], gains[1], gains[2]
 
 
 def kind_of(data: dict) -> str:
@@ -73,7 +87,8 @@ def pole_placement(raw: dict, quantity) -> dict:
     integral = raw.get("integral", True)
     if not isinstance(integral, bool):
         raise ScenarioError(f"field 'gains.integral' must be true or false, got {integral!r}")
-    kp, kd, ki = (3.0 * w * w, 3.0 * w, w ** 3) if integral else (w * w, 2.0 * w, 0.0)
+    kp, ki, kd = rule_gains("computed-torque" if integral else
+                            "computed-torque-without-integral", 1.0, w)
     gains: dict[str, float] = {}
     for i in (1, 2, 3):
         gains |= {f"Kp[{i}]": kp, f"Kd[{i}]": kd, f"Ki[{i}]": ki}

@@ -4,8 +4,9 @@
   for R = Rz(thz) Ry(thy) Rx(thx): omega = E(th) th_dot with
   E = [[cz cy, -sz, 0], [sz cy, cz, 0], [-sy, 0, 1]] (the same map as the Rust
   library's pss3::rotation, which the Rust reference uses on the same file);
-- PID gains by the triple-pole rule (Kd = 3 m w, Kp = 3 m w^2, Ki = m w^3, the Rust
-  closed_loop::gains design): m per Euler axis is the largest diagonal entry of the
+- PID gains by the triple-pole rule (Kd = 3 m w, Kp = 3 m w^2, Ki = m w^3: the rule
+  "pid" of robofmu/closed_loop.toml, which the Rust reference's closed_loop::gains
+  reads too): m per Euler axis is the largest diagonal entry of the
   Euler-angle mass matrix M_x over the design poses. M_x is measured on the plant FMU
   itself with the scenario's plant parameters (Model Exchange, at rest):
   th_ddot = M_x^-1 (u - G_x), linear in the generalized force u, so three unit forces
@@ -19,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .controllers import rule_gains
 from .errors import ScenarioError
 from .model_exchange import ModelExchangeInstance
 
@@ -67,8 +69,7 @@ def euler_accelerations(th, rates, omega_dot) -> list[float]:
 
 def triple_pole_gains(inertia: float, bandwidth: float) -> tuple[float, float, float]:
     """(Kp, Ki, Kd) placing a triple pole at -bandwidth for m s^3 + Kd s^2 + Kp s + Ki."""
-    m, w = inertia, bandwidth
-    return 3.0 * m * w * w, m * w * w * w, 3.0 * m * w
+    return rule_gains("pid", inertia, bandwidth)  # robofmu/closed_loop.toml
 
 
 def design_gains(plant_fmu: Path, poses, bandwidth: float,

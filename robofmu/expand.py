@@ -13,7 +13,7 @@ import os
 from pathlib import Path
 
 from .limits import LIMITS
-from .scenario import Scenario
+from .scenario import Scenario, ScenarioError
 
 HEADER = "# Expanded by `cosim check {source} --expanded`: SI units, do not edit by hand.\n"
 
@@ -62,3 +62,29 @@ def expanded_toml(scenario: Scenario, out: Path, source: str) -> str:
         lines += ["", "[[plan_switches]]"] + _table({"step": switch.step, "alias": switch.alias})
         lines += ["[plan_switches.parameters]"] + _table(switch.parameters)
     return "\n".join(lines) + "\n"
+
+
+def same_file(a: Path, b: Path) -> bool:
+    """Whether `a` names the file `b` (a link, another spelling of its path)."""
+    try:
+        return a.exists() and b.exists() and os.path.samefile(a, b)
+    except OSError:
+        return a.resolve() == b.resolve()
+
+
+def check_target(target: Path, source: Path, option: str = "--expanded") -> None:
+    """ScenarioError (naming `option`, the argument that gave `target`) unless `target`
+    is a .toml file to write other than the scenario file `source`; checked before the
+    scenario is read."""
+    if target.suffix != ".toml" or target.is_dir():
+        raise ScenarioError(f"{option}: {target}: name a .toml file to write")
+    if same_file(target, source):
+        raise ScenarioError(f"{option}: {target} is the scenario being checked; name "
+                            f"another file (e.g. {option} results/expanded.toml)")
+
+
+def write_expanded(scenario: Scenario, target: Path, source: Path) -> None:
+    """Writes the expanded form of `scenario` (read from the file `source`) to `target`
+    (checked by check_target), its folder made when missing."""
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_text(expanded_toml(scenario, target, source.name))

@@ -8,6 +8,7 @@ from functools import partial
 from pathlib import Path
 from typing import Any
 
+import fmpy
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
@@ -27,6 +28,25 @@ def status_categories(md) -> list[str]:
     """The standard's status log categories that the FMU declares."""
     declared = {getattr(c, "name", c) for c in getattr(md, "logCategories", None) or []}
     return [c for c in STATUS_CATEGORIES if c in declared]
+
+
+# What an instance on this machine reads of an FMU: its binaries for this platform (FMI
+# 2.0's and FMI 3.0's folder names), not those of the other platforms nor extra/ (the
+# tools' files, e.g. the LS-REF experiments): a bundled FMU is 7.8 MB, of which it reads
+# about 1 MB.
+_THIS_PLATFORM = (f"binaries/{fmpy.platform}/", f"binaries/{fmpy.platform_tuple}/")
+
+
+def _read_here(name: str) -> bool:
+    if name.startswith("binaries/"):
+        return name.startswith(_THIS_PLATFORM)
+    return not name.startswith("extra/")
+
+
+def unpack(path) -> str:
+    """fmpy.extract of the files an instance of the FMU at `path` reads on this machine,
+    into a new temporary folder."""
+    return str(extract(str(path), include=_read_here))
 
 
 def remove_extracted(folder) -> None:
@@ -71,6 +91,7 @@ class LoggedCalls:
     can_get_state: bool
     _fmu: Any  # the FMPy slave of the standard; None before it is made and once closed
     _initialized: bool
+    _unzip: str | None  # the folder unpack() made; None before and once removed
     #: Prefix of the C function names, status code of Discard, and the standard's
     #: spelling of "FMU state" in function names.
     _PREFIX = "fmi2"
@@ -165,7 +186,7 @@ class FmuInstance(LoggedCalls):
         self.can_get_state = bool(md.coSimulation.canGetAndSetFMUstate)
         self.can_interpolate_inputs = bool(md.coSimulation.canInterpolateInputs)
         self.max_output_derivative_order = int(md.coSimulation.maxOutputDerivativeOrder or 0)
-        self._unzip = extract(str(path))
+        self._unzip = unpack(path)
         try:
             self._open(md, start_time, stop_time)
         except BaseException:

@@ -14,11 +14,11 @@ from functools import partial
 from pathlib import Path
 from typing import Any
 
-from fmpy import extract, read_model_description
+from fmpy import read_model_description
 from fmpy.fmi3 import FMU3Slave
 
 from .errors import FmuError
-from .fmi2 import LoggedCalls, status_categories
+from .fmi2 import LoggedCalls, status_categories, unpack
 from .intermediate import IntermediateInputs, flagged_inputs
 
 _FMI3_DISCARD = 2
@@ -77,7 +77,7 @@ class Fmu3Instance(LoggedCalls):
                         if v.type in _CONVERT and v.start is not None}
         self._written = dict(self._starts)
         self._start_time, self._stop_time = start_time, stop_time
-        self._unzip = extract(str(path))
+        self._unzip = unpack(path)
         # Input extrapolation through the intermediate update (robofmu.intermediate).
         self.intermediate = (IntermediateInputs(self, flagged_inputs(path))
                              if extrapolate and md.coSimulation.providesIntermediateUpdate

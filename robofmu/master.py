@@ -40,7 +40,7 @@ import numpy as np
 from .fmu_check import describe
 from .instances import close_all, give_back, open_instance
 from .loop import Loop
-from .scenario import Scenario, Signal, extrapolation_order
+from .scenario import Scenario, ScenarioError, Signal, extrapolation_order
 from .slopes import History, accepted, served
 
 
@@ -257,11 +257,30 @@ class Master:
         finally:
             for fmu in self.fmus.values():
                 self.close_fmu(fmu)
-        times = [self._time(k, 1) for k in range(s.steps + 1)]
+        # t_k = start + k h as _time computes it (k h / 1 is k h), for every k at once.
+        times = (s.start_time + np.arange(s.steps + 1) * s.step_size).tolist()
         order = [str(sig) for sig in self.recorded]
-        columns = {name: rows[:, j].tolist() for j, name in enumerate(names)}
+        columns = dict(zip(names, rows.T.tolist()))
         return Result(names=order, time=times, columns={n: columns[n] for n in order},
                       discards=self.discards)
+
+
+def run_scenario(scenario: Scenario, *, fmi3: bool = False,
+                 progress: Callable[[float], None] | None = None,
+                 option: str = "fmi3") -> Result:
+    """One run of a validated scenario (what robofmu.simulate and ``cosim run`` make):
+    with `fmi3`, of the FMI 3.0 builds of its FMUs (dist/fmi3/<Model>.fmu beside each),
+    ScenarioError naming `option` (the argument that asked for them) when one is
+    missing. CosimError as the master raises it when the run fails."""
+    from .fmi3 import fmi3_path, open_fmi3  # lazily: FMPy's FMI 3.0 layer
+    if not fmi3:
+        return Master(scenario, progress=progress).run()
+    for alias, path in scenario.fmus.items():
+        if not fmi3_path(path).is_file():
+            raise ScenarioError(f"{option}: {fmi3_path(path)} (the FMI 3.0 build of "
+                                f"fmus.{alias}) does not exist; build it with bash "
+                                f"scripts/build-fmus.sh or run without {option}")
+    return Master(scenario, open_fmu=open_fmi3, progress=progress).run()
 
 
 class _Described:

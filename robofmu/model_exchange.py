@@ -6,13 +6,13 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from fmpy import calloc, extract, free, read_model_description
+from fmpy import calloc, free, read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
 from .errors import ScenarioError
-from .fmi2 import release, status_categories
+from .fmi2 import release, status_categories, unpack
 
 
 class ModelExchangeInstance:
@@ -36,7 +36,7 @@ class ModelExchangeInstance:
                 "and 'gains.Kd'")
         self.refs = {v.name: v.valueReference for v in md.modelVariables}
         self.types = {v.name: v.type for v in md.modelVariables}
-        self._unzip = extract(self.path)
+        self._unzip: str | None = unpack(self.path)
         self._initialized = False
         self._fmu = None
         try:

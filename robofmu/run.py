@@ -11,8 +11,7 @@ import time
 from pathlib import Path
 
 from .errors import output_path, require
-from .fmi3 import fmi3_path, open_fmi3
-from .master import Master, text_progress
+from .master import run_scenario, text_progress
 from .outputs import write_outputs
 from .report import sig
 from .scenario import ScenarioError, load_scenario
@@ -54,19 +53,9 @@ def run(args: argparse.Namespace) -> int:
         require("matplotlib", "plots", "the plots of cosim run", "run with --no-plots")
     out = output_dir(args.out)
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
-    open_fmu = None  # the master's FMI 2.0 default
-    if args.fmi3:
-        for alias, path in scenario.fmus.items():
-            if not fmi3_path(path).is_file():
-                raise ScenarioError(f"--fmi3: {fmi3_path(path)} (the FMI 3.0 build of "
-                                    f"fmus.{alias}) does not exist; build it with bash "
-                                    "scripts/build-fmus.sh or run without --fmi3")
-        open_fmu = open_fmi3
     progress = None if args.quiet else text_progress()
     started = time.perf_counter()
-    master = (Master(scenario, progress=progress) if open_fmu is None
-              else Master(scenario, open_fmu=open_fmu, progress=progress))
-    result = master.run()
+    result = run_scenario(scenario, fmi3=args.fmi3, progress=progress, option="--fmi3")
     wall = time.perf_counter() - started
     for line in result.discards:
         print(f"cosim: {line}")

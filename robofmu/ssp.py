@@ -133,10 +133,26 @@ def system_structure(scenario: Scenario, variables: dict[str, dict]) -> ET.Eleme
     return ET.ElementTree(root)
 
 
-def write_ssp(scenario: Scenario, path: Path) -> None:
-    """Writes the SSP archive of `scenario` to `path`."""
-    if scenario.schedule:
-        raise ScenarioError(NO_SCHEDULE)
+def check_archive_path(path: Path, option: str = "path") -> None:
+    """ScenarioError (naming `option`, the argument that gave `path`) unless `path` can
+    be the archive: a file whose name ends with .ssp."""
+    if path.suffix != ".ssp" or path.is_dir():
+        raise ScenarioError(f"{option}: {path}: the SSP archive is a file whose name ends "
+                            "with .ssp; name such a file")
+
+
+def no_schedule(scenario: Scenario, source: Path | None, problem: str) -> None:
+    """ScenarioError `problem` when `scenario` has plan switches, naming the field of its
+    file `source` that holds them (when it was read from a file)."""
+    if scenario.schedule:  # the hand-written form's waypoints, or the plain form's switches
+        where = "" if source is None else f"{source}: field '{schedule_field(source)}': "
+        raise ScenarioError(where + problem)
+
+
+def write_ssp(scenario: Scenario, path: Path, source: Path | None = None) -> None:
+    """Writes the SSP archive of `scenario` (read from the file `source`, if any: named
+    in the message of a scenario that has no SSP form) to `path`."""
+    no_schedule(scenario, source, NO_SCHEDULE)
     variables = {alias: _variables(p) for alias, p in scenario.fmus.items()}
     tree = system_structure(scenario, variables)
     ET.indent(tree)
@@ -177,13 +193,8 @@ def add_arguments(parser) -> None:
 
 
 def run(args) -> int:
-    if args.out.suffix != ".ssp" or args.out.is_dir():
-        raise ScenarioError(f"--out: {args.out}: the SSP archive is a file whose name ends "
-                            "with .ssp; name such a file")
+    check_archive_path(args.out, "--out")
     scenario = load_scenario(args.scenario, fmu_dir(args.fmu_dir))
-    if scenario.schedule:  # the hand-written form's waypoints, or the plain form's switches
-        raise ScenarioError(f"{args.scenario}: field '{schedule_field(args.scenario)}': "
-                            f"{NO_SCHEDULE}")
-    write_ssp(scenario, args.out)
+    write_ssp(scenario, args.out, args.scenario)
     print(f"wrote {args.out}")
     return 0

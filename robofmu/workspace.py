@@ -6,18 +6,30 @@ between poses: ~30 us a pose.
 
 The plan is sampled at every communication step (at most MAX_SAMPLES poses, evenly
 spread, plus every waypoint) by running the planner FMU alone with the scenario's
-parameters and plan switches."""
+parameters and plan switches, its steps made by the native stepping loop
+(robofmu.loop) as in a run.
+
+Both are the bulk of reading a closed-loop scenario (1001 poses and 1000 planner steps
+for the regulation), so their calls go to the FMU's own C functions on arrays prepared
+once (FMPy's per-call wrappers cost most of a pose); a pose where any call fails is made
+again through robofmu.fmi2, whose error carries the FMU's reason for the message."""
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from ctypes import c_double, c_int, c_uint
 from pathlib import Path
+from types import SimpleNamespace
+from typing import TYPE_CHECKING, Any
 
-from typing import TYPE_CHECKING
+import numpy as np
 
 from .errors import CosimError, ScenarioError
+from .fmi2 import FmuInstance
 from .instances import give_back, open_instance
 from .fmu_check import start_value, variables
+from .loop import Loop
 from .preflight import _reason
 
 if TYPE_CHECKING:
@@ -45,6 +57,14 @@ class Workspace:
                            if not k.startswith(("theta0[", "omega0["))}
         self.fmu = open_instance("plant", Path(plant_fmu), 0.0, 1.0)
         self.fresh = True
+        self._direct: _DirectPose | None
+        try:
+            self._direct = _DirectPose(self.fmu, self.parameters)
+        except _NotDirect:
+            self._direct = None
+        except BaseException:
+            self.fmu.close()
+            raise
 
     def __enter__(self) -> Workspace:
         return self
@@ -53,6 +73,13 @@ class Workspace:
         give_back(self.fmu)  # robofmu.instances: reset before its next use
 
     def problem(self, pose) -> str | None:
+        found = None if self._direct is None else self._direct.lengths(pose, self.fresh)
+        self.fresh = False
+        if found is not None:
+            return _outside(found[:3], found[3], found[4])
+        return self._problem_through_fmpy(pose)
+
+    def _problem_through_fmpy(self, pose) -> str | None:
         fmu = self.fmu
         try:
             if not self.fresh:
@@ -67,11 +94,79 @@ class Workspace:
             low, high = fmu.get_values(("strokeMin", "strokeMax"))
         except CosimError as e:
             return f"the plant refuses it: {_reason(e)}"
-        for i, x in enumerate(lengths):
-            if not low - STROKE_TOLERANCE <= x <= high + STROKE_TOLERANCE:
-                return (f"actuator {i + 1} would need length {1000 * x:.4f} mm, outside its "
-                        f"stroke [{1000 * low:.4f}, {1000 * high:.4f}] mm")
-        return None
+        return _outside(lengths, low, high)
+
+
+def _outside(lengths, low: float, high: float) -> str | None:
+    for i, x in enumerate(lengths):
+        if not low - STROKE_TOLERANCE <= x <= high + STROKE_TOLERANCE:
+            return (f"actuator {i + 1} would need length {1000 * x:.4f} mm, outside its "
+                    f"stroke [{1000 * low:.4f}, {1000 * high:.4f}] mm")
+    return None
+
+
+class _NotDirect(Exception):
+    """The instance is not an FMI 2.0 one with Real angles and lengths."""
+
+
+_C_TYPES: dict[str, tuple[Any, Callable[[Any], Any]]] = {
+    "Real": (c_double, float), "Integer": (c_int, int), "Boolean": (c_int, bool)}
+_WARNING = 1  # fmi2Warning: the worst status that is not a failure (as FMPy counts)
+
+
+class _DirectPose:
+    """Workspace.problem's FMI calls on the FMU's own C functions: fmi2Reset and
+    fmi2SetupExperiment (t = 0..1, as robofmu.instances sets up the experiment), the
+    parameters (one call per type), the angles, fmi2Enter/ExitInitializationMode and one
+    fmi2GetReal of the lengths and the stroke ends."""
+
+    def __init__(self, fmu, parameters: dict):
+        if type(fmu) is not FmuInstance:
+            raise _NotDirect
+        names = tuple(parameters)
+        try:
+            angles = fmu._groups(ANGLES)
+            read = fmu._groups((*LENGTHS, "strokeMin", "strokeMax"))
+            groups = fmu._groups(names)
+        except CosimError:
+            raise _NotDirect from None  # the FMPy path names what is missing
+        if [kind for kind, _, _ in angles + read] != ["Real", "Real"]:
+            raise _NotDirect
+        self.fmu, slave = fmu, fmu._fmu
+        dll, self.component = slave.dll, slave.component
+        self.reset, self.setup = dll.fmi2Reset, dll.fmi2SetupExperiment
+        self.enter = dll.fmi2EnterInitializationMode
+        self.exit = dll.fmi2ExitInitializationMode
+        self.set_real, self.get_real = dll.fmi2SetReal, dll.fmi2GetReal
+        self.parameters = []
+        for kind, positions, refs in groups:
+            ctype, convert = _C_TYPES[kind]
+            self.parameters.append((getattr(dll, f"fmi2Set{kind}"), (c_uint * len(refs))(*refs),
+                                    len(refs), (ctype * len(refs))(
+                                        *(convert(parameters[names[k]]) for k in positions))))
+        self.angle_refs = (c_uint * 3)(*angles[0][2])
+        self.angles = (c_double * 3)()
+        self.read_refs = (c_uint * 5)(*read[0][2])
+        self.read = (c_double * 5)()
+
+    def lengths(self, pose, fresh: bool) -> list[float] | None:
+        """[l1, l2, l3, strokeMin, strokeMax] at `pose`; None when a call fails."""
+        c = self.component
+        if not fresh and (self.reset(c) > _WARNING
+                          or self.setup(c, 0, 0.0, 0.0, 1, 1.0) > _WARNING):
+            return None
+        self.fmu._initialized = False
+        for setter, refs, n, values in self.parameters:
+            if setter(c, refs, n, values) > _WARNING:
+                return None
+        self.angles[:] = [float(x) for x in pose]
+        if (self.set_real(c, self.angle_refs, 3, self.angles) > _WARNING
+                or self.enter(c) > _WARNING or self.exit(c) > _WARNING):
+            return None
+        self.fmu._initialized = True
+        if self.get_real(c, self.read_refs, 5, self.read) > _WARNING:
+            return None
+        return self.read[:]
 
 
 def is_closed_loop_plant(scenario: Scenario) -> bool:
@@ -90,30 +185,39 @@ def planned_poses(scenario: Scenario) -> list[tuple[float, list[float]]]:
     switches = {w.step: w for w in s.schedule}
     keep = set(range(0, s.steps + 1, stride)) | {s.steps} | set(switches)
     names = tuple(f"q[{i}]" for i in (1, 2, 3))
-    poses = []
+    rows = np.empty((s.steps + 1, len(names)))
     fmu = open_instance("planner", s.fmus["planner"], s.start_time, s.stop_time)
     try:
         for name, value in s.parameters.get("planner", {}).items():
             fmu.set_value(name, value)
         fmu.enter_initialization()
         fmu.exit_initialization()
-        for k in range(s.steps + 1):
-            t = s.start_time + k * s.step_size
+        timing = SimpleNamespace(start_time=s.start_time, step_size=s.step_size,
+                                 coupling="sampled", max_step_halvings=0)
+        loop = Loop({"planner": fmu}, {"planner": []}, {"planner": names}, ["planner"], {},
+                    timing)
+        loop.record(rows[0], s.start_time)
+        k = 0
+        while True:
             if k in switches:
+                t = s.start_time + k * s.step_size
                 fmu.reset(t, s.stop_time)
                 for name, value in switches[k].parameters.items():
                     fmu.set_value(name, value)
                 fmu.enter_initialization()
                 fmu.exit_initialization()
-            if k in keep:
-                poses.append((t, fmu.get_values(names)))
-            if k < s.steps:
-                fmu.do_step(t, s.step_size)
+                loop.record(rows[k], t)
+            if k == s.steps:
+                break
+            stop = min([b for b in switches if b > k] + [s.steps])
+            loop.run_steps(k, stop, rows, False)  # row j + 1 after step j
+            k = stop
     except BaseException:
         fmu.close()
         raise
     give_back(fmu)
-    return poses
+    return [(s.start_time + k * s.step_size, rows[k].tolist()) for k in sorted(keep)
+            if k <= s.steps]
 
 
 def check_poses(plant_fmu: Path, parameters: dict, poses, fields) -> None:

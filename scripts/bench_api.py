@@ -14,13 +14,16 @@ timed on both sides: loading, instantiation, initialisation, the steps, freeing.
 Printed, each the median of --runs: robofmu.simulate(PATH) / C host (and the
 process's first such call, before any instance is shared or any answer cached);
 robofmu.simulate(loaded scenario) / C host; and a serial sweep of --sweep regulation
-runs (robofmu.run_sweep) / --sweep C-host runs. The machine's load average is printed
+runs (robofmu.run_sweep) / --sweep C-host runs, in wall time and in CPU time (this
+process's against the C host's, which the load of other jobs moves less than the wall
+time: the two are measured one after the other). The machine's load average is printed
 with them: measure on a quiet machine."""
 
 from __future__ import annotations
 
 import argparse
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -82,6 +85,12 @@ def write_plan(scenario: robofmu.Scenario, work: Path) -> Path:
     return path
 
 
+def children_cpu() -> float:
+    """CPU seconds (user + system) of the finished child processes so far."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def host_runs(exe: Path, plan: Path, runs: int) -> tuple[list[float], list[float]]:
     said = subprocess.run([str(exe), str(plan), str(runs)], check=True, capture_output=True,
                           text=True).stdout.split("\n")
@@ -130,10 +139,12 @@ def main() -> int:
         spec = work / "sweep.toml"
         spec.write_text(f'scenario = "{path}"\nname = "bench"\n[grid.\'gains.omega\']\n'
                         f'from = 20\nto = 40\nsteps = {args.sweep}\nunit = "rad/s"\n')
-        started = time.perf_counter()
+        started, cpu = time.perf_counter(), time.process_time()
         outcome = robofmu.run_sweep(spec, work / "out")
-        sweep_wall = time.perf_counter() - started
+        sweep_wall, sweep_cpu = time.perf_counter() - started, time.process_time() - cpu
+        host_cpu = children_cpu()
         host_sweep, _ = host_runs(exe, plan, args.sweep)
+        host_cpu = children_cpu() - host_cpu
         load = os.getloadavg()
     print(f"machine load average (1, 5 min): {load[0]:.2f}, {load[1]:.2f} on "
           f"{os.cpu_count()} CPUs")
@@ -148,6 +159,8 @@ def main() -> int:
     print(f"serial sweep of {outcome.runs} runs ({outcome.failed} failed): {sweep_wall:.2f} s = "
           f"{sweep_wall / sum(host_sweep):5.2f} x {args.sweep} C-host runs "
           f"({sum(host_sweep):.2f} s)")
+    print(f"  (CPU time, which the other jobs' load moves less: {sweep_cpu:.2f} s = "
+          f"{sweep_cpu / host_cpu:.2f} x the C host's {host_cpu:.2f} s)")
     return 0
 
 

@@ -5,20 +5,14 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 
 from ..cli import entry
-from ..errors import CosimError, output_path, require
-from ..scenario import ScenarioError, load_scenario
-from .errors import COMMAND_LINE, AnimateError
-from .geometry import PARAMETERS, robot
-from .motion import read_motion
-from .plant import plant_parameters
-
-DEFAULT_FMU = Path("dist/Pss3Plant.fmu")
-MAX_PICTURE_BYTES = 1_000_000_000
+from ..errors import output_path
+from .errors import AnimateError
+from .geometry import PARAMETERS
+from .make import DEFAULT_FMU, make_animation
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -50,75 +44,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "ffmpeg on PATH)")
 
 
-def _check_options(args) -> None:
-    if args.frames < 1:
-        raise AnimateError(COMMAND_LINE, "--frames", f"{args.frames} frames; give 1 or more")
-    if not (math.isfinite(args.fps) and 0.1 <= args.fps <= 100.0):
-        raise AnimateError(COMMAND_LINE, "--fps", f"{args.fps}; give 0.1 to 100")
-    if not 64 <= args.size <= 4000:
-        raise AnimateError(COMMAND_LINE, "--size", f"{args.size} px; give 64 to 4000")
-    memory = args.frames * args.size**2 * 3  # the frames are kept as RGB until written
-    if memory > MAX_PICTURE_BYTES:
-        raise AnimateError(COMMAND_LINE, "--frames", f"{args.frames} frames of {args.size} "
-                           f"px need {memory / 1e9:.1f} GB; give fewer frames or a smaller "
-                           "--size")
-
-
-def _user_params(pairs: list[str]) -> dict[str, float]:
-    values = {}
-    for pair in pairs:
-        name, sep, text = pair.partition("=")
-        if not sep or name not in PARAMETERS:
-            raise AnimateError(COMMAND_LINE, f"--param {pair}", "give NAME=VALUE with NAME "
-                               f"one of {', '.join(PARAMETERS)}")
-        try:
-            values[name] = float(text)
-        except ValueError:
-            raise AnimateError(COMMAND_LINE, f"--param {pair}", f"'{text}' is not a "
-                               "number; give the value in SI units (m, rad)") from None
-    return values
-
-
-def _plant(args, alias: str):
-    """The plant FMU and its parameter overrides: the scenario's, then --fmu, --param."""
-    fmu, overrides = args.fmu, {}
-    if args.scenario is not None:
-        try:
-            scenario = load_scenario(args.scenario)
-        except (ScenarioError, CosimError, OSError) as e:
-            why = str(e).removeprefix(f"{args.scenario}: ")
-            raise AnimateError(str(args.scenario), "scenario", f"{why}; fix it or leave "
-                               "--scenario out") from None
-        if alias not in scenario.fmus:
-            raise AnimateError(str(args.scenario), f"fmus.{alias}", "no such FMU; name the "
-                               "plant's alias with --plant")
-        fmu = fmu or scenario.fmus[alias]
-        overrides.update(scenario.parameters.get(alias, {}))
-    overrides.update(_user_params(args.param))
-    return Path(fmu or DEFAULT_FMU), overrides
-
-
-def make_animation(args: argparse.Namespace) -> tuple[str, list[Path]]:
-    """Draws and writes the animation the arguments ask for: (its summary, the files
-    written); AnimateError for bad input (the library's robofmu.animate too)."""
-    _check_options(args)
-    require("matplotlib", "plots", "cosim animate")
-    require("PIL", "plots", "cosim animate")
-    from .render import render_run, write_outputs  # matplotlib and Pillow: the extra 'plots'
-    from .writer import ffmpeg
-    motion = read_motion(args.csv, args.plant, args.planner)
-    fmu, overrides = _plant(args, motion.plant)
-    rob = robot(plant_parameters(fmu, overrides))
-    if args.mp4:
-        ffmpeg()
-    animation = render_run(rob, motion, args.frames, args.size, title=args.csv.stem)
-    written = write_outputs(animation, args.out / args.csv.stem, args.fps, args.mp4)
-    return animation.summary(), list(written)
-
-
 def run(args: argparse.Namespace) -> int:
     try:
-        summary, written = make_animation(args)
+        summary, written = make_animation(
+            args.csv, args.out, fmu=args.fmu, scenario=args.scenario, params=args.param,
+            plant=args.plant, planner=args.planner, frames=args.frames, fps=args.fps,
+            size=args.size, mp4=args.mp4)
     except AnimateError as e:
         if getattr(args, "debug", False):
             raise

@@ -134,6 +134,15 @@ def run_sweep(spec: Spec, out: Path, scheduler: Any = None,
                         int(setup["batch"]), setup["ready_s"], started, client_cpu)
 
 
+def sweep_file(spec_path: Path, out: Path, fmu_dir: Path | None = None,
+               **options: Any) -> tuple[Spec, SweepOutcome]:
+    """The sweep SPEC file `spec_path` (its workspace targets filtered on its plant FMU)
+    run into the folder `out` (run_sweep's `options`): what ``cosim sweep`` and
+    robofmu.run_sweep make. SpecError naming the field of a bad SPEC."""
+    spec = load_spec(spec_path, fmu_dir, reachable=workspace_filter(spec_path, fmu_dir))
+    return spec, run_sweep(spec, out, **options)
+
+
 def _kinds(spec: Spec) -> list[str]:
     kinds = []
     for v in spec.varied:

@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 from ..errors import output_path, require
-from . import SpecError, load_spec, run_sweep, workspace_filter
+from . import SpecError, sweep_file
 from .spec import MAX_RUNS
 
 
@@ -53,9 +53,9 @@ def run(args: argparse.Namespace) -> int:
     require("matplotlib", "plots", "the plots of cosim sweep")
     try:
         _check_arguments(args)
-        spec = load_spec(args.spec, args.fmu_dir, reachable=workspace_filter(args.spec, args.fmu_dir))
-        outcome = run_sweep(spec, args.out, scheduler=args.scheduler, workers=args.workers,
-                            resume=args.resume, progress=not args.quiet, batch=args.batch)
+        spec, outcome = sweep_file(args.spec, args.out, args.fmu_dir, scheduler=args.scheduler,
+                                   workers=args.workers, resume=args.resume,
+                                   progress=not args.quiet, batch=args.batch)
     except (SpecError, ValueError, OSError) as e:
         print(f"cosim: {_one_line(e)}", file=sys.stderr)
         return 2

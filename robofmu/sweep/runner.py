@@ -143,15 +143,14 @@ def execute(store: FmuStore, document: dict, fmus: dict[str, str]) -> dict:
 
 def metrics(result) -> dict:
     """Tracking error (deg), peak actuator force and limits, settling time, discards."""
-    columns = {k: np.asarray(v) for k, v in result.columns.items()}
-
     def vec(alias: str, n: str) -> np.ndarray:
-        return np.stack([columns[f"{alias}.{n}[{i}]"] for i in (1, 2, 3)], 1)
+        return np.column_stack([np.array(result.columns[f"{alias}.{n}[{i}]"], dtype=float)
+                                for i in (1, 2, 3)])
 
-    error = vec("planner", "q") - vec("plant", "theta")
+    q = vec("planner", "q")
+    error = q - vec("plant", "theta")
     axis_error = np.abs(error).max(axis=1)
     peak_force = float(np.abs(vec("plant", "force")).max())
-    q = vec("planner", "q")
     settling = math.nan
     if np.all(q == q[0]) and axis_error[0] > 0.0:  # regulation: the setpoint holds
         last_outside = np.nonzero(axis_error > SETTLING_BAND * axis_error[0])[0][-1]

@@ -11,6 +11,7 @@
 //! spec's values): the model-mismatch study sets these apart from the plant's.
 
 use super::error::LoopError;
+use super::form::FORM;
 use super::scenario::{bad, number, output_limits, required};
 use crate::computed_torque::{
     AxisGains, ComputedTorque, MODEL_PARAMETERS, controller_message, model_parameter,
@@ -49,35 +50,15 @@ impl ControllerKind {
         }
     }
 
-    /// The file stem of the controller's FMU.
+    /// The file stem of the controller's FMU (robofmu/closed_loop.toml).
     pub fn fmu_stem(self) -> &'static str {
-        match self {
-            Self::Pid => "PID",
-            Self::ComputedTorque => "ComputedTorque",
-        }
+        &FORM.controller(self).fmu
     }
 
-    /// The connections (output, input) that feed the controller and the plant.
-    pub fn connections(self) -> &'static [(Role, &'static str, Role, &'static str)] {
-        use Role::{Control, Plan, Robot};
-        match self {
-            Self::Pid => &[
-                (Plan, "q", Control, "setpoint"),
-                (Plan, "qdot", Control, "setpointRate"),
-                (Robot, "theta", Control, "measurement"),
-                (Robot, "thetaDot", Control, "measuredRate"),
-                (Robot, "gravityCompensation", Control, "feedforward"),
-                (Control, "u", Robot, "generalizedForceCommand"),
-            ],
-            Self::ComputedTorque => &[
-                (Plan, "q", Control, "setpoint"),
-                (Plan, "qdot", Control, "setpointRate"),
-                (Plan, "qddot", Control, "setpointAcceleration"),
-                (Robot, "theta", Control, "measurement"),
-                (Robot, "thetaDot", Control, "measuredRate"),
-                (Control, "u", Robot, "generalizedForceCommand"),
-            ],
-        }
+    /// The connections (source role, output, target role, input) that feed the
+    /// controller and the plant (robofmu/closed_loop.toml).
+    pub fn connections(self) -> &'static [(Role, String, Role, String)] {
+        &FORM.controller(self).connections
     }
 }
 

@@ -7,20 +7,22 @@
 //! characteristic polynomial m s^3 + Kd s^2 + Kp s + Ki. Placing a triple real pole at
 //! s = -w (critically damped, bandwidth w) gives Kd = 3 m w, Kp = 3 m w^2, Ki = m w^3.
 //! Using the largest m_i met on the motion keeps the loop stable where the real inertia
-//! is smaller (the ratio would have to fall below 1/9 to destabilise it).
+//! is smaller (the ratio would have to fall below 1/9 to destabilise it). The rule is
+//! the "pid" rule of robofmu/closed_loop.toml, which the Python harness designs with.
 
 use super::error::LoopError;
+use super::form::FORM;
 use crate::control::pid::PidGains;
 use crate::pss3::dynamics::Plant;
 use nalgebra::Vector3;
 
 /// Gains of one channel for inertia `inertia` (kg m^2) and bandwidth `bandwidth` (rad/s).
 pub fn triple_pole_gains(inertia: f64, bandwidth: f64) -> PidGains {
-    let (m, w) = (inertia, bandwidth);
+    let (kp, ki, kd) = FORM.pid_rule().gains(inertia, bandwidth);
     PidGains {
-        kp: 3.0 * m * w * w,
-        ki: m * w * w * w,
-        kd: 3.0 * m * w,
+        kp,
+        ki,
+        kd,
         tf: 0.0,
         limits: None,
         use_rate_inputs: true,

@@ -18,6 +18,7 @@
 
 mod controller;
 mod error;
+mod form;
 mod gains;
 mod sampled;
 mod scenario;
@@ -26,6 +27,7 @@ mod summary;
 
 pub use controller::{Controller, ControllerKind};
 pub use error::LoopError;
+pub use form::{GainRule, gain_rule};
 pub use gains::{AxisDesign, design_gains, triple_pole_gains};
 pub use sampled::simulate_sampled;
 pub use scenario::{LoopSpec, parse_loop_scenario};

@@ -3,10 +3,12 @@
 //! plant topology of this module (controller: the PID or the computed-torque law, see
 //! `controller`) is accepted; any other connection or an unmodelled plant
 //! parameter is refused by name, so the reference can never silently describe a
-//! different loop than the FMUs run. The scenario rules of the hand-written form (units,
-//! base-frame rates, gain design, workspace) live in one place, the Python harness:
-//! `cosim check SCENARIO --expanded FILE.toml` writes the form read here, with the
-//! `[[plan_switches]]` of a multi-segment motion.
+//! different loop than the FMUs run: the topology (each controller's FMU and
+//! connections) is read from robofmu/closed_loop.toml, the file the Python harness
+//! builds its scenarios from (`form`). The scenario rules of the hand-written form
+//! (units, base-frame rates, gain design, workspace) live in one place, the Python
+//! harness: `cosim check SCENARIO --expanded FILE.toml` writes the form read here, with
+//! the `[[plan_switches]]` of a multi-segment motion.
 
 use super::controller::{self, Controller, ControllerKind, Role};
 use super::error::LoopError;
