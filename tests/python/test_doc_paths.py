@@ -26,8 +26,8 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+from markdown_prose import DOCUMENTS, ROOT, prose
+
 
 # Paths that name files outside this checkout: document -> [(pattern, reason)].
 PLACES = {
@@ -46,22 +46,11 @@ PLACES = {
     ],
 }
 
-FENCE = re.compile(r"^\s*```")
 PART = r"(?:\{[^}\s/]*\}|<[^>\s/]*>|[\w.*-])"
 WORD = re.compile(rf"(?<![\w./:@~-])({PART}+(?:/{PART}*)+)")
 LINK = re.compile(r"\]\(([^)\s]+)\)")
 PLACEHOLDER = re.compile(r"<[^>/]*>|\{[^},/]*\}")
 ALTERNATIVES = re.compile(r"\{([^}/]*,[^}/]*)\}")
-
-
-def prose(text: str):
-    """(line number, text) of each line outside fenced code blocks."""
-    inside = False
-    for number, line in enumerate(text.splitlines(), start=1):
-        if FENCE.match(line):
-            inside = not inside
-        elif not inside:
-            yield number, line
 
 
 def tracked_tops() -> set:

@@ -19,10 +19,9 @@ its reason.
 """
 
 import re
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+from markdown_prose import DOCUMENTS, ROOT, prose
+
 
 # Another project's commits a document names on purpose: document -> {word: reason}.
 FOREIGN = {
@@ -31,19 +30,8 @@ FOREIGN = {
     },
 }
 
-FENCE = re.compile(r"^\s*```")
 HEX = re.compile(r"(?<![\w-])(?<!0x)[0-9a-f]{7,40}(?![\w-])")
 ISSUE = re.compile(r"\bissues?[\s-]+#?\d+|(?<![\w/&#])#\d+\b", re.IGNORECASE)
-
-
-def prose(text: str):
-    """(line number, text) of each line outside fenced code blocks."""
-    inside = False
-    for number, line in enumerate(text.splitlines(), start=1):
-        if FENCE.match(line):
-            inside = not inside
-        elif not inside:
-            yield number, line
 
 
 def history(document: str, text: str) -> list:
