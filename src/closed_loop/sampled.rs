@@ -14,9 +14,9 @@
 use super::controller::Controller;
 use super::error::LoopError;
 use super::scenario::LoopSpec;
-use super::simulate::LoopSample;
+use super::simulate::{LoopSample, pid_inputs};
 use crate::computed_torque::{Inputs, SampledComputedTorque};
-use crate::control::pid::{PidGains, PidInputs};
+use crate::control::pid::PidGains;
 use crate::control::sampled::{SampleClock, SampledPid};
 use crate::control::trajectory::Sample;
 use crate::ode::{self, Settings};
@@ -79,13 +79,7 @@ fn tick(
     let gravity_compensation = plant.gravity_compensation(&state.euler)?;
     let u = match controller {
         Sampled::Pid(channels) => Vector3::from_fn(|axis, _| {
-            let inputs = PidInputs {
-                setpoint: planned[axis].q,
-                measurement: state.euler[axis],
-                setpoint_rate: planned[axis].qdot,
-                measured_rate: theta_dot[axis],
-                feedforward: gravity_compensation[axis],
-            };
+            let inputs = pid_inputs(axis, &planned, &state, &theta_dot, &gravity_compensation);
             channels[axis].tick(&inputs).u
         }),
         Sampled::ComputedTorque(law) => {

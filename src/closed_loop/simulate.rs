@@ -99,6 +99,24 @@ fn control(spec: &LoopSpec, plant: &Plant, y: &LoopVector) -> Result<Control, Lo
     })
 }
 
+/// One axis's PID inputs: the planned angle and rate against the plant's, the plant's
+/// gravity compensation as feedforward (the continuous and the sampled loop alike).
+pub(super) fn pid_inputs(
+    axis: usize,
+    planned: &[Sample; 3],
+    state: &PlantState,
+    theta_dot: &Vector3<f64>,
+    gravity_compensation: &Vector3<f64>,
+) -> PidInputs {
+    PidInputs {
+        setpoint: planned[axis].q,
+        measurement: state.euler[axis],
+        setpoint_rate: planned[axis].qdot,
+        measured_rate: theta_dot[axis],
+        feedforward: gravity_compensation[axis],
+    }
+}
+
 /// The PID's output and state rates (the feedforward is the plant's gravity
 /// compensation).
 fn pid_control(
@@ -112,13 +130,7 @@ fn pid_control(
     let mut u = Vector3::zeros();
     let mut pid_rates = [PidState::default(); 3];
     for axis in 0..3 {
-        let inputs = PidInputs {
-            setpoint: planned[axis].q,
-            measurement: state.euler[axis],
-            setpoint_rate: planned[axis].qdot,
-            measured_rate: theta_dot[axis],
-            feedforward: gravity_compensation[axis],
-        };
+        let inputs = pid_inputs(axis, planned, state, theta_dot, gravity_compensation);
         let gains = &gains[axis];
         u[axis] = pid::output(gains, &pid_state(y, axis), &inputs).u;
         pid_rates[axis] = pid::derivatives(gains, &pid_state(y, axis), &inputs);
