@@ -7,8 +7,8 @@
 #
 # Platforms (docs/interoperability.md): x86_64-linux and aarch64-linux (glibc 2.17 and
 # newer), x86_64-windows, x86_64-darwin and aarch64-darwin (macOS 10.12 / 11 and newer).
-# One cargo build per platform, `--profile fmu` (release, symbols stripped), all FMU
-# crates at once. Linux and macOS are linked by zig (`cargo zigbuild`; ziglang and
+# One cargo call per platform and library, `--profile fmu` (release, whole-program LTO,
+# symbols stripped). Linux and macOS are linked by zig (`cargo-zigbuild`; ziglang and
 # cargo-zigbuild come from PyPI, pinned in scripts/toolchain-requirements.txt, into
 # target/toolchain/venv); Windows by MinGW-w64's gcc (Debian's gcc-mingw-w64-x86-64,
 # installed with apt-get when this runs as root), which honours the export list rustc
