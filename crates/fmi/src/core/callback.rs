@@ -63,6 +63,13 @@ pub fn inside_callback(mark: usize) -> bool {
 
 /// Runs `call`, a call of the host's callback `what` ("logger", ...); aborts the
 /// process with a message if it unwinds.
+///
+/// Never inlined: its frame must keep a landing pad of its own whose only action is the
+/// guard's cleanup. Inlined into an `extern "C"` entry point (as whole-program LTO
+/// does), the call site's first action became the entry point's cannot-unwind filter,
+/// and a forced unwind (`pthread_exit`, a cancellation), which passes filters, crossed
+/// the FMU's frames without the abort (the leave test's intermediateUpdate cases).
+#[inline(never)]
 pub fn host<R>(what: &'static str, call: impl FnOnce() -> R) -> R {
     let guard = AbortOnUnwind(what);
     // In this frame, above every frame of the callback.
