@@ -66,9 +66,10 @@ pub fn inside_callback(mark: usize) -> bool {
 ///
 /// Never inlined: its frame must keep a landing pad of its own whose only action is the
 /// guard's cleanup. Inlined into an `extern "C"` entry point (as whole-program LTO
-/// does), the call site's first action became the entry point's cannot-unwind filter,
-/// and a forced unwind (`pthread_exit`, a cancellation), which passes filters, crossed
-/// the FMU's frames without the abort (the leave test's intermediateUpdate cases).
+/// does), a forced unwind (`pthread_exit`, a cancellation) crossed the FMU's frames
+/// without the abort (the leave test's intermediateUpdate cases; a C++ exception still
+/// aborted). The likely cause: the call site's first action became the entry point's
+/// cannot-unwind filter, which Rust's personality lets a forced unwind pass.
 #[inline(never)]
 pub fn host<R>(what: &'static str, call: impl FnOnce() -> R) -> R {
     let guard = AbortOnUnwind(what);
