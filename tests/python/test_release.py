@@ -18,8 +18,8 @@ from xml.etree import ElementTree
 
 import fmpy
 from fmpy import read_model_description
+from page_matrix import check_in_browser, unresolved
 from page_matrix import matrix as page_matrix
-from page_matrix import unresolved
 
 ROOT = Path(__file__).resolve().parents[2]
 ROW = re.compile(r"^\| `([^`]+)` \| (\d+) \|", re.M)
@@ -143,6 +143,7 @@ def check_compatibility(folder: Path, version: str) -> None:
     # platform, one column per importer with its version; every link resolves.
     page = folder / "index.html"
     assert unresolved(page) == []
+    check_in_browser(page, ROOT / "results" / "verify-page" / "compatibility.png")
     matrix = page_matrix(page)
     assert len(matrix) == 12 and all(len(cells) == 5 for cells in matrix.values())
     named = dict(zip(["cosim", "master", "container", "libcosim", "ecos"], next(
