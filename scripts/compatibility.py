@@ -448,8 +448,8 @@ def results_page(out: Path, tool_version: str, verdicts: dict[str, str],
             sorted(p for p in folder.iterdir() if p.is_file()), tool=f"{tool} {release}",
             how=f"Case {label}: the FMU alone, the experiment of its _ref.opt, the inputs "
                 "of its _in.csv where present, every signal of its _ref.csv judged by "
-                "cosim verify's rule (the FMI cross-check band) from the first step on; "
-                "its Readme.txt records the verdict."))
+                "cosim verify's rule (the FMI cross-check band); its Readme.txt records "
+                "the verdict."))
     note = ("An empty cell: the importer does not run that case (Model Exchange runs in "
             "cosim only; ecos does not run the FMI 3.0 FMUs with arrays, their "
             "scalar-only builds it does); README.md beside this page says why.")
