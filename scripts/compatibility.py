@@ -14,9 +14,9 @@ folder holding cross-check.txt), the smoke test the FMU carries itself (FMI-LS-R
 
 Every FMU is first checked with FMPy's validate_fmu (the guide asks for a checker), then
 imported by running it, not by hand: `cosim verify OUT/fmus --html` (FMPy, Co-Simulation
-and Model Exchange) writes OUT/results/ (the cross-check's results layout), OUT/junit.xml
-and the results page OUT/index.html; each Co-Simulation case is also run, in a child
-process each (a crash of a library costs that case only), by
+and Model Exchange) writes OUT/results/ (the cross-check's results layout) and
+OUT/junit.xml; each Co-Simulation case is also run, in a child process each (a crash of a
+library costs that case only), by
 - our master (robofmu.master.Master, the native stepping loop of `cosim run`), the FMU
   with its inputs from a CSV source, held over each step;
 - the container runtime of fmu-manipulation-toolbox: the FMU alone in a container FMU
@@ -25,7 +25,9 @@ process each (a crash of a library costs that case only), by
 - ecos (ecospy), the FMI 2.0 and scalar-only FMI 3.0 ones;
 the master, libcosim and ecos judged by cosim verify's rule (the FMI cross-check band,
 robofmu.verify) from the first step on. Each Readme.txt and OUT/README.md then list the
-importers with their versions, verdicts and limits.
+importers with their versions, verdicts and limits, and the results page OUT/index.html
+(robofmu.verify.page, as `cosim verify TREE --html` writes it) shows the matrix FMU x
+importer x platform of those same verdicts, cosim's with its numbers and plots.
 
 Usage: python scripts/compatibility.py OUT   (from the repository root; needs dist/ and
 the venv). Exit status 1 when an FMU fails its verdict.
@@ -406,6 +408,55 @@ LIMITS = """Each importer runs the cases it can:
 """
 
 
+def columns(tool_version: str) -> dict[str, str]:
+    """Each importer other than cosim as the results page's column names it, with its
+    version."""
+    return {
+        "master": f"our master (cosim {tool_version})",
+        "container": "container runtime (fmu-manipulation-toolbox "
+                     f"{importlib.metadata.version('fmu-manipulation-toolbox')})",
+        "libcosim": f"libcosim (libcosimpy {importlib.metadata.version('libcosimpy')})",
+        "ecos": f"ecos (ecospy {importlib.metadata.version('ecospy')})",
+    }
+
+
+def results_page(out: Path, tool_version: str, verdicts: dict[str, str],
+                 summaries: dict[str, str], others: list[tuple[Path, str, str]]) -> bytes:
+    """The results page of the compatibility folder: cosim verify's cases (`verdicts`
+    and `summaries` by case label, as its run printed them; its results under
+    out/results/) and each other importer's verdict on a case folder (`others`), one
+    matrix FMU x importer x platform; every file a link relative to out/index.html."""
+    sys.path.insert(0, str(ROOT))
+    from robofmu.verify.page import Entry, page
+    from robofmu.verify.tree import find_cases, page_entry
+
+    entries = []
+    for case in find_cases(out / "fmus"):
+        label = case.label()
+        written = case.results(out)
+        files = sorted(p for p in written.iterdir() if p.is_file()) if written.is_dir() else []
+        entries.append(page_entry(case, out, verdicts.get(label, "not run"),
+                                  summaries.get(label, f"{label}: not run"), files))
+    named, short = importers(tool_version), columns(tool_version)
+    for folder, importer, said in others:
+        version, kind, platform, tool, release, model = folder.parts[-6:]
+        label = "/".join(folder.parts[-6:])
+        entries.append(Entry(
+            f"{model}.fmu", version, kind, platform, short[importer], label,
+            said.split(" (")[0], f"{label}: imported and simulated with {named[importer]}, "
+            f"Co-Simulation: {said}.", folder,
+            sorted(p for p in folder.iterdir() if p.is_file()), tool=f"{tool} {release}",
+            how=f"Case {label}: the FMU alone, the experiment of its _ref.opt, the inputs "
+                "of its _in.csv where present, every signal of its _ref.csv judged by "
+                "cosim verify's rule (the FMI cross-check band); its Readme.txt records "
+                "the verdict."))
+    note = ("An empty cell: the importer does not run that case (Model Exchange runs in "
+            "cosim only; ecos does not run the FMI 3.0 FMUs with arrays, their "
+            "scalar-only builds it does); README.md beside this page says why.")
+    return page(f"robofmu {tool_version}: compatibility information", entries,
+                out / "index.html", note)
+
+
 def main() -> int:
     if len(sys.argv) >= 3 and sys.argv[1].removeprefix("--") in IMPORTERS:
         print(IMPORTERS[sys.argv[1].removeprefix("--")](Path(sys.argv[2])))
@@ -422,18 +473,19 @@ def main() -> int:
     done = subprocess.run([sys.executable, "-m", "robofmu.verify", str(out / "fmus"),
                            "--out", str(out), "--html", str(out / "index.html"),
                            "--jobs", str(jobs)], capture_output=True, text=True)
-    verdicts = {}
+    verdicts, summaries = {}, {}
     for line in done.stdout.splitlines():
-        found = re.match(r"\[\d+/\d+\] (\w+)\s+\S+ \S+ \S+ against (\S+):", line)
+        found = re.match(r"\[\d+/\d+\] (\w+)\s+(\S+ \S+ \S+ against (\S+):.*)", line)
         if found:
-            verdicts[found.group(2)] = found.group(1).lower()
+            verdicts[found.group(3)] = found.group(1).lower()
+            summaries[found.group(3)] = found.group(2)
     if not verdicts:
         sys.stderr.write(done.stdout + done.stderr)
         return 1
     with ThreadPoolExecutor(jobs) as pool:
         running = {(folder, importer): pool.submit(verdict_of, importer, folder)
                    for folder in folders for importer in runs("/".join(folder.parts[-6:]))}
-    rows, failed = [], False
+    rows, failed, entries = [], False, []
     for folder in folders:
         label = "/".join(folder.parts[-6:])
         verdict = verdicts.get(label, "not run")
@@ -452,6 +504,7 @@ def main() -> int:
             for i, v in by.items())
         with (folder / "Readme.txt").open("a") as f:
             f.write("\n" + "\n".join(lines) + "\n")
+        entries += [(folder, importer, said) for importer, said in by.items()]
         cells = [by.get(i, "not run").split(" (")[0] for i in named if i != "cosim"]
         rows.append(f"| {label} | {verdict} | " + " | ".join(cells) + " |")
     listed = "\n".join(f"- {name}" for name in named.values())
@@ -464,6 +517,8 @@ def main() -> int:
         "page of cosim: `index.html`; its results: `results/`, `junit.xml`.\n\n"
         "| FMU | cosim (FMPy) | our master | container | libcosim | ecos |\n"
         "|---|---|---|---|---|---|\n" + "\n".join(rows) + "\n")
+    (out / "index.html").write_bytes(results_page(out, tool_version, verdicts, summaries,
+                                                  entries))
     print(done.stdout.splitlines()[-1])
     return 1 if failed or done.returncode != 0 else 0
 

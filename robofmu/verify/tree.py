@@ -170,6 +170,21 @@ def _clear_stale(case: TreeCase, out: Path, files: dict) -> None:
             path.unlink()
 
 
+def importer_name() -> str:
+    """This importer as the results page names it: cosim and the FMPy it runs on."""
+    return f"{TOOL} {tool_version()} (FMPy {_fmpy_version()})"
+
+
+def page_entry(case: TreeCase, out: Path, status: str, summary: str,
+               written: list[Path]) -> Entry:
+    """The results page's entry of `case`, verified into `out` with the verdict `status`
+    and `summary`: the case's files and `written`, its results."""
+    inputs = sorted(p for p in case.folder.iterdir() if p.is_file())
+    return Entry(case.fmu.name, case.fmi_version, case.kind, case.platform, importer_name(),
+                 case.label(), status, summary, case.results(out), inputs + sorted(written),
+                 tool=f"{case.tool} {case.version}")
+
+
 def verify_tree(args) -> int:
     tree = args.fmu
     if args.case is not None or args.reference is not None or args.input is not None:
@@ -192,7 +207,6 @@ def verify_tree(args) -> int:
     started = time.perf_counter()
     suites, counts = {}, {"passed": 0, "failed": 0, "rejected": 0}
     entries: list[Entry] = []
-    importer = f"{TOOL} {tool_version()} (FMPy {_fmpy_version()})"
     print(f"{tree}: {len(cases)} cases, {len(todo)} to run here ({jobs} at once), "
           f"{len(skipped)} skipped", flush=True)
 
@@ -206,10 +220,7 @@ def verify_tree(args) -> int:
                               f"({e.strerror})", "give a writable folder") from None
         counts[status] += 1
         suites[case.label()] = suite
-        inputs = sorted(p for p in case.folder.iterdir() if p.is_file())
-        entries.append(Entry(case.fmu.name, case.fmi_version, case.kind, case.platform,
-                             importer, case.label(), status, summary, case.results(args.out),
-                             inputs + sorted(files)))
+        entries.append(page_entry(case, args.out, status, summary, list(files)))
         print(f"[{k}/{len(todo)}] {status.upper():8} {summary}", flush=True)
         for line in lines:
             if not line.startswith("PASS"):

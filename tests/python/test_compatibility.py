@@ -153,3 +153,34 @@ def test_a_broken_array_column_is_one_line(text, said):
 
     with pytest.raises(VerifyError, match=re.escape(said)):
         read_table(Path("x.csv"), text)
+
+
+def test_the_results_page_shows_each_importers_verdict(folders):
+    # The page of the compatibility folder (compatibility.results_page, the one
+    # scripts/compatibility.py writes) with libcosim's and ecos's verdicts on the PID, run
+    # here: its matrix, read by Python's HTML parser, must show them in their importers'
+    # columns with their versions (libcosim's refusal of FMI 3.0 with its reason), beside
+    # cosim's verdict, and every link must resolve. Truth: the verdicts the importers
+    # returned (as Readme.txt records them).
+    from importlib.metadata import version
+
+    from page_matrix import matrix, unresolved
+
+    out = folders["2.0"].parents[6]
+    tool = compatibility.version()
+    others = [(folders[v], "libcosim", compatibility.verdict_of("libcosim", folders[v]))
+              for v in ("2.0", "3.0")]
+    others.append((folders["2.0"], "ecos", compatibility.verdict_of("ecos", folders["2.0"])))
+    assert [said for _, _, said in others] == ["passed", REFUSED, "passed"]
+    cosim = {"/".join(folders[v].parts[-6:]): "passed" for v in ("2.0", "3.0")}
+    page = out / "index.html"
+    page.write_bytes(compatibility.results_page(out, tool, cosim, {}, others))
+    rows = matrix(page)
+    libcosim = f"libcosim (libcosimpy {version('libcosimpy')})"
+    ecos = f"ecos (ecospy {version('ecospy')})"
+    fmi2 = rows[f"PID.fmu (FMI 2.0, robofmu {tool}), linux64"]
+    fmi3 = rows[f"PID.fmu (FMI 3.0, robofmu {tool}), x86_64-linux"]
+    assert fmi2[libcosim] == "cs passed" and fmi2[ecos] == "cs passed"
+    assert fmi3[libcosim] == f"cs {REFUSED}" and fmi3[ecos] == ""
+    assert fmi2[f"cosim {tool} (FMPy {version('fmpy')})"] == "cs passed\nme not run"
+    assert unresolved(page) == []

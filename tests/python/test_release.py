@@ -18,6 +18,8 @@ from xml.etree import ElementTree
 
 import fmpy
 from fmpy import read_model_description
+from page_matrix import check_in_browser, unresolved
+from page_matrix import matrix as page_matrix
 
 ROOT = Path(__file__).resolve().parents[2]
 ROW = re.compile(r"^\| `([^`]+)` \| (\d+) \|", re.M)
@@ -136,3 +138,29 @@ def check_compatibility(folder: Path, version: str) -> None:
     assert all(v in ("passed", "refused", "not run") for row in rows for v in row[2:])
     assert f"cosim {version}" in summary and "fmu-manipulation-toolbox 2.0" in summary
     assert "fmusim" in summary  # why it is not among the importers
+    # The results page: the same verdicts as README.md's table (the truth here, written
+    # from each importer's run), one row per FMU, FMI version, exporting tool and
+    # platform, one column per importer with its version; every link resolves.
+    page = folder / "index.html"
+    assert unresolved(page) == []
+    check_in_browser(page, ROOT / "results" / "verify-page" / "compatibility.png")
+    matrix = page_matrix(page)
+    assert len(matrix) == 12 and all(len(cells) == 5 for cells in matrix.values())
+    named = dict(zip(["cosim", "master", "container", "libcosim", "ecos"], next(
+        iter(matrix.values()))))
+    assert named["libcosim"] == "libcosim (libcosimpy 0.0.6)"
+    assert named["ecos"] == "ecos (ecospy 0.7.2)"
+    for label, *verdicts in rows:
+        fmi, kind, plat, tool, release, model = label.split("/")
+        cells = matrix[f"{model}.fmu (FMI {fmi}, {tool} {release}), {plat}"]
+        lines = {k: [line for line in cells[named[k]].splitlines()
+                     if line.startswith(f"{kind} ")] for k in named}
+        assert lines["cosim"] == [f"{kind} {verdicts[0]}"], (label, cells)
+        for k, verdict in zip(list(named)[1:], verdicts[1:]):
+            if verdict == "not run":
+                assert lines[k] == [], (label, k, cells)
+            elif verdict == "refused":  # with its reason
+                assert lines[k] == [f"{kind} refused (Unsupported feature: Unsupported "
+                                    "FMI version)"], (label, k, cells)
+            else:
+                assert lines[k] == [f"{kind} {verdict}"], (label, k, cells)

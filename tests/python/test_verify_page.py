@@ -11,7 +11,6 @@ one case whose reference is wrong (it must show failed, its plots with it)."""
 
 import os
 import re
-import shutil
 import subprocess
 import sys
 from html.parser import HTMLParser
@@ -20,6 +19,7 @@ from urllib.parse import unquote
 import pytest
 
 from conftest import ROOT
+from page_matrix import check_in_browser
 
 SCREENSHOT = ROOT / "results" / "verify-page" / "screenshot.png"
 
@@ -37,17 +37,6 @@ class Links(HTMLParser):
             self.links.append(a["href"])
         if tag == "img":
             self.images.append(a["src"])
-
-
-def chromium(*args) -> str:
-    browser = shutil.which("chromium")
-    if browser is None:
-        pytest.fail("chromium is missing: run bash scripts/install-browser.sh")
-    done = subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu",
-                           "--hide-scrollbars", *args], capture_output=True, text=True,
-                          timeout=120)
-    assert done.returncode == 0, done.stderr
-    return done.stdout
 
 
 @pytest.fixture(scope="module")
@@ -88,9 +77,4 @@ def test_every_link_resolves_and_every_case_is_in_the_matrix(page):
 
 
 def test_every_image_loads_in_chromium_and_a_screenshot_is_kept(page):
-    dom = chromium("--virtual-time-budget=5000", "--dump-dom", page.as_uri())
-    assert 'data-images-broken="0"' in dom, re.findall(r"data-images-broken=\"[^\"]*\"", dom)
-    SCREENSHOT.parent.mkdir(parents=True, exist_ok=True)
-    chromium(f"--screenshot={SCREENSHOT}", "--window-size=1280,1600", page.as_uri())
-    data = SCREENSHOT.read_bytes()
-    assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 20_000
+    check_in_browser(page, SCREENSHOT)
