@@ -1,6 +1,9 @@
 //! The closed-loop reference (planner -> PID -> plant as one ODE) against closed forms
 //! and the requirements of the scenarios.
 
+mod common;
+
+use common::scenario;
 use nalgebra::Vector3;
 use robofmu::closed_loop::{Controller, LoopSpec, design_gains, parse_loop_scenario, simulate};
 use robofmu::control::trajectory::{Boundary, Order, Polynomial};
@@ -69,16 +72,6 @@ fn small_offsets_decay_as_the_designed_triple_pole() {
             "axis {axis}: worst deviation {worst:e} rad"
         );
     }
-}
-
-/// A scenario of scenarios/ in the expanded form the harness resolves it to (`cosim
-/// check --expanded`, committed in tests/scenarios/expanded/ and checked against the
-/// harness by tests/python/test_expanded.py).
-fn scenario(name: &str) -> LoopSpec {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/scenarios/expanded")
-        .join(name);
-    parse_loop_scenario(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
 #[test]

@@ -2,14 +2,16 @@
 //! against the exact zero-order-hold recursion of the linearised loop, the tick times
 //! against their decimal values, and the tracking requirement.
 
+mod common;
+
+use common::scenario;
 use nalgebra::Vector3;
 use robofmu::closed_loop::{
-    Controller, LoopSpec, design_gains, parse_loop_scenario, simulate, simulate_sampled, tracking,
+    Controller, LoopSpec, design_gains, simulate, simulate_sampled, tracking,
 };
 use robofmu::computed_torque::{ComputedTorque, pole_placement};
 use robofmu::control::trajectory::{Boundary, Order, Polynomial};
 use robofmu::pss3::dynamics::{Plant, PlantParams};
-use std::path::Path;
 
 const BANDWIDTH: f64 = 30.0;
 const PERIOD: f64 = 1e-3;
@@ -207,13 +209,6 @@ fn sampled_computed_torque_regulation_follows_the_zero_order_hold_recursion() {
         )
     };
     assert_linear_part_exact(run(1e-6), run(1e-5));
-}
-
-fn scenario(name: &str) -> LoopSpec {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/scenarios/expanded")
-        .join(name);
-    parse_loop_scenario(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
 #[test]
