@@ -21,6 +21,9 @@
 # so adding an FMU needs no change here.
 #
 # Usage: bash scripts/build-fmus.sh
+# A development build may name the platforms to build, comma-separated
+# (ROBOFMU_PLATFORMS=x86_64-linux bash scripts/build-fmus.sh); the others are recorded
+# as missing with that reason, as a platform whose toolchain is missing is.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -129,6 +132,10 @@ built=()
 for entry in "${platforms[@]}"; do
     read -r tuple target <<<"$entry"
     triple="${target%.2.17}"
+    if [[ -n "${ROBOFMU_PLATFORMS:-}" && ",$ROBOFMU_PLATFORMS," != *",$tuple,"* ]]; then
+        missing "$tuple" "left out by ROBOFMU_PLATFORMS=$ROBOFMU_PLATFORMS (a development build)"
+        continue
+    fi
     if [[ -n "$zig_error" ]]; then
         missing "$tuple" "$zig_error"
         continue
