@@ -43,7 +43,11 @@ step .venv/bin/mypy
 step .venv/bin/mypy --strict --follow-imports=silent robofmu/__init__.py robofmu/api.py \
     robofmu/errors.py robofmu/instances.py
 step .venv/bin/python scripts/api_docs.py target/api-docs
-step .venv/bin/python -m pytest tests/python -q
+# Two pytest processes at once (CI has 2 cores): one runs, in order, the tests that run
+# commands in the repository and check what each wrote (the documented commands, the
+# release script: they rebuild dist/ and watch the tree), the other every other test
+# (none writes in the tree outside results/). Each writes its own log, shown after both.
+step bash scripts/pytest-two.sh tests/python/test_documented_commands.py tests/python/test_release.py
 # The wheel as a user installs it: built, installed into a fresh venv in an empty folder
 # (no checkout, no Rust on PATH), a bundled scenario and a bundled `cosim verify` case run
 # there; cosim --version = Cargo.toml's version = every FMU's (about a minute, mostly pip).

@@ -8,6 +8,7 @@ from __future__ import annotations
 import re
 import shutil
 import subprocess
+import tempfile
 from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import unquote
@@ -75,9 +76,11 @@ def chromium(*args) -> str:
     browser = shutil.which("chromium")
     if browser is None:
         pytest.fail("chromium is missing: run bash scripts/install-browser.sh")
-    done = subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu",
-                           "--hide-scrollbars", *args], capture_output=True, text=True,
-                          timeout=120)
+    # A profile of its own per call: two test processes may run Chromium at once.
+    with tempfile.TemporaryDirectory() as profile:
+        done = subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu",
+                               "--hide-scrollbars", f"--user-data-dir={profile}", *args],
+                              capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     return done.stdout
 
