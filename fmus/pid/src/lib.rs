@@ -51,10 +51,12 @@ impl Pid {
         Ok(())
     }
 
-    /// The law's output and state derivative of channel c.
-    fn law(&self, c: usize) -> (PidOutput, PidState) {
-        let (g, s, i) = (&self.gains[c], &self.states[c], &self.inputs[c]);
-        (pid::output(g, s, i), pid::derivatives(g, s, i))
+    /// The law's output and state derivatives of channel c.
+    fn output(&self, c: usize) -> PidOutput {
+        pid::output(&self.gains[c], &self.states[c], &self.inputs[c])
+    }
+    fn rates(&self, c: usize) -> PidState {
+        pid::derivatives(&self.gains[c], &self.states[c], &self.inputs[c])
     }
 }
 
@@ -97,11 +99,11 @@ const MEASURED: Decl = input_k::<1>("measurement", 111, &[0.0]);
 const R_RATE: Decl = input_k::<2>("setpointRate", 121, &[0.0]);
 const Y_RATE: Decl = input_k::<3>("measuredRate", 131, &[0.0]);
 const FEEDFWD: Decl = input_k::<4>("feedforward", 141, &[0.0]);
-const U: Decl = CH.output("u", 201, |m, c| m.law(c).0.u);
+const U: Decl = CH.output("u", 201, |m, c| m.output(c).u);
 const INTEGRAL: Decl = CH.state("integral", 301, |m, c| &mut m.states[c].integral);
 const FILTER: Decl = CH.state("filter", 311, |m, c| &mut m.states[c].filter);
-const DER_INT: Decl = CH.derivative("der(integral)", 321, INTEGRAL, |m, c| m.law(c).1.integral);
-const DER_FILTER: Decl = CH.derivative("der(filter)", 331, FILTER, |m, c| m.law(c).1.filter);
+const DER_INT: Decl = CH.derivative("der(integral)", 321, INTEGRAL, |m, c| m.rates(c).integral);
+const DER_FILTER: Decl = CH.derivative("der(filter)", 331, FILTER, |m, c| m.rates(c).filter);
 
 /// What the filter's dx/dt reads at initialization, in the same channel.
 static FILTER_KNOWNS: [Var; 8] = same(&[KD, TF, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FILTER]);
@@ -195,5 +197,4 @@ impl Model for Pid {
     const JACOBIAN: Option<Jacobian<Self>> = Some(Jacobian::Partial(partial));
 }
 
-// The exported fmi2* and fmi3* symbols of this FMU.
 export_fmu!(Pid);
