@@ -183,5 +183,8 @@ fn order_mut_names_the_rates_and_the_accelerations() {
     assert_eq!(ramp.order_mut(2).map(|a| *a), Some(expected.acceleration));
     assert!(ramp.order_mut(0).is_none() && ramp.order_mut(3).is_none());
     ramp.order_mut(2).expect("order 2").setpoint = 7.0;
-    assert_eq!((ramp.acceleration.setpoint, ramp.rate), (7.0, expected.rate));
+    assert_eq!(
+        (ramp.acceleration.setpoint, ramp.rate),
+        (7.0, expected.rate)
+    );
 }
