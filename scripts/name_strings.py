@@ -11,7 +11,8 @@ together, and the head of an element's name (`concat!("Kp[", ..)`). A literal is
 declaration when it is the first string literal among the
 arguments of a declaring call: `Decl::real/integer/boolean(..)` or
 `Decl::real_in/integer_in/boolean_in(..)` (also
-`Declaration::`, or `Decl::$ty(..)` inside a macro), or a macro or function of the
+`Declaration::`, or `Decl::$ty(..)` inside a macro), a constructor of a `Family`
+(`CH.tunable("Kp", ..)`, `.flag`, `.input`, `.output`, `.state`, `.derivative`), or a macro or function of the
 same crate whose definition makes such a call (`gain!("Kp", ..)`, `planned::<0>("q",
 ..)`). Everything else that names a variable refers to it through its declaration
 (`KP.var()`, `THETA.item(1)`, `U.is(element)`, `STATE.name`) and is checked by the
@@ -29,6 +30,10 @@ ROOT = Path(__file__).resolve().parents[1]
 
 DECLARE = {"real", "integer", "boolean", "real_in", "integer_in", "boolean_in"}
 TABLES = {"Decl", "Declaration"}
+# The constructors of the layer's `Family` (`CH.tunable("Kp", ..)`): method calls with
+# arguments whose first string literal is the name they declare (the roles `.input()`,
+# `.output()`, `.state()` of a declaration take none).
+FAMILY = {"tunable", "flag", "input", "output", "state", "derivative"}
 IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
@@ -204,6 +209,14 @@ def calls(toks: list[Token]):
             and _is(toks[j - 1], "punct", "::")
             and toks[j - 2].value in TABLES
             and (name in DECLARE or name == "$")
+        ):
+            yield "Decl::real", i
+        elif (  # a Family constructor; `.input()` without arguments is a role
+            name in FAMILY
+            and j >= 1
+            and _is(toks[j - 1], "punct", ".")
+            and i + 1 < len(toks)
+            and not _is(toks[i + 1], "punct", ")")
         ):
             yield "Decl::real", i
         else:

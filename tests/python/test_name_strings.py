@@ -176,3 +176,29 @@ def test_a_declaration_stated_twice_is_found(tmp_path):
              .replace("[X.var(), GAIN.var(), X.var()]", "[X.var(), GAIN.var(), Z.var()]"))
     (src / "lib.rs").write_text(fixed)
     assert name_strings.repeats(tmp_path) == {"m": []}
+
+
+# Declared through a Family of the layer (`CH.tunable("gain", ..)`, `CH.state("x", ..)`):
+# the first string of the call is the declaration. "gain" in the message is found (line
+# 6); the helper `own` calls the role `.input()` (no arguments: no declaration), so its
+# first string, the unit "rad", is no declaration and "rad" names no variable anyway.
+FAMILY = r'''
+const CH: Family<M> = Family::new(2, "Channel");
+const GAIN: Decl = CH.tunable("gain", 1, &[1.0], |m, c| &mut m.v[c]);
+const X: Decl = CH.state("x", 11, |m, c| &mut m.x[c]);
+const fn own(d: Decl, unit: &'static str) -> Decl { d.input().unit(unit, None) }
+fn f() -> String { format!("{}", "gain") }
+'''
+
+
+def test_a_family_constructor_declares_its_first_string(tmp_path):
+    (tmp_path / "modelDescription" / "fmi3").mkdir(parents=True)
+    (tmp_path / "modelDescription" / "M.xml").write_text(DESCRIPTION)
+    (tmp_path / "modelDescription" / "fmi3" / "M.xml").write_text(DESCRIPTION3)
+    src = tmp_path / "fmus" / "m" / "src"
+    src.mkdir(parents=True)
+    (src / "lib.rs").write_text(FAMILY)
+    assert name_strings.findings(tmp_path) == {"m": [("fmus/m/src/lib.rs", 6, "gain")]}
+    assert name_strings.repeats(tmp_path) == {"m": []}
+    (src / "lib.rs").write_text(FAMILY.replace('"gain") }', "GAIN.name) }"))
+    assert name_strings.findings(tmp_path) == {"m": []}

@@ -36,6 +36,16 @@ impl PidInputRamp {
     pub fn is_held(&self) -> bool {
         *self == Self::default()
     }
+
+    /// The input derivatives of order n: 1 the rates, 2 the accelerations (None for
+    /// another order).
+    pub fn order_mut(&mut self, n: u32) -> Option<&mut PidInputs> {
+        match n {
+            1 => Some(&mut self.rate),
+            2 => Some(&mut self.acceleration),
+            _ => None,
+        }
+    }
 }
 
 /// z E_k(z) for k = 2 and 3 (see the module documentation): (F2, F3).

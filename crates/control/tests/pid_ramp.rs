@@ -172,3 +172,19 @@ fn held_inputs_step_bit_identically_and_a_frozen_integral_stays_frozen() {
     let stepped = step_with_ramp(&limited, &s0, &start, &ramp, 0.01);
     assert_eq!(stepped.integral, 0.3);
 }
+
+#[test]
+fn order_mut_names_the_rates_and_the_accelerations() {
+    // Expected: order 1 is the field `rate`, order 2 `acceleration` (the module's
+    // q(s) = q + q' s + q'' s^2/2), any other order none.
+    let (_, mut ramp) = quadratic_error();
+    let expected = ramp;
+    assert_eq!(ramp.order_mut(1).map(|r| *r), Some(expected.rate));
+    assert_eq!(ramp.order_mut(2).map(|a| *a), Some(expected.acceleration));
+    assert!(ramp.order_mut(0).is_none() && ramp.order_mut(3).is_none());
+    ramp.order_mut(2).expect("order 2").setpoint = 7.0;
+    assert_eq!(
+        (ramp.acceleration.setpoint, ramp.rate),
+        (7.0, expected.rate)
+    );
+}

@@ -120,7 +120,8 @@ pub mod prelude {
     //! optional methods: events, time events, extra FMU state), [`Jacobian`] (partial or
     //! directional derivatives by [`Element`]), [`Declaration`] (roles, units, bounds, arrays, value references and the
     //! hooks), [`StepOutcome`] and [`EventUpdate`] (what a step or an event did), [`Log`]
-    //! and [`LogCategory`] (messages), [`OutputDerivativeError`] (why a hook gives no
+    //! and [`LogCategory`] (messages), [`Family`] (arrays of one length declared per channel or
+    //! axis, with [`Element::role`] for a law's Jacobian tables), [`OutputDerivativeError`] (why a hook gives no
     //! output derivative), [`Var`] (a variable in a dependency list, named by its
     //! declaration), [`concat()`], [`every`] and [`same`] (static tables from named parts),
     //! [`Place`] (where a model keeps a variable: one accessor to read and write it),
@@ -130,8 +131,8 @@ pub mod prelude {
     pub use crate::core::declare::{InputDerivative, OutputDerivative, Place};
     pub use crate::core::tables::{concat, every, same};
     pub use crate::core::{
-        Declaration, DefaultExperiment, Element, EventUpdate, Jacobian, Log, LogCategory, Model,
-        ModelInfo, OutputDerivativeError, StepOutcome, Var, Variability,
+        Declaration, DefaultExperiment, Element, EventUpdate, Family, Jacobian, Log, LogCategory,
+        Model, ModelInfo, OutputDerivativeError, StepOutcome, Var, Variability,
     };
     pub use crate::export_fmu;
 }

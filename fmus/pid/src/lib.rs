@@ -1,15 +1,12 @@
-//! Binding of the PID law (`robofmu_control::pid`) as the FMU "PID": three independent
-//! channels; gains, filter time constant and limits per channel and tunable; the
-//! integral and the derivative-filter state are the continuous states (Model
-//! Exchange) and are stepped exactly under a zero-order hold of the inputs, or for
-//! inputs following their first and second derivatives over the step when the master
-//! gives them (Co-Simulation, fmi2SetRealInputDerivatives). Signals carry no unit: the
-//! controller is generic.
+//! The PID law (`robofmu_control::pid`) as the FMU "PID": three independent channels,
+//! their gains, filter time constant and limits tunable; the integral and the filter
+//! state are the continuous states (Model Exchange), stepped exactly for inputs held or
+//! following the derivatives the master gives (Co-Simulation). Signals carry no unit.
 
-use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
-use robofmu_control::pid_jacobian::{self, Known, Unknown};
+use robofmu_control::pid::{self, PidGains, PidInputs, PidOutput, PidState};
+use robofmu_control::pid_jacobian::{self, Known, Known::*, Unknown, Unknown::*};
 use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
-use robofmu_fmi::prelude::*;
+use robofmu_fmi::prelude::{Variability::*, *};
 
 pub const CHANNELS: usize = 3;
 
@@ -45,31 +42,25 @@ impl Pid {
         self.gains[c].limits = self.limited[c].then_some(self.limits[c]);
     }
 
-    /// The gains of channel c are usable, or why not.
-    fn validate(&self, c: usize) -> Result<(), String> {
-        (self.gains[c].validate()).map_err(|e| format!("channel {}: {e}", c + 1))
+    /// The gains of every channel are usable, or why not.
+    fn validate(&self) -> Result<(), String> {
+        for (c, g) in self.gains.iter().enumerate() {
+            g.validate()
+                .map_err(|e| format!("channel {}: {e}", c + 1))?;
+        }
+        Ok(())
     }
 
-    fn output(&self, c: usize) -> pid::PidOutput {
+    /// The law's output and state derivatives of channel c.
+    fn output(&self, c: usize) -> PidOutput {
         pid::output(&self.gains[c], &self.states[c], &self.inputs[c])
     }
-
-    fn derivative(&self, c: usize) -> PidState {
+    fn rates(&self, c: usize) -> PidState {
         pid::derivatives(&self.gains[c], &self.states[c], &self.inputs[c])
-    }
-
-    /// The input derivatives of `order` (1 or 2) of channel c.
-    fn ramp(&mut self, c: usize, order: u32) -> Option<&mut PidInputs> {
-        let ramp = self.ramps.get_mut(c)?;
-        match order {
-            1 => Some(&mut ramp.rate),
-            2 => Some(&mut ramp.acceleration),
-            _ => None,
-        }
     }
 }
 
-/// Input K of `inputs`, in the order of the declarations: setpoint, measurement,
+/// Input K of the law, in the order of the declarations: setpoint, measurement,
 /// setpointRate, measuredRate, feedforward.
 fn input<const K: usize>(inputs: &mut PidInputs) -> &mut f64 {
     match K {
@@ -83,85 +74,36 @@ fn input<const K: usize>(inputs: &mut PidInputs) -> &mut f64 {
 
 type Decl = Declaration<Pid>;
 
-/// The array of the three channels, element c at `vr + c - 1`, described as
-/// "Channel c: ..." in FMI 2.0.
-const fn channels(d: Decl, vr: u32) -> Decl {
-    d.array(CHANNELS).at(vr).label("Channel")
-}
+/// The channels' arrays, "Channel c: ..." in FMI 2.0; a parameter's write syncs the limits.
+const CH: Family<Pid> = Family::new(CHANNELS, "Channel").after_set(Pid::sync_limits);
 
-/// A tunable Real parameter of the three channels.
-const fn gain(name: &'static str, vr: u32, start: &'static [f64], place: Place<Pid, f64>) -> Decl {
-    let d = channels(Decl::real_in(name, place), vr).parameter(Variability::Tunable);
-    d.start_real(start).after_set(Pid::sync_limits)
-}
-
-/// A Boolean parameter of the three channels (start false).
-const fn flag(name: &'static str, vr: u32, v: Variability, place: Place<Pid, bool>) -> Decl {
-    let d = channels(Decl::boolean_in(name, place), vr).parameter(v);
-    d.start_boolean(&[false]).after_set(Pid::sync_limits)
-}
-
-/// Continuous Real input K of the three channels (see [`input`]), its time derivatives
-/// kept in the ramps.
+/// Continuous input K of the channels (see [`input`]): one field selector names the
+/// input's place and where its time derivatives are kept (the ramps).
 const fn input_k<const K: usize>(name: &'static str, vr: u32, start: &'static [f64]) -> Decl {
-    let d = Decl::real_in(name, |m, c| input::<K>(&mut m.inputs[c]));
-    let d = channels(d, vr).input().start_real(start);
-    d.input_derivative(|m, c, n| Some(input::<K>(m.ramp(c, n)?)))
+    let d = CH.input(name, vr, start, |m, c| input::<K>(&mut m.inputs[c]));
+    d.input_derivative(|m, c, n| Some(input::<K>(m.ramps.get_mut(c)?.order_mut(n)?)))
 }
 
-/// A continuous state of the three channels (start 0).
-const fn state(name: &'static str, vr: u32, place: Place<Pid, f64>) -> Decl {
-    channels(Decl::real_in(name, place), vr)
-        .state()
-        .start_real(&[0.0])
-}
-
-const KP: Decl = gain("Kp", 1, &[1.0], |m, c| &mut m.gains[c].kp).describe("Proportional gain");
-const KI: Decl = gain("Ki", 11, &[0.5], |m, c| &mut m.gains[c].ki).describe("Integral gain (1/s)");
-const KD: Decl = gain("Kd", 21, &[0.1], |m, c| &mut m.gains[c].kd).describe("Derivative gain (s)");
-const TF: Decl = gain("Tf", 31, &[0.05], |m, c| &mut m.gains[c].tf)
-    .describe("Derivative filter time constant (0 allowed only with rate inputs)")
-    .real_range(Some(0.0), None);
-const LIMIT: Decl = flag("limitOutput", 41, Variability::Tunable, |m, c| {
-    &mut m.limited[c]
-})
-.describe("clamp the output to [uMin, uMax]");
-const U_MIN: Decl = gain("uMin", 51, &[-1.0], |m, c| &mut m.limits[c].0)
-    .describe("Lower output limit (used when limitOutput)");
-const U_MAX: Decl = gain("uMax", 61, &[1.0], |m, c| &mut m.limits[c].1)
-    .describe("Upper output limit (used when limitOutput)");
-const RATES: Decl = flag("useRateInputs", 71, Variability::Fixed, |m, c| {
+const KP: Decl = CH.tunable("Kp", 1, &[1.0], |m, c| &mut m.gains[c].kp);
+const KI: Decl = CH.tunable("Ki", 11, &[0.5], |m, c| &mut m.gains[c].ki);
+const KD: Decl = CH.tunable("Kd", 21, &[0.1], |m, c| &mut m.gains[c].kd);
+const TF: Decl = CH.tunable("Tf", 31, &[0.05], |m, c| &mut m.gains[c].tf);
+const LIMIT: Decl = CH.flag("limitOutput", 41, Tunable, |m, c| &mut m.limited[c]);
+const U_MIN: Decl = CH.tunable("uMin", 51, &[-1.0], |m, c| &mut m.limits[c].0);
+const U_MAX: Decl = CH.tunable("uMax", 61, &[1.0], |m, c| &mut m.limits[c].1);
+const RATES: Decl = CH.flag("useRateInputs", 71, Fixed, |m, c| {
     &mut m.gains[c].use_rate_inputs
-})
-.describe("derivative from setpointRate - measuredRate instead of the filtered error");
-const SETPOINT: Decl = input_k::<0>("setpoint", 101, &[1.0, 0.5, -0.25]).describe("Setpoint r");
-const MEASURED: Decl =
-    input_k::<1>("measurement", 111, &[0.0]).describe("Measurement y (e = r - y)");
-const R_RATE: Decl = input_k::<2>("setpointRate", 121, &[0.0])
-    .describe("Setpoint rate dr/dt (used when useRateInputs)");
-const Y_RATE: Decl = input_k::<3>("measuredRate", 131, &[0.0])
-    .describe("Measured rate dy/dt (used when useRateInputs)");
-const FEEDFWD: Decl =
-    input_k::<4>("feedforward", 141, &[0.0]).describe("Added to the output before the limits");
-const U: Decl = channels(Decl::real("u", "control output", |m, c| m.output(c).u), 201)
-    .output()
-    .initial_depends_on(&OUTPUT_KNOWNS);
-const INTEGRAL: Decl = state("integral", 301, |m, c| &mut m.states[c].integral)
-    .describe("integral of the error (state)");
-const FILTER: Decl = state("filter", 311, |m, c| &mut m.states[c].filter)
-    .describe("derivative filter state (state)");
-const DER_INT: Decl = Decl::real("der(integral)", "", |m, c| m.derivative(c).integral)
-    .describe("Time derivative of the error integral")
-    .array(CHANNELS)
-    .at(321)
-    .derivative_of(INTEGRAL.name)
-    .initial_depends_on(&OUTPUT_KNOWNS);
-const DER_FILTER: Decl = Decl::real("der(filter)", "", |m, c| m.derivative(c).filter)
-    .describe("Time derivative of the derivative filter state")
-    .array(CHANNELS)
-    .at(331)
-    .derivative_of(FILTER.name)
-    .initial_depends_on(&FILTER_KNOWNS);
+});
+const SETPOINT: Decl = input_k::<0>("setpoint", 101, &[1.0, 0.5, -0.25]);
+const MEASURED: Decl = input_k::<1>("measurement", 111, &[0.0]);
+const R_RATE: Decl = input_k::<2>("setpointRate", 121, &[0.0]);
+const Y_RATE: Decl = input_k::<3>("measuredRate", 131, &[0.0]);
+const FEEDFWD: Decl = input_k::<4>("feedforward", 141, &[0.0]);
+const U: Decl = CH.output("u", 201, |m, c| m.output(c).u);
+const INTEGRAL: Decl = CH.state("integral", 301, |m, c| &mut m.states[c].integral);
+const FILTER: Decl = CH.state("filter", 311, |m, c| &mut m.states[c].filter);
+const DER_INT: Decl = CH.derivative("der(integral)", 321, INTEGRAL, |m, c| m.rates(c).integral);
+const DER_FILTER: Decl = CH.derivative("der(filter)", 331, FILTER, |m, c| m.rates(c).filter);
 
 /// What the filter's dx/dt reads at initialization, in the same channel.
 static FILTER_KNOWNS: [Var; 8] = same(&[KD, TF, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FILTER]);
@@ -173,65 +115,73 @@ static OUTPUT_KNOWNS: [Var; 15] = same(&[
 ]);
 
 static VARIABLES: &[Decl] = &[
-    KP, KI, KD, TF, LIMIT, U_MIN, U_MAX, RATES, SETPOINT, MEASURED, R_RATE, Y_RATE, FEEDFWD, U,
-    INTEGRAL, FILTER, DER_INT, DER_FILTER,
+    KP.describe("Proportional gain"),
+    KI.describe("Integral gain (1/s)"),
+    KD.describe("Derivative gain (s)"),
+    (TF.describe("Derivative filter time constant (0 allowed only with rate inputs)"))
+        .real_range(Some(0.0), None),
+    LIMIT.describe("clamp the output to [uMin, uMax]"),
+    U_MIN.describe("Lower output limit (used when limitOutput)"),
+    U_MAX.describe("Upper output limit (used when limitOutput)"),
+    RATES.describe("derivative from setpointRate - measuredRate instead of the filtered error"),
+    SETPOINT.describe("Setpoint r"),
+    MEASURED.describe("Measurement y (e = r - y)"),
+    R_RATE.describe("Setpoint rate dr/dt (used when useRateInputs)"),
+    Y_RATE.describe("Measured rate dy/dt (used when useRateInputs)"),
+    FEEDFWD.describe("Added to the output before the limits"),
+    (U.describe("control output")).initial_depends_on(&OUTPUT_KNOWNS),
+    INTEGRAL.describe("integral of the error (state)"),
+    FILTER.describe("derivative filter state (state)"),
+    (DER_INT.describe("Time derivative of the error integral")).initial_depends_on(&OUTPUT_KNOWNS),
+    (DER_FILTER.describe("Time derivative of the derivative filter state"))
+        .initial_depends_on(&FILTER_KNOWNS),
 ];
 
 /// The law's unknowns and knowns (`control::pid_jacobian`) by declaration.
 const UNKNOWNS: [(Decl, Unknown); 3] = [
-    (U, Unknown::Output),
-    (DER_INT, Unknown::IntegralRate),
-    (DER_FILTER, Unknown::FilterRate),
+    (U, Output),
+    (DER_INT, IntegralRate),
+    (DER_FILTER, FilterRate),
 ];
 const KNOWNS: [(Decl, Known); 7] = [
-    (SETPOINT, Known::Setpoint),
-    (MEASURED, Known::Measurement),
-    (R_RATE, Known::SetpointRate),
-    (Y_RATE, Known::MeasuredRate),
-    (FEEDFWD, Known::Feedforward),
-    (INTEGRAL, Known::Integral),
-    (FILTER, Known::Filter),
+    (SETPOINT, Setpoint),
+    (MEASURED, Measurement),
+    (R_RATE, SetpointRate),
+    (Y_RATE, MeasuredRate),
+    (FEEDFWD, Feedforward),
+    (INTEGRAL, Integral),
+    (FILTER, Filter),
 ];
-
-/// The entry of `table` whose declaration is element e's.
-fn role<T: Copy>(table: &[(Decl, T)], e: Element) -> Option<T> {
-    table.iter().find(|(d, _)| d.is(e)).map(|&(_, t)| t)
-}
 
 /// d(output or state derivative)/d(input or state) of the law; the channels are
 /// independent.
 fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
+    let of = unknown.role_in(&UNKNOWNS, "an output or derivative")?;
     let c = unknown.index;
-    let not = |e: Element, what| format!("\"{}\" is not an {what}", e.name);
     if known.index != c {
         return Ok(0.0);
     }
-    let of = role(&UNKNOWNS, unknown).ok_or_else(|| not(unknown, "output or derivative"))?;
     let (g, s, i) = (&m.gains[c], &m.states[c], &m.inputs[c]);
-    pid_jacobian::partial(g, s, i, of, role(&KNOWNS, known))
-        .ok_or_else(|| not(known, "input or state"))
+    let d = pid_jacobian::partial(g, s, i, of, known.role(&KNOWNS));
+    d.ok_or_else(|| format!("\"{}\" is not an input or state", known.name))
 }
 
 impl Model for Pid {
     const INFO: &'static ModelInfo = &INFO;
-
     const VARIABLES: &'static [Declaration<Self>] = VARIABLES;
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
-        for c in 0..CHANNELS {
-            self.validate(c)?;
-            let message = format!("channel {}: {:?}", c + 1, self.gains[c]);
-            log.debug(LOG.name, &message);
+        self.validate()?;
+        for (c, gains) in self.gains.iter().enumerate() {
+            log.debug(LOG.name, &format!("channel {}: {gains:?}", c + 1));
         }
         Ok(())
     }
 
     fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
-        if let Err(reason) = (0..CHANNELS).try_for_each(|c| self.validate(c)) {
-            return StepOutcome::Discarded {
-                reason,
-                terminate: true,
-            };
+        if let Err(reason) = self.validate() {
+            let terminate = true;
+            return StepOutcome::Discarded { reason, terminate };
         }
         for c in 0..CHANNELS {
             let (g, s, i) = (&self.gains[c], &self.states[c], &self.inputs[c]);
@@ -241,17 +191,10 @@ impl Model for Pid {
     }
 
     const MAX_INPUT_DERIVATIVE_ORDER: u32 = 2;
-
-    /// FMI 3.0 intermediate update: with a callback, each communication step is split
-    /// into 10 equal sub-intervals, and the importer may set the continuous inputs at
-    /// the 9 inner points (held over the next sub-interval).
+    /// FMI 3.0 intermediate update: each communication step split into 10 equal parts,
+    /// the continuous inputs settable at the 9 inner points (held over the next part).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
-
-    // The continuous states and their derivatives: the layer's defaults, through the
-    // declarations of integral, filter and their derivatives.
-
     const JACOBIAN: Option<Jacobian<Self>> = Some(Jacobian::Partial(partial));
 }
 
-// The exported fmi2* symbols of this FMU.
 export_fmu!(Pid);

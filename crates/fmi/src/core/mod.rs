@@ -18,6 +18,7 @@ pub mod callback;
 pub mod declare;
 pub mod directional;
 pub mod entry;
+pub mod family;
 pub mod flatten;
 pub mod fmu_state_calls;
 pub mod fmu_states;
@@ -40,6 +41,7 @@ pub mod variables;
 pub mod view;
 
 pub use declare::Declaration;
+pub use family::Family;
 pub use hooks::{Element, Var};
 pub use instance::{Instance, Snapshot, Standard};
 pub use log::{Log, LogCategory};
