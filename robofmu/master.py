@@ -63,6 +63,16 @@ class Result:
                 out.writerow([t, *(self.columns[n][k] for n in self.names)])
 
 
+@dataclass
+class Arrays:
+    """A run's recorded signals as numpy arrays (what Result holds as lists)."""
+
+    names: list[str]
+    time: np.ndarray
+    columns: dict[str, np.ndarray]
+    discards: list[str]
+
+
 def _open_fmu(alias, path, scenario):
     return open_instance(alias, path, scenario.start_time, scenario.stop_time)
 
@@ -194,8 +204,13 @@ class Master:
         del loop.discards[discards:]
 
     def _initialize(self, alias: str, parameters: dict) -> None:
+        fmu = self.fmus[alias]
+        set_each = getattr(fmu, "set_each", None)  # robofmu.fmi2: without FMPy's wrappers
+        if set_each is not None:
+            set_each(list(parameters), list(parameters.values()))
+            return
         for name, value in parameters.items():
-            self.fmus[alias].set_value(name, value)
+            fmu.set_value(name, value)
 
     def _switch_plan(self, switch) -> None:
         """A plan switch of a multi-segment motion: the (stateless) FMU is reset and
@@ -221,10 +236,14 @@ class Master:
                 self.progress(k / s.steps)
 
     def run(self) -> Result:
+        a = self.run_arrays()
+        return Result(names=a.names, time=a.time.tolist(),
+                      columns={n: a.columns[n].tolist() for n in a.names}, discards=a.discards)
+
+    def run_arrays(self) -> Arrays:
+        """The run, its signals as arrays (one contiguous array per signal)."""
         s = self.scenario
         self.fmus = {}
-        names = [f"{alias}.{v}" for alias, vs in self.recorded_by_fmu.items() for v in vs]
-        rows = np.empty((s.steps + 1, len(names)))
         switches = {switch.step: switch for switch in s.schedule}
         try:
             for alias in s.order:
@@ -235,6 +254,8 @@ class Master:
                 self.fmus[alias].enter_initialization()
             self.slopes = self._slope_pairs()
             loop = Loop(self.fmus, self.inputs, self.recorded_by_fmu, s.order, self.slopes, s)
+            names = [f"{alias}.{v}" for alias, v in loop.columns]
+            rows = np.empty((s.steps + 1, len(names)))
             for index in range(len(s.order)):  # consistent inputs at the start, in order
                 loop.set_inputs(index, s.start_time)
             for alias in s.order:
@@ -258,29 +279,41 @@ class Master:
             for fmu in self.fmus.values():
                 self.close_fmu(fmu)
         # t_k = start + k h as _time computes it (k h / 1 is k h), for every k at once.
-        times = (s.start_time + np.arange(s.steps + 1) * s.step_size).tolist()
+        times = s.start_time + np.arange(s.steps + 1) * s.step_size
         order = [str(sig) for sig in self.recorded]
-        columns = dict(zip(names, rows.T.tolist()))
-        return Result(names=order, time=times, columns={n: columns[n] for n in order},
+        columns = dict(zip(names, np.ascontiguousarray(rows.T)))
+        return Arrays(names=order, time=times, columns={n: columns[n] for n in order},
                       discards=self.discards)
 
 
 def run_scenario(scenario: Scenario, *, fmi3: bool = False,
                  progress: Callable[[float], None] | None = None,
                  option: str = "fmi3") -> Result:
-    """One run of a validated scenario (what robofmu.simulate and ``cosim run`` make):
-    with `fmi3`, of the FMI 3.0 builds of its FMUs (dist/fmi3/<Model>.fmu beside each),
-    ScenarioError naming `option` (the argument that asked for them) when one is
-    missing. CosimError as the master raises it when the run fails."""
+    """One run of a validated scenario (what ``cosim run`` makes): with `fmi3`, of the
+    FMI 3.0 builds of its FMUs (dist/fmi3/<Model>.fmu beside each), ScenarioError
+    naming `option` (the argument that asked for them) when one is missing. CosimError
+    as the master raises it when the run fails."""
+    return _master(scenario, fmi3, progress, option).run()
+
+
+def run_arrays(scenario: Scenario, *, fmi3: bool = False,
+               progress: Callable[[float], None] | None = None,
+               option: str = "fmi3") -> Arrays:
+    """As run_scenario, the signals as numpy arrays (what robofmu.simulate makes)."""
+    return _master(scenario, fmi3, progress, option).run_arrays()
+
+
+def _master(scenario: Scenario, fmi3: bool, progress: Callable[[float], None] | None,
+            option: str) -> Master:
     from .fmi3 import fmi3_path, open_fmi3  # lazily: FMPy's FMI 3.0 layer
     if not fmi3:
-        return Master(scenario, progress=progress).run()
+        return Master(scenario, progress=progress)
     for alias, path in scenario.fmus.items():
         if not fmi3_path(path).is_file():
             raise ScenarioError(f"{option}: {fmi3_path(path)} (the FMI 3.0 build of "
                                 f"fmus.{alias}) does not exist; build it with bash "
                                 f"scripts/build-fmus.sh or run without {option}")
-    return Master(scenario, open_fmu=open_fmi3, progress=progress).run()
+    return Master(scenario, open_fmu=open_fmi3, progress=progress)
 
 
 class _Described:

@@ -120,14 +120,14 @@ def execute(store: FmuStore, document: dict, fmus: dict[str, str]) -> dict:
     pool = store.pool
     try:
         scenario = parse_document(local, store.ready())
-        for i in (1, 2, 3):
-            stop = Signal("plant", f"stopForce[{i}]")
-            if stop not in scenario.record:
-                scenario.record.append(stop)
+        # Recorded: what the metrics read (the scenario's record list is checked above;
+        # a sweep keeps metrics, not signals), the connected outputs anyway.
+        scenario.record = [Signal("plant", f"{n}[{i}]") for n in ("force", "stopForce")
+                           for i in (1, 2, 3)]
         used: list = []
         master = Master(scenario, open_fmu=pool.open, close_fmu=used.append)
         try:
-            result = master.run()
+            result = master.run_arrays()
         except BaseException:
             for fmu in used:
                 pool.discard(fmu)
@@ -144,7 +144,7 @@ def execute(store: FmuStore, document: dict, fmus: dict[str, str]) -> dict:
 def metrics(result) -> dict:
     """Tracking error (deg), peak actuator force and limits, settling time, discards."""
     def vec(alias: str, n: str) -> np.ndarray:
-        return np.column_stack([np.array(result.columns[f"{alias}.{n}[{i}]"], dtype=float)
+        return np.column_stack([np.asarray(result.columns[f"{alias}.{n}[{i}]"], dtype=float)
                                 for i in (1, 2, 3)])
 
     q = vec("planner", "q")
