@@ -206,8 +206,9 @@ def _seconds(value: float | str, what: str) -> float:
 
 class System:
     """A co-simulation of FMUs built in code, without a scenario file (the plain
-    scenario form): any FMI 2.0 co-simulation FMU, ours or anyone's, or the FMI 3.0
-    builds of ours with ``simulate(..., fmi3=True)``.
+    scenario form): any FMI 2.0 or FMI 3.0 co-simulation FMU, ours or anyone's (an
+    element of an FMI 3.0 array is named ``"alias.x[1]"``), or the FMI 3.0 builds of
+    ours in place of their FMI 2.0 files with ``simulate(..., fmi3=True)``.
 
     >>> system = System(stop_time=1.0, step_size="1 ms")  # doctest: +SKIP
     >>> system.add("pid", fmu("PID"), parameters={"kp[1]": 100.0})  # doctest: +SKIP

@@ -80,7 +80,7 @@ def release(fmu, initialized: bool, unzip) -> None:
 _GETTERS = {"Real": "getReal", "Integer": "getInteger", "Boolean": "getBoolean"}
 _SETTERS = {"Real": "setReal", "Integer": "setInteger", "Boolean": "setBoolean"}
 _CONVERT = {"Real": float, "Integer": int, "Boolean": bool}
-_C_TYPES = {"Real": c_double, "Integer": c_int, "Boolean": c_int}  # fmi2Real, ..
+_C_TYPES: dict[str, Any] = {"Real": c_double, "Integer": c_int, "Boolean": c_int}  # fmi2Real, ..
 
 
 class LoggedCalls:

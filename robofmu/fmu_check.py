@@ -1,9 +1,11 @@
 """What the scenario's FMUs declare, read once per file, with user errors that name the
-scenario field: the file (exists, a zip, FMI 2.0 co-simulation with a Linux x86-64
-binary), its variables, their units (as SI base-unit exponents) and ranges."""
+scenario field: the file (exists, a zip, FMI 2.0 or 3.0 co-simulation with a binary
+for this platform; FMI 3.0 read as its scalar view), its variables, their units (as SI
+base-unit exponents) and ranges."""
 
 from __future__ import annotations
 
+import copy
 import math
 import platform
 import zipfile
@@ -19,6 +21,9 @@ OTHER_BASE_UNITS = ("A", "K", "mol", "cd")
 INT32 = (-2 ** 31, 2 ** 31 - 1)
 BINARY_DIR = {("Linux", "x86_64"): "linux64", ("Darwin", "x86_64"): "darwin64",
               ("Darwin", "arm64"): "darwin64", ("Windows", "AMD64"): "win64"}
+FMI3_BINARY_DIR = {("Linux", "x86_64"): "x86_64-linux", ("Linux", "aarch64"): "aarch64-linux",
+                   ("Darwin", "x86_64"): "x86_64-darwin", ("Darwin", "arm64"): "aarch64-darwin",
+                   ("Windows", "AMD64"): "x86_64-windows"}
 
 
 @lru_cache(maxsize=32)
@@ -33,16 +38,57 @@ def _describe(path: str, mtime: float):
         md = read_model_description(path, validate=False)
     except Exception as e:  # noqa: BLE001 - any malformed XML is the file's fault
         raise ValueError(f"has an unreadable modelDescription.xml ({e})") from None
-    if md.fmiVersion != "2.0":
-        raise ValueError(f"is an FMI {md.fmiVersion} FMU where FMI 2.0 is needed (the FMI 3.0 "
-                         "builds are run with --fmi3 on the FMI 2.0 file names)")
+    if md.fmiVersion not in ("2.0", "3.0"):
+        raise ValueError(f"is an FMI {md.fmiVersion} FMU; FMI 2.0 and 3.0 are supported")
     if md.coSimulation is None:
-        raise ValueError("does not support co-simulation")
-    folder = BINARY_DIR.get((platform.system(), platform.machine()), "linux64")
+        raise ValueError("does not support co-simulation (FMI "
+                         f"{md.fmiVersion} Model Exchange only)")
+    if md.fmiVersion == "2.0":
+        folder = BINARY_DIR.get((platform.system(), platform.machine()), "linux64")
+    else:
+        folder = FMI3_BINARY_DIR.get((platform.system(), platform.machine()), "x86_64-linux")
     wanted = f"binaries/{folder}/{md.coSimulation.modelIdentifier}"
     if not any(n.startswith(wanted + ".") for n in names):
         raise ValueError(f"has no binary for this platform ({wanted}.*)")
-    return md
+    return md if md.fmiVersion == "2.0" else scalar_view(md)
+
+
+#: The FMI 3.0 types the master passes and sets, as the FMI 2.0 types of the scalar view.
+FMI3_TYPES = {"Float64": "Real", "Int32": "Integer", "Boolean": "Boolean"}
+
+
+def scalar_view(md):
+    """An FMI 3.0 model description as the scenario checks read FMI 2.0 ones: one
+    variable per scalar (`x[1]`..`x[n]` of a one-dimensional array `x`, the names
+    robofmu.fmi3 addresses), Float64, Int32 and Boolean as Real, Integer and Boolean
+    (other types keep their FMI 3.0 name, which no check accepts). ValueError for what
+    the master cannot run: clocks, arrays of more than one dimension or of a size set
+    by a structural parameter."""
+    clocks = [v.name for v in md.modelVariables if v.type == "Clock"]
+    if clocks:
+        raise ValueError(f"declares clocks ({', '.join(clocks)}), which robofmu's master does "
+                         "not tick")
+    scalars = []
+    for v in md.modelVariables:
+        if v.shape and (len(v.shape) != 1 or not isinstance(v.shape[0], int)):
+            raise ValueError(f"declares {v.name} as an array of shape {v.shape}; only arrays "
+                             "of one dimension of fixed size are supported")
+        starts = str(v.start).split() if v.start is not None else None
+        elements = [None] if not v.shape else list(range(int(v.shape[0])))
+        for k in elements:
+            scalar = copy.copy(v)
+            scalar.shape = ()
+            scalar.type = FMI3_TYPES.get(v.type, v.type)
+            if k is not None:  # as robofmu.fmi3.scalar_names: der(x[1]) of an array state x
+                state = v.derivative.name if v.derivative is not None else None
+                element = f"{state or v.name}[{k + 1}]"
+                scalar.name = f"der({element})" if state else element
+                if starts is not None:
+                    scalar.start = starts[k] if len(starts) == len(elements) else starts[0]
+            scalars.append(scalar)
+    view = copy.copy(md)
+    view.modelVariables = scalars
+    return view
 
 
 def describe(path: Path, field: str):
@@ -56,8 +102,9 @@ def describe(path: Path, field: str):
     try:
         return _describe(str(path.resolve()), path.stat().st_mtime)
     except ValueError as e:
-        raise ScenarioError(f"field '{field}': {path} {e}; name an FMI 2.0 FMU "
-                            "(bash scripts/build-fmus.sh builds them in dist/)") from None
+        raise ScenarioError(f"field '{field}': {path} {e}; name an FMI 2.0 or 3.0 "
+                            "co-simulation FMU (bash scripts/build-fmus.sh builds ours in "
+                            "dist/)") from None
     except OSError as e:
         raise ScenarioError(f"field '{field}': cannot read {path}: {e.strerror}") from None
 

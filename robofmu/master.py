@@ -305,11 +305,11 @@ def run_arrays(scenario: Scenario, *, fmi3: bool = False,
 
 def _master(scenario: Scenario, fmi3: bool, progress: Callable[[float], None] | None,
             option: str) -> Master:
-    from .fmi3 import fmi3_path, open_fmi3  # lazily: FMPy's FMI 3.0 layer
+    from .fmi3 import fmi3_path, is_fmi3, open_fmi3  # lazily: FMPy's FMI 3.0 layer
     if not fmi3:
         return Master(scenario, progress=progress)
     for alias, path in scenario.fmus.items():
-        if not fmi3_path(path).is_file():
+        if not is_fmi3(path) and not fmi3_path(path).is_file():
             raise ScenarioError(f"{option}: {fmi3_path(path)} (the FMI 3.0 build of "
                                 f"fmus.{alias}) does not exist; build it with bash "
                                 f"scripts/build-fmus.sh or run without {option}")
