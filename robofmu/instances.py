@@ -33,7 +33,7 @@ def open_instance(alias: str, path: Path, start_time: float, stop_time: float) -
     try:
         key = _key(path)
     except OSError:
-        return _instance(alias, path, start_time, stop_time)  # its own message
+        return new_instance(alias, path, start_time, stop_time)  # its own message
     fmu = _idle.pop(key, None)
     if fmu is not None:
         fmu.alias = alias
@@ -43,12 +43,12 @@ def open_instance(alias: str, path: Path, start_time: float, stop_time: float) -
             return fmu
         except CosimError:
             fmu.close()
-    fmu = _instance(alias, path, start_time, stop_time)
+    fmu = new_instance(alias, path, start_time, stop_time)
     fmu.pool_key = key
     return fmu
 
 
-def _instance(alias: str, path: Path, start_time: float, stop_time: float) -> FmuInstance:
+def new_instance(alias: str, path: Path, start_time: float, stop_time: float) -> FmuInstance:
     """A new instance of the FMU at `path`: FMI 2.0 (robofmu.fmi2), or an FMI 3.0 FMU of
     anyone's (robofmu.fmi3, addressed by the scalar names of robofmu.fmu_check's view;
     its inputs held over each step: no input derivatives)."""

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import CosimError
-from ..fmi2 import FmuInstance
+from ..instances import new_instance
 from ..master import Master
 from ..scenario import ScenarioError, Signal, fmu_file, parse_document
 from . import scratch
@@ -51,7 +51,7 @@ class InstancePool:
             fmu.reset(scenario.start_time, scenario.stop_time)
             return fmu
         self.opened += 1
-        fmu = FmuInstance(alias, path, scenario.start_time, scenario.stop_time)
+        fmu = new_instance(alias, path, scenario.start_time, scenario.stop_time)
         fmu.pool_key = (alias, str(path))
         return fmu
 
