@@ -186,6 +186,7 @@ class FmuInstance(LoggedCalls):
             raise FmuError(f"{alias} ({path}) does not support co-simulation")
         self.variables = {v.name: v for v in md.modelVariables}
         self._group_cache: dict = {}
+        self._each: dict[str, tuple] = {}  # set_each's prepared call per name
         self.can_get_state = bool(md.coSimulation.canGetAndSetFMUstate)
         self.can_interpolate_inputs = bool(md.coSimulation.canInterpolateInputs)
         self.max_output_derivative_order = int(md.coSimulation.maxOutputDerivativeOrder or 0)
@@ -261,10 +262,15 @@ class FmuInstance(LoggedCalls):
         set_value does name by name (the same calls, statuses and messages), through
         the FMU's C functions without FMPy's wrappers (a sweep run sets every parameter)."""
         for name, value in zip(names, values):
-            kind = self._groups((name,))[0][0]
-            ref = (c_uint * 1)(self.variables[name].valueReference)
-            typed = (_C_TYPES[kind] * 1)(_CONVERT[kind](value))
-            status = getattr(self._fmu.dll, f"fmi2Set{kind}")(self._fmu.component, ref, 1, typed)
+            prepared = self._each.get(name)
+            if prepared is None:
+                kind = self._groups((name,))[0][0]
+                prepared = self._each[name] = (
+                    kind, getattr(self._fmu.dll, f"fmi2Set{kind}"), _CONVERT[kind],
+                    (c_uint * 1)(self.variables[name].valueReference), (_C_TYPES[kind] * 1)())
+            kind, function, convert, ref, typed = prepared
+            typed[0] = convert(value)
+            status = function(self._fmu.component, ref, 1, typed)
             if status > fmi2Warning:
                 raise FmuError(f"{self.alias}: fmi2Set{kind}({name}) failed with status "
                                f"{status}: {self._last_message()}")

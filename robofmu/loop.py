@@ -377,6 +377,14 @@ class Loop:
                 copied.setdefault((source, v), base + k * ctypes.sizeof(c_double))
         return copied
 
+    def renew(self) -> None:
+        """Ready for another run over the same instances (the plan unchanged; every
+        buffer is written by the run's propagation before it is read)."""
+        self.error = None
+        self.discards = []
+        self._states.clear()
+        self._next_state = 1
+
     # -- running --------------------------------------------------------------------------
 
     def _discarded(self, _context, index, t, h) -> None:

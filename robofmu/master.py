@@ -89,8 +89,9 @@ class Master:
 
     def __init__(self, scenario: Scenario, open_fmu: Callable = _open_fmu,
                  progress: Callable[[float], None] | None = None,
-                 close_fmu: Callable = _close_fmu):
+                 close_fmu: Callable = _close_fmu, loops: dict | None = None):
         self.scenario = scenario
+        self.loops = loops  # a sweep worker's prepared loop, reused (_prepared_loop)
         self.open_fmu = open_fmu
         self.close_fmu = close_fmu
         self.progress = progress
@@ -164,6 +165,26 @@ class Master:
                           tuple(inputs[k] for k in keep),
                           History(n, len(keep)) if history else None, n))
         return parts
+
+    def _prepared_loop(self) -> Loop:
+        """The stepping loop's plan over this run's instances: the one `loops` keeps
+        when the last run had the same instances, couplings, recorded signals and
+        experiment and no input derivatives (a sweep's runs differ in parameter values
+        only), else a new one (kept there for the next run)."""
+        s = self.scenario
+        if self.loops is None or any(self.slopes.values()):
+            return Loop(self.fmus, self.inputs, self.recorded_by_fmu, s.order, self.slopes, s)
+        key = (tuple((a, id(f)) for a, f in self.fmus.items()), repr(self.inputs),
+               repr(self.recorded_by_fmu), tuple(s.order), s.coupling, s.start_time,
+               s.step_size, s.max_step_halvings)
+        loop = self.loops.get(key)
+        if loop is not None and all(loop.fmus[a] is f for a, f in self.fmus.items()):
+            loop.renew()
+            return loop
+        loop = Loop(self.fmus, self.inputs, self.recorded_by_fmu, s.order, self.slopes, s)
+        self.loops.clear()
+        self.loops[key] = loop
+        return loop
 
     def _start_up(self, rows: np.ndarray, loop: Loop) -> None:
         """The multistep start-up of the derivatives through past values (History) of
@@ -240,8 +261,9 @@ class Master:
         return Result(names=a.names, time=a.time.tolist(),
                       columns={n: a.columns[n].tolist() for n in a.names}, discards=a.discards)
 
-    def run_arrays(self) -> Arrays:
-        """The run, its signals as arrays (one contiguous array per signal)."""
+    def run_arrays(self, contiguous: bool = True) -> Arrays:
+        """The run, its signals as arrays: one contiguous array per signal, or (not
+        `contiguous`: a sweep's run, which reads them once) the columns of the rows."""
         s = self.scenario
         self.fmus = {}
         switches = {switch.step: switch for switch in s.schedule}
@@ -253,7 +275,7 @@ class Master:
             for alias in s.order:
                 self.fmus[alias].enter_initialization()
             self.slopes = self._slope_pairs()
-            loop = Loop(self.fmus, self.inputs, self.recorded_by_fmu, s.order, self.slopes, s)
+            loop = self._prepared_loop()
             names = [f"{alias}.{v}" for alias, v in loop.columns]
             rows = np.empty((s.steps + 1, len(names)))
             for index in range(len(s.order)):  # consistent inputs at the start, in order
@@ -281,7 +303,7 @@ class Master:
         # t_k = start + k h as _time computes it (k h / 1 is k h), for every k at once.
         times = s.start_time + np.arange(s.steps + 1) * s.step_size
         order = [str(sig) for sig in self.recorded]
-        columns = dict(zip(names, np.ascontiguousarray(rows.T)))
+        columns = dict(zip(names, np.ascontiguousarray(rows.T) if contiguous else rows.T))
         return Arrays(names=order, time=times, columns={n: columns[n] for n in order},
                       discards=self.discards)
 

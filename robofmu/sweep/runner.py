@@ -43,6 +43,7 @@ class InstancePool:
     def __init__(self):
         self.idle: dict[tuple[str, str], list] = {}
         self.opened = 0
+        self.loops: dict = {}  # the last run's prepared stepping loop (Master.loops)
 
     def open(self, alias, path, scenario):
         idle = self.idle.get((alias, str(path)))
@@ -59,7 +60,8 @@ class InstancePool:
         self.idle.setdefault(fmu.pool_key, []).append(fmu)
 
     def discard(self, fmu) -> None:
-        """An instance that failed is not reused."""
+        """An instance that failed is not reused (nor a loop prepared over it)."""
+        self.loops.clear()
         fmu.close()
 
 
@@ -88,6 +90,7 @@ class FmuStore:
 
     def close(self) -> None:
         """Frees the idle instances and removes the FMU files."""
+        self.pool.loops.clear()
         for fmus in self.pool.idle.values():
             for fmu in fmus:
                 fmu.close()
@@ -125,9 +128,10 @@ def execute(store: FmuStore, document: dict, fmus: dict[str, str]) -> dict:
         scenario.record = [Signal("plant", f"{n}[{i}]") for n in ("force", "stopForce")
                            for i in (1, 2, 3)]
         used: list = []
-        master = Master(scenario, open_fmu=pool.open, close_fmu=used.append)
+        master = Master(scenario, open_fmu=pool.open, close_fmu=used.append,
+                        loops=pool.loops)
         try:
-            result = master.run_arrays()
+            result = master.run_arrays(contiguous=False)
         except BaseException:
             for fmu in used:
                 pool.discard(fmu)
