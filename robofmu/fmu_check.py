@@ -7,10 +7,12 @@ from __future__ import annotations
 
 import copy
 import math
+import os
 import platform
+import stat
 import zipfile
-from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 from fmpy import read_model_description
 
@@ -26,8 +28,7 @@ FMI3_BINARY_DIR = {("Linux", "x86_64"): "x86_64-linux", ("Linux", "aarch64"): "a
                    ("Windows", "AMD64"): "x86_64-windows"}
 
 
-@lru_cache(maxsize=32)
-def _describe(path: str, mtime: float):
+def _describe(path: str):
     if not zipfile.is_zipfile(path):
         raise ValueError("is not an FMU (not a zip archive)")
     with zipfile.ZipFile(path) as z:
@@ -94,19 +95,49 @@ def scalar_view(md):
 def describe(path: Path, field: str):
     """The model description of the FMU at `path`, or ScenarioError naming `field`."""
     path = Path(path)
-    if not path.exists():
-        raise ScenarioError(f"field '{field}': {path} does not exist; build the FMUs "
-                            "(bash scripts/build-fmus.sh) or pass --fmu-dir DIR")
-    if not path.is_file():
-        raise ScenarioError(f"field '{field}': {path} is not a file; name an .fmu file")
     try:
-        return _describe(str(path.resolve()), path.stat().st_mtime)
+        status = os.stat(path)
+    except FileNotFoundError:
+        raise ScenarioError(f"field '{field}': {path} does not exist; build the FMUs "
+                            "(bash scripts/build-fmus.sh) or pass --fmu-dir DIR") from None
+    except OSError as e:
+        raise ScenarioError(f"field '{field}': cannot read {path}: {e.strerror}") from None
+    if not stat.S_ISREG(status.st_mode):
+        raise ScenarioError(f"field '{field}': {path} is not a file; name an .fmu file")
+    # The file itself, however it is named, as it is now (a rewritten FMU is read again).
+    key = (status.st_dev, status.st_ino, status.st_mtime_ns, status.st_size)
+    md = _DESCRIBED.get(key)
+    if md is not None:
+        return md
+    try:
+        md = _describe(str(path))
     except ValueError as e:
         raise ScenarioError(f"field '{field}': {path} {e}; name an FMI 2.0 or 3.0 "
                             "co-simulation FMU (bash scripts/build-fmus.sh builds ours in "
                             "dist/)") from None
     except OSError as e:
         raise ScenarioError(f"field '{field}': cannot read {path}: {e.strerror}") from None
+    if len(_DESCRIBED) >= 32:
+        del _DESCRIBED[next(iter(_DESCRIBED))]
+    _DESCRIBED[key] = md
+    return md
+
+
+#: describe's model descriptions by file (device, inode, modification time, size).
+_DESCRIBED: dict[tuple[int, int, int, int], Any] = {}
+
+
+def variable_names(md) -> frozenset[str]:
+    """The names of a described FMU's variables (kept with describe's descriptions)."""
+    kept = _NAMES.get(id(md))
+    if kept is None or kept[0] is not md:
+        if len(_NAMES) >= 32:
+            del _NAMES[next(iter(_NAMES))]
+        kept = _NAMES[id(md)] = (md, frozenset(v.name for v in md.modelVariables))
+    return kept[1]
+
+
+_NAMES: dict[int, tuple[Any, frozenset[str]]] = {}
 
 
 def variables(path: Path) -> dict:
