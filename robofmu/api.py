@@ -206,8 +206,9 @@ def _seconds(value: float | str, what: str) -> float:
 
 class System:
     """A co-simulation of FMUs built in code, without a scenario file (the plain
-    scenario form): any FMI 2.0 co-simulation FMU, ours or anyone's, or the FMI 3.0
-    builds of ours with ``simulate(..., fmi3=True)``.
+    scenario form): any FMI 2.0 or FMI 3.0 co-simulation FMU, ours or anyone's (an
+    element of an FMI 3.0 array is named ``"alias.x[1]"``), or the FMI 3.0 builds of
+    ours in place of their FMI 2.0 files with ``simulate(..., fmi3=True)``.
 
     >>> system = System(stop_time=1.0, step_size="1 ms")  # doctest: +SKIP
     >>> system.add("pid", fmu("PID"), parameters={"kp[1]": 100.0})  # doctest: +SKIP
@@ -424,18 +425,17 @@ def simulate(target: Target, parameters: Mapping[str, Value] | None = None, *,
     the FMU declares), set on top of the scenario's; checked against the variable's
     type and min/max. `fmi3`: run the FMI 3.0 builds of the FMUs (dist/fmi3/).
     ScenarioError for bad input, SimulationError when the run fails."""
-    from .master import run_scenario, text_progress
+    from .master import run_arrays, text_progress
     from .outputs import column_units
     plan = _plan_of(target, fmu_dir)
     if parameters:
         _override(plan, parameters)
     try:
-        table = run_scenario(plan, fmi3=fmi3, progress=text_progress() if progress else None)
+        table = run_arrays(plan, fmi3=fmi3, progress=text_progress() if progress else None)
     except CosimError as e:
         raise SimulationError(f"{plan.name}: the simulation failed: {e}") from e
-    columns = {n: np.asarray(table.columns[n], dtype=float) for n in table.names}
-    return Result(np.asarray(table.time, dtype=float), columns,
-                  column_units(plan, table.names), list(table.discards), plan.name)
+    return Result(table.time, table.columns, column_units(plan, table.names),
+                  list(table.discards), plan.name)
 
 
 @dataclass

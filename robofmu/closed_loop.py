@@ -69,7 +69,7 @@ from .controllers import LOOPS, Loop, kind_of, model_parameters, pole_placement
 from .design import (PlantRefused, check_bandwidth, design_gains, euler_accelerations,
                      euler_rates)
 from .errors import CosimError, ScenarioError
-from .fmu_check import check_value, describe, unit_of
+from .fmu_check import check_value, describe, unit_of, variable_names
 from .preflight import initialize_alone
 from .schedule import PlanSwitch
 from .units import UNITS, exponents, quantity, quantity_vector, unit_in
@@ -233,7 +233,7 @@ def _check_roles(fmus: dict, base_dir: Path, loop: Loop) -> None:
         if not isinstance(f, str):
             raise ScenarioError(f"field 'fmus.{alias}' must be a file name (a string)")
         md = describe(base_dir / f, f"fmus.{alias}")
-        if roles[alias] not in {v.name for v in md.modelVariables}:
+        if roles[alias] not in variable_names(md):
             raise ScenarioError(f"field 'fmus.{alias}': {Path(f).name} ({md.modelName}) is "
                                 f"not a {alias} FMU (no variable {roles[alias]}); "
                                 f"name the {alias} FMU of dist/")

@@ -4,6 +4,7 @@ FMU and the FMI call, and the FMU's log messages kept for error reports."""
 from __future__ import annotations
 
 import shutil
+from ctypes import c_double, c_int, c_uint
 from functools import partial
 from pathlib import Path
 from typing import Any
@@ -12,7 +13,8 @@ import fmpy
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2Discard)
+                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2Discard,
+                       fmi2Warning)
 from fmpy import calloc, free
 
 from .errors import FmuError, StepDiscarded
@@ -78,6 +80,7 @@ def release(fmu, initialized: bool, unzip) -> None:
 _GETTERS = {"Real": "getReal", "Integer": "getInteger", "Boolean": "getBoolean"}
 _SETTERS = {"Real": "setReal", "Integer": "setInteger", "Boolean": "setBoolean"}
 _CONVERT = {"Real": float, "Integer": int, "Boolean": bool}
+_C_TYPES: dict[str, Any] = {"Real": c_double, "Integer": c_int, "Boolean": c_int}  # fmi2Real, ..
 
 
 class LoggedCalls:
@@ -183,6 +186,7 @@ class FmuInstance(LoggedCalls):
             raise FmuError(f"{alias} ({path}) does not support co-simulation")
         self.variables = {v.name: v for v in md.modelVariables}
         self._group_cache: dict = {}
+        self._each: dict[str, tuple] = {}  # set_each's prepared call per name
         self.can_get_state = bool(md.coSimulation.canGetAndSetFMUstate)
         self.can_interpolate_inputs = bool(md.coSimulation.canInterpolateInputs)
         self.max_output_derivative_order = int(md.coSimulation.maxOutputDerivativeOrder or 0)
@@ -252,6 +256,24 @@ class FmuInstance(LoggedCalls):
             typed = [convert(values[k]) for k in positions]
             self._call(f"fmi2Set{kind}({', '.join(names[k] for k in positions)})",
                        partial(setter, refs, typed))
+
+    def set_each(self, names, values) -> None:
+        """Sets each of `names` to its value in an FMI call of its own, in order: what
+        set_value does name by name (the same calls, statuses and messages), through
+        the FMU's C functions without FMPy's wrappers (a sweep run sets every parameter)."""
+        for name, value in zip(names, values):
+            prepared = self._each.get(name)
+            if prepared is None:
+                kind = self._groups((name,))[0][0]
+                prepared = self._each[name] = (
+                    kind, getattr(self._fmu.dll, f"fmi2Set{kind}"), _CONVERT[kind],
+                    (c_uint * 1)(self.variables[name].valueReference), (_C_TYPES[kind] * 1)())
+            kind, function, convert, ref, typed = prepared
+            typed[0] = convert(value)
+            status = function(self._fmu.component, ref, 1, typed)
+            if status > fmi2Warning:
+                raise FmuError(f"{self.alias}: fmi2Set{kind}({name}) failed with status "
+                               f"{status}: {self._last_message()}")
 
     def enter_initialization(self) -> None:
         self._call("fmi2EnterInitializationMode", self._fmu.enterInitializationMode)

@@ -182,7 +182,17 @@ class Fmu3Instance(LoggedCalls):
         self._start_time, self._stop_time = start_time, stop_time
 
 
+def is_fmi3(path: Path) -> bool:
+    """The FMU at `path` is an FMI 3.0 FMU itself (anyone's, not the FMI 2.0 file of ours
+    whose FMI 3.0 build lies in fmi3/ beside it)."""
+    from .fmu_check import describe
+    return describe(path, "fmus").fmiVersion == "3.0"
+
+
 def open_fmi3(alias, path, scenario):
-    """The master's `open_fmu` for the FMI 3.0 builds of the scenario's FMUs."""
+    """The master's `open_fmu` for the FMI 3.0 builds of the scenario's FMUs (an FMI 3.0
+    FMU itself as it is, its inputs held)."""
+    if is_fmi3(Path(path)):
+        return Fmu3Instance(alias, Path(path), scenario.start_time, scenario.stop_time)
     return Fmu3Instance(alias, fmi3_path(Path(path)), scenario.start_time, scenario.stop_time,
                         extrapolate=getattr(scenario, "input_extrapolation", "hold") != "hold")

@@ -1,14 +1,18 @@
 """What the scenario's FMUs declare, read once per file, with user errors that name the
-scenario field: the file (exists, a zip, FMI 2.0 co-simulation with a Linux x86-64
-binary), its variables, their units (as SI base-unit exponents) and ranges."""
+scenario field: the file (exists, a zip, FMI 2.0 or 3.0 co-simulation with a binary
+for this platform; FMI 3.0 read as its scalar view), its variables, their units (as SI
+base-unit exponents) and ranges."""
 
 from __future__ import annotations
 
+import copy
 import math
+import os
 import platform
+import stat
 import zipfile
-from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 from fmpy import read_model_description
 
@@ -19,10 +23,12 @@ OTHER_BASE_UNITS = ("A", "K", "mol", "cd")
 INT32 = (-2 ** 31, 2 ** 31 - 1)
 BINARY_DIR = {("Linux", "x86_64"): "linux64", ("Darwin", "x86_64"): "darwin64",
               ("Darwin", "arm64"): "darwin64", ("Windows", "AMD64"): "win64"}
+FMI3_BINARY_DIR = {("Linux", "x86_64"): "x86_64-linux", ("Linux", "aarch64"): "aarch64-linux",
+                   ("Darwin", "x86_64"): "x86_64-darwin", ("Darwin", "arm64"): "aarch64-darwin",
+                   ("Windows", "AMD64"): "x86_64-windows"}
 
 
-@lru_cache(maxsize=32)
-def _describe(path: str, mtime: float):
+def _describe(path: str):
     if not zipfile.is_zipfile(path):
         raise ValueError("is not an FMU (not a zip archive)")
     with zipfile.ZipFile(path) as z:
@@ -33,33 +39,105 @@ def _describe(path: str, mtime: float):
         md = read_model_description(path, validate=False)
     except Exception as e:  # noqa: BLE001 - any malformed XML is the file's fault
         raise ValueError(f"has an unreadable modelDescription.xml ({e})") from None
-    if md.fmiVersion != "2.0":
-        raise ValueError(f"is an FMI {md.fmiVersion} FMU where FMI 2.0 is needed (the FMI 3.0 "
-                         "builds are run with --fmi3 on the FMI 2.0 file names)")
+    if md.fmiVersion not in ("2.0", "3.0"):
+        raise ValueError(f"is an FMI {md.fmiVersion} FMU; FMI 2.0 and 3.0 are supported")
     if md.coSimulation is None:
-        raise ValueError("does not support co-simulation")
-    folder = BINARY_DIR.get((platform.system(), platform.machine()), "linux64")
+        raise ValueError("does not support co-simulation (FMI "
+                         f"{md.fmiVersion} Model Exchange only)")
+    if md.fmiVersion == "2.0":
+        folder = BINARY_DIR.get((platform.system(), platform.machine()), "linux64")
+    else:
+        folder = FMI3_BINARY_DIR.get((platform.system(), platform.machine()), "x86_64-linux")
     wanted = f"binaries/{folder}/{md.coSimulation.modelIdentifier}"
     if not any(n.startswith(wanted + ".") for n in names):
         raise ValueError(f"has no binary for this platform ({wanted}.*)")
-    return md
+    return md if md.fmiVersion == "2.0" else scalar_view(md)
+
+
+#: The FMI 3.0 types the master passes and sets, as the FMI 2.0 types of the scalar view.
+FMI3_TYPES = {"Float64": "Real", "Int32": "Integer", "Boolean": "Boolean"}
+
+
+def scalar_view(md):
+    """An FMI 3.0 model description as the scenario checks read FMI 2.0 ones: one
+    variable per scalar (`x[1]`..`x[n]` of a one-dimensional array `x`, the names
+    robofmu.fmi3 addresses), Float64, Int32 and Boolean as Real, Integer and Boolean
+    (other types keep their FMI 3.0 name, which no check accepts). ValueError for what
+    the master cannot run: clocks, arrays of more than one dimension or of a size set
+    by a structural parameter."""
+    clocks = [v.name for v in md.modelVariables if v.type == "Clock"]
+    if clocks:
+        raise ValueError(f"declares clocks ({', '.join(clocks)}), which robofmu's master does "
+                         "not tick")
+    scalars = []
+    for v in md.modelVariables:
+        if v.shape and (len(v.shape) != 1 or not isinstance(v.shape[0], int)):
+            raise ValueError(f"declares {v.name} as an array of shape {v.shape}; only arrays "
+                             "of one dimension of fixed size are supported")
+        starts = str(v.start).split() if v.start is not None else None
+        elements = [None] if not v.shape else list(range(int(v.shape[0])))
+        for k in elements:
+            scalar = copy.copy(v)
+            scalar.shape = ()
+            scalar.type = FMI3_TYPES.get(v.type, v.type)
+            if k is not None:  # as robofmu.fmi3.scalar_names: der(x[1]) of an array state x
+                state = v.derivative.name if v.derivative is not None else None
+                element = f"{state or v.name}[{k + 1}]"
+                scalar.name = f"der({element})" if state else element
+                if starts is not None:
+                    scalar.start = starts[k] if len(starts) == len(elements) else starts[0]
+            scalars.append(scalar)
+    view = copy.copy(md)
+    view.modelVariables = scalars
+    return view
 
 
 def describe(path: Path, field: str):
     """The model description of the FMU at `path`, or ScenarioError naming `field`."""
     path = Path(path)
-    if not path.exists():
-        raise ScenarioError(f"field '{field}': {path} does not exist; build the FMUs "
-                            "(bash scripts/build-fmus.sh) or pass --fmu-dir DIR")
-    if not path.is_file():
-        raise ScenarioError(f"field '{field}': {path} is not a file; name an .fmu file")
     try:
-        return _describe(str(path.resolve()), path.stat().st_mtime)
-    except ValueError as e:
-        raise ScenarioError(f"field '{field}': {path} {e}; name an FMI 2.0 FMU "
-                            "(bash scripts/build-fmus.sh builds them in dist/)") from None
+        status = os.stat(path)
+    except FileNotFoundError:
+        raise ScenarioError(f"field '{field}': {path} does not exist; build the FMUs "
+                            "(bash scripts/build-fmus.sh) or pass --fmu-dir DIR") from None
     except OSError as e:
         raise ScenarioError(f"field '{field}': cannot read {path}: {e.strerror}") from None
+    if not stat.S_ISREG(status.st_mode):
+        raise ScenarioError(f"field '{field}': {path} is not a file; name an .fmu file")
+    # The file itself, however it is named, as it is now (a rewritten FMU is read again).
+    key = (status.st_dev, status.st_ino, status.st_mtime_ns, status.st_size)
+    md = _DESCRIBED.get(key)
+    if md is not None:
+        return md
+    try:
+        md = _describe(str(path))
+    except ValueError as e:
+        raise ScenarioError(f"field '{field}': {path} {e}; name an FMI 2.0 or 3.0 "
+                            "co-simulation FMU (bash scripts/build-fmus.sh builds ours in "
+                            "dist/)") from None
+    except OSError as e:
+        raise ScenarioError(f"field '{field}': cannot read {path}: {e.strerror}") from None
+    if len(_DESCRIBED) >= 32:
+        del _DESCRIBED[next(iter(_DESCRIBED))]
+    _DESCRIBED[key] = md
+    return md
+
+
+#: describe's model descriptions by file (device, inode, modification time, size).
+_DESCRIBED: dict[tuple[int, int, int, int], Any] = {}
+
+
+def variable_names(md) -> frozenset[str]:
+    """The names of a described FMU's variables (kept with describe's descriptions)."""
+    kept = _NAMES.get(id(md))
+    if kept is None or kept[0] is not md:
+        if len(_NAMES) >= 32:
+            del _NAMES[next(iter(_NAMES))]
+        kept = _NAMES[id(md)] = (md, frozenset(v.name for v in md.modelVariables))
+    return kept[1]
+
+
+_NAMES: dict[int, tuple[Any, frozenset[str]]] = {}
 
 
 def variables(path: Path) -> dict:

@@ -78,7 +78,7 @@ class _Stepper(Structure):
 
 class _Recorder(Structure):
     _fields_ = [("get", c_void_p), ("component", c_void_p), ("refs", c_void_p),
-                ("n", c_size_t), ("column", c_size_t)]
+                ("n", c_size_t), ("column", c_size_t), ("buffer", c_void_p)]
 
 
 class _Plan(Structure):
@@ -140,7 +140,8 @@ def _array(kind, items) -> tuple:
 class Loop:
     """The prepared calls of one run over its open instances and the kernel's plan.
     `inputs[alias]`: (source, source variables, inputs) per connected pair; `slopes`:
-    robofmu.master's derivative pairs; `recorded_by_fmu`: the recorded variables."""
+    robofmu.master's derivative pairs; `recorded_by_fmu`: the recorded variables.
+    `columns`: (alias, variable) of each column of a recorded row, in order."""
 
     def __init__(self, fmus, inputs, recorded_by_fmu, order, slopes, scenario):
         self.fmus, self.order = fmus, order
@@ -152,6 +153,7 @@ class Loop:
         self._next_state = 1
         self.direct = {alias: type(fmu) is FmuInstance for alias, fmu in fmus.items()}
         self.exchanges, exchanges_c, steppers_c = [], [], []
+        buffers: list[tuple[str, str, tuple, object]] = []  # (source, target, variables, buffer)
         self.slope_items, slopes_c = [], []
         for alias in order:
             first, first_slope = len(exchanges_c), len(slopes_c)
@@ -161,23 +163,36 @@ class Loop:
                 moved[(source, tuple(variables), tuple(targets))] = buffer
                 exchanges_c.append(exchange)
                 self.exchanges.append((source, alias))
+                buffers.append((source, alias, tuple(variables), buffer))
             for source, variables, targets, history, order_k in slopes.get(alias, []):
                 key = (source, tuple(variables), tuple(targets))
                 if history is not None and key not in moved:  # a subset of a pair
                     exchange, moved[key] = self._exchange(source, variables, alias, targets)
                     exchanges_c.append(exchange)
                     self.exchanges.append((source, alias))
+                    buffers.append((source, alias, tuple(variables), moved[key]))
                 slopes_c.append(self._slope(source, variables, alias, targets, history,
                                             order_k, moved.get(key)))
                 self.slope_items.append((source, alias))
             steppers_c.append(self._stepper(alias, first, len(exchanges_c) - first,
                                             first_slope, len(slopes_c) - first_slope))
-        self.recorders, recorders_c, width = [], [], 0
+        copied = (self._exchanged(buffers, {target for _, target in self.slope_items})
+                  if scenario.coupling == "sampled" else {})
+        self.recorders, recorders_c, self.columns = [], [], []
         for alias, variables in recorded_by_fmu.items():
-            recorders_c.append(self._recorder(alias, variables, width))
-            self.recorders.append(alias)
-            width += len(variables)
-        self.width = width
+            read = tuple(v for v in variables if (alias, v) not in copied)
+            if read:
+                recorders_c.append(self._recorder(alias, read, len(self.columns)))
+                self.recorders.append(alias)
+                self.columns += [(alias, v) for v in read]
+        for alias, variables in recorded_by_fmu.items():
+            for v in variables:
+                if (alias, v) in copied:
+                    recorders_c.append(_Recorder(None, None, None, 1, len(self.columns),
+                                                 copied[(alias, v)]))
+                    self.recorders.append(alias)
+                    self.columns.append((alias, v))
+        width = self.width = len(self.columns)
         arrays = [_array(_Exchange, exchanges_c), _array(_Slope, slopes_c),
                   _array(_Stepper, steppers_c), _array(_Recorder, recorders_c)]
         self._alive += arrays
@@ -341,7 +356,34 @@ class Loop:
 
     def _recorder(self, alias, variables, column) -> _Recorder:
         get, handle, refs = self._getter(alias, tuple(variables))
-        return _Recorder(get, _address(handle), refs, len(variables), column)
+        return _Recorder(get, _address(handle), refs, len(variables), column, None)
+
+    @staticmethod
+    def _exchanged(buffers, slope_targets) -> dict[tuple[str, str], int]:
+        """(alias, variable) -> address of the value in an exchange buffer, for the
+        outputs that a sampled propagation reads when nothing will change them before
+        the row is recorded: the exchange reading them comes after every value exchange
+        into their FMU and no input derivatives are passed to it. The row then copies
+        what an fmi2GetReal at recording would return, without the call."""
+        last_into: dict[str, int] = {}
+        for i, (_, target, _, _) in enumerate(buffers):
+            last_into[target] = i
+        copied: dict[tuple[str, str], int] = {}
+        for i, (source, _, variables, buffer) in enumerate(buffers):
+            if last_into.get(source, -1) > i or source in slope_targets:
+                continue
+            base = ctypes.addressof(buffer)
+            for k, v in enumerate(variables):
+                copied.setdefault((source, v), base + k * ctypes.sizeof(c_double))
+        return copied
+
+    def renew(self) -> None:
+        """Ready for another run over the same instances (the plan unchanged; every
+        buffer is written by the run's propagation before it is read)."""
+        self.error = None
+        self.discards = []
+        self._states.clear()
+        self._next_state = 1
 
     # -- running --------------------------------------------------------------------------
 

@@ -63,6 +63,16 @@ class Result:
                 out.writerow([t, *(self.columns[n][k] for n in self.names)])
 
 
+@dataclass
+class Arrays:
+    """A run's recorded signals as numpy arrays (what Result holds as lists)."""
+
+    names: list[str]
+    time: np.ndarray
+    columns: dict[str, np.ndarray]
+    discards: list[str]
+
+
 def _open_fmu(alias, path, scenario):
     return open_instance(alias, path, scenario.start_time, scenario.stop_time)
 
@@ -79,8 +89,9 @@ class Master:
 
     def __init__(self, scenario: Scenario, open_fmu: Callable = _open_fmu,
                  progress: Callable[[float], None] | None = None,
-                 close_fmu: Callable = _close_fmu):
+                 close_fmu: Callable = _close_fmu, loops: dict | None = None):
         self.scenario = scenario
+        self.loops = loops  # a sweep worker's prepared loop, reused (_prepared_loop)
         self.open_fmu = open_fmu
         self.close_fmu = close_fmu
         self.progress = progress
@@ -155,6 +166,26 @@ class Master:
                           History(n, len(keep)) if history else None, n))
         return parts
 
+    def _prepared_loop(self) -> Loop:
+        """The stepping loop's plan over this run's instances: the one `loops` keeps
+        when the last run had the same instances, couplings, recorded signals and
+        experiment and no input derivatives (a sweep's runs differ in parameter values
+        only), else a new one (kept there for the next run)."""
+        s = self.scenario
+        if self.loops is None or any(self.slopes.values()):
+            return Loop(self.fmus, self.inputs, self.recorded_by_fmu, s.order, self.slopes, s)
+        key = (tuple((a, id(f)) for a, f in self.fmus.items()), repr(self.inputs),
+               repr(self.recorded_by_fmu), tuple(s.order), s.coupling, s.start_time,
+               s.step_size, s.max_step_halvings)
+        loop = self.loops.get(key)
+        if loop is not None and all(loop.fmus[a] is f for a, f in self.fmus.items()):
+            loop.renew()
+            return loop
+        loop = Loop(self.fmus, self.inputs, self.recorded_by_fmu, s.order, self.slopes, s)
+        self.loops.clear()
+        self.loops[key] = loop
+        return loop
+
     def _start_up(self, rows: np.ndarray, loop: Loop) -> None:
         """The multistep start-up of the derivatives through past values (History) of
         order 2: the first steps would extrapolate with a lower order (no past points
@@ -194,8 +225,13 @@ class Master:
         del loop.discards[discards:]
 
     def _initialize(self, alias: str, parameters: dict) -> None:
+        fmu = self.fmus[alias]
+        set_each = getattr(fmu, "set_each", None)  # robofmu.fmi2: without FMPy's wrappers
+        if set_each is not None:
+            set_each(list(parameters), list(parameters.values()))
+            return
         for name, value in parameters.items():
-            self.fmus[alias].set_value(name, value)
+            fmu.set_value(name, value)
 
     def _switch_plan(self, switch) -> None:
         """A plan switch of a multi-segment motion: the (stateless) FMU is reset and
@@ -221,10 +257,15 @@ class Master:
                 self.progress(k / s.steps)
 
     def run(self) -> Result:
+        a = self.run_arrays()
+        return Result(names=a.names, time=a.time.tolist(),
+                      columns={n: a.columns[n].tolist() for n in a.names}, discards=a.discards)
+
+    def run_arrays(self, contiguous: bool = True) -> Arrays:
+        """The run, its signals as arrays: one contiguous array per signal, or (not
+        `contiguous`: a sweep's run, which reads them once) the columns of the rows."""
         s = self.scenario
         self.fmus = {}
-        names = [f"{alias}.{v}" for alias, vs in self.recorded_by_fmu.items() for v in vs]
-        rows = np.empty((s.steps + 1, len(names)))
         switches = {switch.step: switch for switch in s.schedule}
         try:
             for alias in s.order:
@@ -234,7 +275,9 @@ class Master:
             for alias in s.order:
                 self.fmus[alias].enter_initialization()
             self.slopes = self._slope_pairs()
-            loop = Loop(self.fmus, self.inputs, self.recorded_by_fmu, s.order, self.slopes, s)
+            loop = self._prepared_loop()
+            names = [f"{alias}.{v}" for alias, v in loop.columns]
+            rows = np.empty((s.steps + 1, len(names)))
             for index in range(len(s.order)):  # consistent inputs at the start, in order
                 loop.set_inputs(index, s.start_time)
             for alias in s.order:
@@ -258,29 +301,41 @@ class Master:
             for fmu in self.fmus.values():
                 self.close_fmu(fmu)
         # t_k = start + k h as _time computes it (k h / 1 is k h), for every k at once.
-        times = (s.start_time + np.arange(s.steps + 1) * s.step_size).tolist()
+        times = s.start_time + np.arange(s.steps + 1) * s.step_size
         order = [str(sig) for sig in self.recorded]
-        columns = dict(zip(names, rows.T.tolist()))
-        return Result(names=order, time=times, columns={n: columns[n] for n in order},
+        columns = dict(zip(names, np.ascontiguousarray(rows.T) if contiguous else rows.T))
+        return Arrays(names=order, time=times, columns={n: columns[n] for n in order},
                       discards=self.discards)
 
 
 def run_scenario(scenario: Scenario, *, fmi3: bool = False,
                  progress: Callable[[float], None] | None = None,
                  option: str = "fmi3") -> Result:
-    """One run of a validated scenario (what robofmu.simulate and ``cosim run`` make):
-    with `fmi3`, of the FMI 3.0 builds of its FMUs (dist/fmi3/<Model>.fmu beside each),
-    ScenarioError naming `option` (the argument that asked for them) when one is
-    missing. CosimError as the master raises it when the run fails."""
-    from .fmi3 import fmi3_path, open_fmi3  # lazily: FMPy's FMI 3.0 layer
+    """One run of a validated scenario (what ``cosim run`` makes): with `fmi3`, of the
+    FMI 3.0 builds of its FMUs (dist/fmi3/<Model>.fmu beside each), ScenarioError
+    naming `option` (the argument that asked for them) when one is missing. CosimError
+    as the master raises it when the run fails."""
+    return _master(scenario, fmi3, progress, option).run()
+
+
+def run_arrays(scenario: Scenario, *, fmi3: bool = False,
+               progress: Callable[[float], None] | None = None,
+               option: str = "fmi3") -> Arrays:
+    """As run_scenario, the signals as numpy arrays (what robofmu.simulate makes)."""
+    return _master(scenario, fmi3, progress, option).run_arrays()
+
+
+def _master(scenario: Scenario, fmi3: bool, progress: Callable[[float], None] | None,
+            option: str) -> Master:
+    from .fmi3 import fmi3_path, is_fmi3, open_fmi3  # lazily: FMPy's FMI 3.0 layer
     if not fmi3:
-        return Master(scenario, progress=progress).run()
+        return Master(scenario, progress=progress)
     for alias, path in scenario.fmus.items():
-        if not fmi3_path(path).is_file():
+        if not is_fmi3(path) and not fmi3_path(path).is_file():
             raise ScenarioError(f"{option}: {fmi3_path(path)} (the FMI 3.0 build of "
                                 f"fmus.{alias}) does not exist; build it with bash "
                                 f"scripts/build-fmus.sh or run without {option}")
-    return Master(scenario, open_fmu=open_fmi3, progress=progress).run()
+    return Master(scenario, open_fmu=open_fmi3, progress=progress)
 
 
 class _Described:

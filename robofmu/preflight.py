@@ -18,6 +18,10 @@ if TYPE_CHECKING:
     from .scenario import Scenario
 
 
+#: The types a connection passes (FMI 3.0 Float64 and Int32 read as Real and Integer).
+PASSED = ("Real", "Integer", "Enumeration", "Boolean")
+
+
 def initialize_alone(path: Path, alias: str, parameters: dict, field: str) -> None:
     """Sets `parameters` on an instance of the FMU (robofmu.instances: the one the run
     will use), initialises it and reads its outputs; ScenarioError with the FMU's reason
@@ -77,6 +81,10 @@ def check(scenario: Scenario, fields: dict | None = None) -> None:
             if v is None:
                 raise ScenarioError(f"field 'connections[{k}].{side}': {signal.alias} has no "
                                     f"variable '{signal.variable}'")
+            if v.type not in PASSED:
+                raise ScenarioError(f"field 'connections[{k}].{side}': {signal} is of type "
+                                    f"{v.type}, which the master cannot pass; connect a Real "
+                                    "(FMI 3.0: Float64), Integer (Int32) or Boolean variable")
             if side == "to" and v.causality != "input":
                 raise ScenarioError(f"field 'connections[{k}].to': {signal} is not an input "
                                     f"({v.causality}); connect to an input")

@@ -28,13 +28,15 @@ wheel="$work/packages/robofmu-$version-py3-none-any.whl"
 # pip refuses extras in constraints: dask[distributed]==X constrains dask==X.
 sed 's/\[[^]]*\]//' scripts/python-requirements.txt >"$work/constraints.txt"
 # The library's scripts of docs/python-api.md (its blocks ```python wheel), run in the
-# user's folder with only the wheel installed, and the third-party FMU they couple with
-# our PID (compiled here from examples/integrator/, as the docs' sh line does).
+# user's folder with only the wheel installed, and the third-party FMUs they couple with
+# our PID (compiled here from examples/integrator/ and integrator3/, as the docs' sh
+# lines do).
 mkdir "$work/docs"
 awk -v dir="$work/docs" '/^```python wheel$/ { n++; inside = 1; next } /^```$/ { inside = 0 }
     inside { print > (dir "/" n ".py") }' docs/python-api.md
 [[ -f "$work/docs/2.py" ]] || { echo "test-wheel: docs/python-api.md: fewer than two blocks \`\`\`python wheel" >&2; exit 1; }
 .venv/bin/python examples/integrator/build_fmu.py "$work/Integrator.fmu" >/dev/null
+.venv/bin/python examples/integrator3/build_fmu.py "$work/Integrator3.fmu" >/dev/null
 # The notebook and the Dask cluster test (tests/wheel/), run there with the wheel's venv.
 mkdir "$work/tests"
 cp examples/robofmu.ipynb tests/wheel/run_notebook.py tests/wheel/cluster.py "$work/tests/"
@@ -63,7 +65,8 @@ base=$(.venv/bin/python -c 'import sys; print(sys._base_executable)')
 # The user's environment: nothing of this shell's (no cargo, no PYTHONPATH, no checkout);
 # pip takes the dependencies from PyPI at the versions pinned for CI (PIP_CONSTRAINT).
 (cd "$user" && env -i HOME="$user" LANG=C.UTF-8 MPLBACKEND=Agg VERSION="$version" \
-    DOCS="$work/docs" INTEGRATOR="$work/Integrator.fmu" TESTS="$work/tests" CHECKOUT="$root" \
+    DOCS="$work/docs" INTEGRATOR="$work/Integrator.fmu" INTEGRATOR3="$work/Integrator3.fmu" \
+    TESTS="$work/tests" CHECKOUT="$root" \
     WHEEL="$(basename "$wheel")" PIP_CONSTRAINT="$work/constraints.txt" \
     PIP_DISABLE_PIP_VERSION_CHECK=1 PIP_QUIET=1 PATH="$(dirname "$base"):/usr/bin:/bin" \
     bash -euo pipefail "$work/user.sh")
@@ -93,7 +96,7 @@ done
 echo "cosim --version = Cargo.toml = every bundled FMU's version: $version (12 FMUs)"
 
 # The library with only the wheel (numpy, FMPy): docs/python-api.md's scripts.
-mkdir -p results && cp "$INTEGRATOR" results/Integrator.fmu
+mkdir -p results && cp "$INTEGRATOR" results/Integrator.fmu && cp "$INTEGRATOR3" results/Integrator3.fmu
 for script in "$DOCS"/*.py; do
     python "$script" || fail "docs/python-api.md's block $(basename "$script" .py) failed"
 done

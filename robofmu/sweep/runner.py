@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import CosimError
-from ..fmi2 import FmuInstance
+from ..instances import new_instance
 from ..master import Master
 from ..scenario import ScenarioError, Signal, fmu_file, parse_document
 from . import scratch
@@ -43,6 +43,7 @@ class InstancePool:
     def __init__(self):
         self.idle: dict[tuple[str, str], list] = {}
         self.opened = 0
+        self.loops: dict = {}  # the last run's prepared stepping loop (Master.loops)
 
     def open(self, alias, path, scenario):
         idle = self.idle.get((alias, str(path)))
@@ -51,7 +52,7 @@ class InstancePool:
             fmu.reset(scenario.start_time, scenario.stop_time)
             return fmu
         self.opened += 1
-        fmu = FmuInstance(alias, path, scenario.start_time, scenario.stop_time)
+        fmu = new_instance(alias, path, scenario.start_time, scenario.stop_time)
         fmu.pool_key = (alias, str(path))
         return fmu
 
@@ -59,7 +60,8 @@ class InstancePool:
         self.idle.setdefault(fmu.pool_key, []).append(fmu)
 
     def discard(self, fmu) -> None:
-        """An instance that failed is not reused."""
+        """An instance that failed is not reused (nor a loop prepared over it)."""
+        self.loops.clear()
         fmu.close()
 
 
@@ -88,6 +90,7 @@ class FmuStore:
 
     def close(self) -> None:
         """Frees the idle instances and removes the FMU files."""
+        self.pool.loops.clear()
         for fmus in self.pool.idle.values():
             for fmu in fmus:
                 fmu.close()
@@ -120,14 +123,15 @@ def execute(store: FmuStore, document: dict, fmus: dict[str, str]) -> dict:
     pool = store.pool
     try:
         scenario = parse_document(local, store.ready())
-        for i in (1, 2, 3):
-            stop = Signal("plant", f"stopForce[{i}]")
-            if stop not in scenario.record:
-                scenario.record.append(stop)
+        # Recorded: what the metrics read (the scenario's record list is checked above;
+        # a sweep keeps metrics, not signals), the connected outputs anyway.
+        scenario.record = [Signal("plant", f"{n}[{i}]") for n in ("force", "stopForce")
+                           for i in (1, 2, 3)]
         used: list = []
-        master = Master(scenario, open_fmu=pool.open, close_fmu=used.append)
+        master = Master(scenario, open_fmu=pool.open, close_fmu=used.append,
+                        loops=pool.loops)
         try:
-            result = master.run()
+            result = master.run_arrays(contiguous=False)
         except BaseException:
             for fmu in used:
                 pool.discard(fmu)
@@ -144,7 +148,7 @@ def execute(store: FmuStore, document: dict, fmus: dict[str, str]) -> dict:
 def metrics(result) -> dict:
     """Tracking error (deg), peak actuator force and limits, settling time, discards."""
     def vec(alias: str, n: str) -> np.ndarray:
-        return np.column_stack([np.array(result.columns[f"{alias}.{n}[{i}]"], dtype=float)
+        return np.column_stack([np.asarray(result.columns[f"{alias}.{n}[{i}]"], dtype=float)
                                 for i in (1, 2, 3)])
 
     q = vec("planner", "q")

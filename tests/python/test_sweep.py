@@ -324,3 +324,24 @@ def test_the_command_exits_1_with_the_reasons_of_failed_runs(tmp_path, capsys):
     assert status == 1
     assert "1 of 2 runs failed" in err[0]
     assert err[1] == f"  1 x {reason}" and reason.startswith("plant")
+
+
+def test_a_reused_stepping_loop_gives_the_runs_of_a_fresh_one():
+    # Truth: a fresh master (its own instances and loop). A sweep worker keeps the
+    # prepared loop of the last run (Master.loops) and reuses it over the same instances
+    # for a run with other parameter values: bit for bit the fresh run.
+    pool = InstancePool()
+    runs, loops = [], []
+    for kp in (900.0, 1200.0):
+        scenario = load_scenario(ROOT / "scenarios" / "regulation.toml")
+        scenario.input_extrapolation = "hold"  # no input derivatives: the loop is kept
+        scenario.parameters["pid"]["Kp[1]"] = kp
+        used: list = []
+        master = Master(scenario, open_fmu=pool.open, close_fmu=used.append, loops=pool.loops)
+        runs.append(master.run())
+        for fmu in used:
+            pool.release(fmu)
+        loops += list(pool.loops.values())
+        assert runs[-1].columns == Master(scenario).run().columns, kp
+    assert pool.opened == 3 and len(loops) == 2 and loops[0] is loops[1]
+    assert runs[0].columns["pid.u[1]"] != runs[1].columns["pid.u[1]"]

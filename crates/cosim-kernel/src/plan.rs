@@ -98,11 +98,13 @@ pub struct Stepper {
     pub n_slopes: usize,
 }
 
-/// The recorded signals of one FMU: read into columns `column..column + n` of a row.
+/// Recorded signals: read by `get` from one FMU, or (`get` None) copied from the
+/// buffer of a value [`Exchange`] that read them at the same point, into columns
+/// `column..column + n` of a row.
 #[repr(C)]
 pub struct Recorder {
-    /// fmi2GetReal.
-    pub get: Transfer,
+    /// fmi2GetReal, or None to copy from `buffer`.
+    pub get: Option<Transfer>,
     /// The instance.
     pub component: Handle,
     /// The value references.
@@ -111,6 +113,8 @@ pub struct Recorder {
     pub n: usize,
     /// First column in the row.
     pub column: usize,
+    /// Without `get`: the exchange buffer holding the `n` values.
+    pub buffer: *const f64,
 }
 
 /// What failed: the call ([`kind`]), the index of the exchange, stepper or recorder
@@ -414,9 +418,15 @@ impl Plan {
             .iter()
             .enumerate()
         {
-            // SAFETY: the recorder's columns lie within the row.
-            let status = unsafe { (r.get)(r.component, r.refs, r.n, row.add(r.column)) };
-            check(status, kind::RECORD, i, t)?;
+            match r.get {
+                // SAFETY: the recorder's columns lie within the row.
+                Some(get) => {
+                    let status = unsafe { get(r.component, r.refs, r.n, row.add(r.column)) };
+                    check(status, kind::RECORD, i, t)?;
+                }
+                // SAFETY: the buffer holds n values; the columns lie within the row.
+                None => unsafe { ptr::copy_nonoverlapping(r.buffer, row.add(r.column), r.n) },
+            }
         }
         Ok(())
     }

@@ -128,17 +128,19 @@ unsafe extern "C" fn count_discard(context: *mut c_void, _i: usize, _t: f64, _h:
 /// Runs 10 steps of 0.1 s with derivatives of `order` through the source's samples;
 /// the integrator's x per row, or the failure.
 fn run(fail_at_step: Option<u32>, square: bool, order: usize) -> Result<Vec<f64>, Failure> {
-    run_with(fail_at_step, square, order, None).map(|(rows, _)| rows)
+    run_with(fail_at_step, square, order, None).map(|(rows, _)| rows.iter().map(|r| r[0]).collect())
 }
 
 /// As [`run`], with the integrator's longest step (two halvings allowed, no slopes
-/// with a limit); also the number of discards the plan was told of.
+/// with a limit); per row the integrator's x and the source's value copied from the
+/// exchange's buffer (a recorder without a get call), and the number of discards the
+/// plan was told of.
 fn run_with(
     fail_at_step: Option<u32>,
     square: bool,
     order: usize,
     h_max: Option<f64>,
-) -> Result<(Vec<f64>, u32), Failure> {
+) -> Result<(Vec<[f64; 2]>, u32), Failure> {
     let mut ramp = Fake {
         square,
         ..Fake::default()
@@ -183,13 +185,24 @@ fn run_with(
     };
     let slopes_used = usize::from(h_max.is_none());
     let steppers = [stepper(r, 0, 0), stepper(i, 1, slopes_used)];
-    let recorder = Recorder {
-        get: int_get,
-        component: i,
-        refs: refs.as_ptr(),
-        n: 1,
-        column: 0,
-    };
+    let recorders = [
+        Recorder {
+            get: Some(int_get),
+            component: i,
+            refs: refs.as_ptr(),
+            n: 1,
+            column: 0,
+            buffer: ptr::null(),
+        },
+        Recorder {
+            get: None,
+            component: ptr::null_mut(),
+            refs: ptr::null(),
+            n: 1,
+            column: 1,
+            buffer: buffer.as_ptr(),
+        },
+    ];
     let plan = Plan {
         exchanges: &exchange,
         n_exchanges: 1,
@@ -197,9 +210,9 @@ fn run_with(
         n_slopes: slopes_used,
         steppers: steppers.as_ptr(),
         n_steppers: 2,
-        recorders: &recorder,
-        n_recorders: 1,
-        width: 1,
+        recorders: recorders.as_ptr(),
+        n_recorders: 2,
+        width: 2,
         start: 0.0,
         h: 0.1,
         gauss_seidel: 0,
@@ -207,12 +220,12 @@ fn run_with(
         discarded: Some(count_discard),
         context: &mut discards as *mut u32 as *mut c_void,
     };
-    let mut rows = vec![0.0; 11];
+    let mut rows = vec![0.0; 22];
     let mut failure = Failure::default();
     // SAFETY: every pointer above lives until the call returns.
     let status = unsafe { cosim_kernel_run(&plan, 0, 10, 1, rows.as_mut_ptr(), &mut failure) };
     if status == 0 {
-        Ok((rows, discards))
+        Ok((rows.chunks(2).map(|r| [r[0], r[1]]).collect(), discards))
     } else {
         Err(failure)
     }
@@ -252,8 +265,22 @@ fn a_discarded_step_is_retried_in_halves_from_the_saved_states() {
     // the integrator holds u = t_j = j h / 4, so x_M = (h/4)^2 M (M - 1) / 2 after M
     // quarters: 0.4875 at M = 40. Per step one discard of the whole and two of halves.
     let (rows, discards) = run_with(None, false, 1, Some(0.03)).unwrap();
-    assert!((rows[10] - 0.4875).abs() < 1e-14, "{}", rows[10]);
+    assert!((rows[10][0] - 0.4875).abs() < 1e-14, "{}", rows[10][0]);
     assert_eq!(discards, 10 * 3);
+}
+
+#[test]
+fn a_recorder_without_get_copies_the_value_exchanged_at_the_same_point() {
+    // The ramp y = t (or t^2) read at t_k by the propagation after step k - 1: row k
+    // holds the ramp's y, exactly what an fmi2GetReal of y would return (the ramp's
+    // clock after step k - 1 is t_(k-1) + h, the plan's t_(k-1) = 0.1 (k - 1)).
+    for square in [false, true] {
+        let (rows, _) = run_with(None, square, 1, None).unwrap();
+        for (k, row) in rows.iter().enumerate().skip(1) {
+            let t = 0.1 * (k - 1) as f64 + 0.1;
+            assert_eq!(row[1], if square { t * t } else { t }, "row {k}");
+        }
+    }
 }
 
 #[test]
