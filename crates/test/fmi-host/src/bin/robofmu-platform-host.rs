@@ -4,7 +4,7 @@
 //! (scripts/build-fmus.sh) and run natively, under Wine and under qemu-aarch64 by
 //! tests/python/test_platforms.py, which compares the lines of every platform with
 //! those of x86_64 Linux. It needs only the standard library, the C runtime and the
-//! hosts' shared loader and FMI 2.0 function table (`crates/fmi-host`: dlopen on Linux
+//! FMI 2.0 host of this crate (its loader, table and callbacks: dlopen on Linux
 //! and macOS, LoadLibraryW on Windows).
 //!
 //! Usage: `robofmu-platform-host PLAN` where PLAN is a text file written by the test
