@@ -16,7 +16,7 @@ reported here as skipped with its reason, never as passed.
   GLIBC_2.17 and only glibc's libraries; Windows: only DLLs Windows ships; macOS:
   only libSystem, the minimum macOS version, an ad-hoc code signature on arm64.
 - Running: every reference case of tests/references through the FMI 2.0 host
-  crates/platform-host, cross-built for each platform: natively on x86_64 Linux (whose
+  robofmu-platform-host (crates/test/fmi-host), cross-built for each platform: natively on x86_64 Linux (whose
   result must match the reference within the case's Co-Simulation tolerance: the
   host is right), under Wine (x86_64-windows) and qemu-aarch64 (aarch64-linux), whose
   results must equal x86_64 Linux's bit for bit, except the plant's on Windows (to
@@ -365,7 +365,7 @@ def read_csv(path):
 
 
 def plan(model, case, library_path):
-    """The host's plan of a reference case (crates/platform-host/src/main.rs)."""
+    """The host's plan of a reference case (crates/test/fmi-host/src/bin/robofmu-platform-host.rs)."""
     folder = REFERENCES / model / case
     md = read_model_description(str(DIST / f"{model}.fmu"))
     variables = {v.name: v for v in md.modelVariables}

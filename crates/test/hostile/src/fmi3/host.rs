@@ -1,158 +1,58 @@
-//! The importer's side of an FMI 3.0 instance: the (non-variadic) log-message
-//! callback, fmi3InstantiateModelExchange / fmi3InstantiateCoSimulation through the
-//! loaded binary, and the calls that bring an instance into each state of the FMI
-//! 3.0 state machines (sections 3.3 and 4.3 of the standard).
+//! The hostile importer's side of an FMI 3.0 instance: the test host's instance
+//! (`robofmu_fmi_host::instance`: the keeping logger, fmi3InstantiateModelExchange /
+//! fmi3InstantiateCoSimulation, the calls) with the model's description, and the
+//! calls that bring an instance into each state of the FMI 3.0 state machines
+//! (sections 3.3 and 4.3 of the standard).
 
 use super::binary::{Binary3, FmuState, Instance3 as Handle, Vr};
 use crate::binary::{DISCARD, ERROR, Status, status_name};
 use crate::description::Description;
-use crate::host::{Log, Probed, c_string, record, take};
-use std::ffi::{c_char, c_int, c_void};
-use std::sync::Mutex;
+use crate::host::{Log, Probed};
+use robofmu_fmi_host::callbacks::logger3;
+use robofmu_fmi_host::instance::instantiate3;
+use std::ffi::c_void;
 
-/// The interfaces an instance can be created for. Co-Simulation comes twice:
-/// without and with eventModeUsed (then a step that meets an event ends early and
-/// the importer handles it in Event Mode).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Interface3 {
-    ModelExchange,
-    CoSimulation,
-    CoSimulationEvents,
-}
-
-impl Interface3 {
-    pub const ALL: [Interface3; 3] = [
-        Interface3::ModelExchange,
-        Interface3::CoSimulation,
-        Interface3::CoSimulationEvents,
-    ];
-    pub fn short(self) -> &'static str {
-        match self {
-            Interface3::ModelExchange => "ME",
-            Interface3::CoSimulation => "CS",
-            Interface3::CoSimulationEvents => "CS+events",
-        }
-    }
-    pub fn is_me(self) -> bool {
-        self == Interface3::ModelExchange
-    }
-    /// The state after fmi3ExitInitializationMode (sections 3.3 and 4.3).
-    pub fn after_initialization(self) -> State3 {
-        match self {
-            Interface3::CoSimulation => State3::StepMode,
-            _ => State3::EventMode,
-        }
-    }
-}
-
-/// States an instance can be brought into. `StepDiscarded` is Step Mode after a
-/// step returned fmi3Discard (section 4.2.1: then only terminate, FMU-state and
-/// get calls remain). Configuration and Reconfiguration Mode do not occur (the
-/// models have no structural parameters); Intermediate Update Mode does not occur
-/// here because this importer passes no intermediate-update callback (that mode is
-/// tested through the ctypes host, tests/python/test_intermediate_update.py).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum State3 {
-    Instantiated,
-    InitializationMode,
-    EventMode,
-    ContinuousTimeMode,
-    StepMode,
-    StepDiscarded,
-    Terminated,
-    Error,
-}
-
-impl State3 {
-    pub const ALL: [State3; 8] = [
-        State3::Instantiated,
-        State3::InitializationMode,
-        State3::EventMode,
-        State3::ContinuousTimeMode,
-        State3::StepMode,
-        State3::StepDiscarded,
-        State3::Terminated,
-        State3::Error,
-    ];
-
-    /// Whether the state belongs to the interface's state machine.
-    pub fn exists_for(self, interface: Interface3) -> bool {
-        match self {
-            State3::EventMode => interface != Interface3::CoSimulation,
-            State3::ContinuousTimeMode => interface.is_me(),
-            State3::StepMode | State3::StepDiscarded => !interface.is_me(),
-            _ => true,
-        }
-    }
-}
-
-unsafe extern "C" fn capture(
-    env: *mut c_void,
-    status: c_int,
-    category: *const c_char,
-    message: *const c_char,
-) {
-    record(env, status, category, message);
-}
+pub use robofmu_fmi_host::instance::{Fmi3Instance, Interface3, State3, StepOutcome};
 
 /// The logger to pass to an instantiate function (as the binary table's pointer type).
 pub fn logger() -> *const c_void {
-    capture as *const c_void
+    logger3()
 }
 
-/// A live FMI 3.0 instance of a loaded FMU; freed on drop. The log lives in a box
-/// whose address is the instance environment.
+/// A live FMI 3.0 instance of a loaded FMU (the calls and callbacks of
+/// [`Fmi3Instance`], reached through `Deref`) with the description and interface
+/// that the probes need; freed on drop.
 pub struct Instance<'a> {
-    pub binary: &'a Binary3,
+    pub core: Fmi3Instance<'a>,
     pub description: &'a Description,
     pub interface: Interface3,
-    pub c: Handle,
-    pub log: Box<Log>,
 }
 
-/// Instantiates `interface` with the logger on; null when refused.
+impl<'a> std::ops::Deref for Instance<'a> {
+    type Target = Fmi3Instance<'a>;
+    fn deref(&self) -> &Fmi3Instance<'a> {
+        &self.core
+    }
+}
+
+/// Instantiates `interface` with the logger on (environment: `log`); null when
+/// refused.
 pub fn instantiate(
     binary: &Binary3,
     description: &Description,
     interface: Interface3,
     log: &Log,
 ) -> Handle {
-    let name = c_string("hostile");
-    let token = c_string(&description.guid);
     let env = log as *const Log as *mut c_void;
-    let null = std::ptr::null();
-    // SAFETY: valid strings, a logger and an environment that outlive the instance.
-    unsafe {
-        match interface {
-            Interface3::ModelExchange => {
-                (binary.instantiate_me)(name.as_ptr(), token.as_ptr(), null, 0, 1, env, logger())
-            }
-            _ => (binary.instantiate_cs)(
-                name.as_ptr(),
-                token.as_ptr(),
-                null,
-                0,
-                1,
-                u8::from(interface == Interface3::CoSimulationEvents),
-                u8::from(interface == Interface3::CoSimulationEvents),
-                std::ptr::null(),
-                0,
-                env,
-                logger(),
-                std::ptr::null(),
-            ),
-        }
-    }
-}
-
-/// The outputs of fmi3DoStep.
-#[derive(Debug, Default, Clone, Copy)]
-pub struct StepOutcome {
-    pub status: Status,
-    pub event_handling_needed: bool,
-    pub terminate: bool,
-    pub early_return: bool,
-    pub last_successful_time: f64,
+    instantiate3(
+        binary,
+        interface,
+        "hostile",
+        &description.guid,
+        env,
+        logger(),
+        std::ptr::null(),
+    )
 }
 
 impl<'a> Instance<'a> {
@@ -162,20 +62,13 @@ impl<'a> Instance<'a> {
         description: &'a Description,
         interface: Interface3,
     ) -> Instance<'a> {
-        let log: Box<Log> = Box::new(Mutex::new(Vec::new()));
-        let c = instantiate(binary, description, interface, &log);
-        assert!(!c.is_null(), "fmi3 instantiate refused: {}", take(&log));
+        let core = Fmi3Instance::new(binary, interface, "hostile", &description.guid)
+            .unwrap_or_else(|e| panic!("{e}"));
         Instance {
-            binary,
+            core,
             description,
             interface,
-            c,
-            log,
         }
-    }
-
-    pub fn take_log(&self) -> String {
-        take(&self.log)
     }
 
     /// Brings a fresh instance into `state` with legal calls.
@@ -196,7 +89,7 @@ impl<'a> Instance<'a> {
                 }
                 _ => {}
             }
-            self.initialize()?;
+            self.enter_initialization()?;
             if state == State3::InitializationMode {
                 return Ok(());
             }
@@ -218,12 +111,6 @@ impl<'a> Instance<'a> {
                 _ => self.discard_if(state),
             }
         }
-    }
-
-    fn initialize(&self) -> Result<(), String> {
-        // SAFETY: a live instance, no tolerance, start time 0, no stop time.
-        let s = unsafe { (self.binary.enter_initialization_mode)(self.c, 0, 0.0, 0.0, 0, 0.0) };
-        self.expect_ok("fmi3EnterInitializationMode", s)
     }
 
     fn discard_if(&self, state: State3) -> Result<(), String> {
@@ -261,94 +148,14 @@ impl<'a> Instance<'a> {
         }
     }
 
-    pub fn set_float64(&self, vrs: &[Vr], values: &[f64]) -> Status {
-        // SAFETY: slices of the given lengths.
-        unsafe {
-            (self.binary.set_float64)(
-                self.c,
-                vrs.as_ptr(),
-                vrs.len(),
-                values.as_ptr(),
-                values.len(),
-            )
-        }
-    }
-
     /// fmi3GetFloat64 of `vrs`, every element.
     pub fn get_float64(&self, vrs: &[Vr]) -> (Status, Vec<f64>) {
-        let mut values = vec![f64::NAN; self.description.elements(vrs)];
-        // SAFETY: slices of the given lengths.
-        let s = unsafe {
-            (self.binary.get_float64)(
-                self.c,
-                vrs.as_ptr(),
-                vrs.len(),
-                values.as_mut_ptr(),
-                values.len(),
-            )
-        };
-        (s, values)
+        self.get_float64_elements(vrs, self.description.elements(vrs))
     }
 
     /// Every Float64 element of the model.
     pub fn get_all(&self) -> (Status, Vec<f64>) {
         self.get_float64(&self.description.real_vrs())
-    }
-
-    pub fn do_step(&self, t: f64, h: f64) -> StepOutcome {
-        let (mut event, mut stop, mut early) = (0u8, 0u8, 0u8);
-        let mut last = f64::NAN;
-        // SAFETY: four outputs to fill.
-        let status = unsafe {
-            (self.binary.do_step)(
-                self.c, t, h, 1, &mut event, &mut stop, &mut early, &mut last,
-            )
-        };
-        StepOutcome {
-            status,
-            event_handling_needed: event != 0,
-            terminate: stop != 0,
-            early_return: early != 0,
-            last_successful_time: last,
-        }
-    }
-
-    /// fmi3GetFMUState into a new state.
-    pub fn get_state(&self) -> (Status, FmuState) {
-        let mut state = std::ptr::null_mut();
-        // SAFETY: a null slot asks for a new state.
-        let s = unsafe { (self.binary.get_fmu_state)(self.c, &mut state) };
-        (s, state)
-    }
-
-    /// Serialized bytes of a state of this instance. The state pointer is only
-    /// handed to the FMU (never dereferenced here).
-    #[allow(clippy::not_unsafe_ptr_arg_deref)]
-    pub fn serialize(&self, state: FmuState) -> Result<Vec<u8>, String> {
-        let mut size = 0usize;
-        // SAFETY: a state issued by this instance, a buffer of the announced size.
-        unsafe {
-            let s = (self.binary.serialized_size)(self.c, state, &mut size);
-            self.expect_ok("fmi3SerializedFMUStateSize", s)?;
-            let mut bytes = vec![0u8; size];
-            let s = (self.binary.serialize)(self.c, state, bytes.as_mut_ptr(), size);
-            self.expect_ok("fmi3SerializeFMUState", s)?;
-            Ok(bytes)
-        }
-    }
-
-    /// fmi3DeserializeFMUState of `bytes` into a new state.
-    pub fn deserialize(&self, bytes: &[u8]) -> (Status, FmuState) {
-        let mut state: FmuState = std::ptr::null_mut();
-        // SAFETY: a buffer of the given length and a null slot for a new state.
-        let s =
-            unsafe { (self.binary.deserialize)(self.c, bytes.as_ptr(), bytes.len(), &mut state) };
-        (s, state)
-    }
-
-    pub fn free_state(&self, mut state: FmuState) -> Status {
-        // SAFETY: a state issued by this binary (or the probe's point).
-        unsafe { (self.binary.free_fmu_state)(self.c, &mut state) }
     }
 
     /// fmi3Reset then initialization: whether the instance is usable again after
@@ -358,7 +165,7 @@ impl<'a> Instance<'a> {
         // SAFETY: a live instance.
         let s = unsafe { (self.binary.reset)(self.c) };
         self.expect_ok("fmi3Reset after the refusal", s)?;
-        self.initialize()?;
+        self.enter_initialization()?;
         // SAFETY: as above.
         let s = unsafe { (self.binary.exit_initialization_mode)(self.c) };
         self.expect_ok("fmi3ExitInitializationMode after fmi3Reset", s)?;
@@ -380,12 +187,5 @@ impl Probed for Instance<'_> {
     }
     fn release_state(&self, state: FmuState) -> Status {
         self.free_state(state)
-    }
-}
-
-impl Drop for Instance<'_> {
-    fn drop(&mut self) {
-        // SAFETY: the instance came from this binary.
-        unsafe { (self.binary.free_instance)(self.c) }
     }
 }
