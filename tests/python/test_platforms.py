@@ -16,7 +16,8 @@ reported here as skipped with its reason, never as passed.
   GLIBC_2.17 and only glibc's libraries; Windows: only DLLs Windows ships; macOS:
   only libSystem, the minimum macOS version, an ad-hoc code signature on arm64.
 - Running: every reference case of tests/references through the FMI 2.0 host
-  robofmu-platform-host (crates/test/fmi-host), cross-built for each platform: natively on x86_64 Linux (whose
+  robofmu-platform-host (a binary of crates/test/fmi-host), cross-built for each
+  platform: natively on x86_64 Linux (whose
   result must match the reference within the case's Co-Simulation tolerance: the
   host is right), under Wine (x86_64-windows) and qemu-aarch64 (aarch64-linux), whose
   results must equal x86_64 Linux's bit for bit, except the plant's on Windows (to
@@ -540,7 +541,7 @@ def leave_host_aarch64(tmp_path_factory):
         pytest.fail(f"{ZIG} is missing: run `bash scripts/build-fmus.sh`")
     out = tmp_path_factory.mktemp("leave") / "leave-c"
     subprocess.run([str(ZIG), "-m", "ziglang", "cc", "-target", "aarch64-linux-gnu.2.17", "-O1",
-                    "-x", "c", str(ROOT / "crates" / "hostile" / "native" / "leave.c"),
+                    "-x", "c", str(ROOT / "crates" / "test" / "hostile" / "native" / "leave.c"),
                     "-o", str(out), "-lpthread", "-ldl"], check=True, capture_output=True)
     return out
 
@@ -611,7 +612,7 @@ def leave_host_windows(windows_folder):
         pytest.fail("MinGW-w64's g++ is missing: run `bash scripts/install-platform-test-tools.sh`")
     out = windows_folder / "leave.exe"
     subprocess.run([compiler, "-O1", "-Wall", "-Werror", "-static",
-                    "-x", "c++", str(ROOT / "crates" / "hostile" / "native" / "leave.c"),
+                    "-x", "c++", str(ROOT / "crates" / "test" / "hostile" / "native" / "leave.c"),
                     "-o", str(out)], check=True, capture_output=True)
     return out
 
