@@ -113,17 +113,14 @@ const Q: Decl = planned::<0>("q", "planned position");
 const QDOT: Decl = planned::<1>("qdot", "planned velocity");
 const QDDOT: Decl = planned::<2>("qddot", "planned acceleration");
 
-/// What the outputs of axis a depend on at initialization: time, order, t0, tf and
-/// that axis's boundary values.
-static KNOWNS: [Var; 10] = concat(&[&[Var::Time], &AXIS_KNOWNS], Var::Time);
-const AXIS_KNOWNS: [Var; 9] = same(&[ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF]);
-static VARIABLES: &[Decl] = &[
-    ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF, Q, QDOT, QDDOT,
-];
+const PARAMETERS: [Decl; 9] = [ORDER, T0, TF, Q0, QF, QDOT0, QDOTF, QDDOT0, QDDOTF];
+/// What the outputs of axis a depend on at initialization: time and the parameters.
+static KNOWNS: [Var; 10] = concat(&[&[Var::Time], &same(&PARAMETERS)], Var::Time);
+static VARIABLES: [Decl; 12] = concat(&[&PARAMETERS, &[Q, QDOT, QDDOT]], ORDER);
 
 impl Model for Planner {
     const INFO: &'static ModelInfo = &INFO;
-    const VARIABLES: &'static [Declaration<Self>] = VARIABLES;
+    const VARIABLES: &'static [Declaration<Self>] = &VARIABLES;
 
     fn set_time(&mut self, time: f64) {
         self.time = time;
