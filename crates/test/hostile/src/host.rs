@@ -4,7 +4,7 @@
 //! FMI 2.0 state machines.
 
 use crate::binary::{Binary, ERROR, OK, Status};
-use crate::description::Description;
+use crate::description::{Description, Variable};
 use std::ffi::c_void;
 
 pub use robofmu_fmi_host::callbacks::{Callbacks, Environment, Log, c_string, record, take};
@@ -45,21 +45,33 @@ pub fn unlogged<P: Probed, T>(inst: &P, f: impl FnOnce() -> T) -> T {
     result
 }
 
-/// A live instance of a loaded FMU (the calls and callbacks of
-/// [`Fmi2Instance`], reached through `Deref`) with the description and interface
-/// that the probes need; freed on drop.
-pub struct Instance<'a> {
-    pub core: Fmi2Instance<'a>,
+/// An instance of the test host (`C`: [`Fmi2Instance`] or its FMI 3.0 counterpart)
+/// with the model's description and the interface it was made for, which the probes
+/// need; the instance's calls are reached through `Deref`, and it is freed on drop.
+pub struct Described<'a, C, I> {
+    pub core: C,
     pub description: &'a Description,
-    pub interface: Interface,
+    pub interface: I,
 }
 
-impl<'a> std::ops::Deref for Instance<'a> {
-    type Target = Fmi2Instance<'a>;
-    fn deref(&self) -> &Fmi2Instance<'a> {
+impl<C, I> std::ops::Deref for Described<'_, C, I> {
+    type Target = C;
+    fn deref(&self) -> &C {
         &self.core
     }
 }
+
+impl<C, I> Described<'_, C, I> {
+    /// The force input `name`, with which a step can be made to fail (1e100 N).
+    pub fn force_input(&self, name: &str) -> Result<&Variable, String> {
+        let variables = &self.description.variables;
+        let force = variables.iter().find(|v| v.name == name);
+        force.ok_or_else(|| "the model has no force input to fail a step with".to_string())
+    }
+}
+
+/// A live FMI 2.0 instance of a loaded FMU.
+pub type Instance<'a> = Described<'a, Fmi2Instance<'a>, Interface>;
 
 impl<'a> Instance<'a> {
     /// fmi2Instantiate with all callbacks and logging on; panics when refused.
@@ -127,12 +139,7 @@ impl<'a> Instance<'a> {
     /// and accepted when set, but no step can be integrated with it). Only models
     /// with such an input can reach StepFailed.
     fn fail_a_step(&self) -> Result<(), String> {
-        let force = self
-            .description
-            .variables
-            .iter()
-            .find(|v| v.name == "actuatorForce[1]")
-            .ok_or("the model has no force input to fail a step with")?;
+        let force = self.force_input("actuatorForce[1]")?;
         let s = self.set_real(force.vr, 1e100);
         if s != OK {
             return Err(format!(

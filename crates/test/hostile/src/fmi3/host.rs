@@ -7,7 +7,7 @@
 use super::binary::{Binary3, FmuState, Instance3 as Handle, Vr};
 use crate::binary::{DISCARD, ERROR, Status, status_name};
 use crate::description::Description;
-use crate::host::{Log, Probed};
+use crate::host::{Described, Log, Probed};
 use robofmu_fmi_host::callbacks::logger3;
 use robofmu_fmi_host::instance::instantiate3;
 use std::ffi::c_void;
@@ -19,21 +19,8 @@ pub fn logger() -> *const c_void {
     logger3()
 }
 
-/// A live FMI 3.0 instance of a loaded FMU (the calls and callbacks of
-/// [`Fmi3Instance`], reached through `Deref`) with the description and interface
-/// that the probes need; freed on drop.
-pub struct Instance<'a> {
-    pub core: Fmi3Instance<'a>,
-    pub description: &'a Description,
-    pub interface: Interface3,
-}
-
-impl<'a> std::ops::Deref for Instance<'a> {
-    type Target = Fmi3Instance<'a>;
-    fn deref(&self) -> &Fmi3Instance<'a> {
-        &self.core
-    }
-}
+/// A live FMI 3.0 instance of a loaded FMU.
+pub type Instance<'a> = Described<'a, Fmi3Instance<'a>, Interface3>;
 
 /// Instantiates `interface` with the logger on (environment: `log`); null when
 /// refused.
@@ -124,12 +111,7 @@ impl<'a> Instance<'a> {
     /// A step the model must refuse: a force input of 1e100 N on the first leg
     /// (finite and accepted when set, but no step can be integrated with it).
     fn fail_a_step(&self) -> Result<(), String> {
-        let force = self
-            .description
-            .variables
-            .iter()
-            .find(|v| v.name == "actuatorForce")
-            .ok_or("the model has no force input to fail a step with")?;
+        let force = self.force_input("actuatorForce")?;
         let mut values = vec![0.0; force.size];
         values[0] = 1e100;
         self.expect_ok(
