@@ -124,7 +124,7 @@ build_platform() {
     # The platform-test host (not on macOS: nothing runs it there).
     if [[ "$tuple" != *-darwin ]]; then
         env "$variable=$flags" "${build[@]}" --profile fmu --target "$target" \
-            -p robofmu-platform-host --bin robofmu-platform-host
+            -p robofmu-fmi-host --bin robofmu-platform-host
     fi
 }
 

@@ -2,7 +2,7 @@
 # What tests/python/test_platforms.py needs beyond the build: Wine (runs the Windows
 # test host and DLLs), qemu-user with Debian's aarch64 glibc (runs the aarch64 Linux
 # ones), MinGW-w64's gcc (builds the test-only stand-in DLL) and g++ (the Windows host
-# that throws out of the FMUs' callbacks, crates/hostile/native/leave.c) and LLVM's
+# that throws out of the FMUs' callbacks, crates/test/hostile/native/leave.c) and LLVM's
 # llvm-readobj, llvm-objdump and llvm-nm (read ELF, PE and Mach-O alike: rustup's llvm-tools, or
 # Debian's llvm when rustup's download is refused). Installs them with apt-get and
 # rustup when they are missing and this runs as root (CI); otherwise names what to

@@ -9,7 +9,7 @@
 # (robofmu-hostile-reentry): loggers that free, reset, set states and re-enter, reused
 # handles, a second thread on a busy instance, forged states, both standards, every
 # FMU; and the C and C++ hosts that leave the logger with longjmp (tests/leave.rs in
-# crates/hostile). Fails on any memcheck error and on any definite leak. Installs
+# crates/test/hostile). Fails on any memcheck error and on any definite leak. Installs
 # valgrind from Debian when it is missing and this runs as root (CI); otherwise asks
 # for it.
 set -euo pipefail

@@ -11,7 +11,7 @@ step() {
 step cargo fmt --all -- --check
 step cargo clippy --workspace --all-targets -- -D warnings
 step env RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace
-# dist/*.fmu first: the hostile importer's tests (crates/hostile) dlopen the packaged
+# dist/*.fmu first: the hostile importer's tests (crates/test/hostile) dlopen the packaged
 # binaries and fail when they are missing or older than the sources. It builds the FMUs
 # for all five platforms (a platform it cannot build is named, and skipped with that
 # reason by tests/python/test_platforms.py).

@@ -43,3 +43,39 @@ def fmu3_path(model):
     if not path.exists():
         pytest.fail(f"{path} is missing: run scripts/build-fmus.sh first")
     return str(path)
+
+
+def fmu3(path, directory, model_exchange=False, guid=None, lines=None, **instantiate):
+    """FMPy's FMU3Slave (FMU3Model with `model_exchange`) of the FMI 3.0 FMU at `path`,
+    extracted into `directory` and instantiated with FMPy's `instantiate` arguments
+    (`guid`: another instantiation token). Added to the FMPy object: `description`, `vr`
+    (value reference by name) and `lines`, what the FMU logged as (status, category,
+    message), `lines` when given (it outlives a refused instantiation). A call whose
+    status matters goes through FMPy's ctypes function, `fmu.dll.fmi3...`: FMPy's
+    methods raise FMICallException from fmi3Error on."""
+    from fmpy import extract, read_model_description
+    from fmpy.fmi3 import FMU3Model, FMU3Slave
+
+    root = extract(path, unzipdir=str(directory))
+    description = read_model_description(root)
+    cls = FMU3Model if model_exchange else FMU3Slave
+    fmu = cls(guid=guid or description.guid, unzipDirectory=root,
+              modelIdentifier=description.coSimulation.modelIdentifier)
+    fmu.description = description
+    fmu.vr = {v.name: v.valueReference for v in description.modelVariables}
+    fmu.lines = [] if lines is None else lines
+
+    def log(_env, status, category, message):
+        fmu.lines.append((status, category.decode(), message.decode()))
+
+    fmu.instantiate(logMessage=log, **instantiate)
+    return fmu
+
+
+def refused(call, *args):
+    """The status with which the FMPy call `call(*args)` failed (FMICallException)."""
+    from fmpy.fmi1 import FMICallException
+
+    with pytest.raises(FMICallException) as failure:
+        call(*args)
+    return failure.value.status

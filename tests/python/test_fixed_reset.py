@@ -15,8 +15,7 @@ Expected (the rule of docs/reliability.md, "A fixed parameter set again"):
   equal those of a twin instance that was never set again."""
 
 import math
-from ctypes import (byref, c_bool, c_double, c_int, c_int32, c_size_t, c_uint8,
-                    c_uint32, c_void_p)
+from ctypes import byref, c_bool, c_double, c_int, c_int32, c_size_t, c_uint32, c_void_p
 
 import pytest
 from fmpy import extract, read_model_description
@@ -24,8 +23,10 @@ from fmpy.fmi2 import (FMU2Model, FMU2Slave, calloc, fmi2CallbackAllocateMemoryT
                        fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
                        fmi2CallbackLoggerTYPE, free)
 
-from conftest import DIST, MODELS, ROOT, fmu3_path, fmu_path
-from fmi3_host import ERROR, OK, WARNING, Fmi3Library
+from conftest import DIST, MODELS, ROOT, fmu3, fmu3_path, fmu_path
+from test_fmi3_calls import ERROR, OK, initialize, last_message
+
+WARNING = 1
 
 RULE = "accepted without effect"
 
@@ -194,34 +195,35 @@ def test_fmi2_outputs_after_unchanged_sets_equal_a_twin(unpacked2, model):
 
 FMI3_TYPES = {"Float64": ("fmi3SetFloat64", "fmi3GetFloat64", c_double),
               "Int32": ("fmi3SetInt32", "fmi3GetInt32", c_int32),
-              "Boolean": ("fmi3SetBoolean", "fmi3GetBoolean", c_uint8)}
+              "Boolean": ("fmi3SetBoolean", "fmi3GetBoolean", c_bool)}
 
 
 def size(v):
     return math.prod(int(d.start) for d in v.dimensions) if v.dimensions else 1
 
 
-def raw3(lib, c, name, v, values):
+def raw3(fmu, name, v, values):
+    """The setter or getter `name` of `v` through FMPy's ctypes function: its status."""
     vr = (c_uint32 * 1)(v.valueReference)
-    return lib.call(name, c, vr, c_size_t(1), values, c_size_t(len(values)))
+    return getattr(fmu.dll, name)(fmu.component, vr, 1, values, len(values))
 
 
-def get3(lib, c, v):
+def get3(fmu, v):
     _, getter, ctype = FMI3_TYPES[v.type]
     out = (ctype * size(v))()
-    assert raw3(lib, c, getter, v, out) == OK
+    assert raw3(fmu, getter, v, out) == OK
     return [bool(x) for x in out] if v.type == "Boolean" else list(out)
 
 
-def set3(lib, c, v, values):
+def set3(fmu, v, values):
     setter, _, ctype = FMI3_TYPES[v.type]
-    return raw3(lib, c, setter, v, (ctype * len(values))(*values))
+    return raw3(fmu, setter, v, (ctype * len(values))(*values))
 
 
-def state3(lib, c):
-    state = lib.get_state(c)
-    data = lib.serialize(c, state)
-    assert lib.call("fmi3FreeFMUState", c, byref(state)) == OK
+def state3(fmu):
+    state = fmu.getFMUState()
+    data = fmu.serializeFMUState(state)
+    assert fmu.dll.fmi3FreeFMUState(fmu.component, byref(state)) == OK
     return data
 
 
@@ -237,74 +239,71 @@ def fmi3_cases():
             if mode != "ContinuousTimeMode" or has_real_fixed(model)]
 
 
-def reach3(lib, c, interface, mode):
-    lib.initialize(c)
+def reach3(fmu, interface, mode):
+    initialize(fmu)
     if interface == "CS" or (interface == "CS+events" and mode == "StepMode"):
         if interface == "CS+events":
-            assert lib.call("fmi3EnterStepMode", c) == OK
-        assert lib.do_step(c, 0.0, 0.01)[0] == OK
+            assert fmu.enterStepMode() == OK
+        fmu.doStep(0.0, 0.01)
     elif mode == "ContinuousTimeMode":
-        assert lib.call("fmi3EnterContinuousTimeMode", c) == OK
+        assert fmu.enterContinuousTimeMode() == OK
 
 
-def instantiate3(lib, interface):
-    c = (lib.instantiate_model_exchange() if interface == "ME"
-         else lib.instantiate_co_simulation(event_mode_used=interface == "CS+events"))
-    assert c
-    assert lib.call("fmi3SetDebugLogging", c, c_bool(True), c_size_t(0),
-                    c_void_p(None)) == OK
-    return c
+def instantiate3(path, directory, interface):
+    """FMPy's FMU3Model (ME) or FMU3Slave (CS, CS+events: eventModeUsed) of `path`,
+    every log category on."""
+    events = {} if interface == "ME" else {"eventModeUsed": interface == "CS+events"}
+    fmu = fmu3(path, directory, model_exchange=interface == "ME", **events)
+    assert fmu.dll.fmi3SetDebugLogging(fmu.component, True, 0, None) == OK
+    return fmu
 
 
 @pytest.mark.parametrize("folder,model,interface,mode", fmi3_cases())
 def test_fmi3_fixed_parameter_set_again(tmp_path, folder, model, interface, mode):
     path = fmu3_path(model) if folder == "fmi3" else str(DIST / folder / f"{model}.fmu")
-    lib = Fmi3Library(path, tmp_path / model)
-    c = instantiate3(lib, interface)
-    reach3(lib, c, interface, mode)
+    fmu = instantiate3(path, tmp_path / model, interface)
+    reach3(fmu, interface, mode)
     checked = 0
-    for v in fixed_parameters(lib.description):
+    for v in fixed_parameters(fmu.description):
         if mode == "ContinuousTimeMode" and v.type != "Float64":
             continue  # fmi3SetInt32/Boolean are illegal there (FMI 3.0 3.3)
-        before = state3(lib, c)
-        values = get3(lib, c, v)
-        assert set3(lib, c, v, values) == WARNING, lib.lines[-1:]
-        status, category, line = lib.lines[-1]
+        before = state3(fmu)
+        values = get3(fmu, v)
+        assert set3(fmu, v, values) == WARNING, fmu.lines[-1:]
+        status, category, line = fmu.lines[-1]
         assert (status, category) == (WARNING, "logStatusWarning")
         assert f'"{v.name}"' in line and RULE in line and mode in line, line
-        assert state3(lib, c) == before
+        assert state3(fmu) == before
         # One element off (the last of an array): the whole call is refused.
         changed = values[:-1] + [different(values[-1])]
-        assert set3(lib, c, v, changed) == ERROR
-        assert refusal(v.name, mode) in lib.last_message(), lib.last_message()
-        assert state3(lib, c) == before
-        assert get3(lib, c, v) == values
-        assert lib.call("fmi3Reset", c) == OK
-        reach3(lib, c, interface, mode)
+        assert set3(fmu, v, changed) == ERROR
+        assert refusal(v.name, mode) in last_message(fmu), last_message(fmu)
+        assert state3(fmu) == before
+        assert get3(fmu, v) == values
+        assert fmu.reset() == OK
+        reach3(fmu, interface, mode)
         checked += 1
     assert checked > 0
-    lib.free(c)
+    fmu.freeInstance()
 
 
 @pytest.mark.parametrize("model", MODELS)
 def test_fmi3_outputs_after_unchanged_sets_equal_a_twin(tmp_path, model):
     # Every fixed parameter set again before each of 20 steps: the outputs equal those
     # of a twin instance that was never set again, bit for bit.
-    lib = Fmi3Library(fmu3_path(model), tmp_path / model)
-    twins = [instantiate3(lib, "CS") for _ in range(2)]
-    outputs = [v for v in lib.description.modelVariables
+    twins = [instantiate3(fmu3_path(model), tmp_path / f"{model}{k}", "CS") for k in range(2)]
+    outputs = [v for v in twins[0].description.modelVariables
                if v.causality == "output" and v.type == "Float64"]
-    fixed = fixed_parameters(lib.description)
-    for c in twins:
-        reach3(lib, c, "CS", "StepMode")
-    values = [get3(lib, twins[0], v) for v in fixed]
+    fixed = fixed_parameters(twins[0].description)
+    for fmu in twins:
+        reach3(fmu, "CS", "StepMode")
+    values = [get3(twins[0], v) for v in fixed]
     for k in range(1, 21):
         for v, value in zip(fixed, values):
-            assert set3(lib, twins[0], v, value) == WARNING
-        for c in twins:
-            assert lib.do_step(c, 0.01 * k, 0.01)[0] == OK
-        read = [[get3(lib, c, v) for v in outputs] for c in twins]
+            assert set3(twins[0], v, value) == WARNING
+        for fmu in twins:
+            fmu.doStep(0.01 * k, 0.01)
+        read = [[get3(fmu, v) for v in outputs] for fmu in twins]
         assert read[0] == read[1]
-    for c in twins:
-        lib.free(c)
-
+    for fmu in twins:
+        fmu.freeInstance()

@@ -11,9 +11,9 @@ import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
-from conftest import DIST, MODELS, fmu3_path, fmu_path
-from fmi3_host import ERROR, OK, Fmi3Library
+from conftest import DIST, MODELS, fmu3, fmu3_path, fmu_path
 from test_fmi3 import AGREEMENT, simulate
+from test_fmi3_calls import ERROR, dependencies, initialize, last_message
 from test_importers import reference_cases
 
 
@@ -52,33 +52,26 @@ def test_per_scalar_get_and_set_with_one_value_each(model, tmp_path):
     # set parameter reads back; the array build refuses nValues = 1 for the same
     # reference (its variable there is the whole array).
     md2 = read_model_description(fmu_path(model))
-    lib = Fmi3Library(scalar_path(model), tmp_path / "scalar")
-    instance = lib.instantiate_co_simulation()
-    assert instance, lib.lines
-    assert lib.call("fmi3EnterInitializationMode", instance, ctypes.c_bool(False),
-                    ctypes.c_double(0.0), ctypes.c_double(0.0), ctypes.c_bool(False),
-                    ctypes.c_double(0.0)) == OK
+    fmu = fmu3(scalar_path(model), tmp_path / "scalar")
+    fmu.enterInitializationMode()
     checked = 0
     for v in md2.modelVariables:
         if v.type != "Real" or v.start is None:
             continue
-        status, values = lib.get_float64(instance, [v.name], 1)
-        assert status == OK, (v.name, lib.last_message())
-        assert values == [float(v.start)], v.name
+        assert fmu.getFloat64([v.valueReference], 1) == [float(v.start)], (v.name,
+                                                                          last_message(fmu))
         if v.causality == "parameter" and v.variability == "tunable":
-            assert lib.set_float64(instance, [v.name], [float(v.start) + 0.25]) == OK
-            assert lib.get_float64(instance, [v.name], 1) == (OK, [float(v.start) + 0.25])
+            fmu.setFloat64([v.valueReference], [float(v.start) + 0.25])
+            assert fmu.getFloat64([v.valueReference], 1) == [float(v.start) + 0.25]
         checked += 1
     assert checked > 0
-    lib.free(instance)
-    arrays = Fmi3Library(fmu3_path(model), tmp_path / "arrays")
-    instance = arrays.instantiate_co_simulation()
+    fmu.freeInstance()
+    arrays = fmu3(fmu3_path(model), tmp_path / "arrays")
     sizes = {v.valueReference: v.shape for v in arrays.description.modelVariables}
     vr = next(r for r, shape in sizes.items() if shape not in (None, ()))
     refs = (ctypes.c_uint32 * 1)(vr)
     values = (ctypes.c_double * 1)()
-    status = arrays.call("fmi3GetFloat64", instance, refs, ctypes.c_size_t(1), values,
-                         ctypes.c_size_t(1))
+    status = arrays.dll.fmi3GetFloat64(arrays.component, refs, 1, values, 1)
     assert status == ERROR
 
 
@@ -124,11 +117,10 @@ def test_runtime_dependencies_are_those_of_the_description(model, tmp_path):
     # references of the description's `dependencies` (written by the build crate), all
     # with element index 0 (scalars); without `dependencies`, every known (the inputs
     # and the states).
-    lib = Fmi3Library(scalar_path(model), tmp_path)
-    instance = lib.instantiate_co_simulation()
-    names = {v.valueReference: v.name for v in lib.description.modelVariables}
+    fmu = fmu3(scalar_path(model), tmp_path)
+    names = {v.valueReference: v.name for v in fmu.description.modelVariables}
     root = ElementTree.parse(tmp_path / "modelDescription.xml").getroot()
-    variables = lib.description.modelVariables
+    variables = fmu.description.modelVariables
     knowns = sorted([v.valueReference for v in variables if v.causality == "input"]
                     + [v.derivative.valueReference for v in variables if v.derivative])
     unknowns = [u for u in root.find("ModelStructure")
@@ -137,23 +129,22 @@ def test_runtime_dependencies_are_those_of_the_description(model, tmp_path):
     for u in unknowns:
         listed = u.attrib.get("dependencies")
         declared = knowns if listed is None else sorted(int(r) for r in listed.split())
-        found = lib.dependencies(instance, names[int(u.attrib["valueReference"])])
+        found = dependencies(fmu, names[int(u.attrib["valueReference"])])
         assert sorted(vr for _, vr, _, _ in found) == declared, u.attrib
         assert {(i, k) for i, _, k, _ in found} <= {(0, 0)}
-    lib.free(instance)
+    fmu.freeInstance()
 
 
 def test_each_event_indicator_scalar_reads_its_element_of_the_array(tmp_path):
     # Expected: the array build's eventIndicators (nValues = 6) after initialization at
     # the defaults, element k in the scalar eventIndicators[k].
-    arrays = Fmi3Library(fmu3_path("Pss3Plant"), tmp_path / "arrays")
-    scalars = Fmi3Library(scalar_path("Pss3Plant"), tmp_path / "scalar")
-    a, s = arrays.instantiate_co_simulation(), scalars.instantiate_co_simulation()
-    arrays.initialize(a)
-    scalars.initialize(s)
-    status, expected = arrays.get_float64(a, ["eventIndicators"], 6)
-    assert status == OK and any(expected)
+    arrays = fmu3(fmu3_path("Pss3Plant"), tmp_path / "arrays")
+    scalars = fmu3(scalar_path("Pss3Plant"), tmp_path / "scalar")
+    initialize(arrays)
+    initialize(scalars)
+    expected = arrays.getFloat64([arrays.vr["eventIndicators"]], 6)
+    assert any(expected)
     for k, z in enumerate(expected):
-        assert scalars.get_float64(s, [f"eventIndicators[{k + 1}]"], 1) == (OK, [z])
-    arrays.free(a)
-    scalars.free(s)
+        assert scalars.getFloat64([scalars.vr[f"eventIndicators[{k + 1}]"]], 1) == [z]
+    arrays.freeInstance()
+    scalars.freeInstance()

@@ -3,8 +3,8 @@ with an intermediateUpdate callback passed to fmi3InstantiateCoSimulation, Pss3P
 splits each communication step into 10 equal sub-intervals and calls back at the 9
 inner points, where the importer reads outputs and sets the continuous inputs
 (declared intermediateUpdate="true"). Driven here through FMPy's FMU3Slave (which
-takes the callback in `instantiate`) and the ctypes host of fmi3_host.py for the
-refusals.
+takes the callback in `instantiate`), with its ctypes functions for the calls made
+from the callback.
 
 The plant is forced with the sinusoids of test_input_derivatives.py (gravity off);
 the reference is that test's FMI 2.0 co-simulation with input slopes at h = 1/16 ms
@@ -14,7 +14,7 @@ intermediate update enters the reference."""
 import shutil
 import zipfile
 from xml.etree import ElementTree
-from ctypes import byref, c_void_p
+from ctypes import byref, c_bool, c_double, c_uint32, c_void_p
 
 import numpy as np
 import pytest
@@ -22,8 +22,8 @@ from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 from fmpy.fmi3 import FMU3Slave
 
-from conftest import fmu3_path, fmu_path
-from fmi3_host import ERROR, OK, Fmi3Library
+from conftest import fmu3, fmu3_path, fmu_path, refused
+from test_fmi3_calls import ERROR, initialize, last_message
 from test_input_derivatives import AMPLITUDE, OMEGA, PHASE, TIMES, plant_theta
 
 STOP = TIMES[-1]
@@ -150,51 +150,48 @@ def test_inputs_set_at_intermediate_points_cut_the_coupling_error(tmp_path, caps
         assert 8.0 < errors[False, h] / errors[True, h] < 12.0, h
 
 
-@pytest.fixture
-def plant3(tmp_path):
-    return Fmi3Library(fmu3_path("Pss3Plant"), tmp_path / "Pss3Plant3")
-
-
 # Per model: the input set before the step, its values, the output read.
 DRIVES = {"Pss3Plant": ("actuatorForce", [30.0, -20.0, 10.0], "theta"),
           "PID": ("measurement", [0.1, 0.2, -0.3], "u")}
 
 
-def start(lib, callback, model="Pss3Plant", early_return_allowed=False):
-    """An initialized FMI 3.0 instance with `callback`, its input set (the plant:
-    gravity on, actuators pushing)."""
-    c = lib.instantiate_co_simulation(intermediate_update=callback,
-                                      early_return_allowed=early_return_allowed)
-    assert c
-    lib.initialize(c)
+def start(directory, callback, model="Pss3Plant", early_return_allowed=False):
+    """An initialized FMI 3.0 instance (FMPy's FMU3Slave) with `callback`, its input set
+    (the plant: gravity on, actuators pushing)."""
+    fmu = fmu3(fmu3_path(model), directory, intermediateUpdate=callback,
+               earlyReturnAllowed=early_return_allowed)
+    initialize(fmu)
     name, values, _ = DRIVES[model]
-    assert lib.set_float64(c, [name], values) == OK
-    return c
+    fmu.setFloat64([fmu.vr[name]], values)
+    return fmu
 
 
 @pytest.mark.parametrize("model", DRIVES)
 def test_reading_at_the_points_gives_the_plain_steps_of_h_over_10(tmp_path, model):
     # Expected: a callback that only reads sees at each inner point what a run without
     # callback sees after plain steps of h / 10 (the same sub-intervals), and the step
-    # ends where that run ends (to rounding of the sub-interval ends: 1e-12).
-    lib = Fmi3Library(fmu3_path(model), tmp_path / model)
+    # ends where that run ends (to rounding of the sub-interval ends: 1e-12). Read from
+    # the callback through FMPy's ctypes function (its status kept).
     output = DRIVES[model][2]
     seen = []
 
     def read(_env, time, *_):
-        seen.append((time, lib.get_float64(c, [output], 3)))
+        values = (c_double * 3)()
+        vr = (c_uint32 * 1)(fmu.vr[output])
+        seen.append((time, (fmu.dll.fmi3GetFloat64(fmu.component, vr, 1, values, 3),
+                            list(values))))
 
-    c = start(lib, read, model)
-    assert lib.do_step(c, 0.0, 5e-3)[0] == OK
-    _, end = lib.get_float64(c, [output], 3)
-    plain = start(lib, None, model)
+    fmu = start(tmp_path / "read", read, model)
+    fmu.doStep(0.0, 5e-3)
+    end = fmu.getFloat64([fmu.vr[output]], 3)
+    plain = start(tmp_path / "plain", None, model)
     h = 5e-4
     for k in range(POINTS):
-        assert lib.do_step(plain, k * h, h)[0] == OK
-        status, value = lib.get_float64(plain, [output], 3)
+        plain.doStep(k * h, h)
+        value = plain.getFloat64([plain.vr[output]], 3)
         if k < POINTS - 1:
             assert seen[k][0] == pytest.approx((k + 1) * h, abs=1e-15)
-            assert seen[k][1][0] == OK
+            assert seen[k][1][0] == 0  # fmi3OK
             assert np.allclose(seen[k][1][1], value, rtol=0, atol=1e-12)
     assert len(seen) == POINTS - 1
     assert np.allclose(end, value, rtol=0, atol=1e-12)
@@ -203,7 +200,7 @@ def test_reading_at_the_points_gives_the_plain_steps_of_h_over_10(tmp_path, mode
 
 @pytest.mark.parametrize("illegal", ["set_parameter", "get_parameter", "do_step",
                                      "terminate", "set_state"])
-def test_illegal_calls_from_the_callback_are_errors(plant3, illegal):
+def test_illegal_calls_from_the_callback_are_errors(tmp_path, illegal):
     # Expected: Intermediate Update Mode allows only fmi3Get* of variables and fmi3Set*
     # of inputs declared intermediateUpdate (FMI 3.0 section 4.2.4): anything else is
     # fmi3Error with a log line, and the step then ends with fmi3Error too.
@@ -212,41 +209,44 @@ def test_illegal_calls_from_the_callback_are_errors(plant3, illegal):
     def misbehave(_env, time, *_):
         if statuses:
             return
+        c, g, one = plant.component, (c_uint32 * 1)(plant.vr["g"]), (c_double * 1)(1.0)
         if illegal == "set_parameter":
-            statuses.append(plant3.set_float64(c, ["g"], [1.0]))
+            statuses.append(plant.dll.fmi3SetFloat64(c, g, 1, one, 1))
         elif illegal == "get_parameter":
-            statuses.append(plant3.get_float64(c, ["g"], 1)[0])
+            statuses.append(plant.dll.fmi3GetFloat64(c, g, 1, one, 1))
         elif illegal == "do_step":
-            statuses.append(plant3.do_step(c, time, 1e-3)[0])
+            flag = c_bool()
+            statuses.append(plant.dll.fmi3DoStep(c, time, 1e-3, True, byref(flag), byref(flag),
+                                                 byref(flag), byref(c_double())))
         elif illegal == "terminate":
-            statuses.append(plant3.call("fmi3Terminate", c))
+            statuses.append(plant.dll.fmi3Terminate(c))
         else:
-            statuses.append(plant3.call("fmi3GetFMUState", c, byref(c_void_p())))
+            statuses.append(plant.dll.fmi3GetFMUState(c, byref(c_void_p())))
 
-    c = start(plant3, misbehave)
-    assert plant3.do_step(c, 0.0, 1e-3)[0] == ERROR
+    plant = start(tmp_path, misbehave)
+    assert refused(plant.doStep, 0.0, 1e-3) == ERROR
     assert statuses == [ERROR]
-    messages = [m for _, _, m in plant3.lines]
+    messages = [m for _, _, m in plant.lines]
     reason = {"set_parameter": "cannot be set in IntermediateUpdateMode",
               "get_parameter": "not declared intermediateUpdate"}.get(
                   illegal, "not allowed in state IntermediateUpdateMode")
     assert any(reason in m for m in messages), messages
-    assert "fmi3DoStep" in plant3.last_message()
-    plant3.free(c)
+    assert "fmi3DoStep" in last_message(plant)
+    plant.freeInstance()
 
 
-def test_an_instance_freed_by_its_callback_ends_the_step_with_error(plant3):
+def test_an_instance_freed_by_its_callback_ends_the_step_with_error(tmp_path):
     # Expected: fmi3FreeInstance has no status to refuse with; the step notices that
     # the handle is gone and returns fmi3Error without touching it (no crash).
     def free(_env, *_):
-        plant3.free(c)
+        plant.dll.fmi3FreeInstance(plant.component)
 
-    c = start(plant3, free)
-    assert plant3.do_step(c, 0.0, 1e-3)[0] == ERROR
-    assert plant3.do_step(c, 1e-3, 1e-3)[0] == ERROR
+    plant = start(tmp_path, free)
+    assert refused(plant.doStep, 0.0, 1e-3) == ERROR
+    assert refused(plant.doStep, 1e-3, 1e-3) == ERROR
 
 
-def test_an_early_return_is_honoured_only_when_allowed(plant3):
+def test_an_early_return_is_honoured_only_when_allowed(tmp_path):
     # Expected: with earlyReturnAllowed the step ends at the third inner point when
     # the callback asks there (earlyReturn, lastSuccessfulTime = 3 h / 10) and the next
     # step starts from it; without, canReturnEarly is false and the step is whole.
@@ -258,11 +258,10 @@ def test_an_early_return_is_honoured_only_when_allowed(plant3):
 
     for allowed in (True, False):
         offered = []
-        c = start(plant3, ask, early_return_allowed=allowed)
-        status, _, last = plant3.do_step(c, 0.0, 1e-2)
-        assert status == OK
-        assert plant3.early_return is allowed
+        plant = start(tmp_path / str(allowed), ask, early_return_allowed=allowed)
+        _, _, early_return, last = plant.doStep(0.0, 1e-2)  # fmi3OK (FMPy raises from Error)
+        assert early_return is allowed
         assert last == pytest.approx(3e-3 if allowed else 1e-2, abs=1e-15)
         assert set(offered) == {allowed}
-        assert plant3.do_step(c, last, 1e-3)[0] == OK
-        plant3.free(c)
+        plant.doStep(last, 1e-3)
+        plant.freeInstance()

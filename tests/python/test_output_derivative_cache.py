@@ -1,12 +1,11 @@
 """Pss3Plant keeps its output derivatives along the local motion for the point
-(parameters, state, inputs) they were evaluated at. Through both standards (FMPy for
-FMI 2.0, the ctypes host for FMI 3.0 arrays): after an input changes or a step, an
+(parameters, state, inputs) they were evaluated at. Through both standards (FMPy's
+FMU2Slave and FMU3Slave, FMI 3.0 with arrays): after an input changes or a step, an
 instance that has answered before gives the bits of a twin that never asked before
 (two instances stepped alike hold the same state bit for bit)."""
 
 import pytest
 
-from fmi3_host import OK
 from test_output_derivatives import PlantCalls
 
 NEW_FORCES = [-3.0, 8.0, 1.0]
@@ -14,7 +13,7 @@ NEW_FORCES = [-3.0, 8.0, 1.0]
 
 def set_forces(plant, forces):
     if plant.fmi3:
-        assert plant.lib.set_float64(plant.c, ["actuatorForce"], forces) == OK
+        plant.fmu.setFloat64([plant.fmu.vr["actuatorForce"]], forces)
     else:
         plant.fmu.setReal([plant.vr[f"actuatorForce[{i}]"] for i in (1, 2, 3)], forces)
 

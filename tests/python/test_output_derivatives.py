@@ -1,11 +1,12 @@
 """Output derivatives of the real .fmu files through FMPy: fmi2GetRealOutputDerivatives
 (FMU2Slave.getRealOutputDerivatives) and fmi3GetOutputDerivatives (FMU3Slave
-.getOutputDerivatives for scalars, the ctypes host of fmi3_host.py for arrays and bad
+.getOutputDerivatives for scalars, FMU3Slave's ctypes function for arrays and bad
 arguments), against the textbook planner polynomial and central differences of the
 plant's outputs along its co-simulation trajectory."""
 
 import math
 import shutil
+from ctypes import c_double, c_int, c_uint32
 
 import pytest
 from fmpy import extract, read_model_description
@@ -13,8 +14,8 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave
 from fmpy.fmi3 import FMU3Slave
 
-from conftest import MODELS, fmu3_path, fmu_path
-from fmi3_host import ERROR, OK, Fmi3Library
+from conftest import MODELS, fmu3, fmu3_path, fmu_path
+from test_fmi3_calls import ERROR, OK, initialize, last_message
 
 
 def quintic(dq, duration, tau):
@@ -103,19 +104,29 @@ def start_moving_plant(fmu, vr, fmi3):
     fmu.exitInitializationMode()
 
 
+def output_derivatives(fmu, names, orders, n_values):
+    """fmi3GetOutputDerivatives of the variables `names` with `orders` through FMPy's
+    ctypes function (FMPy's getOutputDerivatives reads one value per variable): the
+    status and the n_values values (arrays serialized element by element, pair by pair)."""
+    vrs = (c_uint32 * len(names))(*[fmu.vr[n] for n in names])
+    values = (c_double * n_values)()
+    status = fmu.dll.fmi3GetOutputDerivatives(fmu.component, vrs, len(names),
+                                              (c_int * len(orders))(*orders), values, n_values)
+    return status, list(values)
+
+
 class PlantCalls:
-    """The moving plant through FMPy (FMI 2.0) or the ctypes host (FMI 3.0, arrays):
+    """The moving plant through FMPy: FMU2Slave (FMI 2.0) or FMU3Slave (FMI 3.0, arrays):
     values and output derivatives of every Real output, element by element."""
 
     def __init__(self, tmp_path, fmi3):
         self.fmi3 = fmi3
         if fmi3:
-            self.lib = Fmi3Library(fmu3_path("Pss3Plant"), tmp_path / "Pss3Plant3")
-            self.c = self.lib.instantiate_co_simulation()
+            self.fmu = fmu3(fmu3_path("Pss3Plant"), tmp_path / "Pss3Plant3")
             for base, values in PLANT_START.items():
-                assert self.lib.set_float64(self.c, [base], values) == OK
-            self.lib.initialize(self.c)
-            variables = self.lib.description.modelVariables
+                self.fmu.setFloat64([self.fmu.vr[base]], values)
+            initialize(self.fmu)
+            variables = self.fmu.description.modelVariables
         else:
             self.fmu, description, self.directory = open_slave(tmp_path, "Pss3Plant")
             self.vr = refs(description)
@@ -131,30 +142,24 @@ class PlantCalls:
 
     def values(self):
         if self.fmi3:
-            status, values = self.lib.get_float64(self.c, self.names, sum(self.sizes))
-            assert status == OK
-            return values
+            return self.fmu.getFloat64([self.fmu.vr[n] for n in self.names], sum(self.sizes))
         return self.fmu.getReal([self.vr[n] for n in self.names])
 
     def derivatives(self, order):
         """Every output's derivative of `order`; the status must be OK."""
         orders = [order] * len(self.names)
         if self.fmi3:
-            status, values = self.lib.output_derivatives(self.c, self.names, orders,
-                                                         sum(self.sizes))
-            assert status == OK, self.lib.last_message()
+            status, values = output_derivatives(self.fmu, self.names, orders, sum(self.sizes))
+            assert status == OK, last_message(self.fmu)
             return values
         return self.fmu.getRealOutputDerivatives([self.vr[n] for n in self.names], orders)
 
     def step(self, t, h):
-        if self.fmi3:
-            assert self.lib.do_step(self.c, t, h)[0] == OK
-        else:
-            self.fmu.doStep(t, h)
+        self.fmu.doStep(t, h)
 
     def close(self):
         if self.fmi3:
-            self.lib.free(self.c)
+            self.fmu.freeInstance()
         else:
             close(self.fmu, self.directory)
 
@@ -246,24 +251,23 @@ def test_fmi3_scalar_derivatives_through_fmpy_match_the_fmi2_ones(tmp_path):
 
 @pytest.fixture
 def planner3(tmp_path):
-    lib = Fmi3Library(fmu3_path("Planner"), tmp_path / "Planner3")
-    c = lib.instantiate_co_simulation()
-    lib.initialize(c)
-    assert lib.do_step(c, 0.0, 0.75)[0] == OK
-    yield lib, c
-    lib.free(c)
+    fmu = fmu3(fmu3_path("Planner"), tmp_path / "Planner3")
+    initialize(fmu)
+    fmu.doStep(0.0, 0.75)
+    yield fmu
+    fmu.freeInstance()
 
 
 def test_fmi3_arrays_are_serialized_pair_by_pair(planner3):
     # Expected: for (q, 1), (qdot, 2): qdot[1..3] then the jerk[1..3] of `quintic` at
     # t = 0.75 s; and (q, 1) equals the output qdot read with fmi3GetFloat64.
-    lib, c = planner3
-    status, values = lib.output_derivatives(c, ["q", "qdot"], [1, 2], 6)
+    fmu = planner3
+    status, values = output_derivatives(fmu, ["q", "qdot"], [1, 2], 6)
     assert status == OK
     dq = [0.5, -0.3, 0.8]
     assert values[:3] == pytest.approx([quintic(d, 2.0, 0.75)[1] for d in dq], rel=1e-12)
     assert values[3:] == pytest.approx([quintic(d, 2.0, 0.75)[3] for d in dq], rel=1e-12)
-    assert lib.get_float64(c, ["qdot"], 3) == (OK, values[:3])
+    assert fmu.getFloat64([fmu.vr["qdot"]], 3) == values[:3]
 
 
 @pytest.mark.parametrize("names, orders, n_values, message", [
@@ -277,24 +281,22 @@ def test_fmi3_arrays_are_serialized_pair_by_pair(planner3):
 ])
 def test_fmi3_bad_requests_are_errors_with_a_reason(planner3, names, orders, n_values,
                                                     message):
-    lib, c = planner3
-    status, _ = lib.output_derivatives(c, names, orders, n_values)
+    status, _ = output_derivatives(planner3, names, orders, n_values)
     assert status == ERROR
-    assert message in lib.last_message(), lib.last_message()
+    assert message in last_message(planner3), last_message(planner3)
 
 
 def test_fmi3_pid_provides_none(tmp_path):
-    lib = Fmi3Library(fmu3_path("PID"), tmp_path / "PID3")
-    c = lib.instantiate_co_simulation()
-    lib.initialize(c)
-    assert lib.do_step(c, 0.0, 0.01)[0] == OK
-    output = next(v for v in lib.description.modelVariables
+    fmu = fmu3(fmu3_path("PID"), tmp_path / "PID3")
+    initialize(fmu)
+    fmu.doStep(0.0, 0.01)
+    output = next(v for v in fmu.description.modelVariables
                   if v.causality == "output" and v.type == "Float64")
     size = output.shape[0] if output.shape else 1
-    status, _ = lib.output_derivatives(c, [output.name], [1], size)
+    status, _ = output_derivatives(fmu, [output.name], [1], size)
     assert status == ERROR
-    assert "provides no output derivatives" in lib.last_message(), lib.last_message()
-    lib.free(c)
+    assert "provides no output derivatives" in last_message(fmu), last_message(fmu)
+    fmu.freeInstance()
 
 
 @pytest.mark.parametrize("fmi3", [False, True], ids=["fmi2", "fmi3"])
@@ -310,16 +312,15 @@ def test_every_output_serves_every_declared_order(tmp_path, model, fmi3):
                if v.causality == "output" and v.type in ("Real", "Float64")]
     assert outputs
     if fmi3:
-        lib = Fmi3Library(path, tmp_path / model)
-        c = lib.instantiate_co_simulation()
-        lib.initialize(c)
-        assert lib.do_step(c, 0.0, 0.01)[0] == OK
+        slave = fmu3(path, tmp_path / model)
+        initialize(slave)
+        slave.doStep(0.0, 0.01)
         for v, order in [(v, o) for v in outputs for o in range(1, highest + 1)]:
             size = v.shape[0] if v.shape else 1
-            status, values = lib.output_derivatives(c, [v.name], [order], size)
-            assert status == OK, (v.name, order, lib.last_message())
+            status, values = output_derivatives(slave, [v.name], [order], size)
+            assert status == OK, (v.name, order, last_message(slave))
             assert all(math.isfinite(x) for x in values), (v.name, order)
-        lib.free(c)
+        slave.freeInstance()
         return
     fmu, _, directory = open_slave(tmp_path, model)
     fmu.enterInitializationMode()

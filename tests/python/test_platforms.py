@@ -16,12 +16,13 @@ reported here as skipped with its reason, never as passed.
   GLIBC_2.17 and only glibc's libraries; Windows: only DLLs Windows ships; macOS:
   only libSystem, the minimum macOS version, an ad-hoc code signature on arm64.
 - Running: every reference case of tests/references through the FMI 2.0 host
-  crates/platform-host, cross-built for each platform: natively on x86_64 Linux (whose
+  robofmu-platform-host (a binary of crates/test/fmi-host), cross-built for each
+  platform: natively on x86_64 Linux (whose
   result must match the reference within the case's Co-Simulation tolerance: the
   host is right), under Wine (x86_64-windows) and qemu-aarch64 (aarch64-linux), whose
   results must equal x86_64 Linux's bit for bit, except the plant's on Windows (to
   1e-12; measured 1.9e-18: see NOT_BIT_IDENTICAL).
-- Leaving a callback (docs/reliability.md, "Leaving a callback"): crates/hostile/native/
+- Leaving a callback (docs/reliability.md, "Leaving a callback"): crates/test/hostile/native/
   leave.c built for aarch64 Linux (pthread_exit, pthread_cancel, longjmp under qemu) and
   with MinGW-w64's g++ for Windows (a C++ exception out of every callback the FMUs call,
   longjmp, under Wine): the documented outcome every time.
@@ -365,7 +366,7 @@ def read_csv(path):
 
 
 def plan(model, case, library_path):
-    """The host's plan of a reference case (crates/platform-host/src/main.rs)."""
+    """The host's plan of a reference case (crates/test/fmi-host/src/bin/robofmu-platform-host.rs)."""
     folder = REFERENCES / model / case
     md = read_model_description(str(DIST / f"{model}.fmu"))
     variables = {v.name: v for v in md.modelVariables}
@@ -532,7 +533,7 @@ ABORTED = "robofmu FMU: fatal: the host's {} callback did not return"
 
 @pytest.fixture(scope="module")
 def leave_host_aarch64(tmp_path_factory):
-    """crates/hostile/native/leave.c built as a C host for aarch64 Linux by zig (the
+    """crates/test/hostile/native/leave.c built as a C host for aarch64 Linux by zig (the
     toolchain of scripts/build-fmus.sh): glibc's pthread_exit and pthread_cancel unwind
     with libgcc_s, as a gcc-built host does."""
     require("aarch64-linux")
@@ -540,7 +541,7 @@ def leave_host_aarch64(tmp_path_factory):
         pytest.fail(f"{ZIG} is missing: run `bash scripts/build-fmus.sh`")
     out = tmp_path_factory.mktemp("leave") / "leave-c"
     subprocess.run([str(ZIG), "-m", "ziglang", "cc", "-target", "aarch64-linux-gnu.2.17", "-O1",
-                    "-x", "c", str(ROOT / "crates" / "hostile" / "native" / "leave.c"),
+                    "-x", "c", str(ROOT / "crates" / "test" / "hostile" / "native" / "leave.c"),
                     "-o", str(out), "-lpthread", "-ldl"], check=True, capture_output=True)
     return out
 
@@ -556,7 +557,7 @@ AARCH64_LEAVES = [(standard, way, "logger") for standard in ("2", "3")
 @pytest.mark.parametrize("model", MODELS)
 def test_leaving_a_callback_on_aarch64_is_an_abort_or_the_error_state(
         model, standard, way, callback, leave_host_aarch64, tmp_path):
-    # Expected (docs/reliability.md, "Leaving a callback"), as crates/hostile/tests/leave.rs
+    # Expected (docs/reliability.md, "Leaving a callback"), as crates/test/hostile/tests/leave.rs
     # checks on x86_64: pthread_exit or pthread_cancel in the callback ends the process
     # with SIGABRT and the FMU's message naming the callback; after a longjmp the next
     # call finds the Error state (3), Reset (0) makes the instance usable and
@@ -603,7 +604,7 @@ def callback_name(standard, callback):
 
 @pytest.fixture(scope="module")
 def leave_host_windows(windows_folder):
-    """crates/hostile/native/leave.c built as a C++ host for Windows by MinGW-w64's g++
+    """crates/test/hostile/native/leave.c built as a C++ host for Windows by MinGW-w64's g++
     (SEH exceptions, as a MinGW C++ importer throws them), statically linked, beside the
     platform host in the Wine folder."""
     compiler = shutil.which("x86_64-w64-mingw32-g++-posix")
@@ -611,7 +612,7 @@ def leave_host_windows(windows_folder):
         pytest.fail("MinGW-w64's g++ is missing: run `bash scripts/install-platform-test-tools.sh`")
     out = windows_folder / "leave.exe"
     subprocess.run([compiler, "-O1", "-Wall", "-Werror", "-static",
-                    "-x", "c++", str(ROOT / "crates" / "hostile" / "native" / "leave.c"),
+                    "-x", "c++", str(ROOT / "crates" / "test" / "hostile" / "native" / "leave.c"),
                     "-o", str(out)], check=True, capture_output=True)
     return out
 

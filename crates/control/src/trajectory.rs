@@ -42,6 +42,20 @@ pub struct Boundary {
     pub qddotf: f64,
 }
 
+impl From<[f64; 6]> for Boundary {
+    /// The conditions in the order of the fields: q0, qf, qdot0, qdotf, qddot0, qddotf.
+    fn from([q0, qf, qdot0, qdotf, qddot0, qddotf]: [f64; 6]) -> Boundary {
+        Boundary {
+            q0,
+            qf,
+            qdot0,
+            qdotf,
+            qddot0,
+            qddotf,
+        }
+    }
+}
+
 /// Position, velocity and acceleration at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample {

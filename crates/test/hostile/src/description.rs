@@ -295,7 +295,7 @@ mod tests {
         // Expected values: the checked-in modelDescription/Pss3Plant.xml (96
         // ScalarVariables, six <Unknown> under <Derivatives>, theta[2] has
         // valueReference 102, the state of variable 13 is theta[1] = vr 101).
-        let xml = include_str!("../../../modelDescription/Pss3Plant.xml");
+        let xml = include_str!("../../../../modelDescription/Pss3Plant.xml");
         let d = parse(xml).unwrap();
         assert_eq!(d.model_name, "Pss3Plant");
         assert_eq!(d.model_identifier, "Pss3Plant");
@@ -315,7 +315,7 @@ mod tests {
         // (theta is the Float64 array of 3 at valueReference 101, der(theta) at 301
         // names it as its state; two ContinuousStateDerivative arrays of 3 = 6
         // states; one EventIndicator array of 6; endStopMode is an Int32).
-        let xml = include_str!("../../../modelDescription/fmi3/Pss3Plant.xml");
+        let xml = include_str!("../../../../modelDescription/fmi3/Pss3Plant.xml");
         let d = parse(xml).unwrap();
         assert!(d.is_fmi3());
         assert_eq!(d.guid, "{66933d5c-c82b-4e7e-aaa5-b9c59a30f4c0}");

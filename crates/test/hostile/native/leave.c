@@ -1,6 +1,6 @@
 /* A host that leaves a callback of the FMU without returning: a C++ exception
  * (compiled as C++), pthread_exit, pthread_cancel while the thread waits in the
- * callback, or longjmp. Compiled as C and as C++ by crates/hostile/tests/leave.rs, which
+ * callback, or longjmp. Compiled as C and as C++ by crates/test/hostile/tests/leave.rs, which
  * runs it on every packaged FMU, both standards, and judges the outcome
  * (docs/reliability.md, "Leaving a callback"); compiled for aarch64 Linux and, as C++
  * with MinGW-w64's g++ (Windows: LoadLibrary, SEH exceptions), for Windows under Wine by

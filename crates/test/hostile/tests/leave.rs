@@ -20,7 +20,7 @@ use std::process::Command;
 
 /// Compiles native/leave.c with `compiler` as `language` ("c" or "c++").
 fn compile(compiler: &str, language: &str, out: &Path) -> Result<(), String> {
-    let source = workspace_root().join("crates/hostile/native/leave.c");
+    let source = workspace_root().join("crates/test/hostile/native/leave.c");
     let status = Command::new(compiler)
         .args(["-O1", "-g", "-Wall", "-Werror", "-x", language])
         .arg(&source)

@@ -13,8 +13,10 @@
 use std::ffi::{CStr, c_void};
 use std::path::Path;
 
+pub mod callbacks;
 pub mod fmi2;
 pub mod fmi3;
+pub mod instance;
 
 /// A loaded library, closed when dropped (after every instance made from it was freed).
 pub struct Library(*mut c_void);

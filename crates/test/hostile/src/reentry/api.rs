@@ -13,7 +13,9 @@ use crate::binary::{Binary, Status};
 use crate::description::{Description, VarType};
 use crate::fmi3::binary::Binary3;
 use crate::fmu::Fmu;
-use std::ffi::{CString, c_void};
+use robofmu_fmi_host::callbacks::c_string;
+use robofmu_fmi_host::instance::instantiate3;
+use std::ffi::c_void;
 
 /// An instance or FMU state handle as the importer holds it.
 pub type Handle = *mut c_void;
@@ -87,10 +89,6 @@ fn size(d: &Description, vr: u32) -> usize {
         .iter()
         .find(|v| v.vr == vr)
         .map_or(1, |v| v.size.max(1))
-}
-
-fn c_string(s: &str) -> CString {
-    CString::new(s).unwrap_or_default()
 }
 
 /// The FMI 2.0 functions of a loaded FMU.
@@ -329,17 +327,15 @@ impl Api for Api3<'_> {
 
 /// An FMI 3.0 Model Exchange instance with `host`'s logger.
 pub fn instantiate_me(binary: &Binary3, d: &Description, host: &Host) -> Handle {
-    let (name, token) = (c_string("reentry"), c_string(&d.guid));
-    // SAFETY: valid strings; the host outlives the instance.
-    unsafe {
-        (binary.instantiate_me)(
-            name.as_ptr(),
-            token.as_ptr(),
-            std::ptr::null(),
-            0,
-            1,
-            host.environment(),
-            super::host::logger3(),
-        )
-    }
+    let me = robofmu_fmi_host::instance::Interface3::ModelExchange;
+    let (env, logger) = (host.environment(), super::host::logger3());
+    instantiate3(
+        binary,
+        me,
+        "reentry",
+        &d.guid,
+        env,
+        logger,
+        std::ptr::null(),
+    )
 }

@@ -68,7 +68,7 @@ impl Standard {
 
 /// The workspace root (two levels above this crate).
 pub fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../..")
 }
 
 /// dist/ of the workspace, or ROBOFMU_HOSTILE_DIST when set.

@@ -2,12 +2,14 @@
 //! FMI 3.0) and the FMI 3.0 intermediateUpdate callback run a hook, once, when the
 //! host's trigger fires; the hook may free the instance, reset it, set a state,
 //! call a getter or block until another thread acted. Everything the FMU logged is
-//! kept as "status category: message" lines.
+//! kept as "status category: message" lines. The memory callbacks and the
+//! reading of the FMU's strings are the test host's (`robofmu_fmi_host::callbacks`).
 
 use super::api::Handle;
 use crate::binary::{CallbackFunctions, ERROR, Status};
+use robofmu_fmi_host::callbacks::{allocate, release, text};
 use std::cell::{Cell, RefCell};
-use std::ffi::{CStr, c_char, c_int, c_void};
+use std::ffi::{c_char, c_int, c_void};
 
 /// When the hook runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -106,16 +108,6 @@ impl<'a> Host<'a> {
     }
 }
 
-fn text(p: *const c_char) -> String {
-    if p.is_null() {
-        return "(null)".into();
-    }
-    // SAFETY: the FMU passes NUL-terminated strings.
-    unsafe { CStr::from_ptr(p) }
-        .to_string_lossy()
-        .replace("%%", "%")
-}
-
 /// # Safety
 /// `env` is a live `Host` (this module's environment).
 unsafe fn host<'a>(env: *mut c_void) -> &'a Host<'a> {
@@ -169,14 +161,4 @@ extern "C" fn update(
 /// The FMI 3.0 intermediateUpdate callback of a [`Host`].
 pub fn intermediate_update() -> *const c_void {
     update as *const c_void
-}
-
-extern "C" fn allocate(n: usize, size: usize) -> *mut c_void {
-    // SAFETY: calloc accepts any sizes.
-    unsafe { libc::calloc(n, size) }
-}
-
-extern "C" fn release(p: *mut c_void) {
-    // SAFETY: p came from `allocate` (or is null).
-    unsafe { libc::free(p) }
 }

@@ -4,7 +4,7 @@
 //! (scripts/build-fmus.sh) and run natively, under Wine and under qemu-aarch64 by
 //! tests/python/test_platforms.py, which compares the lines of every platform with
 //! those of x86_64 Linux. It needs only the standard library, the C runtime and the
-//! hosts' shared loader and FMI 2.0 function table (`crates/fmi-host`: dlopen on Linux
+//! FMI 2.0 host of this crate (its loader, table and callbacks: dlopen on Linux
 //! and macOS, LoadLibraryW on Windows).
 //!
 //! Usage: `robofmu-platform-host PLAN` where PLAN is a text file written by the test
@@ -25,52 +25,14 @@
 //!
 //! Output: `t y1 y2 ...` at t0 and after every step, each number in Rust's shortest
 //! round-trip form (the same double parses back). Errors: one line on stderr naming
-//! the plan or the FMI call, exit 2 (a bad plan) or 1 (the FMU refused a call).
+//! the plan or the FMI call (with what the FMU logged), exit 2 (a bad plan) or 1 (the FMU refused a call).
 
-use robofmu_fmi_host::fmi2::{Binary, CallbackFunctions, OK, Status};
-use std::ffi::{CString, c_char, c_int, c_void};
+use robofmu_fmi_host::callbacks::Callbacks;
+use robofmu_fmi_host::fmi2::Binary;
+use robofmu_fmi_host::instance::{Fmi2Instance, Interface};
+use std::ffi::c_int;
 use std::path::Path;
 use std::process::ExitCode;
-
-const CO_SIMULATION: c_int = 1;
-
-/// Prints the FMU's log lines on stderr. Non-variadic stand-in for the variadic
-/// fmi2CallbackLogger: the five fixed arguments are passed the same way on x86_64
-/// (System V and Windows) and aarch64 Linux, and the message is printed unformatted.
-extern "C" fn logger(
-    _env: *mut c_void,
-    instance: *const c_char,
-    status: Status,
-    category: *const c_char,
-    message: *const c_char,
-) {
-    let text = |p: *const c_char| {
-        if p.is_null() {
-            String::new()
-        } else {
-            // SAFETY: the FMU passes NUL-terminated strings, alive during the call.
-            unsafe { std::ffi::CStr::from_ptr(p) }
-                .to_string_lossy()
-                .into_owned()
-        }
-    };
-    eprintln!(
-        "[{} status {status} {}] {}",
-        text(instance),
-        text(category),
-        text(message)
-    );
-}
-
-extern "C" fn allocate(n: usize, size: usize) -> *mut c_void {
-    // SAFETY: calloc accepts any sizes and returns null on failure.
-    unsafe { libc::calloc(n, size) }
-}
-
-extern "C" fn release(p: *mut c_void) {
-    // SAFETY: the FMU frees only what `allocate` returned (or null).
-    unsafe { libc::free(p) }
-}
 
 /// A start value of the plan.
 enum Start {
@@ -161,65 +123,24 @@ fn parse(text: &str) -> Result<Plan, String> {
 
 /// Runs the plan; the output lines.
 fn simulate(plan: &Plan) -> Result<Vec<String>, String> {
-    let f = Binary::open(Path::new(&plan.library))?;
-    let functions = CallbackFunctions {
-        logger: logger as *const c_void,
-        allocate_memory: allocate as *const c_void,
-        free_memory: release as *const c_void,
-        step_finished: std::ptr::null(),
-        component_environment: std::ptr::null_mut(),
-    };
-    let name = CString::new("host").expect("no NUL");
-    let guid = CString::new(plan.guid.as_str()).map_err(|e| e.to_string())?;
-    let resources = CString::new("").expect("no NUL");
-    // SAFETY (every call of an `f` function below): the FMI 2.0 functions of the loaded
-    // binary, called as the standard says: NUL-terminated strings, callbacks alive
-    // until the end of this function, the instance `c` from fmi2Instantiate until
-    // fmi2FreeInstance, each array as long as the count passed with it.
-    let c = unsafe {
-        (f.instantiate)(
-            name.as_ptr(),
-            CO_SIMULATION,
-            guid.as_ptr(),
-            resources.as_ptr(),
-            &functions,
-            0,
-            0,
-        )
-    };
-    if c.is_null() {
-        return Err("fmi2Instantiate returned NULL".to_string());
-    }
-    let check = |status: Status, call: &str| {
-        if status == OK {
-            Ok(())
-        } else {
-            Err(format!("{call} returned status {status}"))
-        }
-    };
-    check(
-        unsafe { (f.setup_experiment)(c, 0, 0.0, plan.start, 1, plan.stop) },
-        "fmi2SetupExperiment",
-    )?;
+    let binary = Binary::open(Path::new(&plan.library))?;
+    let cs = Interface::CoSimulation;
+    let f = Fmi2Instance::new(&binary, "host", cs, &plan.guid, Callbacks::ALL, false)?;
+    f.setup_experiment(plan.start, Some(plan.stop))?;
     for s in &plan.starts {
-        let (status, call) = match *s {
-            Start::Real(vr, v) => (unsafe { (f.set_real)(c, &vr, 1, &v) }, "fmi2SetReal"),
-            Start::Integer(vr, v) => (unsafe { (f.set_integer)(c, &vr, 1, &v) }, "fmi2SetInteger"),
-            Start::Boolean(vr, v) => (unsafe { (f.set_boolean)(c, &vr, 1, &v) }, "fmi2SetBoolean"),
-        };
-        check(status, call)?;
+        match *s {
+            Start::Real(vr, v) => f.ok("fmi2SetReal", f.set_real(vr, v))?,
+            Start::Integer(vr, v) => f.ok("fmi2SetInteger", f.set_integer(vr, v))?,
+            Start::Boolean(vr, v) => f.ok("fmi2SetBoolean", f.set_boolean(vr, v != 0))?,
+        }
     }
-    check(
-        unsafe { (f.enter_initialization_mode)(c) },
-        "fmi2EnterInitializationMode",
-    )?;
-    check(
-        unsafe { (f.exit_initialization_mode)(c) },
-        "fmi2ExitInitializationMode",
-    )?;
+    // SAFETY (both calls): the live instance of this binary.
+    let s = unsafe { (binary.enter_initialization_mode)(f.c) };
+    f.ok("fmi2EnterInitializationMode", s)?;
+    let s = unsafe { (binary.exit_initialization_mode)(f.c) };
+    f.ok("fmi2ExitInitializationMode", s)?;
     let steps = ((plan.stop - plan.start) / plan.step).round() as usize;
     let mut lines = Vec::with_capacity(steps + 1);
-    let mut y = vec![0.0; plan.outputs.len()];
     for k in 0..=steps {
         let t = plan.start + k as f64 * plan.step;
         if !plan.inputs.is_empty() {
@@ -233,26 +154,22 @@ fn simulate(plan: &Plan) -> Result<Vec<String>, String> {
                         plan.inputs.len()
                     )
                 })?;
-            check(
-                unsafe { (f.set_real)(c, plan.inputs.as_ptr(), row.len(), row.as_ptr()) },
-                "fmi2SetReal (inputs)",
-            )?;
+            f.ok("fmi2SetReal (inputs)", f.set_reals(&plan.inputs, row))?;
         }
-        check(
-            unsafe { (f.get_real)(c, plan.outputs.as_ptr(), y.len(), y.as_mut_ptr()) },
-            "fmi2GetReal",
-        )?;
+        let (status, y) = f.get_reals(&plan.outputs);
+        f.ok("fmi2GetReal", status)?;
         let mut line = format!("{t}");
         for v in &y {
             line.push_str(&format!(" {v}"));
         }
         lines.push(line);
         if k < steps {
-            check(unsafe { (f.do_step)(c, t, plan.step, 1) }, "fmi2DoStep")?;
+            f.ok("fmi2DoStep", f.do_step(t, plan.step))?;
         }
     }
-    check(unsafe { (f.terminate)(c) }, "fmi2Terminate")?;
-    unsafe { (f.free_instance)(c) };
+    // SAFETY: as above; the instance is freed when `f` drops.
+    let s = unsafe { (binary.terminate)(f.c) };
+    f.ok("fmi2Terminate", s)?;
     Ok(lines)
 }
 
