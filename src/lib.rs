@@ -3,9 +3,9 @@
 //! Layering, enforced by the crate graph: this library (`pss3`, `dexterity`,
 //! `dual_arm`, `computed_torque`, `closed_loop`, `ode`, and `control` from
 //! robofmu-control)
-//! knows nothing of FMI; the FMI layer (crates/fmi, robofmu-fmi) knows nothing of
+//! knows nothing of FMI; the FMI layer (crates/fmu/fmi, robofmu-fmi) knows nothing of
 //! robots; each FMU crate under fmus/ is a thin binding between them; the command line
-//! (crates/cli) sits on top and owns plotting and file output.
+//! (crates/tools/cli) sits on top and owns plotting and file output.
 
 pub use robofmu_control as control;
 pub use robofmu_dynamics::computed_torque;

@@ -32,7 +32,7 @@ def workspace_version() -> str:
 
 def test_one_version_in_every_crate_fmu_command_and_the_changelog():
     version = workspace_version()
-    manifests = [ROOT / "Cargo.toml", *ROOT.glob("crates/*/Cargo.toml"),
+    manifests = [ROOT / "Cargo.toml", *ROOT.glob("crates/**/Cargo.toml"),
                  *ROOT.glob("fmus/*/Cargo.toml")]
     assert len(manifests) >= 13
     for manifest in manifests:

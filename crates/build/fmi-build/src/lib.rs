@@ -1,6 +1,6 @@
 //! robofmu-fmi-build: what turns the [`Description`](robofmu_fmi::description::Description)
 //! an FMU's cdylib gives of itself into files, at build time only. An FMU's cdylib
-//! never links it; the workspace packager (`crates/packager`) does.
+//! never links it; the workspace packager (`crates/build/packager`) does.
 //!
 //! - [`fmi2::model_description`], [`fmi3::model_description`] and
 //!   [`fmi3::scalar_model_description`]: modelDescription.xml of each standard (and

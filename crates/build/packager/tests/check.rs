@@ -9,7 +9,7 @@ use std::process::Command;
 fn packager(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_robofmu-packager"))
         .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../.."))
         .output()
         .expect("the packager runs")
 }
@@ -20,7 +20,7 @@ fn every_checked_in_description_matches_the_code() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
     let stdout = String::from_utf8_lossy(&out.stdout);
-    let fmus = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../fmus"))
+    let fmus = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../fmus"))
         .unwrap()
         .filter(|e| e.as_ref().unwrap().path().join("Cargo.toml").is_file())
         .count();

@@ -17,7 +17,7 @@ const FORBIDDEN: [&str; 5] = ["toml", "serde", "serde_core", "rayon", "ode_solve
 
 #[test]
 fn no_fmu_links_toml_serde_or_rayon() {
-    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../Cargo.toml");
+    let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../Cargo.toml");
     for fmu in FMUS {
         let out = Command::new(env!("CARGO"))
             .args(["tree", "-q", "-e", "normal", "--prefix", "none", "-p", fmu])

@@ -159,7 +159,7 @@ const FILE_CASES: &[(Case, &str, &[u8])] = &[
 const DEEP: &[u8] = b"x = [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[";
 
 /// The expanded form of scenarios/regulation.toml, the form the Rust reference reads.
-const EXPANDED: &str = include_str!("../../../tests/scenarios/expanded/regulation.toml");
+const EXPANDED: &str = include_str!("../../../../tests/scenarios/expanded/regulation.toml");
 
 static NEXT: AtomicUsize = AtomicUsize::new(0);
 

@@ -89,7 +89,7 @@ fn actuator_path_writes_si_csv() {
 /// equals the checked-in case `tests/references/Pss3Plant/<case>` byte for byte; returns
 /// the output directory (removed by the caller).
 fn regenerate_plant_case(case: &str, extra: &[&str]) -> std::path::PathBuf {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../..");
     let out = std::env::temp_dir().join(format!("robofmu-{case}-{}", std::process::id()));
     let mut args = vec!["pss3", "plant-reference"];
     args.extend_from_slice(extra);
@@ -151,7 +151,7 @@ fn plant_reference_regenerates_the_checked_in_default_pose_case() {
 fn ct_reference_regenerates_the_checked_in_defaults_case() {
     // Truth: tests/references/ComputedTorque/defaults was written by this command
     // (Lagrange's equations at the FMU's defaults); regenerating gives the same bytes.
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../..");
     let out = std::env::temp_dir().join(format!("robofmu-ct-{}", std::process::id()));
     let run = robofmu(&["pss3", "ct-reference", "--out-dir", out.to_str().unwrap()]);
     assert!(
