@@ -42,7 +42,7 @@ fn max_lci_prints_the_paper_figure_for_the_serial_arm() {
 
 #[test]
 fn max_lci_prints_the_paper_figure_for_the_3rrr_on_a_2_cm_grid_in_mode_4() {
-    // Paper: 0.5038; see the library's tests/dexterity_reproduction.rs for the reading.
+    // Paper: 0.5038; see crates/tools/analyses/tests/dexterity_reproduction.rs for the reading.
     let args = [
         "dexterity",
         "max-lci",

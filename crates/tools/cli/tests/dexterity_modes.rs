@@ -2,9 +2,9 @@
 //! mode of each manipulator is the one docs/dexterity.md argues for, and the CLI names
 //! the mode of every figure it prints.
 
-use robofmu::dexterity::gci::{GciGrid, gci};
-use robofmu::dexterity::workspace::ModeChoice;
-use robofmu::dexterity::{Manipulator, Robot, RobotKind};
+use robofmu_analyses::dexterity::gci::{GciGrid, gci};
+use robofmu_analyses::dexterity::workspace::ModeChoice;
+use robofmu_analyses::dexterity::{Manipulator, Robot, RobotKind};
 use std::process::Command;
 
 fn robofmu(args: &[&str]) -> String {
@@ -52,7 +52,7 @@ fn default_mode_has_the_largest_gci_and_every_mode_reaches_the_same_poses() {
 #[test]
 fn max_lci_names_the_default_mode_and_all_lists_every_mode_and_the_best() {
     // Truth: the best over modes is the largest of the per-mode maxima on the same grid,
-    // and mode 4 on the 2 cm grid is the paper's 0.5038 (the library's tests/dexterity_reproduction.rs).
+    // and mode 4 on the 2 cm grid is the paper's 0.5038 (crates/tools/analyses/tests/dexterity_reproduction.rs).
     let base = ["dexterity", "max-lci", "--robot", "3rrr", "--phi", "10"];
     let grid = ["--grid", "21"];
     let default = robofmu(&[&base[..], &grid[..]].concat());

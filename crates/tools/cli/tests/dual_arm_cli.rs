@@ -21,7 +21,7 @@ fn cli_prints_pi_last_and_fails_with_a_message() {
     assert!(ok.status.success());
     let stdout = String::from_utf8(ok.stdout).unwrap();
     let last = stdout.lines().last().unwrap();
-    // The value is the lock-2 PI of the library's shooting test in tests/dual_arm.rs
+    // The value is the lock-2 PI of the shooting test in crates/tools/analyses/tests/dual_arm.rs
     // (1.344570 rad^2/s).
     assert!(last.starts_with("PI = 1.34457"), "{last}");
     assert!(last.contains("iterations = ") && last.contains("residual = "));

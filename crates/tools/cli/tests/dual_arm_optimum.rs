@@ -6,13 +6,13 @@
 //! `robofmu dual-arm extremals`, whose table is in docs/dual-arm.md.
 
 use nalgebra::Vector2;
-use robofmu::dual_arm::direct::{DirectOptions, solve_direct};
-use robofmu::dual_arm::kinematics::{CHOSEN_LENGTHS, Elbow, LinkLengths, Side};
-use robofmu::dual_arm::locks::{Chain, Lock};
-use robofmu::dual_arm::multistart::{BestPath, MultiStartOptions, best_path};
-use robofmu::dual_arm::optimality::SecondOrder;
-use robofmu::dual_arm::paths::{PaperPath, Path};
-use robofmu::dual_arm::reach::reach;
+use robofmu_analyses::dual_arm::direct::{DirectOptions, solve_direct};
+use robofmu_analyses::dual_arm::kinematics::{CHOSEN_LENGTHS, Elbow, LinkLengths, Side};
+use robofmu_analyses::dual_arm::locks::{Chain, Lock};
+use robofmu_analyses::dual_arm::multistart::{BestPath, MultiStartOptions, best_path};
+use robofmu_analyses::dual_arm::optimality::SecondOrder;
+use robofmu_analyses::dual_arm::paths::{PaperPath, Path};
+use robofmu_analyses::dual_arm::reach::reach;
 
 fn chain(lock: Lock) -> Chain {
     Chain::for_lock(
@@ -106,7 +106,7 @@ fn locks_on_path_b_default_is_the_minimum() {
 #[test]
 fn reach_annuli_are_the_hand_derived_ones_and_reject_path_a_under_locks_1_and_3() {
     // Truth: the annuli written out from the lengths (as in
-    // `chosen_lengths_satisfy_the_workspace_statements` in the library's tests/dual_arm.rs).
+    // `chosen_lengths_satisfy_the_workspace_statements` in crates/tools/analyses/tests/dual_arm.rs).
     let [l1, l2, l3, l4] = CHOSEN_LENGTHS;
     let expected = [
         (Lock::Unlocked, Vector2::zeros(), 0.0, l1 + l2 + l3 + l4),
@@ -150,7 +150,7 @@ fn cli_lists_the_extremals_of_a_configuration_as_a_table() {
     let text = String::from_utf8(out.stdout).unwrap();
     let row = text.lines().nth(2).unwrap();
     // Lock 3's single path: PI = 4.807094 (docs/dual-arm.md, Simpson check in
-    // the library's tests/dual_arm.rs).
+    // crates/tools/analyses/tests/dual_arm.rs).
     assert!(row.starts_with("| 3 | B | 1 (returned) | 4.80709"), "{row}");
     assert!(row.contains("| yes |"), "{row}");
 }

@@ -15,6 +15,10 @@ mod motion;
 mod params;
 mod path;
 pub mod rotation;
+/// Workspace scans over the stroke box and the orientations, on every core (rayon):
+/// feature `workspace`, which the robot library turns on and the FMUs leave off.
+#[cfg(feature = "workspace")]
+pub mod workspace;
 
 pub use error::{KinematicsError, ParamError};
 pub use fk::{FkOptions, ForwardSolution, START_ROLL_DEG, forward_kinematics, start_pose};

@@ -6,13 +6,13 @@ mod output;
 use super::report::usage;
 use super::{CliError, io_at};
 use clap::{Args, Subcommand, ValueEnum};
-use robofmu::dual_arm::direct::{DirectOptions, DirectSolution, solve_direct};
-use robofmu::dual_arm::kinematics::{Elbow, LinkLengths, joint_name};
-use robofmu::dual_arm::locks::{Chain, Lock};
-use robofmu::dual_arm::multistart::best_path;
-use robofmu::dual_arm::paths::{PaperPath, Path, SampledPath};
-use robofmu::dual_arm::shooting::{PmpSolution, Shooting, ShootingOptions};
-use robofmu::dual_arm::trajectory::Trajectory;
+use robofmu_analyses::dual_arm::direct::{DirectOptions, DirectSolution, solve_direct};
+use robofmu_analyses::dual_arm::kinematics::{Elbow, LinkLengths, joint_name};
+use robofmu_analyses::dual_arm::locks::{Chain, Lock};
+use robofmu_analyses::dual_arm::multistart::best_path;
+use robofmu_analyses::dual_arm::paths::{PaperPath, Path, SampledPath};
+use robofmu_analyses::dual_arm::shooting::{PmpSolution, Shooting, ShootingOptions};
+use robofmu_analyses::dual_arm::trajectory::Trajectory;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -170,7 +170,7 @@ fn setup(p: &ProblemArgs) -> Result<Problem, CliError> {
     );
     outln!(
         "link lengths (both arms) {:?} m; path on [{}, {}] s; guess {:?} rad",
-        robofmu::dual_arm::kinematics::CHOSEN_LENGTHS,
+        robofmu_analyses::dual_arm::kinematics::CHOSEN_LENGTHS,
         path.start(),
         path.end(),
         guess
@@ -258,7 +258,7 @@ fn write_outputs(
     chain: &Chain,
     path: &dyn Path,
     trajectory: &Trajectory,
-    history: Option<&[robofmu::dual_arm::shooting::NewtonStep]>,
+    history: Option<&[robofmu_analyses::dual_arm::shooting::NewtonStep]>,
 ) -> Result<(), CliError> {
     std::fs::create_dir_all(dir).map_err(io_at(dir))?;
     let file = dir.join("trajectory.csv");

@@ -7,10 +7,10 @@ use super::sweeps::peak_phi;
 use crate::cli::CliError;
 use crate::plot::{Axes, Grid, heat_map};
 use clap::{Args, ValueEnum};
-use robofmu::dexterity::workspace::{
+use robofmu_analyses::dexterity::workspace::{
     ModeChoice, XyGrid, common_map, lci_map, load_index_map, reachable_map,
 };
-use robofmu::dexterity::{Manipulator, Robot, RobotKind};
+use robofmu_analyses::dexterity::{Manipulator, Robot, RobotKind};
 use std::path::{Path, PathBuf};
 
 /// Square of positions a map covers.

@@ -1,10 +1,10 @@
 //! Options shared by the `dexterity` subcommands.
 
 use clap::{Args, ValueEnum};
-use robofmu::dexterity::layout::{ApexSide, BaseDirection, Origin, Reading};
-use robofmu::dexterity::sweep::Region;
-use robofmu::dexterity::workspace::ModeChoice;
-use robofmu::dexterity::{Manipulator, Robot, RobotKind};
+use robofmu_analyses::dexterity::layout::{ApexSide, BaseDirection, Origin, Reading};
+use robofmu_analyses::dexterity::sweep::Region;
+use robofmu_analyses::dexterity::workspace::ModeChoice;
+use robofmu_analyses::dexterity::{Manipulator, Robot, RobotKind};
 
 /// Side of a triangle's first edge on which its third vertex lies.
 #[derive(Clone, Copy, ValueEnum)]

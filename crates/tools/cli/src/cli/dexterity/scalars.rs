@@ -8,10 +8,10 @@ use super::options::{
 };
 use crate::cli::CliError;
 use clap::Args;
-use robofmu::dexterity::gci::{GciGrid, gci as global_index};
-use robofmu::dexterity::sweep::max_lci_in;
-use robofmu::dexterity::workspace::ModeChoice;
-use robofmu::dexterity::{Manipulator, Robot, RobotKind};
+use robofmu_analyses::dexterity::gci::{GciGrid, gci as global_index};
+use robofmu_analyses::dexterity::sweep::max_lci_in;
+use robofmu_analyses::dexterity::workspace::ModeChoice;
+use robofmu_analyses::dexterity::{Manipulator, Robot, RobotKind};
 
 /// The mode choices an optional `--mode` asks for: every mode then the best for `all`.
 fn choices(mode: Option<ModeOption>, robot: &Robot) -> Result<Vec<ModeChoice>, CliError> {

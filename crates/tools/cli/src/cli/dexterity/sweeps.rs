@@ -8,10 +8,10 @@ use crate::cli::bounds::show;
 use crate::cli::report::usage;
 use crate::plot::{Axes, Series, line_chart};
 use clap::Args;
-use robofmu::dexterity::layout::{ApexSide, BaseDirection, Origin, Reading};
-use robofmu::dexterity::sweep::{Region, SweepRow, max_lci, phi_sweep as sweep};
-use robofmu::dexterity::workspace::{ModeChoice, XyGrid};
-use robofmu::dexterity::{Manipulator, Robot, RobotKind};
+use robofmu_analyses::dexterity::layout::{ApexSide, BaseDirection, Origin, Reading};
+use robofmu_analyses::dexterity::sweep::{Region, SweepRow, max_lci, phi_sweep as sweep};
+use robofmu_analyses::dexterity::workspace::{ModeChoice, XyGrid};
+use robofmu_analyses::dexterity::{Manipulator, Robot, RobotKind};
 use std::path::PathBuf;
 use std::time::Instant;
 

@@ -4,11 +4,11 @@
 use super::{MIRROR_ELBOWS, chain_of, parse_lock, read_path};
 use crate::cli::CliError;
 use clap::Args;
-use robofmu::dual_arm::locks::{Chain, Lock};
-use robofmu::dual_arm::multistart::{BestPath, MultiStart, MultiStartOptions, multi_start};
-use robofmu::dual_arm::optimality::{SecondOrder, check_local_minimum};
-use robofmu::dual_arm::paths::Path;
-use robofmu::dual_arm::shooting::ShootingOptions;
+use robofmu_analyses::dual_arm::locks::{Chain, Lock};
+use robofmu_analyses::dual_arm::multistart::{BestPath, MultiStart, MultiStartOptions, multi_start};
+use robofmu_analyses::dual_arm::optimality::{SecondOrder, check_local_minimum};
+use robofmu_analyses::dual_arm::paths::Path;
+use robofmu_analyses::dual_arm::shooting::ShootingOptions;
 use std::time::Instant;
 
 /// The multi-start settings with the output grid of `intervals`.

@@ -3,12 +3,12 @@
 
 use crate::plot::{Axes, PlotError, Series, line_chart};
 use plotters::prelude::*;
-use robofmu::dual_arm::kinematics::{
+use robofmu_analyses::dual_arm::kinematics::{
     ARM_JOINTS, JOINTS, LinkLengths, Side, joint_name, joint_points,
 };
-use robofmu::dual_arm::paths::Path;
-use robofmu::dual_arm::shooting::NewtonStep;
-use robofmu::dual_arm::trajectory::Trajectory;
+use robofmu_analyses::dual_arm::paths::Path;
+use robofmu_analyses::dual_arm::shooting::NewtonStep;
+use robofmu_analyses::dual_arm::trajectory::Trajectory;
 use std::fmt::Write as _;
 use std::path::Path as FilePath;
 

@@ -2,10 +2,10 @@
 //! homogeneous Jacobians: invariance under base rotation (serial arm) and under a
 //! uniform change of length scale (all three).
 
-use robofmu::dexterity::parallel_2rrr::Parallel2Rrr;
-use robofmu::dexterity::parallel_3rrr::Parallel3Rrr;
-use robofmu::dexterity::serial_1rrr::Serial1Rrr;
-use robofmu::dexterity::{Manipulator, Pose};
+use robofmu_analyses::dexterity::parallel_2rrr::Parallel2Rrr;
+use robofmu_analyses::dexterity::parallel_3rrr::Parallel3Rrr;
+use robofmu_analyses::dexterity::serial_1rrr::Serial1Rrr;
+use robofmu_analyses::dexterity::{Manipulator, Pose};
 
 #[test]
 fn serial_lci_is_invariant_under_rotation_about_the_base() {
@@ -111,7 +111,7 @@ fn reversed_base_equals_the_forward_base_seen_from_a_half_turn() {
     // Turning the base by 180 deg about the origin is a rigid motion of the whole
     // manipulator when the pose turns too: (x, y, phi) -> (-x, -y, phi + pi). Rigid
     // motions keep the singular values of the B1/B3 velocity Jacobian and the branches.
-    use robofmu::dexterity::layout::{BaseDirection, Reading};
+    use robofmu_analyses::dexterity::layout::{BaseDirection, Reading};
     let reversed = Reading {
         base_direction: BaseDirection::MinusX,
         ..Reading::default()

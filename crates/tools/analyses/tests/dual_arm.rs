@@ -3,12 +3,12 @@
 //! kinematics alone, the workspace statements of the spec, and the CLI.
 
 use nalgebra::Vector2;
-use robofmu::dual_arm::DualArmError;
-use robofmu::dual_arm::direct::{DirectOptions, solve_direct};
-use robofmu::dual_arm::kinematics::{CHOSEN_LENGTHS, Elbow, LinkLengths};
-use robofmu::dual_arm::locks::{Chain, Lock};
-use robofmu::dual_arm::paths::{FunctionPath, PaperPath, Path, SampledPath};
-use robofmu::dual_arm::shooting::{PmpSolution, Shooting, ShootingOptions};
+use robofmu_analyses::dual_arm::DualArmError;
+use robofmu_analyses::dual_arm::direct::{DirectOptions, solve_direct};
+use robofmu_analyses::dual_arm::kinematics::{CHOSEN_LENGTHS, Elbow, LinkLengths};
+use robofmu_analyses::dual_arm::locks::{Chain, Lock};
+use robofmu_analyses::dual_arm::paths::{FunctionPath, PaperPath, Path, SampledPath};
+use robofmu_analyses::dual_arm::shooting::{PmpSolution, Shooting, ShootingOptions};
 
 const ELBOWS: [Elbow; 2] = [Elbow::Negative, Elbow::Positive];
 

@@ -1,12 +1,12 @@
 //! The paper's figures at phi = 10 deg over x, y in [-20, 20] cm, the convergence of
 //! grid maxima, and the convergence of the GCI.
 
-use robofmu::dexterity::gci::{GciGrid, gci};
-use robofmu::dexterity::parallel_3rrr::Parallel3Rrr;
-use robofmu::dexterity::serial_1rrr::Serial1Rrr;
-use robofmu::dexterity::sweep::max_lci;
-use robofmu::dexterity::workspace::{ModeChoice, XyGrid};
-use robofmu::dexterity::{Manipulator, Pose, Robot, RobotKind};
+use robofmu_analyses::dexterity::gci::{GciGrid, gci};
+use robofmu_analyses::dexterity::parallel_3rrr::Parallel3Rrr;
+use robofmu_analyses::dexterity::serial_1rrr::Serial1Rrr;
+use robofmu_analyses::dexterity::sweep::max_lci;
+use robofmu_analyses::dexterity::workspace::{ModeChoice, XyGrid};
+use robofmu_analyses::dexterity::{Manipulator, Pose, Robot, RobotKind};
 use std::f64::consts::PI;
 
 fn phi10() -> f64 {
@@ -135,7 +135,7 @@ fn gci_converges_under_grid_refinement() {
 fn serial_arm_own_workspace_maximum_is_flat_in_the_phi_sweep() {
     // Rotation invariance about the base makes the 1-RRR's largest LCI over its whole
     // workspace independent of phi; the converged value is 0.2610 (641-point grid).
-    use robofmu::dexterity::sweep::{Region, phi_sweep};
+    use robofmu_analyses::dexterity::sweep::{Region, phi_sweep};
     let robots: Vec<Robot> = RobotKind::ALL.iter().map(|&k| Robot::paper(k)).collect();
     let phis: Vec<f64> = [10.0f64, 75.0, 140.0, 180.0]
         .iter()

@@ -3,10 +3,10 @@
 //! central finite differences of the inverse kinematics.
 
 use nalgebra::{Matrix3, Vector2};
-use robofmu::dexterity::parallel_2rrr::Parallel2Rrr;
-use robofmu::dexterity::parallel_3rrr::Parallel3Rrr;
-use robofmu::dexterity::serial_1rrr::Serial1Rrr;
-use robofmu::dexterity::{DexterityError, Joints, Manipulator, Pose, Robot, RobotKind};
+use robofmu_analyses::dexterity::parallel_2rrr::Parallel2Rrr;
+use robofmu_analyses::dexterity::parallel_3rrr::Parallel3Rrr;
+use robofmu_analyses::dexterity::serial_1rrr::Serial1Rrr;
+use robofmu_analyses::dexterity::{DexterityError, Joints, Manipulator, Pose, Robot, RobotKind};
 
 /// Step of the central differences (m and rad): truncation ~h^2, rounding ~1e-16/h.
 const H: f64 = 1e-6;
