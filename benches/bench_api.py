@@ -1,8 +1,8 @@
 """Whole runs of the library against a C host that makes the same FMI calls directly:
-``python scripts/bench_api.py [--runs 10] [--sweep 400]`` (a benchmark, not a test; the
+``python benches/bench_api.py [--runs 10] [--sweep 400]`` (a benchmark, not a test; the
 figures are in docs/performance.md).
 
-The C host (scripts/c_host/c_host.c, compiled here with `cc`) dlopens the FMI 2.0
+The C host (benches/c_host/c_host.c, compiled here with `cc`) dlopens the FMI 2.0
 binaries of the unzipped bundled FMUs and runs the regulation scenario's coupling
 (planner -> PID -> plant, 1000 steps of 1 ms, sampled coupling, the scenario's start
 values as robofmu resolves them) with direct calls: per step every doStep, then one
@@ -39,7 +39,7 @@ sys.path.insert(0, str(ROOT))
 
 import robofmu  # noqa: E402
 
-HOST = ROOT / "scripts" / "c_host" / "c_host.c"
+HOST = ROOT / "benches" / "c_host" / "c_host.c"
 TYPES = {"Real": "r", "Integer": "i", "Enumeration": "i", "Boolean": "b"}
 
 

@@ -1,7 +1,7 @@
 """Our master against the two SSP importers from PyPI, libcosim (libcosimpy) and ecos
 (ecospy), on the same SSP export of one scenario, in one run:
 
-    python scripts/bench_peers.py [--runs 5] [--scenario three_axis_quintic]
+    python benches/bench_peers.py [--runs 5] [--scenario three_axis_quintic]
 
 Each master runs the scenario's whole run at its step h: ours (robofmu.master.Master,
 input_extrapolation hold, linear and quadratic, and quadratic at 4 h) from the

@@ -8,7 +8,7 @@ timed on its own, fmi2GetRealOutputDerivatives of gravityCompensation[1..3] orde
 outputs order 1 and order 2, and the same gravityCompensation request a second time
 at the same point. Prints the medians per FMU and the ratios after / before, and
 whether both FMUs gave the same bits for every derivative.
-Usage: .venv/bin/python scripts/bench_output_derivatives.py [BEFORE.fmu] AFTER.fmu
+Usage: .venv/bin/python benches/bench_output_derivatives.py [BEFORE.fmu] AFTER.fmu
 (one FMU: its figures alone).
 """
 

@@ -14,8 +14,8 @@ Which binary is which FMU is found by instantiating it with each checked-in
 modelDescription/<Model>.xml's GUID (adding an FMU changes no list here). Needs a C
 compiler (cc) and valgrind.
 
-Usage: python3 scripts/bench_fmi_calls.py [--repeat 1000] DIR [DIR ...]
-e.g.   python3 scripts/bench_fmi_calls.py baseline-build/ target/release/
+Usage: python3 benches/bench_fmi_calls.py [--repeat 1000] DIR [DIR ...]
+e.g.   python3 benches/bench_fmi_calls.py baseline-build/ target/release/
 """
 
 import argparse

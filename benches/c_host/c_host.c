@@ -1,4 +1,4 @@
-/* The C host of scripts/bench_api.py: runs a co-simulation of FMI 2.0 co-simulation FMUs
+/* The C host of benches/bench_api.py: runs a co-simulation of FMI 2.0 co-simulation FMUs
  * (unzipped) with direct calls, sampled coupling with inputs held over each step: the
  * same FMI calls as robofmu's master with input_extrapolation = "hold". The plan (FMUs,
  * start values, connections grouped per target and source FMU, the experiment) is a text

@@ -8,7 +8,7 @@ arguments prepared once (the library stays loaded). With several dist directorie
 round, so that both see the same machine load; the last column is each directory's
 median over the first one's.
 
-Usage: .venv/bin/python scripts/bench_instantiate.py [--rounds 20] [--calls 200] [dist ...]
+Usage: .venv/bin/python benches/bench_instantiate.py [--rounds 20] [--calls 200] [dist ...]
 (default dist: dist; FMI 3.0 FMUs are read from <dist>/fmi3/).
 """
 

@@ -4,7 +4,7 @@ Benchmark of issue 10 (values computed once per change, not per read): after eac
 fmi2DoStep the script reads all Real outputs with ONE fmi2GetReal call and with one call
 per output (as a master that reads signal by signal does), and prints the medians over
 the repetitions, and the median time of the step itself (values computed eagerly at
-the end of a step are paid there). Usage: .venv/bin/python scripts/bench_plant_reads.py [dist/Pss3Plant.fmu]
+the end of a step are paid there). Usage: .venv/bin/python benches/bench_plant_reads.py [dist/Pss3Plant.fmu]
 """
 
 import statistics

@@ -3,7 +3,7 @@ interleaved, medians printed: `cosim --help`, `cosim run --help`, `cosim sweep -
 and the import of each module that robofmu/ keeps lazy (the figures named where it does,
 and in CHANGELOG.md).
 
-    python scripts/bench_startup.py [--runs 10] [--tree DIR ...]
+    python benches/bench_startup.py [--runs 10] [--tree DIR ...]
 
 --tree: run the commands in each of these checkouts too (e.g. an older robofmu/ exported
 with `git archive REV robofmu | tar -x -C DIR`), interleaved with this one."""

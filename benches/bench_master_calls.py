@@ -1,7 +1,7 @@
 """Instructions per communication step of the master against the FMU calls it makes
 (callgrind: counts, not times, so the figure does not depend on the machine's load).
 
-    python scripts/bench_master_calls.py [--steps 50,1050] [--scenario regulation]
+    python benches/bench_master_calls.py [--steps 50,1050] [--scenario regulation]
 
 For each input_extrapolation (hold, linear, quadratic) and each of two run lengths it runs the
 master under callgrind and counts every instruction of the process and, apart, the
