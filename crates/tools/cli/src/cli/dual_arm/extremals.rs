@@ -5,7 +5,9 @@ use super::{MIRROR_ELBOWS, chain_of, parse_lock, read_path};
 use crate::cli::CliError;
 use clap::Args;
 use robofmu_analyses::dual_arm::locks::{Chain, Lock};
-use robofmu_analyses::dual_arm::multistart::{BestPath, MultiStart, MultiStartOptions, multi_start};
+use robofmu_analyses::dual_arm::multistart::{
+    BestPath, MultiStart, MultiStartOptions, multi_start,
+};
 use robofmu_analyses::dual_arm::optimality::{SecondOrder, check_local_minimum};
 use robofmu_analyses::dual_arm::paths::Path;
 use robofmu_analyses::dual_arm::shooting::ShootingOptions;
