@@ -2,9 +2,9 @@
 //! largest LCI over the own workspaces (all three manipulators).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use robofmu::dexterity::sweep::{Region, phi_sweep};
-use robofmu::dexterity::workspace::ModeChoice;
-use robofmu::dexterity::{Manipulator, Pose, Robot, RobotKind};
+use robofmu_analyses::dexterity::sweep::{Region, phi_sweep};
+use robofmu_analyses::dexterity::workspace::ModeChoice;
+use robofmu_analyses::dexterity::{Manipulator, Pose, Robot, RobotKind};
 use std::hint::black_box;
 
 fn lci_evaluation(c: &mut Criterion) {

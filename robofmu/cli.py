@@ -2,7 +2,7 @@
 line. COMMANDS is the one table of its commands: each is a module with
 ``add_arguments(parser)`` and ``run(args) -> int``, imported only when its command is
 named (``cosim --help`` importing all of them took 0.58 s instead of 0.05 s: fmpy,
-numpy, matplotlib; scripts/bench_startup.py). The ``python -m robofmu.MODULE`` entry
+numpy, matplotlib; benches/bench_startup.py). The ``python -m robofmu.MODULE`` entry
 points that the docs name (robofmu.bench, robofmu.demo, robofmu.animate, robofmu.verify) go
 through this table (``entry``).
 

@@ -1,4 +1,4 @@
-"""The master's stepping loop: one loop, in native code (crates/cosim-kernel, built by
+"""The master's stepping loop: one loop, in native code (crates/tools/cosim-kernel, built by
 cargo into target/release/; or shipped inside the package; or the library named by
 COSIM_KERNEL_LIBRARY).
 

@@ -128,7 +128,7 @@ def hidden_labels(series: list, labels: list[str], unit: str, span: float) -> li
 
 
 def _figure(rows: int):
-    # lazy: matplotlib.pyplot is 0.4 s of start-up (scripts/bench_startup.py), paid by plots only
+    # lazy: matplotlib.pyplot is 0.4 s of start-up (benches/bench_startup.py), paid by plots only
     matplotlib = require("matplotlib", "plots", "the plots of a run")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -195,7 +195,7 @@ def plot_tracking(result: dict, name: str, out_dir: Path,
 def plot_cubic_vs_quintic(cubic: dict, quintic: dict, motion: str, out_dir: Path) -> Path:
     """Planned Euler-angle accelerations (left) and the plant's angular acceleration in
     the base frame (right) of both planners."""
-    # lazy: matplotlib.pyplot is 0.4 s of start-up (scripts/bench_startup.py), paid by plots only
+    # lazy: matplotlib.pyplot is 0.4 s of start-up (benches/bench_startup.py), paid by plots only
     matplotlib = require("matplotlib", "plots", "the plots of a run")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

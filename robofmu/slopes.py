@@ -94,7 +94,7 @@ class History:
     While fewer points are known the order is lower (zero at the first point); at a
     time already seen (a step retried after a discard) the last derivatives.
 
-    The state lives in numpy arrays that the native loop (crates/cosim-kernel) reads and
+    The state lives in numpy arrays that the native loop (crates/tools/cosim-kernel) reads and
     updates in place with the same operations in the same order: `past` (order rows:
     the values at the last points, newest first), `times` (their times), `count` (how
     many are known, at most order) and `out` (order rows: the derivatives)."""

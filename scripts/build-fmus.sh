@@ -17,7 +17,7 @@
 # had is left out of every FMU and named, with the reason, at the end of the output and
 # in target/toolchain/platforms.txt (the platform tests report it as skipped); nothing
 # is left out silently. The workspace packager target/release/robofmu-packager
-# (crates/packager) finds the FMU crates and reads each cdylib's description of itself,
+# (crates/build/packager) finds the FMU crates and reads each cdylib's description of itself,
 # so adding an FMU needs no change here.
 #
 # Usage: bash scripts/build-fmus.sh
@@ -153,7 +153,7 @@ for entry in "${platforms[@]}"; do
     fi
     # The platform-test host runs where the tests can run it: Linux (native, qemu)
     # and Windows (Wine); it never goes into an FMU.
-    # The master's stepping kernel (crates/cosim-kernel) goes into the wheel for every
+    # The master's stepping kernel (crates/tools/cosim-kernel) goes into the wheel for every
     # platform built (hatch_build.py), beside the FMUs.
     build=(cargo-zigbuild rustc)
     if [[ "$tuple" == *-windows ]]; then

@@ -7,7 +7,7 @@ A module is a file under SRC (`core/model.rs` is `core::model`, `core/mod.rs` is
 module first. Imports of a module's own parent or children are not edges (Rust
 resolves them through the module tree, not as a dependency between siblings).
 
-Usage: python3 scripts/module_cycles.py [SRC]   (default: crates/fmi/src)
+Usage: python3 scripts/module_cycles.py [SRC]   (default: crates/fmu/fmi/src)
 """
 
 import re
@@ -93,7 +93,7 @@ def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
 
 
 def main() -> int:
-    src = Path(sys.argv[1] if len(sys.argv) > 1 else "crates/fmi/src")
+    src = Path(sys.argv[1] if len(sys.argv) > 1 else "crates/fmu/fmi/src")
     graph = edges(modules(src))
     found = cycles(graph)
     n_edges = sum(len(e) for e in graph.values())

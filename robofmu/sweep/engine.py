@@ -129,7 +129,7 @@ def _worker_processes():
     importing them (spawn, Dask's default): 2.3 s instead of 3.8 s to two warm
     workers (medians of 4 interleaved starts on the loaded 2-core machine). Also
     for workers a nanny restarts, so it holds for the whole sweep."""
-    # dask and distributed lazily: 0.4 s of start-up (scripts/bench_startup.py) that a
+    # dask and distributed lazily: 0.4 s of start-up (benches/bench_startup.py) that a
     # serial sweep (--workers 0) and `cosim sweep --help` do not pay.
     import dask
     # distributed first: its import adds its defaults to Dask's configuration, which

@@ -23,7 +23,7 @@ MIN_HISTOGRAM_DRAWS = 20  # fewer draws per grid point: no histogram
 
 
 def _plt():
-    # lazy: matplotlib.pyplot is 0.4 s of start-up (scripts/bench_startup.py), paid by plots only
+    # lazy: matplotlib.pyplot is 0.4 s of start-up (benches/bench_startup.py), paid by plots only
     matplotlib = require("matplotlib", "plots", "the plots of a sweep")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -201,7 +201,7 @@ def execute_batch(store: FmuStore, batch: list[tuple[str, dict]],
 def worker_plugin(blobs: dict[str, bytes], fmus: dict[str, str]):
     """A Dask worker plugin that gives every worker the FMUs, unpacked and loaded
     (warm), and an instance pool."""
-    # lazy: distributed is 0.4 s of start-up (scripts/bench_startup.py) that serial runs skip
+    # lazy: distributed is 0.4 s of start-up (benches/bench_startup.py) that serial runs skip
     from distributed.diagnostics.plugin import WorkerPlugin
 
     class FmuPlugin(WorkerPlugin):

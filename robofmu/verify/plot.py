@@ -52,7 +52,7 @@ def _deviation_panel(axes, verdict: Verdict, outside, unit) -> None:
 
 def plot_png(case: Case, verdict: Verdict, title: str, unit: str | None = None,
              end: EarlyEnd | None = None) -> bytes:
-    # lazy: matplotlib.figure is 0.3 s of start-up (scripts/bench_startup.py), paid by plots only
+    # lazy: matplotlib.figure is 0.3 s of start-up (benches/bench_startup.py), paid by plots only
     matplotlib = require("matplotlib", "plots", "the plots of cosim verify")
     matplotlib.use("Agg")
     from matplotlib.figure import Figure

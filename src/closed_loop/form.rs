@@ -174,7 +174,7 @@ mod tests {
 
     #[test]
     fn the_computed_torque_rules_are_the_laws_pole_placement() {
-        // crates/dynamics keeps its own const pole_placement (no TOML reader in the
+        // crates/fmu/dynamics keeps its own const pole_placement (no TOML reader in the
         // FMUs' crate): it must agree bit for bit with the file's rules, which the
         // Python harness designs with.
         for w in [1.0, 17.3, 30.0, 12.345678, 1e3] {

@@ -3,7 +3,7 @@
 What counts as a path, in the prose of a document (fenced code blocks are left out: the
 ones that run are run by test_documented_commands.py, the others are examples):
 - a word of two or more `/`-separated parts whose first part is an entry at the top of
-  the repository as git tracks it when the test runs (`crates/fmi/src/lib.rs`,
+  the repository as git tracks it when the test runs (`crates/fmu/fmi/src/lib.rs`,
   `scripts/`, `fmus/*/src/*.rs`), so a renamed folder is followed without editing
   this file;
 - the target of a relative Markdown link (`[the layer](fmi.md)`), from the document's
@@ -153,7 +153,7 @@ def test_the_rule_finds_dead_paths_and_passes_outputs_globs_links_and_places():
     # missing source file (line 1) and the missing link (line 3); the existing file,
     # the build output, the glob, the placeholder, the link that resolves from docs/,
     # the release folder's file (PLACES) and the fenced command are not reported.
-    text = ("`crates/nothing/here.rs` and `crates/fmi/src/lib.rs`, `dist/nothing.fmu`,\n"
+    text = ("`crates/nothing/here.rs` and `crates/fmu/fmi/src/lib.rs`, `dist/nothing.fmu`,\n"
             "`fmus/*/src/lib.rs`, `fmus/<model>/Cargo.toml`, [guide](user-guide.md),\n"
             "[gone](gone.md), `fmus/fmi3/PID.fmu`; units rad/s, N.m/rad\n"
             "```sh\nbash scripts/not-checked-here.sh\n```\n")

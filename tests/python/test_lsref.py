@@ -1,4 +1,4 @@
-"""The evidence every FMU carries (FMI-LS-REF, crates/fmi-build/src/lsref.rs): its
+"""The evidence every FMU carries (FMI-LS-REF, crates/build/fmi-build/src/lsref.rs): its
 manifest and experiments files against the standards' schemas, every file it lists
 against its SHA-256, and every case of tests/references/ inside it byte for byte.
 

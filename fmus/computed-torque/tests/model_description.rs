@@ -1,6 +1,6 @@
 //! The ModelStructure of the generated FMI 2.0 modelDescription.xml of ComputedTorqueFmu. The
 //! checked-in descriptions are compared with the code by the workspace packager
-//! (`robofmu-packager --check`, the test in crates/packager/tests/).
+//! (`robofmu-packager --check`, the test in crates/build/packager/tests/).
 
 use robofmu_computed_torque_fmu::ComputedTorqueFmu;
 use robofmu_fmi::description::describe;

@@ -1,6 +1,6 @@
 //! The ModelStructure of the generated FMI 2.0 modelDescription.xml of Planner. The
 //! checked-in descriptions are compared with the code by the workspace packager
-//! (`robofmu-packager --check`, the test in crates/packager/tests/).
+//! (`robofmu-packager --check`, the test in crates/build/packager/tests/).
 
 use robofmu_fmi::description::describe;
 use robofmu_fmi_build::fmi2::{model_description, unknowns_in_section as unknowns};

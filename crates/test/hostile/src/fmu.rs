@@ -187,8 +187,8 @@ fn check_not_stale(archive: &Path) -> Result<(), String> {
     let built = modified(archive).unwrap_or(SystemTime::UNIX_EPOCH);
     let root = workspace_root();
     let mut folders = vec![
-        root.join("crates/fmi/src"),
-        root.join("crates/fmi-build/src"),
+        root.join("crates/fmu/fmi/src"),
+        root.join("crates/build/fmi-build/src"),
     ];
     if let Ok(fmus) = std::fs::read_dir(root.join("fmus")) {
         folders.extend(fmus.flatten().map(|e| e.path().join("src")));
