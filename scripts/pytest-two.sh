@@ -6,6 +6,9 @@
 #
 # Usage: bash scripts/pytest-two.sh FILE...
 set -uo pipefail
+# Job control: without it bash starts background commands with SIGINT ignored, and the
+# tests that interrupt a command as a terminal's Ctrl-C does would find it ignored too.
+set -m
 cd "$(dirname "$0")/.."
 [[ $# -gt 0 ]] || { echo "pytest-two.sh: name the test files of the first process" >&2; exit 2; }
 logs=$(mktemp -d)
