@@ -27,6 +27,17 @@ pub enum Source {
     /// The model's event indicators (`Model::event_indicators`) from index `first` on
     /// (0 for the array of all; one index per scalar in the scalar-only view).
     EventIndicators { first: usize },
+    /// The input clock `Model::CLOCKS[clock]` (FMI 3.0 only, as the next two).
+    Clock { clock: usize },
+    /// The period parameter of clock `clock`, held by the instance's clocks.
+    ClockPeriod { clock: usize },
+    /// Output `output` of clock `clock`, its elements from `element` on (0 for the
+    /// array; one per scalar in the scalar-only view).
+    Clocked {
+        clock: usize,
+        output: usize,
+        element: usize,
+    },
 }
 
 /// One variable of the FMI 3.0 description: a scalar or a one-dimensional array.

@@ -4,6 +4,7 @@
 //! Values are read and written per FMI 3.0 variable (a scalar or an array) through the
 //! table's elements.
 
+use super::clocks::Clocks;
 use super::declared::view;
 use super::extra::Fmi3Extra;
 use super::intermediate::IntermediateUpdate;
@@ -44,6 +45,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         let extra = Fmi3Extra {
             table,
             intermediate_update,
+            clocks: Clocks::new::<M>()?,
         };
         Ok(FmuInstance::with(interface, log, extra, core))
     }
@@ -113,6 +115,19 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 element,
                 ..
             } => self.core.get_reals(*declaration, *element, out)?,
+            Source::ClockPeriod { clock } => out[0] = self.extra.clocks.clocks[*clock].period,
+            Source::Clocked {
+                clock,
+                output,
+                element,
+            } => {
+                let get = M::CLOCKS[*clock].outputs[*output].get;
+                let model = self.core.model();
+                for (i, o) in out.iter_mut().enumerate() {
+                    *o = get(model, element + i);
+                }
+            }
+            Source::Clock { .. } => return Err(format!("\"{}\" is a Clock", v.name)),
         }
         Ok(())
     }
@@ -166,6 +181,9 @@ impl<M: Model> FmuInstance<Fmi3, M> {
             element,
         } = v.source
         else {
+            if let Source::ClockPeriod { clock } = v.source {
+                return self.set_period(v, clock, values);
+            }
             return self.check_settable(v).map(|()| None);
         };
         if let Err(refusal) = self.check_settable(v) {
@@ -177,6 +195,26 @@ impl<M: Model> FmuInstance<Fmi3, M> {
             return entry::refuse_unless_unchanged(refusal, &v.name, self.mode, unchanged);
         }
         (self.core).set_declared(declaration, element, (first, stride), values)?;
+        Ok(None)
+    }
+
+    /// Sets the period parameter `v` of clock `clock` (a fixed parameter: before the
+    /// end of initialization; afterwards only to the value it holds, with a warning).
+    fn set_period(
+        &mut self,
+        v: &Variable3,
+        clock: usize,
+        mut values: impl Iterator<Item = Value>,
+    ) -> Result<Kept, String> {
+        let Some(Value::Real(period)) = values.next() else {
+            return Err(format!("\"{}\" takes one Float64", v.name));
+        };
+        if let Err(refusal) = self.check_settable(v) {
+            let held = self.extra.clocks.clocks[clock].period;
+            let unchanged = held.to_bits() == period.to_bits();
+            return entry::refuse_unless_unchanged(refusal, &v.name, self.mode, unchanged);
+        }
+        self.extra.clocks.set_period(clock, period, &v.name)?;
         Ok(None)
     }
 

@@ -39,6 +39,22 @@ pub fn view<M>(table: &[Variable<M>], arrays: &Table3) -> Result<Table3, String>
             }));
             continue;
         }
+        if let Source::Clocked { clock, output, .. } = v.source
+            && v.dimension.is_some()
+        {
+            variables.extend((0..v.size()).map(|k| Variable3 {
+                value_reference: v.value_reference + k as u32,
+                name: Cow::Owned(format!("{}[{}]", v.name, k + 1)),
+                dimension: None,
+                source: Source::Clocked {
+                    clock,
+                    output,
+                    element: k,
+                },
+                ..v.clone()
+            }));
+            continue;
+        }
         let Source::Elements {
             stride,
             declaration,
