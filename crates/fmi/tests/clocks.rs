@@ -410,3 +410,14 @@ fn bad_clock_arguments_are_refused_with_a_message_and_change_nothing() {
     );
     assert_eq!((fmu.real(SUM), fmu.real(TICKS)), (0.0, 0.0));
 }
+
+#[test]
+fn an_importer_that_never_sets_the_clock_steps_across_the_ticks() {
+    // With event mode but without ever setting the clock (an importer that runs the
+    // continuous form only), steps are not cut at ticks and nothing ticks.
+    let fmu = Fmu::co_simulation(false);
+    assert_eq!(fmu.initialize(0.0), Fmi3Status::Ok);
+    unsafe { api::enter_step_mode::<Accumulator>(fmu.0) };
+    assert_eq!(fmu.step(0.0, 0.0155), (Fmi3Status::Ok, false, false, 0.0155));
+    assert_eq!((fmu.real(SUM), fmu.real(TICKS)), (0.0, 0.0));
+}

@@ -169,12 +169,13 @@ impl Table3 {
         self.variables.iter().filter(|v| v.derivative_of.is_some())
     }
 
-    /// The knowns: inputs and continuous states, by FMI 3.0 value reference.
+    /// The knowns: inputs (not input clocks: they activate, they carry no value) and
+    /// continuous states, by FMI 3.0 value reference.
     pub fn knowns(&self) -> Vec<u32> {
         let mut knowns: Vec<u32> = self
             .variables
             .iter()
-            .filter(|v| v.causality == Causality::Input)
+            .filter(|v| v.causality == Causality::Input && v.variable_type != VariableType::Clock)
             .map(|v| v.value_reference)
             .chain(self.derivatives().filter_map(|d| d.derivative_of))
             .collect();

@@ -19,6 +19,10 @@ pub struct ClockState {
     /// Set by fmi3SetClock in this Event Mode and not yet ticked by
     /// fmi3UpdateDiscreteStates.
     pub active: bool,
+    /// The importer has set the clock since instantiation (or reset): it drives the
+    /// clock, and Co-Simulation steps end at its ticks. An importer that never sets
+    /// it (one that runs only the continuous law) steps across the ticks.
+    pub driven: bool,
 }
 
 /// The clocks of one instance.
@@ -39,6 +43,7 @@ impl Clocks {
                     period: c.period.start,
                     interval: period_fraction(c.period.start, c.period.name)?,
                     active: false,
+                    driven: false,
                 })
             })
             .collect::<Result<_, String>>()?;
@@ -56,6 +61,7 @@ impl Clocks {
             period,
             interval,
             active: false,
+            driven: false,
         };
         Ok(())
     }
@@ -80,12 +86,13 @@ impl Clocks {
         }
     }
 
-    /// Where a step from `t` to `end` meets the clocks: None when no tick lies in
-    /// (t, end]; Some((tick, passes)) for the first tick after `t`, `passes` when the
-    /// step goes beyond it (a step ending within the tolerance of [`tick_at`] ends at
-    /// the tick).
+    /// Where a step from `t` to `end` meets the clocks the importer drives: None when
+    /// no tick lies in (t, end]; Some((tick, passes)) for the first tick after `t`,
+    /// `passes` when the step goes beyond it (a step ending within the tolerance of
+    /// [`tick_at`] ends at the tick).
     pub fn step_end(&self, t: f64, end: f64) -> Option<(f64, bool)> {
         let (tick, period) = (self.clocks.iter())
+            .filter(|c| c.driven)
             .filter_map(|c| {
                 let period = c.interval.0 as f64 / c.interval.1 as f64;
                 next_tick(self.start, c.interval, t).map(|n| (n.1, period))

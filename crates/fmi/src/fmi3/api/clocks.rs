@@ -43,7 +43,8 @@ fn clocks_of<M: Model>(inst: &Instance<M>, vrs: &[u32]) -> Result<Vec<usize>, St
 
 /// fmi3SetClock: activates (or deactivates) the input clocks `vr` at the current
 /// time, which must be one of their ticks; the tick runs in the next
-/// fmi3UpdateDiscreteStates.
+/// fmi3UpdateDiscreteStates. From the first activation on, the importer drives the
+/// clock: Co-Simulation steps end at its ticks.
 pub unsafe fn set_clock<M: Model>(
     c: Fmi3Instance,
     vr: *const Fmi3ValueReference,
@@ -62,7 +63,9 @@ pub unsafe fn set_clock<M: Model>(
                 }
             }
             for (&k, &on) in clocks.iter().zip(values) {
-                inst.extra.clocks.clocks[k].active = on != FMI3_FALSE;
+                let clock = &mut inst.extra.clocks.clocks[k];
+                clock.active = on != FMI3_FALSE;
+                clock.driven |= clock.active;
             }
             Ok(Fmi3Status::Ok)
         })

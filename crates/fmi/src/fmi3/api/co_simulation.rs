@@ -50,7 +50,9 @@ pub unsafe fn do_step<M: Model>(
     }
 }
 
-/// A step of Co-Simulation with event mode that meets a tick of an input clock: it
+/// A step of Co-Simulation with event mode that meets a tick of an input clock the
+/// importer drives (it has set the clock; an importer that never does runs the
+/// continuous law and steps across the ticks): it
 /// ends exactly at the tick (the time set to the tick's, not t + h rounded), with
 /// eventHandlingNeeded, so that the importer enters Event Mode, sets the clock and
 /// updates the discrete states there; a step that would go beyond the tick returns
