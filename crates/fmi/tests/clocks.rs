@@ -418,6 +418,9 @@ fn an_importer_that_never_sets_the_clock_steps_across_the_ticks() {
     let fmu = Fmu::co_simulation(false);
     assert_eq!(fmu.initialize(0.0), Fmi3Status::Ok);
     unsafe { api::enter_step_mode::<Accumulator>(fmu.0) };
-    assert_eq!(fmu.step(0.0, 0.0155), (Fmi3Status::Ok, false, false, 0.0155));
+    assert_eq!(
+        fmu.step(0.0, 0.0155),
+        (Fmi3Status::Ok, false, false, 0.0155)
+    );
     assert_eq!((fmu.real(SUM), fmu.real(TICKS)), (0.0, 0.0));
 }

@@ -11,8 +11,8 @@
 use super::{AXES, ComputedTorqueFmu};
 use robofmu_fmi::prelude::*;
 
-/// The value references of the clock, its period and its output (`uSampled`
-/// takes 411 to 413 in the scalar-only view).
+/// The value references of the clock, its period and its output (FMI 3.0 array
+/// view only: the scalar-only view has no clocks).
 const CLOCK_VR: u32 = 401;
 const PERIOD_VR: u32 = 402;
 const OUTPUT_VR: u32 = 411;

@@ -9,8 +9,9 @@
 //! between ticks) and the hook the layer runs at a tick (in Event Mode, by
 //! fmi3UpdateDiscreteStates after fmi3SetClock).
 //!
-//! None of these variables exists in FMI 2.0 (which has no clocks): a model's FMI 2.0
-//! description and behaviour do not change when it gains a clocked partition. The
+//! None of these variables exists in FMI 2.0 (which has no clocks), nor in the
+//! scalar-only FMI 3.0 view (for importers that refuse clocks): those descriptions and
+//! their behaviour do not change when a model gains a clocked partition. The
 //! layer keeps the period (the model reads it from the [`Tick`]); the model keeps what
 //! its law holds between ticks (cloned with the model into FMU states; serialized
 //! with [`Model::write_extra_state`](super::Model::write_extra_state)).

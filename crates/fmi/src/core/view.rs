@@ -31,13 +31,9 @@ pub enum Source {
     Clock { clock: usize },
     /// The period parameter of clock `clock`, held by the instance's clocks.
     ClockPeriod { clock: usize },
-    /// Output `output` of clock `clock`, its elements from `element` on (0 for the
-    /// array; one per scalar in the scalar-only view).
-    Clocked {
-        clock: usize,
-        output: usize,
-        element: usize,
-    },
+    /// Output `output` of clock `clock` (array view only: the scalar-only view has no
+    /// clocks).
+    Clocked { clock: usize, output: usize },
 }
 
 /// One variable of the FMI 3.0 description: a scalar or a one-dimensional array.

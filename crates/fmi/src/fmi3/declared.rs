@@ -84,7 +84,6 @@ fn clock_variables<M: Model>() -> impl Iterator<Item = Variable3> {
             source: Source::Clocked {
                 clock: k,
                 output: i,
-                element: 0,
             },
             derivative_of: None,
         });

@@ -116,15 +116,11 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 ..
             } => self.core.get_reals(*declaration, *element, out)?,
             Source::ClockPeriod { clock } => out[0] = self.extra.clocks.clocks[*clock].period,
-            Source::Clocked {
-                clock,
-                output,
-                element,
-            } => {
+            Source::Clocked { clock, output } => {
                 let get = M::CLOCKS[*clock].outputs[*output].get;
                 let model = self.core.model();
                 for (i, o) in out.iter_mut().enumerate() {
-                    *o = get(model, element + i);
+                    *o = get(model, i);
                 }
             }
             Source::Clock { .. } => return Err(format!("\"{}\" is a Clock", v.name)),
