@@ -158,7 +158,7 @@ const MAX_RESOLUTION: u64 = 1_000_000_000_000_000_000;
 pub fn period_fraction(period: f64, what: &str) -> Result<(u64, u64), String> {
     if !(period.is_finite() && period > 0.0) {
         return Err(format!(
-            "{what} = {period}: a clock period must be a positive finite number of seconds"
+            "\"{what}\" = {period}: a clock period must be a positive finite number of seconds"
         ));
     }
     // Display prints the shortest round-trip decimal, without an exponent.
@@ -172,7 +172,7 @@ pub fn period_fraction(period: f64, what: &str) -> Result<(u64, u64), String> {
     match (counter, resolution) {
         (Some(c), Some(r)) if c > 0 => Ok((c, r)),
         _ => Err(format!(
-            "{what} = {period} s cannot be a clock interval: it must be a whole number of \
+            "\"{what}\" = {period} s cannot be a clock interval: it must be a whole number of \
              1e-18 s below 1.8e19 (64-bit counter / resolution)"
         )),
     }

@@ -1,5 +1,5 @@
 //! What an FMI 3.0 instance keeps of its model's input clocks
-//! ([`Model::CLOCKS`](crate::core::Model::CLOCKS), declared with
+//! ([`crate::core::Model::CLOCKS`], declared with
 //! [`core::clocks`](crate::core::clocks)): each clock's period as set through its
 //! parameter, whether the importer activated it in this Event Mode, and the start
 //! time the ticks count from. The ticks themselves are computed from the time

@@ -16,7 +16,7 @@ use crate::fmi3::types::*;
 /// fmi3DoStep: one step of the model, or, when the importer passed an
 /// intermediateUpdate callback and the model has intermediate points, a step split at
 /// them (module `intermediate_step`). With event mode and input clocks, a step ends at
-/// the next tick ([`ClockCut`]; such a step is not split).
+/// the next tick (`ClockCut`; such a step is not split).
 pub unsafe fn do_step<M: Model>(
     c: Fmi3Instance,
     current_communication_point: Fmi3Float64,

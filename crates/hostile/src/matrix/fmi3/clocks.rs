@@ -8,7 +8,7 @@
 //! matrix's `usable_after`). Controls: the legal calls return fmi3OK.
 //!
 //! The clock's value reference is read from the checked-in description
-//! (modelDescription/fmi3/<Model>.xml, equal to the packaged one: the packager's
+//! (`modelDescription/fmi3/<Model>.xml`, equal to the packaged one: the packager's
 //! drift check); the matrix's description keeps no clocks.
 
 use crate::Loaded;
