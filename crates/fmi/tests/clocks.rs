@@ -367,6 +367,7 @@ fn bad_clock_arguments_are_refused_with_a_message_and_change_nothing() {
     ] {
         let fmu = Fmu::co_simulation(true);
         unsafe { api::enter_initialization_mode::<Accumulator>(fmu.0, 0, 0.0, 0.0, 0, 0.0) };
+        let values = [value];
         let s = unsafe {
             api::set_interval_or_shift::<Accumulator>(
                 fmu.0,
@@ -374,7 +375,7 @@ fn bad_clock_arguments_are_refused_with_a_message_and_change_nothing() {
                 "interval",
                 &CLOCK,
                 1,
-                |_| Ok(api::Setting::Decimal(Box::leak(Box::new([value])))),
+                |_| Ok(api::Setting::Decimal(&values)),
             )
         };
         assert_eq!(s, Fmi3Status::Error);

@@ -203,13 +203,13 @@ pub enum Setting<'a> {
 /// fmi3SetShiftFraction (`what`: "interval" or "shift"): the arguments are checked
 /// (a value that could never be an interval is named), then the call is refused: a
 /// fixed clock without intervalDecimal takes its interval from its period parameter.
-pub unsafe fn set_interval_or_shift<M: Model>(
+pub unsafe fn set_interval_or_shift<'a, M: Model>(
     c: Fmi3Instance,
     function: &str,
     what: &str,
     vr: *const Fmi3ValueReference,
     nvr: usize,
-    setting: impl FnOnce(usize) -> Result<Setting<'static>, String>,
+    setting: impl FnOnce(usize) -> Result<Setting<'a>, String>,
 ) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, function, Call::ClockQuery, |inst| {
