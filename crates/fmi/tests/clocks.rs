@@ -18,6 +18,7 @@ struct Accumulator {
     x: f64,
     sum: f64,
     ticks: f64,
+    period: f64,
 }
 
 type Decl = Declaration<Accumulator>;
@@ -35,7 +36,16 @@ static CLOCKS: &[InputClock<Accumulator>] = &[InputClock {
     name: "sampleClock",
     value_reference: 10,
     description: "ticks the accumulator",
-    period: PeriodParameter::new("samplePeriod", 11, "sample period, s", 0.001),
+    period: PeriodParameter::new(
+        "samplePeriod",
+        11,
+        "sample period, s",
+        0.001,
+        (
+            |m: &Accumulator| m.period,
+            |m: &mut Accumulator, p| m.period = p,
+        ),
+    ),
     outputs: OUTPUTS,
     tick: |m, tick, _| {
         if !m.x.is_finite() || m.x.abs() > 1e6 {

@@ -37,6 +37,10 @@ pub static CLOCKS: &[InputClock<ComputedTorqueFmu>] = &[InputClock {
         PERIOD_VR,
         "Sample period of the sampled law, s (a decimal of at most 18 places)",
         1e-3,
+        (
+            |m: &ComputedTorqueFmu| m.sample_period,
+            |m: &mut ComputedTorqueFmu, p| m.sample_period = p,
+        ),
     ),
     outputs: OUTPUTS,
     tick: ComputedTorqueFmu::tick,

@@ -25,6 +25,7 @@ use robofmu_dynamics::computed_torque::{
     AxisGains, ComputedTorque, GEOMETRY, Inputs, controller_message, pole_placement,
 };
 use robofmu_dynamics::pss3::dynamics::{DynamicsError, PlantParams};
+use robofmu_fmi::core::clocks::period_fraction;
 use robofmu_fmi::prelude::*;
 
 /// Euler-angle axes.
@@ -75,6 +76,8 @@ pub struct ComputedTorqueFmu {
     sampled_integral: Vector3<f64>,
     /// The sampled law's output since its last tick (zero before the first).
     held: Vector3<f64>,
+    /// The sample period, s (the FMI 3.0 parameter samplePeriod).
+    sample_period: f64,
 }
 
 impl ComputedTorqueFmu {
@@ -165,6 +168,7 @@ impl Default for ComputedTorqueFmu {
             output: None,
             sampled_integral: Vector3::zeros(),
             held: Vector3::zeros(),
+            sample_period: 1e-3,
         }
     }
 }
@@ -223,27 +227,34 @@ impl Model for ComputedTorqueFmu {
         Ok(())
     }
 
-    /// The sampled law's integral and held output (not variables: FMI 2.0 has no
-    /// clocks), 6 doubles.
+    /// The sampled law's integral, held output and period (not variables of FMI 2.0,
+    /// which has no clocks), 7 doubles.
     fn write_extra_state(&self, out: &mut Vec<u8>) {
-        for x in self.sampled_integral.iter().chain(self.held.iter()) {
+        let values = self.sampled_integral.iter().chain(self.held.iter());
+        for x in values.chain([&self.sample_period]) {
             out.extend_from_slice(&x.to_le_bytes());
         }
     }
 
     fn read_extra_state(&mut self, bytes: &[u8]) -> Result<(), String> {
+        if bytes.len() != 56 {
+            return Err(format!(
+                "the sampled law's state is {} bytes, 56 (7 doubles) expected",
+                bytes.len()
+            ));
+        }
         let values: Vec<f64> = bytes
             .chunks_exact(8)
             .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
             .collect();
-        if bytes.len() != 48 || values.iter().any(|x| !x.is_finite()) {
-            return Err(format!(
-                "the sampled law's state is {} bytes of 6 finite doubles expected",
-                bytes.len()
-            ));
+        // The period first, checked as its setter checks it (the message names it).
+        period_fraction(values[6], "samplePeriod")?;
+        if let Some(bad) = values[..6].iter().find(|x| !x.is_finite()) {
+            return Err(format!("the sampled law's integral or output is {bad}"));
         }
         self.sampled_integral = Vector3::from_column_slice(&values[..3]);
-        self.held = Vector3::from_column_slice(&values[3..]);
+        self.held = Vector3::from_column_slice(&values[3..6]);
+        self.sample_period = values[6];
         Ok(())
     }
 }

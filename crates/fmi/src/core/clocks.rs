@@ -12,9 +12,9 @@
 //! None of these variables exists in FMI 2.0 (which has no clocks), nor in the
 //! scalar-only FMI 3.0 view (for importers that refuse clocks): those descriptions and
 //! their behaviour do not change when a model gains a clocked partition. The
-//! layer keeps the period (the model reads it from the [`Tick`]); the model keeps what
-//! its law holds between ticks (cloned with the model into FMU states; serialized
-//! with [`Model::write_extra_state`](super::Model::write_extra_state)).
+//! model keeps the period and what its law holds between ticks (cloned with the model
+//! into FMU states; serialized with
+//! [`Model::write_extra_state`](super::Model::write_extra_state)).
 //!
 //! A clocked partition in a binding (the model's own law at `tick`, its held output
 //! read by `get`):
@@ -23,7 +23,7 @@
 //! use robofmu_fmi::prelude::*;
 //!
 //! #[derive(Clone, Default)]
-//! pub struct Counter { ticks: f64 }
+//! pub struct Counter { ticks: f64, period: f64 }
 //!
 //! static OUTPUTS: &[ClockedOutput<Counter>] = &[ClockedOutput::new(
 //!     "ticks", 12, "ticks counted", |m, _| m.ticks,
@@ -32,7 +32,10 @@
 //!     name: "sampleClock",
 //!     value_reference: 10,
 //!     description: "ticks the counter",
-//!     period: PeriodParameter::new("samplePeriod", 11, "sample period", 0.001),
+//!     period: PeriodParameter::new(
+//!         "samplePeriod", 11, "sample period", 0.001,
+//!         (|m| m.period, |m, p| m.period = p),
+//!     ),
 //!     outputs: OUTPUTS,
 //!     tick: |m, _tick, _log| { m.ticks += 1.0; Ok(()) },
 //! }];
@@ -63,28 +66,38 @@ pub struct Tick {
 /// fmi3Discard with the reason.
 pub type TickHook<M> = fn(&mut M, &Tick, &dyn Log) -> Result<(), String>;
 
-/// The fixed Float64 parameter that sets a clock's period, s (FMI 3.0 only).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PeriodParameter {
+/// Where a model keeps a clock's period: its reader and its writer.
+pub type PeriodAccess<M> = (fn(&M) -> f64, fn(&mut M, f64));
+
+/// The fixed Float64 parameter that sets a clock's period, s (FMI 3.0 only), kept by
+/// the model (so that FMU states carry it: the model serializes it in
+/// [`Model::write_extra_state`](super::Model::write_extra_state) and checks it with
+/// [`period_fraction`] when it reads it back); the layer checks a value before `set`.
+pub struct PeriodParameter<M: 'static> {
     pub name: &'static str,
     pub value_reference: u32,
     pub description: &'static str,
-    /// The start value, s.
+    /// The start value, s (the layer sets it at instantiation and reset).
     pub start: f64,
+    pub get: fn(&M) -> f64,
+    pub set: fn(&mut M, f64),
 }
 
-impl PeriodParameter {
+impl<M> PeriodParameter<M> {
     pub const fn new(
         name: &'static str,
         value_reference: u32,
         description: &'static str,
         start: f64,
+        (get, set): PeriodAccess<M>,
     ) -> Self {
         PeriodParameter {
             name,
             value_reference,
             description,
             start,
+            get,
+            set,
         }
     }
 }
@@ -143,7 +156,7 @@ pub struct InputClock<M: 'static> {
     pub name: &'static str,
     pub value_reference: u32,
     pub description: &'static str,
-    pub period: PeriodParameter,
+    pub period: PeriodParameter<M>,
     pub outputs: &'static [ClockedOutput<M>],
     pub tick: TickHook<M>,
 }

@@ -1,21 +1,17 @@
 //! What an FMI 3.0 instance keeps of its model's input clocks
 //! ([`crate::core::Model::CLOCKS`], declared with
-//! [`core::clocks`](crate::core::clocks)): each clock's period as set through its
-//! parameter, whether the importer activated it in this Event Mode, and the start
-//! time the ticks count from. The ticks themselves are computed from the time
+//! [`core::clocks`](crate::core::clocks)): whether the importer activated each clock
+//! in this Event Mode and whether it drives it, and the start time the ticks count
+//! from; the periods are the model's (its period parameters). The ticks themselves are computed from the time
 //! (tick k at start + k counter / resolution), so that an FMU state restored to an
 //! earlier time ticks again from there.
 
 use crate::core::clocks::{Tick, next_tick, period_fraction, tick_at, tick_time};
 use crate::core::model::Model;
 
-/// One clock's period and activation.
+/// One clock's activation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClockState {
-    /// The period as set, s.
-    pub period: f64,
-    /// The period as counter / resolution.
-    pub interval: (u64, u64),
     /// Set by fmi3SetClock in this Event Mode and not yet ticked by
     /// fmi3UpdateDiscreteStates.
     pub active: bool,
@@ -33,54 +29,44 @@ pub struct Clocks {
     pub start: f64,
 }
 
-impl Clocks {
-    /// The clocks of model M with their start periods.
-    pub fn new<M: Model>() -> Result<Self, String> {
-        let clocks = M::CLOCKS
-            .iter()
-            .map(|c| {
-                Ok(ClockState {
-                    period: c.period.start,
-                    interval: period_fraction(c.period.start, c.period.name)?,
-                    active: false,
-                    driven: false,
-                })
-            })
-            .collect::<Result<_, String>>()?;
-        Ok(Clocks {
-            clocks,
-            start: M::INFO.default_experiment.start_time,
-        })
-    }
+/// The interval of clock `k` of model M as counter / resolution, from the model's
+/// period parameter.
+pub fn interval<M: Model>(model: &M, k: usize) -> Result<(u64, u64), String> {
+    let p = &M::CLOCKS[k].period;
+    period_fraction((p.get)(model), p.name)
+}
 
-    /// Sets the period of clock `k` (checked: a positive finite decimal of at most 18
-    /// places; `name` in the message).
-    pub fn set_period(&mut self, k: usize, period: f64, name: &str) -> Result<(), String> {
-        let interval = period_fraction(period, name)?;
-        self.clocks[k] = ClockState {
-            period,
-            interval,
+impl Clocks {
+    /// The clocks of model M, none active.
+    pub fn new<M: Model>() -> Self {
+        let clock = || ClockState {
             active: false,
             driven: false,
         };
-        Ok(())
+        Clocks {
+            clocks: M::CLOCKS.iter().map(|_| clock()).collect(),
+            start: M::INFO.default_experiment.start_time,
+        }
     }
 
-    /// The tick of clock `k` at time `t`, or why `t` is not one of its ticks.
-    pub fn tick_at(&self, k: usize, t: f64, name: &str) -> Result<Tick, String> {
-        let c = &self.clocks[k];
-        match tick_at(self.start, c.interval, t) {
+    /// The tick of clock `k` of `model` at time `t`, or why `t` is not one of its
+    /// ticks.
+    pub fn tick_at<M: Model>(&self, model: &M, k: usize, t: f64) -> Result<Tick, String> {
+        let i = interval(model, k)?;
+        let period = i.0 as f64 / i.1 as f64;
+        match tick_at(self.start, i, t) {
             Some(index) => Ok(Tick {
-                time: tick_time(self.start, c.interval, index),
+                time: tick_time(self.start, i, index),
                 index,
-                period: c.interval.0 as f64 / c.interval.1 as f64,
+                period,
             }),
             None => {
-                let next = next_tick(self.start, c.interval, t).map_or(f64::NAN, |n| n.1);
+                let next = next_tick(self.start, i, t).map_or(f64::NAN, |n| n.1);
                 Err(format!(
-                    "t = {t} s is not a tick of {name} (every {} s from t = {} s; the next \
+                    "t = {t} s is not a tick of {} (every {period} s from t = {} s; the next \
                      is t = {next} s): a periodic input clock is set only at its ticks",
-                    c.period, self.start
+                    M::CLOCKS[k].name,
+                    self.start
                 ))
             }
         }
@@ -90,12 +76,13 @@ impl Clocks {
     /// no tick lies in (t, end]; Some((tick, passes)) for the first tick after `t`,
     /// `passes` when the step goes beyond it (a step ending within the tolerance of
     /// [`tick_at`] ends at the tick).
-    pub fn step_end(&self, t: f64, end: f64) -> Option<(f64, bool)> {
-        let (tick, period) = (self.clocks.iter())
-            .filter(|c| c.driven)
-            .filter_map(|c| {
-                let period = c.interval.0 as f64 / c.interval.1 as f64;
-                next_tick(self.start, c.interval, t).map(|n| (n.1, period))
+    pub fn step_end<M: Model>(&self, model: &M, t: f64, end: f64) -> Option<(f64, bool)> {
+        let (tick, period) = (self.clocks.iter().enumerate())
+            .filter(|(_, c)| c.driven)
+            .filter_map(|(k, _)| {
+                let i = interval(model, k).ok()?;
+                let period = i.0 as f64 / i.1 as f64;
+                next_tick(self.start, i, t).map(|n| (n.1, period))
             })
             .min_by(|a, b| a.0.total_cmp(&b.0))?;
         if (end - tick).abs() <= 1e-9 * period {

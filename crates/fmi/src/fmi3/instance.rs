@@ -45,9 +45,19 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         let extra = Fmi3Extra {
             table,
             intermediate_update,
-            clocks: Clocks::new::<M>()?,
+            clocks: Clocks::new::<M>(),
         };
-        Ok(FmuInstance::with(interface, log, extra, core))
+        let mut inst = FmuInstance::with(interface, log, extra, core);
+        inst.set_clock_periods_to_start();
+        Ok(inst)
+    }
+
+    /// The period parameters of the model's clocks at their start values (at
+    /// instantiation and reset; the model's `Default` need not know them).
+    pub fn set_clock_periods_to_start(&mut self) {
+        for c in M::CLOCKS {
+            (c.period.set)(self.core.model_mut(), c.period.start);
+        }
     }
 
     /// Makes the computed values current for reading `variables`; Ok(Some(reason))
@@ -115,7 +125,9 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 element,
                 ..
             } => self.core.get_reals(*declaration, *element, out)?,
-            Source::ClockPeriod { clock } => out[0] = self.extra.clocks.clocks[*clock].period,
+            Source::ClockPeriod { clock } => {
+                out[0] = (M::CLOCKS[*clock].period.get)(self.core.model());
+            }
             Source::Clocked { clock, output } => {
                 let get = M::CLOCKS[*clock].outputs[*output].get;
                 let model = self.core.model();
@@ -206,11 +218,12 @@ impl<M: Model> FmuInstance<Fmi3, M> {
             return Err(format!("\"{}\" takes one Float64", v.name));
         };
         if let Err(refusal) = self.check_settable(v) {
-            let held = self.extra.clocks.clocks[clock].period;
+            let held = (M::CLOCKS[clock].period.get)(self.core.model());
             let unchanged = held.to_bits() == period.to_bits();
             return entry::refuse_unless_unchanged(refusal, &v.name, self.mode, unchanged);
         }
-        self.extra.clocks.set_period(clock, period, &v.name)?;
+        crate::core::clocks::period_fraction(period, &v.name)?;
+        (M::CLOCKS[clock].period.set)(self.core.model_mut(), period);
         Ok(None)
     }
 

@@ -15,6 +15,7 @@
 use super::{input_slice, output_slice, with_instance};
 use crate::core::log::Log;
 use crate::core::model::Model;
+use crate::fmi3::clocks::interval;
 use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::{Call, Mode};
 use crate::fmi3::table::{Source, type_name};
@@ -59,7 +60,7 @@ pub unsafe fn set_clock<M: Model>(
             let t = inst.core.time;
             for (&k, &on) in clocks.iter().zip(values) {
                 if on != FMI3_FALSE {
-                    inst.extra.clocks.tick_at(k, t, M::CLOCKS[k].name)?;
+                    inst.extra.clocks.tick_at(inst.core.model(), k, t)?;
                 }
             }
             for (&k, &on) in clocks.iter().zip(values) {
@@ -122,7 +123,7 @@ pub unsafe fn get_interval_decimal<M: Model>(
             let qualifiers = output_slice(qualifiers, nvr, "qualifiers[]")?;
             let q = qualifier(inst);
             for (i, k) in clocks.into_iter().enumerate() {
-                let (counter, resolution) = inst.extra.clocks.clocks[k].interval;
+                let (counter, resolution) = interval(inst.core.model(), k)?;
                 intervals[i] = counter as f64 / resolution as f64;
                 qualifiers[i] = q;
             }
@@ -149,7 +150,7 @@ pub unsafe fn get_interval_fraction<M: Model>(
             let qualifiers = output_slice(qualifiers, nvr, "qualifiers[]")?;
             let q = qualifier(inst);
             for (i, k) in clocks.into_iter().enumerate() {
-                (counters[i], resolutions[i]) = inst.extra.clocks.clocks[k].interval;
+                (counters[i], resolutions[i]) = interval(inst.core.model(), k)?;
                 qualifiers[i] = q;
             }
             Ok(Fmi3Status::Ok)
@@ -253,7 +254,10 @@ pub(super) fn run_ticks<M: Model>(inst: &mut Instance<M>) -> Result<Option<Strin
         if !inst.extra.clocks.clocks[k].active {
             continue;
         }
-        let tick = inst.extra.clocks.tick_at(k, inst.core.time, spec.name)?;
+        let tick = inst
+            .extra
+            .clocks
+            .tick_at(inst.core.model(), k, inst.core.time)?;
         let before = inst.core.model().clone();
         if let Err(reason) = (spec.tick)(inst.core.model_mut(), &tick, &inst.log) {
             *inst.core.model_mut() = before;

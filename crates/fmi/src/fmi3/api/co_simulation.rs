@@ -78,7 +78,7 @@ impl ClockCut {
             return Ok(None);
         }
         inst.core.check_step(t, h)?;
-        match inst.extra.clocks.step_end(t, t + h) {
+        match inst.extra.clocks.step_end(inst.core.model(), t, t + h) {
             None => Ok(None),
             Some((tick, false)) => Ok(Some(ClockCut { tick, early: false })),
             Some((tick, true)) if early_return_allowed => Ok(Some(ClockCut { tick, early: true })),

@@ -233,7 +233,8 @@ pub unsafe fn reset<M: Model>(c: Fmi3Instance) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, "fmi3Reset", Call::Reset, |inst| {
             inst.reset();
-            inst.extra.clocks = crate::fmi3::clocks::Clocks::new::<M>()?;
+            inst.extra.clocks = crate::fmi3::clocks::Clocks::new::<M>();
+            inst.set_clock_periods_to_start();
             Ok(Fmi3Status::Ok)
         })
     }
