@@ -29,6 +29,8 @@ ROOT = Path(__file__).resolve().parents[1]
 
 DECLARE = {"real", "integer", "boolean", "real_in", "integer_in", "boolean_in"}
 TABLES = {"Decl", "Declaration"}
+# The clocked partitions' constructors (robofmu_fmi::core::clocks): `new` declares too.
+CLOCK_TABLES = {"InputClock", "PeriodParameter", "ClockedOutput"}
 IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
@@ -202,8 +204,10 @@ def calls(toks: list[Token]):
         if (
             j >= 2
             and _is(toks[j - 1], "punct", "::")
-            and toks[j - 2].value in TABLES
-            and (name in DECLARE or name == "$")
+            and (
+                (toks[j - 2].value in TABLES and (name in DECLARE or name == "$"))
+                or (toks[j - 2].value in CLOCK_TABLES and name == "new")
+            )
         ):
             yield "Decl::real", i
         else:

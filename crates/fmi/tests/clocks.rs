@@ -32,11 +32,11 @@ static OUTPUTS: &[ClockedOutput<Accumulator>] = &[
     ClockedOutput::new("sum", 12, "sum of Ts x", |m: &Accumulator, _| m.sum),
     ClockedOutput::new("ticks", 13, "ticks so far", |m: &Accumulator, _| m.ticks),
 ];
-static CLOCKS: &[InputClock<Accumulator>] = &[InputClock {
-    name: "sampleClock",
-    value_reference: 10,
-    description: "ticks the accumulator",
-    period: PeriodParameter::new(
+static CLOCKS: &[InputClock<Accumulator>] = &[InputClock::new(
+    "sampleClock",
+    10,
+    "ticks the accumulator",
+    PeriodParameter::new(
         "samplePeriod",
         11,
         "sample period, s",
@@ -46,8 +46,8 @@ static CLOCKS: &[InputClock<Accumulator>] = &[InputClock {
             |m: &mut Accumulator, p| m.period = p,
         ),
     ),
-    outputs: OUTPUTS,
-    tick: |m, tick, _| {
+    OUTPUTS,
+    |m, tick, _| {
         if !m.x.is_finite() || m.x.abs() > 1e6 {
             return Err(format!("x = {} is out of range", m.x));
         }
@@ -55,7 +55,7 @@ static CLOCKS: &[InputClock<Accumulator>] = &[InputClock {
         m.ticks += 1.0;
         Ok(())
     },
-}];
+)];
 static INFO: ModelInfo = ModelInfo::new(
     "Accumulator",
     "{6c1d0d2e-8a44-4f5e-9d55-2b8f3c1a7e01}",

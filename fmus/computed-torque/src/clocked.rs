@@ -27,12 +27,11 @@ static OUTPUTS: &[ClockedOutput<ComputedTorqueFmu>] = &[ClockedOutput::new(
 .array(AXES)
 .unit("N.m")];
 
-pub static CLOCKS: &[InputClock<ComputedTorqueFmu>] = &[InputClock {
-    name: "sampleClock",
-    value_reference: CLOCK_VR,
-    description: "Ticks the sampled law: periodic, every samplePeriod seconds from the \
-                  start time",
-    period: PeriodParameter::new(
+pub static CLOCKS: &[InputClock<ComputedTorqueFmu>] = &[InputClock::new(
+    "sampleClock",
+    CLOCK_VR,
+    "Ticks the sampled law: periodic, every samplePeriod seconds from the start time",
+    PeriodParameter::new(
         "samplePeriod",
         PERIOD_VR,
         "Sample period of the sampled law, s (a decimal of at most 18 places)",
@@ -42,9 +41,9 @@ pub static CLOCKS: &[InputClock<ComputedTorqueFmu>] = &[InputClock {
             |m: &mut ComputedTorqueFmu, p| m.sample_period = p,
         ),
     ),
-    outputs: OUTPUTS,
-    tick: ComputedTorqueFmu::tick,
-}];
+    OUTPUTS,
+    ComputedTorqueFmu::tick,
+)];
 
 impl ComputedTorqueFmu {
     /// The sampled law at a tick: output from the sampled integral and the inputs now

@@ -248,7 +248,7 @@ impl Model for ComputedTorqueFmu {
             .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
             .collect();
         // The period first, checked as its setter checks it (the message names it).
-        period_fraction(values[6], "samplePeriod")?;
+        period_fraction(values[6], clocked::CLOCKS[0].period.name)?;
         if let Some(bad) = values[..6].iter().find(|x| !x.is_finite()) {
             return Err(format!("the sampled law's integral or output is {bad}"));
         }

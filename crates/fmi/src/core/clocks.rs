@@ -28,17 +28,17 @@
 //! static OUTPUTS: &[ClockedOutput<Counter>] = &[ClockedOutput::new(
 //!     "ticks", 12, "ticks counted", |m, _| m.ticks,
 //! )];
-//! static CLOCKS: &[InputClock<Counter>] = &[InputClock {
-//!     name: "sampleClock",
-//!     value_reference: 10,
-//!     description: "ticks the counter",
-//!     period: PeriodParameter::new(
+//! static CLOCKS: &[InputClock<Counter>] = &[InputClock::new(
+//!     "sampleClock",
+//!     10,
+//!     "ticks the counter",
+//!     PeriodParameter::new(
 //!         "samplePeriod", 11, "sample period", 0.001,
-//!         (|m| m.period, |m, p| m.period = p),
+//!         (|m: &Counter| m.period, |m: &mut Counter, p| m.period = p),
 //!     ),
-//!     outputs: OUTPUTS,
-//!     tick: |m, _tick, _log| { m.ticks += 1.0; Ok(()) },
-//! }];
+//!     OUTPUTS,
+//!     |m, _tick, _log| { m.ticks += 1.0; Ok(()) },
+//! )];
 //! # static INFO: ModelInfo = ModelInfo::new("Counter", "{0}", "", [0.0, 1.0, 1e-6, 0.1]);
 //! impl Model for Counter {
 //!     const INFO: &'static ModelInfo = &INFO;
@@ -159,6 +159,28 @@ pub struct InputClock<M: 'static> {
     pub period: PeriodParameter<M>,
     pub outputs: &'static [ClockedOutput<M>],
     pub tick: TickHook<M>,
+}
+
+impl<M> InputClock<M> {
+    /// The clock `name` at `value_reference`, ticking `tick` every `period`, with its
+    /// `outputs`.
+    pub const fn new(
+        name: &'static str,
+        value_reference: u32,
+        description: &'static str,
+        period: PeriodParameter<M>,
+        outputs: &'static [ClockedOutput<M>],
+        tick: TickHook<M>,
+    ) -> Self {
+        InputClock {
+            name,
+            value_reference,
+            description,
+            period,
+            outputs,
+            tick,
+        }
+    }
 }
 
 /// Largest resolution of a clock interval, ticks per second (10^18, within u64).
