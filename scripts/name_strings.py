@@ -34,6 +34,8 @@ TABLES = {"Decl", "Declaration"}
 # arguments whose first string literal is the name they declare (the roles `.input()`,
 # `.output()`, `.state()` of a declaration take none).
 FAMILY = {"tunable", "flag", "input", "output", "state", "derivative"}
+# The clocked partitions' constructors (robofmu_fmi::core::clocks): `new` declares too.
+CLOCK_TABLES = {"InputClock", "PeriodParameter", "ClockedOutput"}
 IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
@@ -207,8 +209,10 @@ def calls(toks: list[Token]):
         if (
             j >= 2
             and _is(toks[j - 1], "punct", "::")
-            and toks[j - 2].value in TABLES
-            and (name in DECLARE or name == "$")
+            and (
+                (toks[j - 2].value in TABLES and (name in DECLARE or name == "$"))
+                or (toks[j - 2].value in CLOCK_TABLES and name == "new")
+            )
         ):
             yield "Decl::real", i
         elif (  # a Family constructor; `.input()` without arguments is a role

@@ -8,7 +8,15 @@
 //! the plant's. The error integral is the continuous state (Model Exchange); in
 //! Co-Simulation it is stepped exactly under a zero-order hold of the inputs (I + e h),
 //! with the PID's conditional-integration anti-windup decided at the start of the step.
+//!
+//! FMI 3.0 adds the sampled law as a clocked partition (module `clocked`): the input
+//! clock `sampleClock` ticks every `samplePeriod` seconds, and at each tick the law
+//! is evaluated on the inputs there with an error integral of its own, its output
+//! `uSampled` held until the next tick (`robofmu_dynamics::computed_torque::sampled`).
+//! The continuous output `u` and its state stay as they are: an importer that never
+//! sets the clock runs the continuous law, as before.
 
+mod clocked;
 mod initial_dependencies;
 mod variables;
 
@@ -17,6 +25,7 @@ use robofmu_dynamics::computed_torque::{
     AxisGains, ComputedTorque, GEOMETRY, Inputs, controller_message, pole_placement,
 };
 use robofmu_dynamics::pss3::dynamics::{DynamicsError, PlantParams};
+use robofmu_fmi::core::clocks::period_fraction;
 use robofmu_fmi::prelude::*;
 
 /// Euler-angle axes.
@@ -63,6 +72,12 @@ pub struct ComputedTorqueFmu {
     /// What the controller computes at the current inputs and integral
     /// (`calculate_values`).
     output: Option<Evaluation>,
+    /// The sampled law's error integral, the one its next tick starts from.
+    sampled_integral: Vector3<f64>,
+    /// The sampled law's output since its last tick (zero before the first).
+    held: Vector3<f64>,
+    /// The sample period, s (the FMI 3.0 parameter samplePeriod).
+    sample_period: f64,
 }
 
 impl ComputedTorqueFmu {
@@ -94,7 +109,17 @@ impl ComputedTorqueFmu {
                 &built
             }
         };
-        match law.output(&self.integral, &self.inputs) {
+        self.evaluate_at(law, &self.integral)
+    }
+
+    /// The law's output and integral rate at the current inputs and the error
+    /// integral `integral`, or why the law cannot be evaluated (see `evaluate`).
+    fn evaluate_at(
+        &self,
+        law: &ComputedTorque,
+        integral: &Vector3<f64>,
+    ) -> Result<Evaluation, String> {
+        match law.output(integral, &self.inputs) {
             Ok(output) => Ok(Evaluation {
                 u: output.u,
                 integral_rate: law.integral_rate(&output),
@@ -141,6 +166,9 @@ impl Default for ComputedTorqueFmu {
             integral: Vector3::zeros(),
             law: None,
             output: None,
+            sampled_integral: Vector3::zeros(),
+            held: Vector3::zeros(),
+            sample_period: 1e-3,
         }
     }
 }
@@ -149,6 +177,7 @@ impl Model for ComputedTorqueFmu {
     const INFO: &'static ModelInfo = &INFO;
 
     const VARIABLES: &'static [Declaration<Self>] = &variables::VARIABLES;
+    const CLOCKS: &'static [InputClock<Self>] = clocked::CLOCKS;
     fn set_time(&mut self, _time: f64) {
         // The law is time invariant.
     }
@@ -195,6 +224,37 @@ impl Model for ComputedTorqueFmu {
     fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
         let evaluation = self.evaluate()?;
         dx.copy_from_slice(evaluation.integral_rate.as_slice());
+        Ok(())
+    }
+
+    /// The sampled law's integral, held output and period (not variables of FMI 2.0,
+    /// which has no clocks), 7 doubles.
+    fn write_extra_state(&self, out: &mut Vec<u8>) {
+        let values = self.sampled_integral.iter().chain(self.held.iter());
+        for x in values.chain([&self.sample_period]) {
+            out.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+
+    fn read_extra_state(&mut self, bytes: &[u8]) -> Result<(), String> {
+        if bytes.len() != 56 {
+            return Err(format!(
+                "the sampled law's state is {} bytes, 56 (7 doubles) expected",
+                bytes.len()
+            ));
+        }
+        let values: Vec<f64> = bytes
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+            .collect();
+        // The period first, checked as its setter checks it (the message names it).
+        period_fraction(values[6], clocked::CLOCKS[0].period.name)?;
+        if let Some(bad) = values[..6].iter().find(|x| !x.is_finite()) {
+            return Err(format!("the sampled law's integral or output is {bad}"));
+        }
+        self.sampled_integral = Vector3::from_column_slice(&values[..3]);
+        self.held = Vector3::from_column_slice(&values[3..6]);
+        self.sample_period = values[6];
         Ok(())
     }
 }

@@ -8,7 +8,7 @@
 use crate::common::{self, Attributes, ModelDescription, Parts, Standard};
 use crate::variable::{TypeAttributes, VariableHead};
 use robofmu_fmi::core::variables::{Causality, Initial};
-use robofmu_fmi::description::{Description, Scalar, Value, Variable3Description};
+use robofmu_fmi::description::{ClockPart, Description, Scalar, Value, Variable3Description};
 use robofmu_fmi::fmi3::table::Source;
 use serde::Serialize;
 
@@ -24,6 +24,7 @@ enum TypedVariable {
     Float64(ModelVariable),
     Int32(ModelVariable),
     Boolean(ModelVariable),
+    Clock(ModelVariable),
 }
 
 /// The attributes of a variable; those that do not apply to its type stay None.
@@ -38,6 +39,16 @@ struct ModelVariable {
     intermediate_update: Option<bool>,
     #[serde(rename = "@initial", skip_serializing_if = "Option::is_none")]
     initial: Option<&'static str>,
+    /// The value reference of the clock a clocked variable belongs to.
+    #[serde(rename = "@clocks", skip_serializing_if = "Option::is_none")]
+    clocks: Option<u32>,
+    #[serde(
+        rename = "@intervalVariability",
+        skip_serializing_if = "Option::is_none"
+    )]
+    interval_variability: Option<&'static str>,
+    #[serde(rename = "@supportsFraction", skip_serializing_if = "Option::is_none")]
+    supports_fraction: Option<bool>,
     #[serde(flatten)]
     attributes: TypeAttributes,
     #[serde(rename = "Dimension", skip_serializing_if = "Option::is_none")]
@@ -105,6 +116,9 @@ fn model_variable(d: &Description, v3: &Variable3Description) -> Result<TypedVar
         .map(|e| crate::variable::start(&e.value))
         .collect();
     let first = elements.first().map(|e| e.value);
+    if let Some(part) = v3.clock_part {
+        return Ok(clock_variable(v3, part));
+    }
     let attributes = TypeAttributes {
         start: starts.filter(|_| first.is_some()).map(joined),
         derivative: v.derivative_of,
@@ -119,6 +133,9 @@ fn model_variable(d: &Description, v3: &Variable3Description) -> Result<TypedVar
         ),
         intermediate_update: v3.intermediate_update.then_some(true),
         initial: v.initial.map(Initial::as_str),
+        clocks: None,
+        interval_variability: None,
+        supports_fraction: None,
         attributes,
         dimension: v.dimension.map(|start| Dimension { start }),
     };
@@ -127,6 +144,44 @@ fn model_variable(d: &Description, v3: &Variable3Description) -> Result<TypedVar
         Some(Value::Integer { .. }) => TypedVariable::Int32(out),
         Some(Value::Boolean { .. }) => TypedVariable::Boolean(out),
     })
+}
+
+/// A variable of a clocked partition: the clock (periodic, fixed interval from its
+/// parameter, which the importer may read as a fraction), its period parameter or one
+/// of its outputs (`clocks` naming the clock).
+fn clock_variable(v3: &Variable3Description, part: ClockPart) -> TypedVariable {
+    let v = &v3.variable;
+    let mut out = ModelVariable {
+        head: VariableHead::new(
+            v.name.to_string(),
+            v.value_reference,
+            v3.description.clone(),
+            (v.causality, v.variability),
+        ),
+        intermediate_update: None,
+        initial: v.initial.map(Initial::as_str),
+        clocks: None,
+        interval_variability: None,
+        supports_fraction: None,
+        attributes: TypeAttributes::default(),
+        dimension: v.dimension.map(|start| Dimension { start }),
+    };
+    match part {
+        ClockPart::Clock => {
+            out.interval_variability = Some("fixed");
+            out.supports_fraction = Some(true);
+            TypedVariable::Clock(out)
+        }
+        ClockPart::Period { start } => {
+            out.attributes.start = Some(common::number(start));
+            TypedVariable::Float64(out)
+        }
+        ClockPart::Output { clock, unit } => {
+            out.clocks = Some(clock);
+            out.attributes.unit = unit;
+            TypedVariable::Float64(out)
+        }
+    }
 }
 
 fn dependencies(v: &Variable3Description, initial: bool) -> Dependencies {
@@ -145,6 +200,10 @@ fn dependencies(v: &Variable3Description, initial: bool) -> Dependencies {
 /// derivatives computed at initialization, and calculated parameters.
 fn is_initial_unknown(v: &Variable3Description) -> bool {
     let v = &v.variable;
+    if matches!(v.source, Source::Clocked { .. }) {
+        // Clocked variables are computed at ticks, not at initialization.
+        return false;
+    }
     let calculated = matches!(v.initial, Some(Initial::Calculated | Initial::Approx));
     (calculated && (v.causality == Causality::Output || v.derivative_of.is_some()))
         || v.causality == Causality::CalculatedParameter

@@ -190,6 +190,39 @@ pub struct Variable3Description {
     pub dependencies: Option<Vec<u32>>,
     /// The same at initialization.
     pub initial_dependencies: Option<Vec<u32>>,
+    /// What a variable of a clocked partition (FMI 3.0 only) adds; None for the others.
+    pub clock_part: Option<ClockPart>,
+}
+
+/// The attributes of a clocked partition's variables (`core::clocks`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ClockPart {
+    /// A periodic input clock, intervalVariability="fixed" without intervalDecimal
+    /// (the interval from its period parameter, as a decimal or a fraction).
+    Clock,
+    /// The clock's period parameter, s.
+    Period { start: f64 },
+    /// An output of the clock with value reference `clock`.
+    Output {
+        clock: u32,
+        unit: Option<&'static str>,
+    },
+}
+
+/// The clocked-partition attributes of `v` for model M.
+fn clock_part<M: Model>(v: &Variable3) -> Option<ClockPart> {
+    use crate::fmi3::table::Source;
+    match v.source {
+        Source::Clock { .. } => Some(ClockPart::Clock),
+        Source::ClockPeriod { clock } => Some(ClockPart::Period {
+            start: M::CLOCKS[clock].period.start,
+        }),
+        Source::Clocked { clock, output, .. } => Some(ClockPart::Output {
+            clock: M::CLOCKS[clock].value_reference,
+            unit: M::CLOCKS[clock].outputs[output].unit,
+        }),
+        _ => None,
+    }
 }
 
 /// The description of model M (what the exported symbol lends).
@@ -274,6 +307,7 @@ fn variable3<M: Model>(
         intermediate_update: v.intermediate_update::<M>(),
         dependencies: dependencies(table, v, false)?,
         initial_dependencies: dependencies(table, v, true)?,
+        clock_part: clock_part::<M>(v),
     })
 }
 

@@ -128,6 +128,7 @@ pub mod prelude {
     //! [`InputDerivative`] and [`OutputDerivative`] (the hooks' types, for a model's own
     //! declaring functions).
 
+    pub use crate::core::clocks::{ClockedOutput, InputClock, PeriodParameter, Tick};
     pub use crate::core::declare::{InputDerivative, OutputDerivative, Place};
     pub use crate::core::tables::{concat, every, same};
     pub use crate::core::{

@@ -1,9 +1,9 @@
 //! What every host of robofmu's tests shares: the one loader, [`Library`], and the
 //! FMI function tables of a loaded binary, [`fmi2::Binary`] (FMI 2.0) and
 //! [`fmi3::Binary3`] (FMI 3.0), each function looked up by its standard name with its
-//! C signature. The hostile importer (`crates/hostile`) and the platform-test host
-//! (`crates/platform-host`, cross-built for Windows and aarch64 Linux) call FMUs
-//! through the tables; the packager (`crates/build/packager`, which reads each FMU crate's
+//! C signature. The hostile importer (`crates/test/hostile`) and this crate's binary,
+//! the platform-test host (`src/bin`, cross-built for Windows and aarch64 Linux), call
+//! FMUs through the tables; the packager (`crates/build/packager`, which reads each FMU crate's
 //! description from its cdylib) uses the loader alone.
 //!
 //! Linux and macOS: `dlopen(path, RTLD_NOW | RTLD_LOCAL)`, `dlsym`, `dlclose`, as a C

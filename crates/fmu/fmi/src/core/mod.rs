@@ -15,6 +15,7 @@
 
 pub mod attributes;
 pub mod callback;
+pub mod clocks;
 pub mod declare;
 pub mod directional;
 pub mod entry;

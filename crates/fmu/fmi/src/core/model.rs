@@ -2,6 +2,7 @@
 //! Rust with core types only; a front-end does all pointer handling, argument checking, state-machine
 //! enforcement, logging and unwind catching.
 
+use super::clocks::InputClock;
 use super::declare::Declaration;
 use super::hooks::Element;
 pub use super::hooks::OutputDerivativeError;
@@ -239,6 +240,11 @@ pub trait Model: Clone + Default + Send + Sized + 'static {
     fn next_time_event(&self, _time: f64) -> Option<f64> {
         None
     }
+
+    /// FMI 3.0 clocked partitions: the model's input clocks, each with its period
+    /// parameter, outputs and tick hook ([`clocks`](super::clocks)); none by default.
+    /// FMI 2.0 serves none of it.
+    const CLOCKS: &'static [InputClock<Self>] = &[];
 
     /// Directional derivatives: provided (providesDirectionalDerivative) exactly when
     /// given.

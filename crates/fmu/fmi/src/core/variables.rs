@@ -72,6 +72,8 @@ pub enum VariableType {
     Real,
     Integer,
     Boolean,
+    /// An FMI 3.0 clock (no FMI 2.0 variable has this type).
+    Clock,
 }
 
 impl VariableType {
@@ -80,6 +82,7 @@ impl VariableType {
             VariableType::Real => "Real",
             VariableType::Integer => "Integer",
             VariableType::Boolean => "Boolean",
+            VariableType::Clock => "Clock",
         }
     }
 }

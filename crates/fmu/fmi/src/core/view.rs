@@ -27,6 +27,13 @@ pub enum Source {
     /// The model's event indicators (`Model::event_indicators`) from index `first` on
     /// (0 for the array of all; one index per scalar in the scalar-only view).
     EventIndicators { first: usize },
+    /// The input clock `Model::CLOCKS[clock]` (FMI 3.0 only, as the next two).
+    Clock { clock: usize },
+    /// The period parameter of clock `clock`, held by the instance's clocks.
+    ClockPeriod { clock: usize },
+    /// Output `output` of clock `clock` (array view only: the scalar-only view has no
+    /// clocks).
+    Clocked { clock: usize, output: usize },
 }
 
 /// One variable of the FMI 3.0 description: a scalar or a one-dimensional array.
@@ -158,12 +165,13 @@ impl Table3 {
         self.variables.iter().filter(|v| v.derivative_of.is_some())
     }
 
-    /// The knowns: inputs and continuous states, by FMI 3.0 value reference.
+    /// The knowns: inputs (not input clocks: they activate, they carry no value) and
+    /// continuous states, by FMI 3.0 value reference.
     pub fn knowns(&self) -> Vec<u32> {
         let mut knowns: Vec<u32> = self
             .variables
             .iter()
-            .filter(|v| v.causality == Causality::Input)
+            .filter(|v| v.causality == Causality::Input && v.variable_type != VariableType::Clock)
             .map(|v| v.value_reference)
             .chain(self.derivatives().filter_map(|d| d.derivative_of))
             .collect();

@@ -7,7 +7,9 @@ use super::table::{
 };
 use crate::core::declare::{Declaration, Value, value_references};
 use crate::core::model::Model;
-use crate::core::variables::{Variable, VariableType, derivative_variables};
+use crate::core::variables::{
+    Causality, Initial, Variability, Variable, VariableType, derivative_variables,
+};
 use std::borrow::Cow;
 
 /// The FMI 3.0 view of model M, whose instance holds the flattened `table`.
@@ -32,8 +34,61 @@ pub fn view<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
         let last = table.iter().map(|v| v.value_reference).max().unwrap_or(0);
         variables.push(event_indicator_variable(last + 1, n_indicators));
     }
+    variables.extend(clock_variables::<M>());
     check_state_order(table, &variables)?;
+    let mut references: Vec<u32> = variables.iter().map(|v| v.value_reference).collect();
+    references.sort_unstable();
+    if let Some(w) = references.windows(2).find(|w| w[0] == w[1]) {
+        return Err(format!(
+            "value reference {} is used twice (a clock's variable and another)",
+            w[0]
+        ));
+    }
     Ok(Table3::new(variables))
+}
+
+/// The variables of the model's clocked partitions (FMI 3.0 only): per input clock,
+/// the clock, its period parameter and its outputs.
+fn clock_variables<M: Model>() -> impl Iterator<Item = Variable3> {
+    M::CLOCKS.iter().enumerate().flat_map(|(k, c)| {
+        let clock = Variable3 {
+            value_reference: c.value_reference,
+            name: Cow::Borrowed(c.name),
+            variable_type: VariableType::Clock,
+            causality: Causality::Input,
+            variability: Variability::Discrete,
+            initial: None,
+            dimension: None,
+            source: Source::Clock { clock: k },
+            derivative_of: None,
+        };
+        let period = Variable3 {
+            value_reference: c.period.value_reference,
+            name: Cow::Borrowed(c.period.name),
+            variable_type: VariableType::Real,
+            causality: Causality::Parameter,
+            variability: Variability::Fixed,
+            initial: Some(Initial::Exact),
+            dimension: None,
+            source: Source::ClockPeriod { clock: k },
+            derivative_of: None,
+        };
+        let outputs = c.outputs.iter().enumerate().map(move |(i, o)| Variable3 {
+            value_reference: o.value_reference,
+            name: Cow::Borrowed(o.name),
+            variable_type: VariableType::Real,
+            causality: Causality::Output,
+            variability: Variability::Discrete,
+            initial: Some(Initial::Calculated),
+            dimension: o.length,
+            source: Source::Clocked {
+                clock: k,
+                output: i,
+            },
+            derivative_of: None,
+        });
+        [clock, period].into_iter().chain(outputs)
+    })
 }
 
 /// The FMI 3.0 state vector (the derivative arrays' elements in description order)

@@ -1,5 +1,5 @@
-//! `export_fmi3!`: defines the C symbols of FMI 3.0 (Model Exchange, Co-Simulation and
-//! the refusing stubs of Scheduled Execution and of the types and capabilities no
+//! `export_fmi3!`: defines the C symbols of FMI 3.0 (Model Exchange, Co-Simulation,
+//! the clock functions and the refusing stubs of Scheduled Execution and of the types and capabilities no
 //! model has) in an FMU crate, each forwarding to the generic function of
 //! `robofmu_fmi::fmi3::api` for the given model type. The fmi3* names never clash with
 //! the fmi2* ones of `export_fmi2!`, so one cdylib exports both.
@@ -189,16 +189,70 @@ macro_rules! export_fmi3 {
                 }
             }
 
-            $crate::__fmi3_lacking!(M, fmi3GetClock, "clocks", vr: *const Fmi3ValueReference, nvr: usize, values: *mut Fmi3Clock);
-            $crate::__fmi3_lacking!(M, fmi3SetClock, "clocks", vr: *const Fmi3ValueReference, nvr: usize, values: *const Fmi3Clock);
-            $crate::__fmi3_lacking!(M, fmi3GetIntervalDecimal, "clocks", vr: *const Fmi3ValueReference, nvr: usize, intervals: *mut Fmi3Float64, qualifiers: *mut Fmi3IntervalQualifier);
-            $crate::__fmi3_lacking!(M, fmi3GetIntervalFraction, "clocks", vr: *const Fmi3ValueReference, nvr: usize, counters: *mut Fmi3UInt64, resolutions: *mut Fmi3UInt64, qualifiers: *mut Fmi3IntervalQualifier);
-            $crate::__fmi3_lacking!(M, fmi3GetShiftDecimal, "clocks", vr: *const Fmi3ValueReference, nvr: usize, shifts: *mut Fmi3Float64);
-            $crate::__fmi3_lacking!(M, fmi3GetShiftFraction, "clocks", vr: *const Fmi3ValueReference, nvr: usize, counters: *mut Fmi3UInt64, resolutions: *mut Fmi3UInt64);
-            $crate::__fmi3_lacking!(M, fmi3SetIntervalDecimal, "clocks", vr: *const Fmi3ValueReference, nvr: usize, intervals: *const Fmi3Float64);
-            $crate::__fmi3_lacking!(M, fmi3SetIntervalFraction, "clocks", vr: *const Fmi3ValueReference, nvr: usize, counters: *const Fmi3UInt64, resolutions: *const Fmi3UInt64);
-            $crate::__fmi3_lacking!(M, fmi3SetShiftDecimal, "clocks", vr: *const Fmi3ValueReference, nvr: usize, shifts: *const Fmi3Float64);
-            $crate::__fmi3_lacking!(M, fmi3SetShiftFraction, "clocks", vr: *const Fmi3ValueReference, nvr: usize, counters: *const Fmi3UInt64, resolutions: *const Fmi3UInt64);
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn fmi3GetClock(
+                c: Fmi3Instance,
+                vr: *const Fmi3ValueReference,
+                nvr: usize,
+                values: *mut Fmi3Clock,
+            ) -> Fmi3Status {
+                unsafe { api::get_clock::<M>(c, vr, nvr, values) }
+            }
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn fmi3SetClock(
+                c: Fmi3Instance,
+                vr: *const Fmi3ValueReference,
+                nvr: usize,
+                values: *const Fmi3Clock,
+            ) -> Fmi3Status {
+                unsafe { api::set_clock::<M>(c, vr, nvr, values) }
+            }
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn fmi3GetIntervalDecimal(
+                c: Fmi3Instance,
+                vr: *const Fmi3ValueReference,
+                nvr: usize,
+                intervals: *mut Fmi3Float64,
+                qualifiers: *mut Fmi3IntervalQualifier,
+            ) -> Fmi3Status {
+                unsafe { api::get_interval_decimal::<M>(c, vr, nvr, intervals, qualifiers) }
+            }
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn fmi3GetIntervalFraction(
+                c: Fmi3Instance,
+                vr: *const Fmi3ValueReference,
+                nvr: usize,
+                counters: *mut Fmi3UInt64,
+                resolutions: *mut Fmi3UInt64,
+                qualifiers: *mut Fmi3IntervalQualifier,
+            ) -> Fmi3Status {
+                unsafe {
+                    api::get_interval_fraction::<M>(c, vr, nvr, counters, resolutions, qualifiers)
+                }
+            }
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn fmi3GetShiftDecimal(
+                c: Fmi3Instance,
+                vr: *const Fmi3ValueReference,
+                nvr: usize,
+                shifts: *mut Fmi3Float64,
+            ) -> Fmi3Status {
+                unsafe { api::get_shift_decimal::<M>(c, vr, nvr, shifts) }
+            }
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn fmi3GetShiftFraction(
+                c: Fmi3Instance,
+                vr: *const Fmi3ValueReference,
+                nvr: usize,
+                counters: *mut Fmi3UInt64,
+                resolutions: *mut Fmi3UInt64,
+            ) -> Fmi3Status {
+                unsafe { api::get_shift_fraction::<M>(c, vr, nvr, counters, resolutions) }
+            }
+            $crate::__fmi3_set_clock_timing!(M, fmi3SetIntervalDecimal, "interval");
+            $crate::__fmi3_set_clock_timing!(M, fmi3SetShiftDecimal, "shift");
+            $crate::__fmi3_set_clock_timing!(M, fmi3SetIntervalFraction, "interval", fraction);
+            $crate::__fmi3_set_clock_timing!(M, fmi3SetShiftFraction, "shift", fraction);
             $crate::__fmi3_lacking!(M, fmi3EnterConfigurationMode, "structural parameters");
             $crate::__fmi3_lacking!(M, fmi3ExitConfigurationMode, "structural parameters");
             $crate::__fmi3_lacking!(M, fmi3EvaluateDiscreteStates, "fmi3EvaluateDiscreteStates (providesEvaluateDiscreteStates=\"false\")");
@@ -529,6 +583,63 @@ macro_rules! __fmi3_lacking {
         ) -> $crate::fmi3::types::Fmi3Status {
             $(let _ = $arg;)*
             unsafe { $crate::fmi3::api::unsupported::<$model>(c, stringify!($name), $what) }
+        }
+    };
+}
+
+/// fmi3SetIntervalDecimal / fmi3SetShiftDecimal and the Fraction forms (used by
+/// `export_fmi3!`): arguments checked, then refused for the fixed clocks of this layer
+/// (`api::set_interval_or_shift`).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __fmi3_set_clock_timing {
+    ($model:ty, $name:ident, $what:literal) => {
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $name(
+            c: $crate::fmi3::types::Fmi3Instance,
+            vr: *const $crate::fmi3::types::Fmi3ValueReference,
+            nvr: usize,
+            values: *const $crate::fmi3::types::Fmi3Float64,
+        ) -> $crate::fmi3::types::Fmi3Status {
+            unsafe {
+                $crate::fmi3::api::set_interval_or_shift::<$model>(
+                    c,
+                    stringify!($name),
+                    $what,
+                    vr,
+                    nvr,
+                    |n| {
+                        let v = $crate::ffi::input_slice(values, n, "values[]")?;
+                        Ok($crate::fmi3::api::Setting::Decimal(v))
+                    },
+                )
+            }
+        }
+    };
+    ($model:ty, $name:ident, $what:literal, fraction) => {
+        #[unsafe(no_mangle)]
+        pub unsafe extern "C" fn $name(
+            c: $crate::fmi3::types::Fmi3Instance,
+            vr: *const $crate::fmi3::types::Fmi3ValueReference,
+            nvr: usize,
+            counters: *const $crate::fmi3::types::Fmi3UInt64,
+            resolutions: *const $crate::fmi3::types::Fmi3UInt64,
+        ) -> $crate::fmi3::types::Fmi3Status {
+            unsafe {
+                $crate::fmi3::api::set_interval_or_shift::<$model>(
+                    c,
+                    stringify!($name),
+                    $what,
+                    vr,
+                    nvr,
+                    |n| {
+                        let counters = $crate::ffi::input_slice(counters, n, "counters[]")?;
+                        let resolutions =
+                            $crate::ffi::input_slice(resolutions, n, "resolutions[]")?;
+                        Ok($crate::fmi3::api::Setting::Fraction(counters, resolutions))
+                    },
+                )
+            }
         }
     };
 }

@@ -2,6 +2,7 @@
 //! ([`FmuInstance`](crate::core::frontend::FmuInstance)): the `Extra` of the FMI 3.0
 //! front-end.
 
+use super::clocks::Clocks;
 use super::intermediate::IntermediateUpdate;
 use super::table::Table3;
 use std::sync::Arc;
@@ -14,4 +15,6 @@ pub struct Fmi3Extra {
     /// The importer's intermediateUpdate callback (Co-Simulation; None: steps are not
     /// split).
     pub intermediate_update: Option<IntermediateUpdate>,
+    /// The model's input clocks (periods, activations).
+    pub clocks: Clocks,
 }

@@ -4,6 +4,7 @@
 //! Values are read and written per FMI 3.0 variable (a scalar or an array) through the
 //! table's elements.
 
+use super::clocks::Clocks;
 use super::declared::view;
 use super::extra::Fmi3Extra;
 use super::intermediate::IntermediateUpdate;
@@ -44,8 +45,19 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         let extra = Fmi3Extra {
             table,
             intermediate_update,
+            clocks: Clocks::new::<M>(),
         };
-        Ok(FmuInstance::with(interface, log, extra, core))
+        let mut inst = FmuInstance::with(interface, log, extra, core);
+        inst.set_clock_periods_to_start();
+        Ok(inst)
+    }
+
+    /// The period parameters of the model's clocks at their start values (at
+    /// instantiation and reset; the model's `Default` need not know them).
+    pub fn set_clock_periods_to_start(&mut self) {
+        for c in M::CLOCKS {
+            (c.period.set)(self.core.model_mut(), c.period.start);
+        }
     }
 
     /// Makes the computed values current for reading `variables`; Ok(Some(reason))
@@ -113,6 +125,17 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 element,
                 ..
             } => self.core.get_reals(*declaration, *element, out)?,
+            Source::ClockPeriod { clock } => {
+                out[0] = (M::CLOCKS[*clock].period.get)(self.core.model());
+            }
+            Source::Clocked { clock, output } => {
+                let get = M::CLOCKS[*clock].outputs[*output].get;
+                let model = self.core.model();
+                for (i, o) in out.iter_mut().enumerate() {
+                    *o = get(model, i);
+                }
+            }
+            Source::Clock { .. } => return Err(format!("\"{}\" is a Clock", v.name)),
         }
         Ok(())
     }
@@ -166,6 +189,9 @@ impl<M: Model> FmuInstance<Fmi3, M> {
             element,
         } = v.source
         else {
+            if let Source::ClockPeriod { clock } = v.source {
+                return self.set_period(v, clock, values);
+            }
             return self.check_settable(v).map(|()| None);
         };
         if let Err(refusal) = self.check_settable(v) {
@@ -177,6 +203,27 @@ impl<M: Model> FmuInstance<Fmi3, M> {
             return entry::refuse_unless_unchanged(refusal, &v.name, self.mode, unchanged);
         }
         (self.core).set_declared(declaration, element, (first, stride), values)?;
+        Ok(None)
+    }
+
+    /// Sets the period parameter `v` of clock `clock` (a fixed parameter: before the
+    /// end of initialization; afterwards only to the value it holds, with a warning).
+    fn set_period(
+        &mut self,
+        v: &Variable3,
+        clock: usize,
+        mut values: impl Iterator<Item = Value>,
+    ) -> Result<Kept, String> {
+        let Some(Value::Real(period)) = values.next() else {
+            return Err(format!("\"{}\" takes one Float64", v.name));
+        };
+        if let Err(refusal) = self.check_settable(v) {
+            let held = (M::CLOCKS[clock].period.get)(self.core.model());
+            let unchanged = held.to_bits() == period.to_bits();
+            return entry::refuse_unless_unchanged(refusal, &v.name, self.mode, unchanged);
+        }
+        crate::core::clocks::period_fraction(period, &v.name)?;
+        (M::CLOCKS[clock].period.set)(self.core.model_mut(), period);
         Ok(None)
     }
 

@@ -7,6 +7,7 @@
 //! crate (`robofmu-fmi-build`) writes modelDescription.xml (FMI 3.0) from the same view.
 
 pub mod api;
+pub mod clocks;
 pub mod declared;
 mod export;
 pub mod extra;

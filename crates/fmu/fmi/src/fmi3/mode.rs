@@ -52,8 +52,8 @@ pub enum Call {
     VariableDependencies,
     FmuState,
     Derivative,
-    /// A function of a capability the FMU lacks (structural parameters, clocks,
-    /// Scheduled Execution, other variable types): answered with fmi3Error saying so.
+    /// A function of a capability the FMU lacks (structural parameters, Scheduled
+    /// Execution, other variable types): answered with fmi3Error saying so.
     Unsupported,
     UpdateDiscreteStates,
     EnterContinuousTimeMode,
@@ -68,6 +68,11 @@ pub enum Call {
     DoStep,
     /// fmi3DoStep going on after the intermediateUpdate callback returned.
     ResumeStep,
+    /// fmi3SetClock: Event Mode only (section 2.2.9 of FMI 3.0).
+    SetClock,
+    /// fmi3GetClock, fmi3GetInterval*, fmi3GetShift* and fmi3SetInterval* /
+    /// fmi3SetShift*: Initialization and Event Mode.
+    ClockQuery,
 }
 
 use super::logging::{Callback, LAYER_CATEGORIES};
@@ -141,6 +146,8 @@ impl Call {
             Call::GetOutputDerivatives => only_cs(modes!(StepMode, StepDiscarded, Terminated)),
             Call::DoStep => only_cs(modes!(StepMode)),
             Call::ResumeStep => only_cs(modes!(IntermediateUpdateMode)),
+            Call::SetClock => modes!(EventMode),
+            Call::ClockQuery => modes!(InitializationMode, EventMode),
         }
     }
 
@@ -282,6 +289,20 @@ mod tests {
             assert!(!call.is_legal(m, CS_EVENTS), "{call:?}");
         }
         assert!(!Call::ResumeStep.is_legal(StepMode, CS));
+    }
+
+    #[test]
+    fn clocks_are_set_in_event_mode_only() {
+        // Expected values: FMI 3.0 section 2.2.9 (fmi3SetClock in Event Mode; the
+        // interval of a fixed clock read in Initialization Mode, and in Event Mode).
+        for interface in [ME, CS_EVENTS] {
+            assert!(Call::SetClock.is_legal(EventMode, interface));
+            assert!(!Call::SetClock.is_legal(InitializationMode, interface));
+            assert!(Call::ClockQuery.is_legal(InitializationMode, interface));
+        }
+        assert!(!Call::SetClock.is_legal(ContinuousTimeMode, ME));
+        assert!(!Call::SetClock.is_legal(StepMode, CS));
+        assert!(!Call::ClockQuery.is_legal(StepMode, CS_EVENTS));
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! The scalar-only FMI 3.0 view (dist/fmi3-scalar): every FMI 2.0 scalar of the table
 //! (`theta[1]`, ...) is an FMI 3.0 scalar with the same name and value reference, for
 //! importers that cannot use FMI 3.0 arrays; the event indicators (no FMI 2.0 variable)
-//! are the scalars `eventIndicators[k]` after the table's last value reference. The
+//! are the scalars `eventIndicators[k]` after the table's last value reference; the
+//! clocked partitions (`core::clocks`) are left out. The
 //! binary serves this view to an instance created with [`token`] instead of the
 //! model's GUID.
 
@@ -37,6 +38,14 @@ pub fn view<M>(table: &[Variable<M>], arrays: &Table3) -> Result<Table3, String>
                 source: Source::EventIndicators { first: k },
                 ..v.clone()
             }));
+            continue;
+        }
+        if matches!(
+            v.source,
+            Source::Clock { .. } | Source::ClockPeriod { .. } | Source::Clocked { .. }
+        ) {
+            // The clocked partitions are served by the array view only: the importers
+            // this view is for (ecos) refuse a description with clocks.
             continue;
         }
         let Source::Elements {

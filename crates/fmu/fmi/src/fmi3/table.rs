@@ -21,6 +21,7 @@ pub fn type_name(t: VariableType) -> &'static str {
         VariableType::Real => "Float64",
         VariableType::Integer => "Int32",
         VariableType::Boolean => "Boolean",
+        VariableType::Clock => "Clock",
     }
 }
 
@@ -106,11 +107,16 @@ fn fmi3_reference<M>(table: &[Variable<M>], name: &str) -> Option<u32> {
 /// The description of the FMI 3.0 variable `v` (for modelDescription.xml): of an
 /// array its declaration's, capitalized (its FMI 2.0 elements may carry a label,
 /// "Axis 2: position"); of a scalar the FMI 2.0 one.
-pub fn description<M>(table: &[Variable<M>], v: &Variable3) -> String {
+pub fn description<M: Model>(table: &[Variable<M>], v: &Variable3) -> String {
     match &v.source {
         Source::Time => "Simulation time".to_string(),
         Source::EventIndicators { .. } => {
             "Event indicators: an event occurs where one changes sign".to_string()
+        }
+        Source::Clock { clock } => M::CLOCKS[*clock].description.to_string(),
+        Source::ClockPeriod { clock } => M::CLOCKS[*clock].period.description.to_string(),
+        Source::Clocked { clock, output, .. } => {
+            M::CLOCKS[*clock].outputs[*output].description.to_string()
         }
         Source::Elements { first, .. } => {
             let Some(scalar) = find(table, *first) else {

@@ -54,8 +54,14 @@ pub enum Fmi3DependencyKind {
     Dependent = 5,
 }
 
-/// fmi3IntervalQualifier (clocks; this layer declares none).
+/// fmi3IntervalQualifier (clocks).
 pub type Fmi3IntervalQualifier = std::ffi::c_int;
+/// fmi3IntervalNotYetKnown.
+pub const FMI3_INTERVAL_NOT_YET_KNOWN: Fmi3IntervalQualifier = 0;
+/// fmi3IntervalUnchanged.
+pub const FMI3_INTERVAL_UNCHANGED: Fmi3IntervalQualifier = 1;
+/// fmi3IntervalChanged.
+pub const FMI3_INTERVAL_CHANGED: Fmi3IntervalQualifier = 2;
 
 /// fmi3LogMessageCallback: the message is passed as it is (no format expansion). The
 /// host's callbacks are `C-unwind`: they may unwind (core::callback says what the FMU

@@ -3,19 +3,20 @@
 //! output derivatives.
 
 use super::intermediate_step::SplitStep;
-use super::step::{StepResult, step};
+use super::step::{StepReport, StepResult, step};
 use super::{input_slice, output_slice, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::output_derivatives::{Request, output_derivatives};
 use crate::core::variables::{Causality, VariableType};
 use crate::fmi3::instance::Instance;
-use crate::fmi3::mode::{Call, Mode};
+use crate::fmi3::mode::{Call, Interface, Mode};
 use crate::fmi3::types::*;
 
 /// fmi3DoStep: one step of the model, or, when the importer passed an
 /// intermediateUpdate callback and the model has intermediate points, a step split at
-/// them (module `intermediate_step`).
+/// them (module `intermediate_step`). With event mode and input clocks, a step ends at
+/// the next tick (`ClockCut`; such a step is not split).
 pub unsafe fn do_step<M: Model>(
     c: Fmi3Instance,
     current_communication_point: Fmi3Float64,
@@ -28,6 +29,10 @@ pub unsafe fn do_step<M: Model>(
     let status = unsafe {
         with_instance::<M>(c, "fmi3DoStep", Call::DoStep, |inst| {
             out.check()?;
+            if let Some(cut) = ClockCut::of(inst, t, h)? {
+                let report = step(inst, t, cut.tick - t)?;
+                return Ok(out.write(&cut.finish(inst, report)));
+            }
             match SplitStep::new(inst, t, h)? {
                 None => Ok(out.write(&step(inst, t, h)?)),
                 Some(mut s) => {
@@ -45,9 +50,66 @@ pub unsafe fn do_step<M: Model>(
     }
 }
 
+/// A step of Co-Simulation with event mode that meets a tick of an input clock the
+/// importer drives (it has set the clock; an importer that never does runs the
+/// continuous law and steps across the ticks): it
+/// ends exactly at the tick (the time set to the tick's, not t + h rounded), with
+/// eventHandlingNeeded, so that the importer enters Event Mode, sets the clock and
+/// updates the discrete states there; a step that would go beyond the tick returns
+/// early at it when the importer allowed early return (the next step starts there),
+/// and is refused otherwise (nothing changes).
+struct ClockCut {
+    tick: f64,
+    early: bool,
+}
+
+impl ClockCut {
+    /// The cut of the step from `t` by `h`, if it meets a tick; Err for a step past a
+    /// tick without early return. None for arguments the core refuses (it says why).
+    fn of<M: Model>(inst: &Instance<M>, t: f64, h: f64) -> Result<Option<Self>, String> {
+        let Interface::CoSimulation {
+            event_mode_used: true,
+            early_return_allowed,
+        } = inst.interface
+        else {
+            return Ok(None);
+        };
+        if M::CLOCKS.is_empty() || !(t.is_finite() && h.is_finite() && h > 0.0) {
+            return Ok(None);
+        }
+        inst.core.check_step(t, h)?;
+        match inst.extra.clocks.step_end(inst.core.model(), t, t + h) {
+            None => Ok(None),
+            Some((tick, false)) => Ok(Some(ClockCut { tick, early: false })),
+            Some((tick, true)) if early_return_allowed => Ok(Some(ClockCut { tick, early: true })),
+            Some((tick, true)) => Err(format!(
+                "the step from t = {t} s by {h} s passes the clock tick at t = {tick} s: end \
+                 the step at the tick (the interval from fmi3GetIntervalFraction), or \
+                 instantiate with earlyReturnAllowed to have the step return there"
+            )),
+        }
+    }
+
+    /// The report of the step cut at the tick: the time exactly the tick's, and
+    /// eventHandlingNeeded (a discarded step, or one that returned early at a state
+    /// event before the tick, is reported as it is).
+    fn finish<M: Model>(&self, inst: &mut Instance<M>, mut report: StepReport) -> StepReport {
+        if report.status == Fmi3Status::Discard || report.early_return {
+            return report;
+        }
+        inst.core.set_time(self.tick);
+        inst.core.last_successful_time = self.tick;
+        report.event_handling_needed = true;
+        report.early_return = self.early;
+        report.last_successful_time = self.tick;
+        report
+    }
+}
+
 pub unsafe fn enter_step_mode<M: Model>(c: Fmi3Instance) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, "fmi3EnterStepMode", Call::EnterStepMode, |inst| {
+            super::clocks::check_none_pending(inst)?;
             entry::enter(inst, Mode::StepMode)
         })
     }

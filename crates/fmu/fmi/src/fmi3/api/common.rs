@@ -194,6 +194,8 @@ pub unsafe fn enter_initialization_mode<M: Model>(
                 let tolerance = (tolerance_defined != FMI3_FALSE).then_some(tolerance);
                 let stop = (stop_time_defined != FMI3_FALSE).then_some(stop_time);
                 entry::setup_experiment(&mut inst.core, tolerance, start_time, stop)?;
+                // Tick 0 of every clock at the start time.
+                inst.extra.clocks.start = inst.core.time;
                 entry::enter(inst, Mode::InitializationMode)
             },
         )
@@ -231,6 +233,8 @@ pub unsafe fn reset<M: Model>(c: Fmi3Instance) -> Fmi3Status {
     unsafe {
         with_instance::<M>(c, "fmi3Reset", Call::Reset, |inst| {
             inst.reset();
+            inst.extra.clocks = crate::fmi3::clocks::Clocks::new::<M>();
+            inst.set_clock_periods_to_start();
             Ok(Fmi3Status::Ok)
         })
     }

@@ -12,6 +12,7 @@
 //! is caught, logged and returns fmi3Fatal.
 #![allow(clippy::missing_safety_doc)]
 
+mod clocks;
 mod co_simulation;
 mod common;
 mod dependencies;
@@ -23,6 +24,7 @@ mod step;
 mod unsupported;
 mod values;
 
+pub use clocks::*;
 pub use co_simulation::*;
 pub use common::*;
 pub use dependencies::*;

@@ -36,6 +36,9 @@ pub unsafe fn update_discrete_states<M: Model>(
                 let values = output_ref(out.values_changed, "valuesOfContinuousStatesChanged")?;
                 let defined = output_ref(out.next_event_time_defined, "nextEventTimeDefined")?;
                 let next_time = output_ref(out.next_event_time, "nextEventTime")?;
+                if let Some(reason) = super::clocks::run_ticks(inst)? {
+                    return Ok(entry::discard(inst, "fmi3UpdateDiscreteStates", &reason));
+                }
                 let (update, next) = calls::update_discrete_states(inst);
                 *need = fmi3_bool(update.discrete_states_need_update);
                 *terminate = fmi3_bool(update.terminate_simulation);
@@ -55,7 +58,10 @@ pub unsafe fn enter_continuous_time_mode<M: Model>(c: Fmi3Instance) -> Fmi3Statu
             c,
             "fmi3EnterContinuousTimeMode",
             Call::EnterContinuousTimeMode,
-            |inst| entry::enter(inst, Mode::ContinuousTimeMode),
+            |inst| {
+                super::clocks::check_none_pending(inst)?;
+                entry::enter(inst, Mode::ContinuousTimeMode)
+            },
         )
     }
 }

@@ -1,6 +1,6 @@
 //! The functions of FMI 3.0 for what no model of this layer has: variables of the
-//! types Float32, (U)Int8/16/64, UInt32, String, Binary and Clock, structural
-//! parameters (Configuration Mode), clocks and Scheduled Execution. Each checks its
+//! types Float32, (U)Int8/16/64, UInt32, String and Binary, structural parameters
+//! (Configuration Mode) and Scheduled Execution (clocks: module `clocks`). Each checks its
 //! arguments and the state like the supported ones, then answers fmi3Error with a log
 //! line that says what is missing (an empty request is fmi3OK).
 

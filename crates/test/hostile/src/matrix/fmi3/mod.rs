@@ -9,6 +9,7 @@
 
 pub mod arrays;
 pub mod calls;
+pub mod clocks;
 pub mod cross_standard;
 pub mod instantiate;
 pub mod pointers;
@@ -145,7 +146,12 @@ impl Standard for Interface3 {
                 booleans: [2, 255],
             },
             setter_states: variability::setter_states,
-            own_classes: &[arrays::cases, variability::cases, cross_standard::cases],
+            own_classes: &[
+                arrays::cases,
+                variability::cases,
+                cross_standard::cases,
+                clocks::cases,
+            ],
             reasons: REASONS,
         }
     }
