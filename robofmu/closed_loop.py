@@ -233,6 +233,10 @@ def _check_roles(fmus: dict, base_dir: Path, loop: Loop) -> None:
         if not isinstance(f, str):
             raise ScenarioError(f"field 'fmus.{alias}' must be a file name (a string)")
         md = describe(base_dir / f, f"fmus.{alias}")
+        if md.fmiVersion != "2.0":
+            raise ScenarioError(f"field 'fmus.{alias}': {f} is an FMI {md.fmiVersion} FMU "
+                                "where the closed-loop form takes the FMI 2.0 file; name "
+                                f"{md.modelName} and add --fmi3 to run the FMI 3.0 builds")
         if roles[alias] not in variable_names(md):
             raise ScenarioError(f"field 'fmus.{alias}': {Path(f).name} ({md.modelName}) is "
                                 f"not a {alias} FMU (no variable {roles[alias]}); "
