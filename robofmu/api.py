@@ -293,14 +293,14 @@ def _si_value(alias: str, variable: str, value: Value, fmu_file: str | Path) -> 
     "value unit" string converted to the unit the FMU declares for the variable."""
     if not isinstance(value, str):
         return value
-    from .fmu_check import describe, unit_of
+    from .fmu_check import describe, missing, unit_of
     from .units import UNITS, _split, exponents
     where = f"parameters.{alias}.{variable}"
     path = _fmu_path(fmu_file) if isinstance(fmu_file, str) else fmu_file
     md = describe(path, f"fmus.{alias}")
     v = {x.name: x for x in md.modelVariables}.get(variable)
     if v is None:
-        raise ScenarioError(f"field '{where}': {alias} has no variable '{variable}'; see the "
+        raise ScenarioError(f"field '{where}': {missing(md, alias, variable)}; see the "
                             "FMU reference (docs/fmus.md) for the names")
     number, unit = _split(value.strip(), where)
     try:

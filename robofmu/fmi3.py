@@ -10,12 +10,15 @@ write of an array from them."""
 
 from __future__ import annotations
 
+import re
+import zipfile
+from ctypes import c_double, c_int, c_uint64
 from functools import partial
 from pathlib import Path
 from typing import Any
 
 from fmpy import read_model_description
-from fmpy.fmi3 import FMU3Slave
+from fmpy.fmi3 import FMU3Slave, fmi3ValueReference
 
 from .errors import FmuError
 from .fmi2 import LoggedCalls, status_categories, unpack
@@ -54,14 +57,16 @@ def _start(variable) -> list:
 
 
 class Fmu3Instance(LoggedCalls):
-    """A co-simulation instance of an FMI 3.0 FMU, addressed by FMI 2.0 scalar names."""
+    """A co-simulation instance of an FMI 3.0 FMU, addressed by FMI 2.0 scalar names;
+    `clocked`: with Event Mode and early return (the master ticks its input clock,
+    robofmu.clocked)."""
 
     _PREFIX = "fmi3"
     _DISCARD = _FMI3_DISCARD
     _FMU_STATE = "FMUState"
 
     def __init__(self, alias: str, path: Path, start_time: float, stop_time: float,
-                 extrapolate: bool = False):
+                 extrapolate: bool = False, clocked: bool = False):
         self.alias = alias
         self.messages: list[str] = []
         self._fmu, self._unzip, self._initialized = None, None, False
@@ -78,6 +83,7 @@ class Fmu3Instance(LoggedCalls):
         self._written = dict(self._starts)
         self._start_time, self._stop_time = start_time, stop_time
         self._unzip = unpack(path)
+        self._path = path
         # Input extrapolation through the intermediate update (robofmu.intermediate).
         self.intermediate = (IntermediateInputs(self, flagged_inputs(path))
                              if extrapolate and md.coSimulation.providesIntermediateUpdate
@@ -90,7 +96,9 @@ class Fmu3Instance(LoggedCalls):
                                   instanceName=alias)
             self._call("fmi3InstantiateCoSimulation",
                        lambda: self._fmu.instantiate(logMessage=self._log,
-                                                     intermediateUpdate=update))
+                                                     intermediateUpdate=update,
+                                                     eventModeUsed=clocked,
+                                                     earlyReturnAllowed=clocked))
             categories = status_categories(md)
             if categories:
                 self._call("fmi3SetDebugLogging",
@@ -105,6 +113,10 @@ class Fmu3Instance(LoggedCalls):
     def _locate(self, name: str):
         """(FMI 3.0 variable, element index or None) of an FMI 2.0 scalar name."""
         variable, index = self._scalars.get(name, (None, None))
+        if variable is not None and variable.type == "Clock":
+            raise FmuError(f"{self.alias}.{name} is an input clock, which the master ticks "
+                           f"itself (field 'sample_period.{self.alias}'); connect and record "
+                           "the variables it clocks")
         if variable is None or variable.type not in _CONVERT:
             raise FmuError(f"{self.alias} has no variable '{name}' of a supported type")
         return variable, index
@@ -166,6 +178,59 @@ class Fmu3Instance(LoggedCalls):
             self._call(f"fmi3Set{variable.type}({base})",
                        partial(setter, [variable.valueReference], array))
             self._written[base] = array
+
+    # -- the clocked partition (robofmu.clocked) ---------------------------------------
+
+    def interval(self, clock: str) -> tuple[int, int] | float:
+        """The interval of the periodic input clock `clock` (Initialization Mode):
+        (counter, resolution) where the clock supports fractions, else seconds."""
+        vr = (fmi3ValueReference * 1)(self.variables[clock].valueReference)
+        qualifier = (c_int * 1)()
+        if self._supports_fraction(clock):
+            counter, resolution = (c_uint64 * 1)(), (c_uint64 * 1)()
+            self._call(f"fmi3GetIntervalFraction({clock})", lambda: self._fmu.getIntervalFraction(
+                vr, counter, resolution, qualifier))
+            return counter[0], resolution[0]
+        seconds = (c_double * 1)()
+        self._call(f"fmi3GetIntervalDecimal({clock})", lambda: self._fmu.getIntervalDecimal(
+            vr, seconds, qualifier))
+        return seconds[0]
+
+    def _supports_fraction(self, clock: str) -> bool:
+        # FMPy 0.3 does not read the attribute: the model description's text says.
+        with zipfile.ZipFile(self._path) as z:
+            text = z.read("modelDescription.xml").decode("utf-8", "replace")
+        tag = re.search(r'<Clock\b[^>]*\bname="' + re.escape(clock) + r'"[^>]*>', text)
+        return tag is not None and re.search(r'\bsupportsFraction="(true|1)"', tag[0]) is not None
+
+    def tick(self, clock: str, time: float) -> None:
+        """In Event Mode: the clock set and the discrete states updated (the law run)."""
+        vr = self.variables[clock].valueReference
+        self._call(f"fmi3SetClock({clock}) at t = {time!r} s",
+                   lambda: self._fmu.setClock([vr], [True]))
+        flags = self._call("fmi3UpdateDiscreteStates", self._fmu.updateDiscreteStates)
+        if flags[0] or flags[1]:
+            raise FmuError(f"{self.alias}: fmi3UpdateDiscreteStates at t = {time!r} s asks "
+                           "for " + ("another update" if flags[0] else "the end of the run") +
+                           f", which the master does not serve: {self._last_message()}")
+
+    def enter_step_mode(self) -> None:
+        self._call("fmi3EnterStepMode", self._fmu.enterStepMode)
+
+    def enter_event_mode(self) -> None:
+        self._call("fmi3EnterEventMode", self._fmu.enterEventMode)
+
+    def step_to(self, time: float, step: float) -> tuple[bool, float]:
+        """fmi3DoStep: (event handling needed, the time it reached); FmuError when it
+        returns early or asks to terminate (the master's steps end at the ticks)."""
+        event, terminate, early, last = self._call(
+            f"fmi3DoStep at t = {time!r} s", lambda: self._fmu.doStep(time, step))
+        if terminate or early:
+            raise FmuError(f"{self.alias}: fmi3DoStep from t = {time!r} s over {step!r} s "
+                           + ("asks to terminate" if terminate else
+                              f"returned early at t = {last!r} s") +
+                           f": {self._last_message()}")
+        return bool(event), float(last)
 
     def enter_initialization(self) -> None:
         self._call("fmi3EnterInitializationMode",

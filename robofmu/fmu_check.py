@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from fmpy import read_model_description
+from fmpy.model_description import ModelDescription
 
 from .errors import ScenarioError
 
@@ -58,38 +59,74 @@ def _describe(path: str):
 FMI3_TYPES = {"Float64": "Real", "Int32": "Integer", "Boolean": "Boolean"}
 
 
-def scalar_view(md):
+class ScalarView(ModelDescription):
+    """An FMI 3.0 model description as its scalar view (scalar_view), and what the view
+    leaves out: `clocked` maps the scalar name of each clock and clocked variable to
+    (its scalar variable, the name of its clock)."""
+
+    clocked: dict[str, tuple[Any, str]]
+
+
+def _scalars(v) -> list:
+    """One variable per scalar of `v` (FMI 3.0 type names turned into FMI 2.0 ones)."""
+    starts = str(v.start).split() if v.start is not None else None
+    elements = [None] if not v.shape else list(range(int(v.shape[0])))
+    scalars = []
+    for k in elements:
+        scalar = copy.copy(v)
+        scalar.shape = ()
+        scalar.type = FMI3_TYPES.get(v.type, v.type)
+        if k is not None:  # as robofmu.fmi3.scalar_names: der(x[1]) of an array state x
+            state = v.derivative.name if v.derivative is not None else None
+            element = f"{state or v.name}[{k + 1}]"
+            scalar.name = f"der({element})" if state else element
+            if starts is not None:
+                scalar.start = starts[k] if len(starts) == len(elements) else starts[0]
+        scalars.append(scalar)
+    return scalars
+
+
+def scalar_view(md) -> ScalarView:
     """An FMI 3.0 model description as the scenario checks read FMI 2.0 ones: one
     variable per scalar (`x[1]`..`x[n]` of a one-dimensional array `x`, the names
     robofmu.fmi3 addresses), Float64, Int32 and Boolean as Real, Integer and Boolean
-    (other types keep their FMI 3.0 name, which no check accepts). ValueError for what
-    the master cannot run: clocks, arrays of more than one dimension or of a size set
-    by a structural parameter."""
-    clocks = [v.name for v in md.modelVariables if v.type == "Clock"]
-    if clocks:
-        raise ValueError(f"declares clocks ({', '.join(clocks)}), which robofmu's master does "
-                         "not tick")
-    scalars = []
+    (other types keep their FMI 3.0 name, which no check accepts). Clocks and the
+    variables they clock are left out (kept in the view's `clocked`: the master reads
+    them only where a scenario ticks the clock, robofmu.clocked). ValueError for what
+    the master cannot run: arrays of more than one dimension or of a size set by a
+    structural parameter."""
+    scalars: list = []
+    clocked: dict[str, tuple[Any, str]] = {}
     for v in md.modelVariables:
         if v.shape and (len(v.shape) != 1 or not isinstance(v.shape[0], int)):
             raise ValueError(f"declares {v.name} as an array of shape {v.shape}; only arrays "
                              "of one dimension of fixed size are supported")
-        starts = str(v.start).split() if v.start is not None else None
-        elements = [None] if not v.shape else list(range(int(v.shape[0])))
-        for k in elements:
-            scalar = copy.copy(v)
-            scalar.shape = ()
-            scalar.type = FMI3_TYPES.get(v.type, v.type)
-            if k is not None:  # as robofmu.fmi3.scalar_names: der(x[1]) of an array state x
-                state = v.derivative.name if v.derivative is not None else None
-                element = f"{state or v.name}[{k + 1}]"
-                scalar.name = f"der({element})" if state else element
-                if starts is not None:
-                    scalar.start = starts[k] if len(starts) == len(elements) else starts[0]
-            scalars.append(scalar)
-    view = copy.copy(md)
+        if v.type == "Clock" or v.clocks:
+            clock = v.name if v.type == "Clock" else v.clocks[0].name
+            clocked.update((s.name, (s, clock)) for s in _scalars(v))
+            continue
+        scalars += _scalars(v)
+    view = ScalarView()
+    for kind in type(md).__mro__:
+        for slot in getattr(kind, "__slots__", ()):
+            if slot != "__weakref__" and hasattr(md, slot):
+                setattr(view, slot, getattr(md, slot))
     view.modelVariables = scalars
+    view.clocked = clocked
     return view
+
+
+def missing(md, alias: str, name: str) -> str:
+    """Why `alias` has no variable `name` in the scalar view `md`: none of that name,
+    or a clock or a clocked variable (left out), with how to run it."""
+    clocked = getattr(md, "clocked", {}).get(name)
+    if clocked is None:
+        return f"{alias} has no variable '{name}'"
+    clock = clocked[1]
+    what = ("is an input clock, which the master ticks itself" if clock == name else
+            f"is clocked (by {clock}): it has a value only at that clock's ticks")
+    return (f"{alias}.{name} {what}; give {alias} a sample period (field "
+            f"'sample_period.{alias}', docs/co-simulation-master.md) to run it")
 
 
 def describe(path: Path, field: str):
@@ -168,7 +205,7 @@ def check_value(md, alias: str, name: str, value, field: str):
     type, integer in range, within min/max. Returns the value to set."""
     v = {x.name: x for x in md.modelVariables}.get(name)
     if v is None:
-        raise ScenarioError(f"field '{field}': {alias} has no variable '{name}'; see the "
+        raise ScenarioError(f"field '{field}': {missing(md, alias, name)}; see the "
                             "FMU reference (docs/fmus.md) for the names")
     if v.causality not in ("parameter", "input") or v.variability == "constant":
         raise ScenarioError(f"field '{field}': {alias}.{name} is {v.causality} "

@@ -265,6 +265,9 @@ class Master:
         """The run, its signals as arrays: one contiguous array per signal, or (not
         `contiguous`: a sweep's run, which reads them once) the columns of the rows."""
         s = self.scenario
+        if s.sample_period:  # clocked FMUs: the Python loop of robofmu.clocked
+            from .clocked import ClockedRun
+            return ClockedRun(self).run(contiguous)
         self.fmus = {}
         switches = {switch.step: switch for switch in s.schedule}
         try:

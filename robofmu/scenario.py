@@ -26,6 +26,10 @@ Schema (TOML shown; JSON has the same structure)::
 
     record = ["plant.theta[1]"]        # extra signals to record (optional)
 
+    [sample_period]                    # alias -> s: the master ticks that FMU's periodic
+    ct = 0.001                         # input clock (FMI 3.0) every so many seconds, a
+                                       # whole number of steps (robofmu.clocked)
+
 A malformed scenario raises ScenarioError naming the offending field.
 
 A closed-loop scenario can also be written in a person's units (waypoints in degrees,
@@ -106,6 +110,9 @@ class Scenario:
     # The closed loop's controller ("pid" or "computed-torque", robofmu.controllers): read
     # by the Rust reference from the expanded form.
     controller: str = "pid"
+    # alias -> sample period (s) of an FMU whose input clock the master ticks
+    # (robofmu.clocked).
+    sample_period: dict[str, float] = field(default_factory=dict)
 
     @property
     def steps(self) -> int:
@@ -148,7 +155,7 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
              "parameters", "connections", "record", "max_step_halvings", "coupling", "limits",
-             "plan_switches", "input_extrapolation", "controller"}
+             "plan_switches", "input_extrapolation", "controller", "sample_period"}
     unknown = sorted(set(data) - known, key=str)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
@@ -232,13 +239,43 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
     if extrapolation not in EXTRAPOLATIONS:
         raise ScenarioError(f"field 'input_extrapolation' must be one of {EXTRAPOLATIONS} "
                             f"or the order 0, 1 or 2, got {extrapolation!r}")
-    return Scenario(controller=kind_of(data), name=name, fmus=fmus, order=list(order),
+    return Scenario(controller=kind_of(data), name=name,
+                    sample_period=_sample_periods(data.get("sample_period", {}), fmus, step,
+                                                  coupling), fmus=fmus, order=list(order),
                     start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
                     record=record, max_step_halvings=halvings, coupling=coupling,
                     input_extrapolation=extrapolation, description=data.get("description"),
                     limits=parse_limits(data.get("limits", {})),
                     schedule=_plan_switches(data.get("plan_switches", []), fmus, round(steps)))
+
+
+def _sample_periods(raw, fmus, step: float, coupling: str) -> dict[str, float]:
+    """``[sample_period]``: alias -> the period (s) at which the master ticks the FMU's
+    input clock, a whole number of communication steps."""
+    if not isinstance(raw, dict):
+        raise ScenarioError("field 'sample_period' must be a table of alias = period in s, "
+                            "such as sample_period = { ct = 0.001 }")
+    periods = {}
+    for alias in raw:
+        where = f"sample_period.{alias}"
+        if alias not in fmus:
+            raise ScenarioError(f"field '{where}' names unknown FMU '{alias}' (known: "
+                                f"{sorted(fmus)})")
+        period = _require(raw, alias, float, "sample_period.")
+        if period <= 0.0:
+            raise ScenarioError(f"field '{where}' must be a positive number of seconds, "
+                                f"got {period!r}")
+        steps = period / step
+        if round(steps) < 1 or abs(steps - round(steps)) > 1e-9 * steps:
+            raise ScenarioError(f"field '{where}': {period:g} s is not a whole number of "
+                                f"communication steps of {step:g} s (step_size); make it a "
+                                "multiple of step_size")
+        periods[alias] = period
+    if periods and coupling != "sampled":
+        raise ScenarioError("field 'coupling': a scenario with sample_period runs with "
+                            "coupling = \"sampled\"; remove the coupling field")
+    return periods
 
 
 def extrapolation_order(name: str) -> int:

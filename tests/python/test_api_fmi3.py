@@ -2,8 +2,10 @@
 compiled here from a few lines of C (examples/integrator3/: Float64 arrays u[2] and
 y[2], Float64, Int32 and Boolean parameters) driven by our PID as FMI 2.0, as FMI 3.0
 (the bundled "fmi3/PID" added as it is) and through simulate(fmi3=True), against the
-closed form; and the one-line errors for what the master does not run (clocks, Model
-Exchange only, arrays of two dimensions, types it cannot pass)."""
+closed form; a clock and what it clocks left out (the FMU runs without them); and the
+one-line errors for what the master does not run (a clock or a clocked variable
+connected without a sample period, Model Exchange only, arrays of two dimensions, types
+it cannot pass)."""
 
 from __future__ import annotations
 
@@ -70,6 +72,18 @@ def test_a_boolean_parameter_of_a_third_party_fmi3_fmu_is_set(integrator3):
     assert np.all(result["plant.y[1]"] == 0.25) and np.all(result["plant.y[2]"] == 0.0)
 
 
+def test_an_fmi3_fmu_with_a_clock_runs_without_it(integrator3, tmp_path):
+    # The clock and the variable it clocks are left out of the scalar view; the rest
+    # runs as the FMU without them (the same closed form as above, y_k on axis 1).
+    plant = _variant(integrator3, tmp_path / "Clocked.fmu",
+                     lambda x: x.replace("</ModelVariables>", CLOCK + CLOCKED + "</ModelVariables>"))
+    result = robofmu.simulate(system("PID", plant))
+    s, y0 = SETPOINTS[0], Y0[0]
+    np.testing.assert_allclose(result["plant.y[1]"],
+                               s - (1 - H * -1 * GAIN * KP) ** np.arange(101) * (s - y0),
+                               rtol=0, atol=1e-12)
+
+
 def _variant(fmu: Path, out: Path, edit) -> Path:
     """`fmu` with its modelDescription.xml changed by `edit` (the binary kept)."""
     with zipfile.ZipFile(fmu) as source, zipfile.ZipFile(out, "w") as target:
@@ -83,11 +97,17 @@ def _variant(fmu: Path, out: Path, edit) -> Path:
 
 CLOCK = '<Clock name="tick" valueReference="7" causality="input" intervalVariability="triggered"/>'
 FLOAT32 = '<Float32 name="z" valueReference="8" causality="output" variability="continuous"/>'
+CLOCKED = ('<Float64 name="held" valueReference="9" causality="output" variability="discrete" '
+           'clocks="7"/>')
 
 
 @pytest.mark.parametrize("edit, field, message", [
-    (lambda x: x.replace("</ModelVariables>", CLOCK + "</ModelVariables>"), "fmus.plant",
-     "declares clocks (tick), which robofmu's master does not tick"),
+    (lambda x: x.replace("</ModelVariables>", CLOCK + CLOCKED + "</ModelVariables>"),
+     "connections[4].from", "plant.tick is an input clock, which the master ticks itself; "
+     "give plant a sample period (field 'sample_period.plant'"),
+    (lambda x: x.replace("</ModelVariables>", CLOCK + CLOCKED + "</ModelVariables>"),
+     "connections[4].from", "plant.held is clocked (by tick): it has a value only at that "
+     "clock's ticks; give plant a sample period"),
     (lambda x: re.sub(r"<CoSimulation ", "<ModelExchange ", x), "fmus.plant",
      "does not support co-simulation (FMI 3.0 Model Exchange only)"),
     (lambda x: x.replace('<Dimension start="2"/>', '<Dimension start="2"/><Dimension start="1"/>'),
@@ -103,8 +123,10 @@ def test_what_the_master_does_not_run_is_one_line(integrator3, tmp_path, edit, f
     parameters = {"parameters.plant.sign": {"sign": 2 if "range" in message else 1.5},
                   "parameters.plant.frozen": {"frozen": 1}}.get(field, {})
     s = system("PID", plant, **parameters)
-    if "Float32" in message:
-        s.connect("plant.z", "pid.measurement[3]")
+    connected = ("z" if "Float32" in message else "tick" if "plant.tick" in message else
+                 "held" if "plant.held" in message else None)
+    if connected is not None:
+        s.connect(f"plant.{connected}", "pid.measurement[3]")
     with pytest.raises(robofmu.ScenarioError) as caught:
         robofmu.simulate(s)
     text = str(caught.value)
