@@ -116,13 +116,17 @@ def scalar_view(md) -> ScalarView:
     return view
 
 
-def missing(md, alias: str, name: str) -> str:
+def missing(md, alias: str, name: str, ticked: bool = False) -> str:
     """Why `alias` has no variable `name` in the scalar view `md`: none of that name,
-    or a clock or a clocked variable (left out), with how to run it."""
+    or a clock or a clocked variable (left out), with how to run it (`ticked`: the
+    scenario ticks the clock already)."""
     clocked = getattr(md, "clocked", {}).get(name)
     if clocked is None:
         return f"{alias} has no variable '{name}'"
     clock = clocked[1]
+    if ticked:
+        return (f"{alias}.{name} is the input clock that sample_period.{alias} ticks, which "
+                "has no value to pass; connect or record the variables it clocks")
     what = ("is an input clock, which the master ticks itself" if clock == name else
             f"is clocked (by {clock}): it has a value only at that clock's ticks")
     return (f"{alias}.{name} {what}; give {alias} a sample period (field "

@@ -133,12 +133,16 @@ def check(scenario: Scenario, fields: dict | None = None) -> None:
     names = {alias: {v.name: v for v in md.modelVariables} for alias, md in mds.items()}
     for alias, period in scenario.sample_period.items():  # ticked: its clocked outputs run
         names[alias].update(check_clock(mds[alias], alias, period))
+    def absent(signal) -> str:
+        return missing(mds[signal.alias], signal.alias, signal.variable,
+                       signal.alias in scenario.sample_period)
+
     for k, c in enumerate(scenario.connections):
         for side, signal in (("from", c.source), ("to", c.target)):
             v = names[signal.alias].get(signal.variable)
             if v is None:
                 raise ScenarioError(f"field 'connections[{k}].{side}': "
-                                    f"{missing(mds[signal.alias], signal.alias, signal.variable)}")
+                                    f"{absent(signal)}")
             if v.type not in PASSED:
                 raise ScenarioError(f"field 'connections[{k}].{side}': {signal} is of type "
                                     f"{v.type}, which the master cannot pass; connect a Real "
@@ -149,7 +153,7 @@ def check(scenario: Scenario, fields: dict | None = None) -> None:
     for k, signal in enumerate(scenario.record):
         if signal.variable not in names[signal.alias]:
             raise ScenarioError(f"field 'record[{k}]': "
-                                f"{missing(mds[signal.alias], signal.alias, signal.variable)}")
+                                f"{absent(signal)}")
     for alias in scenario.order:
         initializing = None
         if alias in scenario.sample_period:  # the FMU's clock interval: the scenario's

@@ -262,10 +262,12 @@ def _sample_periods(raw, fmus, step: float, coupling: str) -> dict[str, float]:
         if alias not in fmus:
             raise ScenarioError(f"field '{where}' names unknown FMU '{alias}' (known: "
                                 f"{sorted(fmus)})")
-        period = _require(raw, alias, float, "sample_period.")
-        if period <= 0.0:
-            raise ScenarioError(f"field '{where}' must be a positive number of seconds, "
-                                f"got {period!r}")
+        period = raw[alias]
+        if (isinstance(period, bool) or not isinstance(period, (int, float))
+                or not math.isfinite(period) or period <= 0.0):
+            raise ScenarioError(f"field '{where}' must be a positive number of seconds "
+                                f"(such as 0.001), got {period!r}")
+        period = float(period)
         steps = period / step
         if round(steps) < 1 or abs(steps - round(steps)) > 1e-9 * steps:
             raise ScenarioError(f"field '{where}': {period:g} s is not a whole number of "
