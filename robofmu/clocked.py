@@ -33,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import FmuError, ScenarioError
+from .errors import CosimError, FmuError, ScenarioError, StepDiscarded
 from .fmu_check import describe
 from .preflight import check_interval, clock_of
 
@@ -68,15 +68,18 @@ class ClockedRun:
                                           alias, period).name
         # The communication step: a period over its steps per tick, the same for each.
         steps = {period / self.every[alias] for alias, period in periods.items()}
-        if len(steps) != 1:
+        if len(steps) > 1:
             raise ScenarioError("field 'sample_period': the periods "
                                 f"{sorted(map(str, s.sample_period.values()))} s are not "
                                 "exact multiples of one step; make each a multiple of "
                                 "the smallest")
-        self.times = grid(s.start_time, steps.pop(), 0, self.steps + 1)
+        self.times = grid(s.start_time, steps.pop() if steps else exact_period(s.step_size),
+                          0, self.steps + 1)
+        self.own = set(self.clocks) | set(s.model_exchange)  # instances made here
 
     def _open(self) -> dict:
         from .fmi3 import Fmu3Instance, is_fmi3  # lazily: FMPy's FMI 3.0 layer
+        from .integrated import Rk4Instance
         m, s, fmus = self.master, self.scenario, {}
         try:
             for alias in s.order:
@@ -88,11 +91,17 @@ class ClockedRun:
                                             "fmi3/ComputedTorque)")
                     fmus[alias] = Fmu3Instance(alias, path, s.start_time, s.stop_time,
                                                clocked=True)
+                elif alias in s.model_exchange:
+                    if not is_fmi3(path):
+                        raise ScenarioError(f"field 'model_exchange.{alias}': {path} is not an "
+                                            "FMI 3.0 FMU; name its FMI 3.0 build (such as "
+                                            "fmi3/Pss3Plant)")
+                    fmus[alias] = Rk4Instance(alias, path, s.start_time, s.stop_time)
                 else:
                     fmus[alias] = m.open_fmu(alias, path, s)
         except BaseException:
-            for alias, fmu in fmus.items():
-                fmu.close() if alias in self.clocks else m.close_fmu(fmu)
+            for fmu in fmus.values():
+                fmu.close()
             raise
         return fmus
 
@@ -171,12 +180,16 @@ class ClockedRun:
                 if m.progress is not None and k % max(1, self.steps // 100) == 0:
                     m.progress(k / self.steps)
             m.loop_seconds = time.perf_counter() - started
-        except BaseException:
+        except BaseException as e:
             for fmu in self.fmus.values():  # after a failed run nothing stays shared
                 fmu.close()
+            if isinstance(e, StepDiscarded):
+                raise CosimError(f"{e} (this loop, for clocked and Model Exchange FMUs, "
+                                 "does not retry a discarded step; use a smaller "
+                                 "step_size)") from None
             raise
         for alias, fmu in self.fmus.items():
-            fmu.close() if alias in self.clocks else m.close_fmu(fmu)
+            fmu.close() if alias in self.own else m.close_fmu(fmu)
         data = dict(zip(columns, np.ascontiguousarray(rows.T) if contiguous else rows.T))
         return Arrays(names=names, time=self.times, columns={n: data[n] for n in names},
                       discards=[])

@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from fmpy import read_model_description
-from fmpy.fmi3 import FMU3Slave, fmi3ValueReference
+from fmpy.fmi3 import FMU3Model, FMU3Slave, fmi3ValueReference
 
 from .errors import FmuError
 from .fmi2 import LoggedCalls, status_categories, unpack
@@ -66,16 +66,19 @@ class Fmu3Instance(LoggedCalls):
     _FMU_STATE = "FMUState"
 
     def __init__(self, alias: str, path: Path, start_time: float, stop_time: float,
-                 extrapolate: bool = False, clocked: bool = False):
+                 extrapolate: bool = False, clocked: bool = False,
+                 model_exchange: bool = False):
         self.alias = alias
         self.messages: list[str] = []
         self._fmu, self._unzip, self._initialized = None, None, False
         md = read_model_description(str(path))
-        if md.coSimulation is None:
-            raise FmuError(f"{alias} ({path}) does not support co-simulation")
+        interface = md.modelExchange if model_exchange else md.coSimulation
+        if interface is None:
+            raise FmuError(f"{alias} ({path}) does not support "
+                           + ("model exchange" if model_exchange else "co-simulation"))
         self.variables = {v.name: v for v in md.modelVariables}
         self._scalars = scalar_names(md.modelVariables)
-        self.can_get_state = bool(md.coSimulation.canGetAndSetFMUstate)
+        self.can_get_state = bool(interface.canGetAndSetFMUstate)
         # What each array holds now (a write of one element sends the whole array):
         # the start values, again after fmi3Reset.
         self._starts = {v.name: _start(v) for v in md.modelVariables
@@ -86,19 +89,26 @@ class Fmu3Instance(LoggedCalls):
         self._path = path
         # Input extrapolation through the intermediate update (robofmu.intermediate).
         self.intermediate = (IntermediateInputs(self, flagged_inputs(path))
-                             if extrapolate and md.coSimulation.providesIntermediateUpdate
-                             else None)
+                             if extrapolate and not model_exchange
+                             and md.coSimulation.providesIntermediateUpdate else None)
         self.can_interpolate_inputs = self.intermediate is not None
         update = self.intermediate.callback if self.intermediate is not None else None
         try:
-            self._fmu = FMU3Slave(guid=md.guid, unzipDirectory=self._unzip,
-                                  modelIdentifier=md.coSimulation.modelIdentifier,
-                                  instanceName=alias)
-            self._call("fmi3InstantiateCoSimulation",
-                       lambda: self._fmu.instantiate(logMessage=self._log,
-                                                     intermediateUpdate=update,
-                                                     eventModeUsed=clocked,
-                                                     earlyReturnAllowed=clocked))
+            if model_exchange:  # robofmu.integrated steps it
+                self._fmu = FMU3Model(guid=md.guid, unzipDirectory=self._unzip,
+                                      modelIdentifier=interface.modelIdentifier,
+                                      instanceName=alias)
+                self._call("fmi3InstantiateModelExchange",
+                           lambda: self._fmu.instantiate(logMessage=self._log))
+            else:
+                self._fmu = FMU3Slave(guid=md.guid, unzipDirectory=self._unzip,
+                                      modelIdentifier=interface.modelIdentifier,
+                                      instanceName=alias)
+                self._call("fmi3InstantiateCoSimulation",
+                           lambda: self._fmu.instantiate(logMessage=self._log,
+                                                         intermediateUpdate=update,
+                                                         eventModeUsed=clocked,
+                                                         earlyReturnAllowed=clocked))
             categories = status_categories(md)
             if categories:
                 self._call("fmi3SetDebugLogging",

@@ -265,7 +265,7 @@ class Master:
         """The run, its signals as arrays: one contiguous array per signal, or (not
         `contiguous`: a sweep's run, which reads them once) the columns of the rows."""
         s = self.scenario
-        if s.sample_period:  # clocked FMUs: the Python loop of robofmu.clocked
+        if s.sample_period or s.model_exchange:  # the Python loop of robofmu.clocked
             from .clocked import ClockedRun
             return ClockedRun(self).run(contiguous)
         self.fmus = {}

@@ -131,6 +131,11 @@ def check(scenario: Scenario, fields: dict | None = None) -> None:
                 mds[switch.alias], switch.alias, name, value,
                 f"plan_switches[{k}].parameters.{name}")
     names = {alias: {v.name: v for v in md.modelVariables} for alias, md in mds.items()}
+    for alias in scenario.model_exchange:
+        if mds[alias].fmiVersion != "3.0" or mds[alias].modelExchange is None:
+            raise ScenarioError(f"field 'model_exchange.{alias}': {alias} is no FMI 3.0 FMU "
+                                "with Model Exchange; name one (such as fmi3/Pss3Plant) or "
+                                f"remove model_exchange.{alias}")
     for alias, period in scenario.sample_period.items():  # ticked: its clocked outputs run
         names[alias].update(check_clock(mds[alias], alias, period))
     def absent(signal) -> str:

@@ -29,6 +29,8 @@ Schema (TOML shown; JSON has the same structure)::
     [sample_period]                    # alias -> s: the master ticks that FMU's periodic
     ct = 0.001                         # input clock (FMI 3.0) every so many seconds, a
                                        # whole number of steps (robofmu.clocked)
+    [model_exchange]                   # alias -> method: an FMI 3.0 FMU in Model Exchange,
+    plant = "rk4"                      # integrated by the master (robofmu.integrated)
 
 A malformed scenario raises ScenarioError naming the offending field.
 
@@ -61,6 +63,7 @@ __all__ = ["PlanSwitch", "Scenario", "ScenarioError", "Signal", "Connection",
 
 
 COUPLINGS = ("sampled", "gauss-seidel")
+INTEGRATORS = ("rk4",)  # model_exchange: the master's methods (robofmu.integrated)
 EXTRAPOLATIONS = ("hold", "linear", "quadratic")  # index: the order of the input derivatives
 DEFAULT_STEP = 0.001  # s
 MAX_STEPS = 1_000_000  # communication steps of one run (the results are held in memory)
@@ -113,6 +116,9 @@ class Scenario:
     # alias -> sample period (s) of an FMU whose input clock the master ticks
     # (robofmu.clocked).
     sample_period: dict[str, float] = field(default_factory=dict)
+    # alias -> the method ("rk4") by which the master integrates an FMU in Model
+    # Exchange (robofmu.integrated).
+    model_exchange: dict[str, str] = field(default_factory=dict)
 
     @property
     def steps(self) -> int:
@@ -155,7 +161,7 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
         raise ScenarioError("a scenario must be a table/object at the top level")
     known = {"name", "description", "start_time", "stop_time", "step_size", "order", "fmus",
              "parameters", "connections", "record", "max_step_halvings", "coupling", "limits",
-             "plan_switches", "input_extrapolation", "controller", "sample_period"}
+             "plan_switches", "input_extrapolation", "controller", "sample_period", "model_exchange"}
     unknown = sorted(set(data) - known, key=str)
     if unknown:
         raise ScenarioError(f"unknown field '{unknown[0]}'; the fields are {sorted(known)}")
@@ -241,7 +247,9 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
                             f"or the order 0, 1 or 2, got {extrapolation!r}")
     return Scenario(controller=kind_of(data), name=name,
                     sample_period=_sample_periods(data.get("sample_period", {}), fmus, step,
-                                                  coupling), fmus=fmus, order=list(order),
+                                                  coupling, halvings),
+                    model_exchange=_model_exchange(data.get("model_exchange", {}), fmus,
+                                                   coupling, halvings), fmus=fmus, order=list(order),
                     start_time=start, stop_time=stop,
                     step_size=step, parameters=parameters, connections=connections,
                     record=record, max_step_halvings=halvings, coupling=coupling,
@@ -250,7 +258,8 @@ def parse_scenario(data: dict, base_dir: Path) -> Scenario:
                     schedule=_plan_switches(data.get("plan_switches", []), fmus, round(steps)))
 
 
-def _sample_periods(raw, fmus, step: float, coupling: str) -> dict[str, float]:
+def _sample_periods(raw, fmus, step: float, coupling: str,
+                    halvings: int) -> dict[str, float]:
     """``[sample_period]``: alias -> the period (s) at which the master ticks the FMU's
     input clock, a whole number of communication steps."""
     if not isinstance(raw, dict):
@@ -274,10 +283,31 @@ def _sample_periods(raw, fmus, step: float, coupling: str) -> dict[str, float]:
                                 f"communication steps of {step:g} s (step_size); make it a "
                                 "multiple of step_size")
         periods[alias] = period
-    if periods and coupling != "sampled":
-        raise ScenarioError("field 'coupling': a scenario with sample_period runs with "
-                            "coupling = \"sampled\"; remove the coupling field")
+    if periods and (coupling != "sampled" or halvings):
+        raise ScenarioError("field 'sample_period': a scenario with clocks runs with "
+                            "coupling = \"sampled\" and no max_step_halvings; remove those "
+                            "fields")
     return periods
+
+
+def _model_exchange(raw, fmus, coupling: str, halvings: int) -> dict[str, str]:
+    """``[model_exchange]``: alias -> the method ("rk4") by which the master integrates
+    that FMU in Model Exchange."""
+    if not isinstance(raw, dict):
+        raise ScenarioError("field 'model_exchange' must be a table of alias = method, such "
+                            "as model_exchange = { plant = \"rk4\" }")
+    for alias, method in raw.items():
+        if alias not in fmus:
+            raise ScenarioError(f"field 'model_exchange.{alias}' names unknown FMU '{alias}' "
+                                f"(known: {sorted(fmus)})")
+        if method not in INTEGRATORS:
+            raise ScenarioError(f"field 'model_exchange.{alias}' must be one of {INTEGRATORS} "
+                                f"(the master's integration methods), got {method!r}")
+    if raw and (coupling != "sampled" or halvings):
+        raise ScenarioError("field 'model_exchange': an FMU in Model Exchange runs with "
+                            "coupling = \"sampled\" and no max_step_halvings; remove those "
+                            "fields")
+    return dict(raw)
 
 
 def extrapolation_order(name: str) -> int:
