@@ -233,16 +233,27 @@ class System:
         self._parameters: dict[str, dict[str, Value]] = {}
         self._connections: list[dict[str, str]] = []
         self._record: list[str] = []
+        self._sample_period: dict[str, float] = {}
+        self._model_exchange: dict[str, str] = {}
 
     def add(self, alias: str, fmu_file: PathLike,
-            parameters: Mapping[str, Value] | None = None) -> System:
+            parameters: Mapping[str, Value] | None = None, *,
+            sample_period: float | str | None = None,
+            model_exchange: str | None = None) -> System:
         """Adds the FMU `fmu_file` (a path, or a bundled FMU's name such as "PID") as
-        `alias`, with start values `parameters` (variable -> SI value or "value unit")."""
+        `alias`, with start values `parameters` (variable -> SI value or "value unit");
+        `sample_period` (s or "value unit"): the master ticks its periodic input clock
+        at that period; `model_exchange` ("rk4"): the master integrates it in Model
+        Exchange (the scenario fields sample_period.ALIAS and model_exchange.ALIAS)."""
         if alias in self._fmus:
             raise ScenarioError(f"fmus.{alias}: the alias is used twice; give each FMU its "
                                 "own alias")
         text = os.fspath(fmu_file)
         self._fmus[alias] = text if bundle.is_name(text) else str(Path(text).absolute())
+        if sample_period is not None:
+            self._sample_period[alias] = _seconds(sample_period, f"sample_period.{alias}")
+        if model_exchange is not None:
+            self._model_exchange[alias] = model_exchange
         for variable, value in (parameters or {}).items():
             self.set(f"{alias}.{variable}", value)
         return self
@@ -275,7 +286,10 @@ class System:
                       for alias, values in self._parameters.items()}
         return {**self._head, "fmus": dict(self._fmus), "order": list(self._fmus),
                 "parameters": parameters, "connections": list(self._connections),
-                "record": list(self._record)}
+                "record": list(self._record),
+                **({"sample_period": dict(self._sample_period)} if self._sample_period else {}),
+                **({"model_exchange": dict(self._model_exchange)} if self._model_exchange
+                   else {})}
 
     def scenario(self) -> Scenario:
         """The system validated against its FMUs (ScenarioError naming what is wrong)."""

@@ -177,7 +177,8 @@ class ClockedRun:
                 self._record(rows[k])
                 if k < self.steps:
                     self._step(k)
-                if m.progress is not None and k % max(1, self.steps // 100) == 0:
+                if m.progress is not None and (k % max(1, self.steps // 100) == 0
+                                               or k == self.steps):
                     m.progress(k / self.steps)
             m.loop_seconds = time.perf_counter() - started
         except BaseException as e:

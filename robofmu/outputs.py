@@ -26,7 +26,9 @@ def column_units(scenario: Scenario, names) -> dict[str, str]:
     for name in names:
         alias, variable = name.split(".", 1)
         md = describe(scenario.fmus[alias], f"fmus.{alias}")
-        v = {x.name: x for x in md.modelVariables}[variable]
+        v = {x.name: x for x in md.modelVariables}.get(variable)
+        if v is None:  # a clocked output of an FMU the run ticked (robofmu.clocked)
+            v = md.clocked[variable][0]
         declared = unit_of(md, v)
         units[name] = declared[0] if declared else "1"
     return units

@@ -159,3 +159,22 @@ def test_a_bad_sample_period_is_one_line(tmp_path, capsys, change, message):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith(f"cosim: {path}: "), err
     assert message in err, err
+
+
+def test_a_system_built_in_code_runs_the_same_clocked_loop(tmp_path):
+    # robofmu.System's sample_period and model_exchange are the scenario's fields: the
+    # same run as the file's, bit for bit.
+    import robofmu
+    system = robofmu.System(stop_time=0.05, step_size="1 ms")
+    system.add("ct", "fmi3/ComputedTorque", {"setpoint[3]": SETPOINT[2]}, sample_period="1 ms")
+    system.add("plant", "fmi3/Pss3Plant", model_exchange="rk4")
+    for out, into in (("theta", "measurement"), ("thetaDot", "measuredRate")):
+        for i in AXES:
+            system.connect(f"plant.{out}[{i}]", f"ct.{into}[{i}]")
+    for i in AXES:
+        system.connect(f"ct.uSampled[{i}]", f"plant.generalizedForceCommand[{i}]")
+    result = robofmu.simulate(system)
+    path = scenario(tmp_path, stop=0.05, extra='model_exchange = { plant = "rk4" }')
+    expected = run_arrays(load_scenario(path))
+    for name in expected.names:
+        assert np.array_equal(result[name], expected.columns[name]), name
