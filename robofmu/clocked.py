@@ -1,7 +1,8 @@
-"""The master's run of a scenario with clocked FMUs (``[sample_period]``): an FMI 3.0
-co-simulation FMU whose periodic input clock the master ticks, beside FMUs without
-clocks, in sampled coupling; a loop in Python (robofmu.master's native loop serves the
-scenarios without clocks, unchanged).
+"""The master's run of a scenario with clocked FMUs (``[sample_period]``: an FMI 3.0
+FMU whose periodic input clock the master ticks) or FMUs in Model Exchange
+(``[model_exchange]``, integrated by robofmu.integrated), beside co-simulation FMUs, in
+sampled coupling; a loop in Python (robofmu.master's native loop serves the scenarios
+without either, unchanged).
 
 Time: the sample period P of each clocked FMU is read as the exact fraction c / r of
 its decimal (0.001 s = 1/1000) and must be the interval the FMU reports for its clock
@@ -18,9 +19,11 @@ Each step k, as robofmu.master's sampled coupling: at t_k the outputs are propag
 through the scenario's order; a clocked FMU whose tick falls on t_k gets its inputs
 first, then, in Event Mode, fmi3SetClock and fmi3UpdateDiscreteStates (its clocked
 outputs change there), then fmi3EnterStepMode, before the FMUs after it read its
-outputs. The row of t_k is recorded, and every FMU steps to t_k+1; a clocked FMU's
-step that ends at its next tick returns there asking for Event Mode (it was
-instantiated with eventModeUsed and earlyReturnAllowed) and enters it. Inputs are held
+outputs (a clocked FMU in Model Exchange: fmi3EnterEventMode, the clock, the update,
+then Continuous-Time Mode). The row of t_k is recorded, and every FMU steps to t_k+1;
+a clocked co-simulation FMU's step that ends at its next tick returns there asking for
+Event Mode (it was instantiated with eventModeUsed and earlyReturnAllowed) and enters
+it. Inputs are held
 over each step (no input derivatives: a clocked output is piecewise constant). A step
 an FMU discards or ends early (not at a tick) ends the run with the FMU's reason.
 """
@@ -35,6 +38,7 @@ import numpy as np
 
 from .errors import CosimError, FmuError, ScenarioError, StepDiscarded
 from .fmu_check import describe
+from .integrated import Rk4Instance
 from .preflight import check_interval, clock_of
 
 
@@ -79,12 +83,11 @@ class ClockedRun:
 
     def _open(self) -> dict:
         from .fmi3 import Fmu3Instance, is_fmi3  # lazily: FMPy's FMI 3.0 layer
-        from .integrated import Rk4Instance
         m, s, fmus = self.master, self.scenario, {}
         try:
             for alias in s.order:
                 path = Path(s.fmus[alias])
-                if alias in self.clocks:
+                if alias in self.clocks and alias not in s.model_exchange:
                     if not is_fmi3(path):
                         raise ScenarioError(f"field 'sample_period.{alias}': {path} is not an "
                                             "FMI 3.0 FMU; name its FMI 3.0 build (such as "
@@ -116,6 +119,11 @@ class ClockedRun:
             every = self.every.get(alias)
             if every is not None and k % every == 0:
                 fmu = self.fmus[alias]
+                if isinstance(fmu, Rk4Instance):  # Model Exchange: Event Mode at the tick
+                    fmu.enter_event_mode()
+                    fmu.tick(self.clocks[alias], self.times[k])
+                    fmu.resume()
+                    continue
                 if k > 0 and not self.in_event_mode[alias]:
                     raise FmuError(f"{alias}: its step to the tick at t = {self.times[k]!r} s "
                                    "ended without asking for Event Mode; the FMU does not "
@@ -132,6 +140,9 @@ class ClockedRun:
         t, h = self.times[k], self.times[k + 1] - self.times[k]
         for alias in self.scenario.order:
             fmu = self.fmus[alias]
+            if isinstance(fmu, Rk4Instance):  # to t_k+1 exactly: a tick's time
+                fmu.advance(t, self.times[k + 1])
+                continue
             if alias not in self.clocks:
                 fmu.do_step(t, h)
                 continue

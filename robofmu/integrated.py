@@ -58,6 +58,11 @@ class Rk4Instance(Fmu3Instance):
         else:
             raise FmuError(f"{self.alias}: its discrete states do not settle {when} (100 "
                            "updates)")
+        self.resume()
+
+    def resume(self) -> None:
+        """Event Mode -> Continuous-Time Mode, the state and event indicators read again
+        (after an event, or a tick of its clock: robofmu.clocked)."""
         self._call("fmi3EnterContinuousTimeMode", self._fmu.enterContinuousTimeMode)
         self._call("fmi3GetContinuousStates",
                    lambda: self._fmu.getContinuousStates(self._buffer, self._n))
@@ -95,9 +100,9 @@ class Rk4Instance(Fmu3Instance):
         return bool(np.any(np.signbit(z) != np.signbit(self._z)))
 
     def do_step(self, time: float, step: float) -> None:
-        self._advance(time, time + step)
+        self.advance(time, time + step)
 
-    def _advance(self, time: float, end: float) -> None:
+    def advance(self, time: float, end: float) -> None:
         """RK4 from `time` to `end` in one step, or, where an event indicator changes
         sign over it, to the first change (bisection of the step's size, 40 halvings),
         Event Mode there, and the rest of the step after it."""
@@ -128,4 +133,4 @@ class Rk4Instance(Fmu3Instance):
             self._call("fmi3EnterEventMode", self._fmu.enterEventMode)
             self._settle(f"at t = {at!r} s")
         if at < end:
-            self._advance(at, end)
+            self.advance(at, end)
