@@ -54,6 +54,10 @@ def expanded_toml(scenario: Scenario, out: Path, source: str) -> str:
         unit = {"angle": "rad", "force": "N"}
         lines += ["", "[limits]"] + _table({k: f"{v!r} {unit[LIMITS[k][0]]}"
                                             for k, v in s.limits.items()})
+    for field, table in (("sample_period", s.sample_period),
+                         ("model_exchange", s.model_exchange)):
+        if table:
+            lines += ["", f"[{field}]"] + _table(table)
     for alias, values in s.parameters.items():
         lines += ["", f"[parameters.{alias}]"] + _table(values)
     for c in s.connections:

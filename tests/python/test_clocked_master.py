@@ -188,3 +188,12 @@ def test_a_system_built_in_code_runs_the_same_clocked_loop(tmp_path):
     expected = run_arrays(load_scenario(path))
     for name in expected.names:
         assert np.array_equal(result[name], expected.columns[name]), name
+
+
+def test_the_expanded_form_keeps_the_clock_and_the_integration(tmp_path):
+    # cosim check --expanded writes the plain form the Rust tools and a rerun read.
+    path = scenario(tmp_path, stop=0.01, extra='model_exchange = { plant = "rk4" }')
+    out = tmp_path / "expanded.toml"
+    assert cosim(["check", str(path), "--expanded", str(out)]) == 0
+    again = load_scenario(out)
+    assert again.sample_period == {"ct": 0.001} and again.model_exchange == {"plant": "rk4"}
