@@ -167,5 +167,7 @@ def check(scenario: Scenario, fields: dict | None = None) -> None:
                                    clock=clock_of(mds[alias], alias, tick).name)
         initialize_alone(scenario.fmus[alias], alias, scenario.parameters.get(alias, {}),
                          fields.get(alias, f"parameters.{alias}"), initializing)
+    if scenario.sample_period or scenario.model_exchange:
+        return  # robofmu.clocked's runs hold their inputs: no input derivatives to probe
     from .master import warm_probes  # lazily: the master reads scenarios (this module's user)
     warm_probes(scenario)

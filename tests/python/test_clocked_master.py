@@ -45,13 +45,14 @@ SETPOINT = (0.008726646259971648, -0.008726646259971648, 2.457237)
 
 
 def scenario(tmp_path: Path, step: float = 0.001, stop: float = 0.2, period="0.001",
-             ct: str = "fmi3/ComputedTorque", extra: str = "", name: str = "sampled") -> Path:
+             ct: str = "fmi3/ComputedTorque", extra: str = "", name: str = "sampled",
+             plant: str = "fmi3/Pss3Plant", ct_parameters: str = "") -> Path:
     """The loop ct -> plant, ct ticked every `period` s (the text of the field)."""
     path = tmp_path / f"{name}.toml"
     path.write_text(f'name = "{name}"\nstop_time = {stop}\nstep_size = {step}\n'
                     f'order = ["ct", "plant"]\n{extra}\n'
-                    f'[fmus]\nct = "{ct}"\nplant = "fmi3/Pss3Plant"\n\n'
-                    f'[parameters.ct]\n"setpoint[3]" = {SETPOINT[2]}\n\n'
+                    f'[fmus]\nct = "{ct}"\nplant = "{plant}"\n\n'
+                    f'[parameters.ct]\n"setpoint[3]" = {SETPOINT[2]}\n{ct_parameters}\n'
                     f'[sample_period]\nct = {period}\n\n' + CONNECTIONS)
     return path
 
@@ -74,9 +75,12 @@ def zero_order_hold_error(tmp_path: Path, result, every: int) -> float:
     return worst
 
 
-@pytest.mark.parametrize("step, stop", [(0.001, 0.2), (0.0005, 0.1)])
-def test_the_sampled_law_equals_the_zero_order_hold_reference(tmp_path, step, stop):
-    result = run_arrays(load_scenario(scenario(tmp_path, step, stop)))
+@pytest.mark.parametrize("step, stop, plant", [(0.001, 0.2, "fmi3/Pss3Plant"),
+                                               (0.0005, 0.1, "fmi3/Pss3Plant"),
+                                               (0.001, 0.05, "Pss3Plant")])
+def test_the_sampled_law_equals_the_zero_order_hold_reference(tmp_path, step, stop, plant):
+    # Also beside the FMI 2.0 plant (an FMI 2.0 FMU in the same loop).
+    result = run_arrays(load_scenario(scenario(tmp_path, step, stop, plant=plant)))
     every = round(0.001 / step)  # communication steps per tick
     assert len(result.time) == round(stop / step) + 1
     worst = zero_order_hold_error(tmp_path, result, every)
@@ -84,7 +88,7 @@ def test_the_sampled_law_equals_the_zero_order_hold_reference(tmp_path, step, st
     assert worst <= 1e-12, worst
     # The loop moved (the comparison is not one of zeros) and the output is held: with
     # two steps per tick, each odd row repeats the tick's value before it.
-    assert abs(result.columns["plant.theta[1]"][-1]) > 1e-3
+    assert abs(result.columns["plant.theta[1]"][-1]) > 1e-4
     u = result.columns["ct.uSampled[3]"]
     assert np.abs(u).max() > 1.0
     if every == 2:
@@ -197,3 +201,13 @@ def test_the_expanded_form_keeps_the_clock_and_the_integration(tmp_path):
     assert cosim(["check", str(path), "--expanded", str(out)]) == 0
     again = load_scenario(out)
     assert again.sample_period == {"ct": 0.001} and again.model_exchange == {"plant": "rk4"}
+
+
+def test_a_discarded_step_ends_the_run_in_one_line(tmp_path, capsys):
+    # Absurd gains: the plant's integrator cannot follow and discards the first step.
+    gains = "".join(f'"Kp[{i}]" = 1e12\n' for i in AXES) + '"setpoint[1]" = 0.3\n'
+    path = scenario(tmp_path, stop=0.01, ct_parameters=gains)
+    assert cosim(["run", str(path), "--out", str(tmp_path / "out"), "--quiet"]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"cosim: {path}: the simulation failed")
+    assert "plant discarded the step at t = 0 s" in err and "does not retry" in err, err
