@@ -81,7 +81,7 @@ RECORD = ([f"plant.force[{i}]" for i in (1, 2, 3)] + [f"plant.l[{i}]" for i in (
 PROFILES = {"cubic": 3, "quintic": 5}
 KNOWN = {"name", "description", "start_time", "stop_time", "step_size", "fmus", "motion",
          "start", "gains", "plant", "record", "coupling", "max_step_halvings", "limits",
-         "input_extrapolation", "controller", "model"}
+         "input_extrapolation", "controller", "model", "sample_period"}
 # The scenario fields the FMUs' parameters come from, and the fields blamed for an
 # unreachable pose (robofmu.workspace).
 FIELDS = {"planner": "motion", "pid": "gains", "ct": "model", "plant": "plant"}
@@ -301,6 +301,17 @@ def _controller(data: dict, kind: str, fmu: Path, plant_fmu: Path, plant_values:
     return pid
 
 
+def _clocked_build(base_dir: Path, entry: str) -> str:
+    """The FMI 3.0 build beside the controller's FMI 2.0 file (dist/fmi3/<Model>.fmu):
+    the file whose clocked law sample_period ticks."""
+    build = (base_dir / entry).parent / "fmi3" / Path(entry).name
+    if not build.is_file():
+        raise ScenarioError(f"field 'sample_period': the sampled law runs in the FMI 3.0 "
+                            f"build of the controller, {build}, which does not exist; build "
+                            "it (bash scripts/build-fmus.sh) or remove sample_period")
+    return str(build)
+
+
 def resolve(data: dict, base_dir: Path,
             preflight: bool = True) -> tuple[dict, list[PlanSwitch]]:
     """The plain scenario (as parse_scenario reads it) and the plan switches. With
@@ -348,6 +359,12 @@ def resolve(data: dict, base_dir: Path,
                     "move the waypoints (or the start) inside the workspace")
     controller = _controller(data, kind, base_dir / str(fmus[loop.alias]), plant_fmu,
                              plant_values, design_poses(theta0, points), preflight)
+    output, sampled = "u", {}
+    if "sample_period" in data:  # the controller's clocked law, in its FMI 3.0 build
+        period = quantity(data["sample_period"], "time", "sample_period")
+        fmus = dict(fmus, **{loop.alias: _clocked_build(base_dir, fmus[loop.alias])})
+        controller["samplePeriod"] = period
+        output, sampled = "uSampled", {loop.alias: period}
     plant = {f"theta0[{i + 1}]": theta0[i] for i in range(3)}
     plant |= {f"omega0[{i + 1}]": omega0[i] for i in range(3)}
     plant |= plant_values
@@ -360,9 +377,12 @@ def resolve(data: dict, base_dir: Path,
              "fmus": dict(fmus),
              "parameters": {"planner": segment_parameters(order, points[0], points[1]),
                             loop.alias: controller, "plant": plant},
-             "connections": [{"from": f"{a}.{x}[{i}]", "to": f"{b}.{y}[{i}]"}
+             "connections": [{"from": f"{a}.{output if (a, x) == (loop.alias, 'u') else x}[{i}]",
+                              "to": f"{b}.{y}[{i}]"}
                              for a, x, b, y in loop.connections for i in (1, 2, 3)],
              "record": data.get("record", RECORD)}
+    if sampled:
+        plain["sample_period"] = sampled
     for key in ("name", "coupling", "input_extrapolation", "max_step_halvings",
                 "description", "limits", "controller"):
         if key in data:

@@ -13,6 +13,7 @@ one line naming the file and the field, exit 2."""
 from __future__ import annotations
 
 import sys
+from ctypes import c_double
 from fractions import Fraction
 from pathlib import Path
 
@@ -211,3 +212,47 @@ def test_a_discarded_step_ends_the_run_in_one_line(tmp_path, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith(f"cosim: {path}: the simulation failed")
     assert "plant discarded the step at t = 0 s" in err and "does not retry" in err, err
+
+
+def test_the_closed_loop_form_runs_the_sampled_law_on_a_motion(tmp_path):
+    # path1_cubic_ct (planner -> ct -> plant, 2 s) with sample_period = "1 ms": the
+    # controller's FMI 3.0 build ticked, uSampled to the plant. Truth: the zero-order-hold
+    # law from the continuous form of the same FMU (Model Exchange, the resolved
+    # scenario's parameters), at the recorded planner and plant outputs of each tick,
+    # the integral advanced by Ts der(integral); to 1e-12 N m. The sampled loop tracks
+    # within 1e-6 deg of the planner (measured 1.8e-7 deg; the continuous law 1.8e-11
+    # deg; the Rust sampled reference, tests/sampled_loop.rs, 2e-7 deg from its
+    # continuous loop).
+    from robofmu.fmi3 import Fmu3Instance
+    text = (ROOT / "scenarios" / "path1_cubic_ct.toml").read_text()
+    path = tmp_path / "sampled_path1_ct.toml"
+    path.write_text(text.replace('step_size = "1 ms"', 'step_size = "1 ms"\nsample_period = "1 ms"'))
+    s = load_scenario(path, fmu_dir=ROOT / "dist")
+    assert s.sample_period == {"ct": 0.001} and s.fmus["ct"].parent.name == "fmi3"
+    result = run_arrays(s)
+    law = Fmu3Instance("law", s.fmus["ct"], 0.0, 2.0, model_exchange=True)
+    try:
+        law.set_values(tuple(s.parameters["ct"]), list(s.parameters["ct"].values()))
+        law.enter_initialization()
+        law.exit_initialization()
+        law._fmu.enterContinuousTimeMode()
+        integral, worst = [0.0, 0.0, 0.0], 0.0
+        inputs = [(f"planner.{a}[{i}]", f"{b}[{i}]") for a, b in (
+            ("q", "setpoint"), ("qdot", "setpointRate"), ("qddot", "setpointAcceleration"))
+            for i in AXES] + [(f"plant.{a}[{i}]", f"{b}[{i}]") for a, b in (
+                ("theta", "measurement"), ("thetaDot", "measuredRate")) for i in AXES]
+        outputs = tuple(f"u[{i}]" for i in AXES) + tuple(f"der(integral[{i}])" for i in AXES)
+        for k in range(len(result.time)):
+            law.set_values(tuple(b for _, b in inputs),
+                           [result.columns[a][k] for a, _ in inputs])
+            law._fmu.setContinuousStates((c_double * 3)(*integral), 3)
+            values = law.get_values(outputs)
+            got = [result.columns[f"ct.uSampled[{i}]"][k] for i in AXES]
+            worst = max(worst, *(abs(a - b) for a, b in zip(got, values[:3])))
+            integral = [x + 0.001 * r for x, r in zip(integral, values[3:])]
+    finally:
+        law.close()
+    assert worst <= 1e-12, worst
+    error = max(np.abs(result.columns[f"planner.q[{i}]"] - result.columns[f"plant.theta[{i}]"]).max()
+                for i in AXES)
+    assert 1e-9 < np.degrees(error) < 1e-6, np.degrees(error)
