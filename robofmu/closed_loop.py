@@ -309,6 +309,12 @@ def _clocked_build(base_dir: Path, entry: str) -> str:
         raise ScenarioError(f"field 'sample_period': the sampled law runs in the FMI 3.0 "
                             f"build of the controller, {build}, which does not exist; build "
                             "it (bash scripts/build-fmus.sh) or remove sample_period")
+    md = describe(build, "sample_period")
+    if not getattr(md, "clocked", None) or "samplePeriod" not in variable_names(md):
+        raise ScenarioError(f"field 'sample_period': the controller's FMI 3.0 build {build} "
+                            f"({md.modelName}) has no sampled law (no clock and samplePeriod "
+                            "parameter); remove sample_period or choose a controller that "
+                            "has one (controller = \"computed-torque\")")
     return str(build)
 
 

@@ -256,3 +256,17 @@ def test_the_closed_loop_form_runs_the_sampled_law_on_a_motion(tmp_path):
     error = max(np.abs(result.columns[f"planner.q[{i}]"] - result.columns[f"plant.theta[{i}]"]).max()
                 for i in AXES)
     assert 1e-9 < np.degrees(error) < 1e-6, np.degrees(error)
+
+
+@pytest.mark.parametrize("name, value, message", [
+    ("path1_cubic_ct", '"1 kg"', "field 'sample_period'"),
+    ("regulation", '"1 ms"', "field 'sample_period': the controller's FMI 3.0 build"),
+])
+def test_a_bad_sample_period_of_the_closed_loop_form_is_one_line(tmp_path, capsys, name,
+                                                                 value, message):
+    text = (ROOT / "scenarios" / f"{name}.toml").read_text()
+    path = tmp_path / f"{name}.toml"
+    path.write_text(f"sample_period = {value}\n" + text)
+    assert cosim(["check", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"cosim: {path}: {message}"), err
