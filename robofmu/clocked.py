@@ -38,6 +38,7 @@ import numpy as np
 
 from .errors import CosimError, FmuError, ScenarioError, StepDiscarded
 from .fmu_check import describe
+from .instances import close_all
 from .integrated import Rk4Instance
 from .preflight import check_interval, clock_of
 
@@ -48,11 +49,11 @@ def exact_period(period: float) -> Fraction:
     return Fraction(repr(period))
 
 
-def grid(start: float, step: Fraction, first: int, stop: int) -> np.ndarray:
-    """t_k = start + (k n) / d for k in first..stop-1 (n / d = `step`): each from
+def grid(start: float, step: Fraction, count: int) -> np.ndarray:
+    """t_k = start + (k n) / d for k in 0..count-1 (n / d = `step`): each from
     integers, one rounding."""
     n, d = step.numerator, step.denominator
-    return np.array([start + (k * n) / d for k in range(first, stop)])
+    return np.array([start + (k * n) / d for k in range(count)])
 
 
 class ClockedRun:
@@ -78,7 +79,7 @@ class ClockedRun:
                                 "exact multiples of one step; make each a multiple of "
                                 "the smallest")
         self.times = grid(s.start_time, steps.pop() if steps else exact_period(s.step_size),
-                          0, self.steps + 1)
+                          self.steps + 1)
         self.own = set(self.clocks) | set(s.model_exchange)  # instances made here
 
     def _open(self) -> dict:
@@ -156,7 +157,7 @@ class ClockedRun:
                 self.in_event_mode[alias] = True
 
     def run(self, contiguous: bool):
-        from .master import Arrays  # the master imports this module lazily
+        from .master import Arrays, _close_fmu  # the master imports this module lazily
         m, s = self.master, self.scenario
         switches = {switch.step: switch for switch in s.schedule}
         names = [str(sig) for sig in m.recorded]
@@ -193,8 +194,14 @@ class ClockedRun:
                     m.progress(k / self.steps)
             m.loop_seconds = time.perf_counter() - started
         except BaseException as e:
-            for fmu in self.fmus.values():  # after a failed run nothing stays shared
-                fmu.close()
+            shared = m.close_fmu is _close_fmu  # else the caller's pool (a sweep) keeps them
+            for alias, fmu in self.fmus.items():  # after a failed run nothing stays shared
+                if alias in self.own or shared:
+                    fmu.close()
+                else:
+                    m.close_fmu(fmu)  # the pool's: it discards them
+            if shared:
+                close_all()
             if isinstance(e, StepDiscarded):
                 raise CosimError(f"{e} (this loop, for clocked and Model Exchange FMUs, "
                                  "does not retry a discarded step; use a smaller "

@@ -76,6 +76,7 @@ class FmuStore:
     def setup(self) -> None:
         self.folder = scratch.make()
         for digest, data in self.blobs.items():
+            (self.folder / f"{digest}.fmu").parent.mkdir(exist_ok=True)
             (self.folder / f"{digest}.fmu").write_bytes(data)
 
     def ready(self) -> Path:
@@ -113,6 +114,11 @@ def read_fmus(document: dict, base: Path, fmu_dir: Path | None) -> tuple[dict, d
                             "or give --fmu-dir") from None
         digest = hashlib.sha256(data).hexdigest()[:20]
         by_alias[alias], blobs[digest] = digest, data
+        build = Path(path).parent / "fmi3" / Path(path).name
+        if "sample_period" in document and build.is_file():
+            # The closed-loop form's sampled law runs in the FMI 3.0 build beside the
+            # controller's file (robofmu.closed_loop): kept beside its copy here too.
+            blobs[f"fmi3/{digest}"] = build.read_bytes()
     return by_alias, blobs
 
 
