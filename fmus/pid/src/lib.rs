@@ -3,11 +3,12 @@
 //! state are the continuous states (Model Exchange), stepped exactly for inputs held or
 //! following the derivatives the master gives (Co-Simulation). Signals carry no unit.
 
-use robofmu_control::pid::{self, PidGains, PidInputs, PidOutput, PidState};
+use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
 use robofmu_control::pid_jacobian::{self, Known, Known::*, Unknown, Unknown::*};
 use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
 use robofmu_fmi::prelude::{Variability::*, *};
 
+mod clocked;
 pub const CHANNELS: usize = 3;
 
 static INFO: ModelInfo = ModelInfo::new(
@@ -34,6 +35,8 @@ pub struct Pid {
     /// Derivatives of the inputs at the start of a step (zero: held).
     ramps: [PidInputRamp; CHANNELS],
     states: [PidState; CHANNELS],
+    /// The sampled law (FMI 3.0 clocked partition).
+    sampled: clocked::Sampled,
 }
 
 impl Pid {
@@ -44,19 +47,17 @@ impl Pid {
 
     /// The gains of every channel are usable, or why not.
     fn validate(&self) -> Result<(), String> {
-        for (c, g) in self.gains.iter().enumerate() {
-            g.validate()
-                .map_err(|e| format!("channel {}: {e}", c + 1))?;
-        }
-        Ok(())
+        (self.gains.iter().enumerate())
+            .try_for_each(|(c, g)| g.validate().map_err(|e| format!("channel {}: {e}", c + 1)))
     }
 
-    /// The law's output and state derivatives of channel c.
-    fn output(&self, c: usize) -> PidOutput {
-        pid::output(&self.gains[c], &self.states[c], &self.inputs[c])
+    /// `law` (`pid::output`, `pid::derivatives`, ...) on the gains, state and inputs of
+    /// channel c.
+    fn law<T>(&self, c: usize, law: impl Fn(&PidGains, &PidState, &PidInputs) -> T) -> T {
+        law(&self.gains[c], &self.states[c], &self.inputs[c])
     }
     fn rates(&self, c: usize) -> PidState {
-        pid::derivatives(&self.gains[c], &self.states[c], &self.inputs[c])
+        self.law(c, pid::derivatives)
     }
 }
 
@@ -99,7 +100,7 @@ const MEASURED: Decl = input_k::<1>("measurement", 111, &[0.0]);
 const R_RATE: Decl = input_k::<2>("setpointRate", 121, &[0.0]);
 const Y_RATE: Decl = input_k::<3>("measuredRate", 131, &[0.0]);
 const FEEDFWD: Decl = input_k::<4>("feedforward", 141, &[0.0]);
-const U: Decl = CH.output("u", 201, |m, c| m.output(c).u);
+const U: Decl = CH.output("u", 201, |m, c| m.law(c, pid::output).u);
 const INTEGRAL: Decl = CH.state("integral", 301, |m, c| &mut m.states[c].integral);
 const FILTER: Decl = CH.state("filter", 311, |m, c| &mut m.states[c].filter);
 const DER_INT: Decl = CH.derivative("der(integral)", 321, INTEGRAL, |m, c| m.rates(c).integral);
@@ -153,14 +154,11 @@ const KNOWNS: [(Decl, Known); 7] = [
     (FILTER, Filter),
 ];
 
-/// d(output or state derivative)/d(input or state) of the law; the channels are
-/// independent.
+/// d(output or state derivative)/d(input or state) of the law in one channel (the
+/// channels are independent: `Jacobian::Diagonal`).
 fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
     let of = unknown.role_in(&UNKNOWNS, "an output or derivative")?;
     let c = unknown.index;
-    if known.index != c {
-        return Ok(0.0);
-    }
     let (g, s, i) = (&m.gains[c], &m.states[c], &m.inputs[c]);
     let d = pid_jacobian::partial(g, s, i, of, known.role(&KNOWNS));
     d.ok_or_else(|| format!("\"{}\" is not an input or state", known.name))
@@ -184,8 +182,7 @@ impl Model for Pid {
             return StepOutcome::Discarded { reason, terminate };
         }
         for c in 0..CHANNELS {
-            let (g, s, i) = (&self.gains[c], &self.states[c], &self.inputs[c]);
-            self.states[c] = step_with_ramp(g, s, i, &self.ramps[c], step);
+            self.states[c] = self.law(c, |g, s, i| step_with_ramp(g, s, i, &self.ramps[c], step));
         }
         StepOutcome::Completed
     }
@@ -194,7 +191,8 @@ impl Model for Pid {
     /// FMI 3.0 intermediate update: each communication step split into 10 equal parts,
     /// the continuous inputs settable at the 9 inner points (held over the next part).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
-    const JACOBIAN: Option<Jacobian<Self>> = Some(Jacobian::Partial(partial));
+    const JACOBIAN: Option<Jacobian<Self>> = Some(Jacobian::Diagonal(partial));
+    const CLOCKS: &'static [InputClock<Self>] = clocked::CLOCKS;
 }
 
 export_fmu!(Pid);
