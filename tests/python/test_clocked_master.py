@@ -1,6 +1,9 @@
 """Our master ticks a clocked FMU (robofmu.clocked): the sampled computed-torque law of
 ComputedTorque's FMI 3.0 build (input clock `sampleClock`, clocked output `uSampled`)
-on the FMI 3.0 plant in Co-Simulation, through a scenario's `sample_period`.
+on the FMI 3.0 plant in Co-Simulation, through a scenario's `sample_period`; the plant
+and the controller in Model Exchange (robofmu.integrated); the closed-loop form's
+`sample_period` with computed torque on a motion and with the sampled PID on the
+regulation (its law written again in numpy); robofmu.System and a sweep.
 
 Expected values: the zero-order-hold law from a second formulation, computed here from
 the plant's recorded outputs at the ticks (test_clocked_controller.Reference: the
@@ -12,6 +15,7 @@ one line naming the file and the field, exit 2."""
 
 from __future__ import annotations
 
+import shutil
 import sys
 from ctypes import c_double
 from fractions import Fraction
@@ -258,16 +262,25 @@ def test_the_closed_loop_form_runs_the_sampled_law_on_a_motion(tmp_path):
     assert 1e-9 < np.degrees(error) < 1e-6, np.degrees(error)
 
 
-@pytest.mark.parametrize("name, value, message", [
-    ("path1_cubic_ct", '"1 kg"', "field 'sample_period'"),
-    ("regulation", '"1 ms"', "field 'sample_period': the controller's FMI 3.0 build"),
+@pytest.mark.parametrize("value, build, message", [
+    ('"1 kg"', "fmi3", "field 'sample_period' must be a time, got unit 'kg'"),
+    ('"1 ms"', "fmi3-scalar", "field 'sample_period': the controller's FMI 3.0 build"),
+    ('"1 ms"', None, "field 'sample_period': the sampled law runs in the FMI 3.0 build"),
 ])
-def test_a_bad_sample_period_of_the_closed_loop_form_is_one_line(tmp_path, capsys, name,
-                                                                 value, message):
-    text = (ROOT / "scenarios" / f"{name}.toml").read_text()
-    path = tmp_path / f"{name}.toml"
-    path.write_text(f"sample_period = {value}\n" + text)
-    assert cosim(["check", str(path)]) == 2
+def test_a_bad_sample_period_of_the_closed_loop_form_is_one_line(tmp_path, capsys, value,
+                                                                 build, message):
+    # The FMUs by name from a folder (--fmu-dir) whose fmi3/ holds the PID's FMI 3.0
+    # build, or its scalar-only build (no clocks), or nothing.
+    folder = tmp_path / "fmus"
+    (folder / "fmi3").mkdir(parents=True)
+    for model in ("Planner", "PID", "Pss3Plant"):
+        shutil.copy(ROOT / "dist" / f"{model}.fmu", folder)
+    if build is not None:
+        shutil.copy(ROOT / "dist" / build / "PID.fmu", folder / "fmi3")
+    path = tmp_path / "regulation.toml"
+    path.write_text(f"sample_period = {value}\n"
+                    + (ROOT / "scenarios" / "regulation.toml").read_text())
+    assert cosim(["check", str(path), "--fmu-dir", str(folder)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith(f"cosim: {path}: {message}"), err
 
@@ -294,3 +307,36 @@ def test_a_sweep_runs_the_sampled_closed_loop(tmp_path):
     expected = metrics({"time": single.time, **single.columns}).rms_error_deg
     assert float(row["rms_error_deg"]) == pytest.approx(expected, rel=1e-12)
     assert 1e-9 < expected < 1e-6  # sampled: the continuous law tracks to 1e-11 deg
+
+
+@pytest.mark.parametrize("fmi3", [False, True])
+def test_the_sampled_pid_on_the_regulation_equals_its_zero_order_hold_law(tmp_path, fmi3):
+    # scenarios/regulation.toml (PID, gains by the design rule, Tf = 0 with rate inputs,
+    # no output limits) with sample_period = "1 ms": the PID's FMI 3.0 build ticked, the
+    # planner and the plant FMI 2.0, or (fmi3) their FMI 3.0 builds.
+    # Truth: the zero-order-hold PID in numpy from the recorded planner and plant
+    # outputs at the ticks (crates/fmu/control/src/sampled.rs's recursion written
+    # again): u_k = Kp e_k + Ki I_k + Kd (qdot_k - thetaDot_k) + g_k with
+    # e_k = q_k - theta_k, I_0 = 0, I_k+1 = I_k + Ts e_k; to 1e-12 N m.
+    text = (ROOT / "scenarios" / "regulation.toml").read_text()
+    path = tmp_path / "sampled_regulation.toml"
+    path.write_text('sample_period = "1 ms"\n' + text)
+    s = load_scenario(path)
+    p = s.parameters["pid"]
+    assert s.sample_period == {"pid": 0.001}
+    assert all(p[f"Tf[{i}]"] == 0.0 and p[f"useRateInputs[{i}]"] for i in AXES)
+    assert not any(p.get(f"limitOutput[{i}]", False) for i in AXES)
+    c = run_arrays(s, fmi3=fmi3).columns
+    worst = 0.0
+    for i in AXES:
+        e = c[f"planner.q[{i}]"] - c[f"plant.theta[{i}]"]
+        integral = np.concatenate(([0.0], np.cumsum(0.001 * e[:-1])))
+        u = (p[f"Kp[{i}]"] * e + p[f"Ki[{i}]"] * integral
+             + p[f"Kd[{i}]"] * (c[f"planner.qdot[{i}]"] - c[f"plant.thetaDot[{i}]"])
+             + c[f"plant.gravityCompensation[{i}]"])
+        worst = max(worst, np.abs(c[f"pid.uSampled[{i}]"] - u).max())
+    print(f"sampled PID: max |uSampled - zero-order hold| = {worst:.3g} N m")
+    assert worst <= 1e-12, worst
+    # The loop regulates: from 3 deg off to within 0.05 deg at the end.
+    error = max(abs(c[f"planner.q[{i}]"][-1] - c[f"plant.theta[{i}]"][-1]) for i in AXES)
+    assert np.degrees(error) < 0.05
