@@ -81,6 +81,7 @@ class ClockedRun:
         self.times = grid(s.start_time, steps.pop() if steps else exact_period(s.step_size),
                           self.steps + 1)
         self.own = set(self.clocks) | set(s.model_exchange)  # instances made here
+        self.t: list[float] = self.times.tolist()  # as Python floats, for the FMU calls
 
     def _open(self) -> dict:
         from .fmi3 import Fmu3Instance, is_fmi3  # lazily: FMPy's FMI 3.0 layer
@@ -122,14 +123,14 @@ class ClockedRun:
                 fmu = self.fmus[alias]
                 if isinstance(fmu, Rk4Instance):  # Model Exchange: Event Mode at the tick
                     fmu.enter_event_mode()
-                    fmu.tick(self.clocks[alias], self.times[k])
+                    fmu.tick(self.clocks[alias], self.t[k])
                     fmu.resume()
                     continue
                 if k > 0 and not self.in_event_mode[alias]:
-                    raise FmuError(f"{alias}: its step to the tick at t = {self.times[k]!r} s "
+                    raise FmuError(f"{alias}: its step to the tick at t = {self.t[k]!r} s "
                                    "ended without asking for Event Mode; the FMU does not "
                                    "tick where sample_period says")
-                fmu.tick(self.clocks[alias], self.times[k])
+                fmu.tick(self.clocks[alias], self.t[k])
                 fmu.enter_step_mode()
                 self.in_event_mode[alias] = False
 
@@ -138,21 +139,21 @@ class ClockedRun:
             row[first:first + len(names)] = self.fmus[alias].get_values(names)
 
     def _step(self, k: int) -> None:
-        t, h = self.times[k], self.times[k + 1] - self.times[k]
+        t, h = self.t[k], self.t[k + 1] - self.t[k]
         for alias in self.scenario.order:
             fmu = self.fmus[alias]
             if isinstance(fmu, Rk4Instance):  # to t_k+1 exactly: a tick's time
-                fmu.advance(t, self.times[k + 1])
+                fmu.advance(t, self.t[k + 1])
                 continue
             if alias not in self.clocks:
                 fmu.do_step(t, h)
                 continue
             event, reached = fmu.step_to(t, h)
             if (k + 1) % self.every[alias] == 0:
-                if not event or reached != self.times[k + 1]:
+                if not event or reached != self.t[k + 1]:
                     raise FmuError(f"{alias}: its step from t = {t!r} s reached "
                                    f"{reached!r} s without asking for Event Mode at the "
-                                   f"tick t = {self.times[k + 1]!r} s")
+                                   f"tick t = {self.t[k + 1]!r} s")
                 fmu.enter_event_mode()
                 self.in_event_mode[alias] = True
 
