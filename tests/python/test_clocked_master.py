@@ -169,6 +169,8 @@ def test_a_run_far_from_zero_ticks_on_the_fmus_grid(tmp_path):
     ({"extra": 'coupling = "gauss-seidel"'}, "field 'sample_period': a scenario with clocks "
                                              "runs with coupling = \"sampled\" and no "
                                              "max_step_halvings"),
+    ({"extra": 'model_exchange = { plant = "rk4" }', "plant": "Pss3Plant"},
+     "field 'model_exchange.plant': plant is no FMI 3.0 FMU with Model Exchange"),
     ({"extra": 'model_exchange = { plant = "euler" }'},
      "field 'model_exchange.plant' must be one of ('rk4',) (the master's integration methods)"),
 ])
