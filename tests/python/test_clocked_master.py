@@ -342,3 +342,20 @@ def test_the_sampled_pid_on_the_regulation_equals_its_zero_order_hold_law(tmp_pa
     # The loop regulates: from 3 deg off to within 0.05 deg at the end.
     error = max(abs(c[f"planner.q[{i}]"][-1] - c[f"plant.theta[{i}]"][-1]) for i in AXES)
     assert np.degrees(error) < 0.05
+
+
+def test_plan_switches_in_the_clocked_loop(tmp_path):
+    # scenarios/three_axis_waypoints.toml (two segments: the planner reset and given
+    # the next segment's parameters at the interior waypoint) with the sampled PID:
+    # within the zero-order hold's deviation of the continuous PID in the native loop
+    # (measured 2.6e-7 rad; tests/sampled_loop.rs: 1e-5 deg on its three-axis motion).
+    text = (ROOT / "scenarios" / "three_axis_waypoints.toml").read_text()
+    path = tmp_path / "sampled_waypoints.toml"
+    path.write_text('sample_period = "1 ms"\n' + text)
+    sampled = load_scenario(path)
+    assert len(sampled.schedule) == 1
+    continuous = run_arrays(load_scenario(ROOT / "scenarios" / "three_axis_waypoints.toml"))
+    result = run_arrays(sampled)
+    apart = max(np.abs(result.columns[f"plant.theta[{i}]"]
+                       - continuous.columns[f"plant.theta[{i}]"]).max() for i in AXES)
+    assert 1e-9 < apart < 1e-6, apart
