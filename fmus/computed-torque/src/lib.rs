@@ -18,6 +18,7 @@
 
 mod clocked;
 mod initial_dependencies;
+mod partials;
 mod variables;
 
 use nalgebra::Vector3;
@@ -178,6 +179,9 @@ impl Model for ComputedTorqueFmu {
 
     const VARIABLES: &'static [Declaration<Self>] = &variables::VARIABLES;
     const CLOCKS: &'static [InputClock<Self>] = clocked::CLOCKS;
+    /// Directional and adjoint derivatives from the law's Jacobian (`partials`).
+    const JACOBIAN: Option<Jacobian<Self>> =
+        Some(Jacobian::Directional(partials::directional_derivative));
     fn set_time(&mut self, _time: f64) {
         // The law is time invariant.
     }
