@@ -182,6 +182,9 @@ impl Model for ComputedTorqueFmu {
     /// Directional and adjoint derivatives from the law's Jacobian (`partials`).
     const JACOBIAN: Option<Jacobian<Self>> =
         Some(Jacobian::Directional(partials::directional_derivative));
+    /// FMI 3.0 intermediate update: each communication step split into 10 equal parts,
+    /// the inputs settable at the 9 inner points (held over the next part).
+    const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
     fn set_time(&mut self, _time: f64) {
         // The law is time invariant.
     }

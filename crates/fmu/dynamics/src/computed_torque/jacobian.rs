@@ -1,5 +1,5 @@
 //! The partial derivatives of the computed-torque law, for directional and adjoint
-//! derivatives and output derivatives of its FMU.
+//! derivatives of its FMU.
 //!
 //! With a = q_ddot + Kd (q_dot - theta_dot) + Kp (q - theta) + Ki I and
 //! u_raw = ID(theta, theta_dot, a) (`ComputedTorque::inverse_dynamics`), u_raw is affine
@@ -20,7 +20,7 @@
 //! integral's rate is the error q - theta (rows +1 and -1), zero on an axis whose
 //! integration is stopped (conditional integration, `ComputedTorque::integral_rate`).
 
-use super::law::{ComputedTorque, Inputs};
+use super::law::{ComputedTorque, Inputs, Output};
 use crate::pss3::dynamics::DynamicsError;
 use crate::pss3::rotation::euler_rate_matrix;
 use nalgebra::{Matrix3, Vector3};
@@ -77,6 +77,17 @@ impl ComputedTorque {
         Ok(e.transpose() * terms.mass * e)
     }
 
+    /// `block` (derivatives of the raw output) with the rows of the axes whose raw
+    /// output is outside their limits set to zero: the limited output's derivatives.
+    fn limited_rows(&self, out: &Output, block: Matrix3<f64>) -> Matrix3<f64> {
+        let gains = self.gains();
+        let passes = Vector3::from_fn(|k, _| match gains[k].limits {
+            Some((min, max)) => (min..=max).contains(&out.u_raw[k]),
+            None => true,
+        });
+        Matrix3::from_fn(|k, j| if passes[k] { block[(k, j)] } else { 0.0 })
+    }
+
     /// The partial derivatives of the output and the integral's rate at the error
     /// integral `integral` and `inputs` (see the module documentation for how each
     /// block is computed and its accuracy).
@@ -115,13 +126,7 @@ impl ComputedTorque {
             by_rate.set_column(j, &column);
         }
         let raw = [kp, kd, mass, by_angle - kp, by_rate - kd, ki];
-        // Rows of axes whose output sits outside its limits are zero.
-        let passes = Vector3::from_fn(|k, _| match gains[k].limits {
-            Some((min, max)) => (min..=max).contains(&out.u_raw[k]),
-            None => true,
-        });
-        let output =
-            raw.map(|block| Matrix3::from_fn(|k, j| if passes[k] { block[(k, j)] } else { 0.0 }));
+        let output = raw.map(|block| self.limited_rows(&out, block));
         let integrating = Vector3::from_fn(|k, _| !self.integration_stopped(k, &out));
         let identity = Matrix3::from_diagonal(&integrating.map(|on| if on { 1.0 } else { 0.0 }));
         let zero = Matrix3::zeros();
