@@ -167,6 +167,42 @@ def test_directional_and_adjoint_derivatives_are_transposes(tmp_path):
     pid.freeInstance()
 
 
+
+def test_computed_torque_derivatives_in_both_interfaces_and_the_adjoint(tmp_path):
+    # Expected: ComputedTorque's u is affine in the planned acceleration (u = M_x a +
+    # terms of the measured motion, no limits by default), so the difference of u over
+    # a unit change of setpointAcceleration[2] is the column M_x e_2 to rounding; a
+    # Co-Simulation instance gives the same column (one implementation behind both
+    # interfaces); for any seeds a and b, a . (J b) = (J^T a) . b (duality) over every
+    # unknown and known.
+    columns = []
+    for model_exchange in (True, False):
+        ct = fmu3(fmu3_path("ComputedTorque"), tmp_path / f"CT{model_exchange}",
+                  model_exchange=model_exchange)
+        initialize(ct)
+        vr = ct.vr
+        columns.append(ct.getDirectionalDerivative([vr["u"]], [vr["setpointAcceleration"]],
+                                                   [0.0, 1.0, 0.0], 3))
+        u0 = ct.getFloat64([vr["u"]], 3)
+        ct.setFloat64([vr["setpointAcceleration"]], [0.0, 1.0, 0.0])
+        difference = [a - b for a, b in zip(ct.getFloat64([vr["u"]], 3), u0)]
+        assert columns[-1] == pytest.approx(difference, rel=1e-12, abs=1e-14)
+        assert max(abs(x) for x in difference) > 1e-3
+        if model_exchange:
+            unknowns = [vr["u"], vr["der(integral)"]]
+            knowns = [vr[n] for n in ("setpoint", "setpointRate", "setpointAcceleration",
+                                      "measurement", "measuredRate", "integral")]
+            rng = random.Random(11)
+            a = [rng.uniform(-1, 1) for _ in range(6)]
+            b = [rng.uniform(-1, 1) for _ in range(18)]
+            jb = ct.getDirectionalDerivative(unknowns, knowns, b, 6)
+            jta = ct.getAdjointDerivative(unknowns, knowns, a, 18)
+            left = sum(x * y for x, y in zip(a, jb))
+            right = sum(x * y for x, y in zip(jta, b))
+            assert left == pytest.approx(right, rel=1e-12)
+        ct.freeInstance()
+    assert columns[0] == pytest.approx(columns[1], rel=1e-14)
+
 def dependencies(fmu, name):
     """fmi3GetVariableDependencies of `name`: (element of the dependent, independent,
     element of the independent, kind) tuples. Through the ctypes functions: FMPy's

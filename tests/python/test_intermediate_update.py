@@ -108,9 +108,10 @@ def run_fmi2(tmp_path, h):
 
 
 def test_the_fmi3_descriptions_declare_intermediate_update():
-    # Expected: Pss3Plant and PID provide it, on their continuous inputs and outputs;
-    # the Planner (no continuous inputs) does not.
-    for model, provided in [("Pss3Plant", True), ("PID", True), ("Planner", False)]:
+    # Expected: Pss3Plant, PID and ComputedTorque provide it, on their continuous inputs
+    # and outputs; the Planner (no continuous inputs) does not.
+    for model, provided in [("Pss3Plant", True), ("PID", True), ("ComputedTorque", True),
+                            ("Planner", False)]:
         md = read_model_description(fmu3_path(model))
         assert bool(md.coSimulation.providesIntermediateUpdate) is provided, model
     # FMPy 0.3.32 does not read the variable attribute: the XML itself.
@@ -152,7 +153,10 @@ def test_inputs_set_at_intermediate_points_cut_the_coupling_error(tmp_path, caps
 
 # Per model: the input set before the step, its values, the output read.
 DRIVES = {"Pss3Plant": ("actuatorForce", [30.0, -20.0, 10.0], "theta"),
-          "PID": ("measurement", [0.1, 0.2, -0.3], "u")}
+          "PID": ("measurement", [0.1, 0.2, -0.3], "u"),
+          # Near the start pose (roll 122.07 deg), away from the planned angles: the
+          # error integral, and with it u, moves over the step.
+          "ComputedTorque": ("measurement", [0.01, -0.01, 2.15], "u")}
 
 
 def start(directory, callback, model="Pss3Plant", early_return_allowed=False):

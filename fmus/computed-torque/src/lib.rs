@@ -18,6 +18,7 @@
 
 mod clocked;
 mod initial_dependencies;
+mod partials;
 mod variables;
 
 use nalgebra::Vector3;
@@ -178,6 +179,12 @@ impl Model for ComputedTorqueFmu {
 
     const VARIABLES: &'static [Declaration<Self>] = &variables::VARIABLES;
     const CLOCKS: &'static [InputClock<Self>] = clocked::CLOCKS;
+    /// Directional and adjoint derivatives from the law's Jacobian (`partials`).
+    const JACOBIAN: Option<Jacobian<Self>> =
+        Some(Jacobian::Directional(partials::directional_derivative));
+    /// FMI 3.0 intermediate update: each communication step split into 10 equal parts,
+    /// the inputs settable at the 9 inner points (held over the next part).
+    const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
     fn set_time(&mut self, _time: f64) {
         // The law is time invariant.
     }

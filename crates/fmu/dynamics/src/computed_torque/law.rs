@@ -188,14 +188,23 @@ impl ComputedTorque {
     /// PID; the push of the integral on its own axis is M_x,kk Ki e with M_x,kk > 0).
     pub fn integral_rate(&self, output: &Output) -> Vector3<f64> {
         Vector3::from_fn(|k, _| {
-            let g = &self.gains[k];
-            let push = g.ki * output.error[k];
-            let raw = output.u_raw[k];
-            let stopped = match g.limits {
-                Some((min, max)) => (raw >= max && push > 0.0) || (raw <= min && push < 0.0),
-                None => false,
-            };
-            if stopped { 0.0 } else { output.error[k] }
+            if self.integration_stopped(k, output) {
+                0.0
+            } else {
+                output.error[k]
+            }
         })
+    }
+
+    /// Whether the integral of axis `k` (0-based) is stopped at `output`: its output is
+    /// at a limit and Ki e pushes it further out.
+    pub(super) fn integration_stopped(&self, k: usize, output: &Output) -> bool {
+        let g = &self.gains[k];
+        let push = g.ki * output.error[k];
+        let raw = output.u_raw[k];
+        match g.limits {
+            Some((min, max)) => (raw >= max && push > 0.0) || (raw <= min && push < 0.0),
+            None => false,
+        }
     }
 }

@@ -30,11 +30,13 @@
 //! [`PlantParams`]: crate::pss3::dynamics::PlantParams
 
 mod gains;
+mod jacobian;
 mod law;
 mod model_parameters;
 mod sampled;
 
 pub use gains::pole_placement;
+pub use jacobian::{Known, LawJacobian};
 pub use law::{AxisGains, ComputedTorque, ControllerError, Inputs, Output};
 pub use model_parameters::{
     GEOMETRY, MODEL_PARAMETER_SPECS, MODEL_PARAMETERS, ModelParameter, controller_message,
