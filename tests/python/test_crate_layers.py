@@ -8,8 +8,8 @@ The layers, by the folder a crate sits in, from the bottom:
   3 tools: crates/tools/*, benches/: what ships beside the FMUs, and the benchmarks.
 A crate's normal and build dependencies stay in its layer or below. Its dev-dependencies
 (test time only) may reach the build and test layers: an FMU crate's tests use the
-in-process test host and the description writers, never the tools. Truth: the crate
-graph as cargo reads it from the manifests (`cargo metadata`).
+test host over the linked model and the description writers, never the tools. Truth:
+the crate graph as cargo reads it from the manifests (`cargo metadata`).
 """
 
 import json
