@@ -124,14 +124,14 @@ fn debug_logging_honours_categories_and_escapes_percent() {
         api::exit_initialization_mode::<Pid>(h.c);
     }
     {
-        let lines = h.lines.lock().unwrap();
+        let lines = h.env.log.lock().unwrap();
         assert!(
             lines
                 .iter()
-                .any(|l| l.1 == "logEvents" && l.2.contains("initialized"))
+                .any(|l| l.category == "logEvents" && l.message.contains("initialized"))
         );
         // logController was not enabled.
-        assert!(!lines.iter().any(|l| l.1 == "logController"));
+        assert!(!lines.iter().any(|l| l.category == "logController"));
     }
     let bad = [c"log%sNothing".as_ptr()];
     assert_eq!(

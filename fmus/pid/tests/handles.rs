@@ -9,10 +9,9 @@ mod support;
 use robofmu_fmi::core::{Declaration, Log, Model, ModelInfo, StepOutcome};
 use robofmu_fmi::fmi2::api;
 use robofmu_fmi::fmi2::types::*;
-use robofmu_fmi_testing::{Host, Lines};
+use robofmu_fmi_testing::{Callbacks, Environment, Fmi2Instance, Host, Keep, table};
 use robofmu_pid_fmu::Pid;
-use std::ffi::{CString, c_void};
-use std::sync::Mutex;
+use std::ffi::c_int;
 use support::test_info;
 
 const CS: i32 = FMI2_CO_SIMULATION;
@@ -183,57 +182,21 @@ fn a_state_of_another_instance_of_the_same_fmu_is_accepted() {
     assert_ne!(u(&fresh), u(&a));
 }
 
-static NO_ALLOCATOR_LOG: Lines = Mutex::new(Vec::new());
-
-extern "C" fn capture(
-    env: Fmi2ComponentEnvironment,
-    _name: Fmi2String,
-    status: Fmi2Status,
-    _category: Fmi2String,
-    message: Fmi2String,
-) {
-    assert_eq!(env, &NO_ALLOCATOR_LOG as *const Lines as *mut c_void);
-    let text = unsafe { std::ffi::CStr::from_ptr(message) }
-        .to_string_lossy()
-        .into_owned();
-    NO_ALLOCATOR_LOG
-        .lock()
-        .unwrap()
-        .push((status, String::new(), text));
-}
-
 #[test]
 fn instantiate_refuses_null_memory_callbacks_with_a_log_line() {
-    // The same transmute as the test host: a non-variadic logger for a variadic type.
-    let logger: Fmi2CallbackLogger = unsafe {
-        std::mem::transmute::<
-            extern "C" fn(Fmi2ComponentEnvironment, Fmi2String, Fmi2Status, Fmi2String, Fmi2String),
-            Fmi2CallbackLogger,
-        >(capture)
+    // The test host's callbacks with allocateMemory and freeMemory NULL; loggingOn off.
+    let which = Callbacks {
+        logger: true,
+        allocate: false,
+        free: false,
     };
-    let functions = Fmi2CallbackFunctions {
-        logger: Some(logger),
-        allocate_memory: None,
-        free_memory: None,
-        step_finished: None,
-        component_environment: &NO_ALLOCATOR_LOG as *const Lines as *mut c_void,
-    };
-    let name = CString::new("no-allocator").unwrap();
-    let guid = CString::new(Pid::INFO.guid).unwrap();
-    let c = unsafe {
-        api::instantiate::<Pid>(
-            name.as_ptr(),
-            CS,
-            guid.as_ptr(),
-            std::ptr::null(),
-            &functions,
-            FMI2_FALSE,
-            FMI2_FALSE,
-        )
-    };
-    assert!(c.is_null());
-    let lines = NO_ALLOCATOR_LOG.lock().unwrap();
+    let env = Environment::keeping(which, Keep::Everything);
+    let binary = table::binary::<Pid>();
+    let refused = Fmi2Instance::instantiate(binary, "no-allocator", CS, Pid::INFO.guid, env, false);
+    let env = refused.err().expect("refused without memory callbacks");
+    // The line reached the log passed as componentEnvironment.
+    let lines = env.log.lock().unwrap();
     assert_eq!(lines.len(), 1, "{lines:?}");
-    assert_eq!(lines[0].0, Fmi2Status::Error);
-    assert!(lines[0].2.contains("allocateMemory"), "{lines:?}");
+    assert_eq!(lines[0].status, Fmi2Status::Error as c_int);
+    assert!(lines[0].message.contains("allocateMemory"), "{lines:?}");
 }

@@ -18,11 +18,15 @@ fn quiet(kind: i32) -> Host<Planner> {
 
 #[test]
 fn instantiate_rejects_wrong_guid_type_and_missing_callbacks() {
-    let (c, lines, _f) = fmu_host::instantiate::<Planner>(CS, "{not-the-guid}", false);
-    assert!(c.is_null());
-    assert!(lines.lock().unwrap()[0].2.contains("does not match"));
-    let (c, _, _f) = fmu_host::instantiate::<Planner>(7, Planner::INFO.guid, false);
-    assert!(c.is_null());
+    let refused = fmu_host::instantiate::<Planner>(CS, "{not-the-guid}", false).err();
+    let env = refused.expect("a wrong GUID refused");
+    assert!(
+        env.log.lock().unwrap()[0]
+            .message
+            .contains("does not match")
+    );
+    let refused = fmu_host::instantiate::<Planner>(7, Planner::INFO.guid, false).err();
+    assert!(refused.is_some(), "fmi2Type 7 refused");
     let name = CString::new("x").unwrap();
     let c = unsafe {
         api::instantiate::<Planner>(

@@ -53,12 +53,13 @@ static ALLOCATOR: Counting = Counting;
 /// One instantiate / initialize / step / FMU state / free cycle; the FMU state is
 /// freed by the host or, if `keep_state`, left to fmi2FreeInstance.
 fn cycle(keep_state: bool) {
-    let (c, lines, functions) = instantiate::<Pss3Plant>(
+    let instance = instantiate::<Pss3Plant>(
         FMI2_CO_SIMULATION,
         "{66933d5c-c82b-4e7e-aaa5-b9c59a30f4c0}",
         false,
-    );
-    assert!(!c.is_null(), "{:?}", lines.lock().unwrap());
+    )
+    .unwrap_or_else(|env| panic!("{}", env.take_log()));
+    let c = instance.c;
     unsafe {
         assert_eq!(
             api::setup_experiment::<Pss3Plant>(c, 0, 0.0, 0.0, 0, 0.0),
@@ -92,9 +93,8 @@ fn cycle(keep_state: bool) {
                 Fmi2Status::Ok
             );
         }
-        api::free_instance::<Pss3Plant>(c);
     }
-    drop((lines, functions));
+    drop(instance); // fmi2FreeInstance
 }
 
 #[test]

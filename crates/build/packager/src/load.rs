@@ -3,7 +3,7 @@
 //! ([`Header::check`]: magic, versions, fingerprint of this build).
 
 use robofmu_fmi::description::{Description, Header, SYMBOL};
-use robofmu_fmi_host::Library;
+use robofmu_fmi_loader::Library;
 use std::ffi::CString;
 use std::path::Path;
 

@@ -5,31 +5,62 @@
 
 use crate::fmi2::CallbackFunctions;
 use std::ffi::{CStr, CString, c_char, c_int, c_void};
+use std::fmt;
 use std::sync::Mutex;
 
-/// Log lines received, as "status category: message"; only messages of status
-/// Warning and above are kept (debug lines such as logCalls are dropped).
-pub type Log = Mutex<Vec<String>>;
+/// One message of the FMU, its strings as the FMU passed them ("(null)" for NULL).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Line {
+    pub status: c_int,
+    pub category: String,
+    pub message: String,
+}
+
+/// "status category: message", with the FMU's '%' escaping undone.
+impl fmt::Display for Line {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        let unescape = |s: &str| s.replace("%%", "%");
+        let (category, message) = (unescape(&self.category), unescape(&self.message));
+        write!(f, "{} {category}: {message}", self.status)
+    }
+}
+
+/// Log lines received. The hostile importer's logger keeps messages of status
+/// Warning and above (debug lines such as logCalls are dropped, [`Keep::Problems`]);
+/// the in-process host's keeps every line ([`Keep::Everything`]).
+pub type Log = Mutex<Vec<Line>>;
+
+/// Which messages a logger keeps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Keep {
+    /// Status Warning and above.
+    Problems,
+    /// Every message, OK (debug) lines included.
+    Everything,
+}
 
 /// The log received so far, one line per message, and clears it.
 pub fn take(log: &Log) -> String {
     let mut lines = log.lock().unwrap_or_else(|e| e.into_inner());
-    let text = lines.join(" | ");
+    let text: Vec<String> = lines.iter().map(Line::to_string).collect();
     lines.clear();
-    text
+    text.join(" | ")
+}
+
+/// A string the FMU passed ("(null)" for NULL), as it passed it.
+fn verbatim(p: *const c_char) -> String {
+    if p.is_null() {
+        return "(null)".to_string();
+    }
+    // SAFETY: the FMU passes NUL-terminated strings, alive during the callback.
+    unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned()
 }
 
 /// A string the FMU passed ("(null)" for NULL), with its '%' escaping undone.
 /// Called by callbacks with the FMU's pointers only.
 #[allow(clippy::not_unsafe_ptr_arg_deref)]
 pub fn text(p: *const c_char) -> String {
-    if p.is_null() {
-        return "(null)".to_string();
-    }
-    // SAFETY: the FMU passes NUL-terminated strings, alive during the callback.
-    unsafe { CStr::from_ptr(p) }
-        .to_string_lossy()
-        .replace("%%", "%")
+    verbatim(p).replace("%%", "%")
 }
 
 /// A C string of a test's name, GUID or token (empty when `s` holds a NUL).
@@ -37,17 +68,32 @@ pub fn c_string(s: &str) -> CString {
     CString::new(s).unwrap_or_default()
 }
 
-/// Keeps a log message of status Warning and above as "status category: message"
-/// in `env`, the &Log given to the FMU as its environment (shared by the FMI 2.0
-/// and FMI 3.0 loggers).
+/// Keeps a log message of status Warning and above in `env`, the &Log given to the
+/// FMU as its environment (shared by the FMI 2.0 and FMI 3.0 loggers).
 pub fn record(env: *mut c_void, status: c_int, category: *const c_char, message: *const c_char) {
-    if status == 0 || env.is_null() {
+    if status != 0 {
+        record_all(env, status, category, message);
+    }
+}
+
+/// Keeps any log message in `env`, the &Log given to the FMU as its environment.
+pub fn record_all(
+    env: *mut c_void,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+) {
+    if env.is_null() {
         return;
     }
     // SAFETY: env is the &Log this crate passed as environment.
     let log = unsafe { &*(env as *const Log) };
     if let Ok(mut lines) = log.lock() {
-        lines.push(format!("{status} {}: {}", text(category), text(message)));
+        lines.push(Line {
+            status,
+            category: verbatim(category),
+            message: verbatim(message),
+        });
     }
 }
 
@@ -59,6 +105,16 @@ extern "C" fn capture2(
     message: *const c_char,
 ) {
     record(env, status, category, message);
+}
+
+extern "C" fn capture2_all(
+    env: *mut c_void,
+    _instance: *const c_char,
+    status: c_int,
+    category: *const c_char,
+    message: *const c_char,
+) {
+    record_all(env, status, category, message);
 }
 
 extern "C" fn capture3(
@@ -114,15 +170,25 @@ pub struct Environment {
 }
 
 impl Environment {
+    /// The callbacks in `which`, the logger keeping Warning and above.
     pub fn new(which: Callbacks) -> Environment {
+        Environment::keeping(which, Keep::Problems)
+    }
+
+    /// The callbacks in `which`, the logger keeping the messages `keep` names.
+    pub fn keeping(which: Callbacks, keep: Keep) -> Environment {
         let log: Box<Log> = Box::new(Mutex::new(Vec::new()));
         let or_null = |on: bool, f: *const c_void| if on { f } else { std::ptr::null() };
-        // The non-variadic `capture2` stands in for the variadic C logger: the five
+        let logger = match keep {
+            Keep::Problems => capture2 as *const c_void,
+            Keep::Everything => capture2_all as *const c_void,
+        };
+        // The non-variadic loggers stand in for the variadic C logger: the five
         // fixed arguments are passed the same way on x86_64 (System V and Windows) and
         // aarch64 Linux, and FMUs that escape '%' pass no variadic arguments (ours
         // do; `text` undoes the escaping).
         let functions = Box::new(CallbackFunctions {
-            logger: or_null(which.logger, capture2 as *const c_void),
+            logger: or_null(which.logger, logger),
             allocate_memory: or_null(which.allocate, allocate as *const c_void),
             free_memory: or_null(which.free, release as *const c_void),
             step_finished: std::ptr::null(),
@@ -155,6 +221,32 @@ mod tests {
             "1 logStatusWarning: at 5% | 3 logStatusError: (null)"
         );
         assert_eq!(env.take_log(), "");
+    }
+
+    #[test]
+    fn the_keeping_all_logger_keeps_debug_lines_as_passed() {
+        // Expected: the OK line kept too, its strings as passed ("%%" unchanged); the
+        // text form undoes the escaping as for the hostile logger.
+        let env = Environment::keeping(Callbacks::ALL, Keep::Everything);
+        type Logger =
+            extern "C" fn(*mut c_void, *const c_char, c_int, *const c_char, *const c_char);
+        // SAFETY: the table's logger is `capture2_all`, of this signature.
+        let logger: Logger = unsafe { std::mem::transmute(env.functions.logger) };
+        let e = env.functions.component_environment;
+        logger(
+            e,
+            c"x".as_ptr(),
+            0,
+            c"logEvents".as_ptr(),
+            c"at 5%%".as_ptr(),
+        );
+        let line = Line {
+            status: 0,
+            category: "logEvents".into(),
+            message: "at 5%%".into(),
+        };
+        assert_eq!(env.log.lock().unwrap().clone(), vec![line]);
+        assert_eq!(env.take_log(), "0 logEvents: at 5%");
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! An FMU binary's FMI 2.0 functions (all 44), looked up in the library that
-//! [`crate::Library`] opened, as a C importer would. Statuses are kept as C ints so
-//! that a corrupt return value is reported, not undefined behaviour in the importer.
+//! [`crate::Library`] opened, as a C importer would, or linked into the test.
+//! Statuses are kept as C ints so that a corrupt return value is reported, not
+//! undefined behaviour in the importer.
 
 use std::ffi::{c_char, c_int, c_uint, c_void};
 
@@ -53,15 +54,18 @@ pub struct EventInfo {
 
 type Str = *const c_char;
 
-/// Declares `$name`: a loaded binary with one function pointer per symbol, each
-/// looked up with dlsym (a missing symbol refuses the whole binary). Shared by the
+/// Declares `$name`: a binary with one function pointer per symbol, each looked up
+/// with dlsym (a missing symbol refuses the whole binary) or filled with a function
+/// linked into the test (`library` None: `crates/test/fmi-testing`). Shared by the
 /// FMI 2.0 and FMI 3.0 binaries.
 macro_rules! functions {
     ($(#[$doc:meta])* $name:ident { $($field:ident = $symbol:literal : fn($($arg:ty),*) $(-> $ret:ty)?;)* }) => {
         $(#[$doc])*
         #[allow(clippy::type_complexity)]
         pub struct $name {
-            _library: $crate::Library,
+            /// The library the functions were looked up in; None for functions
+            /// linked into this process.
+            pub library: Option<$crate::Library>,
             $(pub $field: unsafe extern "C" fn($($arg),*) $(-> $ret)?,)*
         }
 
@@ -85,7 +89,7 @@ macro_rules! functions {
                         unsafe { std::mem::transmute::<*mut std::ffi::c_void, unsafe extern "C" fn($($arg),*) $(-> $ret)?>(p) }
                     },)*
                     // After every lookup: the library moves into the binary.
-                    _library: library,
+                    library: Some(library),
                 })
             }
         }

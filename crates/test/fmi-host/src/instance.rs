@@ -89,12 +89,26 @@ impl<'a> Fmi2Instance<'a> {
         logging_on: bool,
     ) -> Result<Fmi2Instance<'a>, String> {
         let env = Environment::new(which);
+        Fmi2Instance::instantiate(binary, name, interface as c_int, guid, env, logging_on)
+            .map_err(|env| format!("fmi2Instantiate refused: {}", env.take_log()))
+    }
+
+    /// fmi2Instantiate (no resource location, not visible) of fmi2Type `kind`, any
+    /// C int, with the callbacks of `env`; `env` back when refused, with its log.
+    pub fn instantiate(
+        binary: &'a Binary,
+        name: &str,
+        kind: c_int,
+        guid: &str,
+        env: Environment,
+        logging_on: bool,
+    ) -> Result<Fmi2Instance<'a>, Environment> {
         let (name, guid) = (c_string(name), c_string(guid));
         // SAFETY: valid strings and a callback table that outlive the instance.
         let c = unsafe {
             (binary.instantiate)(
                 name.as_ptr(),
-                interface as c_int,
+                kind,
                 guid.as_ptr(),
                 std::ptr::null(),
                 &*env.functions,
@@ -103,7 +117,7 @@ impl<'a> Fmi2Instance<'a> {
             )
         };
         if c.is_null() {
-            return Err(format!("fmi2Instantiate refused: {}", env.take_log()));
+            return Err(env);
         }
         Ok(Fmi2Instance { binary, c, env })
     }

@@ -1,95 +1,55 @@
-//! A minimal FMI 2.0 host for Rust tests of an FMU binding: drives the layer's C-level
-//! entry points (the functions the exported symbols forward to), addresses variables
-//! by name and keeps the log.
+//! The FMU crates' Rust tests' host: the one test host (`robofmu_fmi_host`) with its
+//! FMI 2.0 function table filled with a model linked into the test ([`table`])
+//! instead of looked up in a loaded library; its callbacks keep every log line.
+//! [`Host`] adds calls that address variables by name.
 
 use robofmu_fmi::core::Model;
-use robofmu_fmi::fmi2::api;
-use robofmu_fmi::fmi2::types::*;
-use std::ffi::{CStr, CString, c_char, c_void};
-use std::sync::Mutex;
+use robofmu_fmi::fmi2::types::{FMI2_LAST_SUCCESSFUL_TIME, FMI2_TERMINATED, Fmi2Status};
+use robofmu_fmi_host::fmi2::{self, EventInfo};
+use std::ffi::c_int;
 
-/// Log lines received: (status, category, message).
-pub type Lines = Mutex<Vec<(Fmi2Status, String, String)>>;
+pub use robofmu_fmi_host::callbacks::{Callbacks, Environment, Keep, Line, Log};
+pub use robofmu_fmi_host::instance::Fmi2Instance;
 
-extern "C" fn capture(
-    env: Fmi2ComponentEnvironment,
-    _name: Fmi2String,
-    status: Fmi2Status,
-    category: Fmi2String,
-    message: Fmi2String,
-) {
-    // SAFETY: env is the &Lines the host passed; the strings come from the layer.
-    let lines = unsafe { &*(env as *const Lines) };
-    let text = |p: Fmi2String| {
-        unsafe { CStr::from_ptr(p as *const c_char) }
-            .to_string_lossy()
-            .into_owned()
-    };
-    lines
-        .lock()
-        .unwrap()
-        .push((status, text(category), text(message)));
-}
+pub mod table;
 
-/// fmi2CallbackAllocateMemory of the host: zeroed memory from the C heap.
-pub extern "C-unwind" fn allocate(count: usize, size: usize) -> *mut c_void {
-    // SAFETY: calloc accepts any sizes and returns null on failure.
-    unsafe { libc::calloc(count, size) }
-}
-
-/// fmi2CallbackFreeMemory of the host.
-///
-/// # Safety
-/// `pointer` is null or came from `allocate` and was not freed yet.
-pub unsafe extern "C-unwind" fn free(pointer: *mut c_void) {
-    // SAFETY: by the contract above.
-    unsafe { libc::free(pointer) }
-}
-
-/// A raw fmi2Instantiate of `M` with the capturing logger: the component (null when
-/// refused), its log and the callbacks, which must outlive the component.
+/// fmi2Instantiate of `M` (fmi2Type `kind`, any C int) named "test", with every
+/// callback and the logger keeping every line; the environment with its log when
+/// refused.
 pub fn instantiate<M: Model>(
-    kind: i32,
+    kind: c_int,
     guid: &str,
     logging_on: bool,
-) -> (Fmi2Component, Box<Lines>, Box<Fmi2CallbackFunctions>) {
-    let lines: Box<Lines> = Box::new(Mutex::new(Vec::new()));
-    // The non-variadic `capture` stands in for a variadic C logger: on x86-64 System V
-    // both are called identically, and the layer never passes variadic arguments.
-    let logger: Fmi2CallbackLogger = unsafe {
-        std::mem::transmute::<
-            extern "C" fn(Fmi2ComponentEnvironment, Fmi2String, Fmi2Status, Fmi2String, Fmi2String),
-            Fmi2CallbackLogger,
-        >(capture)
-    };
-    let functions = Box::new(Fmi2CallbackFunctions {
-        logger: Some(logger),
-        allocate_memory: Some(allocate),
-        free_memory: Some(free),
-        step_finished: None,
-        component_environment: &*lines as *const Lines as *mut c_void,
-    });
-    let name = CString::new("test").unwrap();
-    let guid = CString::new(guid).unwrap();
-    let c = unsafe {
-        api::instantiate::<M>(
-            name.as_ptr(),
-            kind,
-            guid.as_ptr(),
-            std::ptr::null(),
-            &*functions,
-            0,
-            i32::from(logging_on),
-        )
-    };
-    (c, lines, functions)
+) -> Result<Fmi2Instance<'static>, Environment> {
+    let env = Environment::keeping(Callbacks::ALL, Keep::Everything);
+    Fmi2Instance::instantiate(table::binary::<M>(), "test", kind, guid, env, logging_on)
 }
 
+/// The layer's status of a C status the table returned.
+pub fn status(s: fmi2::Status) -> Fmi2Status {
+    match s {
+        fmi2::OK => Fmi2Status::Ok,
+        fmi2::WARNING => Fmi2Status::Warning,
+        fmi2::DISCARD => Fmi2Status::Discard,
+        fmi2::ERROR => Fmi2Status::Error,
+        fmi2::FATAL => Fmi2Status::Fatal,
+        5 => Fmi2Status::Pending,
+        other => panic!("the layer returned status {other}, none of fmi2Status"),
+    }
+}
+
+/// An instance of `M` in the test host (its calls reached through `Deref`), with
+/// calls by variable name; freed on drop.
 pub struct Host<M: Model> {
-    pub c: Fmi2Component,
-    pub lines: Box<Lines>,
-    _functions: Box<Fmi2CallbackFunctions>,
+    instance: Fmi2Instance<'static>,
     _model: std::marker::PhantomData<M>,
+}
+
+impl<M: Model> std::ops::Deref for Host<M> {
+    type Target = Fmi2Instance<'static>;
+    fn deref(&self) -> &Fmi2Instance<'static> {
+        &self.instance
+    }
 }
 
 /// Value reference of the variable `name`.
@@ -114,48 +74,38 @@ pub fn real_outputs<M: Model>() -> Vec<String> {
 
 impl<M: Model> Host<M> {
     /// Instantiated (kind FMI2_MODEL_EXCHANGE or FMI2_CO_SIMULATION), logging on.
-    pub fn new(kind: i32) -> Self {
+    pub fn new(kind: c_int) -> Self {
         Self::with_logging(kind, true)
     }
 
     /// Instantiated with loggingOn as given (errors are logged either way).
-    pub fn with_logging(kind: i32, logging_on: bool) -> Self {
-        let (c, lines, functions) = instantiate::<M>(kind, M::INFO.guid, logging_on);
-        assert!(
-            !c.is_null(),
-            "instantiate failed: {:?}",
-            lines.lock().unwrap()
-        );
+    pub fn with_logging(kind: c_int, logging_on: bool) -> Self {
+        let instance = instantiate::<M>(kind, M::INFO.guid, logging_on)
+            .unwrap_or_else(|env| panic!("instantiate failed: {}", env.take_log()));
         Host {
-            c,
-            lines,
-            _functions: functions,
+            instance,
             _model: std::marker::PhantomData,
         }
     }
 
     /// Enter and exit initialization mode; the status of the exit.
     pub fn initialize(&self) -> Fmi2Status {
-        unsafe {
-            assert_eq!(
-                api::setup_experiment::<M>(self.c, 0, 0.0, 0.0, 0, 0.0),
-                Fmi2Status::Ok
-            );
-            assert_eq!(api::enter_initialization_mode::<M>(self.c), Fmi2Status::Ok);
-            api::exit_initialization_mode::<M>(self.c)
-        }
+        let entered = self.instance.enter_initialization(0.0, None);
+        entered.unwrap_or_else(|e| panic!("{e}"));
+        // SAFETY: a live component.
+        status(unsafe { (self.binary.exit_initialization_mode)(self.c) })
     }
 
     pub fn real(&self, name: &str) -> f64 {
-        let (vr, mut v) = (vr::<M>(name), 0.0);
-        let s = unsafe { api::get_real::<M>(self.c, &vr, 1, &mut v) };
+        let (s, v) = self.real_at(vr::<M>(name));
         assert_eq!(s, Fmi2Status::Ok, "get {name}: {}", self.last_message());
         v
     }
 
     pub fn integer(&self, name: &str) -> i32 {
         let (vr, mut v) = (vr::<M>(name), 0);
-        let s = unsafe { api::get_integer::<M>(self.c, &vr, 1, &mut v) };
+        // SAFETY: one value reference and one value.
+        let s = status(unsafe { (self.binary.get_integer)(self.c, &vr, 1, &mut v) });
         assert_eq!(s, Fmi2Status::Ok, "get {name}: {}", self.last_message());
         v
     }
@@ -171,14 +121,13 @@ impl<M: Model> Host<M> {
 
     /// fmi2GetReal of one value reference: the status and the value.
     pub fn real_at(&self, vr: u32) -> (Fmi2Status, f64) {
-        let mut v = 0.0;
-        let s = unsafe { api::get_real::<M>(self.c, &vr, 1, &mut v) };
-        (s, v)
+        let (s, v) = self.get_reals(&[vr]);
+        (status(s), v[0])
     }
 
     /// fmi2SetReal of one value reference.
     pub fn set_real_at(&self, vr: u32, v: f64) -> Fmi2Status {
-        unsafe { api::set_real::<M>(self.c, &vr, 1, &v) }
+        status(self.instance.set_real(vr, v))
     }
 
     pub fn set_vector(&self, name: &str, v: [f64; 3]) {
@@ -191,80 +140,76 @@ impl<M: Model> Host<M> {
     /// fmi2SetRealInputDerivatives of one input: its derivative of `order`.
     pub fn set_input_derivative(&self, name: &str, order: i32, v: f64) -> Fmi2Status {
         let vr = vr::<M>(name);
-        unsafe { api::set_real_input_derivatives::<M>(self.c, &vr, 1, &order, &v) }
+        let set = self.binary.set_real_input_derivatives;
+        // SAFETY: one value reference, order and value.
+        status(unsafe { set(self.c, &vr, 1, &order, &v) })
     }
 
     pub fn set_integer(&self, name: &str, v: i32) -> Fmi2Status {
-        let vr = vr::<M>(name);
-        unsafe { api::set_integer::<M>(self.c, &vr, 1, &v) }
+        status(self.instance.set_integer(vr::<M>(name), v))
     }
 
     pub fn set_boolean(&self, name: &str, v: bool) -> Fmi2Status {
-        let vr = vr::<M>(name);
-        let v = if v { FMI2_TRUE } else { FMI2_FALSE };
-        unsafe { api::set_boolean::<M>(self.c, &vr, 1, &v) }
+        status(self.instance.set_boolean(vr::<M>(name), v))
     }
 
     pub fn step(&self, t: f64, h: f64) -> Fmi2Status {
-        unsafe { api::do_step::<M>(self.c, t, h, FMI2_TRUE) }
+        status(self.instance.do_step(t, h))
     }
 
     pub fn states(&self) -> Vec<f64> {
         let mut x = vec![0.0; robofmu_fmi::core::declare::continuous_states(M::VARIABLES)];
-        let s = unsafe { api::get_continuous_states::<M>(self.c, x.as_mut_ptr(), x.len()) };
-        assert_eq!(s, Fmi2Status::Ok, "{}", self.last_message());
+        // SAFETY: an array of the given length.
+        let s = unsafe { (self.binary.get_continuous_states)(self.c, x.as_mut_ptr(), x.len()) };
+        assert_eq!(status(s), Fmi2Status::Ok, "{}", self.last_message());
         x
     }
 
     pub fn set_states(&self, x: &[f64]) -> Fmi2Status {
-        unsafe { api::set_continuous_states::<M>(self.c, x.as_ptr(), x.len()) }
+        // SAFETY: an array of the given length.
+        status(unsafe { (self.binary.set_continuous_states)(self.c, x.as_ptr(), x.len()) })
     }
 
     /// Derivatives and the status of fmi2GetDerivatives.
     pub fn derivatives(&self) -> (Fmi2Status, Vec<f64>) {
         let mut dx = vec![0.0; robofmu_fmi::core::declare::continuous_states(M::VARIABLES)];
-        let s = unsafe { api::get_derivatives::<M>(self.c, dx.as_mut_ptr(), dx.len()) };
-        (s, dx)
+        // SAFETY: an array of the given length.
+        let s = unsafe { (self.binary.get_derivatives)(self.c, dx.as_mut_ptr(), dx.len()) };
+        (status(s), dx)
     }
 
     pub fn event_indicators(&self) -> (Fmi2Status, Vec<f64>) {
         let mut z = vec![0.0; M::INFO.number_of_event_indicators];
-        let s = unsafe { api::get_event_indicators::<M>(self.c, z.as_mut_ptr(), z.len()) };
-        (s, z)
+        // SAFETY: an array of the given length.
+        let s = unsafe { (self.binary.get_event_indicators)(self.c, z.as_mut_ptr(), z.len()) };
+        (status(s), z)
     }
 
     /// From the event mode after initialization into continuous-time mode.
     pub fn enter_continuous_time_mode(&self) {
-        let mut info = Fmi2EventInfo {
-            new_discrete_states_needed: 0,
-            terminate_simulation: 0,
-            nominals_of_continuous_states_changed: 0,
-            values_of_continuous_states_changed: 0,
-            next_event_time_defined: 0,
-            next_event_time: 0.0,
-        };
-        unsafe {
-            assert_eq!(
-                api::new_discrete_states::<M>(self.c, &mut info),
-                Fmi2Status::Ok
-            );
-            assert_eq!(api::enter_continuous_time_mode::<M>(self.c), Fmi2Status::Ok);
-        }
+        let mut info = EventInfo::default();
+        // SAFETY: a live component and an event info to fill.
+        let s = unsafe { (self.binary.new_discrete_states)(self.c, &mut info) };
+        assert_eq!(status(s), Fmi2Status::Ok);
+        // SAFETY: a live component.
+        let s = unsafe { (self.binary.enter_continuous_time_mode)(self.c) };
+        assert_eq!(status(s), Fmi2Status::Ok);
     }
 
     /// An event at the current point: event mode, new discrete states, back.
     pub fn handle_event(&self) {
-        unsafe {
-            assert_eq!(api::enter_event_mode::<M>(self.c), Fmi2Status::Ok);
-        }
+        // SAFETY: a live component.
+        let s = unsafe { (self.binary.enter_event_mode)(self.c) };
+        assert_eq!(status(s), Fmi2Status::Ok);
         self.enter_continuous_time_mode();
     }
 
     pub fn directional(&self, unknown: &str, known: &str) -> f64 {
         let (u, k, seed, mut out) = (vr::<M>(unknown), vr::<M>(known), 1.0, 0.0);
-        let s =
-            unsafe { api::get_directional_derivative::<M>(self.c, &u, 1, &k, 1, &seed, &mut out) };
-        assert_eq!(s, Fmi2Status::Ok, "{}", self.last_message());
+        let derivative = self.binary.get_directional_derivative;
+        // SAFETY: one unknown, one known, one seed and one output.
+        let s = unsafe { derivative(self.c, &u, 1, &k, 1, &seed, &mut out) };
+        assert_eq!(status(s), Fmi2Status::Ok, "{}", self.last_message());
         out
     }
 
@@ -274,8 +219,10 @@ impl<M: Model> Host<M> {
         assert_eq!(names.len(), orders.len());
         let vrs: Vec<u32> = names.iter().map(|n| vr::<M>(n)).collect();
         let mut values = vec![f64::NAN; names.len()];
+        let get = self.binary.get_real_output_derivatives;
+        // SAFETY: arrays of equal length.
         let s = unsafe {
-            api::get_real_output_derivatives::<M>(
+            get(
                 self.c,
                 vrs.as_ptr(),
                 vrs.len(),
@@ -283,80 +230,64 @@ impl<M: Model> Host<M> {
                 values.as_mut_ptr(),
             )
         };
-        (s, values)
+        (status(s), values)
     }
 
     /// Serialized bytes of the current FMU state.
     pub fn serialize(&self) -> Vec<u8> {
-        unsafe {
-            let mut state: Fmi2FmuState = std::ptr::null_mut();
-            assert_eq!(api::get_fmu_state::<M>(self.c, &mut state), Fmi2Status::Ok);
-            let mut size = 0;
-            assert_eq!(
-                api::serialized_fmu_state_size::<M>(self.c, state, &mut size),
-                Fmi2Status::Ok
-            );
-            let mut bytes = vec![0u8; size];
-            assert_eq!(
-                api::serialize_fmu_state::<M>(self.c, state, bytes.as_mut_ptr() as _, size),
-                Fmi2Status::Ok
-            );
-            assert_eq!(api::free_fmu_state::<M>(self.c, &mut state), Fmi2Status::Ok);
-            bytes
-        }
+        let (s, state) = self.get_state();
+        assert_eq!(status(s), Fmi2Status::Ok, "{}", self.last_message());
+        let bytes = self.instance.serialize(state);
+        assert_eq!(status(self.free_state(state)), Fmi2Status::Ok);
+        bytes.unwrap_or_else(|e| panic!("{e}"))
     }
 
     /// Restores an FMU state from serialized bytes.
     pub fn restore(&self, bytes: &[u8]) -> Fmi2Status {
-        unsafe {
-            let mut state: Fmi2FmuState = std::ptr::null_mut();
-            let s = api::de_serialize_fmu_state::<M>(
-                self.c,
-                bytes.as_ptr() as _,
-                bytes.len(),
-                &mut state,
-            );
-            if s != Fmi2Status::Ok {
-                return s;
-            }
-            let s = api::set_fmu_state::<M>(self.c, state);
-            api::free_fmu_state::<M>(self.c, &mut state);
-            s
+        let mut state: fmi2::FmuState = std::ptr::null_mut();
+        let (data, size) = (bytes.as_ptr().cast(), bytes.len());
+        // SAFETY: a buffer of the given length and a null slot for a new state.
+        let s = unsafe { (self.binary.deserialize)(self.c, data, size, &mut state) };
+        if s != fmi2::OK {
+            return status(s);
         }
+        // SAFETY: a state the FMU just issued.
+        let s = unsafe { (self.binary.set_fmu_state)(self.c, state) };
+        self.free_state(state);
+        status(s)
     }
 
     pub fn terminated(&self) -> bool {
-        let mut v = FMI2_FALSE;
-        let s = unsafe { api::get_boolean_status::<M>(self.c, FMI2_TERMINATED, &mut v) };
-        assert_eq!(s, Fmi2Status::Ok);
-        v == FMI2_TRUE
+        let mut v = 0;
+        let get = self.binary.get_boolean_status;
+        // SAFETY: one output.
+        let s = unsafe { get(self.c, FMI2_TERMINATED, &mut v) };
+        assert_eq!(status(s), Fmi2Status::Ok);
+        v == 1
     }
 
     pub fn last_successful_time(&self) -> f64 {
         let mut v = f64::NAN;
-        let s = unsafe { api::get_real_status::<M>(self.c, FMI2_LAST_SUCCESSFUL_TIME, &mut v) };
-        assert_eq!(s, Fmi2Status::Ok);
+        let get = self.binary.get_real_status;
+        // SAFETY: one output.
+        let s = unsafe { get(self.c, FMI2_LAST_SUCCESSFUL_TIME, &mut v) };
+        assert_eq!(status(s), Fmi2Status::Ok);
         v
     }
 
+    /// The message of the last log line, as the FMU passed it.
     pub fn last_message(&self) -> String {
-        let lines = self.lines.lock().unwrap();
-        lines.last().map(|l| l.2.clone()).unwrap_or_default()
+        let lines = self.env.log.lock().unwrap();
+        lines.last().map(|l| l.message.clone()).unwrap_or_default()
     }
 
     /// Messages logged with `status`.
     pub fn messages(&self, status: Fmi2Status) -> Vec<String> {
-        let lines = self.lines.lock().unwrap();
+        let lines = self.env.log.lock().unwrap();
         lines
             .iter()
-            .filter(|l| l.0 == status)
-            .map(|l| l.2.clone())
+            .filter(|l| l.status == status as c_int)
+            .map(|l| l.message.clone())
             .collect()
-    }
-}
-
-impl<M: Model> Drop for Host<M> {
-    fn drop(&mut self) {
-        unsafe { api::free_instance::<M>(self.c) };
     }
 }

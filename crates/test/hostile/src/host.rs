@@ -35,13 +35,10 @@ pub trait Probed {
 
 /// Runs `f` on `inst` without adding its log lines to what was logged before.
 pub fn unlogged<P: Probed, T>(inst: &P, f: impl FnOnce() -> T) -> T {
-    let kept = take(inst.log());
+    let lock = || inst.log().lock().unwrap_or_else(|e| e.into_inner());
+    let kept = std::mem::take(&mut *lock());
     let result = f();
-    let mut lines = inst.log().lock().unwrap_or_else(|e| e.into_inner());
-    lines.clear();
-    if !kept.is_empty() {
-        lines.push(kept);
-    }
+    *lock() = kept;
     result
 }
 
