@@ -100,7 +100,9 @@ const MEASURED: Decl = input_k::<1>("measurement", 111, &[0.0]);
 const R_RATE: Decl = input_k::<2>("setpointRate", 121, &[0.0]);
 const Y_RATE: Decl = input_k::<3>("measuredRate", 131, &[0.0]);
 const FEEDFWD: Decl = input_k::<4>("feedforward", 141, &[0.0]);
-const U: Decl = CH.output("u", 201, |m, c| m.law(c, pid::output).u);
+const U: Decl = CH
+    .output("u", 201, |m, c| m.law(c, pid::output).u)
+    .output_derivative(2, |m, c, n| Ok(m.law(c, |g, s, i| pid::slope(g, s, i, n))));
 const INTEGRAL: Decl = CH.state("integral", 301, |m, c| &mut m.states[c].integral);
 const FILTER: Decl = CH.state("filter", 311, |m, c| &mut m.states[c].filter);
 const DER_INT: Decl = CH.derivative("der(integral)", 321, INTEGRAL, |m, c| m.rates(c).integral);
