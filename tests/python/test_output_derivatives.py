@@ -347,7 +347,8 @@ def test_pid_derivatives_match_central_differences_and_the_closed_form(tmp_path,
     # for the plant); (2) the closed form of the step response of channels 1 and 2
     # from the zero state, u = e (Kp + Ki t + Kd/Tf exp(-t/Tf)):
     # u' = e (Ki - Kd/Tf^2 exp(-t/Tf)), u'' = e Kd/Tf^3 exp(-t/Tf); (3) channel 3, held
-    # at its lower limit, 0 (its output is constant, its differences 0 too).
+    # at its lower limit, 0 (its output is constant, its differences 0 too); (4) with
+    # a moving input, the input's share.
     pid = PidCalls(tmp_path, fmi3)
     mismatches, checked = trajectory_mismatches(pid, order, delta)
     assert mismatches == [] and checked == 3 * 4
@@ -359,6 +360,14 @@ def test_pid_derivatives_match_central_differences_and_the_closed_form(tmp_path,
     got = pid.derivatives(order)
     assert got[:2] == pytest.approx([e * closed for e in (1.0, 0.5)], rel=1e-12)
     assert got[2] == 0.0 and pid.values()[2] == -0.1
+    if not fmi3 and order == 1:
+        # A measurement moving at 0.2 /s (fmi2SetRealInputDerivatives): the derivative
+        # adds du/dy y' = -(Kp + Kd/Tf) 0.2 on channel 1 (robofmu_control::pid_ramp::
+        # output_slope: the inputs move with the derivatives set).
+        pid.fmu.setRealInputDerivatives([pid.vr["measurement[1]"]], [1], [0.2])
+        moving = pid.derivatives(1)
+        assert moving[0] == pytest.approx(got[0] - (1.0 + 0.1 / 0.05) * 0.2, rel=1e-12)
+        assert moving[1:] == got[1:]
     pid.close()
 
 

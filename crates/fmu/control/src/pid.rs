@@ -228,49 +228,6 @@ pub fn step(g: &PidGains, s: &PidState, i: &PidInputs, h: f64) -> PidState {
     PidState { integral, filter }
 }
 
-/// The n-th time derivative (n >= 1; n = 0 the output) of the output at state s for
-/// the inputs held (the motion a co-simulation step with held inputs follows: FMI
-/// output derivatives). With w the filter's input, x^(n) = (w - x) (-1)^(n-1) / Tf^n,
-/// I' = e and I^(n) = 0 for n >= 2, so u_raw^(n) = Ki I^(n) - Kd x^(n) / Tf on the
-/// error path (Kd x^(n) on the rate path, 0 without a moving filter).
-///
-/// At a limit the output is the limit: every derivative is 0 where u_raw is beyond a
-/// limit, or at it and not moving back inside (u_raw' pushing out or 0, which is also
-/// where conditional integration holds the integral); at a limit and moving back
-/// inside, the right derivatives, those of u_raw.
-pub fn slope(g: &PidGains, s: &PidState, i: &PidInputs, n: u32) -> f64 {
-    if n == 0 {
-        return output(g, s, i).u;
-    }
-    let raw = |n: u32| {
-        let filter = if g.filter_active() {
-            let sign = if n % 2 == 1 { 1.0 } else { -1.0 };
-            let x = sign * (filter_input(g, i) - s.filter) / g.tf.powi(n as i32);
-            if g.use_rate_inputs {
-                g.kd * x
-            } else {
-                -g.kd * x / g.tf
-            }
-        } else {
-            0.0
-        };
-        let integral = if n == 1 {
-            g.ki * (i.setpoint - i.measurement)
-        } else {
-            0.0
-        };
-        integral + filter
-    };
-    let u = output(g, s, i).u_raw;
-    let held = match g.limits {
-        Some((min, max)) => {
-            u > max || u < min || (u == max && raw(1) >= 0.0) || (u == min && raw(1) <= 0.0)
-        }
-        None => false,
-    };
-    if held { 0.0 } else { raw(n) }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -303,68 +260,6 @@ mod tests {
             let want = 2.0 + 0.5 * t + 0.3 / 0.05 * (-t / 0.05).exp();
             assert!((output(&g, &s, &inputs).u - want).abs() < 1e-12, "t={t}");
         }
-    }
-
-    #[test]
-    fn slopes_are_the_output_derivatives_of_the_closed_form_and_zero_at_a_limit() {
-        // Expected values: the derivatives of the closed form of the step response
-        // above, u(t) = Kp + Ki t + Kd/Tf exp(-t/Tf): u' = Ki - Kd/Tf^2 exp(-t/Tf),
-        // u'' = Kd/Tf^3 exp(-t/Tf), u''' = -Kd/Tf^4 exp(-t/Tf).
-        let g = gains();
-        let inputs = PidInputs {
-            setpoint: 1.0,
-            ..PidInputs::default()
-        };
-        let mut s = PidState::default();
-        for k in 0..20 {
-            let t = k as f64 * 0.007;
-            let a = 0.3 * (-t / 0.05).exp();
-            let want = [
-                0.5 - a / 0.05f64.powi(2),
-                a / 0.05f64.powi(3),
-                -a / 0.05f64.powi(4),
-            ];
-            for (n, w) in (1..=3).zip(want) {
-                let got = slope(&g, &s, &inputs, n);
-                assert!((got - w).abs() <= 1e-12 * w.abs().max(1.0), "t={t} n={n}");
-            }
-            s = step(&g, &s, &inputs, 0.007);
-        }
-        assert_eq!(slope(&g, &s, &inputs, 0), output(&g, &s, &inputs).u);
-        // The rate path: D = Kd x, x' = (r - x)/Tf: u' = Kd (r - x)/Tf (+ Ki e, e = 0).
-        let rate = PidGains {
-            use_rate_inputs: true,
-            ..g
-        };
-        let moving = PidInputs {
-            setpoint_rate: 0.25,
-            ..PidInputs::default()
-        };
-        let x = PidState {
-            integral: 0.0,
-            filter: 0.1,
-        };
-        let d1 = slope(&rate, &x, &moving, 1);
-        assert!((d1 - 0.3 * 0.15 / 0.05).abs() < 1e-15, "{d1}");
-        // Beyond the upper limit, and at it pushing out: the output is the limit.
-        let at = |integral: f64| PidState {
-            integral,
-            filter: 0.0,
-        };
-        // u_raw = 2 + 0.5 I + 6 (filter 0): about 1.5 at I = -13, the limit here.
-        let edge = output(&g, &at(-13.0), &inputs).u_raw;
-        assert!((edge - 1.5).abs() < 1e-14);
-        let limited = PidGains {
-            limits: Some((-1.0, edge)),
-            ..g
-        };
-        for n in 1..=2 {
-            assert_eq!(slope(&limited, &at(0.0), &inputs, n), 0.0);
-        }
-        // At the limit, u_raw' = 0.5 - 6/0.05 < 0: moving back inside, u_raw's.
-        let inside = slope(&limited, &at(-13.0), &inputs, 1);
-        assert_eq!(inside, slope(&g, &at(-13.0), &inputs, 1));
-        assert!(inside < 0.0);
     }
 
     #[test]
