@@ -5,7 +5,7 @@
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
 use robofmu_control::pid_jacobian::{self, Known, Known::*, Unknown, Unknown::*};
-use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
+use robofmu_control::pid_ramp::{PidInputRamp, output_slope, step_with_ramp};
 use robofmu_fmi::prelude::{Variability::*, *};
 
 mod clocked;
@@ -35,7 +35,6 @@ pub struct Pid {
     /// Derivatives of the inputs at the start of a step (zero: held).
     ramps: [PidInputRamp; CHANNELS],
     states: [PidState; CHANNELS],
-    /// The sampled law (FMI 3.0 clocked partition).
     sampled: clocked::Sampled,
 }
 
@@ -100,7 +99,11 @@ const MEASURED: Decl = input_k::<1>("measurement", 111, &[0.0]);
 const R_RATE: Decl = input_k::<2>("setpointRate", 121, &[0.0]);
 const Y_RATE: Decl = input_k::<3>("measuredRate", 131, &[0.0]);
 const FEEDFWD: Decl = input_k::<4>("feedforward", 141, &[0.0]);
-const U: Decl = CH.output("u", 201, |m, c| m.law(c, pid::output).u);
+const U: Decl = CH
+    .output("u", 201, |m, c| m.law(c, pid::output).u)
+    .output_derivative(2, |m, c, n| {
+        Ok(m.law(c, |g, s, i| output_slope(g, s, i, &m.ramps[c], n)))
+    });
 const INTEGRAL: Decl = CH.state("integral", 301, |m, c| &mut m.states[c].integral);
 const FILTER: Decl = CH.state("filter", 311, |m, c| &mut m.states[c].filter);
 const DER_INT: Decl = CH.derivative("der(integral)", 321, INTEGRAL, |m, c| m.rates(c).integral);
@@ -178,8 +181,7 @@ impl Model for Pid {
 
     fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
         if let Err(reason) = self.validate() {
-            let terminate = true;
-            return StepOutcome::Discarded { reason, terminate };
+            return StepOutcome::terminate(reason);
         }
         for c in 0..CHANNELS {
             self.states[c] = self.law(c, |g, s, i| step_with_ramp(g, s, i, &self.ramps[c], step));

@@ -138,6 +138,17 @@ pub enum StepOutcome {
     },
 }
 
+impl StepOutcome {
+    /// A step the model refuses for good, with the reason: it cannot go on
+    /// (`Discarded` with `terminate`).
+    pub fn terminate(reason: String) -> Self {
+        StepOutcome::Discarded {
+            reason,
+            terminate: true,
+        }
+    }
+}
+
 /// What an event update (fmi2NewDiscreteStates, fmi3UpdateDiscreteStates) changed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct EventUpdate {

@@ -9,6 +9,7 @@ use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::output_derivatives::{Request, output_derivatives};
 use crate::core::variables::{Causality, VariableType};
+use crate::core::view::Source;
 use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::{Call, Interface, Mode};
 use crate::fmi3::types::*;
@@ -132,6 +133,14 @@ fn element_requests<M: Model>(
                 "\"{}\" (value reference {vr}) is not an output: only outputs have output \
                  derivatives",
                 v.name
+            ));
+        }
+        if let Source::Clocked { clock, .. } = v.source {
+            return Err(format!(
+                "\"{}\" (value reference {vr}) is clocked by {}: it changes only at ticks \
+                 (held between them), and output derivatives are of continuous outputs",
+                v.name,
+                M::CLOCKS[clock].name
             ));
         }
         requests.extend(v.elements().map(|vr| Request { vr, order }));
