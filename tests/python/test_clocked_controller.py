@@ -171,3 +171,14 @@ def test_ticks_are_exact_after_a_million_periods_and_only_ticks_are_accepted(tmp
             with pytest.raises(FMICallException) as refused:
                 ctrl.setClock([vr["sampleClock"]], [True])
             assert refused.value.status == 3
+
+
+def test_the_fmus_that_return_early_at_ticks_declare_it():
+    # Expected from the FMI 3.0 standard (CoSimulation attribute mightReturnEarlyFromDoStep:
+    # an FMU may return early only where it declares it): the clocked controllers end a
+    # step at a tick when earlyReturnAllowed (the CoSimulation tests above), the plant at
+    # an end-stop contact; the Planner never returns early.
+    for model, early in [("ComputedTorque", True), ("PID", True), ("Pss3Plant", True),
+                         ("Planner", False)]:
+        co_simulation = read_model_description(fmu3_path(model)).coSimulation
+        assert co_simulation.mightReturnEarlyFromDoStep is early, model

@@ -232,8 +232,11 @@ fn model_structure(variables: &[Variable3Description]) -> ModelStructure {
     }
 }
 
-/// `<ModelExchange>` and `<CoSimulation>`.
-fn interfaces(d: &Description) -> (Attributes, Attributes) {
+/// `<ModelExchange>` and `<CoSimulation>` of the variables `view`.
+fn interfaces(d: &Description, view: &[Variable3Description]) -> (Attributes, Attributes) {
+    let ticked = view
+        .iter()
+        .any(|v| matches!(v.clock_part, Some(ClockPart::Clock)));
     let info = &d.info;
     let derivatives = d.provides_directional_derivative;
     let common = || {
@@ -249,10 +252,11 @@ fn interfaces(d: &Description) -> (Attributes, Attributes) {
     let co_simulation = common()
         .with("canHandleVariableCommunicationStepSize", true)
         .with("hasEventMode", true)
-        // Steps end early at events (sign changes of the event indicators).
+        // Steps end early at events (sign changes of the event indicators) and, with
+        // earlyReturnAllowed, at the ticks of an input clock.
         .with_some(
             "mightReturnEarlyFromDoStep",
-            (info.number_of_event_indicators > 0).then_some(true),
+            (info.number_of_event_indicators > 0 || ticked).then_some(true),
         )
         .with_some(
             "maxOutputDerivativeOrder",
@@ -297,7 +301,7 @@ fn description(
         .map(|v| model_variable(d, v))
         .collect::<Result<Vec<_>, _>>()?;
     let parts = Parts {
-        interfaces: interfaces(d),
+        interfaces: interfaces(d, view),
         variables: ModelVariables { variables },
         structure: model_structure(view),
     };
