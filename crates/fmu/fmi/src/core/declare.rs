@@ -29,6 +29,8 @@
 //! moves an existing value reference.
 
 use super::attributes::{Causality, Initial, Variability};
+use super::model::Model;
+use super::structural::{Sizes, size_now};
 pub use super::hooks::{
     Dependencies, Element, ElementDependencies, InputDerivative, OutputDerivative, Var,
 };
@@ -157,6 +159,10 @@ pub struct Declaration<M: 'static> {
     pub input_derivative: Option<InputDerivative<M>>,
     /// Hook: runs after every accepted write of an element.
     pub after_set: Option<AfterSet<M>>,
+    /// `Some(k)`: the array's length is the structural parameter `Model::STRUCTURAL[k]`
+    /// (FMI 3.0 array view; `length` is its default, the size FMI 2.0 and the
+    /// scalar-only view keep).
+    pub sized_by: Option<usize>,
 }
 
 impl<M, T> Clone for Access<M, T> {
@@ -239,7 +245,16 @@ impl<M> Declaration<M> {
             output_derivative_order: 0,
             input_derivative: None,
             after_set: None,
+            sized_by: None,
         }
+    }
+
+    /// An array whose length is the structural parameter `Model::STRUCTURAL[k]` (its
+    /// default is the declared length).
+    pub const fn sized_by(mut self, k: usize) -> Self {
+        assert!(self.length.is_some(), "only an array is sized by a structural parameter");
+        self.sized_by = Some(k);
+        self
     }
 
     /// A Real variable the model computes, read by `get` (a local until a role is
@@ -601,6 +616,16 @@ pub const fn continuous_states<M>(declarations: &[Declaration<M>]) -> usize {
     n
 }
 
+/// The number of continuous states of `model` at its current sizes (FMI 3.0: an
+/// array of states sized by a structural parameter has as many as it holds now).
+pub fn continuous_states_now<M: Model>(model: &M) -> usize {
+    let sizes = Sizes::of(model);
+    (M::VARIABLES.iter())
+        .filter(|d| d.derivative_of.is_some())
+        .map(|d| size_now(d, &sizes))
+        .sum()
+}
+
 /// maxOutputDerivativeOrder of a table: the highest order its output-derivative hooks
 /// answer (0: none), taken from the hooks' declarations so that the two cannot disagree.
 pub const fn max_output_derivative_order<M>(declarations: &[Declaration<M>]) -> u32 {
@@ -620,6 +645,7 @@ pub const fn max_output_derivative_order<M>(declarations: &[Declaration<M>]) -> 
 /// packaging that the derivatives list the states in that order).
 fn each_state<M>(
     declarations: &[Declaration<M>],
+    sizes: &Sizes,
     mut f: impl FnMut(usize, &Declaration<M>, &Declaration<M>, usize),
 ) {
     let mut k = 0;
@@ -630,7 +656,7 @@ fn each_state<M>(
         let Some(state) = declarations.iter().find(|s| s.name == name) else {
             continue;
         };
-        for i in 0..d.size() {
+        for i in 0..size_now(d, sizes) {
             f(k, state, d, i);
             k += 1;
         }
@@ -638,8 +664,8 @@ fn each_state<M>(
 }
 
 /// The continuous states as the table declares them: `x[k]` = state k.
-pub fn read_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &mut [f64]) {
-    each_state(declarations, |k, state, _, i| {
+pub fn read_states<M: Model>(declarations: &[Declaration<M>], model: &mut M, x: &mut [f64]) {
+    each_state(declarations, &Sizes::of(model), |k, state, _, i| {
         if let (Value::Real { get, .. }, Some(slot)) = (&state.value, x.get_mut(k)) {
             *slot = get.read(model, i);
         }
@@ -648,8 +674,8 @@ pub fn read_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &mut [f
 
 /// Writes the continuous states through the state declarations' writers or places
 /// (the layer has checked the values).
-pub fn write_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]) {
-    each_state(declarations, |k, state, _, i| {
+pub fn write_states<M: Model>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]) {
+    each_state(declarations, &Sizes::of(model), |k, state, _, i| {
         if let (Value::Real { get, set, .. }, Some(&v)) = (&state.value, x.get(k)) {
             // A state's writer refuses nothing the layer's value check lets through.
             if let Some(Ok(())) = write_element(*get, *set, model, i, v)
@@ -663,8 +689,8 @@ pub fn write_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]
 
 /// The state derivatives as the table declares them: `dx[k]` = the getter of the
 /// derivative of state k.
-pub fn read_derivatives<M>(declarations: &[Declaration<M>], model: &M, dx: &mut [f64]) {
-    each_state(declarations, |k, _, derivative, i| {
+pub fn read_derivatives<M: Model>(declarations: &[Declaration<M>], model: &M, dx: &mut [f64]) {
+    each_state(declarations, &Sizes::of(model), |k, _, derivative, i| {
         // A derivative is computed (`derivative_of` refuses a place).
         if let (Value::Real { get, .. }, Some(slot)) = (&derivative.value, dx.get_mut(k)) {
             *slot = get.computed(model, i).unwrap_or(f64::NAN);

@@ -36,6 +36,7 @@ pub mod output_derivatives;
 pub mod serialize;
 pub mod shared;
 pub mod status;
+pub mod structural;
 pub mod tables;
 pub mod value_check;
 pub mod variables;

@@ -7,6 +7,7 @@ use super::declare::Declaration;
 use super::hooks::Element;
 pub use super::hooks::OutputDerivativeError;
 use super::log::{Log, LogCategory};
+use super::structural::StructuralParameter;
 
 /// DefaultExperiment of modelDescription.xml.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -245,6 +246,12 @@ pub trait Model: Clone + Default + Send + Sized + 'static {
     /// parameter, outputs and tick hook ([`clocks`](super::clocks)); none by default.
     /// FMI 2.0 serves none of it.
     const CLOCKS: &'static [InputClock<Self>] = &[];
+
+    /// FMI 3.0 structural parameters: UInt64 sizes of the arrays declared
+    /// [`sized_by`](Declaration::sized_by) them, set in Configuration Mode
+    /// ([`structural`](super::structural)); none by default. FMI 2.0 and the
+    /// scalar-only FMI 3.0 view keep the default sizes.
+    const STRUCTURAL: &'static [StructuralParameter<Self>] = &[];
 
     /// Directional derivatives: provided (providesDirectionalDerivative) exactly when
     /// given.

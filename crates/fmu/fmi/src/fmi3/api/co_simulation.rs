@@ -7,6 +7,7 @@ use super::step::{StepReport, StepResult, step};
 use super::{input_slice, output_slice, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
+use crate::core::structural::Sizes;
 use crate::core::output_derivatives::{Request, output_derivatives};
 use crate::core::variables::{Causality, VariableType};
 use crate::fmi3::instance::Instance;
@@ -132,6 +133,14 @@ fn element_requests<M: Model>(
                 "\"{}\" (value reference {vr}) is not an output: only outputs have output \
                  derivatives",
                 v.name
+            ));
+        }
+        if v.size_now(&Sizes::of::<M>(inst.core.model())) != v.size() {
+            return Err(format!(
+                "\"{}\" is resized: its output derivatives are served at its default size \
+                 {} only",
+                v.name,
+                v.size()
             ));
         }
         requests.extend(v.elements().map(|vr| Request { vr, order }));

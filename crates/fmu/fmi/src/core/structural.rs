@@ -1,0 +1,205 @@
+//! Structural parameters (FMI 3.0 only): a UInt64 parameter that sizes arrays, set in
+//! Configuration Mode. A model lists them in [`Model::STRUCTURAL`]; an array declares
+//! its size with [`Declaration::sized_by`] (a [`Family`](super::Family) sized by one
+//! says it once for all its arrays). The model keeps the size itself (the length of its
+//! per-channel vectors): `get` reads it, `resize` changes it; the layer then writes the
+//! start value of each new element of every array the parameter sizes (the declared
+//! start of that element when the declaration lists one per element and the element is
+//! among them, the one start value when it gives one for all, else zero / false), so
+//! elements kept keep their values. FMI 2.0 and the scalar-only FMI 3.0 view serve the
+//! default size only.
+
+use super::declare::{self, Declaration, write_element};
+use super::model::Model;
+use super::variables::element_name;
+
+/// At most this many structural parameters per model ([`Sizes`] holds them inline, so
+/// a get or set allocates nothing).
+pub const MAX_STRUCTURAL: usize = 4;
+
+/// A structural parameter of model M (causality="structuralParameter",
+/// variability="fixed": set in Configuration Mode, before initialization).
+pub struct StructuralParameter<M: 'static> {
+    pub name: &'static str,
+    pub value_reference: u32,
+    pub description: &'static str,
+    /// The default size: the declared length of every array it sizes.
+    pub start: usize,
+    /// The largest size accepted (the smallest is 1).
+    pub max: usize,
+    /// The size the model holds now.
+    pub get: fn(&M) -> usize,
+    /// Changes the size the model holds (its vectors resized; the layer then writes
+    /// the new elements' start values).
+    pub resize: fn(&mut M, usize),
+}
+
+impl<M> Clone for StructuralParameter<M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<M> Copy for StructuralParameter<M> {}
+
+impl<M> StructuralParameter<M> {
+    /// A structural parameter `name` at `value_reference`, default `start`, at most
+    /// `max`, read with `get` and changed with `resize`.
+    pub const fn new(
+        name: &'static str,
+        value_reference: u32,
+        description: &'static str,
+        [start, max]: [usize; 2],
+        get: fn(&M) -> usize,
+        resize: fn(&mut M, usize),
+    ) -> Self {
+        assert!(start >= 1 && start <= max, "a size is within 1..=max");
+        StructuralParameter {
+            name,
+            value_reference,
+            description,
+            start,
+            max,
+            get,
+            resize,
+        }
+    }
+
+    /// The size `value` as set by an importer: within 1..=max, else why not.
+    pub fn checked(&self, value: u64) -> Result<usize, String> {
+        match usize::try_from(value) {
+            Ok(n) if (1..=self.max).contains(&n) => Ok(n),
+            _ => Err(format!(
+                "\"{}\" = {value} is outside 1..={}: the value is kept at its previous size",
+                self.name, self.max
+            )),
+        }
+    }
+}
+
+/// The current value of each structural parameter of a model (inline: no allocation).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Sizes([usize; MAX_STRUCTURAL]);
+
+impl Sizes {
+    /// The sizes model M holds now.
+    pub fn of<M: Model>(model: &M) -> Self {
+        let mut n = [0; MAX_STRUCTURAL];
+        for (slot, p) in n.iter_mut().zip(M::STRUCTURAL) {
+            *slot = (p.get)(model);
+        }
+        Sizes(n)
+    }
+
+    /// The value of structural parameter k.
+    pub fn get(&self, k: usize) -> usize {
+        self.0.get(k).copied().unwrap_or(0)
+    }
+}
+
+/// The number of elements of `d` now: its structural parameter's value, or its length.
+pub fn size_now<M>(d: &Declaration<M>, sizes: &Sizes) -> usize {
+    match d.sized_by {
+        Some(k) => sizes.get(k),
+        None => d.size(),
+    }
+}
+
+/// The start value of element i of a declaration whose start values are `start`.
+fn start_at<T: Copy + Default>(start: &[T], i: usize) -> Option<T> {
+    match start {
+        [] => None,
+        [all] => Some(*all),
+        each => Some(each.get(i).copied().unwrap_or_default()),
+    }
+}
+
+/// Sets structural parameter k of `model` to `n` (checked by the caller): the model
+/// resizes, then every new element of the arrays it sizes takes its start value
+/// (through the declaration's writer or place, then its `after_set` hook).
+pub fn resize<M: Model>(model: &mut M, k: usize, n: usize) -> Result<(), String> {
+    let p = M::STRUCTURAL
+        .get(k)
+        .ok_or_else(|| format!("no structural parameter {k}"))?;
+    let old = (p.get)(model);
+    (p.resize)(model, n);
+    for d in M::VARIABLES.iter().filter(|d| d.sized_by == Some(k)) {
+        for i in old..n {
+            let written = match d.value {
+                declare::Value::Real {
+                    get, set, start, ..
+                } => start_at(start, i).and_then(|s| write_element(get, set, model, i, s)),
+                declare::Value::Integer {
+                    get, set, start, ..
+                } => start_at(start, i).and_then(|s| write_element(get, set, model, i, s)),
+                declare::Value::Boolean { get, set, start } => {
+                    start_at(start, i).and_then(|s| write_element(get, set, model, i, s))
+                }
+            };
+            match (written, d.after_set) {
+                (Some(Err(e)), _) => {
+                    let name = element_name(d, i);
+                    return Err(format!("start value of \"{name}\" rejected: {e}"));
+                }
+                (Some(Ok(())), Some(after)) => after(model, i),
+                _ => {}
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The model's structural parameters agree with its declarations: each sized
+/// declaration names an existing parameter whose default is its length, at most
+/// [`MAX_STRUCTURAL`] of them, and the model's `get` answers the default on a fresh
+/// model (checked where the FMI 3.0 view is built).
+pub fn check<M: Model>(fresh: &M) -> Result<(), String> {
+    if M::STRUCTURAL.len() > MAX_STRUCTURAL {
+        return Err(format!("more than {MAX_STRUCTURAL} structural parameters"));
+    }
+    for d in M::VARIABLES {
+        let Some(k) = d.sized_by else { continue };
+        let Some(p) = M::STRUCTURAL.get(k) else {
+            return Err(format!(
+                "\"{}\" is sized by structural parameter {k}, which the model lacks",
+                d.name
+            ));
+        };
+        if d.size() != p.start {
+            return Err(format!(
+                "\"{}\" has {} elements, its structural parameter \"{}\" starts at {}",
+                d.name,
+                d.size(),
+                p.name,
+                p.start
+            ));
+        }
+    }
+    for p in M::STRUCTURAL {
+        if (p.get)(fresh) != p.start {
+            return Err(format!(
+                "the model holds \"{}\" = {}, its start is {}",
+                p.name,
+                (p.get)(fresh),
+                p.start
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Err unless every structural parameter of `model` is at its default: the byte form
+/// of FMU states (`core::serialize`) holds the default sizes only, so a state of
+/// other sizes is kept (fmi3GetFMUState / fmi3SetFMUState copy the model, sizes
+/// included) but not serialized.
+pub fn at_default_sizes<M: Model>(model: &M) -> Result<(), String> {
+    match M::STRUCTURAL.iter().find(|p| (p.get)(model) != p.start) {
+        None => Ok(()),
+        Some(p) => Err(format!(
+            "\"{}\" = {} (default {}): serialized FMU states hold the default sizes only; \
+             fmi3GetFMUState / fmi3SetFMUState keep this state",
+            p.name,
+            (p.get)(model),
+            p.start
+        )),
+    }
+}
