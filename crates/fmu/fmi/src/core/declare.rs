@@ -29,11 +29,11 @@
 //! moves an existing value reference.
 
 use super::attributes::{Causality, Initial, Variability};
-use super::model::Model;
-use super::structural::{Sizes, size_now};
 pub use super::hooks::{
     Dependencies, Element, ElementDependencies, InputDerivative, OutputDerivative, Var,
 };
+use super::model::Model;
+use super::structural::{Sizes, size_now};
 
 /// Reads element i (0 for a scalar) of a value the model computes.
 pub type Get<M, T> = fn(&M, usize) -> T;
@@ -252,7 +252,10 @@ impl<M> Declaration<M> {
     /// An array whose length is the structural parameter `Model::STRUCTURAL[k]` (its
     /// default is the declared length).
     pub const fn sized_by(mut self, k: usize) -> Self {
-        assert!(self.length.is_some(), "only an array is sized by a structural parameter");
+        assert!(
+            self.length.is_some(),
+            "only an array is sized by a structural parameter"
+        );
         self.sized_by = Some(k);
         self
     }

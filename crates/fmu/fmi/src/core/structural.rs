@@ -6,8 +6,9 @@
 //! start value of each new element of every array the parameter sizes (the declared
 //! start of that element when the declaration lists one per element and the element is
 //! among them, the one start value when it gives one for all, else zero / false), so
-//! elements kept keep their values. FMI 2.0 and the scalar-only FMI 3.0 view serve the
-//! default size only.
+//! elements kept keep their values. The model's `Default` may hold empty vectors: the
+//! layer resizes it to the starts before it writes the start values. FMI 2.0 and the
+//! scalar-only FMI 3.0 view serve the default size only.
 
 use super::declare::{self, Declaration, write_element};
 use super::model::Model;
@@ -148,11 +149,23 @@ pub fn resize<M: Model>(model: &mut M, k: usize, n: usize) -> Result<(), String>
     Ok(())
 }
 
+/// `model` (a model's `Default`, whose vectors may be empty) resized to every
+/// structural parameter's start, before the start values are written.
+pub fn at_start<M: Model>(mut model: M) -> M {
+    for p in M::STRUCTURAL {
+        if (p.get)(&model) != p.start {
+            (p.resize)(&mut model, p.start);
+        }
+    }
+    model
+}
+
 /// The model's structural parameters agree with its declarations: each sized
 /// declaration names an existing parameter whose default is its length, at most
-/// [`MAX_STRUCTURAL`] of them, and the model's `get` answers the default on a fresh
-/// model (checked where the FMI 3.0 view is built).
-pub fn check<M: Model>(fresh: &M) -> Result<(), String> {
+/// [`MAX_STRUCTURAL`] of them, and the model's `get` answers the start once resized
+/// to it (checked where the FMI 3.0 view is built).
+pub fn check<M: Model>() -> Result<(), String> {
+    let fresh = at_start(M::default());
     if M::STRUCTURAL.len() > MAX_STRUCTURAL {
         return Err(format!("more than {MAX_STRUCTURAL} structural parameters"));
     }
@@ -175,11 +188,11 @@ pub fn check<M: Model>(fresh: &M) -> Result<(), String> {
         }
     }
     for p in M::STRUCTURAL {
-        if (p.get)(fresh) != p.start {
+        if (p.get)(&fresh) != p.start {
             return Err(format!(
-                "the model holds \"{}\" = {}, its start is {}",
+                "the model holds \"{}\" = {} after resizing it to its start {}",
                 p.name,
-                (p.get)(fresh),
+                (p.get)(&fresh),
                 p.start
             ));
         }

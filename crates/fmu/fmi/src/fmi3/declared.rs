@@ -24,7 +24,7 @@ pub fn view<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
     }
     let declarations = M::VARIABLES;
     let firsts = value_references(declarations);
-    crate::core::structural::check::<M>(&M::default())?;
+    crate::core::structural::check::<M>()?;
     let mut variables = Vec::with_capacity(declarations.len() + 2);
     variables.push(time_variable());
     variables.extend(structural_variables::<M>());

@@ -9,18 +9,14 @@ use super::{input_slice, output_slice, with_instance};
 use crate::core::hooks::Element;
 use crate::core::model::Model;
 use crate::core::structural::Sizes;
-use crate::fmi3::table::Source;
 use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::Call;
+use crate::fmi3::table::Source;
 use crate::fmi3::types::*;
 
 /// The declared elements of FMI 3.0 variables, in order (an array sized by a
 /// structural parameter: as many as it has now).
-fn elements<M: Model>(
-    inst: &Instance<M>,
-    vrs: &[u32],
-    what: &str,
-) -> Result<Vec<Element>, String> {
+fn elements<M: Model>(inst: &Instance<M>, vrs: &[u32], what: &str) -> Result<Vec<Element>, String> {
     let sizes = Sizes::of::<M>(inst.core.model());
     let mut out = Vec::new();
     for &vr in vrs {

@@ -136,7 +136,11 @@ pub unsafe fn get_number_of_event_indicators<M: Model>(
     c: Fmi3Instance,
     n: *mut usize,
 ) -> Fmi3Status {
-    unsafe { get_count::<M>(c, "fmi3GetNumberOfEventIndicators", n, |_| indicators::<M>()) }
+    unsafe {
+        get_count::<M>(c, "fmi3GetNumberOfEventIndicators", n, |_| {
+            indicators::<M>()
+        })
+    }
 }
 
 pub unsafe fn get_number_of_continuous_states<M: Model>(
