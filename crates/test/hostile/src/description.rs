@@ -269,7 +269,9 @@ fn read_fmi3_element(
                 let vr = get("valueReference")?.parse::<u32>().ok()?;
                 d.structural.iter().find(|s| s.0 == vr).map(|s| s.1)
             };
-            let size = get("start").and_then(|n| n.parse().ok()).or_else(by_parameter);
+            let size = get("start")
+                .and_then(|n| n.parse().ok())
+                .or_else(by_parameter);
             if let Some(v) = pending.as_mut() {
                 v.size *= size.unwrap_or(1);
             }

@@ -109,7 +109,11 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                     }
                     let s = set_size(i, n, bad);
                     // Nothing lost: the previous size is kept.
-                    if size(i, n) == Some(start as u64) { s } else { FATAL }
+                    if size(i, n) == Some(start as u64) {
+                        s
+                    } else {
+                        FATAL
+                    }
                 }),
             );
         }
@@ -198,8 +202,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                     let before = get(i, vr, RESIZED);
                     let values = vec![0.125; start];
                     // SAFETY: one reference, `start` values.
-                    let s =
-                        unsafe { (i.binary.set_float64)(i.c, &vr, 1, values.as_ptr(), start) };
+                    let s = unsafe { (i.binary.set_float64)(i.c, &vr, 1, values.as_ptr(), start) };
                     // Nothing written: the values read in Error are those before.
                     let kept = before.0 == OK && get(i, vr, RESIZED) == before;
                     if kept { s } else { FATAL }
