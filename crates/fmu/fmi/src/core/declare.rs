@@ -32,8 +32,7 @@ use super::attributes::{Causality, Initial, Variability};
 pub use super::hooks::{
     Dependencies, Element, ElementDependencies, InputDerivative, OutputDerivative, Var,
 };
-use super::model::Model;
-use super::structural::{Sizes, size_now};
+use super::sizes::Sizes;
 
 /// Reads element i (0 for a scalar) of a value the model computes.
 pub type Get<M, T> = fn(&M, usize) -> T;
@@ -246,6 +245,15 @@ impl<M> Declaration<M> {
             input_derivative: None,
             after_set: None,
             sized_by: None,
+        }
+    }
+
+    /// The number of elements now: its structural parameter's value in `sizes`, or
+    /// its length.
+    pub fn size_now(&self, sizes: &Sizes) -> usize {
+        match self.sized_by {
+            Some(k) => sizes.get(k),
+            None => self.size(),
         }
     }
 
@@ -619,16 +627,6 @@ pub const fn continuous_states<M>(declarations: &[Declaration<M>]) -> usize {
     n
 }
 
-/// The number of continuous states of `model` at its current sizes (FMI 3.0: an
-/// array of states sized by a structural parameter has as many as it holds now).
-pub fn continuous_states_now<M: Model>(model: &M) -> usize {
-    let sizes = Sizes::of(model);
-    (M::VARIABLES.iter())
-        .filter(|d| d.derivative_of.is_some())
-        .map(|d| size_now(d, &sizes))
-        .sum()
-}
-
 /// maxOutputDerivativeOrder of a table: the highest order its output-derivative hooks
 /// answer (0: none), taken from the hooks' declarations so that the two cannot disagree.
 pub const fn max_output_derivative_order<M>(declarations: &[Declaration<M>]) -> u32 {
@@ -659,7 +657,7 @@ fn each_state<M>(
         let Some(state) = declarations.iter().find(|s| s.name == name) else {
             continue;
         };
-        for i in 0..size_now(d, sizes) {
+        for i in 0..d.size_now(sizes) {
             f(k, state, d, i);
             k += 1;
         }
@@ -667,8 +665,13 @@ fn each_state<M>(
 }
 
 /// The continuous states as the table declares them: `x[k]` = state k.
-pub fn read_states<M: Model>(declarations: &[Declaration<M>], model: &mut M, x: &mut [f64]) {
-    each_state(declarations, &Sizes::of(model), |k, state, _, i| {
+pub fn read_states<M>(
+    declarations: &[Declaration<M>],
+    sizes: &Sizes,
+    model: &mut M,
+    x: &mut [f64],
+) {
+    each_state(declarations, sizes, |k, state, _, i| {
         if let (Value::Real { get, .. }, Some(slot)) = (&state.value, x.get_mut(k)) {
             *slot = get.read(model, i);
         }
@@ -677,8 +680,8 @@ pub fn read_states<M: Model>(declarations: &[Declaration<M>], model: &mut M, x: 
 
 /// Writes the continuous states through the state declarations' writers or places
 /// (the layer has checked the values).
-pub fn write_states<M: Model>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]) {
-    each_state(declarations, &Sizes::of(model), |k, state, _, i| {
+pub fn write_states<M>(declarations: &[Declaration<M>], sizes: &Sizes, model: &mut M, x: &[f64]) {
+    each_state(declarations, sizes, |k, state, _, i| {
         if let (Value::Real { get, set, .. }, Some(&v)) = (&state.value, x.get(k)) {
             // A state's writer refuses nothing the layer's value check lets through.
             if let Some(Ok(())) = write_element(*get, *set, model, i, v)
@@ -692,8 +695,13 @@ pub fn write_states<M: Model>(declarations: &[Declaration<M>], model: &mut M, x:
 
 /// The state derivatives as the table declares them: `dx[k]` = the getter of the
 /// derivative of state k.
-pub fn read_derivatives<M: Model>(declarations: &[Declaration<M>], model: &M, dx: &mut [f64]) {
-    each_state(declarations, &Sizes::of(model), |k, _, derivative, i| {
+pub fn read_derivatives<M>(
+    declarations: &[Declaration<M>],
+    sizes: &Sizes,
+    model: &M,
+    dx: &mut [f64],
+) {
+    each_state(declarations, sizes, |k, _, derivative, i| {
         // A derivative is computed (`derivative_of` refuses a place).
         if let (Value::Real { get, .. }, Some(slot)) = (&derivative.value, dx.get_mut(k)) {
             *slot = get.computed(model, i).unwrap_or(f64::NAN);

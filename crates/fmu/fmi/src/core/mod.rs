@@ -35,6 +35,7 @@ pub mod model_exchange_calls;
 pub mod output_derivatives;
 pub mod serialize;
 pub mod shared;
+pub mod sizes;
 pub mod status;
 pub mod structural;
 pub mod tables;

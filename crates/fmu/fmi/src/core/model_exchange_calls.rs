@@ -25,7 +25,7 @@ pub fn check_len(n: usize, expected: usize, what: &str) -> std::result::Result<(
 /// The number of continuous states of `model`, counted from its declarations at
 /// its current sizes (`core::structural`).
 pub fn states<M: Model>(model: &M) -> usize {
-    super::declare::continuous_states_now(model)
+    super::structural::continuous_states_now(model)
 }
 
 /// The number of event indicators of M.

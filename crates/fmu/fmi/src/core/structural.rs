@@ -1,6 +1,6 @@
 //! Structural parameters (FMI 3.0 only): a UInt64 parameter that sizes arrays, set in
 //! Configuration Mode. A model lists them in [`Model::STRUCTURAL`]; an array declares
-//! its size with [`Declaration::sized_by`] (a [`Family`](super::Family) sized by one
+//! its size with [`Declaration::sized_by`](super::Declaration::sized_by) (a [`Family`](super::Family) sized by one
 //! says it once for all its arrays). The model keeps the size itself (the length of its
 //! per-channel vectors): `get` reads it, `resize` changes it; the layer then writes the
 //! start value of each new element of every array the parameter sizes (the declared
@@ -10,100 +10,10 @@
 //! layer resizes it to the starts before it writes the start values. FMI 2.0 and the
 //! scalar-only FMI 3.0 view serve the default size only.
 
-use super::declare::{self, Declaration, write_element};
+use super::declare::{self, write_element};
 use super::model::Model;
+pub use super::sizes::{MAX_STRUCTURAL, Sizes, StructuralParameter};
 use super::variables::element_name;
-
-/// At most this many structural parameters per model ([`Sizes`] holds them inline, so
-/// a get or set allocates nothing).
-pub const MAX_STRUCTURAL: usize = 4;
-
-/// A structural parameter of model M (causality="structuralParameter",
-/// variability="fixed": set in Configuration Mode, before initialization).
-pub struct StructuralParameter<M: 'static> {
-    pub name: &'static str,
-    pub value_reference: u32,
-    pub description: &'static str,
-    /// The default size: the declared length of every array it sizes.
-    pub start: usize,
-    /// The largest size accepted (the smallest is 1).
-    pub max: usize,
-    /// The size the model holds now.
-    pub get: fn(&M) -> usize,
-    /// Changes the size the model holds (its vectors resized; the layer then writes
-    /// the new elements' start values).
-    pub resize: fn(&mut M, usize),
-}
-
-impl<M> Clone for StructuralParameter<M> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-impl<M> Copy for StructuralParameter<M> {}
-
-impl<M> StructuralParameter<M> {
-    /// A structural parameter `name` at `value_reference`, default `start`, at most
-    /// `max`, read with `get` and changed with `resize`.
-    pub const fn new(
-        name: &'static str,
-        value_reference: u32,
-        description: &'static str,
-        [start, max]: [usize; 2],
-        get: fn(&M) -> usize,
-        resize: fn(&mut M, usize),
-    ) -> Self {
-        assert!(start >= 1 && start <= max, "a size is within 1..=max");
-        StructuralParameter {
-            name,
-            value_reference,
-            description,
-            start,
-            max,
-            get,
-            resize,
-        }
-    }
-
-    /// The size `value` as set by an importer: within 1..=max, else why not.
-    pub fn checked(&self, value: u64) -> Result<usize, String> {
-        match usize::try_from(value) {
-            Ok(n) if (1..=self.max).contains(&n) => Ok(n),
-            _ => Err(format!(
-                "\"{}\" = {value} is outside 1..={}: the value is kept at its previous size",
-                self.name, self.max
-            )),
-        }
-    }
-}
-
-/// The current value of each structural parameter of a model (inline: no allocation).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Sizes([usize; MAX_STRUCTURAL]);
-
-impl Sizes {
-    /// The sizes model M holds now.
-    pub fn of<M: Model>(model: &M) -> Self {
-        let mut n = [0; MAX_STRUCTURAL];
-        for (slot, p) in n.iter_mut().zip(M::STRUCTURAL) {
-            *slot = (p.get)(model);
-        }
-        Sizes(n)
-    }
-
-    /// The value of structural parameter k.
-    pub fn get(&self, k: usize) -> usize {
-        self.0.get(k).copied().unwrap_or(0)
-    }
-}
-
-/// The number of elements of `d` now: its structural parameter's value, or its length.
-pub fn size_now<M>(d: &Declaration<M>, sizes: &Sizes) -> usize {
-    match d.sized_by {
-        Some(k) => sizes.get(k),
-        None => d.size(),
-    }
-}
 
 /// The start value of element i of a declaration whose start values are `start`.
 fn start_at<T: Copy + Default>(start: &[T], i: usize) -> Option<T> {
@@ -215,4 +125,14 @@ pub fn at_default_sizes<M: Model>(model: &M) -> Result<(), String> {
             p.start
         )),
     }
+}
+
+/// The number of continuous states of `model` at its current sizes (FMI 3.0: an
+/// array of states sized by a structural parameter has as many as it holds now).
+pub fn continuous_states_now<M: Model>(model: &M) -> usize {
+    let sizes = Sizes::of(model, M::STRUCTURAL);
+    (M::VARIABLES.iter())
+        .filter(|d| d.derivative_of.is_some())
+        .map(|d| d.size_now(&sizes))
+        .sum()
 }

@@ -6,7 +6,7 @@
 //! ([`Index`](super::instance::Index)) keeps the two views built from it.
 
 use super::model::Model;
-use super::structural::Sizes;
+use super::sizes::Sizes;
 use super::variables::{Causality, Initial, Variability, VariableType};
 use std::borrow::Cow;
 

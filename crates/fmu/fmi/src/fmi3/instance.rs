@@ -77,7 +77,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 v.name
             ));
         }
-        let sizes = Sizes::of::<M>(self.core.model());
+        let sizes = Sizes::of(self.core.model(), M::STRUCTURAL);
         let parts = variables.clone().filter_map(move |v| match v.source {
             Source::Elements {
                 declaration,

@@ -135,7 +135,7 @@ fn element_requests<M: Model>(
                 v.name
             ));
         }
-        if v.size_now(&Sizes::of::<M>(inst.core.model())) != v.size() {
+        if v.size_now(&Sizes::of(inst.core.model(), M::STRUCTURAL)) != v.size() {
             return Err(format!(
                 "\"{}\" is resized: its output derivatives are served at its default size \
                  {} only",

@@ -17,7 +17,7 @@ use crate::fmi3::types::*;
 /// The declared elements of FMI 3.0 variables, in order (an array sized by a
 /// structural parameter: as many as it has now).
 fn elements<M: Model>(inst: &Instance<M>, vrs: &[u32], what: &str) -> Result<Vec<Element>, String> {
-    let sizes = Sizes::of::<M>(inst.core.model());
+    let sizes = Sizes::of(inst.core.model(), M::STRUCTURAL);
     let mut out = Vec::new();
     for &vr in vrs {
         let v = inst

@@ -28,7 +28,7 @@ pub(super) fn read<M: Model, T: Default + Clone>(
     let table = Arc::clone(&inst.extra.table);
     // nValues is checked against the current sizes before a slice of that length
     // is formed over the host's buffer.
-    let sizes = Sizes::of::<M>(inst.core.model());
+    let sizes = Sizes::of(inst.core.model(), M::STRUCTURAL);
     let variables = table.typed_all(vrs, wanted, n_values, &sizes)?;
     // SAFETY: the host's buffer holds nValues elements, which match the variables.
     let out = unsafe { output_slice(values, n_values, "values[]") }?;
@@ -58,7 +58,7 @@ pub(super) fn write<M: Model, T>(
     check_array(values, n_values, "values[]")?;
     let table = Arc::clone(&inst.extra.table);
     // A write of these types changes no size (the sizes are UInt64 parameters).
-    let sizes = Sizes::of::<M>(inst.core.model());
+    let sizes = Sizes::of(inst.core.model(), M::STRUCTURAL);
     let variables = table.typed_all(vrs, wanted, n_values, &sizes)?;
     // SAFETY: as in `read`, the length was checked against the variables first.
     let values = unsafe { input_slice(values, n_values, "values[]") }?;
