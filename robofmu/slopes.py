@@ -19,6 +19,7 @@ from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
+from fmpy import read_model_description
 
 from .errors import CosimError
 from .instances import give_back, open_instance
@@ -70,11 +71,31 @@ def _highest(path: str, names: tuple[str, ...], order: int, probe) -> dict[str, 
     return found
 
 
+@lru_cache(maxsize=64)
+def _feedthrough(path: str) -> frozenset[str]:
+    """The outputs of the FMU at `path` that depend on an input at the same instant (its
+    ModelStructure; an output without a dependency list depends on every input)."""
+    try:
+        md = read_model_description(path)
+    except Exception:  # noqa: BLE001 - unreadable here: the run's own checks report it
+        return frozenset()
+    inputs = any(v.causality == "input" for v in md.modelVariables)
+    return frozenset(o.variable.name for o in md.outputs
+                     if (inputs if o.dependencies is None
+                         else any(d.causality == "input" for d in o.dependencies)))
+
+
 @lru_cache(maxsize=256)
 def served(path: str, names: tuple[str, ...], order: int) -> dict[str, int]:
     """Per name, the highest output derivative order (at most `order`, 0: none) the FMU
-    at `path` returns."""
-    return _highest(path, names, order, _outputs)
+    at `path` returns; 0 for an output with direct feedthrough (`_feedthrough`; FMI 3.0
+    scalars `x[k]` by their array `x`): its derivative at a communication point follows
+    its inputs as they were set, not as they move over the next step, so the signal's
+    history gives the better slope (the PID's u: a P term on a moving measurement)."""
+    through = _feedthrough(path)
+    smooth = tuple(n for n in names if n not in through and n.split("[")[0] not in through)
+    found = _highest(path, smooth, order, _outputs) if smooth else {}
+    return {n: found.get(n, 0) for n in names}
 
 
 @lru_cache(maxsize=256)

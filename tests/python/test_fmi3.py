@@ -70,6 +70,7 @@ def test_the_harness_finds_every_fmi2_scalar_in_the_fmi3_arrays(model):
 # parameter and its clocked outputs (docs/profiles.md, Dynamics Controller).
 CLOCKED = {
     "ComputedTorque": {"sampleClock", "samplePeriod", "uSampled[1]", "uSampled[2]", "uSampled[3]"},
+    "PID": {"sampleClock", "samplePeriod", "uSampled[1]", "uSampled[2]", "uSampled[3]"},
 }
 # The structural parameters of each FMU (FMI 3.0 only; docs/profiles.md, resizable
 # parameter arrays).

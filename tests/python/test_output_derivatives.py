@@ -1,8 +1,9 @@
 """Output derivatives of the real .fmu files through FMPy: fmi2GetRealOutputDerivatives
 (FMU2Slave.getRealOutputDerivatives) and fmi3GetOutputDerivatives (FMU3Slave
 .getOutputDerivatives for scalars, FMU3Slave's ctypes function for arrays and bad
-arguments), against the textbook planner polynomial and central differences of the
-plant's outputs along its co-simulation trajectory."""
+arguments), against the textbook planner polynomial, central differences of the
+plant's and the PID's outputs along their co-simulation trajectories, and the closed
+form of the PID's step response."""
 
 import math
 import shutil
@@ -56,9 +57,9 @@ def refs(description):
 
 
 def test_descriptions_declare_the_orders():
-    # Expected: Planner and Pss3Plant provide order 2 for every Real output, the PID
-    # none (the attribute left out: default 0).
-    for model, order in [("Planner", 2), ("Pss3Plant", 2), ("PID", 0)]:
+    # Expected: Planner, Pss3Plant and the PID provide order 2 for every continuous
+    # Real output, ComputedTorque none (the attribute left out: default 0).
+    for model, order in [("Planner", 2), ("Pss3Plant", 2), ("PID", 2), ("ComputedTorque", 0)]:
         for path in (fmu_path(model), fmu3_path(model)):
             assert read_model_description(path).coSimulation.maxOutputDerivativeOrder == order
 
@@ -286,16 +287,99 @@ def test_fmi3_bad_requests_are_errors_with_a_reason(planner3, names, orders, n_v
     assert message in last_message(planner3), last_message(planner3)
 
 
-def test_fmi3_pid_provides_none(tmp_path):
+# The PID's default experiment (Kp 1, Ki 0.5, Kd 0.1, Tf 0.05 s on every channel, the
+# setpoints 1, 0.5 and -0.25, the measurements 0 and held), channel 3 limited to
+# [-0.1, 0.1]: its output starts below -0.1 and stays there.
+PID_LIMITS = {"limitOutput": True, "uMin": -0.1, "uMax": 0.1}
+
+
+class PidCalls:
+    """The PID through FMPy as PlantCalls: FMU2Slave (FMI 2.0) or FMU3Slave (FMI 3.0,
+    the array u), values and output derivatives of u, channel 3 limited."""
+
+    def __init__(self, tmp_path, fmi3):
+        self.fmi3 = fmi3
+        if fmi3:
+            self.fmu = fmu3(fmu3_path("PID"), tmp_path / "PID3")
+            for name, value in PID_LIMITS.items():
+                setter = self.fmu.setBoolean if name == "limitOutput" else self.fmu.setFloat64
+                setter([self.fmu.vr[name]], [False, False, value])
+            initialize(self.fmu)
+        else:
+            self.fmu, description, self.directory = open_slave(tmp_path, "PID")
+            self.vr = refs(description)
+            for name, value in PID_LIMITS.items():
+                setter = self.fmu.setBoolean if name == "limitOutput" else self.fmu.setReal
+                setter([self.vr[f"{name}[3]"]], [value])
+            self.fmu.enterInitializationMode()
+            self.fmu.exitInitializationMode()
+        self.elements = ["u[1]", "u[2]", "u[3]"]
+
+    def values(self):
+        if self.fmi3:
+            return self.fmu.getFloat64([self.fmu.vr["u"]], 3)
+        return self.fmu.getReal([self.vr[n] for n in self.elements])
+
+    def derivatives(self, order):
+        if self.fmi3:
+            status, values = output_derivatives(self.fmu, ["u"], [order], 3)
+            assert status == OK, last_message(self.fmu)
+            return values
+        return self.fmu.getRealOutputDerivatives([self.vr[n] for n in self.elements],
+                                                 [order] * 3)
+
+    def step(self, t, h):
+        self.fmu.doStep(t, h)
+
+    def close(self):
+        if self.fmi3:
+            self.fmu.freeInstance()
+        else:
+            close(self.fmu, self.directory)
+
+
+@pytest.mark.parametrize("fmi3", [False, True], ids=["fmi2", "fmi3"])
+@pytest.mark.parametrize("delta, order", [(1e-5, 1), (1e-4, 2)])
+def test_pid_derivatives_match_central_differences_and_the_closed_form(tmp_path, fmi3,
+                                                                       delta, order):
+    # Expected: (1) central differences of u over CS steps of delta with the inputs
+    # held (the PID steps exactly: only the differences' truncation error, bounded as
+    # for the plant); (2) the closed form of the step response of channels 1 and 2
+    # from the zero state, u = e (Kp + Ki t + Kd/Tf exp(-t/Tf)):
+    # u' = e (Ki - Kd/Tf^2 exp(-t/Tf)), u'' = e Kd/Tf^3 exp(-t/Tf); (3) channel 3, held
+    # at its lower limit, 0 (its output is constant, its differences 0 too); (4) with
+    # a moving input, the input's share.
+    pid = PidCalls(tmp_path, fmi3)
+    mismatches, checked = trajectory_mismatches(pid, order, delta)
+    assert mismatches == [] and checked == 3 * 4
+    t = 0.15 + 2 * delta  # where trajectory_mismatches left it
+    pid.step(t, 0.05 - 2 * delta)
+    t = 0.2
+    a = 0.1 * math.exp(-t / 0.05)
+    closed = 0.5 - a / 0.05**2 if order == 1 else a / 0.05**3
+    got = pid.derivatives(order)
+    assert got[:2] == pytest.approx([e * closed for e in (1.0, 0.5)], rel=1e-12)
+    assert got[2] == 0.0 and pid.values()[2] == -0.1
+    if not fmi3 and order == 1:
+        # A measurement moving at 0.2 /s (fmi2SetRealInputDerivatives): the derivative
+        # adds du/dy y' = -(Kp + Kd/Tf) 0.2 on channel 1 (robofmu_control::pid_ramp::
+        # output_slope: the inputs move with the derivatives set).
+        pid.fmu.setRealInputDerivatives([pid.vr["measurement[1]"]], [1], [0.2])
+        moving = pid.derivatives(1)
+        assert moving[0] == pytest.approx(got[0] - (1.0 + 0.1 / 0.05) * 0.2, rel=1e-12)
+        assert moving[1:] == got[1:]
+    pid.close()
+
+
+def test_fmi3_clocked_output_has_no_output_derivatives(tmp_path):
+    # uSampled is discrete (clocked): FMI 3.0 defines output derivatives of continuous
+    # outputs only, so the call is refused with fmi3Error and a reason.
     fmu = fmu3(fmu3_path("PID"), tmp_path / "PID3")
     initialize(fmu)
     fmu.doStep(0.0, 0.01)
-    output = next(v for v in fmu.description.modelVariables
-                  if v.causality == "output" and v.type == "Float64")
-    size = output.shape[0] if output.shape else 1
-    status, _ = output_derivatives(fmu, [output.name], [1], size)
+    status, _ = output_derivatives(fmu, ["uSampled"], [1], 3)
     assert status == ERROR
-    assert "provides no output derivatives" in last_message(fmu), last_message(fmu)
+    assert '"uSampled" (value reference 411) is clocked by sampleClock' in last_message(fmu)
     fmu.freeInstance()
 
 
@@ -308,8 +392,8 @@ def test_every_output_serves_every_declared_order(tmp_path, model, fmi3):
     path = fmu3_path(model) if fmi3 else fmu_path(model)
     description = read_model_description(path)
     highest = description.coSimulation.maxOutputDerivativeOrder
-    outputs = [v for v in description.modelVariables
-               if v.causality == "output" and v.type in ("Real", "Float64")]
+    outputs = [v for v in description.modelVariables  # continuous ones: not the clocked
+               if v.causality == "output" and v.type in ("Real", "Float64") and not v.clocks]
     assert outputs
     if fmi3:
         slave = fmu3(path, tmp_path / model)

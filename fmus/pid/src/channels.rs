@@ -2,7 +2,7 @@
 //! many as the structural parameter `nChannels` says (FMI 3.0; three in FMI 2.0 and
 //! the scalar-only view), and the law's values of a channel.
 
-use robofmu_control::pid::{self, PidGains, PidInputs, PidOutput, PidState};
+use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
 use robofmu_control::pid_ramp::PidInputRamp;
 use robofmu_fmi::prelude::StructuralParameter;
 
@@ -24,6 +24,8 @@ pub struct Pid {
     /// Derivatives of the inputs at the start of a step (zero: held).
     pub(crate) ramps: Vec<PidInputRamp>,
     pub(crate) states: Vec<PidState>,
+    /// The sampled law's state and held outputs (`clocked`).
+    pub(crate) sampled: super::clocked::Sampled,
 }
 
 impl Pid {
@@ -35,6 +37,7 @@ impl Pid {
         self.inputs.resize(n, PidInputs::default());
         self.ramps.resize(n, PidInputRamp::default());
         self.states.resize(n, PidState::default());
+        self.sampled.resize(n);
     }
 
     /// Brings the law's limits of channel c up to date (after a parameter is set).
@@ -44,19 +47,21 @@ impl Pid {
 
     /// The gains of every channel are usable, or why not.
     pub(crate) fn validate(&self) -> Result<(), String> {
-        for (c, g) in self.gains.iter().enumerate() {
-            g.validate()
-                .map_err(|e| format!("channel {}: {e}", c + 1))?;
-        }
-        Ok(())
+        (self.gains.iter().enumerate())
+            .try_for_each(|(c, g)| g.validate().map_err(|e| format!("channel {}: {e}", c + 1)))
     }
 
-    /// The law's output and state derivatives of channel c.
-    pub(crate) fn output(&self, c: usize) -> PidOutput {
-        pid::output(&self.gains[c], &self.states[c], &self.inputs[c])
+    /// `law` (`pid::output`, `pid::derivatives`, ...) on the gains, state and inputs of
+    /// channel c.
+    pub(crate) fn law<T>(
+        &self,
+        c: usize,
+        law: impl Fn(&PidGains, &PidState, &PidInputs) -> T,
+    ) -> T {
+        law(&self.gains[c], &self.states[c], &self.inputs[c])
     }
     pub(crate) fn rates(&self, c: usize) -> PidState {
-        pid::derivatives(&self.gains[c], &self.states[c], &self.inputs[c])
+        self.law(c, pid::derivatives)
     }
 }
 

@@ -4,11 +4,13 @@
 //! states (Model Exchange), stepped exactly for inputs held or following the derivatives
 //! the master gives (Co-Simulation). Signals carry no unit.
 
+use robofmu_control::pid;
 use robofmu_control::pid_jacobian::{self, Known, Known::*, Unknown, Unknown::*};
-use robofmu_control::pid_ramp::step_with_ramp;
+use robofmu_control::pid_ramp::{output_slope, step_with_ramp};
 use robofmu_fmi::prelude::{Variability::*, *};
 
 mod channels;
+mod clocked;
 pub use channels::{CHANNELS, MAX_CHANNELS, Pid};
 use channels::{STRUCTURAL, input};
 
@@ -54,7 +56,11 @@ const MEASURED: Decl = input_k::<1>("measurement", 111, &[0.0]);
 const R_RATE: Decl = input_k::<2>("setpointRate", 121, &[0.0]);
 const Y_RATE: Decl = input_k::<3>("measuredRate", 131, &[0.0]);
 const FEEDFWD: Decl = input_k::<4>("feedforward", 141, &[0.0]);
-const U: Decl = CH.output("u", 201, |m, c| m.output(c).u);
+const U: Decl = CH
+    .output("u", 201, |m, c| m.law(c, pid::output).u)
+    .output_derivative(2, |m, c, n| {
+        Ok(m.law(c, |g, s, i| output_slope(g, s, i, &m.ramps[c], n)))
+    });
 const INTEGRAL: Decl = CH.state("integral", 301, |m, c| &mut m.states[c].integral);
 const FILTER: Decl = CH.state("filter", 311, |m, c| &mut m.states[c].filter);
 const DER_INT: Decl = CH.derivative("der(integral)", 321, INTEGRAL, |m, c| m.rates(c).integral);
@@ -108,14 +114,11 @@ const KNOWNS: [(Decl, Known); 7] = [
     (FILTER, Filter),
 ];
 
-/// d(output or state derivative)/d(input or state) of the law; the channels are
-/// independent.
+/// d(output or state derivative)/d(input or state) of the law in one channel (the
+/// channels are independent: `Jacobian::Diagonal`).
 fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
     let of = unknown.role_in(&UNKNOWNS, "an output or derivative")?;
     let c = unknown.index;
-    if known.index != c {
-        return Ok(0.0);
-    }
     let (g, s, i) = (&m.gains[c], &m.states[c], &m.inputs[c]);
     let d = pid_jacobian::partial(g, s, i, of, known.role(&KNOWNS));
     d.ok_or_else(|| format!("\"{}\" is not an input or state", known.name))
@@ -136,12 +139,10 @@ impl Model for Pid {
 
     fn do_step(&mut self, _time: f64, step: f64, _log: &dyn Log) -> StepOutcome {
         if let Err(reason) = self.validate() {
-            let terminate = true;
-            return StepOutcome::Discarded { reason, terminate };
+            return StepOutcome::terminate(reason);
         }
         for c in 0..self.gains.len() {
-            let (g, s, i) = (&self.gains[c], &self.states[c], &self.inputs[c]);
-            self.states[c] = step_with_ramp(g, s, i, &self.ramps[c], step);
+            self.states[c] = self.law(c, |g, s, i| step_with_ramp(g, s, i, &self.ramps[c], step));
         }
         StepOutcome::Completed
     }
@@ -150,7 +151,8 @@ impl Model for Pid {
     /// FMI 3.0 intermediate update: each communication step split into 10 equal parts,
     /// the continuous inputs settable at the 9 inner points (held over the next part).
     const INTERMEDIATE_UPDATE_POINTS: u32 = 10;
-    const JACOBIAN: Option<Jacobian<Self>> = Some(Jacobian::Partial(partial));
+    const JACOBIAN: Option<Jacobian<Self>> = Some(Jacobian::Diagonal(partial));
+    const CLOCKS: &'static [InputClock<Self>] = clocked::CLOCKS;
 }
 
 export_fmu!(Pid);

@@ -98,3 +98,51 @@ pub fn step_with_ramp(
     };
     PidState { integral, filter }
 }
+
+/// The n-th time derivative (n >= 1; 0: the output) of the output at state `s`, the
+/// inputs `i` (as set) moving with the derivatives of `ramp` (a zero ramp: held): what
+/// FMI output derivatives report at a communication point. With e, w (the filter's
+/// input) and ff following the inputs, x^(k) = (w^(k-1) - x^(k-1)) / Tf and
+/// I^(k) = e^(k-1), so u_raw^(n) = Kp e^(n) + Ki e^(n-1) + D^(n) + ff^(n), with
+/// D^(n) = Kd (e^(n) - x^(n)) / Tf on the error path, Kd x^(n) on the rate path
+/// (Kd w^(n) without its filter); input derivatives beyond the second are 0.
+///
+/// At a limit the output is the limit: every derivative is 0 where u_raw is beyond a
+/// limit, or at it and not moving back inside (u_raw' pushing out or 0, which is also
+/// where conditional integration holds the integral); at a limit and moving back
+/// inside, the right derivatives, those of u_raw.
+pub fn output_slope(g: &PidGains, s: &PidState, i: &PidInputs, ramp: &PidInputRamp, n: u32) -> f64 {
+    let out = pid::output(g, s, i);
+    if n == 0 {
+        return out.u;
+    }
+    // Derivative k of the inputs (0: the inputs themselves).
+    let input = |k: u32| match k {
+        0 => *i,
+        1 => ramp.rate,
+        2 => ramp.acceleration,
+        _ => PidInputs::default(),
+    };
+    let e = |k: u32| input(k).setpoint - input(k).measurement;
+    let raw = |n: u32| {
+        let mut x = s.filter;
+        for k in 1..=n {
+            x = (pid::filter_input(g, &input(k - 1)) - x) / g.tf;
+        }
+        let d = match (g.use_rate_inputs, g.filter_active()) {
+            (true, true) => g.kd * x,
+            (true, false) => g.kd * pid::filter_input(g, &input(n)),
+            (false, true) => g.kd * (e(n) - x) / g.tf,
+            (false, false) => 0.0,
+        };
+        g.kp * e(n) + g.ki * e(n - 1) + d + input(n).feedforward
+    };
+    let at_limit = match g.limits {
+        Some((min, max)) => {
+            let (u, rate) = (out.u_raw, raw(1));
+            u > max || u < min || (u == max && rate >= 0.0) || (u == min && rate <= 0.0)
+        }
+        None => false,
+    };
+    if at_limit { 0.0 } else { raw(n) }
+}

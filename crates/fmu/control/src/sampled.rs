@@ -155,6 +155,13 @@ fn decimal_fraction(period: f64) -> Result<(u64, u64), SampledError> {
     Ok((counter, resolution))
 }
 
+/// The sampled law of one channel at a tick, period `ts` (see the module
+/// documentation): the output from the state `s` and the sampled inputs (held until
+/// the next tick), and the state the next tick starts from.
+pub fn tick(g: &PidGains, s: &PidState, inputs: &PidInputs, ts: f64) -> (PidOutput, PidState) {
+    (pid::output(g, s, inputs), pid::step(g, s, inputs, ts))
+}
+
 /// One PID channel sampled every `period` seconds (see the module documentation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SampledPid {
@@ -182,8 +189,8 @@ impl SampledPid {
     /// The law at a tick: the output from the state and the sampled inputs (held until
     /// the next tick), then the state advanced over one period.
     pub fn tick(&mut self, inputs: &PidInputs) -> PidOutput {
-        let out = pid::output(&self.gains, &self.state, inputs);
-        self.state = pid::step(&self.gains, &self.state, inputs, self.period);
+        let out;
+        (out, self.state) = tick(&self.gains, &self.state, inputs, self.period);
         self.held = Some(out);
         out
     }

@@ -4,7 +4,7 @@
 //! to a linear error.
 
 use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
-use robofmu_control::pid_ramp::{PidInputRamp, step_with_ramp};
+use robofmu_control::pid_ramp::{PidInputRamp, output_slope, step_with_ramp};
 
 fn gains(tf: f64) -> PidGains {
     PidGains {
@@ -187,4 +187,134 @@ fn order_mut_names_the_rates_and_the_accelerations() {
         (ramp.acceleration.setpoint, ramp.rate),
         (7.0, expected.rate)
     );
+}
+
+#[test]
+fn held_slopes_are_the_derivatives_of_the_closed_form_and_zero_at_a_limit() {
+    // Expected values: the derivatives of the closed form of the step response
+    // of a constant error from the zero state, u(t) = Kp + Ki t + Kd/Tf exp(-t/Tf): u' = Ki - Kd/Tf^2 exp(-t/Tf),
+    // u'' = Kd/Tf^3 exp(-t/Tf), u''' = -Kd/Tf^4 exp(-t/Tf).
+    let g = gains(0.05);
+    let held = PidInputRamp::default();
+    let inputs = PidInputs {
+        setpoint: 1.0,
+        ..PidInputs::default()
+    };
+    let mut s = PidState::default();
+    for k in 0..20 {
+        let t = k as f64 * 0.007;
+        let a = 0.3 * (-t / 0.05).exp();
+        let want = [
+            0.5 - a / 0.05f64.powi(2),
+            a / 0.05f64.powi(3),
+            -a / 0.05f64.powi(4),
+        ];
+        for (n, w) in (1..=3).zip(want) {
+            let got = output_slope(&g, &s, &inputs, &held, n);
+            assert!((got - w).abs() <= 1e-12 * w.abs().max(1.0), "t={t} n={n}");
+        }
+        s = pid::step(&g, &s, &inputs, 0.007);
+    }
+    assert_eq!(
+        output_slope(&g, &s, &inputs, &held, 0),
+        pid::output(&g, &s, &inputs).u
+    );
+    // The rate path: D = Kd x, x' = (r - x)/Tf: u' = Kd (r - x)/Tf (+ Ki e, e = 0).
+    let rate = PidGains {
+        use_rate_inputs: true,
+        ..g
+    };
+    let moving = PidInputs {
+        setpoint_rate: 0.25,
+        ..PidInputs::default()
+    };
+    let x = PidState {
+        integral: 0.0,
+        filter: 0.1,
+    };
+    let d1 = output_slope(&rate, &x, &moving, &held, 1);
+    assert!((d1 - 0.3 * 0.15 / 0.05).abs() < 1e-15, "{d1}");
+    // Beyond the upper limit, and at it pushing out: the output is the limit.
+    let at = |integral: f64| PidState {
+        integral,
+        filter: 0.0,
+    };
+    // u_raw = 2 + 0.5 I + 6 (filter 0): about 1.5 at I = -13, the limit here.
+    let edge = pid::output(&g, &at(-13.0), &inputs).u_raw;
+    assert!((edge - 1.5).abs() < 1e-14);
+    let limited = PidGains {
+        limits: Some((-1.0, edge)),
+        ..g
+    };
+    for n in 1..=2 {
+        assert_eq!(output_slope(&limited, &at(0.0), &inputs, &held, n), 0.0);
+    }
+    // At the limit, u_raw' = 0.5 - 6/0.05 < 0: moving back inside, u_raw's.
+    let inside = output_slope(&limited, &at(-13.0), &inputs, &held, 1);
+    assert_eq!(inside, output_slope(&g, &at(-13.0), &inputs, &held, 1));
+    assert!(inside < 0.0);
+}
+
+#[test]
+fn ramped_slopes_are_the_derivatives_along_the_ramp() {
+    // Expected values: central differences in tau of the output along the ramp, u(tau)
+    // = output(step_with_ramp(s, i, ramp, tau), i + i' tau + i'' tau^2 / 2), the step
+    // exact for the quadratic inputs (negative tau too), at tau = 0; truncation error
+    // O(delta^2), about 1e-6 relative here. Both paths of the derivative term.
+    let (start, ramp) = quadratic_error();
+    let s = PidState {
+        integral: 0.2,
+        filter: -0.1,
+    };
+    for rates in [false, true] {
+        let g = PidGains {
+            use_rate_inputs: rates,
+            ..gains(0.05)
+        };
+        let i = PidInputs {
+            setpoint_rate: 0.3,
+            measured_rate: -0.2,
+            feedforward: 0.05,
+            ..start
+        };
+        let ramp = PidInputRamp {
+            rate: PidInputs {
+                setpoint_rate: 2.0,
+                feedforward: 0.5,
+                ..ramp.rate
+            },
+            acceleration: PidInputs {
+                measured_rate: -3.0,
+                feedforward: 1.0,
+                ..ramp.acceleration
+            },
+        };
+        let at = |tau: f64| {
+            let moved = |x: f64, r: f64, a: f64| x + r * tau + a * tau * tau / 2.0;
+            let (r, a) = (&ramp.rate, &ramp.acceleration);
+            let inputs = PidInputs {
+                setpoint: moved(i.setpoint, r.setpoint, a.setpoint),
+                measurement: moved(i.measurement, r.measurement, a.measurement),
+                setpoint_rate: moved(i.setpoint_rate, r.setpoint_rate, a.setpoint_rate),
+                measured_rate: moved(i.measured_rate, r.measured_rate, a.measured_rate),
+                feedforward: moved(i.feedforward, r.feedforward, a.feedforward),
+            };
+            pid::output(&g, &step_with_ramp(&g, &s, &i, &ramp, tau), &inputs).u
+        };
+        let d = 1e-4;
+        let first = (at(d) - at(-d)) / (2.0 * d);
+        let second = (at(d) - 2.0 * at(0.0) + at(-d)) / (d * d);
+        let got = [1, 2].map(|n| output_slope(&g, &s, &i, &ramp, n));
+        assert!(
+            (got[0] - first).abs() < 1e-6 * first.abs().max(1.0),
+            "{rates}: {got:?} {first}"
+        );
+        assert!(
+            (got[1] - second).abs() < 1e-5 * second.abs().max(1.0),
+            "{rates}: {got:?} {second}"
+        );
+        // The ramp matters: the held slope differs.
+        let held = output_slope(&g, &s, &i, &PidInputRamp::default(), 1);
+        assert!((held - got[0]).abs() > 0.1, "{rates}");
+    }
 }

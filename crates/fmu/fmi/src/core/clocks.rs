@@ -1,5 +1,5 @@
 //! Clocked partitions (FMI 3.0 only): what a model declares to run a sampled law on
-//! an input clock. A model lists its clocks in [`Model::CLOCKS`](super::Model::CLOCKS);
+//! an input clock. A model lists its clocks in [`Model::CLOCKS`];
 //! each [`InputClock`] is a periodic input clock (`intervalVariability="fixed"`, no
 //! `intervalDecimal`: the importer reads the interval with fmi3GetIntervalDecimal or
 //! fmi3GetIntervalFraction in Initialization Mode), its interval the FMI 3.0 parameter
@@ -14,7 +14,7 @@
 //! their behaviour do not change when a model gains a clocked partition. The
 //! model keeps the period and what its law holds between ticks (cloned with the model
 //! into FMU states; serialized with
-//! [`Model::write_extra_state`](super::Model::write_extra_state)).
+//! [`Model::write_extra_state`]).
 //!
 //! A clocked partition in a binding (the model's own law at `tick`, its held output
 //! read by `get`):
@@ -49,6 +49,7 @@
 //! ```
 
 use super::log::Log;
+use super::model::Model;
 
 /// What the layer tells the model at a tick.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -69,9 +70,17 @@ pub type TickHook<M> = fn(&mut M, &Tick, &dyn Log) -> Result<(), String>;
 /// Where a model keeps a clock's period: its reader and its writer.
 pub type PeriodAccess<M> = (fn(&M) -> f64, fn(&mut M, f64));
 
+/// How FMU states carry what a clock's law holds between ticks (its state, its held
+/// outputs): a writer that appends it (with [`write_held`]) and a reader that reads it
+/// back and checks it (with [`read_held`]).
+pub type HeldAccess<M> = (
+    fn(&M, &mut Vec<u8>),
+    fn(&mut M, &[u8]) -> Result<(), String>,
+);
+
 /// The fixed Float64 parameter that sets a clock's period, s (FMI 3.0 only), kept by
 /// the model (so that FMU states carry it: the model serializes it in
-/// [`Model::write_extra_state`](super::Model::write_extra_state) and checks it with
+/// [`Model::write_extra_state`] and checks it with
 /// [`period_fraction`] when it reads it back); the layer checks a value before `set`.
 pub struct PeriodParameter<M: 'static> {
     pub name: &'static str,
@@ -110,6 +119,9 @@ pub struct ClockedOutput<M: 'static> {
     pub description: &'static str,
     /// `Some(n)`: an array of n elements.
     pub length: Option<usize>,
+    /// `Some(k)`: the array's size is the structural parameter `Model::STRUCTURAL[k]`
+    /// (`length` its default), as a resizable family's arrays.
+    pub sized_by: Option<usize>,
     pub unit: Option<&'static str>,
     /// Element i of the held value.
     pub get: fn(&M, usize) -> f64,
@@ -128,6 +140,7 @@ impl<M> ClockedOutput<M> {
             value_reference,
             description,
             length: None,
+            sized_by: None,
             unit: None,
             get,
         }
@@ -136,6 +149,17 @@ impl<M> ClockedOutput<M> {
     /// An array of n elements.
     pub const fn array(mut self, n: usize) -> Self {
         self.length = Some(n);
+        self
+    }
+
+    /// An array sized by the structural parameter `Model::STRUCTURAL[k]`, whose start
+    /// is its length.
+    pub const fn sized_by(mut self, k: usize) -> Self {
+        assert!(
+            self.length.is_some(),
+            "only an array is sized by a structural parameter"
+        );
+        self.sized_by = Some(k);
         self
     }
 
@@ -159,6 +183,8 @@ pub struct InputClock<M: 'static> {
     pub period: PeriodParameter<M>,
     pub outputs: &'static [ClockedOutput<M>],
     pub tick: TickHook<M>,
+    /// What the law holds between ticks, for FMU states ([`InputClock::holding`]).
+    pub held: Option<HeldAccess<M>>,
 }
 
 impl<M> InputClock<M> {
@@ -179,7 +205,95 @@ impl<M> InputClock<M> {
             period,
             outputs,
             tick,
+            held: None,
         }
+    }
+
+    /// The clock whose law holds what `held` writes and reads: a model that keeps the
+    /// default extra FMU state ([`Model::write_extra_state`])
+    /// then needs no code of its own to carry its clocked partitions in FMU states
+    /// ([`write_partitions`]).
+    pub const fn holding(mut self, held: HeldAccess<M>) -> Self {
+        self.held = Some(held);
+        self
+    }
+}
+
+/// The default extra FMU state of a model: per clock of `M::CLOCKS`, its period (f64)
+/// and, where the clock declares it ([`InputClock::holding`]), the length (u64) and
+/// the bytes of what its law holds. Nothing for a model without clocks.
+pub fn write_partitions<M: Model>(model: &M, out: &mut Vec<u8>) {
+    for clock in M::CLOCKS {
+        write_held(out, [(clock.period.get)(model)]);
+        if let Some((write, _)) = clock.held {
+            let mut bytes = Vec::new();
+            write(model, &mut bytes);
+            out.extend_from_slice(&(bytes.len() as u64).to_le_bytes());
+            out.extend_from_slice(&bytes);
+        }
+    }
+}
+
+/// The first n bytes of `rest` (and `rest` after them), or why not (`what` names them).
+fn take<'a>(rest: &mut &'a [u8], n: usize, what: &str) -> Result<&'a [u8], String> {
+    if rest.len() < n {
+        return Err(format!(
+            "\"{what}\": the FMU state ends before its {n} bytes"
+        ));
+    }
+    let (head, tail) = rest.split_at(n);
+    *rest = tail;
+    Ok(head)
+}
+
+/// Reads back what [`write_partitions`] wrote: each period checked as its setter
+/// checks it, each law's bytes by its reader; Err names what is wrong (truncated,
+/// longer than the clocks' state, a period or value refused).
+pub fn read_partitions<M: Model>(model: &mut M, bytes: &[u8]) -> Result<(), String> {
+    let mut rest = bytes;
+    for clock in M::CLOCKS {
+        let what = clock.period.name;
+        let period = f64::from_le_bytes(take(&mut rest, 8, what)?.try_into().expect("8 bytes"));
+        period_fraction(period, what)?;
+        (clock.period.set)(model, period);
+        if let Some((_, read)) = clock.held {
+            let length = take(&mut rest, 8, clock.name)?.try_into().expect("8 bytes");
+            let length = usize::try_from(u64::from_le_bytes(length)).unwrap_or(usize::MAX);
+            read(model, take(&mut rest, length, clock.name)?)?;
+        }
+    }
+    match rest.len() {
+        0 => Ok(()),
+        n => Err(format!("{n} bytes beyond the state of the model's clocks")),
+    }
+}
+
+/// Appends `values` to a model's extra FMU state
+/// ([`Model::write_extra_state`]) as little-endian
+/// doubles: what a sampled law holds between ticks (its state, held outputs, period).
+pub fn write_held(out: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) {
+    for x in values {
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+}
+
+/// Reads back the N doubles [`write_held`] wrote, each finite; Err names them (`what`)
+/// and says what is wrong (length, a value that is not finite).
+pub fn read_held<const N: usize>(bytes: &[u8], what: &str) -> Result<[f64; N], String> {
+    if bytes.len() != 8 * N {
+        let n = bytes.len();
+        return Err(format!(
+            "{what}: {n} bytes, {} ({N} doubles) expected",
+            8 * N
+        ));
+    }
+    let mut values = [0.0; N];
+    for (v, b) in values.iter_mut().zip(bytes.chunks_exact(8)) {
+        *v = f64::from_le_bytes(b.try_into().expect("chunks of 8 bytes"));
+    }
+    match values.iter().find(|x| !x.is_finite()) {
+        Some(bad) => Err(format!("{what}: a value is {bad}")),
+        None => Ok(values),
     }
 }
 
@@ -286,5 +400,23 @@ mod tests {
         assert_eq!(next_tick(0.0, i, 999.9995), Some((1_000_000, 1000.0)));
         // A time a rounding away from a tick is at that tick: the next one follows.
         assert_eq!(next_tick(0.0, i, 0.30000000000000004), Some((301, 0.301)));
+    }
+
+    #[test]
+    fn held_values_round_trip_and_bad_bytes_are_refused() {
+        // Expected values: the doubles written, bit for bit; 8 bytes per double.
+        let mut out = Vec::new();
+        write_held(&mut out, [1.5, -0.0, 1e-300]);
+        assert_eq!(out.len(), 24);
+        let back: [f64; 3] = read_held(&out, "held").unwrap();
+        assert_eq!(
+            back.map(f64::to_bits),
+            [1.5, -0.0, 1e-300].map(f64::to_bits)
+        );
+        let short = read_held::<3>(&out[..16], "the law's state").unwrap_err();
+        assert!(short.contains("the law's state: 16 bytes, 24"), "{short}");
+        write_held(&mut out, [f64::NAN]);
+        let nan = read_held::<4>(&out, "held").unwrap_err();
+        assert!(nan.contains("NaN"), "{nan}");
     }
 }

@@ -108,6 +108,11 @@ fn with_start_values<'a, M: Model>(
             _ => {}
         }
     }
+    // The clocks' periods (FMI 3.0 parameters) too, so that a model of either
+    // standard carries valid periods in its FMU states.
+    for c in M::CLOCKS {
+        (c.period.set)(&mut model, c.period.start);
+    }
     Ok(model)
 }
 

@@ -88,6 +88,10 @@ pub type DirectionalDerivative<M> =
 pub enum Jacobian<M> {
     /// d(unknown)/d(known) one pair at a time; the layer sums the pairs over the seed.
     Partial(PartialDerivative<M>),
+    /// As `Partial`, for a model whose array elements are independent (channels,
+    /// axes): d(unknown element i)/d(known element j) is 0 for i != j without a call
+    /// (a scalar is element 0), and the model answers the pairs i == j.
+    Diagonal(PartialDerivative<M>),
     /// dvUnknown = J dvKnown for all unknowns at once (`unknowns`, `knowns`, `seed`,
     /// `out`), for a model that linearizes once per call instead of once per pair.
     Directional(DirectionalDerivative<M>),
@@ -105,11 +109,14 @@ impl<M> Jacobian<M> {
     ) -> Result<(), String> {
         match self {
             Jacobian::Directional(f) => f(model, unknowns, knowns, seed, out),
-            Jacobian::Partial(partial) => {
+            Jacobian::Partial(partial) | Jacobian::Diagonal(partial) => {
+                let diagonal = matches!(self, Jacobian::Diagonal(_));
                 for (o, &u) in out.iter_mut().zip(unknowns) {
                     let mut sum = 0.0;
                     for (&k, &s) in knowns.iter().zip(seed) {
-                        sum += partial(model, u, k)? * s;
+                        if !diagonal || k.index == u.index {
+                            sum += partial(model, u, k)? * s;
+                        }
                     }
                     *o = sum;
                 }
@@ -130,6 +137,17 @@ pub enum StepOutcome {
         reason: String,
         terminate: bool,
     },
+}
+
+impl StepOutcome {
+    /// A step the model refuses for good, with the reason: it cannot go on
+    /// (`Discarded` with `terminate`).
+    pub fn terminate(reason: String) -> Self {
+        StepOutcome::Discarded {
+            reason,
+            terminate: true,
+        }
+    }
 }
 
 /// What an event update (fmi2NewDiscreteStates, fmi3UpdateDiscreteStates) changed.
@@ -261,11 +279,15 @@ pub trait Model: Clone + Default + Send + Sized + 'static {
     const JACOBIAN: Option<Jacobian<Self>> = None;
 
     /// Internal state that is neither a settable variable nor a continuous state,
-    /// appended to serialized FMU states.
-    fn write_extra_state(&self, _out: &mut Vec<u8>) {}
+    /// appended to serialized FMU states; by default the clocks' periods and what their
+    /// laws hold ([`write_partitions`](super::clocks::write_partitions); nothing for a
+    /// model without clocks).
+    fn write_extra_state(&self, out: &mut Vec<u8>) {
+        super::clocks::write_partitions(self, out);
+    }
 
     /// Reads back what `write_extra_state` wrote.
-    fn read_extra_state(&mut self, _bytes: &[u8]) -> Result<(), String> {
-        Ok(())
+    fn read_extra_state(&mut self, bytes: &[u8]) -> Result<(), String> {
+        super::clocks::read_partitions(self, bytes)
     }
 }

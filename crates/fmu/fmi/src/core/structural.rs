@@ -97,6 +97,17 @@ pub fn check<M: Model>() -> Result<(), String> {
             ));
         }
     }
+    let clocked = M::CLOCKS.iter().flat_map(|c| c.outputs);
+    for o in clocked.filter(|o| o.sized_by.is_some()) {
+        let p = o.sized_by.and_then(|k| M::STRUCTURAL.get(k));
+        if p.is_none_or(|p| o.length != Some(p.start)) {
+            return Err(format!(
+                "\"{}\" is sized by a structural parameter the model lacks or whose start \
+                 is not its length",
+                o.name
+            ));
+        }
+    }
     for p in M::STRUCTURAL {
         if (p.get)(&fresh) != p.start {
             return Err(format!(

@@ -90,7 +90,7 @@ fn clock_variables<M: Model>() -> impl Iterator<Item = Variable3> {
                 output: i,
             },
             derivative_of: None,
-            sized_by: None,
+            sized_by: o.sized_by,
         });
         [clock, period].into_iter().chain(outputs)
     })

@@ -10,6 +10,7 @@ use crate::core::model::Model;
 use crate::core::output_derivatives::{Request, output_derivatives};
 use crate::core::structural::Sizes;
 use crate::core::variables::{Causality, VariableType};
+use crate::core::view::Source;
 use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::{Call, Interface, Mode};
 use crate::fmi3::types::*;
@@ -141,6 +142,14 @@ fn element_requests<M: Model>(
                  {} only",
                 v.name,
                 v.size()
+            ));
+        }
+        if let Source::Clocked { clock, .. } = v.source {
+            return Err(format!(
+                "\"{}\" (value reference {vr}) is clocked by {}: it changes only at ticks \
+                 (held between them), and output derivatives are of continuous outputs",
+                v.name,
+                M::CLOCKS[clock].name
             ));
         }
         requests.extend(v.elements().map(|vr| Request { vr, order }));
