@@ -9,8 +9,8 @@ inputs of channels 1-3, then of channels 4-6: each of the six outputs must equal
 channel's in those runs to 1e-12 at every step (the channels are independent). FMPy's
 simulate_fmu sets start values in Instantiated (fmpy/simulation.py, apply_start_values),
 where FMI 3.0 does not let a structural parameter be set: the FMU refuses it there with a
-line naming Configuration Mode, and the six-channel Model Exchange instance has twelve
-continuous states."""
+line naming Configuration Mode; the six-channel Model Exchange instance has twelve
+continuous states, and the clocked output uSampled six elements."""
 
 import math
 
@@ -54,6 +54,8 @@ def six_channels(tmp_path):
     fmu.enterInitializationMode(startTime=0.0)
     fmu.exitInitializationMode()
     assert list(fmu.getUInt64([vr["nChannels"]])) == [N]
+    # The clocked output is sized by the channel count too (zero before a tick).
+    assert list(fmu.getFloat64([vr["uSampled"]], N)) == [0.0] * N
     outputs, t = [], 0.0
     for _ in range(STEPS):
         fmu.setFloat64([vr["measurement"]], [measurement(k, t) for k in range(N)])
