@@ -6,13 +6,15 @@ elements, measurements moving each step and two channels limited.
 Expected values: the three-channel FMU run twice, the FMI 2.0 PID (dist/PID.fmu, whose
 channel count is fixed at three and which no resize reaches) with the gains, limits and
 inputs of channels 1-3, then of channels 4-6: each of the six outputs must equal its
-channel's in those runs to 1e-12 at every step (the channels are independent). FMPy's
+channel's in those runs to 1e-12 at every step (the channels are independent), and so
+must the output derivatives of orders 1 and 2 at the end. FMPy's
 simulate_fmu sets start values in Instantiated (fmpy/simulation.py, apply_start_values),
 where FMI 3.0 does not let a structural parameter be set: the FMU refuses it there with a
 line naming Configuration Mode; the six-channel Model Exchange instance has twelve
 continuous states, and the clocked output uSampled six elements."""
 
 import math
+from ctypes import c_double, c_int32, c_uint32
 
 import pytest
 from fmpy import extract, read_model_description
@@ -41,7 +43,8 @@ def measurement(k, t):
 
 
 def six_channels(tmp_path):
-    """u of the six-channel FMI 3.0 PID at each step."""
+    """u of the six-channel FMI 3.0 PID at each step, and its output derivatives of
+    orders 1 and 2 at the end (the array through FMPy's ctypes function)."""
     fmu = fmu3(fmu3_path("PID"), tmp_path / "fmi3")
     vr = fmu.vr
     fmu.enterConfigurationMode()
@@ -62,13 +65,20 @@ def six_channels(tmp_path):
         fmu.doStep(t, H)
         t += H
         outputs.append(list(fmu.getFloat64([vr["u"]], N)))
+    slopes = []
+    for order in (1, 2):
+        values = (c_double * N)()
+        fmu.fmi3GetOutputDerivatives(fmu.component, (c_uint32 * 1)(vr["u"]), 1,
+                                     (c_int32 * 1)(order), values, N)
+        slopes.append(list(values))
     fmu.terminate()
     fmu.freeInstance()
-    return outputs
+    return outputs, slopes
 
 
 def three_channels(tmp_path, first):
-    """u of the FMI 2.0 PID (three channels) set to channels first..first+2."""
+    """u of the FMI 2.0 PID (three channels) set to channels first..first+2, and its
+    output derivatives of orders 1 and 2 at the end."""
     directory = extract(fmu_path("PID"), unzipdir=str(tmp_path / f"fmi2-{first}"))
     description = read_model_description(directory)
     vr = {v.name: v.valueReference for v in description.modelVariables}
@@ -93,17 +103,24 @@ def three_channels(tmp_path, first):
         fmu.doStep(t, H)
         t += H
         outputs.append(list(fmu.getReal(refs("u"))))
+    slopes = [fmu.getRealOutputDerivatives(refs("u"), [order] * 3) for order in (1, 2)]
     fmu.terminate()
     fmu.freeInstance()
-    return outputs
+    return outputs, slopes
 
 
 def test_six_channels_equal_the_three_channel_fmu_run_twice(tmp_path):
-    six = six_channels(tmp_path)
-    truth = [a + b for a, b in zip(three_channels(tmp_path, 0), three_channels(tmp_path, 3))]
+    six, slopes = six_channels(tmp_path)
+    (low, low_slopes), (high, high_slopes) = three_channels(tmp_path, 0), three_channels(tmp_path, 3)
+    truth = [a + b for a, b in zip(low, high)]
     assert len(six) == len(truth) == STEPS
     worst = max(abs(x - y) for row, ref in zip(six, truth) for x, y in zip(row, ref))
     assert worst <= 1e-12, worst
+    # The output derivatives of all six channels, orders 1 and 2.
+    for order in range(2):
+        expected = low_slopes[order] + high_slopes[order]
+        assert max(abs(x - y) for x, y in zip(slopes[order], expected)) <= 1e-12
+    assert any(abs(x) > 1e-3 for x in slopes[0]), slopes
     # The limits bind on the limited channels: the test exercises them.
     assert any(abs(row[2]) == pytest.approx(0.3) for row in six)
 

@@ -136,14 +136,6 @@ fn element_requests<M: Model>(
                 v.name
             ));
         }
-        if v.size_now(&Sizes::of(inst.core.model(), M::STRUCTURAL)) != v.size() {
-            return Err(format!(
-                "\"{}\" is resized: its output derivatives are served at its default size \
-                 {} only",
-                v.name,
-                v.size()
-            ));
-        }
         if let Source::Clocked { clock, .. } = v.source {
             return Err(format!(
                 "\"{}\" (value reference {vr}) is clocked by {}: it changes only at ticks \
@@ -152,7 +144,15 @@ fn element_requests<M: Model>(
                 M::CLOCKS[clock].name
             ));
         }
-        requests.extend(v.elements().map(|vr| Request { vr, order }));
+        // Each element of the declaration, as many as the variable has now.
+        if let Source::Elements { first, element, .. } = v.source {
+            let n = v.size_now(&Sizes::of(inst.core.model(), M::STRUCTURAL));
+            requests.extend((element..element + n).map(|k| Request {
+                vr: first,
+                order,
+                element: Some(k),
+            }));
+        }
     }
     if requests.len() != n_values {
         return Err(format!(
