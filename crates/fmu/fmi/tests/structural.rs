@@ -7,7 +7,9 @@
 //! parameters set in Configuration Mode only, entered from Instantiated; nValues
 //! counts the current size).
 
-use robofmu_fmi::fmi3::api::{self, DerivativeRequest, Instantiation, StepResult};
+use robofmu_fmi::fmi3::api::{
+    self, DependencyArrays, DerivativeRequest, Instantiation, StepResult,
+};
 use robofmu_fmi::fmi3::mode::Interface;
 use robofmu_fmi::fmi3::types::*;
 use robofmu_fmi::prelude::*;
@@ -48,10 +50,12 @@ const X: Decl = CH.input("x", 11, &[0.5, 0.25], |m, c| &mut m.x[c]);
 const Y: Decl = CH.output("y", 21, |m, c| m.k[c] * m.x[c]);
 const S: Decl = CH.state("s", 31, |m, c| &mut m.s[c]);
 const DS: Decl = CH.derivative("der(s)", 41, S, |m, c| m.k[c] * m.x[c]);
+/// y_i reads x_i (its own channel).
+static Y_KNOWNS: [Var; 1] = same(&[X]);
 static VARIABLES: &[Decl] = &[
     K.describe("gain"),
     X.describe("input"),
-    Y.describe("k x"),
+    Y.describe("k x").depends_on(&Y_KNOWNS),
     S.describe("integral of y"),
     DS.describe("y"),
 ];
@@ -359,4 +363,39 @@ fn structural_parameters_are_refused_outside_configuration_mode_and_range() {
         Fmi3Status::Ok
     );
     assert_eq!(f.set(1, &[1.0, 1.0]), Fmi3Status::Error);
+}
+
+#[test]
+fn dependencies_follow_the_size() {
+    // Expected: y_i depends on x_i only (declared per channel), at 5 channels too;
+    // der(s)_i declares none, so it depends on every element of every known: x and s,
+    // 5 elements each, for each of its 5 elements.
+    let f = Fmu::new(Interface::ModelExchange);
+    f.configure(5);
+    f.initialize();
+    let mut n = 0;
+    let s = unsafe { api::get_number_of_variable_dependencies::<Gains>(f.0, 21, &mut n) };
+    assert_eq!((s, n), (Fmi3Status::Ok, 5), "{}", last_message());
+    let (mut of_y, mut known, mut of_known) = ([0usize; 5], [0u32; 5], [0usize; 5]);
+    let mut kinds = [Fmi3DependencyKind::Independent; 5];
+    let s = unsafe {
+        api::get_variable_dependencies::<Gains>(
+            f.0,
+            21,
+            DependencyArrays {
+                element_indices_of_dependent: of_y.as_mut_ptr(),
+                independents: known.as_mut_ptr(),
+                element_indices_of_independents: of_known.as_mut_ptr(),
+                dependency_kinds: kinds.as_mut_ptr(),
+                n_dependencies: 5,
+            },
+        )
+    };
+    assert_eq!(s, Fmi3Status::Ok, "{}", last_message());
+    assert_eq!(
+        (of_y, known, of_known),
+        ([1, 2, 3, 4, 5], [11; 5], [1, 2, 3, 4, 5])
+    );
+    let s = unsafe { api::get_number_of_variable_dependencies::<Gains>(f.0, 41, &mut n) };
+    assert_eq!((s, n), (Fmi3Status::Ok, 5 * 10), "{}", last_message());
 }
