@@ -22,7 +22,9 @@
 //! ```
 //!
 //! The declarations are ordinary [`Declaration`]s: every further builder method applies
-//! (`.describe`, `.start_real`, `.real_range`, `.input_derivative`, ...).
+//! (`.describe`, `.start_real`, `.real_range`, `.input_derivative`, ...). A family
+//! `.sized_by(k)` a structural parameter is resizable (FMI 3.0, `core::structural`):
+//! each of its arrays has the size set in Configuration Mode, its length the default.
 //! [`Element::role`] looks an element up in a table of (declaration, role), the way a
 //! model maps the variables of a directional derivative to the signals of its law.
 
