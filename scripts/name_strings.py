@@ -34,8 +34,9 @@ TABLES = {"Decl", "Declaration"}
 # arguments whose first string literal is the name they declare (the roles `.input()`,
 # `.output()`, `.state()` of a declaration take none).
 FAMILY = {"tunable", "flag", "input", "output", "state", "derivative"}
-# The clocked partitions' constructors (robofmu_fmi::core::clocks): `new` declares too.
-CLOCK_TABLES = {"InputClock", "PeriodParameter", "ClockedOutput"}
+# The clocked partitions' constructors (robofmu_fmi::core::clocks) and the structural
+# parameters' (robofmu_fmi::core::structural): `new` declares too.
+CLOCK_TABLES = {"InputClock", "PeriodParameter", "ClockedOutput", "StructuralParameter"}
 IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 

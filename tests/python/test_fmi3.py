@@ -51,7 +51,8 @@ def test_the_harness_finds_every_fmi2_scalar_in_the_fmi3_arrays(model):
     # Truth: the FMI 2.0 build's description of the same table, each scalar's array
     # and element parsed from its name here (a derivative's from its state's name), the
     # harness's from the FMI 3.0 <Dimension> elements. FMI 3.0 adds time, the event
-    # indicators and the clocked partitions (FMI 2.0 has no clocks) only.
+    # indicators, the clocked partitions (FMI 2.0 has no clocks) and the structural
+    # parameters (FMI 2.0 has none) only.
     md2 = read_model_description(fmu_path(model))
     names = scalar_names(read_model_description(fmu3_path(model)).modelVariables)
     for v in md2.modelVariables:
@@ -61,7 +62,7 @@ def test_the_harness_finds_every_fmi2_scalar_in_the_fmi3_arrays(model):
         variable, element = names[v.name]
         assert (variable.name, element) == (expected, index), v.name
     indicators = {f"eventIndicators[{k}]" for k in range(1, md2.numberOfEventIndicators + 1)}
-    added = {"time"} | indicators | CLOCKED.get(model, set())
+    added = {"time"} | indicators | CLOCKED.get(model, set()) | STRUCTURAL.get(model, set())
     assert set(names) - {v.name for v in md2.modelVariables} == added
 
 
@@ -71,6 +72,10 @@ CLOCKED = {
     "ComputedTorque": {"sampleClock", "samplePeriod", "uSampled[1]", "uSampled[2]", "uSampled[3]"},
     "PID": {"sampleClock", "samplePeriod", "uSampled[1]", "uSampled[2]", "uSampled[3]"},
 }
+# The structural parameters of each FMU (FMI 3.0 only; docs/profiles.md, resizable
+# parameter arrays).
+STRUCTURAL = {"PID": {"nChannels"}}
+
 
 def simulate(path, description, case, model, interface, fmi3):
     """One reference case through FMPy; FMI 3.0 names translated to the arrays."""

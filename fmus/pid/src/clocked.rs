@@ -21,25 +21,32 @@ const CLOCK_VR: u32 = 401;
 const PERIOD_VR: u32 = 402;
 const OUTPUT_VR: u32 = 411;
 
-/// What the sampled law holds between ticks.
+/// What the sampled law holds between ticks, per channel (as many as `nChannels`).
 #[derive(Clone, Default)]
 pub struct Sampled {
     /// Each channel's state the next tick starts from.
-    states: [PidState; CHANNELS],
+    states: Vec<PidState>,
     /// Each channel's output since the last tick (zero before the first).
-    held: [f64; CHANNELS],
+    held: Vec<f64>,
     /// The sample period, s (the FMI 3.0 parameter samplePeriod).
     period: f64,
 }
 
 /// Doubles in the FMU state of the sampled law: integral, filter and output per
-/// channel (the layer carries the period).
+/// channel (the layer carries the period; a serialized state has the default
+/// channel count).
 const HELD: usize = 3 * CHANNELS;
 
 impl Sampled {
+    /// n channels, the new ones at rest (state and output zero).
+    pub(crate) fn resize(&mut self, n: usize) {
+        self.states.resize(n, PidState::default());
+        self.held.resize(n, 0.0);
+    }
+
     /// Appends the sampled law's state to an FMU state's bytes.
     fn write(&self, out: &mut Vec<u8>) {
-        let channels = self.states.iter().zip(self.held);
+        let channels = self.states.iter().zip(self.held.iter().copied());
         write_held(out, channels.flat_map(|(s, u)| [s.integral, s.filter, u]));
     }
 
@@ -64,7 +71,8 @@ static OUTPUTS: &[ClockedOutput<Pid>] = &[ClockedOutput::new(
      before the first)",
     |m: &Pid, c| m.sampled.held[c],
 )
-.array(CHANNELS)];
+.array(CHANNELS)
+.sized_by(0)];
 
 pub static CLOCKS: &[InputClock<Pid>] = &[InputClock::new(
     "sampleClock",
@@ -94,7 +102,7 @@ impl Pid {
     fn tick(&mut self, tick: &Tick, _log: &dyn Log) -> Result<(), String> {
         self.validate()?;
         let law = &mut self.sampled;
-        for c in 0..CHANNELS {
+        for c in 0..self.gains.len() {
             let (g, i) = (&self.gains[c], &self.inputs[c]);
             let (out, next) = sampled::tick(g, &law.states[c], i, tick.period);
             (law.held[c], law.states[c]) = (out.u, next);

@@ -1,15 +1,18 @@
-//! The PID law (`robofmu_control::pid`) as the FMU "PID": three independent channels,
-//! their gains, filter time constant and limits tunable; the integral and the filter
-//! state are the continuous states (Model Exchange), stepped exactly for inputs held or
-//! following the derivatives the master gives (Co-Simulation). Signals carry no unit.
+//! The PID law (`robofmu_control::pid`) as the FMU "PID": independent channels (three;
+//! FMI 3.0: `nChannels`, 1 to 64, set in Configuration Mode), their gains, filter time
+//! constant and limits tunable; the integral and the filter state are the continuous
+//! states (Model Exchange), stepped exactly for inputs held or following the derivatives
+//! the master gives (Co-Simulation). Signals carry no unit.
 
-use robofmu_control::pid::{self, PidGains, PidInputs, PidState};
+use robofmu_control::pid;
 use robofmu_control::pid_jacobian::{self, Known, Known::*, Unknown, Unknown::*};
-use robofmu_control::pid_ramp::{PidInputRamp, output_slope, step_with_ramp};
+use robofmu_control::pid_ramp::{output_slope, step_with_ramp};
 use robofmu_fmi::prelude::{Variability::*, *};
 
+mod channels;
 mod clocked;
-pub const CHANNELS: usize = 3;
+pub use channels::{CHANNELS, MAX_CHANNELS, Pid};
+use channels::{STRUCTURAL, input};
 
 static INFO: ModelInfo = ModelInfo::new(
     "PID",
@@ -24,58 +27,12 @@ const LOG: LogCategory = LogCategory::new(
     "Gains and options of each channel at initialization",
 );
 
-/// Parameters, inputs and states of the three channels.
-#[derive(Clone, Default)]
-pub struct Pid {
-    gains: [PidGains; CHANNELS],
-    /// Limits as set; they apply only when `limited` is true.
-    limits: [(f64, f64); CHANNELS],
-    limited: [bool; CHANNELS],
-    inputs: [PidInputs; CHANNELS],
-    /// Derivatives of the inputs at the start of a step (zero: held).
-    ramps: [PidInputRamp; CHANNELS],
-    states: [PidState; CHANNELS],
-    sampled: clocked::Sampled,
-}
-
-impl Pid {
-    /// Brings the law's limits of channel c up to date (after a parameter is set).
-    fn sync_limits(&mut self, c: usize) {
-        self.gains[c].limits = self.limited[c].then_some(self.limits[c]);
-    }
-
-    /// The gains of every channel are usable, or why not.
-    fn validate(&self) -> Result<(), String> {
-        (self.gains.iter().enumerate())
-            .try_for_each(|(c, g)| g.validate().map_err(|e| format!("channel {}: {e}", c + 1)))
-    }
-
-    /// `law` (`pid::output`, `pid::derivatives`, ...) on the gains, state and inputs of
-    /// channel c.
-    fn law<T>(&self, c: usize, law: impl Fn(&PidGains, &PidState, &PidInputs) -> T) -> T {
-        law(&self.gains[c], &self.states[c], &self.inputs[c])
-    }
-    fn rates(&self, c: usize) -> PidState {
-        self.law(c, pid::derivatives)
-    }
-}
-
-/// Input K of the law, in the order of the declarations: setpoint, measurement,
-/// setpointRate, measuredRate, feedforward.
-fn input<const K: usize>(inputs: &mut PidInputs) -> &mut f64 {
-    match K {
-        0 => &mut inputs.setpoint,
-        1 => &mut inputs.measurement,
-        2 => &mut inputs.setpoint_rate,
-        3 => &mut inputs.measured_rate,
-        _ => &mut inputs.feedforward,
-    }
-}
-
 type Decl = Declaration<Pid>;
 
 /// The channels' arrays, "Channel c: ..." in FMI 2.0; a parameter's write syncs the limits.
-const CH: Family<Pid> = Family::new(CHANNELS, "Channel").after_set(Pid::sync_limits);
+const CH: Family<Pid> = Family::new(CHANNELS, "Channel")
+    .after_set(Pid::sync_limits)
+    .sized_by(0);
 
 /// Continuous input K of the channels (see [`input`]): one field selector names the
 /// input's place and where its time derivatives are kept (the ramps).
@@ -170,6 +127,7 @@ fn partial(m: &Pid, unknown: Element, known: Element) -> Result<f64, String> {
 impl Model for Pid {
     const INFO: &'static ModelInfo = &INFO;
     const VARIABLES: &'static [Declaration<Self>] = VARIABLES;
+    const STRUCTURAL: &'static [StructuralParameter<Self>] = STRUCTURAL;
 
     fn exit_initialization(&mut self, log: &dyn Log) -> Result<(), String> {
         self.validate()?;
@@ -183,7 +141,7 @@ impl Model for Pid {
         if let Err(reason) = self.validate() {
             return StepOutcome::terminate(reason);
         }
-        for c in 0..CHANNELS {
+        for c in 0..self.gains.len() {
             self.states[c] = self.law(c, |g, s, i| step_with_ramp(g, s, i, &self.ramps[c], step));
         }
         StepOutcome::Completed

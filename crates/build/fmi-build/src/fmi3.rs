@@ -25,6 +25,7 @@ enum TypedVariable {
     Int32(ModelVariable),
     Boolean(ModelVariable),
     Clock(ModelVariable),
+    UInt64(ModelVariable),
 }
 
 /// The attributes of a variable; those that do not apply to its type stay None.
@@ -55,10 +56,30 @@ struct ModelVariable {
     dimension: Option<Dimension>,
 }
 
+/// `start` (a fixed size) or `valueReference` (the structural parameter holding it).
 #[derive(Serialize)]
 struct Dimension {
-    #[serde(rename = "@start")]
-    start: usize,
+    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
+    start: Option<usize>,
+    #[serde(rename = "@valueReference", skip_serializing_if = "Option::is_none")]
+    value_reference: Option<u32>,
+}
+
+impl Dimension {
+    /// The dimension of `v3`, if it is an array.
+    fn of(v3: &Variable3Description) -> Option<Dimension> {
+        let start = v3.variable.dimension?;
+        Some(match v3.dimension_reference {
+            Some(vr) => Dimension {
+                start: None,
+                value_reference: Some(vr),
+            },
+            None => Dimension {
+                start: Some(start),
+                value_reference: None,
+            },
+        })
+    }
 }
 
 #[derive(Serialize)]
@@ -119,6 +140,9 @@ fn model_variable(d: &Description, v3: &Variable3Description) -> Result<TypedVar
     if let Some(part) = v3.clock_part {
         return Ok(clock_variable(v3, part));
     }
+    if let Some([start, max]) = v3.structural {
+        return Ok(structural_parameter(v3, start, max));
+    }
     let attributes = TypeAttributes {
         start: starts.filter(|_| first.is_some()).map(joined),
         derivative: v.derivative_of,
@@ -137,7 +161,7 @@ fn model_variable(d: &Description, v3: &Variable3Description) -> Result<TypedVar
         interval_variability: None,
         supports_fraction: None,
         attributes,
-        dimension: v.dimension.map(|start| Dimension { start }),
+        dimension: Dimension::of(v3),
     };
     Ok(match first {
         None | Some(Value::Real { .. }) => TypedVariable::Float64(out),
@@ -164,7 +188,7 @@ fn clock_variable(v3: &Variable3Description, part: ClockPart) -> TypedVariable {
         interval_variability: None,
         supports_fraction: None,
         attributes: TypeAttributes::default(),
-        dimension: v.dimension.map(|start| Dimension { start }),
+        dimension: Dimension::of(v3),
     };
     match part {
         ClockPart::Clock => {
@@ -182,6 +206,31 @@ fn clock_variable(v3: &Variable3Description, part: ClockPart) -> TypedVariable {
             TypedVariable::Float64(out)
         }
     }
+}
+
+/// A structural parameter: UInt64 from 1 to `max`, start the default size.
+fn structural_parameter(v3: &Variable3Description, start: u64, max: u64) -> TypedVariable {
+    let v = &v3.variable;
+    TypedVariable::UInt64(ModelVariable {
+        head: VariableHead::new(
+            v.name.to_string(),
+            v.value_reference,
+            v3.description.clone(),
+            (v.causality, v.variability),
+        ),
+        intermediate_update: None,
+        initial: v.initial.map(Initial::as_str),
+        clocks: None,
+        interval_variability: None,
+        supports_fraction: None,
+        attributes: TypeAttributes {
+            min: Some("1".to_string()),
+            max: Some(max.to_string()),
+            start: Some(start.to_string()),
+            ..TypeAttributes::default()
+        },
+        dimension: None,
+    })
 }
 
 fn dependencies(v: &Variable3Description, initial: bool) -> Dependencies {

@@ -19,7 +19,7 @@ use crate::core::log::LogCategory;
 use crate::core::model::{Model, ModelInfo};
 use crate::core::variables::check_table;
 use crate::core::variables::{Causality, Initial, Kind, Variability, Variable};
-use crate::fmi3::table::{self, Variable3};
+use crate::fmi3::table::{self, Source, Variable3};
 use crate::fmi3::{declared, scalar};
 use std::any::TypeId;
 use std::hash::{Hash, Hasher};
@@ -192,6 +192,12 @@ pub struct Variable3Description {
     pub initial_dependencies: Option<Vec<u32>>,
     /// What a variable of a clocked partition (FMI 3.0 only) adds; None for the others.
     pub clock_part: Option<ClockPart>,
+    /// A structural parameter (FMI 3.0 only): its start and largest value (the
+    /// smallest is 1).
+    pub structural: Option<[u64; 2]>,
+    /// An array sized by a structural parameter: that parameter's value reference
+    /// (`<Dimension valueReference=".."/>` instead of `start`).
+    pub dimension_reference: Option<u32>,
 }
 
 /// The attributes of a clocked partition's variables (`core::clocks`).
@@ -211,7 +217,6 @@ pub enum ClockPart {
 
 /// The clocked-partition attributes of `v` for model M.
 fn clock_part<M: Model>(v: &Variable3) -> Option<ClockPart> {
-    use crate::fmi3::table::Source;
     match v.source {
         Source::Clock { .. } => Some(ClockPart::Clock),
         Source::ClockPeriod { clock } => Some(ClockPart::Period {
@@ -308,6 +313,14 @@ fn variable3<M: Model>(
         dependencies: dependencies(table, v, false)?,
         initial_dependencies: dependencies(table, v, true)?,
         clock_part: clock_part::<M>(v),
+        structural: match v.source {
+            Source::Structural { parameter } => {
+                let p = &M::STRUCTURAL[parameter];
+                Some([p.start as u64, p.max as u64])
+            }
+            _ => None,
+        },
+        dimension_reference: v.sized_by.map(|k| M::STRUCTURAL[k].value_reference),
     })
 }
 

@@ -130,6 +130,7 @@ pub mod prelude {
 
     pub use crate::core::clocks::{ClockedOutput, InputClock, PeriodParameter, Tick};
     pub use crate::core::declare::{InputDerivative, OutputDerivative, Place};
+    pub use crate::core::structural::StructuralParameter;
     pub use crate::core::tables::{concat, every, same};
     pub use crate::core::{
         Declaration, DefaultExperiment, Element, EventUpdate, Family, Jacobian, Log, LogCategory,

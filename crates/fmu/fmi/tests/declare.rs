@@ -196,6 +196,7 @@ fn strided_array(value_reference: u32) -> Variable3 {
             element: 0,
         },
         derivative_of: None,
+        sized_by: None,
     }
 }
 

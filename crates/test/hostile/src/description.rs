@@ -51,6 +51,9 @@ pub struct Description {
     pub variables: Vec<Variable>,
     /// FMI 3.0: unknowns of the ModelStructure with a non-empty dependency list.
     pub dependents: Vec<u32>,
+    /// FMI 3.0: the structural parameters (UInt64, causality="structuralParameter"),
+    /// (value reference, start): the default size of the arrays they size.
+    pub structural: Vec<(u32, usize)>,
 }
 
 impl Description {
@@ -120,6 +123,7 @@ pub fn parse(xml: &str) -> Result<Description, String> {
         provides_directional_derivative: false,
         variables: Vec::new(),
         dependents: Vec::new(),
+        structural: Vec::new(),
     };
     let mut pending: Option<Variable> = None;
     let mut in_derivatives = false;
@@ -253,9 +257,23 @@ fn read_fmi3_element(
                 intermediate_update: get("intermediateUpdate").as_deref() == Some("true"),
             })
         }
+        ("UInt64", _) if get("causality").as_deref() == Some("structuralParameter") => {
+            let start = get("start").and_then(|n| n.parse().ok());
+            if let (Some(vr), Some(start)) = (vr, start) {
+                d.structural.push((vr, start));
+            }
+        }
         ("Dimension", _) => {
+            // A fixed size, or the default of the structural parameter that sizes it.
+            let by_parameter = || {
+                let vr = get("valueReference")?.parse::<u32>().ok()?;
+                d.structural.iter().find(|s| s.0 == vr).map(|s| s.1)
+            };
+            let size = get("start")
+                .and_then(|n| n.parse().ok())
+                .or_else(by_parameter);
             if let Some(v) = pending.as_mut() {
-                v.size *= get("start").and_then(|n| n.parse().ok()).unwrap_or(1);
+                v.size *= size.unwrap_or(1);
             }
         }
         ("ContinuousStateDerivative", _) => d.number_of_states += size_of(d, vr),

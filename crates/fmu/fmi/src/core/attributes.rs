@@ -11,6 +11,8 @@ pub enum Causality {
     Output,
     Local,
     Independent,
+    /// FMI 3.0 only: a structural parameter (`core::structural`).
+    StructuralParameter,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -38,6 +40,7 @@ impl Causality {
             Causality::Output => "output",
             Causality::Local => "local",
             Causality::Independent => "independent",
+            Causality::StructuralParameter => "structuralParameter",
         }
     }
 }

@@ -119,6 +119,9 @@ pub struct ClockedOutput<M: 'static> {
     pub description: &'static str,
     /// `Some(n)`: an array of n elements.
     pub length: Option<usize>,
+    /// `Some(k)`: the array's size is the structural parameter `Model::STRUCTURAL[k]`
+    /// (`length` its default), as a resizable family's arrays.
+    pub sized_by: Option<usize>,
     pub unit: Option<&'static str>,
     /// Element i of the held value.
     pub get: fn(&M, usize) -> f64,
@@ -137,6 +140,7 @@ impl<M> ClockedOutput<M> {
             value_reference,
             description,
             length: None,
+            sized_by: None,
             unit: None,
             get,
         }
@@ -145,6 +149,17 @@ impl<M> ClockedOutput<M> {
     /// An array of n elements.
     pub const fn array(mut self, n: usize) -> Self {
         self.length = Some(n);
+        self
+    }
+
+    /// An array sized by the structural parameter `Model::STRUCTURAL[k]`, whose start
+    /// is its length.
+    pub const fn sized_by(mut self, k: usize) -> Self {
+        assert!(
+            self.length.is_some(),
+            "only an array is sized by a structural parameter"
+        );
+        self.sized_by = Some(k);
         self
     }
 

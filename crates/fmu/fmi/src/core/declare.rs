@@ -32,6 +32,7 @@ use super::attributes::{Causality, Initial, Variability};
 pub use super::hooks::{
     Dependencies, Element, ElementDependencies, InputDerivative, OutputDerivative, Var,
 };
+use super::sizes::Sizes;
 
 /// Reads element i (0 for a scalar) of a value the model computes.
 pub type Get<M, T> = fn(&M, usize) -> T;
@@ -157,6 +158,10 @@ pub struct Declaration<M: 'static> {
     pub input_derivative: Option<InputDerivative<M>>,
     /// Hook: runs after every accepted write of an element.
     pub after_set: Option<AfterSet<M>>,
+    /// `Some(k)`: the array's length is the structural parameter `Model::STRUCTURAL[k]`
+    /// (FMI 3.0 array view; `length` is its default, the size FMI 2.0 and the
+    /// scalar-only view keep).
+    pub sized_by: Option<usize>,
 }
 
 impl<M, T> Clone for Access<M, T> {
@@ -239,7 +244,28 @@ impl<M> Declaration<M> {
             output_derivative_order: 0,
             input_derivative: None,
             after_set: None,
+            sized_by: None,
         }
+    }
+
+    /// The number of elements now: its structural parameter's value in `sizes`, or
+    /// its length.
+    pub fn size_now(&self, sizes: &Sizes) -> usize {
+        match self.sized_by {
+            Some(k) => sizes.get(k),
+            None => self.size(),
+        }
+    }
+
+    /// An array whose length is the structural parameter `Model::STRUCTURAL[k]` (its
+    /// default is the declared length).
+    pub const fn sized_by(mut self, k: usize) -> Self {
+        assert!(
+            self.length.is_some(),
+            "only an array is sized by a structural parameter"
+        );
+        self.sized_by = Some(k);
+        self
     }
 
     /// A Real variable the model computes, read by `get` (a local until a role is
@@ -620,6 +646,7 @@ pub const fn max_output_derivative_order<M>(declarations: &[Declaration<M>]) -> 
 /// packaging that the derivatives list the states in that order).
 fn each_state<M>(
     declarations: &[Declaration<M>],
+    sizes: &Sizes,
     mut f: impl FnMut(usize, &Declaration<M>, &Declaration<M>, usize),
 ) {
     let mut k = 0;
@@ -630,7 +657,7 @@ fn each_state<M>(
         let Some(state) = declarations.iter().find(|s| s.name == name) else {
             continue;
         };
-        for i in 0..d.size() {
+        for i in 0..d.size_now(sizes) {
             f(k, state, d, i);
             k += 1;
         }
@@ -638,8 +665,13 @@ fn each_state<M>(
 }
 
 /// The continuous states as the table declares them: `x[k]` = state k.
-pub fn read_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &mut [f64]) {
-    each_state(declarations, |k, state, _, i| {
+pub fn read_states<M>(
+    declarations: &[Declaration<M>],
+    sizes: &Sizes,
+    model: &mut M,
+    x: &mut [f64],
+) {
+    each_state(declarations, sizes, |k, state, _, i| {
         if let (Value::Real { get, .. }, Some(slot)) = (&state.value, x.get_mut(k)) {
             *slot = get.read(model, i);
         }
@@ -648,8 +680,8 @@ pub fn read_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &mut [f
 
 /// Writes the continuous states through the state declarations' writers or places
 /// (the layer has checked the values).
-pub fn write_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]) {
-    each_state(declarations, |k, state, _, i| {
+pub fn write_states<M>(declarations: &[Declaration<M>], sizes: &Sizes, model: &mut M, x: &[f64]) {
+    each_state(declarations, sizes, |k, state, _, i| {
         if let (Value::Real { get, set, .. }, Some(&v)) = (&state.value, x.get(k)) {
             // A state's writer refuses nothing the layer's value check lets through.
             if let Some(Ok(())) = write_element(*get, *set, model, i, v)
@@ -663,8 +695,13 @@ pub fn write_states<M>(declarations: &[Declaration<M>], model: &mut M, x: &[f64]
 
 /// The state derivatives as the table declares them: `dx[k]` = the getter of the
 /// derivative of state k.
-pub fn read_derivatives<M>(declarations: &[Declaration<M>], model: &M, dx: &mut [f64]) {
-    each_state(declarations, |k, _, derivative, i| {
+pub fn read_derivatives<M>(
+    declarations: &[Declaration<M>],
+    sizes: &Sizes,
+    model: &M,
+    dx: &mut [f64],
+) {
+    each_state(declarations, sizes, |k, _, derivative, i| {
         // A derivative is computed (`derivative_of` refuses a place).
         if let (Value::Real { get, .. }, Some(slot)) = (&derivative.value, dx.get_mut(k)) {
             *slot = get.computed(model, i).unwrap_or(f64::NAN);

@@ -19,8 +19,21 @@ impl<M: Model> Instance<M> {
         out: &mut [f64],
     ) -> Result<(), String> {
         let (unknowns, knowns) = (self.elements(unknowns)?, self.elements(knowns)?);
+        self.directional_derivative_of(&unknowns, &knowns, seed, out)
+    }
+
+    /// [`directional_derivative`](Self::directional_derivative) for declared elements
+    /// (FMI 3.0: an array sized by a structural parameter has elements past the FMI
+    /// 2.0 table's).
+    pub fn directional_derivative_of(
+        &self,
+        unknowns: &[Element],
+        knowns: &[Element],
+        seed: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), String> {
         let jacobian = M::JACOBIAN.ok_or("the model provides no directional derivatives")?;
-        jacobian.apply(self.model(), &unknowns, &knowns, seed, out)
+        jacobian.apply(self.model(), unknowns, knowns, seed, out)
     }
 
     fn elements(&self, vrs: &[u32]) -> Result<Vec<Element>, String> {

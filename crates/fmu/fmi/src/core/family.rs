@@ -22,7 +22,9 @@
 //! ```
 //!
 //! The declarations are ordinary [`Declaration`]s: every further builder method applies
-//! (`.describe`, `.start_real`, `.real_range`, `.input_derivative`, ...).
+//! (`.describe`, `.start_real`, `.real_range`, `.input_derivative`, ...). A family
+//! `.sized_by(k)` a structural parameter is resizable (FMI 3.0, `core::structural`):
+//! each of its arrays has the size set in Configuration Mode, its length the default.
 //! [`Element::role`] looks an element up in a table of (declaration, role), the way a
 //! model maps the variables of a directional derivative to the signals of its law.
 
@@ -36,6 +38,8 @@ pub struct Family<M: 'static> {
     length: usize,
     label: &'static str,
     after_set: Option<AfterSet<M>>,
+    /// `Some(k)`: resizable, its length the structural parameter `Model::STRUCTURAL[k]`.
+    sized_by: Option<usize>,
 }
 
 impl<M> Clone for Family<M> {
@@ -53,7 +57,17 @@ impl<M> Family<M> {
             length,
             label,
             after_set: None,
+            sized_by: None,
         }
+    }
+
+    /// A resizable family: every array of it is sized by the structural parameter
+    /// `Model::STRUCTURAL[k]` (FMI 3.0, `<Dimension valueReference=".."/>`), whose
+    /// default must be the family's length; FMI 2.0 and the scalar-only FMI 3.0 view
+    /// keep that length.
+    pub const fn sized_by(mut self, k: usize) -> Self {
+        self.sized_by = Some(k);
+        self
     }
 
     /// Hook of the family's parameters: `f(model, i)` after every accepted write of
@@ -71,7 +85,15 @@ impl<M> Family<M> {
     /// `d` as an array of the family, element 1 at value reference `vr` (element i at
     /// `vr + i - 1`).
     pub const fn member(&self, d: Declaration<M>, vr: u32) -> Declaration<M> {
-        d.array(self.length).at(vr).label(self.label)
+        self.sized(d.array(self.length).at(vr).label(self.label))
+    }
+
+    /// `d` (an array of the family's length) sized as the family is.
+    const fn sized(&self, d: Declaration<M>) -> Declaration<M> {
+        match self.sized_by {
+            Some(k) => d.sized_by(k),
+            None => d,
+        }
     }
 
     /// `d` as a parameter array of the family with its hook.
@@ -135,7 +157,7 @@ impl<M> Family<M> {
         get: Get<M, f64>,
     ) -> Declaration<M> {
         let d = Declaration::real(name, "", get).array(self.length).at(vr);
-        d.derivative_of(state.name)
+        self.sized(d.derivative_of(state.name))
     }
 
     /// A continuous state kept at `place`, start 0.

@@ -7,6 +7,7 @@ use super::fmu_states;
 use super::frontend::{FmuInstance, Frontend, StatusCode};
 use super::model::Model;
 use super::serialize::{deserialize, serialize};
+use super::structural::at_default_sizes;
 use crate::ffi::{input_slice, output_ref, output_slice};
 use std::ffi::c_void;
 
@@ -62,6 +63,7 @@ pub unsafe fn serialized_size<F: Frontend, M: Model>(
     size: *mut usize,
 ) -> Result<F> {
     let s = fmu_states::snapshot::<M>(state, noun::<F>())?;
+    at_default_sizes(&s.model)?;
     *unsafe { output_ref(size, "size") }? = serialize(inst.core.table(), &s).len();
     Ok(StatusCode::OK)
 }
@@ -77,6 +79,7 @@ pub unsafe fn serialize_into<F: Frontend, M: Model>(
     size: usize,
 ) -> Result<F> {
     let s = fmu_states::snapshot::<M>(state, noun::<F>())?;
+    at_default_sizes(&s.model)?;
     let data = serialize(inst.core.table(), &s);
     if size != data.len() {
         return Err(format!(

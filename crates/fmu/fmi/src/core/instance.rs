@@ -87,7 +87,7 @@ pub fn model_with_start_values<M: Model>(table: &[Variable<M>]) -> Result<M, Str
 fn with_start_values<'a, M: Model>(
     elements: impl Iterator<Item = (&'a Declaration<M>, usize)>,
 ) -> Result<M, String> {
-    let mut model = M::default();
+    let mut model = super::structural::at_start(M::default());
     for (d, i) in elements {
         let m = &mut model;
         let written = match d.value {

@@ -7,6 +7,7 @@ use super::declare::Declaration;
 use super::hooks::Element;
 pub use super::hooks::OutputDerivativeError;
 use super::log::{Log, LogCategory};
+use super::sizes::{Sizes, StructuralParameter};
 
 /// DefaultExperiment of modelDescription.xml.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -222,20 +223,23 @@ pub trait Model: Clone + Default + Send + Sized + 'static {
     /// states (element i of the state of each derivative declaration, in their order;
     /// `&mut` because a state kept at a place is reached through it, not changed).
     fn continuous_states(&mut self, x: &mut [f64]) {
-        super::declare::read_states(Self::VARIABLES, self, x);
+        let sizes = Sizes::of(self, Self::STRUCTURAL);
+        super::declare::read_states(Self::VARIABLES, &sizes, self, x);
     }
 
     /// Sets the continuous states, by default through the declared states' writers or
     /// places.
     fn set_continuous_states(&mut self, x: &[f64]) {
-        super::declare::write_states(Self::VARIABLES, self, x);
+        let sizes = Sizes::of(self, Self::STRUCTURAL);
+        super::declare::write_states(Self::VARIABLES, &sizes, self, x);
     }
 
     /// State derivatives, by default read through the getters of the derivative
     /// declarations; an error (the model cannot be evaluated at this point, e.g. a
     /// function outside its domain) makes fmi2GetDerivatives return fmi2Discard.
     fn derivatives(&self, dx: &mut [f64]) -> Result<(), String> {
-        super::declare::read_derivatives(Self::VARIABLES, self, dx);
+        let sizes = Sizes::of(self, Self::STRUCTURAL);
+        super::declare::read_derivatives(Self::VARIABLES, &sizes, self, dx);
         Ok(())
     }
 
@@ -263,6 +267,12 @@ pub trait Model: Clone + Default + Send + Sized + 'static {
     /// parameter, outputs and tick hook ([`clocks`](super::clocks)); none by default.
     /// FMI 2.0 serves none of it.
     const CLOCKS: &'static [InputClock<Self>] = &[];
+
+    /// FMI 3.0 structural parameters: UInt64 sizes of the arrays declared
+    /// [`sized_by`](Declaration::sized_by) them, set in Configuration Mode
+    /// ([`structural`](super::structural)); none by default. FMI 2.0 and the
+    /// scalar-only FMI 3.0 view keep the default sizes.
+    const STRUCTURAL: &'static [StructuralParameter<Self>] = &[];
 
     /// Directional derivatives: provided (providesDirectionalDerivative) exactly when
     /// given.

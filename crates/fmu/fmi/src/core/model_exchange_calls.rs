@@ -22,9 +22,10 @@ pub fn check_len(n: usize, expected: usize, what: &str) -> std::result::Result<(
     }
 }
 
-/// The number of continuous states of M, counted from its declarations.
-pub fn states<M: Model>() -> usize {
-    super::declare::continuous_states(M::VARIABLES)
+/// The number of continuous states of `model`, counted from its declarations at
+/// its current sizes (`core::structural`).
+pub fn states<M: Model>(model: &M) -> usize {
+    super::structural::continuous_states_now(model)
 }
 
 /// The number of event indicators of M.
@@ -87,7 +88,7 @@ pub unsafe fn set_continuous_states<F: Frontend, M: Model>(
     nx: usize,
     what: &str,
 ) -> Result<F> {
-    check_len(nx, states::<M>(), what)?;
+    check_len(nx, states(inst.core.model()), what)?;
     // SAFETY: by the contract above.
     let x = unsafe { input_slice(x, nx, what) }?;
     if let Some(bad) = x.iter().find(|v| !v.is_finite()) {
@@ -108,10 +109,10 @@ pub enum StateArray {
 
 impl StateArray {
     /// The model's length of the array.
-    fn expected<M: Model>(self) -> usize {
+    fn expected<M: Model>(self, model: &M) -> usize {
         match self {
             StateArray::EventIndicators => indicators::<M>(),
-            _ => states::<M>(),
+            _ => states(model),
         }
     }
 
@@ -150,7 +151,8 @@ pub unsafe fn get_array<F: Frontend, M: Model>(
     // SAFETY: by the contract above.
     unsafe {
         entry::with_instance::<F, M>(c, function, call, |inst| {
-            fill(inst, function, ptr, n, array.expected::<M>(), |m, out| {
+            let expected = array.expected(inst.core.model());
+            fill(inst, function, ptr, n, expected, |m, out| {
                 array.compute(m, out)
             })
         })

@@ -7,11 +7,14 @@ use super::instance::{Instance, variable};
 use super::model::{Model, OutputDerivativeError};
 use super::variables::{Causality, VariableType};
 
-/// The derivative of order `order` of the table element `vr` (FMI 2.0 value reference).
+/// The derivative of order `order` of the table element `vr` (FMI 2.0 value reference),
+/// or, with `element`, of that element of `vr`'s declaration (FMI 3.0: an array sized
+/// by a structural parameter has elements past the FMI 2.0 table's).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Request {
     pub vr: u32,
     pub order: i32,
+    pub element: Option<usize>,
 }
 
 /// The order once the requested variable is checked to be a Real output and the order
@@ -85,9 +88,11 @@ fn evaluate<M: Model>(inst: &mut Instance<M>, requests: &[Request]) -> Result<Ve
         // Every request passed `check` above: its order is within 1..=max.
         let order = r.order as u32;
         let v = variable(inst.table(), r.vr).map_err(Refusal::Error)?;
-        let what = || format!("derivative of order {order} of \"{}\"", v.name());
+        let index = r.element.unwrap_or(v.index);
+        let name = super::variables::element_name(v.declaration, index);
+        let what = || format!("derivative of order {order} of \"{name}\"");
         let value = match v.output_hook() {
-            Some(f) => f(inst.model(), v.index, order),
+            Some(f) => f(inst.model(), index, order),
             None => Err(OutputDerivativeError::NotProvided(format!(
                 "{} declares no output derivatives for it",
                 M::INFO.model_name

@@ -66,7 +66,7 @@ pub fn serialize<M: Model>(table: &[Variable<M>], s: &Snapshot<M>) -> Vec<u8> {
         let value = slot(&mut model, hook, index, order).copied();
         payload.extend_from_slice(&value.unwrap_or(0.0).to_le_bytes());
     }
-    let n = super::model_exchange_calls::states::<M>();
+    let n = super::model_exchange_calls::states(&model);
     let mut x = vec![0.0; n];
     model.continuous_states(&mut x);
     payload.extend_from_slice(&(n as u32).to_le_bytes());
@@ -297,7 +297,7 @@ fn read_payload<M: Model>(table: &[Variable<M>], payload: &[u8]) -> Result<Snaps
         }
     }
     let n = r.u32("number of states")? as usize;
-    let states = super::model_exchange_calls::states::<M>();
+    let states = super::model_exchange_calls::states(&model);
     if n != states {
         return Err(format!(
             "FMU state has {n} continuous states, the model {states}"

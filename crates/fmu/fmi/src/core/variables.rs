@@ -74,6 +74,8 @@ pub enum VariableType {
     Boolean,
     /// An FMI 3.0 clock (no FMI 2.0 variable has this type).
     Clock,
+    /// An FMI 3.0 UInt64: the structural parameters (`core::structural`).
+    UInt64,
 }
 
 impl VariableType {
@@ -83,6 +85,7 @@ impl VariableType {
             VariableType::Integer => "Integer",
             VariableType::Boolean => "Boolean",
             VariableType::Clock => "Clock",
+            VariableType::UInt64 => "UInt64",
         }
     }
 }

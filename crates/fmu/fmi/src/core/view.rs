@@ -6,6 +6,7 @@
 //! ([`Index`](super::instance::Index)) keeps the two views built from it.
 
 use super::model::Model;
+use super::sizes::Sizes;
 use super::variables::{Causality, Initial, Variability, VariableType};
 use std::borrow::Cow;
 
@@ -34,6 +35,8 @@ pub enum Source {
     /// Output `output` of clock `clock` (array view only: the scalar-only view has no
     /// clocks).
     Clocked { clock: usize, output: usize },
+    /// The structural parameter `Model::STRUCTURAL[parameter]` (array view only).
+    Structural { parameter: usize },
 }
 
 /// One variable of the FMI 3.0 description: a scalar or a one-dimensional array.
@@ -46,17 +49,29 @@ pub struct Variable3 {
     pub causality: Causality,
     pub variability: Variability,
     pub initial: Option<Initial>,
-    /// `Some(n)`: an array of n elements (`<Dimension start="n"/>`).
+    /// `Some(n)`: an array of n elements (`<Dimension start="n"/>`; n is the default
+    /// size of an array sized by a structural parameter).
     pub dimension: Option<usize>,
+    /// `Some(k)`: the array's size is the structural parameter `Model::STRUCTURAL[k]`
+    /// (`<Dimension valueReference=".."/>`); read it with [`size_now`](Self::size_now).
+    pub sized_by: Option<usize>,
     pub source: Source,
     /// Value reference of the (FMI 3.0) state this variable is the derivative of.
     pub derivative_of: Option<u32>,
 }
 
 impl Variable3 {
-    /// Number of scalar values (1 for a scalar).
+    /// Number of scalar values (1 for a scalar) at the default sizes.
     pub fn size(&self) -> usize {
         self.dimension.unwrap_or(1)
+    }
+
+    /// Number of scalar values with the structural parameters at `sizes`.
+    pub fn size_now(&self, sizes: &Sizes) -> usize {
+        match self.sized_by {
+            Some(k) => sizes.get(k),
+            None => self.size(),
+        }
     }
 
     /// Whether the variable carries intermediateUpdate="true" for model M: the

@@ -24,8 +24,10 @@ pub fn view<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
     }
     let declarations = M::VARIABLES;
     let firsts = value_references(declarations);
+    crate::core::structural::check::<M>()?;
     let mut variables = Vec::with_capacity(declarations.len() + 2);
     variables.push(time_variable());
+    variables.extend(structural_variables::<M>());
     for (position, &first) in firsts.iter().enumerate() {
         variables.push(variable3(declarations, &firsts, position, first)?);
     }
@@ -40,7 +42,7 @@ pub fn view<M: Model>(table: &[Variable<M>]) -> Result<Table3, String> {
     references.sort_unstable();
     if let Some(w) = references.windows(2).find(|w| w[0] == w[1]) {
         return Err(format!(
-            "value reference {} is used twice (a clock's variable and another)",
+            "value reference {} is used twice (a clock's or structural parameter's variable and another)",
             w[0]
         ));
     }
@@ -61,6 +63,7 @@ fn clock_variables<M: Model>() -> impl Iterator<Item = Variable3> {
             dimension: None,
             source: Source::Clock { clock: k },
             derivative_of: None,
+            sized_by: None,
         };
         let period = Variable3 {
             value_reference: c.period.value_reference,
@@ -72,6 +75,7 @@ fn clock_variables<M: Model>() -> impl Iterator<Item = Variable3> {
             dimension: None,
             source: Source::ClockPeriod { clock: k },
             derivative_of: None,
+            sized_by: None,
         };
         let outputs = c.outputs.iter().enumerate().map(move |(i, o)| Variable3 {
             value_reference: o.value_reference,
@@ -86,8 +90,26 @@ fn clock_variables<M: Model>() -> impl Iterator<Item = Variable3> {
                 output: i,
             },
             derivative_of: None,
+            sized_by: o.sized_by,
         });
         [clock, period].into_iter().chain(outputs)
+    })
+}
+
+/// The model's structural parameters (FMI 3.0 only): UInt64, fixed, start the
+/// default size.
+fn structural_variables<M: Model>() -> impl Iterator<Item = Variable3> {
+    M::STRUCTURAL.iter().enumerate().map(|(k, p)| Variable3 {
+        value_reference: p.value_reference,
+        name: Cow::Borrowed(p.name),
+        variable_type: VariableType::UInt64,
+        causality: Causality::StructuralParameter,
+        variability: Variability::Fixed,
+        initial: Some(Initial::Exact),
+        dimension: None,
+        source: Source::Structural { parameter: k },
+        derivative_of: None,
+        sized_by: None,
     })
 }
 
@@ -148,5 +170,6 @@ fn variable3<M>(
             element: 0,
         },
         derivative_of,
+        sized_by: d.sized_by,
     })
 }

@@ -155,7 +155,7 @@ macro_rules! export_fmi3 {
             $crate::__fmi3_values!(M, Fmi3UInt16, fmi3GetUInt16, fmi3SetUInt16, "UInt16");
             $crate::__fmi3_values!(M, Fmi3UInt32, fmi3GetUInt32, fmi3SetUInt32, "UInt32");
             $crate::__fmi3_values!(M, Fmi3Int64, fmi3GetInt64, fmi3SetInt64, "Int64");
-            $crate::__fmi3_values!(M, Fmi3UInt64, fmi3GetUInt64, fmi3SetUInt64, "UInt64");
+            $crate::__fmi3_values!(M, Fmi3UInt64, fmi3GetUInt64 => get_uint64, fmi3SetUInt64 => set_uint64);
             $crate::__fmi3_values!(M, Fmi3String, fmi3GetString, fmi3SetString, "String");
 
             #[unsafe(no_mangle)]
@@ -253,8 +253,14 @@ macro_rules! export_fmi3 {
             $crate::__fmi3_set_clock_timing!(M, fmi3SetShiftDecimal, "shift");
             $crate::__fmi3_set_clock_timing!(M, fmi3SetIntervalFraction, "interval", fraction);
             $crate::__fmi3_set_clock_timing!(M, fmi3SetShiftFraction, "shift", fraction);
-            $crate::__fmi3_lacking!(M, fmi3EnterConfigurationMode, "structural parameters");
-            $crate::__fmi3_lacking!(M, fmi3ExitConfigurationMode, "structural parameters");
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn fmi3EnterConfigurationMode(c: Fmi3Instance) -> Fmi3Status {
+                unsafe { api::enter_configuration_mode::<M>(c) }
+            }
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn fmi3ExitConfigurationMode(c: Fmi3Instance) -> Fmi3Status {
+                unsafe { api::exit_configuration_mode::<M>(c) }
+            }
             $crate::__fmi3_lacking!(M, fmi3EvaluateDiscreteStates, "fmi3EvaluateDiscreteStates (providesEvaluateDiscreteStates=\"false\")");
             $crate::__fmi3_lacking!(M, fmi3ActivateModelPartition, "Scheduled Execution", clock: Fmi3ValueReference, activation_time: Fmi3Float64);
 

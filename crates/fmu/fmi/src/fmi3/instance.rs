@@ -15,6 +15,7 @@ use crate::core::entry;
 use crate::core::frontend::FmuInstance;
 use crate::core::instance as core_instance;
 use crate::core::model::Model;
+use crate::core::structural::Sizes;
 use crate::core::value_check::Value;
 use crate::core::variables::{Causality, Initial, Variability};
 
@@ -76,12 +77,13 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 v.name
             ));
         }
-        let parts = variables.clone().filter_map(|v| match v.source {
+        let sizes = Sizes::of(self.core.model(), M::STRUCTURAL);
+        let parts = variables.clone().filter_map(move |v| match v.source {
             Source::Elements {
                 declaration,
                 element,
                 ..
-            } => Some((declaration, element, v.size())),
+            } => Some((declaration, element, v.size_now(&sizes))),
             _ => None,
         });
         if let Some(reason) = self.core.prepare_read_declared(parts)? {
@@ -136,6 +138,7 @@ impl<M: Model> FmuInstance<Fmi3, M> {
                 }
             }
             Source::Clock { .. } => return Err(format!("\"{}\" is a Clock", v.name)),
+            Source::Structural { .. } => return Err(format!("\"{}\" is a UInt64", v.name)),
         }
         Ok(())
     }
@@ -162,6 +165,30 @@ impl<M: Model> FmuInstance<Fmi3, M> {
             } => self.core.get_booleans(declaration, element, out),
             _ => Ok(()),
         }
+    }
+
+    /// Reads the structural parameter `v` (the size the model holds).
+    pub fn get_uint64(&mut self, v: &Variable3, out: &mut [u64]) -> Result<(), String> {
+        let Source::Structural { parameter } = v.source else {
+            return Err(format!("\"{}\" is not a UInt64", v.name));
+        };
+        out[0] = (M::STRUCTURAL[parameter].get)(self.core.model()) as u64;
+        Ok(())
+    }
+
+    /// Sets the structural parameter `v` (Configuration Mode only): the model resized
+    /// to the checked size, the new elements at their start values
+    /// (`core::structural::resize`); a refused size leaves the model as it was.
+    pub fn set_uint64(&mut self, v: &Variable3, values: &[u64]) -> Result<Kept, String> {
+        let Source::Structural { parameter } = v.source else {
+            return Err(format!("\"{}\" is not a UInt64", v.name));
+        };
+        self.check_settable(v)?;
+        let n = M::STRUCTURAL[parameter].checked(values[0])?;
+        let mut model = self.core.model().clone();
+        crate::core::structural::resize(&mut model, parameter, n)?;
+        *self.core.model_mut() = model;
+        Ok(None)
     }
 
     pub fn set_float64(&mut self, v: &Variable3, values: &[f64]) -> Result<Kept, String> {
@@ -233,9 +260,17 @@ impl<M: Model> FmuInstance<Fmi3, M> {
         use Mode::*;
         let mode = self.mode;
         let exact = v.initial == Some(Initial::Exact);
+        if v.causality == Causality::StructuralParameter && mode != ConfigurationMode {
+            return Err(format!(
+                "\"{}\" is a structural parameter: it is set in Configuration Mode \
+                 (fmi3EnterConfigurationMode after instantiation), not in {mode:?}",
+                v.name
+            ));
+        }
         let ok = v.variability != Variability::Constant
             && v.source != Source::Time
             && match mode {
+                ConfigurationMode => v.causality == Causality::StructuralParameter,
                 Instantiated => {
                     v.causality == Causality::Input
                         || matches!(v.initial, Some(Initial::Exact | Initial::Approx))

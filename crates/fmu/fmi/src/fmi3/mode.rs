@@ -4,8 +4,9 @@
 //! `INTERMEDIATE_UPDATE_POINTS` enters Intermediate Update Mode while fmi3DoStep calls
 //! the importer's intermediateUpdate callback (section 4.2.4: only fmi3Get* of
 //! variables and fmi3SetFloat64 of inputs declared intermediateUpdate are legal
-//! there); there are no structural parameters, so Configuration and Reconfiguration
-//! Mode are never entered.
+//! there). Configuration Mode is entered from Instantiated to set structural
+//! parameters (`core::structural`); the models' structural parameters are all fixed,
+//! so Reconfiguration Mode (for tunable ones, from Event or Step Mode) is refused.
 
 /// Interface an instance was created for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,6 +26,9 @@ pub enum Interface {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
     Instantiated,
+    /// Between fmi3EnterConfigurationMode and fmi3ExitConfigurationMode: only
+    /// structural parameters are set (and read) there.
+    ConfigurationMode,
     InitializationMode,
     EventMode,
     ContinuousTimeMode,
@@ -73,6 +77,16 @@ pub enum Call {
     /// fmi3GetClock, fmi3GetInterval*, fmi3GetShift* and fmi3SetInterval* /
     /// fmi3SetShift*: Initialization and Event Mode.
     ClockQuery,
+    /// fmi3EnterConfigurationMode: from Instantiated (Configuration Mode); from Event
+    /// or Step Mode it would be Reconfiguration Mode, which the instance refuses with
+    /// its reason (no structural parameter is tunable).
+    EnterConfigurationMode,
+    ExitConfigurationMode,
+    /// fmi3SetUInt64 (the structural parameters): the instance says where it is legal
+    /// (Configuration Mode), so a call elsewhere names the way there.
+    SetStructural,
+    /// fmi3GetUInt64: where values are readable, and in Configuration Mode.
+    GetStructural,
 }
 
 use super::logging::{Callback, LAYER_CATEGORIES};
@@ -88,7 +102,8 @@ const LIVE: u16 = (modes!(Fatal) - 1) & !modes!(IntermediateUpdateMode);
 /// States in which variables can be read (section 2.3.3; also Error, for diagnosis):
 /// all live ones after instantiation, and Intermediate Update Mode (the instance then
 /// restricts reads to variables declared intermediateUpdate).
-const READABLE: u16 = (LIVE & !modes!(Instantiated)) | modes!(IntermediateUpdateMode);
+const READABLE: u16 =
+    (LIVE & !modes!(Instantiated, ConfigurationMode)) | modes!(IntermediateUpdateMode);
 
 impl Call {
     /// States in which the call is legal, for the given interface.
@@ -104,7 +119,8 @@ impl Call {
         let only_me = |m: u16| if me { m } else { 0 };
         let only_cs = |m: u16| if me { 0 } else { m };
         match self {
-            Call::SetDebugLogging | Call::Reset | Call::FmuState => LIVE,
+            Call::SetDebugLogging | Call::Reset => LIVE,
+            Call::FmuState => LIVE & !modes!(ConfigurationMode),
             Call::VariableDependencies | Call::Unsupported => LIVE,
             Call::EnterInitializationMode => modes!(Instantiated),
             Call::ExitInitializationMode => modes!(InitializationMode),
@@ -148,6 +164,10 @@ impl Call {
             Call::ResumeStep => only_cs(modes!(IntermediateUpdateMode)),
             Call::SetClock => modes!(EventMode),
             Call::ClockQuery => modes!(InitializationMode, EventMode),
+            Call::EnterConfigurationMode => modes!(Instantiated, EventMode, StepMode),
+            Call::ExitConfigurationMode => modes!(ConfigurationMode),
+            Call::SetStructural => LIVE,
+            Call::GetStructural => READABLE | modes!(ConfigurationMode),
         }
     }
 
@@ -303,6 +323,30 @@ mod tests {
         assert!(!Call::SetClock.is_legal(ContinuousTimeMode, ME));
         assert!(!Call::SetClock.is_legal(StepMode, CS));
         assert!(!Call::ClockQuery.is_legal(StepMode, CS_EVENTS));
+    }
+
+    #[test]
+    fn configuration_mode_is_entered_from_instantiated_and_serves_structural_calls() {
+        // Expected values: FMI 3.0 section 3.2 (state machine): Configuration Mode is
+        // entered from Instantiated and left back to it; in it only structural
+        // parameters are set and read (no other values, no FMU state, no
+        // initialization).
+        for interface in [ME, CS, CS_EVENTS] {
+            assert!(Call::EnterConfigurationMode.is_legal(Instantiated, interface));
+            assert!(!Call::EnterConfigurationMode.is_legal(InitializationMode, interface));
+            assert!(Call::ExitConfigurationMode.is_legal(ConfigurationMode, interface));
+            assert!(!Call::ExitConfigurationMode.is_legal(Instantiated, interface));
+            assert!(Call::GetStructural.is_legal(ConfigurationMode, interface));
+            for call in [
+                Call::GetValues,
+                Call::SetFloat64,
+                Call::SetDiscrete,
+                Call::FmuState,
+                Call::EnterInitializationMode,
+            ] {
+                assert!(!call.is_legal(ConfigurationMode, interface), "{call:?}");
+            }
+        }
     }
 
     #[test]

@@ -35,6 +35,7 @@ pub fn view<M>(table: &[Variable<M>], arrays: &Table3) -> Result<Table3, String>
                 value_reference: v.value_reference + k as u32,
                 name: Cow::Owned(format!("{}[{}]", v.name, k + 1)),
                 dimension: None,
+                sized_by: None,
                 source: Source::EventIndicators { first: k },
                 ..v.clone()
             }));
@@ -42,10 +43,14 @@ pub fn view<M>(table: &[Variable<M>], arrays: &Table3) -> Result<Table3, String>
         }
         if matches!(
             v.source,
-            Source::Clock { .. } | Source::ClockPeriod { .. } | Source::Clocked { .. }
+            Source::Clock { .. }
+                | Source::ClockPeriod { .. }
+                | Source::Clocked { .. }
+                | Source::Structural { .. }
         ) {
-            // The clocked partitions are served by the array view only: the importers
-            // this view is for (ecos) refuse a description with clocks.
+            // The clocked partitions and the structural parameters are served by the
+            // array view only: the importers this view is for (ecos) refuse a
+            // description with clocks; its arrays keep their default sizes.
             continue;
         }
         let Source::Elements {
@@ -72,6 +77,7 @@ pub fn view<M>(table: &[Variable<M>], arrays: &Table3) -> Result<Table3, String>
                 value_reference: vr,
                 name: Cow::Owned(scalar.name().into_owned()),
                 dimension: None,
+                sized_by: None,
                 source: Source::Elements {
                     first: vr,
                     stride,

@@ -12,6 +12,7 @@
 //! indicators take the value reference after the table's largest.
 
 use crate::core::model::Model;
+use crate::core::structural::Sizes;
 use crate::core::variables::{Causality, Initial, Variability, Variable, VariableType, find};
 use std::borrow::Cow;
 
@@ -22,6 +23,7 @@ pub fn type_name(t: VariableType) -> &'static str {
         VariableType::Integer => "Int32",
         VariableType::Boolean => "Boolean",
         VariableType::Clock => "Clock",
+        VariableType::UInt64 => "UInt64",
     }
 }
 
@@ -49,15 +51,18 @@ impl Table3 {
 
     /// The variables of `vrs`, checked against `wanted` and the total element count
     /// `n_values`, as an iterator (not collected: a get or set allocates nothing).
+    /// An array sized by a structural parameter counts its elements at `sizes` (the
+    /// instance's current sizes).
     pub fn typed_all<'a>(
         &'a self,
         vrs: &'a [u32],
         wanted: VariableType,
         n_values: usize,
+        sizes: &Sizes,
     ) -> Result<impl Iterator<Item = &'a Variable3> + Clone + 'a, String> {
         let mut total = 0;
         for &vr in vrs {
-            total += self.typed(vr, wanted)?.size();
+            total += self.typed(vr, wanted)?.size_now(sizes);
         }
         if total != n_values {
             return Err(format!(
@@ -80,6 +85,7 @@ pub(super) fn time_variable() -> Variable3 {
         dimension: None,
         source: Source::Time,
         derivative_of: None,
+        sized_by: None,
     }
 }
 
@@ -94,6 +100,7 @@ pub(super) fn event_indicator_variable(value_reference: u32, n: usize) -> Variab
         dimension: Some(n),
         source: Source::EventIndicators { first: 0 },
         derivative_of: None,
+        sized_by: None,
     }
 }
 
@@ -118,6 +125,7 @@ pub fn description<M: Model>(table: &[Variable<M>], v: &Variable3) -> String {
         Source::Clocked { clock, output, .. } => {
             M::CLOCKS[*clock].outputs[*output].description.to_string()
         }
+        Source::Structural { parameter } => M::STRUCTURAL[*parameter].description.to_string(),
         Source::Elements { first, .. } => {
             let Some(scalar) = find(table, *first) else {
                 return String::new();

@@ -25,7 +25,9 @@ fn main() {
         for &model in &models {
             let result = Fmu::unpack(model, standard).and_then(|fmu| match standard {
                 Standard::Fmi2 => lifecycle::run(&fmu),
-                Standard::Fmi3 => fmi3::lifecycle::run(&fmu),
+                Standard::Fmi3 => {
+                    fmi3::lifecycle::run(&fmu).and_then(|()| fmi3::resized::run(&fmu))
+                }
             });
             report(model, standard.name(), result);
         }

@@ -7,4 +7,5 @@
 pub use robofmu_fmi_host::fmi3 as binary;
 pub mod host;
 pub mod lifecycle;
+pub mod resized;
 pub mod sequences;

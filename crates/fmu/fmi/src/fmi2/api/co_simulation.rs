@@ -87,7 +87,11 @@ pub unsafe fn get_real_output_derivatives<M: Model>(
                 let requests: Vec<Request> = vrs
                     .iter()
                     .zip(orders)
-                    .map(|(&vr, &order)| Request { vr, order })
+                    .map(|(&vr, &order)| Request {
+                        vr,
+                        order,
+                        element: None,
+                    })
                     .collect();
                 match output_derivatives(&mut inst.core, &requests, out)? {
                     None => Ok(Fmi2Status::Ok),

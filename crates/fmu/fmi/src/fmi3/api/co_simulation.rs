@@ -8,6 +8,7 @@ use super::{input_slice, output_slice, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
 use crate::core::output_derivatives::{Request, output_derivatives};
+use crate::core::structural::Sizes;
 use crate::core::variables::{Causality, VariableType};
 use crate::core::view::Source;
 use crate::fmi3::instance::Instance;
@@ -143,7 +144,15 @@ fn element_requests<M: Model>(
                 M::CLOCKS[clock].name
             ));
         }
-        requests.extend(v.elements().map(|vr| Request { vr, order }));
+        // Each element of the declaration, as many as the variable has now.
+        if let Source::Elements { first, element, .. } = v.source {
+            let n = v.size_now(&Sizes::of(inst.core.model(), M::STRUCTURAL));
+            requests.extend((element..element + n).map(|k| Request {
+                vr: first,
+                order,
+                element: Some(k),
+            }));
+        }
     }
     if requests.len() != n_values {
         return Err(format!(

@@ -3,10 +3,15 @@
 //! indicator depends on, from the dependencies the model declares for its scalars
 //! (all knowns where it declares none). Every dependency is reported as
 //! fmi3Dependent (the layer does not know which are linear). Element indices start at
-//! 1 for arrays and are 0 for scalars.
+//! 1 for arrays and are 0 for scalars. An array sized by a structural parameter
+//! answers at its current size: an element past the default size has the dependencies
+//! of the last default element, each on that element's own index of an array of the
+//! same size moved to its own (a channel's output on the same channel's inputs); an
+//! element of a known past its size is left out.
 
 use super::{output_ref, output_slice, with_instance};
 use crate::core::model::Model;
+use crate::core::sizes::Sizes;
 use crate::core::variables::{Causality, Variable, find};
 use crate::fmi3::mode::Call;
 use crate::fmi3::table::{Source, Table3, Variable3};
@@ -20,12 +25,12 @@ fn element_index(v: &Variable3, i: usize) -> usize {
     if v.dimension.is_some() { i + 1 } else { 0 }
 }
 
-/// Every element of every known, as (variable, element index).
-fn all_knowns(t: &Table3) -> Vec<(u32, usize)> {
+/// Every element of every known at the sizes `sizes`, as (variable, element index).
+fn all_knowns(t: &Table3, sizes: &Sizes) -> Vec<(u32, usize)> {
     t.knowns()
         .iter()
         .filter_map(|&vr| t.find(vr))
-        .flat_map(|k| (0..k.size()).map(move |i| (k.value_reference, element_index(k, i))))
+        .flat_map(|k| (0..k.size_now(sizes)).map(move |i| (k.value_reference, element_index(k, i))))
         .collect()
 }
 
@@ -48,6 +53,7 @@ fn dependencies<M: Model>(
     table: &[Variable<M>],
     t: &Table3,
     v: &Variable3,
+    sizes: &Sizes,
 ) -> Result<Vec<Dependency>, String> {
     if !is_unknown(v) {
         return Ok(Vec::new());
@@ -55,15 +61,26 @@ fn dependencies<M: Model>(
     let mut out = Vec::new();
     let elements = v.elements();
     if elements.is_empty() {
-        for (known, k) in all_knowns(t) {
+        for (known, k) in all_knowns(t, sizes) {
             out.push((0, known, k));
         }
         return Ok(out);
     }
-    for (i, e) in elements.enumerate() {
+    // Past the default size d, element i takes the last default element's list, a
+    // dependency on that element's own index of an array sized alike moved to its own.
+    let elements: Vec<u32> = elements.collect();
+    let d = elements.len();
+    let sized_alike = |known: u32| {
+        v.sized_by.is_some() && t.find(known).is_some_and(|k| k.sized_by == v.sized_by)
+    };
+    let fits = |known: u32, k: usize| {
+        (t.find(known)).is_none_or(|kv| kv.sized_by.is_none() || k <= kv.size_now(sizes))
+    };
+    for i in 0..v.size_now(sizes) {
+        let e = elements[i.min(d - 1)];
         let scalar = find(table, e).ok_or_else(|| format!("no element {e}"))?;
         let knowns = match &scalar.dependencies {
-            None => all_knowns(t),
+            None => all_knowns(t, sizes),
             Some(names) => names
                 .iter()
                 .map(|name| {
@@ -75,11 +92,17 @@ fn dependencies<M: Model>(
                             format!("\"{}\" depends on unknown \"{name}\"", scalar.name())
                         })
                 })
-                .collect::<Result<Vec<_>, _>>()?,
+                .collect::<Result<Vec<_>, _>>()?
+                .into_iter()
+                .map(|(known, k)| {
+                    let own = i >= d && k == d && sized_alike(known);
+                    (known, if own { i + 1 } else { k })
+                })
+                .collect(),
         };
         out.extend(
-            knowns
-                .into_iter()
+            (knowns.into_iter())
+                .filter(|&(known, k)| fits(known, k))
                 .map(|(known, k)| (element_index(v, i), known, k)),
         );
     }
@@ -103,7 +126,8 @@ pub unsafe fn get_number_of_variable_dependencies<M: Model>(
                     .table
                     .find(vr)
                     .ok_or_else(|| format!("unknown value reference {vr}"))?;
-                *out = dependencies(inst.core.table(), &inst.extra.table, v)?.len();
+                let sizes = Sizes::of(inst.core.model(), M::STRUCTURAL);
+                *out = dependencies(inst.core.table(), &inst.extra.table, v, &sizes)?.len();
                 Ok(Fmi3Status::Ok)
             },
         )
@@ -135,7 +159,8 @@ pub unsafe fn get_variable_dependencies<M: Model>(
                     .table
                     .find(dependent)
                     .ok_or_else(|| format!("unknown value reference {dependent}"))?;
-                let list = dependencies(inst.core.table(), &inst.extra.table, v)?;
+                let sizes = Sizes::of(inst.core.model(), M::STRUCTURAL);
+                let list = dependencies(inst.core.table(), &inst.extra.table, v, &sizes)?;
                 let n = out.n_dependencies;
                 if n != list.len() {
                     return Err(format!(

@@ -6,13 +6,18 @@
 //! fmi3Discard with its reason.
 
 use super::{input_slice, output_slice, with_instance};
+use crate::core::hooks::Element;
 use crate::core::model::Model;
+use crate::core::structural::Sizes;
 use crate::fmi3::instance::Instance;
 use crate::fmi3::mode::Call;
+use crate::fmi3::table::Source;
 use crate::fmi3::types::*;
 
-/// The table elements (FMI 2.0 value references) of FMI 3.0 variables, in order.
-fn elements<M: Model>(inst: &Instance<M>, vrs: &[u32], what: &str) -> Result<Vec<u32>, String> {
+/// The declared elements of FMI 3.0 variables, in order (an array sized by a
+/// structural parameter: as many as it has now).
+fn elements<M: Model>(inst: &Instance<M>, vrs: &[u32], what: &str) -> Result<Vec<Element>, String> {
+    let sizes = Sizes::of(inst.core.model(), M::STRUCTURAL);
     let mut out = Vec::new();
     for &vr in vrs {
         let v = inst
@@ -20,10 +25,19 @@ fn elements<M: Model>(inst: &Instance<M>, vrs: &[u32], what: &str) -> Result<Vec
             .table
             .find(vr)
             .ok_or_else(|| format!("{what}: unknown value reference {vr}"))?;
-        if v.elements().is_empty() {
+        let Source::Elements {
+            declaration,
+            element,
+            ..
+        } = v.source
+        else {
             return Err(format!("{what}: \"{}\" has no partial derivatives", v.name));
-        }
-        out.extend(v.elements());
+        };
+        let name = M::VARIABLES[declaration].name;
+        out.extend((0..v.size_now(&sizes)).map(|k| Element {
+            name,
+            index: element + k,
+        }));
     }
     Ok(out)
 }
@@ -44,21 +58,21 @@ pub struct DerivativeRequest {
 fn evaluate<M: Model>(
     inst: &mut Instance<M>,
     adjoint: bool,
-    rows: &[u32],
-    columns: &[u32],
+    rows: &[Element],
+    columns: &[Element],
     seed: &[f64],
     out: &mut [f64],
 ) -> Result<(), String> {
     inst.core.update_values()?;
     let core = &inst.core;
     if !adjoint {
-        return core.directional_derivative(rows, columns, seed, out);
+        return core.directional_derivative_of(rows, columns, seed, out);
     }
     let mut unit = vec![0.0; columns.len()];
     let mut column = vec![0.0; rows.len()];
     for (k, o) in out.iter_mut().enumerate() {
         unit[k] = 1.0;
-        core.directional_derivative(rows, columns, &unit, &mut column)?;
+        core.directional_derivative_of(rows, columns, &unit, &mut column)?;
         unit[k] = 0.0;
         *o = column.iter().zip(seed).map(|(j, s)| j * s).sum();
     }

@@ -21,6 +21,7 @@ mod fmu_state;
 mod intermediate_step;
 mod model_exchange;
 mod step;
+mod structural;
 mod unsupported;
 mod values;
 
@@ -32,6 +33,7 @@ pub use derivatives::*;
 pub use fmu_state::*;
 pub use model_exchange::*;
 pub use step::StepResult;
+pub use structural::*;
 pub use unsupported::*;
 pub use values::*;
 

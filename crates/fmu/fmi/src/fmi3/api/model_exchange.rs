@@ -122,11 +122,11 @@ unsafe fn get_count<M: Model>(
     c: Fmi3Instance,
     function: &str,
     out: *mut usize,
-    count: fn() -> usize,
+    count: fn(&M) -> usize,
 ) -> Fmi3Status {
     unsafe {
-        with_instance::<M>(c, function, Call::CountQuery, |_| {
-            *output_ref(out, "the count")? = count();
+        with_instance::<M>(c, function, Call::CountQuery, |inst| {
+            *output_ref(out, "the count")? = count(inst.core.model());
             Ok(Fmi3Status::Ok)
         })
     }
@@ -136,7 +136,11 @@ pub unsafe fn get_number_of_event_indicators<M: Model>(
     c: Fmi3Instance,
     n: *mut usize,
 ) -> Fmi3Status {
-    unsafe { get_count::<M>(c, "fmi3GetNumberOfEventIndicators", n, indicators::<M>) }
+    unsafe {
+        get_count::<M>(c, "fmi3GetNumberOfEventIndicators", n, |_| {
+            indicators::<M>()
+        })
+    }
 }
 
 pub unsafe fn get_number_of_continuous_states<M: Model>(

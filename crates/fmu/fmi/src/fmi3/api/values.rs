@@ -5,6 +5,7 @@
 use super::{input_slice, output_slice, with_instance};
 use crate::core::entry;
 use crate::core::model::Model;
+use crate::core::structural::Sizes;
 use crate::core::variables::VariableType;
 use crate::ffi::check_array;
 use crate::fmi3::instance::{Instance, Kept};
@@ -15,7 +16,7 @@ use std::sync::Arc;
 
 /// Reads the variables of `vrs` (of type `wanted`, `n_values` elements in all) into
 /// `out` with `read`, after making the computed values current.
-fn read<M: Model, T: Default + Clone>(
+pub(super) fn read<M: Model, T: Default + Clone>(
     inst: &mut Instance<M>,
     function: &str,
     vrs: &[Fmi3ValueReference],
@@ -25,9 +26,10 @@ fn read<M: Model, T: Default + Clone>(
 ) -> Result<Fmi3Status, String> {
     check_array(values, n_values, "values[]")?;
     let table = Arc::clone(&inst.extra.table);
-    // nValues is checked against the declared sizes before a slice of that length
+    // nValues is checked against the current sizes before a slice of that length
     // is formed over the host's buffer.
-    let variables = table.typed_all(vrs, wanted, n_values)?;
+    let sizes = Sizes::of(inst.core.model(), M::STRUCTURAL);
+    let variables = table.typed_all(vrs, wanted, n_values, &sizes)?;
     // SAFETY: the host's buffer holds nValues elements, which match the variables.
     let out = unsafe { output_slice(values, n_values, "values[]") }?;
     if let Some(reason) = inst.prepare_read(variables.clone())? {
@@ -35,8 +37,9 @@ fn read<M: Model, T: Default + Clone>(
     }
     let mut at = 0;
     for v in variables {
-        read(inst, v, &mut out[at..at + v.size()])?;
-        at += v.size();
+        let n = v.size_now(&sizes);
+        read(inst, v, &mut out[at..at + n])?;
+        at += n;
     }
     Ok(Fmi3Status::Ok)
 }
@@ -44,7 +47,7 @@ fn read<M: Model, T: Default + Clone>(
 /// Writes `values` to the variables of `vrs` (of type `wanted`) with `write`.
 /// fmi3Warning, with a log line each, when `write` accepted a fixed parameter set
 /// again to the values it holds (see `Instance::set`).
-fn write<M: Model, T>(
+pub(super) fn write<M: Model, T>(
     inst: &mut Instance<M>,
     function: &str,
     vrs: &[Fmi3ValueReference],
@@ -54,17 +57,20 @@ fn write<M: Model, T>(
 ) -> Result<Fmi3Status, String> {
     check_array(values, n_values, "values[]")?;
     let table = Arc::clone(&inst.extra.table);
-    let variables = table.typed_all(vrs, wanted, n_values)?;
+    // A write of these types changes no size (the sizes are UInt64 parameters).
+    let sizes = Sizes::of(inst.core.model(), M::STRUCTURAL);
+    let variables = table.typed_all(vrs, wanted, n_values, &sizes)?;
     // SAFETY: as in `read`, the length was checked against the variables first.
     let values = unsafe { input_slice(values, n_values, "values[]") }?;
     let mut at = 0;
     let mut status = Fmi3Status::Ok;
     for v in variables {
-        if let Some(line) = write(inst, v, &values[at..at + v.size()])? {
+        let n = v.size_now(&sizes);
+        if let Some(line) = write(inst, v, &values[at..at + n])? {
             status = Fmi3Status::Warning;
             inst.log.status(status, &format!("{function}: {line}"));
         }
-        at += v.size();
+        at += n;
     }
     Ok(status)
 }

@@ -13,6 +13,7 @@ pub mod clocks;
 pub mod cross_standard;
 pub mod instantiate;
 pub mod pointers;
+pub mod structural;
 pub mod uses;
 pub mod values;
 pub mod variability;
@@ -151,6 +152,7 @@ impl Standard for Interface3 {
                 variability::cases,
                 cross_standard::cases,
                 clocks::cases,
+                structural::cases,
             ],
             reasons: REASONS,
         }
