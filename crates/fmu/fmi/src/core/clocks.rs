@@ -1,5 +1,5 @@
 //! Clocked partitions (FMI 3.0 only): what a model declares to run a sampled law on
-//! an input clock. A model lists its clocks in [`Model::CLOCKS`];
+//! an input clock. A model lists its clocks in [`Model::CLOCKS`](crate::core::model::Model::CLOCKS);
 //! each [`InputClock`] is a periodic input clock (`intervalVariability="fixed"`, no
 //! `intervalDecimal`: the importer reads the interval with fmi3GetIntervalDecimal or
 //! fmi3GetIntervalFraction in Initialization Mode), its interval the FMI 3.0 parameter
@@ -14,7 +14,7 @@
 //! their behaviour do not change when a model gains a clocked partition. The
 //! model keeps the period and what its law holds between ticks (cloned with the model
 //! into FMU states; serialized with
-//! [`Model::write_extra_state`]).
+//! [`Model::write_extra_state`](crate::core::model::Model::write_extra_state)).
 //!
 //! A clocked partition in a binding (the model's own law at `tick`, its held output
 //! read by `get`):
@@ -49,7 +49,6 @@
 //! ```
 
 use super::log::Log;
-use super::model::Model;
 
 /// What the layer tells the model at a tick.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -80,7 +79,7 @@ pub type HeldAccess<M> = (
 
 /// The fixed Float64 parameter that sets a clock's period, s (FMI 3.0 only), kept by
 /// the model (so that FMU states carry it: the model serializes it in
-/// [`Model::write_extra_state`] and checks it with
+/// [`Model::write_extra_state`](crate::core::model::Model::write_extra_state) and checks it with
 /// [`period_fraction`] when it reads it back); the layer checks a value before `set`.
 pub struct PeriodParameter<M: 'static> {
     pub name: &'static str,
@@ -210,7 +209,7 @@ impl<M> InputClock<M> {
     }
 
     /// The clock whose law holds what `held` writes and reads: a model that keeps the
-    /// default extra FMU state ([`Model::write_extra_state`])
+    /// default extra FMU state ([`Model::write_extra_state`](crate::core::model::Model::write_extra_state))
     /// then needs no code of its own to carry its clocked partitions in FMU states
     /// ([`write_partitions`]).
     pub const fn holding(mut self, held: HeldAccess<M>) -> Self {
@@ -219,11 +218,12 @@ impl<M> InputClock<M> {
     }
 }
 
-/// The default extra FMU state of a model: per clock of `M::CLOCKS`, its period (f64)
+/// The default extra FMU state of a model: per clock of `clocks` (the model's
+/// `CLOCKS`), its period (f64)
 /// and, where the clock declares it ([`InputClock::holding`]), the length (u64) and
 /// the bytes of what its law holds. Nothing for a model without clocks.
-pub fn write_partitions<M: Model>(model: &M, out: &mut Vec<u8>) {
-    for clock in M::CLOCKS {
+pub fn write_partitions<M>(clocks: &[InputClock<M>], model: &M, out: &mut Vec<u8>) {
+    for clock in clocks {
         write_held(out, [(clock.period.get)(model)]);
         if let Some((write, _)) = clock.held {
             let mut bytes = Vec::new();
@@ -249,9 +249,13 @@ fn take<'a>(rest: &mut &'a [u8], n: usize, what: &str) -> Result<&'a [u8], Strin
 /// Reads back what [`write_partitions`] wrote: each period checked as its setter
 /// checks it, each law's bytes by its reader; Err names what is wrong (truncated,
 /// longer than the clocks' state, a period or value refused).
-pub fn read_partitions<M: Model>(model: &mut M, bytes: &[u8]) -> Result<(), String> {
+pub fn read_partitions<M>(
+    clocks: &[InputClock<M>],
+    model: &mut M,
+    bytes: &[u8],
+) -> Result<(), String> {
     let mut rest = bytes;
-    for clock in M::CLOCKS {
+    for clock in clocks {
         let what = clock.period.name;
         let period = f64::from_le_bytes(take(&mut rest, 8, what)?.try_into().expect("8 bytes"));
         period_fraction(period, what)?;
@@ -269,7 +273,7 @@ pub fn read_partitions<M: Model>(model: &mut M, bytes: &[u8]) -> Result<(), Stri
 }
 
 /// Appends `values` to a model's extra FMU state
-/// ([`Model::write_extra_state`]) as little-endian
+/// ([`Model::write_extra_state`](crate::core::model::Model::write_extra_state)) as little-endian
 /// doubles: what a sampled law holds between ticks (its state, held outputs, period).
 pub fn write_held(out: &mut Vec<u8>, values: impl IntoIterator<Item = f64>) {
     for x in values {

@@ -283,11 +283,11 @@ pub trait Model: Clone + Default + Send + Sized + 'static {
     /// laws hold ([`write_partitions`](super::clocks::write_partitions); nothing for a
     /// model without clocks).
     fn write_extra_state(&self, out: &mut Vec<u8>) {
-        super::clocks::write_partitions(self, out);
+        super::clocks::write_partitions(Self::CLOCKS, self, out);
     }
 
     /// Reads back what `write_extra_state` wrote.
     fn read_extra_state(&mut self, bytes: &[u8]) -> Result<(), String> {
-        super::clocks::read_partitions(self, bytes)
+        super::clocks::read_partitions(Self::CLOCKS, self, bytes)
     }
 }
