@@ -11,10 +11,9 @@
 use super::{AXES, ComputedTorqueFmu};
 use robofmu_fmi::prelude::*;
 
-/// The value references of the clock, its period and its output (FMI 3.0 array
-/// view only: the scalar-only view has no clocks).
+/// The value references of the clock (its period at the next one) and its output
+/// (FMI 3.0 array view only: the scalar-only view has no clocks).
 const CLOCK_VR: u32 = 401;
-const PERIOD_VR: u32 = 402;
 const OUTPUT_VR: u32 = 411;
 
 static OUTPUTS: &[ClockedOutput<ComputedTorqueFmu>] = &[ClockedOutput::new(
@@ -27,19 +26,11 @@ static OUTPUTS: &[ClockedOutput<ComputedTorqueFmu>] = &[ClockedOutput::new(
 .array(AXES)
 .unit("N.m")];
 
-pub static CLOCKS: &[InputClock<ComputedTorqueFmu>] = &[InputClock::new(
-    "sampleClock",
+pub static CLOCKS: &[InputClock<ComputedTorqueFmu>] = &[InputClock::sample_clock(
     CLOCK_VR,
-    "Ticks the sampled law: periodic, every samplePeriod seconds from the start time",
-    PeriodParameter::new(
-        "samplePeriod",
-        PERIOD_VR,
-        "Sample period of the sampled law, s (a decimal of at most 18 places)",
-        1e-3,
-        (
-            |m: &ComputedTorqueFmu| m.sample_period,
-            |m: &mut ComputedTorqueFmu, p| m.sample_period = p,
-        ),
+    (
+        |m: &ComputedTorqueFmu| m.sample_period,
+        |m: &mut ComputedTorqueFmu, p| m.sample_period = p,
     ),
     OUTPUTS,
     ComputedTorqueFmu::tick,

@@ -15,10 +15,9 @@ use robofmu_control::sampled;
 use robofmu_fmi::core::clocks::{read_held, write_held};
 use robofmu_fmi::prelude::*;
 
-/// The value references of the clock, its period and its output (FMI 3.0 array
-/// view only: the scalar-only view has no clocks), as ComputedTorque's.
+/// The value references of the clock (its period at the next one) and its output
+/// (FMI 3.0 array view only: the scalar-only view has no clocks), as ComputedTorque's.
 const CLOCK_VR: u32 = 401;
-const PERIOD_VR: u32 = 402;
 const OUTPUT_VR: u32 = 411;
 
 /// What the sampled law holds between ticks, per channel (as many as `nChannels`).
@@ -74,19 +73,11 @@ static OUTPUTS: &[ClockedOutput<Pid>] = &[ClockedOutput::new(
 .array(CHANNELS)
 .sized_by(0)];
 
-pub static CLOCKS: &[InputClock<Pid>] = &[InputClock::new(
-    "sampleClock",
+pub static CLOCKS: &[InputClock<Pid>] = &[InputClock::sample_clock(
     CLOCK_VR,
-    "Ticks the sampled law: periodic, every samplePeriod seconds from the start time",
-    PeriodParameter::new(
-        "samplePeriod",
-        PERIOD_VR,
-        "Sample period of the sampled law, s (a decimal of at most 18 places)",
-        1e-3,
-        (
-            |m: &Pid| m.sampled.period,
-            |m: &mut Pid, p| m.sampled.period = p,
-        ),
+    (
+        |m: &Pid| m.sampled.period,
+        |m: &mut Pid, p| m.sampled.period = p,
     ),
     OUTPUTS,
     Pid::tick,

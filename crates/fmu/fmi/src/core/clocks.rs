@@ -208,6 +208,33 @@ impl<M> InputClock<M> {
         }
     }
 
+    /// The clock of a sampled law, as both controllers declare it: `sampleClock` at
+    /// `value_reference`, periodic every `samplePeriod` seconds (the fixed parameter at
+    /// the next value reference, default 1 ms, kept where `period` says), ticking
+    /// `tick`, with its `outputs`.
+    pub const fn sample_clock(
+        value_reference: u32,
+        period: PeriodAccess<M>,
+        outputs: &'static [ClockedOutput<M>],
+        tick: TickHook<M>,
+    ) -> Self {
+        let description = "Sample period of the sampled law, s (a decimal of at most 18 places)";
+        InputClock::new(
+            "sampleClock",
+            value_reference,
+            "Ticks the sampled law: periodic, every samplePeriod seconds from the start time",
+            PeriodParameter::new(
+                "samplePeriod",
+                value_reference + 1,
+                description,
+                1e-3,
+                period,
+            ),
+            outputs,
+            tick,
+        )
+    }
+
     /// The clock whose law holds what `held` writes and reads: a model that keeps the
     /// default extra FMU state ([`Model::write_extra_state`](crate::core::model::Model::write_extra_state))
     /// then needs no code of its own to carry its clocked partitions in FMU states

@@ -11,13 +11,14 @@
 //! (`modelDescription/fmi3/<Model>.xml`, equal to the packaged one: the packager's
 //! drift check); the matrix's description keeps no clocks.
 
+use super::InstanceCases;
 use crate::Loaded;
 use crate::binary::Status;
 use crate::fmi3::binary::{Binary3, Instance3 as Handle};
 use crate::fmi3::host::{Instance, Interface3, State3, logger};
 use crate::fmu::workspace_root;
 use crate::host::{Log, c_string};
-use crate::matrix::{Case, Expect, on_instance};
+use crate::matrix::{Case, Expect};
 use std::ffi::c_void;
 
 const WHY_STATE: &str = "FMI 3.0 2.2.9: fmi3SetClock only in Event Mode, fmi3GetInterval* only in Initialization and Event Mode: fmi3Error naming the function";
@@ -84,19 +85,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
         .iter()
         .find(|v| v.is_parameter() && v.variability == "fixed" && v.name.ends_with("Period"))
         .map(|v| (v.vr, v.name.clone()));
-    let mut cases = Vec::new();
-    let mut add = |interface: Interface3,
-                   name: String,
-                   expect: (Expect, &'static str),
-                   state: State3,
-                   call: Box<dyn Fn(&Instance) -> Status>| {
-        cases.push(Case::new(
-            ("clocks", m, interface),
-            name,
-            expect,
-            move |l| on_instance(l, m, interface, state, |i| call(i)),
-        ));
-    };
+    let mut cases = InstanceCases::new("clocks", m);
     for interface in [Interface3::ModelExchange, Interface3::CoSimulationEvents] {
         for state in [
             State3::Instantiated,
@@ -108,7 +97,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             if !state.exists_for(interface) {
                 continue;
             }
-            add(
+            cases.add(
                 interface,
                 format!("fmi3SetClock in {state:?}"),
                 (Expect::error("fmi3SetClock"), WHY_STATE),
@@ -124,7 +113,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             if !state.exists_for(interface) {
                 continue;
             }
-            add(
+            cases.add(
                 interface,
                 format!("fmi3GetIntervalDecimal in {state:?}"),
                 (Expect::error("fmi3GetIntervalDecimal"), WHY_STATE),
@@ -132,14 +121,14 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 Box::new(move |i| interval(i, clock)),
             );
         }
-        add(
+        cases.add(
             interface,
             "fmi3SetClock at a tick in Event Mode".into(),
             (Expect::ok(), WHY_CONTROL),
             State3::EventMode,
             Box::new(move |i| set_clock(i, clock).max(update(i))),
         );
-        add(
+        cases.add(
             interface,
             "fmi3GetIntervalDecimal in InitializationMode".into(),
             (Expect::ok(), WHY_CONTROL),
@@ -147,7 +136,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             Box::new(move |i| interval(i, clock)),
         );
         for bad in [0.0, f64::NAN, -1e-3] {
-            add(
+            cases.add(
                 interface,
                 format!("fmi3SetIntervalDecimal({bad})"),
                 (Expect::error("not a valid clock interval"), WHY_ARGUMENT),
@@ -155,7 +144,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 Box::new(move |i| set_interval(i, clock, bad)),
             );
         }
-        add(
+        cases.add(
             interface,
             "fmi3SetIntervalDecimal(1e300) of a fixed clock".into(),
             (Expect::error("intervalVariability"), WHY_ARGUMENT),
@@ -164,7 +153,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
         );
         if let Some((vr, name)) = period.clone() {
             for bad in [0.0, f64::NAN, -1e-3, 1e300] {
-                add(
+                cases.add(
                     interface,
                     format!("{name} = {bad}"),
                     (Expect::error(&name), WHY_ARGUMENT),
@@ -174,7 +163,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             }
         }
         let unknown = 999_999;
-        add(
+        cases.add(
             interface,
             "fmi3SetClock of an unknown value reference".into(),
             (
@@ -184,7 +173,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             State3::EventMode,
             Box::new(move |i| set_clock(i, unknown)),
         );
-        add(
+        cases.add(
             interface,
             "fmi3GetIntervalDecimal of an unknown value reference".into(),
             (
@@ -201,14 +190,14 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 v.var_type == crate::description::VarType::Real && v.causality != "independent"
             })
             .map_or(1, |v| v.vr);
-        add(
+        cases.add(
             interface,
             "fmi3SetClock of a Float64 variable".into(),
             (Expect::error("not a Clock"), WHY_ARGUMENT),
             State3::EventMode,
             Box::new(move |i| set_clock(i, float)),
         );
-        add(
+        cases.add(
             interface,
             "fmi3SetClock with values = NULL".into(),
             (Expect::error("values[] is a null pointer"), WHY_ARGUMENT),
@@ -216,14 +205,14 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             Box::new(move |i| unsafe { (i.binary.set_clock)(i.c, &clock, 1, std::ptr::null()) }),
         );
     }
-    add(
+    cases.add(
         Interface3::CoSimulationEvents,
         "fmi3EnterStepMode with a clock set, not ticked".into(),
         (Expect::error("fmi3UpdateDiscreteStates"), WHY_PENDING),
         State3::EventMode,
         Box::new(move |i| set_clock(i, clock).max(unsafe { (i.binary.enter_step_mode)(i.c) })),
     );
-    add(
+    cases.add(
         Interface3::ModelExchange,
         "fmi3EnterContinuousTimeMode with a clock set, not ticked".into(),
         (Expect::error("fmi3UpdateDiscreteStates"), WHY_PENDING),
@@ -232,7 +221,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             set_clock(i, clock).max(unsafe { (i.binary.enter_continuous_time_mode)(i.c) })
         }),
     );
-    add(
+    cases.add(
         Interface3::CoSimulationEvents,
         "a step to the next tick".into(),
         (Expect::ok(), WHY_CONTROL),
@@ -241,14 +230,14 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             tick_and_step_mode(i.binary, i.c, clock).max(i.do_step(0.0, 1e-3).status)
         }),
     );
-    add(
+    cases.add(
         Interface3::CoSimulationEvents,
         "a step past a tick without earlyReturnAllowed".into(),
         (Expect::error("passes the clock tick"), WHY_EARLY),
         State3::Instantiated,
         Box::new(move |i| past_tick_without_early_return(i, clock)),
     );
-    cases
+    cases.cases
 }
 
 /// A Co-Simulation instance of its own, with event mode but without early return,

@@ -25,6 +25,7 @@ use crate::fmi3::binary::{Binary3, Instance3};
 use crate::fmi3::host::{Instance, Interface3, State3};
 use crate::fmu;
 use crate::matrix::seam::{Handle, Reasons, ReferenceReasons, Standard, Tables, Value, ValueNames};
+use crate::matrix::{Case, Expect, on_instance};
 use crate::standard_interface::{GetArray, StandardInterface, Transition, same_named_methods};
 use calls::Args;
 use std::ffi::c_void;
@@ -180,5 +181,41 @@ impl Standard for Interface3 {
     }
     fn evaluate(inst: &Instance<'_>, interface: Interface3) -> Result<bool, String> {
         uses::evaluate(inst, interface)
+    }
+}
+
+/// The cases of one class on one model that each call something on a fresh instance
+/// (the clock and structural-parameter classes): [`InstanceCases::add`].
+pub struct InstanceCases {
+    class: &'static str,
+    model: usize,
+    pub cases: Vec<Case>,
+}
+
+impl InstanceCases {
+    pub fn new(class: &'static str, model: usize) -> Self {
+        InstanceCases {
+            class,
+            model,
+            cases: Vec::new(),
+        }
+    }
+
+    /// A case `name`: an instance of `interface` brought into `state`, then `call`.
+    pub fn add(
+        &mut self,
+        interface: Interface3,
+        name: String,
+        expect: (Expect, &'static str),
+        state: State3,
+        call: Box<dyn Fn(&Instance) -> Status>,
+    ) {
+        let m = self.model;
+        self.cases.push(Case::new(
+            (self.class, m, interface),
+            name,
+            expect,
+            move |l| on_instance(l, m, interface, state, |i| call(i)),
+        ));
     }
 }

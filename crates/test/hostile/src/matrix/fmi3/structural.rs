@@ -12,10 +12,11 @@
 //! matrix's `usable_after`). Controls: the legal sequence returns fmi3OK and the array
 //! has the new size.
 
+use super::InstanceCases;
 use crate::Loaded;
 use crate::binary::{ERROR, FATAL, OK, Status};
 use crate::fmi3::host::{Instance, Interface3, State3};
-use crate::matrix::{Case, Expect, on_instance};
+use crate::matrix::{Case, Expect};
 
 const WHY_RANGE: &str = "a size outside the structural parameter's min..max (here 0, 10^9, 2^64 - 1): fmi3Error naming the range, the previous size kept";
 const WHY_MODE: &str = "FMI 3.0 3.2: a fixed structural parameter is set in Configuration Mode only: fmi3Error naming Configuration Mode";
@@ -83,22 +84,10 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
     else {
         return Vec::new();
     };
-    let mut cases = Vec::new();
-    let mut add = |interface: Interface3,
-                   name: String,
-                   expect: (Expect, &'static str),
-                   state: State3,
-                   call: Box<dyn Fn(&Instance) -> Status>| {
-        cases.push(Case::new(
-            ("structural", m, interface),
-            name,
-            expect,
-            move |l| on_instance(l, m, interface, state, |i| call(i)),
-        ));
-    };
+    let mut cases = InstanceCases::new("structural", m);
     for interface in [Interface3::ModelExchange, Interface3::CoSimulation] {
         for bad in [0, 1_000_000_000, u64::MAX] {
-            add(
+            cases.add(
                 interface,
                 format!("size {bad} in ConfigurationMode"),
                 (Expect::error("outside 1..="), WHY_RANGE),
@@ -128,7 +117,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             if !state.exists_for(interface) {
                 continue;
             }
-            add(
+            cases.add(
                 interface,
                 format!("size {RESIZED} in {state:?}"),
                 (Expect::error("Configuration Mode"), WHY_MODE),
@@ -140,7 +129,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             Interface3::ModelExchange => State3::EventMode,
             _ => State3::StepMode,
         };
-        add(
+        cases.add(
             interface,
             format!("fmi3EnterConfigurationMode in {running:?}"),
             (Expect::error("Reconfiguration Mode"), WHY_RECONFIGURATION),
@@ -148,7 +137,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             Box::new(enter),
         );
         for state in [State3::InitializationMode, State3::Terminated] {
-            add(
+            cases.add(
                 interface,
                 format!("fmi3EnterConfigurationMode in {state:?}"),
                 (Expect::error("fmi3EnterConfigurationMode"), WHY_ORDER),
@@ -156,21 +145,21 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 Box::new(enter),
             );
         }
-        add(
+        cases.add(
             interface,
             "fmi3ExitConfigurationMode in Instantiated".into(),
             (Expect::error("fmi3ExitConfigurationMode"), WHY_ORDER),
             State3::Instantiated,
             Box::new(exit),
         );
-        add(
+        cases.add(
             interface,
             "fmi3EnterConfigurationMode twice".into(),
             (Expect::error("fmi3EnterConfigurationMode"), WHY_ORDER),
             State3::Instantiated,
             Box::new(|i| if enter(i) == OK { enter(i) } else { FATAL }),
         );
-        add(
+        cases.add(
             interface,
             "fmi3SetUInt64 with nValues = 2".into(),
             (Expect::error("nValues = 2"), WHY_COUNT),
@@ -185,14 +174,14 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             }),
         );
         let (vr, name) = (array.0, array.1.clone());
-        add(
+        cases.add(
             interface,
             format!("fmi3GetFloat64({name}) with the old size {start} after a resize"),
             (Expect::error(&format!("nValues = {start}")), WHY_COUNT),
             State3::Instantiated,
             Box::new(move |i| resized(i, n, |i| get(i, vr, start).0)),
         );
-        add(
+        cases.add(
             interface,
             format!("fmi3SetFloat64({name}) with the old size {start} after a resize"),
             (Expect::error(&format!("nValues = {start}")), WHY_COUNT),
@@ -209,7 +198,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 })
             }),
         );
-        add(
+        cases.add(
             interface,
             format!("fmi3SerializedFMUStateSize at size {RESIZED}"),
             (Expect::error("default sizes only"), WHY_SERIALIZED),
@@ -226,7 +215,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 })
             }),
         );
-        add(
+        cases.add(
             interface,
             format!("size {RESIZED}, then {name} read with {RESIZED} values"),
             (Expect::ok(), WHY_CONTROL),
@@ -240,5 +229,5 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
             }),
         );
     }
-    cases
+    cases.cases
 }
