@@ -74,6 +74,22 @@ def interval_fraction(fmu, clock):
     return counters[0], resolutions[0], qualifiers[0]
 
 
+def to_next_tick(ctrl, t, k):
+    """Takes the controller from tick k at time t to Event Mode at tick k + 1 (its
+    time, returned, is (k + 1) counter / resolution); in Co-Simulation the step must end
+    exactly there and ask for Event Mode."""
+    next_tick = (k + 1) / 1000
+    if isinstance(ctrl, FMU3Slave):
+        ctrl.enterStepMode()
+        event, _terminate, early, last = ctrl.doStep(t, PERIOD)
+        assert (event, early, last) == (True, False, next_tick), k
+    else:
+        ctrl.enterContinuousTimeMode()
+        ctrl.setTime(next_tick)
+    ctrl.enterEventMode()
+    return next_tick
+
+
 def run_loop(tmp_path, interface):
     """Ticks the clocked controller on the plant for TICKS periods; the largest
     |uSampled - reference| over the ticks, and the controller's time after the last."""
@@ -104,18 +120,7 @@ def run_loop(tmp_path, interface):
         worst = max(worst, *(abs(a - b) for a, b in zip(u, expected)))
         plant.setFloat64([pvr["generalizedForceCommand"]], u)
         plant.doStep(t, PERIOD)
-        next_tick = (k + 1) / 1000  # tick k+1: (k+1) counter / resolution
-        if cls is FMU3Slave:
-            ctrl.enterStepMode()
-            event, _terminate, early, last = ctrl.doStep(t, PERIOD)
-            # The step ends at the tick, exactly, and asks for Event Mode there.
-            assert (event, early, last) == (True, False, next_tick), k
-            ctrl.enterEventMode()
-        else:
-            ctrl.enterContinuousTimeMode()
-            ctrl.setTime(next_tick)
-            ctrl.enterEventMode()
-        t = next_tick
+        t = to_next_tick(ctrl, t, k)
     return worst, ctrl, vr, t, plant, pvr
 
 

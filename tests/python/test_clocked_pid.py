@@ -24,7 +24,7 @@ import math
 import pytest
 from fmpy.fmi3 import FMU3Model, FMU3Slave
 
-from test_clocked_controller import interval_fraction, open_fmu, open_plant
+from test_clocked_controller import interval_fraction, open_fmu, open_plant, to_next_tick
 
 TICKS = 200  # 0.2 s at 1 ms
 PERIOD = 1e-3
@@ -99,18 +99,7 @@ def run_pid_loop(tmp_path, interface):
         saturated |= abs(u[2]) == GAINS["uMax"][2]
         plant.setFloat64([pvr["generalizedForceCommand"]], u)
         plant.doStep(t, PERIOD)
-        next_tick = (k + 1) / 1000  # tick k+1: (k+1) counter / resolution
-        if cls is FMU3Slave:
-            ctrl.enterStepMode()
-            event, _terminate, early, last = ctrl.doStep(t, PERIOD)
-            # The step ends at the tick, exactly, and asks for Event Mode there.
-            assert (event, early, last) == (True, False, next_tick), k
-            ctrl.enterEventMode()
-        else:
-            ctrl.enterContinuousTimeMode()
-            ctrl.setTime(next_tick)
-            ctrl.enterEventMode()
-        t = next_tick
+        t = to_next_tick(ctrl, t, k)
     moved = [abs(a - b) for a, b in zip(plant.getFloat64([pvr["theta"]], 3), target)]
     return worst, saturated, moved, ctrl, vr, t
 
