@@ -149,19 +149,8 @@ fn model_variable(d: &Description, v3: &Variable3Description) -> Result<TypedVar
         ..first.as_ref().map(TypeAttributes::of).unwrap_or_default()
     };
     let out = ModelVariable {
-        head: VariableHead::new(
-            v.name.to_string(),
-            v.value_reference,
-            v3.description.clone(),
-            (v.causality, v.variability),
-        ),
         intermediate_update: v3.intermediate_update.then_some(true),
-        initial: v.initial.map(Initial::as_str),
-        clocks: None,
-        interval_variability: None,
-        supports_fraction: None,
-        attributes,
-        dimension: Dimension::of(v3),
+        ..bare(v3, attributes, Dimension::of(v3))
     };
     Ok(match first {
         None | Some(Value::Real { .. }) => TypedVariable::Float64(out),
@@ -174,22 +163,7 @@ fn model_variable(d: &Description, v3: &Variable3Description) -> Result<TypedVar
 /// parameter, which the importer may read as a fraction), its period parameter or one
 /// of its outputs (`clocks` naming the clock).
 fn clock_variable(v3: &Variable3Description, part: ClockPart) -> TypedVariable {
-    let v = &v3.variable;
-    let mut out = ModelVariable {
-        head: VariableHead::new(
-            v.name.to_string(),
-            v.value_reference,
-            v3.description.clone(),
-            (v.causality, v.variability),
-        ),
-        intermediate_update: None,
-        initial: v.initial.map(Initial::as_str),
-        clocks: None,
-        interval_variability: None,
-        supports_fraction: None,
-        attributes: TypeAttributes::default(),
-        dimension: Dimension::of(v3),
-    };
+    let mut out = bare(v3, TypeAttributes::default(), Dimension::of(v3));
     match part {
         ClockPart::Clock => {
             out.interval_variability = Some("fixed");
@@ -210,8 +184,24 @@ fn clock_variable(v3: &Variable3Description, part: ClockPart) -> TypedVariable {
 
 /// A structural parameter: UInt64 from 1 to `max`, start the default size.
 fn structural_parameter(v3: &Variable3Description, start: u64, max: u64) -> TypedVariable {
+    let attributes = TypeAttributes {
+        min: Some("1".to_string()),
+        max: Some(max.to_string()),
+        start: Some(start.to_string()),
+        ..TypeAttributes::default()
+    };
+    TypedVariable::UInt64(bare(v3, attributes, None))
+}
+
+/// The variable `v3` with `attributes` and `dimension`, nothing else (no clock, no
+/// intermediate update).
+fn bare(
+    v3: &Variable3Description,
+    attributes: TypeAttributes,
+    dimension: Option<Dimension>,
+) -> ModelVariable {
     let v = &v3.variable;
-    TypedVariable::UInt64(ModelVariable {
+    ModelVariable {
         head: VariableHead::new(
             v.name.to_string(),
             v.value_reference,
@@ -223,14 +213,9 @@ fn structural_parameter(v3: &Variable3Description, start: u64, max: u64) -> Type
         clocks: None,
         interval_variability: None,
         supports_fraction: None,
-        attributes: TypeAttributes {
-            min: Some("1".to_string()),
-            max: Some(max.to_string()),
-            start: Some(start.to_string()),
-            ..TypeAttributes::default()
-        },
-        dimension: None,
-    })
+        attributes,
+        dimension,
+    }
 }
 
 fn dependencies(v: &Variable3Description, initial: bool) -> Dependencies {
