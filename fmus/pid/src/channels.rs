@@ -14,7 +14,7 @@ pub const MAX_CHANNELS: usize = 64;
 
 /// Parameters, inputs and states of the channels (empty by default: the layer sizes
 /// them to `nChannels`).
-#[derive(Clone, Default)]
+#[derive(Default)]
 pub struct Pid {
     pub(crate) gains: Vec<PidGains>,
     /// Limits as set; they apply only when `limited` is true.
@@ -26,6 +26,26 @@ pub struct Pid {
     pub(crate) states: Vec<PidState>,
     /// The sampled law's state and held outputs (`clocked`).
     pub(crate) sampled: super::clocked::Sampled,
+}
+
+/// Field by field, so that `clone_from` (the layer's copy before each step) reuses
+/// the vectors: no allocation per step.
+impl Clone for Pid {
+    fn clone(&self) -> Self {
+        let mut copy = Pid::default();
+        copy.clone_from(self);
+        copy
+    }
+
+    fn clone_from(&mut self, from: &Self) {
+        self.gains.clone_from(&from.gains);
+        self.limits.clone_from(&from.limits);
+        self.limited.clone_from(&from.limited);
+        self.inputs.clone_from(&from.inputs);
+        self.ramps.clone_from(&from.ramps);
+        self.states.clone_from(&from.states);
+        self.sampled.clone_from(&from.sampled);
+    }
 }
 
 impl Pid {

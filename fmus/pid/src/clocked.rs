@@ -21,7 +21,7 @@ const CLOCK_VR: u32 = 401;
 const OUTPUT_VR: u32 = 411;
 
 /// What the sampled law holds between ticks, per channel (as many as `nChannels`).
-#[derive(Clone, Default)]
+#[derive(Default)]
 pub struct Sampled {
     /// Each channel's state the next tick starts from.
     states: Vec<PidState>,
@@ -29,6 +29,21 @@ pub struct Sampled {
     held: Vec<f64>,
     /// The sample period, s (the FMI 3.0 parameter samplePeriod).
     period: f64,
+}
+
+/// Field by field, as the PID's channels (`clone_from` reuses the vectors).
+impl Clone for Sampled {
+    fn clone(&self) -> Self {
+        let mut copy = Sampled::default();
+        copy.clone_from(self);
+        copy
+    }
+
+    fn clone_from(&mut self, from: &Self) {
+        self.states.clone_from(&from.states);
+        self.held.clone_from(&from.held);
+        self.period = from.period;
+    }
 }
 
 /// Doubles in the FMU state of the sampled law: integral, filter and output per

@@ -53,6 +53,11 @@ pub struct Instance<M: Model> {
     /// Boxed: an instance is moved several times while it is built (a model such as the
     /// plant's is kilobytes; a move of the box is a pointer).
     model: Box<M>,
+    /// The model as it was before the current step (a discarded step swaps it back):
+    /// kept between steps so that saving it is `clone_from`, which reuses what the
+    /// model allocated (a model with vectors, such as the N-channel PID, then
+    /// allocates nothing per step).
+    before_step: Box<M>,
     /// Computed values are stale (`Model::calculate_values` not called since a change).
     dirty: bool,
     /// Why the model could not be evaluated at the last calculation, if it could not.
@@ -412,6 +417,7 @@ impl<M: Model> Instance<M> {
         model.set_time(time);
         Ok(Instance {
             index,
+            before_step: Box::new(model.clone()),
             model: Box::new(model),
             dirty: true,
             evaluation_error: None,
@@ -745,7 +751,7 @@ impl<M: Model> Instance<M> {
     /// A discarded step leaves the instance as it was before the step.
     pub fn do_step(&mut self, t: f64, h: f64, log: &dyn Log) -> Result<StepOutcome, String> {
         self.check_step(t, h)?;
-        let before = (*self.model).clone();
+        self.before_step.clone_from(&self.model);
         self.set_time(t);
         let mut outcome = self.model_mut().do_step(t, h, log);
         if outcome == StepOutcome::Completed {
@@ -760,7 +766,7 @@ impl<M: Model> Instance<M> {
         match &outcome {
             StepOutcome::Completed => self.last_successful_time = t + h,
             StepOutcome::Discarded { terminate, .. } => {
-                *self.model = before;
+                std::mem::swap(&mut self.model, &mut self.before_step);
                 self.dirty = true;
                 self.set_time(t);
                 self.terminated_by_model = *terminate;
