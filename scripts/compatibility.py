@@ -312,6 +312,7 @@ def container_verdict(folder: Path) -> str:
     import tempfile
 
     from fmu_manipulation_toolbox.container import FMUContainer
+    from fmu_manipulation_toolbox.operations import FMUError
 
     case, names, _ = _case(folder)
     model = folder.name
@@ -329,10 +330,13 @@ def container_verdict(folder: Path) -> str:
         shutil.copy(folder / f"{model}.fmu", work / f"{model}.fmu")
         container = FMUContainer(f"{model}_container", work, fmi_version=fmi_version)
         container.get_fmu(f"{model}.fmu")
-        for name in whole(names):
-            container.add_input(name, f"{model}.fmu", name)
-        for signal in whole(case.signals()):
-            container.add_output(f"{model}.fmu", signal, signal)
+        try:
+            for name in whole(names):
+                container.add_input(name, f"{model}.fmu", name)
+            for signal in whole(case.signals()):
+                container.add_output(f"{model}.fmu", signal, signal)
+        except FMUError as refusal:  # e.g. an array sized by a structural parameter
+            return f"refused ({refusal})"
         for name, value in case.start_values.items():
             text = str(value).lower() if isinstance(value, bool) else repr(value)
             container.add_start_value(f"{model}.fmu", name, text)

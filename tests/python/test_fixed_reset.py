@@ -199,7 +199,10 @@ FMI3_TYPES = {"Float64": ("fmi3SetFloat64", "fmi3GetFloat64", c_double),
 
 
 def size(v):
-    return math.prod(int(d.start) for d in v.dimensions) if v.dimensions else 1
+    """Elements of `v` at the default sizes: a dimension is its start or, sized by a
+    structural parameter (`<Dimension valueReference>`), that parameter's start."""
+    return math.prod(int(d.start if d.start is not None else d.variable.start)
+                     for d in v.dimensions)
 
 
 def raw3(fmu, name, v, values):
