@@ -6,12 +6,13 @@
 //! and argument rules of the same section (fmi3SetClock only in Event Mode, only at a
 //! tick; a fixed clock's interval read in Initialization Mode).
 
-use robofmu_fmi::fmi3::api::{self, DiscreteStatesUpdate, Instantiation, StepResult};
+use robofmu_fmi::fmi3::api::{self, DiscreteStatesUpdate, StepResult};
 use robofmu_fmi::fmi3::mode::Interface;
 use robofmu_fmi::fmi3::types::*;
 use robofmu_fmi::prelude::*;
-use std::cell::RefCell;
-use std::ffi::{CStr, c_void};
+mod support;
+
+use support::{instantiate, last_message};
 
 #[derive(Clone, Default)]
 struct Accumulator {
@@ -77,45 +78,14 @@ const PERIOD: u32 = 11;
 const SUM: u32 = 12;
 const TICKS: u32 = 13;
 
-thread_local! {
-    static MESSAGES: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
-}
-
-unsafe extern "C-unwind" fn log(
-    _env: Fmi3InstanceEnvironment,
-    _status: Fmi3Status,
-    _category: Fmi3String,
-    message: Fmi3String,
-) {
-    // SAFETY: the layer passes a NUL-terminated message.
-    let text = unsafe { CStr::from_ptr(message) }
-        .to_string_lossy()
-        .into_owned();
-    MESSAGES.with(|m| m.borrow_mut().push(text));
-}
-
-fn last_message() -> String {
-    MESSAGES.with(|m| m.borrow().last().cloned().unwrap_or_default())
-}
-
 struct Fmu(Fmi3Instance);
 
 impl Fmu {
     fn new(interface: Interface) -> Fmu {
-        let c = unsafe {
-            api::instantiate::<Accumulator>(Instantiation {
-                function: "fmi3Instantiate",
-                instance_name: c"acc".as_ptr(),
-                token: c"{6c1d0d2e-8a44-4f5e-9d55-2b8f3c1a7e01}".as_ptr(),
-                logging_on: FMI3_FALSE,
-                environment: std::ptr::null_mut::<c_void>(),
-                log_message: Some(log),
-                interface,
-                intermediate_update: None,
-            })
-        };
-        assert!(!c.is_null());
-        Fmu(c)
+        Fmu(instantiate::<Accumulator>(
+            interface,
+            c"{6c1d0d2e-8a44-4f5e-9d55-2b8f3c1a7e01}",
+        ))
     }
 
     fn co_simulation(early_return_allowed: bool) -> Fmu {

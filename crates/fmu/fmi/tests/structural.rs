@@ -7,14 +7,13 @@
 //! parameters set in Configuration Mode only, entered from Instantiated; nValues
 //! counts the current size).
 
-use robofmu_fmi::fmi3::api::{
-    self, DependencyArrays, DerivativeRequest, Instantiation, StepResult,
-};
+use robofmu_fmi::fmi3::api::{self, DependencyArrays, DerivativeRequest, StepResult};
 use robofmu_fmi::fmi3::mode::Interface;
 use robofmu_fmi::fmi3::types::*;
 use robofmu_fmi::prelude::*;
-use std::cell::RefCell;
-use std::ffi::{CStr, c_void};
+mod support;
+
+use support::{instantiate, last_message};
 
 #[derive(Clone)]
 struct Gains {
@@ -95,27 +94,6 @@ impl Model for Gains {
 
 const N: u32 = 100;
 
-thread_local! {
-    static MESSAGES: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
-}
-
-unsafe extern "C-unwind" fn log(
-    _env: Fmi3InstanceEnvironment,
-    _status: Fmi3Status,
-    _category: Fmi3String,
-    message: Fmi3String,
-) {
-    // SAFETY: the layer passes a NUL-terminated message.
-    let text = unsafe { CStr::from_ptr(message) }
-        .to_string_lossy()
-        .into_owned();
-    MESSAGES.with(|m| m.borrow_mut().push(text));
-}
-
-fn last_message() -> String {
-    MESSAGES.with(|m| m.borrow().last().cloned().unwrap_or_default())
-}
-
 struct Fmu(Fmi3Instance);
 
 impl Drop for Fmu {
@@ -126,20 +104,10 @@ impl Drop for Fmu {
 
 impl Fmu {
     fn new(interface: Interface) -> Fmu {
-        let c = unsafe {
-            api::instantiate::<Gains>(Instantiation {
-                function: "fmi3Instantiate",
-                instance_name: c"g".as_ptr(),
-                token: c"{0d6b7a52-19e4-4c8e-8f3a-5b1e2c7d9a40}".as_ptr(),
-                logging_on: FMI3_FALSE,
-                environment: std::ptr::null_mut::<c_void>(),
-                log_message: Some(log),
-                interface,
-                intermediate_update: None,
-            })
-        };
-        assert!(!c.is_null());
-        Fmu(c)
+        Fmu(instantiate::<Gains>(
+            interface,
+            c"{0d6b7a52-19e4-4c8e-8f3a-5b1e2c7d9a40}",
+        ))
     }
 
     fn cs() -> Fmu {
