@@ -297,6 +297,14 @@ impl State3 {
             _ => true,
         }
     }
+
+    /// The states of `states` that belong to the interface's state machine.
+    pub fn of(interface: Interface3, states: &[State3]) -> impl Iterator<Item = State3> + '_ {
+        states
+            .iter()
+            .copied()
+            .filter(move |s| s.exists_for(interface))
+    }
 }
 
 /// fmi3InstantiateModelExchange or fmi3InstantiateCoSimulation (no resource

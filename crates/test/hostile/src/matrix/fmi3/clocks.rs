@@ -87,16 +87,16 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
         .map(|v| (v.vr, v.name.clone()));
     let mut cases = InstanceCases::new("clocks", m);
     for interface in [Interface3::ModelExchange, Interface3::CoSimulationEvents] {
-        for state in [
-            State3::Instantiated,
-            State3::InitializationMode,
-            State3::ContinuousTimeMode,
-            State3::StepMode,
-            State3::Terminated,
-        ] {
-            if !state.exists_for(interface) {
-                continue;
-            }
+        for state in State3::of(
+            interface,
+            &[
+                State3::Instantiated,
+                State3::InitializationMode,
+                State3::ContinuousTimeMode,
+                State3::StepMode,
+                State3::Terminated,
+            ],
+        ) {
             cases.add(
                 interface,
                 format!("fmi3SetClock in {state:?}"),
@@ -105,14 +105,14 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 Box::new(move |i| set_clock(i, clock)),
             );
         }
-        for state in [
-            State3::Instantiated,
-            State3::ContinuousTimeMode,
-            State3::StepMode,
-        ] {
-            if !state.exists_for(interface) {
-                continue;
-            }
+        for state in State3::of(
+            interface,
+            &[
+                State3::Instantiated,
+                State3::ContinuousTimeMode,
+                State3::StepMode,
+            ],
+        ) {
             cases.add(
                 interface,
                 format!("fmi3GetIntervalDecimal in {state:?}"),

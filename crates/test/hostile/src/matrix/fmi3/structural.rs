@@ -106,17 +106,17 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
                 }),
             );
         }
-        for state in [
-            State3::Instantiated,
-            State3::InitializationMode,
-            State3::EventMode,
-            State3::ContinuousTimeMode,
-            State3::StepMode,
-            State3::Terminated,
-        ] {
-            if !state.exists_for(interface) {
-                continue;
-            }
+        for state in State3::of(
+            interface,
+            &[
+                State3::Instantiated,
+                State3::InitializationMode,
+                State3::EventMode,
+                State3::ContinuousTimeMode,
+                State3::StepMode,
+                State3::Terminated,
+            ],
+        ) {
             cases.add(
                 interface,
                 format!("size {RESIZED} in {state:?}"),

@@ -74,10 +74,7 @@ pub fn cases(loaded: &Loaded, m: usize) -> Vec<Case> {
     for interface in Interface3::ALL {
         let settable = d.variables.iter().filter(|v| v.is_settable());
         for v in settable.filter(|v| !(v.is_parameter() && v.variability == "fixed")) {
-            for &state in setter_states(v.var_type) {
-                if !state.exists_for(interface) {
-                    continue;
-                }
+            for state in State3::of(interface, setter_states(v.var_type)) {
                 let allowed = may_change(v, state);
                 let var = v.clone();
                 cases.push(Case::new(
